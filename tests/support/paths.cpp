@@ -1,0 +1,67 @@
+#include "support/paths.h"
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <atomic>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+
+namespace tsptest {
+fs::path test_data_dir() { return TSP_TEST_DATA_DIR; }
+fs::path shared_data_dir() { return TSP_SHARED_DATA_DIR; }
+fs::path datasets_dir() { return TSP_DATASETS_DIR; }
+fs::path tspplay_bin() { return TSPPLAY_BIN; }
+
+namespace {
+struct TempRoot {
+  fs::path root;
+  TempRoot() {
+    std::string tmpl = (fs::temp_directory_path() / "tsptest-XXXXXX").string();
+    root = mkdtemp(tmpl.data());
+  }
+  ~TempRoot() {
+    std::error_code ec;
+    if (!getenv("TSPTEST_KEEP")) fs::remove_all(root, ec);
+  }
+};
+TempRoot& temp_root() {
+  static TempRoot r;
+  return r;
+}
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+}  // namespace
+
+fs::path temp_dir() {
+  static std::atomic<int> counter{0};
+  const auto* info = testing::UnitTest::GetInstance()->current_test_info();
+  std::string name = info ? std::string(info->test_suite_name()) + "." + info->name() : "global";
+  for (char& c : name)
+    if (c == '/') c = '_';
+  fs::path dir = temp_root().root / (name + "-" + std::to_string(counter++));
+  fs::create_directories(dir);
+  return dir;
+}
+
+RunResult run_tspplay(const std::string& args) {
+  fs::path dir = temp_dir();
+  fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
+  std::string cmd = "'" + tspplay_bin().string() + "' " + args + " </dev/null >'" + out.string() +
+                    "' 2>'" + err.string() + "'";
+  int status = std::system(cmd.c_str());
+  RunResult r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = slurp(out);
+  r.err = slurp(err);
+  return r;
+}
+}  // namespace tsptest

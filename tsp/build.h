@@ -1,0 +1,37 @@
+// Building a .tsp file from a VolumeSource: bricks, the TSP tree and its statistics.
+#pragma once
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+
+#include "tsp/types.h"
+#include "tsp/volume_source.h"
+
+namespace tsp {
+
+/// Progress callback: phase name, units done, units total (bytes of source data).
+using ProgressFn = std::function<void(const std::string& phase, std::int64_t done, std::int64_t total)>;
+
+/// Options of `tspplay build`.
+struct BuildOptions {
+  int brick_size = kDefaultBrickSize;   ///< B, a power of two
+  std::optional<ValueRange> range;      ///< quantization range; default: the data's finite range
+  int threads = 0;                      ///< worker threads; 0 = hardware concurrency
+  std::string field_name;               ///< recorded in the file
+  ProgressFn progress;                  ///< may be empty
+};
+
+/// What a build did, for the CLI and the benchmark.
+struct BuildReport {
+  std::int64_t source_bytes = 0;        ///< voxels × steps × 4 (float samples read)
+  std::int64_t nonfinite_count = 0;     ///< NaN/Inf samples replaced
+  double seconds = 0;                   ///< wall time of the whole build
+  ValueRange data_range;                ///< finite min/max of the input
+};
+
+/// Reads every step of source once, writes out_path (via a temporary name renamed at the end),
+/// and returns what it did. Throws IoError/FormatError/UsageError; never leaves a partial out_path.
+BuildReport build_tsp_file(VolumeSource& source, const std::string& out_path, const BuildOptions& options);
+
+}  // namespace tsp
