@@ -1,0 +1,34 @@
+#include "support/memory_source.h"
+
+#include <algorithm>
+#include <cassert>
+
+#include "tsp/error.h"
+
+namespace tsptest {
+
+MemorySource::MemorySource(tsp::Dims dims, std::vector<std::vector<float>> steps, int fail_at)
+    : dims_(dims), steps_(std::move(steps)), fail_at_(fail_at) {
+  for (const auto& s : steps_) assert(std::int64_t(s.size()) == dims_.count());
+}
+
+MemorySource MemorySource::from_function(tsp::Dims dims, int steps,
+                                         const std::function<float(int, int, int, int)>& f) {
+  std::vector<std::vector<float>> data(steps, std::vector<float>(std::size_t(dims.count())));
+  for (int t = 0; t < steps; ++t)
+    for (int z = 0; z < dims.z; ++z)
+      for (int y = 0; y < dims.y; ++y)
+        for (int x = 0; x < dims.x; ++x)
+          data[t][x + std::size_t(dims.x) * (y + std::size_t(dims.y) * z)] = f(x, y, z, t);
+  return MemorySource(dims, std::move(data));
+}
+
+void MemorySource::read_step(int t, std::span<float> out) {
+  assert(t >= 0 && t < steps() && std::int64_t(out.size()) == dims_.count());
+  ++reads_;
+  if (t == fail_at_)
+    throw tsp::IoError(describe() + ": step " + std::to_string(t) + ": simulated read failure");
+  std::copy(steps_[t].begin(), steps_[t].end(), out.begin());
+}
+
+}  // namespace tsptest

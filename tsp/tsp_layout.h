@@ -1,0 +1,53 @@
+// Names inside a .tsp file, shared by its writer and reader. The layout is documented in
+// docs/formats.md; change both together and bump kTspFormatVersion (tsp/tsp_file.h).
+#pragma once
+
+namespace tsp::layout {
+
+inline constexpr const char* kFormatName = "tspplay";
+
+// Root attributes.
+inline constexpr const char* kAttrFormat = "format";
+inline constexpr const char* kAttrVersion = "version";
+inline constexpr const char* kAttrDims = "dims";               // int32[3]: x, y, z
+inline constexpr const char* kAttrSteps = "steps";             // int32
+inline constexpr const char* kAttrBrickSize = "brick_size";    // int32
+inline constexpr const char* kAttrValueRange = "value_range";  // float64[2]: quantization range
+inline constexpr const char* kAttrDataRange = "data_range";    // float64[2]: finite input range
+inline constexpr const char* kAttrSource = "source";
+inline constexpr const char* kAttrField = "field";
+inline constexpr const char* kAttrCreatedBy = "created_by";
+inline constexpr const char* kAttrNonfinite = "nonfinite_count";  // int64
+inline constexpr const char* kAttrQuantization = "quantization";  // text of the rule
+inline constexpr const char* kAttrNodeId = "tsp_node_id";         // text of the id rule
+
+// Datasets.
+inline constexpr const char* kBricks = "/bricks";
+inline constexpr const char* kBrickData = "/bricks/data";               // uint16 [nb,T,Bz,By,Bx]
+inline constexpr const char* kBrickSamplesBox = "/bricks/samples_box";  // int32 [nb,6]
+inline constexpr const char* kBrickOwnBox = "/bricks/own_box";          // int32 [nb,6]
+inline constexpr const char* kOctree = "/octree";
+inline constexpr const char* kOctreeBox = "/octree/box";            // int32 [no,6]
+inline constexpr const char* kOctreeLevel = "/octree/level";        // int32 [no]
+inline constexpr const char* kOctreeParent = "/octree/parent";      // int32 [no]
+inline constexpr const char* kOctreeChildren = "/octree/children";  // int32 [no,8]
+inline constexpr const char* kOctreeBrick = "/octree/brick";        // int32 [no]
+inline constexpr const char* kTime = "/time";
+inline constexpr const char* kTimeSpan = "/time/span";  // int32 [2T-1,2]
+inline constexpr const char* kStats = "/stats";
+inline constexpr const char* kStatsMean = "/stats/mean";                // float64 [n]
+inline constexpr const char* kStatsStd = "/stats/std";                  // float64 [n]
+inline constexpr const char* kStatsMin = "/stats/min";                  // float32 [n]
+inline constexpr const char* kStatsMax = "/stats/max";                  // float32 [n]
+inline constexpr const char* kStatsSpatial = "/stats/spatial_error";    // float32 [n]
+inline constexpr const char* kStatsTemporal = "/stats/temporal_error";  // float32 [n]
+inline constexpr const char* kHistogram = "/histogram";                 // uint64 [kHistogramBins]
+
+inline constexpr const char* kQuantizationRule =
+    "code q in [0,65535] stands for v = lo + q*(hi-lo)/65535 with [lo,hi] = value_range; "
+    "q = round_half_even((clamp(v,lo,hi)-lo)/(hi-lo)*65535), 0 when hi == lo; "
+    "NaN and -Inf become lo, +Inf becomes hi";
+inline constexpr const char* kNodeIdRule =
+    "TSP node id = octree_id * (2*steps - 1) + time_id; octree and time nodes breadth-first";
+
+}  // namespace tsp::layout
