@@ -1,15 +1,11 @@
 #include "tsp/build.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <cstring>
 #include <exception>
-#include <filesystem>
 #include <limits>
 #include <mutex>
 #include <thread>
@@ -19,57 +15,17 @@
 #include "tsp/error.h"
 #include "tsp/scratch_file.h"
 #include "tsp/step_prefetcher.h"
+#include "tsp/temp_output.h"
 #include "tsp/tsp_file.h"
 #include "tsp/tsp_tree.h"
 #include "tsp/tsp_writer.h"
 
 namespace tsp {
 
-namespace fs = std::filesystem;
-
 namespace {
 
 constexpr const char* kPhaseRead = "reading";
 constexpr const char* kPhaseBricks = "bricks";
-
-// The output is written under a hidden temporary name in its own directory and renamed over
-// out_path only once complete; on any failure the temporary file is removed.
-class TempOutput {
- public:
-  explicit TempOutput(const std::string& out_path) : final_(out_path) {
-    fs::path p(out_path);
-    fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
-    std::error_code ec;
-    if (fs::is_directory(p, ec)) throw IoError(out_path + ": is a directory, expected a file name");
-    if (!fs::is_directory(dir, ec))
-      throw IoError(out_path + ": directory " + dir.string() + " does not exist");
-    dir_ = dir.string();
-    std::string tmpl = (dir / ("." + p.filename().string() + ".tmp-XXXXXX")).string();
-    int fd = mkstemp(tmpl.data());
-    if (fd < 0)
-      throw IoError(out_path + ": cannot create a file in " + dir_ + " (" + std::strerror(errno) +
-                    ")");
-    close(fd);
-    tmp_ = tmpl;
-  }
-  ~TempOutput() {
-    if (!committed_) std::remove(tmp_.c_str());
-  }
-  TempOutput(const TempOutput&) = delete;
-  TempOutput& operator=(const TempOutput&) = delete;
-  const std::string& tmp() const { return tmp_; }
-  const std::string& dir() const { return dir_; }
-  void commit() {
-    if (std::rename(tmp_.c_str(), final_.c_str()) != 0)
-      throw IoError(final_ + ": cannot rename the finished file into place (" +
-                    std::strerror(errno) + ")");
-    committed_ = true;
-  }
-
- private:
-  std::string final_, tmp_, dir_;
-  bool committed_ = false;
-};
 
 // Finite extremes and non-finite count of the input, over every voxel of every step.
 struct InputScan {
@@ -101,10 +57,10 @@ InputScan scatter_steps(VolumeSource& source, const Octree& octree, ScratchFile&
   const std::int64_t step_bytes = d.count() * std::int64_t(sizeof(float));
   InputScan scan;
   std::vector<float> brick;
-  StepPrefetcher prefetch(source);
+  // The reader thread also scans each step, which balances the two threads of this pass.
+  StepPrefetcher prefetch(source, [&scan](int, const std::vector<float>& v) { scan.add(v); });
   for (int t = 0; t < source.steps(); ++t) {
     const std::vector<float>& vol = prefetch.next();
-    scan.add(vol);
     for (int b = 0; b < octree.brick_count(); ++b) {
       const Box s = octree.brick_samples(b);
       brick.resize(std::size_t(s.count()));
@@ -128,8 +84,9 @@ void sanitize(std::span<float> v, ValueRange r) {
   for (float& x : v) x = std::isnan(x) ? lo : std::clamp(x, lo, hi);
 }
 
-// Bit-for-bit the same code as Quantizer::encode, without a libm call per sample: adding and
-// subtracting 2^52 rounds half to even like nearbyint in the default rounding mode.
+// Bit-for-bit the same code as Quantizer::encode for sanitized (non-NaN) samples, without a libm
+// call per sample: adding and subtracting 2^52 rounds half to even like nearbyint in the default
+// rounding mode.
 struct FastQuantizer {
   double lo, width;
   bool flat;
@@ -139,9 +96,9 @@ struct FastQuantizer {
     constexpr double kRound = 4503599627370496.0;  // 2^52
     double q = (double(v) - lo) / width * kQuantMax;
     q = (q + kRound) - kRound;
-    if (!(q > 0)) return 0;
-    if (q > kQuantMax) return kQuantMax;
-    return std::uint16_t(q);
+    // Branch-free clamp (v is never NaN here: sanitize() ran first); −0 converts to 0.
+    q = std::min(std::max(q, 0.0), double(kQuantMax));
+    return std::uint16_t(int(q));
   }
 };
 

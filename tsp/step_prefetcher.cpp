@@ -4,7 +4,8 @@
 
 namespace tsp {
 
-StepPrefetcher::StepPrefetcher(VolumeSource& source) : source_(source) {
+StepPrefetcher::StepPrefetcher(VolumeSource& source, StepHook on_read)
+    : source_(source), on_read_(std::move(on_read)) {
   thread_ = std::thread([this] { run(); });
 }
 
@@ -31,6 +32,7 @@ void StepPrefetcher::run() {
     try {
       buffers_[b].resize(voxels);
       source_.read_step(t, buffers_[b]);
+      if (on_read_) on_read_(t, buffers_[b]);
     } catch (...) {
       std::lock_guard lock(mutex_);
       error_ = std::current_exception();

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <deque>
 #include <exception>
+#include <functional>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -16,8 +17,11 @@ namespace tsp {
 /// most two steps are in memory. read_step is only ever called from the prefetch thread.
 class StepPrefetcher {
  public:
-  /// Starts reading steps 0, 1, … of source on a new thread; never throws on read errors here.
-  explicit StepPrefetcher(VolumeSource& source);
+  /// Called on the prefetch thread with each step right after it was read (in step order).
+  using StepHook = std::function<void(int step, const std::vector<float>& samples)>;
+  /// Starts reading steps 0, 1, … of source on a new thread, running on_read (may be empty) on
+  /// each; errors of either are rethrown by next().
+  explicit StepPrefetcher(VolumeSource& source, StepHook on_read = {});
   /// Stops the thread (after the read in progress) and joins it.
   ~StepPrefetcher();
   StepPrefetcher(const StepPrefetcher&) = delete;
@@ -31,6 +35,7 @@ class StepPrefetcher {
  private:
   void run();
   VolumeSource& source_;
+  StepHook on_read_;
   std::vector<float> buffers_[2];
   std::mutex mutex_;
   std::condition_variable cv_;

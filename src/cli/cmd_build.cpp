@@ -45,9 +45,10 @@ tsp::Dims parse_dims(const std::string& text) {
     std::size_t next = text.find(',', pos);
     if ((i < 2) != (next != std::string::npos))
       throw tsp::UsageError("--raw-dims " + text + ": expected X,Y,Z");
-    double d = parse_number(text.substr(pos, next == std::string::npos ? next : next - pos),
-                            "--raw-dims");
-    if (d < 1 || d != int(d)) throw tsp::UsageError("--raw-dims " + text + ": sizes must be positive integers");
+    double d =
+        parse_number(text.substr(pos, next == std::string::npos ? next : next - pos), "--raw-dims");
+    if (d < 1 || d != int(d))
+      throw tsp::UsageError("--raw-dims " + text + ": sizes must be positive integers");
     v[i] = int(d);
     pos = next + 1;
   }
@@ -58,7 +59,7 @@ void run_build(const BuildArgs& a) {
   tsp::SourceOptions so;
   so.field = a.field;
   if (!a.raw_dims.empty()) so.raw_dims = parse_dims(a.raw_dims);
-  so.raw_type = a.raw_type == "u8" ? tsp::RawType::u8
+  so.raw_type = a.raw_type == "u8"    ? tsp::RawType::u8
                 : a.raw_type == "u16" ? tsp::RawType::u16
                                       : tsp::RawType::f32;
   so.raw_big_endian = a.big_endian;
@@ -78,9 +79,10 @@ void run_build(const BuildArgs& a) {
   bar.finish();
 
   if (r.nonfinite_count > 0)
-    std::fprintf(stderr,
-                 "tspplay: warning: %lld NaN/Inf samples replaced (NaN and -Inf by %g, +Inf by %g)\n",
-                 static_cast<long long>(r.nonfinite_count), r.value_range.lo, r.value_range.hi);
+    std::fprintf(
+        stderr,
+        "tspplay: warning: %lld NaN/Inf samples replaced (NaN and -Inf by %g, +Inf by %g)\n",
+        static_cast<long long>(r.nonfinite_count), r.value_range.lo, r.value_range.hi);
   auto file = tsp::TspFile::open(a.output);
   const tsp::TspTree& tree = file->tree();
   const double mb = double(r.source_bytes) / 1e6;

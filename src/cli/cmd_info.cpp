@@ -46,7 +46,9 @@ std::vector<LevelErrors> errors_by_level(const tsp::TspTree& tree) {
   return levels;
 }
 
-json box_json(const tsp::Box& b) { return {b.lo[0], b.lo[1], b.lo[2], b.hi[0], b.hi[1], b.hi[2]}; }
+json box_json(const tsp::Box& b) {
+  return {b.lo[0], b.lo[1], b.lo[2], b.hi[0], b.hi[1], b.hi[2]};
+}
 
 json info_json(const tsp::TspFile& f, bool with_nodes) {
   const tsp::TspTree& tree = f.tree();
@@ -135,16 +137,18 @@ void print_human(const tsp::TspFile& f, bool with_nodes) {
                 l.tsp_nodes ? l.et_sum / l.tsp_nodes : 0.0, l.et_max);
   }
   if (!with_nodes) return;
-  std::printf("\n      id  octree  level  span        mean         std         min         max"
-              "      e_ss      e_st\n");
+  std::printf(
+      "\n      id  octree  level  span        mean         std         min         max"
+      "      e_ss      e_st\n");
   for (int id = 0; id < tree.size(); ++id) {
     const int oid = tree.octree_of(id);
     const tsp::Span span = tree.time().span(tree.time_of(id));
     const tsp::NodeStats& s = tree.stats(id);
-    std::printf("%8d  %6d  %5d  [%d,%d]%*s %11.5g %11.5g %11.5g %11.5g %9.4g %9.4g\n", id, oid,
-                o.node(oid).level, span.t0, span.t1,
-                std::max(0, 8 - int(std::to_string(span.t0).size() + std::to_string(span.t1).size())),
-                "", s.mean, s.std, s.min, s.max, s.spatial_error, s.temporal_error);
+    std::printf(
+        "%8d  %6d  %5d  [%d,%d]%*s %11.5g %11.5g %11.5g %11.5g %9.4g %9.4g\n", id, oid,
+        o.node(oid).level, span.t0, span.t1,
+        std::max(0, 8 - int(std::to_string(span.t0).size() + std::to_string(span.t1).size())), "",
+        s.mean, s.std, s.min, s.max, s.spatial_error, s.temporal_error);
   }
 }
 

@@ -1,0 +1,45 @@
+#include "tsp/temp_output.h"
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+
+#include "tsp/error.h"
+
+namespace tsp {
+
+namespace fs = std::filesystem;
+
+TempOutput::TempOutput(const std::string& out_path) : final_(out_path) {
+  fs::path p(out_path);
+  fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
+  std::error_code ec;
+  if (fs::is_directory(p, ec)) throw IoError(out_path + ": is a directory, expected a file name");
+  if (!fs::is_directory(dir, ec))
+    throw IoError(out_path + ": directory " + dir.string() + " does not exist");
+  dir_ = dir.string();
+  std::string tmpl = (dir / ("." + p.filename().string() + ".tmp-XXXXXX")).string();
+  int fd = mkstemp(tmpl.data());
+  if (fd < 0)
+    throw IoError(out_path + ": cannot create a file in " + dir_ + " (" + std::strerror(errno) +
+                  ")");
+  close(fd);
+  tmp_ = tmpl;
+}
+
+TempOutput::~TempOutput() {
+  if (!committed_) std::remove(tmp_.c_str());
+}
+
+void TempOutput::commit() {
+  if (std::rename(tmp_.c_str(), final_.c_str()) != 0)
+    throw IoError(final_ + ": cannot rename the finished file into place (" + std::strerror(errno) +
+                  ")");
+  committed_ = true;
+}
+
+}  // namespace tsp

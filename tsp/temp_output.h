@@ -1,0 +1,30 @@
+// Writing a file atomically: under a hidden temporary name in the same directory, renamed over
+// the final name only when complete.
+#pragma once
+#include <string>
+
+namespace tsp {
+
+/// A reserved temporary file beside out_path; removed on destruction unless commit() ran.
+class TempOutput {
+ public:
+  /// Checks that out_path's directory exists and out_path is not a directory, and creates an
+  /// empty `.NAME.tmp-XXXXXX` there. Throws IoError.
+  explicit TempOutput(const std::string& out_path);
+  /// Removes the temporary file unless committed.
+  ~TempOutput();
+  TempOutput(const TempOutput&) = delete;
+  TempOutput& operator=(const TempOutput&) = delete;
+  /// Path of the temporary file to write.
+  const std::string& tmp() const { return tmp_; }
+  /// Directory of the output ("." for a bare file name).
+  const std::string& dir() const { return dir_; }
+  /// Renames the temporary file to out_path (replacing it). Throws IoError.
+  void commit();
+
+ private:
+  std::string final_, tmp_, dir_;
+  bool committed_ = false;
+};
+
+}  // namespace tsp
