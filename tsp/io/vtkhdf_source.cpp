@@ -2,6 +2,7 @@
 // Format", sections "Image data" and "Temporal/Transient Data"; current 2.5):
 //  - /VTKHDF has attributes Version = [major, minor], Type = "ImageData", WholeExtent (6 ints),
 //    Origin, Spacing, Direction (geometry is not needed for the regular grid we return).
+//    Version 1.x files may lack Type; like VTK we then take WholeExtent to mean ImageData.
 //  - /VTKHDF/PointData/<name> and /VTKHDF/CellData/<name> hold the arrays with dimensions
 //    ordered (z, y, x[, components]); as in VTK's reader, z is dropped when WholeExtent is flat
 //    in z, and y too when it is also flat in y.
@@ -143,7 +144,15 @@ std::unique_ptr<VolumeSource> open_vtkhdf_source(const std::string& path, h5::Ha
     throw FormatError(where + ": VTKHDF version " + std::to_string(int((*version)[0])) + "." +
                       std::to_string(int((*version)[1])) + ", expected major version 1 or 2");
   auto type = string_attribute(root.get(), "Type", where);
-  if (!type) throw FormatError(where + ": attribute Type missing, expected \"ImageData\"");
+  if (!type) {
+    // Version 1.x files may omit Type; VTK deduces it from what the group holds.
+    if (H5Aexists(root.get(), "WholeExtent") > 0)
+      type = "ImageData";
+    else if (h5::exists(file.get(), "/VTKHDF/NumberOfConnectivityIds"))
+      type = "UnstructuredGrid";
+    else
+      throw FormatError(where + ": attribute Type missing, expected \"ImageData\"");
+  }
   if (*type != "ImageData")
     throw FormatError(where + ": VTKHDF Type is \"" + *type +
                       "\", expected \"ImageData\" (only image data is a regular grid)");
