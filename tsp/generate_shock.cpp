@@ -41,9 +41,9 @@ constexpr double kWakeTurn = 0.7;   // octave k's lattice is turned k·0.7 rad a
 constexpr double kWakeShear = 0.4;  // and sheared along x by ±0.4 per lattice cell of y, z
 
 // Static structures (exactly constant in time).
-constexpr double kPillarX = 0.55, kPillarY = 0.42, kPillarRadius = 0.07, kPillarTop = 0.6;
+constexpr double kPillarX = 0.55, kPillarY = 0.42, kPillarRadius = 0.1, kPillarTop = 0.6;
 constexpr float kPillarValue = 0.4f;
-constexpr double kGroundBase = 0.08, kGroundRelief = 0.08;  // height = base + relief·noise
+constexpr double kGroundBase = 0.2, kGroundRelief = 0.08;  // height = base + relief·noise
 constexpr double kGroundReliefFreq = 4.0;
 constexpr float kGroundValue = 0.18f, kGroundVariation = 0.12f;
 constexpr double kStrataFreqXY = 10.0, kStrataFreqZ = 48.0;  // layered: fine along z

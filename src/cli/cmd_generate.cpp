@@ -1,6 +1,7 @@
 // tspplay generate [NAME] -o out.h5 [--dims X,Y,Z] [--steps T] [--seed S] [--gzip L] | --list
 #include <chrono>
 #include <cstdio>
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -79,8 +80,9 @@ void run(const GenerateArgs& a) {
         int(parse_integer(a.steps, "--steps", 1, tsp::kMaxGeneratedSteps,
                           "a step count in [1, " + std::to_string(tsp::kMaxGeneratedSteps) + "]"));
   if (!a.seed.empty())
-    opt.seed = std::uint64_t(
-        parse_integer(a.seed, "--seed", 0, (1LL << 62), "a non-negative integer below 2^62"));
+    opt.seed =
+        std::uint64_t(parse_integer(a.seed, "--seed", 0, std::numeric_limits<long long>::max(),
+                                    "a non-negative integer below 2^63"));
   tsp::Hdf5WriteOptions wopt;
   if (!a.gzip.empty())
     wopt.gzip_level = int(parse_integer(a.gzip, "--gzip", 0, tsp::kMaxGzipLevel, "a level 0..9"));
