@@ -1,0 +1,36 @@
+// The analytic field every reader fixture in tests/data holds (see tests/data/make_fixtures.py).
+#pragma once
+#include <gtest/gtest.h>
+
+#include <span>
+
+#include "tsp/types.h"
+
+namespace tsptest {
+
+/// f(x, y, z, t) = x + 10·y + 100·z + 1000·t, exact in float for the fixtures' small grids.
+inline float formula(int x, int y, int z, double t) {
+  return float(x + 10 * y + 100 * z + 1000 * t);
+}
+
+/// Fixture grid: 5 × 4 × 3 points; cell fields live on 4 × 3 × 2 cells.
+inline constexpr tsp::Dims kFixtureDims{5, 4, 3};
+inline constexpr tsp::Dims kFixtureCellDims{4, 3, 2};
+
+/// Expects out (x fastest) to equal formula(x, y, z, t) + add everywhere.
+inline void expect_formula(std::span<const float> out, tsp::Dims d, double t, float add = 0) {
+  ASSERT_EQ(std::int64_t(out.size()), d.count());
+  int bad = 0;
+  for (int z = 0; z < d.z; ++z)
+    for (int y = 0; y < d.y; ++y)
+      for (int x = 0; x < d.x; ++x) {
+        float want = formula(x, y, z, t) + add;
+        float got = out[std::size_t((z * d.y + y) * d.x + x)];
+        if (got != want && bad++ < 5)
+          ADD_FAILURE() << "at (" << x << "," << y << "," << z << ") t=" << t << ": got " << got
+                        << ", want " << want;
+      }
+  EXPECT_EQ(bad, 0);
+}
+
+}  // namespace tsptest
