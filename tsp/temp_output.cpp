@@ -1,5 +1,6 @@
 #include "tsp/temp_output.h"
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -27,6 +28,10 @@ TempOutput::TempOutput(const std::string& out_path) : final_(out_path) {
   if (fd < 0)
     throw IoError(out_path + ": cannot create a file in " + dir_ + " (" + std::strerror(errno) +
                   ")");
+  // mkstemp creates 0600; the finished file gets the permissions a plain create would give.
+  const mode_t mask = umask(0);
+  umask(mask);
+  fchmod(fd, 0666 & ~mask);
   close(fd);
   tmp_ = tmpl;
 }

@@ -1,0 +1,226 @@
+// tspplay build / info end to end: the JSON of `info --json --nodes` against the tree shape and
+// brute-force statistics of the same input read independently, and exit codes on bad input.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "support/paths.h"
+#include "tsp/tsp_tree.h"
+#include "tsp/volume_source.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using tsptest::run_tspplay;
+
+std::string q(const fs::path& p) {
+  return "'" + p.string() + "'";
+}
+
+fs::path katrina() {
+  return tsptest::shared_data_dir() / "wrf-katrina" / "ci_test_file.nc";
+}
+
+// Every step of the input, read through the library's reader (not through the .tsp file).
+struct Series {
+  tsp::Dims dims;
+  std::vector<std::vector<float>> steps;
+  float at(int x, int y, int z, int t) const {
+    return steps[t][x + std::size_t(dims.x) * (y + std::size_t(dims.y) * z)];
+  }
+};
+
+Series read_all(const std::string& input, const std::string& field) {
+  tsp::SourceOptions o;
+  o.field = field;
+  auto src = tsp::open_source(input, o);
+  Series s{src->dims(), {}};
+  for (int t = 0; t < src->steps(); ++t) {
+    s.steps.emplace_back(std::size_t(s.dims.count()));
+    src->read_step(t, s.steps.back());
+  }
+  return s;
+}
+
+json info_json(const fs::path& tsp_file, const std::string& extra = " --nodes") {
+  auto r = run_tspplay("info " + q(tsp_file) + " --json" + extra);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  return json::parse(r.out);
+}
+
+// Checks the summary and every node record against the shape and a brute-force computation.
+void check_info(const json& j, const Series& s, int brick) {
+  const int T = int(s.steps.size());
+  const tsp::TspTree shape(s.dims, T, brick);
+  const tsp::Octree& o = shape.octree();
+  EXPECT_EQ(j["dims"], json({s.dims.x, s.dims.y, s.dims.z}));
+  EXPECT_EQ(j["steps"], T);
+  EXPECT_EQ(j["brick"], brick);
+  EXPECT_EQ(j["leaf_bricks"], o.brick_count());
+  EXPECT_EQ(j["octree_nodes"], o.size());
+  EXPECT_EQ(j["tsp_nodes"], shape.size());
+  float lo = INFINITY, hi = -INFINITY;
+  for (const auto& step : s.steps)
+    for (float v : step) lo = std::min(lo, v), hi = std::max(hi, v);
+  EXPECT_EQ(j["value_range"], json({double(lo), double(hi)}));
+  const double W = double(hi) - double(lo);
+
+  const json& nodes = j["nodes"];
+  ASSERT_EQ(int(nodes.size()), shape.size());
+  for (int id = 0; id < shape.size(); ++id) {
+    const json& n = nodes[id];
+    const int oid = shape.octree_of(id);
+    const tsp::Box b = o.node(oid).box;
+    const tsp::Span sp = shape.time().span(shape.time_of(id));
+    SCOPED_TRACE("node " + std::to_string(id));
+    ASSERT_EQ(n["id"], id);
+    ASSERT_EQ(n["octree_id"], oid);
+    ASSERT_EQ(n["level"], o.node(oid).level);
+    ASSERT_EQ(n["box"], json({b.lo[0], b.lo[1], b.lo[2], b.hi[0], b.hi[1], b.hi[2]}));
+    ASSERT_EQ(n["span"], json({sp.t0, sp.t1}));
+    double sum = 0, mn = INFINITY, mx = -INFINITY, cov = 0;
+    const double N = double(b.count()) * sp.length();
+    for (int t = sp.t0; t <= sp.t1; ++t)
+      for (int z = b.lo[2]; z < b.hi[2]; ++z)
+        for (int y = b.lo[1]; y < b.hi[1]; ++y)
+          for (int x = b.lo[0]; x < b.hi[0]; ++x) {
+            sum += s.at(x, y, z, t);
+            mn = std::min(mn, double(s.at(x, y, z, t)));
+            mx = std::max(mx, double(s.at(x, y, z, t)));
+          }
+    const double mean = sum / N;
+    double ss = 0;
+    for (int z = b.lo[2]; z < b.hi[2]; ++z)
+      for (int y = b.lo[1]; y < b.hi[1]; ++y)
+        for (int x = b.lo[0]; x < b.hi[0]; ++x) {
+          double vs = 0, vss = 0;
+          for (int t = sp.t0; t <= sp.t1; ++t) vs += s.at(x, y, z, t);
+          const double vm = vs / sp.length();
+          for (int t = sp.t0; t <= sp.t1; ++t) {
+            ss += (s.at(x, y, z, t) - mean) * (s.at(x, y, z, t) - mean);
+            vss += (s.at(x, y, z, t) - vm) * (s.at(x, y, z, t) - vm);
+          }
+          cov += tsp::coefficient_of_variation(std::sqrt(vss / sp.length()), vm, W);
+        }
+    const double sd = std::sqrt(ss / N);
+    ASSERT_NEAR(n["mean"].get<double>(), mean, 1e-9 * std::max(1.0, std::fabs(mean)));
+    ASSERT_NEAR(n["std"].get<double>(), sd, 1e-9 * std::max(1.0, sd));
+    ASSERT_EQ(n["min"].get<double>(), mn);
+    ASSERT_EQ(n["max"].get<double>(), mx);
+    const double es = tsp::coefficient_of_variation(sd, mean, W), et = cov / double(b.count());
+    ASSERT_NEAR(n["spatial_error"].get<double>(), es, 1e-6 * std::max(1.0, es));
+    ASSERT_NEAR(n["temporal_error"].get<double>(), et, 1e-6 * std::max(1.0, et));
+  }
+}
+
+TEST(BuildInfoCli, GeneratedSeriesMatchesBruteForce) {
+  const fs::path dir = tsptest::temp_dir();
+  auto g = run_tspplay("generate vortex -o " + q(dir / "v.h5") + " --dims 23,17,9 --steps 5");
+  ASSERT_EQ(g.exit_code, 0) << g.err;
+  auto r = run_tspplay("build " + q(dir / "v.h5") + " -o " + q(dir / "v.tsp") +
+                       " --brick 8 --threads 2");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err, "");  // no progress bar and no warning when stderr is not a terminal
+  EXPECT_NE(r.out.find("wrote"), std::string::npos) << r.out;
+  check_info(info_json(dir / "v.tsp"), read_all((dir / "v.h5").string(), ""), 8);
+}
+
+TEST(BuildInfoCli, KatrinaTemperature) {
+  const fs::path dir = tsptest::temp_dir();
+  auto r = run_tspplay("build " + q(katrina()) + " --field T -o " + q(dir / "t.tsp"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json j = info_json(dir / "t.tsp");
+  EXPECT_EQ(j["dims"], json({48, 48, 14}));
+  EXPECT_EQ(j["field"], "T");
+  check_info(j, read_all(katrina().string(), "T"), 32);
+
+  auto h = run_tspplay("info " + q(dir / "t.tsp"));
+  ASSERT_EQ(h.exit_code, 0) << h.err;
+  for (const char* s : {"48x48x14", "steps         4", "ci_test_file.nc", "e_ss mean"})
+    EXPECT_NE(h.out.find(s), std::string::npos) << s << "\n" << h.out;
+  // Without --nodes the JSON has no node list.
+  EXPECT_FALSE(info_json(dir / "t.tsp", "").contains("nodes"));
+}
+
+TEST(BuildInfoCli, RangeOptionSetsTheQuantizationRange) {
+  const fs::path dir = tsptest::temp_dir();
+  auto r = run_tspplay("build " + q(katrina()) + " --field T --brick 16 --range=-5:40 -o " +
+                       q(dir / "t.tsp"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json j = info_json(dir / "t.tsp", "");
+  EXPECT_EQ(j["value_range"], json({-5.0, 40.0}));
+  EXPECT_GT(j["data_range"][1].get<double>(), 40.0);  // T reaches about 43: clamped
+  EXPECT_EQ(j["brick"], 16);
+}
+
+TEST(BuildInfoCli, NonFiniteSamplesAreCountedAndWarned) {
+  const fs::path dir = tsptest::temp_dir();
+  std::vector<float> v(4 * 3 * 2, 1.5f);
+  v[3] = NAN;
+  v[7] = INFINITY;
+  for (int t = 0; t < 2; ++t) {
+    v[0] = float(t);
+    std::ofstream(dir / ("s" + std::to_string(t) + ".raw"), std::ios::binary)
+        .write(reinterpret_cast<const char*>(v.data()), std::streamsize(v.size() * 4));
+  }
+  auto r = run_tspplay("build " + q(dir / "s%d.raw") + " --raw-dims 4,3,2 --raw-type f32 -o " +
+                       q(dir / "s.tsp"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: 4 NaN/Inf samples replaced"), std::string::npos) << r.err;
+  const json j = info_json(dir / "s.tsp", "");
+  EXPECT_EQ(j["nonfinite_count"], 4);
+  EXPECT_EQ(j["data_range"], json({0.0, 1.5}));
+  EXPECT_EQ(j["steps"], 2);
+}
+
+TEST(BuildInfoCli, BadInputGivesClearErrorsAndNoOutput) {
+  const fs::path dir = tsptest::temp_dir();
+  const std::string out = " -o " + q(dir / "x.tsp");
+  constexpr int kParseError = -1;
+  struct Case {
+    std::string args;
+    int code;
+    std::string message;
+  };
+  const std::vector<Case> cases = {
+      {"build " + q(dir / "missing.h5") + out, 1, "missing.h5"},
+      {"build " + q(katrina()) + " --field NOPE" + out, 1, "NOPE"},
+      {"build " + q(katrina()) + " --field T --brick 12" + out, 2, "brick size 12"},
+      {"build " + q(katrina()) + " --field T --range 5" + out, 2, "expected LO:HI"},
+      {"build " + q(katrina()) + " --field T --range 5:1" + out, 2, "expected finite LO < HI"},
+      {"build " + q(katrina()) + " --field T --range a:1" + out, 2, "not a number"},
+      {"build " + q(katrina()) + " --field T -o " + q(dir / "no" / "x.tsp"), 1, "does not exist"},
+      {"build " + q(katrina()) + " --field T", kParseError, "--output is required"},
+  };
+  for (const Case& c : cases) {
+    auto r = run_tspplay(c.args);
+    if (c.code == kParseError)
+      EXPECT_GT(r.exit_code, 2) << c.args << "\n" << r.err;  // CLI11's own parse-error code
+    else
+      EXPECT_EQ(r.exit_code, c.code) << c.args << "\n" << r.err;
+    EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << "\n" << r.err;
+  }
+  EXPECT_TRUE(fs::is_empty(dir)) << fs::directory_iterator(dir)->path();
+}
+
+TEST(BuildInfoCli, InfoRejectsFilesThatAreNotTsp) {
+  const fs::path dir = tsptest::temp_dir();
+  std::ofstream(dir / "text.tsp") << "hello\n";
+  auto r = run_tspplay("info " + q(dir / "text.tsp"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("not an HDF5 file"), std::string::npos) << r.err;
+  r = run_tspplay("info " + q(katrina()));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("not a tspplay .tsp file"), std::string::npos) << r.err;
+  r = run_tspplay("info " + q(dir / "none.tsp") + " --json");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("no such file"), std::string::npos) << r.err;
+  EXPECT_EQ(r.out, "");
+}
+
+}  // namespace
