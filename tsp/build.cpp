@@ -143,11 +143,10 @@ void add_histogram(std::span<const float> series, const Box& s, const Box& own, 
 
 // Pass 2: brick-major over the scratch file, on `threads` workers.
 struct BrickPass {
-  BrickPass(const TspTree& t, const ScratchFile& s, TspWriter& w, ValueRange r,
-            std::vector<NodeAccum>& a)
+  BrickPass(const TspTree& t, ScratchFile& s, TspWriter& w, ValueRange r, std::vector<NodeAccum>& a)
       : tree(t), scratch(s), writer(w), range(r), acc(a) {}
   const TspTree& tree;
-  const ScratchFile& scratch;
+  ScratchFile& scratch;
   TspWriter& writer;
   ValueRange range;
   std::vector<NodeAccum>& acc;  // by TSP node id; each worker fills its leaves' slices
@@ -173,6 +172,7 @@ struct BrickPass {
         const Box s = o.brick_samples(b), own = o.brick_box(b);
         series.resize(std::size_t(s.count()) * steps);
         scratch.read_series(b, series);
+        scratch.discard(b);
         sanitize(series, range);
         quantize_padded(series, s, shape, steps, quant, codes);
         writer.write_brick_series(b, codes);

@@ -71,3 +71,14 @@ void ScratchFile::read_series(int brick, std::span<float> out) const {
 }
 
 }  // namespace tsp
+
+namespace tsp {
+
+void ScratchFile::discard(int brick) {
+  const off_t pos = off_t(offsets_[brick] * std::int64_t(sizeof(float)));
+  const off_t len = off_t(samples_[brick] * steps_ * std::int64_t(sizeof(float)));
+  // Best effort: file systems without hole punching keep the data until the file is closed.
+  (void)fallocate(fd_, FALLOC_FL_PUNCH_HOLE | FALLOC_FL_KEEP_SIZE, pos, len);
+}
+
+}  // namespace tsp

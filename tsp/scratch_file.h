@@ -23,6 +23,9 @@ class ScratchFile {
   void write(int brick, int step, std::span<const float> samples);
   /// Reads brick b's whole series, steps × brick_samples[b] floats; thread-safe. Throws IoError.
   void read_series(int brick, std::span<float> out) const;
+  /// Drops brick b's series (after its last read): frees its page cache and cancels its pending
+  /// write-back, so the scratch data never reaches the disk when memory allows. Never throws.
+  void discard(int brick);
   /// Total size in bytes.
   std::int64_t size_bytes() const { return offsets_.back() * std::int64_t(sizeof(float)); }
 
