@@ -11,7 +11,8 @@
 namespace tsp {
 
 /// Progress callback: phase name ("reading", "bricks"), units done, units total (bytes of source
-/// data). Called from one thread at a time, not necessarily the caller's.
+/// data). Called from one thread at a time, not necessarily the caller's. It may throw to cancel
+/// the build: the exception reaches the caller and no output or temporary file remains.
 using ProgressFn =
     std::function<void(const std::string& phase, std::int64_t done, std::int64_t total)>;
 

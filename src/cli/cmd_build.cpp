@@ -1,4 +1,5 @@
 // tspplay build INPUT -o OUT.tsp: bricks and TSP tree from a time series.
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
@@ -19,6 +20,13 @@ struct BuildArgs {
   int threads = 0;
   bool big_endian = false;
 };
+
+// Set by SIGINT/SIGTERM; the progress callback turns it into an exception, so the build unwinds
+// and removes its temporary file instead of leaving it behind.
+volatile std::sig_atomic_t g_interrupted = 0;
+extern "C" void on_interrupt(int) {
+  g_interrupted = 1;
+}
 
 double parse_number(const std::string& text, const std::string& option) {
   char* end = nullptr;
@@ -71,12 +79,24 @@ void run_build(const BuildArgs& a) {
   if (!a.range.empty()) bo.range = parse_range(a.range);
   auto source = tsp::open_source(a.input, so);
   ProgressBar bar;
-  if (bar.enabled())
-    bo.progress = [&bar](const std::string& phase, std::int64_t done, std::int64_t total) {
-      bar.update(phase, done, total);
-    };
-  tsp::BuildReport r = tsp::build_tsp_file(*source, a.output, bo);
+  bo.progress = [&bar](const std::string& phase, std::int64_t done, std::int64_t total) {
+    if (g_interrupted) throw tsp::Error("interrupted; no output written");
+    bar.update(phase, done, total);
+  };
+  auto old_int = std::signal(SIGINT, on_interrupt);
+  auto old_term = std::signal(SIGTERM, on_interrupt);
+  tsp::BuildReport r;
+  try {
+    r = tsp::build_tsp_file(*source, a.output, bo);
+  } catch (...) {
+    bar.finish();
+    std::signal(SIGINT, old_int);
+    std::signal(SIGTERM, old_term);
+    throw;
+  }
   bar.finish();
+  std::signal(SIGINT, old_int);
+  std::signal(SIGTERM, old_term);
 
   if (r.nonfinite_count > 0)
     std::fprintf(

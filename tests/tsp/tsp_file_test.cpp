@@ -323,5 +323,20 @@ TEST(TspFile, FailingSourceLeavesNoOutputAndNoTempFile) {
   EXPECT_NO_THROW(TspFile::open(path));
 }
 
+TEST(TspFile, ProgressCallbackCanCancelInEitherPass) {
+  for (const std::string cancel_in : {"reading", "bricks"}) {
+    auto dir = tsptest::temp_dir();
+    MemorySource src = wavy_source({20, 20, 20}, 4);
+    BuildOptions opt;
+    opt.brick_size = 8;
+    opt.threads = 2;
+    opt.progress = [&](const std::string& phase, std::int64_t, std::int64_t) {
+      if (phase == cancel_in) throw Error("cancelled");
+    };
+    EXPECT_THROW(build_tsp_file(src, (dir / "out.tsp").string(), opt), Error) << cancel_in;
+    EXPECT_TRUE(fs::is_empty(dir)) << cancel_in;
+  }
+}
+
 }  // namespace
 }  // namespace tsp
