@@ -19,8 +19,7 @@ using h5::Handle;
 std::string shape_text(const std::vector<hsize_t>& shape) {
   if (shape.empty()) return "scalar";
   std::string s;
-  for (std::size_t i = 0; i < shape.size(); ++i)
-    s += (i ? "x" : "") + std::to_string(shape[i]);
+  for (std::size_t i = 0; i < shape.size(); ++i) s += (i ? "x" : "") + std::to_string(shape[i]);
   return s;
 }
 
@@ -205,8 +204,9 @@ std::unique_ptr<VolumeSource> open_group(const std::string& path, Handle file,
     Packing::of(obj.get(), mwhere);
     if (first_shape.empty()) first_shape = shape;
     if (shape != first_shape)
-      throw FormatError(mwhere + ": shape " + shape_text(shape) + " differs from the first step's " +
-                        shape_text(first_shape) + "; all steps must have the same shape");
+      throw FormatError(mwhere + ": shape " + shape_text(shape) +
+                        " differs from the first step's " + shape_text(first_shape) +
+                        "; all steps must have the same shape");
     steps.push_back({member, false, 0});
   }
   Dims dims = dims_from_zyx(first_shape.data(), where);

@@ -189,7 +189,9 @@ TEST(Hdf5Source, HdfSignatureIsDetectedWhateverTheExtension) {
 }
 
 // The real WRF (NetCDF-4) file: 4 steps of 14 × 48 × 48, float32.
-fs::path wrf_file() { return tsptest::shared_data_dir() / "wrf-katrina" / "ci_test_file.nc"; }
+fs::path wrf_file() {
+  return tsptest::shared_data_dir() / "wrf-katrina" / "ci_test_file.nc";
+}
 
 float at(const std::vector<float>& v, int x, int y, int z) {
   return v[std::size_t((z * 48 + y) * 48 + x)];
