@@ -3,6 +3,7 @@
 #include <cassert>
 #include <climits>
 #include <cmath>
+#include <fstream>
 #include <limits>
 
 #include "tsp/error.h"
@@ -19,8 +20,7 @@ using h5::Handle;
 std::string shape_text(const std::vector<hsize_t>& shape) {
   if (shape.empty()) return "scalar";
   std::string s;
-  for (std::size_t i = 0; i < shape.size(); ++i)
-    s += (i ? "x" : "") + std::to_string(shape[i]);
+  for (std::size_t i = 0; i < shape.size(); ++i) s += (i ? "x" : "") + std::to_string(shape[i]);
   return s;
 }
 
@@ -205,8 +205,9 @@ std::unique_ptr<VolumeSource> open_group(const std::string& path, Handle file,
     Packing::of(obj.get(), mwhere);
     if (first_shape.empty()) first_shape = shape;
     if (shape != first_shape)
-      throw FormatError(mwhere + ": shape " + shape_text(shape) + " differs from the first step's " +
-                        shape_text(first_shape) + "; all steps must have the same shape");
+      throw FormatError(mwhere + ": shape " + shape_text(shape) +
+                        " differs from the first step's " + shape_text(first_shape) +
+                        "; all steps must have the same shape");
     steps.push_back({member, false, 0});
   }
   Dims dims = dims_from_zyx(first_shape.data(), where);
@@ -214,10 +215,23 @@ std::unique_ptr<VolumeSource> open_group(const std::string& path, Handle file,
   return std::make_unique<Hdf5Source>(path, std::move(file), text, dims, std::move(steps));
 }
 
+// NetCDF classic files ("CDF\x01", "CDF\x02", "CDF\x05") share the .nc extension but are not HDF5.
+bool is_netcdf_classic(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  char magic[4] = {};
+  in.read(magic, 4);
+  return in.gcount() == 4 && magic[0] == 'C' && magic[1] == 'D' && magic[2] == 'F' &&
+         (magic[3] == 1 || magic[3] == 2 || magic[3] == 5);
+}
+
 }  // namespace
 
 std::unique_ptr<VolumeSource> open_hdf5_source(const std::string& path,
                                                const SourceOptions& options) {
+  if (is_netcdf_classic(path))
+    throw FormatError(path +
+                      ": NetCDF classic (version 3) file, expected NetCDF-4/HDF5; convert "
+                      "it with `nccopy -k nc4 in.nc out.nc`");
   Handle file = h5::open_file_readonly(path);
   if (is_vtkhdf(file.get())) return open_vtkhdf_source(path, std::move(file), options);
 

@@ -6,13 +6,15 @@
 namespace tsp::io {
 namespace {
 
-bool is_digit(char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; }
+bool is_digit(char c) {
+  return std::isdigit(static_cast<unsigned char>(c)) != 0;
+}
 
 // Compares the digit runs a[i..i_end) and b[j..j_end) by numeric value without converting
 // (runs may be longer than any integer type): strip leading zeros, then longer is larger,
 // then lexicographic. Returns <0, 0, >0.
-int compare_digit_runs(const std::string& a, std::size_t i, std::size_t i_end,
-                       const std::string& b, std::size_t j, std::size_t j_end) {
+int compare_digit_runs(const std::string& a, std::size_t i, std::size_t i_end, const std::string& b,
+                       std::size_t j, std::size_t j_end) {
   while (i < i_end && a[i] == '0') ++i;
   while (j < j_end && b[j] == '0') ++j;
   std::size_t la = i_end - i, lb = j_end - j;

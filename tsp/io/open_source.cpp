@@ -16,7 +16,8 @@ namespace {
 bool ends_with(const std::string& s, const std::string& suffix) {
   if (s.size() < suffix.size()) return false;
   return std::equal(suffix.rbegin(), suffix.rend(), s.rbegin(), [](char a, char b) {
-    return std::tolower(static_cast<unsigned char>(a)) == std::tolower(static_cast<unsigned char>(b));
+    return std::tolower(static_cast<unsigned char>(a)) ==
+           std::tolower(static_cast<unsigned char>(b));
   });
 }
 
@@ -39,7 +40,14 @@ std::unique_ptr<VolumeSource> open_source(const std::string& input, const Source
   const bool exists = std::filesystem::exists(input, ec);
   // A pattern names many files; an existing file whose name merely contains '%' or '*' is
   // read as itself.
-  if (!exists && io::is_file_pattern(input)) return io::open_raw_source(input, options);
+  if (!exists && io::is_file_pattern(input)) {
+    if (ends_with(input, ".vti")) return io::open_vti_pattern_source(input, options);
+    if (has_hdf5_extension(input))
+      throw UsageError(input +
+                       ": a file pattern of HDF5 files is not supported; store the steps "
+                       "in one file (a 4-D dataset or a group of 3-D datasets)");
+    return io::open_raw_source(input, options);
+  }
   if (ends_with(input, ".pvd")) return io::open_pvd_source(input, options);
   if (ends_with(input, ".vti.series")) return io::open_vti_series_source(input, options);
   if (ends_with(input, ".vti")) return io::open_vti_source(input, options);

@@ -79,18 +79,24 @@ bool file_exists(const std::string& p) {
 
 int bytes_per_sample(RawType t) {
   switch (t) {
-    case RawType::u8: return 1;
-    case RawType::u16: return 2;
-    case RawType::f32: return 4;
+    case RawType::u8:
+      return 1;
+    case RawType::u16:
+      return 2;
+    case RawType::f32:
+      return 4;
   }
   return 4;
 }
 
 const char* type_name(RawType t) {
   switch (t) {
-    case RawType::u8: return "u8";
-    case RawType::u16: return "u16";
-    case RawType::f32: return "f32";
+    case RawType::u8:
+      return "u8";
+    case RawType::u16:
+      return "u16";
+    case RawType::f32:
+      return "f32";
   }
   return "?";
 }
@@ -166,7 +172,7 @@ class RawSource final : public VolumeSource {
 }  // namespace
 
 bool is_file_pattern(const std::string& input) {
-  if (input.find_first_of("*?") != std::string::npos) return true;
+  if (input.find_first_of("*?[") != std::string::npos) return true;
   try {
     return parse_index_pattern(input).has_value();
   } catch (const UsageError&) {
@@ -185,7 +191,7 @@ std::vector<std::string> expand_file_pattern(const std::string& pattern) {
                     ip->format(1) + ")");
     return files;
   }
-  if (pattern.find_first_of("*?") != std::string::npos) {
+  if (pattern.find_first_of("*?[") != std::string::npos) {
     glob_t g{};
     int rc = glob(pattern.c_str(), GLOB_NOSORT, nullptr, &g);
     for (std::size_t i = 0; rc == 0 && i < g.gl_pathc; ++i)
@@ -201,8 +207,7 @@ std::vector<std::string> expand_file_pattern(const std::string& pattern) {
 
 std::unique_ptr<VolumeSource> open_raw_source(const std::string& input,
                                               const SourceOptions& options) {
-  if (!options.raw_dims)
-    throw UsageError(input + ": raw input needs the grid size (--dims X,Y,Z)");
+  if (!options.raw_dims) throw UsageError(input + ": raw input needs the grid size (--dims X,Y,Z)");
   const Dims d = *options.raw_dims;
   if (d.x <= 0 || d.y <= 0 || d.z <= 0)
     throw UsageError(input + ": raw grid size " + to_string(d) + " must be positive on every axis");

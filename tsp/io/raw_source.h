@@ -8,8 +8,8 @@
 
 namespace tsp::io {
 
-/// True when input names a raw series: a printf index pattern ("u_%04d.raw") or a glob
-/// ('*' or '?'). Never throws.
+/// True when input is a file pattern: a printf index pattern ("u_%04d.raw") or a glob
+/// ('*', '?' or '['). Never throws.
 bool is_file_pattern(const std::string& input);
 
 /// Expands a raw-series pattern to its files in time order. A printf pattern (one %d with

@@ -53,13 +53,11 @@ std::string read_file(const std::string& path, bool header_only) {
 }
 
 // Parses "x0 x1 y0 y1 z0 z1".
-void parse_extent(const char* text, long long out[6], const std::string& where,
-                  const char* what) {
+void parse_extent(const char* text, long long out[6], const std::string& where, const char* what) {
   std::istringstream in(text ? text : "");
   for (int i = 0; i < 6; ++i)
     if (!(in >> out[i]))
-      throw FormatError(where + ": " + what + " \"" + (text ? text : "") +
-                        "\" is not 6 integers");
+      throw FormatError(where + ": " + what + " \"" + (text ? text : "") + "\" is not 6 integers");
   std::string rest;
   if (in >> rest) throw FormatError(where + ": " + what + " has more than 6 values");
   for (int a = 0; a < 3; ++a)
@@ -71,7 +69,8 @@ void parse_extent(const char* text, long long out[6], const std::string& where,
 
 std::vector<std::string> array_names(const pugi::xml_node& section) {
   std::vector<std::string> names;
-  for (pugi::xml_node a : section.children("DataArray")) names.push_back(a.attribute("Name").value());
+  for (pugi::xml_node a : section.children("DataArray"))
+    names.push_back(a.attribute("Name").value());
   return names;
 }
 
@@ -152,14 +151,12 @@ VtiFile::VtiFile(const std::string& path, bool header_only)
     } else if (enc != "raw") {
       throw FormatError(path + ": AppendedData encoding \"" + enc + "\", expected raw or base64");
     }
-    appended_end_ = appended_base64_ ? std::min(content_.find("</AppendedData>", appended_),
-                                                 content_.size())
-                                     : content_.size();
+    appended_end_ = appended_base64_
+                        ? std::min(content_.find("</AppendedData>", appended_), content_.size())
+                        : content_.size();
     collect_appended_offsets(root, appended_offsets_);
   }
 }
-
-std::string VtiFile::where() const { return path_; }
 
 VtiField VtiFile::resolve(const std::string& requested) const {
   pugi::xml_node piece = image_.child("Piece");
@@ -184,7 +181,8 @@ VtiField VtiFile::resolve(const std::string& requested) const {
   } else if (std::count(cells.begin(), cells.end(), requested)) {
     f = {requested, true};
   } else {
-    throw FormatError(path_ + ": field '" + requested + "' not found; available arrays: " + listing);
+    throw FormatError(path_ + ": field '" + requested +
+                      "' not found; available arrays: " + listing);
   }
   pugi::xml_node array = find_array(piece.child(f.cells ? "CellData" : "PointData"), f.name);
   int comps = array.attribute("NumberOfComponents").as_int(1);
@@ -278,8 +276,8 @@ void VtiFile::decode(const pugi::xml_node& array, std::span<float> out) const {
       std::size_t end = next == appended_offsets_.end()
                             ? appended_end_
                             : std::min(appended_end_, appended_ + std::size_t(*next));
-      std::vector<unsigned char> raw = vtkxml::base64_decode(
-          std::string_view(content_).substr(start, end - start), awhere);
+      std::vector<unsigned char> raw =
+          vtkxml::base64_decode(std::string_view(content_).substr(start, end - start), awhere);
       payload = vtkxml::unpack_binary(raw, layout_, bytes, awhere);
     } else {
       std::span<const unsigned char> raw(

@@ -1,9 +1,8 @@
 // One parsed VTK XML ImageData (.vti) file: its grid, its arrays, and decoding of one scalar
 // array into a whole-extent volume. Used by the .vti / .pvd / .vti.series readers.
 #pragma once
-#include <pugixml.hpp>
-
 #include <memory>
+#include <pugixml.hpp>
 #include <set>
 #include <span>
 #include <string>
@@ -46,7 +45,6 @@ class VtiFile {
 
  private:
   void decode(const pugi::xml_node& array, std::span<float> out) const;
-  std::string where() const;
 
   std::string path_;
   std::string content_;  // file bytes (up to the appended block when header-only)

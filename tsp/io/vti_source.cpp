@@ -8,6 +8,7 @@
 #include <pugixml.hpp>
 
 #include "tsp/error.h"
+#include "tsp/io/raw_source.h"
 #include "tsp/io/vti_file.h"
 
 namespace tsp::io {
@@ -155,8 +156,7 @@ std::unique_ptr<VolumeSource> open_vti_series_source(const std::string& path,
   } catch (const nlohmann::json::exception& e) {
     throw FormatError(path + ": not valid JSON (" + e.what() + ")");
   }
-  if (!j.is_object() || !j.contains("file-series-version") ||
-      !j["file-series-version"].is_string())
+  if (!j.is_object() || !j.contains("file-series-version") || !j["file-series-version"].is_string())
     throw FormatError(path + ": no \"file-series-version\" string, expected \"1.0\"");
   std::string version = j["file-series-version"];
   if (version.rfind("1.", 0) != 0)
@@ -171,9 +171,18 @@ std::unique_ptr<VolumeSource> open_vti_series_source(const std::string& path,
       throw FormatError(fwhere + ": expected an object with a \"name\" string");
     if (!f.contains("time") || !f["time"].is_number())
       throw FormatError(fwhere + ": expected a numeric \"time\"");
-    steps.push_back({resolve_relative(path, f["name"].get<std::string>()), f["time"].get<double>()});
+    steps.push_back(
+        {resolve_relative(path, f["name"].get<std::string>()), f["time"].get<double>()});
   }
   return open_series(path, std::move(steps), options);
+}
+
+std::unique_ptr<VolumeSource> open_vti_pattern_source(const std::string& pattern,
+                                                      const SourceOptions& options) {
+  std::vector<StepFile> steps;
+  for (const std::string& f : expand_file_pattern(pattern))
+    steps.push_back({f, double(steps.size())});
+  return open_series(pattern, std::move(steps), options);
 }
 
 }  // namespace tsp::io

@@ -27,4 +27,9 @@ std::unique_ptr<VolumeSource> open_pvd_source(const std::string& path,
 std::unique_ptr<VolumeSource> open_vti_series_source(const std::string& path,
                                                      const SourceOptions& options);
 
+/// Opens a printf pattern or glob of .vti files (see expand_file_pattern), one step per file
+/// in pattern order. Throws like open_pvd_source, IoError when nothing matches.
+std::unique_ptr<VolumeSource> open_vti_pattern_source(const std::string& pattern,
+                                                      const SourceOptions& options);
+
 }  // namespace tsp::io

@@ -57,10 +57,10 @@ void convert_typed(std::span<const unsigned char> bytes, bool swap, std::span<fl
 
 ElemType parse_elem_type(const std::string& name, const std::string& where) {
   static const std::pair<const char*, ElemType> kNames[] = {
-      {"Int8", ElemType::i8},     {"UInt8", ElemType::u8},     {"Int16", ElemType::i16},
-      {"UInt16", ElemType::u16},  {"Int32", ElemType::i32},    {"UInt32", ElemType::u32},
-      {"Int64", ElemType::i64},   {"UInt64", ElemType::u64},   {"Float32", ElemType::f32},
-      {"Float64", ElemType::f64}, {"Char", ElemType::i8},      {"UnsignedChar", ElemType::u8}};
+      {"Int8", ElemType::i8},     {"UInt8", ElemType::u8},   {"Int16", ElemType::i16},
+      {"UInt16", ElemType::u16},  {"Int32", ElemType::i32},  {"UInt32", ElemType::u32},
+      {"Int64", ElemType::i64},   {"UInt64", ElemType::u64}, {"Float32", ElemType::f32},
+      {"Float64", ElemType::f64}, {"Char", ElemType::i8},    {"UnsignedChar", ElemType::u8}};
   for (const auto& [n, t] : kNames)
     if (name == n) return t;
   throw FormatError(where + ": DataArray type \"" + name +
@@ -70,15 +70,19 @@ ElemType parse_elem_type(const std::string& name, const std::string& where) {
 int elem_size(ElemType t) {
   switch (t) {
     case ElemType::i8:
-    case ElemType::u8: return 1;
+    case ElemType::u8:
+      return 1;
     case ElemType::i16:
-    case ElemType::u16: return 2;
+    case ElemType::u16:
+      return 2;
     case ElemType::i32:
     case ElemType::u32:
-    case ElemType::f32: return 4;
+    case ElemType::f32:
+      return 4;
     case ElemType::i64:
     case ElemType::u64:
-    case ElemType::f64: return 8;
+    case ElemType::f64:
+      return 8;
   }
   return 1;
 }
@@ -98,8 +102,8 @@ std::vector<unsigned char> base64_decode(std::string_view text, const std::strin
     if (std::isspace(c)) continue;
     if (c == '=') {
       if (n < 2)
-        throw FormatError(where + ": malformed base64 data ('=' at character " +
-                          std::to_string(i) + ")");
+        throw FormatError(where + ": malformed base64 data ('=' at character " + std::to_string(i) +
+                          ")");
       quad[n++] = 0;
       ++pad;
     } else {
@@ -132,8 +136,8 @@ std::vector<unsigned char> unpack_binary(std::span<const unsigned char> bytes,
   if (!layout.zlib) {
     std::uint64_t n = word(0);
     if (n != expected_bytes)
-      throw FormatError(where + ": binary header says " + std::to_string(n) +
-                        " bytes, expected " + std::to_string(expected_bytes));
+      throw FormatError(where + ": binary header says " + std::to_string(n) + " bytes, expected " +
+                        std::to_string(expected_bytes));
     if (bytes.size() - ws < n)
       throw FormatError(where + ": binary data truncated: " + std::to_string(bytes.size() - ws) +
                         " of " + std::to_string(n) + " bytes present");
@@ -171,16 +175,36 @@ void convert_to_float(std::span<const unsigned char> bytes, ElemType t, bool big
                       std::span<float> out) {
   const bool swap = big_endian != (std::endian::native == std::endian::big);
   switch (t) {
-    case ElemType::i8: convert_typed<std::int8_t>(bytes, swap, out); break;
-    case ElemType::u8: convert_typed<std::uint8_t>(bytes, swap, out); break;
-    case ElemType::i16: convert_typed<std::int16_t>(bytes, swap, out); break;
-    case ElemType::u16: convert_typed<std::uint16_t>(bytes, swap, out); break;
-    case ElemType::i32: convert_typed<std::int32_t>(bytes, swap, out); break;
-    case ElemType::u32: convert_typed<std::uint32_t>(bytes, swap, out); break;
-    case ElemType::i64: convert_typed<std::int64_t>(bytes, swap, out); break;
-    case ElemType::u64: convert_typed<std::uint64_t>(bytes, swap, out); break;
-    case ElemType::f32: convert_typed<float>(bytes, swap, out); break;
-    case ElemType::f64: convert_typed<double>(bytes, swap, out); break;
+    case ElemType::i8:
+      convert_typed<std::int8_t>(bytes, swap, out);
+      break;
+    case ElemType::u8:
+      convert_typed<std::uint8_t>(bytes, swap, out);
+      break;
+    case ElemType::i16:
+      convert_typed<std::int16_t>(bytes, swap, out);
+      break;
+    case ElemType::u16:
+      convert_typed<std::uint16_t>(bytes, swap, out);
+      break;
+    case ElemType::i32:
+      convert_typed<std::int32_t>(bytes, swap, out);
+      break;
+    case ElemType::u32:
+      convert_typed<std::uint32_t>(bytes, swap, out);
+      break;
+    case ElemType::i64:
+      convert_typed<std::int64_t>(bytes, swap, out);
+      break;
+    case ElemType::u64:
+      convert_typed<std::uint64_t>(bytes, swap, out);
+      break;
+    case ElemType::f32:
+      convert_typed<float>(bytes, swap, out);
+      break;
+    case ElemType::f64:
+      convert_typed<double>(bytes, swap, out);
+      break;
   }
 }
 
@@ -202,8 +226,8 @@ void parse_ascii(std::string_view text, std::span<float> out, const std::string&
     i = end;
   }
   if (count != out.size())
-    throw FormatError(where + ": ascii data holds " + std::to_string(count) +
-                      " values, expected " + std::to_string(out.size()));
+    throw FormatError(where + ": ascii data holds " + std::to_string(count) + " values, expected " +
+                      std::to_string(out.size()));
 }
 
 }  // namespace tsp::io::vtkxml

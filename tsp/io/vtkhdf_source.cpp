@@ -83,8 +83,8 @@ std::optional<std::string> active_scalars(hid_t file, const std::string& where) 
 
 class VtkHdfSource final : public VolumeSource {
  public:
-  VtkHdfSource(std::string path, Handle file, std::string array_path, Dims dims,
-               VolumeSlab slab, bool transient, std::vector<hsize_t> time_index)
+  VtkHdfSource(std::string path, Handle file, std::string array_path, Dims dims, VolumeSlab slab,
+               bool transient, std::vector<hsize_t> time_index)
       : path_(std::move(path)),
         file_(std::move(file)),
         array_path_(std::move(array_path)),
@@ -180,8 +180,8 @@ std::unique_ptr<VolumeSource> open_vtkhdf_source(const std::string& path, h5::Ha
       if (s == n) return true;
     return false;
   };
-  const std::string listing = "PointData: " + join(point_arrays) + "; CellData: " +
-                              join(cell_arrays);
+  const std::string listing =
+      "PointData: " + join(point_arrays) + "; CellData: " + join(cell_arrays);
   bool cells = false;
   std::string name = options.field;
   if (name.empty()) {

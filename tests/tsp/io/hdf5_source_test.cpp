@@ -176,6 +176,13 @@ TEST(Hdf5Source, NonHdf5FileWithHdf5ExtensionIsAFormatError) {
   EXPECT_NE(msg.find("not an HDF5 file"), std::string::npos) << msg;
 }
 
+TEST(Hdf5Source, NetcdfClassicFileIsNamedAsSuch) {
+  fs::path p = tsptest::temp_dir() / "classic.nc";
+  std::ofstream(p, std::ios::binary) << std::string("CDF\x01\0\0\0\0", 8);
+  std::string msg = error_of<FormatError>([&] { open(p.string(), "T"); });
+  EXPECT_NE(msg.find("NetCDF classic"), std::string::npos) << msg;
+}
+
 TEST(Hdf5Source, MissingFileIsAnIoError) {
   std::string msg = error_of<IoError>([] { open(h5_fixture("absent.h5"), "f"); });
   EXPECT_NE(msg.find("absent.h5"), std::string::npos) << msg;
@@ -189,7 +196,9 @@ TEST(Hdf5Source, HdfSignatureIsDetectedWhateverTheExtension) {
 }
 
 // The real WRF (NetCDF-4) file: 4 steps of 14 × 48 × 48, float32.
-fs::path wrf_file() { return tsptest::shared_data_dir() / "wrf-katrina" / "ci_test_file.nc"; }
+fs::path wrf_file() {
+  return tsptest::shared_data_dir() / "wrf-katrina" / "ci_test_file.nc";
+}
 
 float at(const std::vector<float>& v, int x, int y, int z) {
   return v[std::size_t((z * 48 + y) * 48 + x)];

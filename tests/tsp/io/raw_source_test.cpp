@@ -109,10 +109,12 @@ TEST(RawSource, EveryTypeAndByteOrder) {
   for (bool big : {false, true}) {
     std::string tag = big ? "be" : "le";
     write_raw<std::uint16_t>(dir / ("w" + tag + "_0.raw"), 1, big);
-    auto s16 = open_source((dir / ("w" + tag + "_%d.raw")).string(), raw_options(RawType::u16, big));
+    auto s16 =
+        open_source((dir / ("w" + tag + "_%d.raw")).string(), raw_options(RawType::u16, big));
     expect_formula(read(*s16, 0), kFixtureDims, 1);
     write_raw<float>(dir / ("f" + tag + "_0.raw"), 2, big);
-    auto s32 = open_source((dir / ("f" + tag + "_%d.raw")).string(), raw_options(RawType::f32, big));
+    auto s32 =
+        open_source((dir / ("f" + tag + "_%d.raw")).string(), raw_options(RawType::f32, big));
     expect_formula(read(*s32, 0), kFixtureDims, 2);
   }
 }

@@ -19,7 +19,9 @@ using tsptest::expect_formula;
 using tsptest::kFixtureCellDims;
 using tsptest::kFixtureDims;
 
-fs::path vti_dir() { return tsptest::test_data_dir() / "vti"; }
+fs::path vti_dir() {
+  return tsptest::test_data_dir() / "vti";
+}
 
 std::unique_ptr<VolumeSource> open(const fs::path& path, const std::string& field) {
   SourceOptions o;
@@ -86,7 +88,7 @@ TEST(VtiSource, PvdInEveryEncodingReadsExactValuesInTimeOrder) {
   for (const char* v : kVariants) {
     fs::path pvd = vti_dir() / (std::string(v) + ".pvd");
     expect_series(*open(pvd, "f"), "f", kFixtureDims, v);
-    expect_series(*open(pvd, "g"), "g", kFixtureDims, v);  // Int16
+    expect_series(*open(pvd, "g"), "g", kFixtureDims, v);      // Int16
     expect_series(*open(pvd, "c"), "c", kFixtureCellDims, v);  // Float64 cell data
   }
 }
@@ -146,9 +148,13 @@ TEST(VtiSource, StepsWithDifferentGridsAreRejected) {
   fs::path dir = tsptest::temp_dir();
   write(dir / "mixed.pvd",
         "<VTKFile type=\"Collection\"><Collection>"
-        "<DataSet timestep=\"0\" file=\"" + (vti_dir() / "ascii_0.vti").string() + "\"/>"
-        "<DataSet timestep=\"1\" file=\"" + (vti_dir() / "other_dims.vti").string() + "\"/>"
-        "</Collection></VTKFile>");
+        "<DataSet timestep=\"0\" file=\"" +
+            (vti_dir() / "ascii_0.vti").string() +
+            "\"/>"
+            "<DataSet timestep=\"1\" file=\"" +
+            (vti_dir() / "other_dims.vti").string() +
+            "\"/>"
+            "</Collection></VTKFile>");
   std::string msg = error_of<FormatError>([&] { open(dir / "mixed.pvd", "f"); });
   EXPECT_NE(msg.find("other_dims.vti"), std::string::npos) << msg;
   EXPECT_NE(msg.find("4x4x3"), std::string::npos) << msg;
@@ -169,15 +175,18 @@ TEST(VtiSource, SeveralPartsPerTimestepAreRejected) {
   std::string a = (vti_dir() / "ascii_0.vti").string(), b = (vti_dir() / "ascii_1.vti").string();
   write(dir / "parts.pvd",
         "<VTKFile type=\"Collection\"><Collection>"
-        "<DataSet timestep=\"0\" part=\"0\" file=\"" + a + "\"/>"
-        "<DataSet timestep=\"0\" part=\"1\" file=\"" + b + "\"/></Collection></VTKFile>");
+        "<DataSet timestep=\"0\" part=\"0\" file=\"" +
+            a +
+            "\"/>"
+            "<DataSet timestep=\"0\" part=\"1\" file=\"" +
+            b + "\"/></Collection></VTKFile>");
   std::string msg = error_of<FormatError>([&] { open(dir / "parts.pvd", "f"); });
   EXPECT_NE(msg.find("several parts"), std::string::npos) << msg;
 }
 
 TEST(VtiSource, TruncatedAppendedDataFailsWithoutCrashing) {
-  for (const char* fixture : {"appended_raw_0.vti", "zlib_appended_0.vti", "appended_b64_0.vti",
-                              "pieces_0.vti"}) {
+  for (const char* fixture :
+       {"appended_raw_0.vti", "zlib_appended_0.vti", "appended_b64_0.vti", "pieces_0.vti"}) {
     std::string bytes = slurp(vti_dir() / fixture);
     for (std::size_t cut : {std::size_t(60), bytes.size() / 2, bytes.size() - bytes.size() / 4}) {
       fs::path p = tsptest::temp_dir() / fixture;
@@ -214,7 +223,8 @@ TEST(VtiSource, CorruptZlibBlockIsNamed) {
 
 TEST(VtiSource, PiecesNotCoveringWholeExtentAreRejected) {
   // Same-length edit keeps every appended offset valid but makes the grid one layer taller.
-  fs::path p = patched("pieces_0.vti", "WholeExtent=\"0 4 0 3 0 2\"", "WholeExtent=\"0 4 0 3 0 3\"");
+  fs::path p =
+      patched("pieces_0.vti", "WholeExtent=\"0 4 0 3 0 2\"", "WholeExtent=\"0 4 0 3 0 3\"");
   std::string msg = error_of<FormatError>([&] { read(*open(p, "f"), 0); });
   EXPECT_NE(msg.find("do not cover WholeExtent"), std::string::npos) << msg;
 }
@@ -227,8 +237,8 @@ TEST(VtiSource, UnknownElementTypeIsNamed) {
 
 TEST(VtiSource, WrongValueCountInAsciiIsNamed) {
   // Drop the first value of f (f is the first array, so the first match is its data).
-  fs::path p = patched("ascii_0.vti", "RangeMax=\"234\">\n        0 1 2",
-                       "RangeMax=\"234\">\n        1 2");
+  fs::path p =
+      patched("ascii_0.vti", "RangeMax=\"234\">\n        0 1 2", "RangeMax=\"234\">\n        1 2");
   std::string msg = error_of<FormatError>([&] { read(*open(p, "f"), 0); });
   EXPECT_NE(msg.find("holds 59 values, expected 60"), std::string::npos) << msg;
 }
@@ -253,6 +263,13 @@ TEST(VtiSource, BadSeriesJsonIsAFormatError) {
   write(dir / "c.vti.series", "{\"file-series-version\": \"2.0\", \"files\": []}");
   msg = error_of<FormatError>([&] { open(dir / "c.vti.series", "f"); });
   EXPECT_NE(msg.find("2.0"), std::string::npos) << msg;
+}
+
+TEST(VtiSource, PatternOfVtiFilesIsASeriesInPatternOrder) {
+  auto s = open(vti_dir() / "zlib_appended_%d.vti", "f");
+  expect_series(*s, "f", kFixtureDims, "printf pattern");
+  auto g = open(vti_dir() / "appended_raw_?.vti", "c");
+  expect_series(*g, "c", kFixtureCellDims, "glob");
 }
 
 }  // namespace
