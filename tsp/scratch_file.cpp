@@ -70,10 +70,6 @@ void ScratchFile::read_series(int brick, std::span<float> out) const {
   }
 }
 
-}  // namespace tsp
-
-namespace tsp {
-
 void ScratchFile::discard(int brick) {
   const off_t pos = off_t(offsets_[brick] * std::int64_t(sizeof(float)));
   const off_t len = off_t(samples_[brick] * steps_ * std::int64_t(sizeof(float)));
