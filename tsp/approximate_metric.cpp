@@ -80,30 +80,43 @@ NodeResult ApproximateMetric::evaluate(const NodeStats& stats) const {
   // multiplications per entry replace an exp() and nothing overflows (every ratio is ≤ 1).
   thread_local std::vector<double> p;
   p.assign(hi - lo + 1, 0.0);
+  double* const pw = p.data() - lo;  // pw[j] for j in [lo, hi]
   const int jc = std::clamp(int(std::floor((mean - domain_.lo) / width)), lo, hi);
-  p[jc - lo] = 1;
+  pw[jc] = 1;
   const double inv2s2 = 1.0 / (2.0 * sigma * sigma);
   if (sigma > 0 && std::isfinite(inv2s2)) {
     const double d = domain_.lo + (jc + 0.5) * width - mean;  // x(jc) − v̄
     const double q = std::exp(-width * width * 2.0 * inv2s2);
     double pj = 1, ratio = std::exp(-(2.0 * d * width + width * width) * inv2s2);
-    for (int j = jc + 1; j <= hi; ++j, ratio *= q) p[j - lo] = pj *= ratio;
+    for (int j = jc + 1; j <= hi; ++j, ratio *= q) pw[j] = pj *= ratio;
     pj = 1;
     ratio = std::exp(-(-2.0 * d * width + width * width) * inv2s2);
-    for (int j = jc - 1; j >= lo; --j, ratio *= q) p[j - lo] = pj *= ratio;
+    for (int j = jc - 1; j >= lo; --j, ratio *= q) pw[j] = pj *= ratio;
   }  // σ = 0 (or so small that σ² underflows): all weight on the entry holding v̄
 
-  // Eqs. 15–16: estimated mean colour.
-  double ptot = 0, c[4] = {0, 0, 0, 0}, rgb[3] = {0, 0, 0};
+  // Eqs. 15–16: estimated mean colour. Scalar accumulators keep the sums in registers.
+  const double* w = p.data() - lo;
+  double ptot = 0, c0 = 0, c1 = 0, c2 = 0, c3 = 0;
   for (int j = lo; j <= hi; ++j) {
-    const double w = p[j - lo];
-    const Entry& e = entries_[j];
-    ptot += w;
-    for (int a = 0; a < 4; ++a) c[a] += w * e.c[a];
-    for (int a = 0; a < 3; ++a) rgb[a] += w * e.rgb[a];
+    const double* e = entries_[j].c;
+    ptot += w[j];
+    c0 += w[j] * e[0];
+    c1 += w[j] * e[1];
+    c2 += w[j] * e[2];
+    c3 += w[j] * e[3];
   }
-  for (double& v : c) v /= ptot;
-  for (double& v : rgb) v /= ptot;
+  const double c[4] = {c0 / ptot, c1 / ptot, c2 / ptot, c3 / ptot};
+  double rgb[3] = {c[0], c[1], c[2]};
+  if (metric_ == Metric::perceptual) {  // d() works in L*u*v*; the reported colour stays sRGB
+    double r = 0, g = 0, b = 0;
+    for (int j = lo; j <= hi; ++j) {
+      const double* e = entries_[j].rgb;
+      r += w[j] * e[0];
+      g += w[j] * e[1];
+      b += w[j] * e[2];
+    }
+    rgb[0] = r / ptot, rgb[1] = g / ptot, rgb[2] = b / ptot;
+  }
   out.mean = {float(rgb[0]), float(rgb[1]), float(rgb[2]), float(c[3])};
   if (metric_ == Metric::scalar) {
     out.spatial = stats.spatial_error;
@@ -114,7 +127,7 @@ NodeResult ApproximateMetric::evaluate(const NodeStats& stats) const {
   // Eqs. 17–19: f̃ = sqrt(d(ĉ, 0)), σ̃ = sqrt(Σ p/p_tot · d(c(j), ĉ)), e_s = σ̃ / f̃.
   const double f2 = c[3] * (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]) + c[3] * c[3];
   double dev = 0, local_variation = 0;
-  for (int j = lo; j <= hi; ++j) dev += p[j - lo] * distance(entries_[j].c, c);
+  for (int j = lo; j <= hi; ++j) dev += w[j] * distance(entries_[j].c, c);
   const double f = std::sqrt(f2);
   out.spatial = f > 0 ? float(std::sqrt(dev / ptot) / f) : 0.0f;
   if (metric_ == Metric::approximate) {
@@ -124,7 +137,7 @@ NodeResult ApproximateMetric::evaluate(const NodeStats& stats) const {
     // estimate of its two entries (peak weight 1), so a node only feels the part of the TF its
     // values can reach.
     for (int j = lo; j < hi; ++j)
-      local_variation += 0.5 * (p[j - lo] + p[j + 1 - lo]) * step_distance_[j];
+      local_variation += 0.5 * (w[j] + w[j + 1]) * step_distance_[j];
     out.temporal = float(stats.temporal_error * std::sqrt(local_variation));
   }
   return out;

@@ -25,12 +25,13 @@ struct ColourMoments {
 };
 
 // σ̂ = sqrt((1/n) Σ d(c, ĉ)) and f̂ = sqrt(d(ĉ, 0)) from the sums of n samples.
-ColourMoments moments(const double* s, double n) {
-  const double r = s[kR] / n, g = s[kG] / n, b = s[kB] / n, a = s[kA] / n;
+inline ColourMoments moments(const double* s, double n) {
+  const double inv = 1.0 / n;
+  const double r = s[kR] * inv, g = s[kG] * inv, b = s[kB] * inv, a = s[kA] * inv;
   const double rgb2 = r * r + g * g + b * b;
   const double sum_d = s[kARGB2] - 2.0 * (r * s[kAR] + g * s[kAG] + b * s[kAB]) + rgb2 * s[kA] +
                        s[kAA] - 2.0 * a * s[kA] + n * a * a;
-  const double var = sum_d / n;
+  const double var = sum_d * inv;
   return {var > kRoundoffVariance ? std::sqrt(var) : 0.0, std::sqrt(a * rgb2 + a * a)};
 }
 
@@ -79,11 +80,16 @@ void ReferenceMetric::compute_brick(int brick, const std::vector<std::uint16_t>&
     total.voxels = double(n);
     if (time.is_leaf(tau)) {
       bricks_.read_brick(brick, time.span(tau).t0, sc.codes);
+      double acc[kQuantities] = {};  // local: keeps the running sums out of memory
       for (std::size_t v = 0; v < n; ++v) {
         const EntryQuantities& e = q[lut[sc.codes[sc.own[v]]]];
-        std::copy(e.begin(), e.end(), out.begin() + std::ptrdiff_t(v * kQuantities));
-        for (int k = 0; k < kQuantities; ++k) total.s[k] += e[k];
+        double* o = out.data() + v * kQuantities;
+        for (int k = 0; k < kQuantities; ++k) {
+          o[k] = e[k];
+          acc[k] += e[k];
+        }
       }
+      for (int k = 0; k < kQuantities; ++k) total.s[k] = acc[k];
       total.samples = double(n);  // one step: ĉᵢ = cᵢ, so σ̂ᵢ = 0 and e_t's sum stays 0
     } else {
       self(self, time.left(tau), level + 1, 0);
@@ -93,15 +99,19 @@ void ReferenceMetric::compute_brick(int brick, const std::vector<std::uint16_t>&
       total.samples = l.samples + r.samples;
       for (int k = 0; k < kQuantities; ++k) total.s[k] = l.s[k] + r.s[k];
       const double m = time.span(tau).length();
-      const std::vector<double>& a = sc.level[level + 1][0];
-      const std::vector<double>& b = sc.level[level + 1][1];
+      const double* a = sc.level[level + 1][0].data();
+      const double* b = sc.level[level + 1][1].data();
+      const bool keep = level > 0;  // the root's per-voxel sums feed no parent
+      double temporal = 0;
       for (std::size_t v = 0; v < n; ++v) {
-        double* o = out.data() + v * kQuantities;
         const std::size_t base = v * kQuantities;
-        for (int k = 0; k < kQuantities; ++k) o[k] = a[base + k] + b[base + k];
-        const ColourMoments cm = moments(o, m);
-        if (cm.f > 0) total.temporal += cm.sigma / cm.f;  // our rule: f̂ᵢ = 0 contributes 0
+        double sum[kQuantities];
+        for (int k = 0; k < kQuantities; ++k) sum[k] = a[base + k] + b[base + k];
+        if (keep) std::copy(sum, sum + kQuantities, out.data() + base);
+        const ColourMoments cm = moments(sum, m);
+        if (cm.f > 0) temporal += cm.sigma / cm.f;  // our rule: f̂ᵢ = 0 contributes 0
       }
+      total.temporal = temporal;
     }
     sums_[tree.id(octree_id, tau)] = total;
   };
