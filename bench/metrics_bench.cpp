@@ -36,8 +36,7 @@ constexpr float kValueLo = -1.5f, kValueHi = 3.5f;  // covers every generated va
 // spreads, and voxels change over time, so every metric has work to do.
 class ProceduralStore : public tsp::BrickStore {
  public:
-  ProceduralStore(tsp::Dims d, int steps, int brick)
-      : tree_(d, steps, brick), noise_(kNoiseTable) {
+  ProceduralStore(tsp::Dims d, int steps, int brick) : tree_(d, steps, brick), noise_(kNoiseTable) {
     tree_.set_value_range({kValueLo, kValueHi});
     std::uint32_t s = 12345;
     for (float& n : noise_) {
@@ -178,7 +177,8 @@ int arg_int(int argc, char** argv, const char* name, int fallback) {
 void edit(tsp::TransferFunction& tf, int round) {
   const int k = tf.size(), first = (37 * round) % (k - 16);
   std::vector<tsp::Rgba> band(16);
-  for (int j = 0; j < 16; ++j) band[j] = {float(j) / 16, 0.3f, float(round % 5) / 5, 0.05f * (j % 8)};
+  for (int j = 0; j < 16; ++j)
+    band[j] = {float(j) / 16, 0.3f, float(round % 5) / 5, 0.05f * (j % 8)};
   tf.set_entries(first, band);
 }
 
@@ -196,8 +196,9 @@ int main(int argc, char** argv) {
   const int threads = tsp::resolve_threads(arg_int(argc, argv, "--threads", 0));
   ProceduralStore store({n, n, n}, steps, brick);
   const tsp::TspTree& tree = store.tree();
-  std::printf("tree          %d^3 x %d steps, brick %d: %d leaf bricks, %d octree nodes, %d TSP nodes\n",
-              n, steps, brick, tree.octree().brick_count(), tree.octree().size(), tree.size());
+  std::printf(
+      "tree          %d^3 x %d steps, brick %d: %d leaf bricks, %d octree nodes, %d TSP nodes\n", n,
+      steps, brick, tree.octree().brick_count(), tree.octree().size(), tree.size());
   std::printf("threads       %d\n", threads);
   auto t0 = Clock::now();
   compute_stats(store, threads);
@@ -264,8 +265,9 @@ int main(int argc, char** argv) {
       times.push_back(ms_since(t0));
       evaluated += lazy.evaluations() - before;
     }
-    std::printf("  %-12s first step %.3f ms; after an edit %.3f ms (%.0f nodes evaluated per step)\n",
-                tsp::to_string(m), cold, median(times), double(evaluated) / 20);
+    std::printf(
+        "  %-12s first step %.3f ms; after an edit %.3f ms (%.0f nodes evaluated per step)\n",
+        tsp::to_string(m), cold, median(times), double(evaluated) / 20);
   }
   return 0;
 }

@@ -49,7 +49,8 @@ ApproximateMetric::ApproximateMetric(Metric metric, const TransferFunction& tf)
   }
   step_distance_.resize(k - 1);
   double sum = 0;
-  for (int j = 0; j + 1 < k; ++j) sum += step_distance_[j] = distance(entries_[j].c, entries_[j + 1].c);
+  for (int j = 0; j + 1 < k; ++j)
+    sum += step_distance_[j] = distance(entries_[j].c, entries_[j + 1].c);
   variation_ = std::sqrt(sum);
 }
 
@@ -136,8 +137,7 @@ NodeResult ApproximateMetric::evaluate(const NodeStats& stats) const {
     // Perceptual: V restricted to [j_min, j_max], each step weighted by the mean population
     // estimate of its two entries (peak weight 1), so a node only feels the part of the TF its
     // values can reach.
-    for (int j = lo; j < hi; ++j)
-      local_variation += 0.5 * (w[j] + w[j + 1]) * step_distance_[j];
+    for (int j = lo; j < hi; ++j) local_variation += 0.5 * (w[j] + w[j + 1]) * step_distance_[j];
     out.temporal = float(stats.temporal_error * std::sqrt(local_variation));
   }
   return out;

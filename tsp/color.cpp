@@ -34,9 +34,9 @@ class SrgbConverter {
     if (!srgb || !xyz) throw std::runtime_error("littleCMS could not create the sRGB/XYZ profiles");
     // NOCACHE makes the transform safe to share between threads; NOOPTIMIZE keeps the exact
     // matrix-shaper maths instead of a sampled lookup table.
-    transform_ = cmsCreateTransform(srgb, TYPE_RGB_DBL, xyz, TYPE_XYZ_DBL,
-                                    INTENT_RELATIVE_COLORIMETRIC,
-                                    cmsFLAGS_NOCACHE | cmsFLAGS_NOOPTIMIZE);
+    transform_ =
+        cmsCreateTransform(srgb, TYPE_RGB_DBL, xyz, TYPE_XYZ_DBL, INTENT_RELATIVE_COLORIMETRIC,
+                           cmsFLAGS_NOCACHE | cmsFLAGS_NOOPTIMIZE);
     const auto* chad = static_cast<const double*>(cmsReadTag(srgb, cmsSigChromaticAdaptationTag));
     if (!transform_ || !chad) throw std::runtime_error("littleCMS sRGB profile is incomplete");
     Mat3 m;
@@ -82,7 +82,9 @@ constexpr double kKappa = 24389.0 / 27.0;
 
 }  // namespace
 
-Xyz d65_white() { return converter().white(); }
+Xyz d65_white() {
+  return converter().white();
+}
 
 Xyz srgb_to_xyz(double r, double g, double b) {
   double in[3] = {r, g, b}, out[3];
@@ -107,7 +109,9 @@ Luv xyz_to_luv(const Xyz& c) {
   return {l, 13.0 * l * (up - upn), 13.0 * l * (vp - vpn)};
 }
 
-Luv srgb_to_luv(double r, double g, double b) { return xyz_to_luv(srgb_to_xyz(r, g, b)); }
+Luv srgb_to_luv(double r, double g, double b) {
+  return xyz_to_luv(srgb_to_xyz(r, g, b));
+}
 
 Luv srgb8_to_luv(std::uint8_t r, std::uint8_t g, std::uint8_t b) {
   constexpr double kMax8 = 255.0;
@@ -115,7 +119,8 @@ Luv srgb8_to_luv(std::uint8_t r, std::uint8_t g, std::uint8_t b) {
 }
 
 double delta_e_luv(const Luv& a, const Luv& b) {
-  return std::sqrt((a.l - b.l) * (a.l - b.l) + (a.u - b.u) * (a.u - b.u) + (a.v - b.v) * (a.v - b.v));
+  return std::sqrt((a.l - b.l) * (a.l - b.l) + (a.u - b.u) * (a.u - b.u) +
+                   (a.v - b.v) * (a.v - b.v));
 }
 
 }  // namespace tsp

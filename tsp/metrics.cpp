@@ -20,10 +20,14 @@ constexpr int kNodeChunk = 256;
 
 const char* to_string(Metric m) {
   switch (m) {
-    case Metric::scalar: return "scalar";
-    case Metric::reference: return "reference";
-    case Metric::approximate: return "approximate";
-    case Metric::perceptual: return "perceptual";
+    case Metric::scalar:
+      return "scalar";
+    case Metric::reference:
+      return "reference";
+    case Metric::approximate:
+      return "approximate";
+    case Metric::perceptual:
+      return "perceptual";
   }
   return "?";
 }
@@ -78,7 +82,8 @@ MetricResult compute_errors(Metric metric, const TspTree& tree, const TransferFu
       }
     }
   };
-  const int workers = std::max(1, std::min(resolve_threads(threads), (n + kNodeChunk - 1) / kNodeChunk));
+  const int workers =
+      std::max(1, std::min(resolve_threads(threads), (n + kNodeChunk - 1) / kNodeChunk));
   std::vector<std::thread> pool;
   for (int w = 1; w < workers; ++w) pool.emplace_back(worker);
   worker();

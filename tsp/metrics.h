@@ -23,9 +23,9 @@ Metric parse_metric(const std::string& name);
 
 /// One TSP node's result under one metric and transfer function.
 struct NodeResult {
-  float spatial = 0;    ///< e_s (0 for transparent nodes)
-  float temporal = 0;   ///< e_t (0 for transparent nodes)
-  Rgba mean;            ///< mean colour (estimated for scalar/approximate/perceptual); 0 if transparent
+  float spatial = 0;   ///< e_s (0 for transparent nodes)
+  float temporal = 0;  ///< e_t (0 for transparent nodes)
+  Rgba mean;  ///< mean colour (estimated for scalar/approximate/perceptual); 0 if transparent
   bool transparent = false;  ///< max α over the node's [j_min, j_max] is 0
 };
 

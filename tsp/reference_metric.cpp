@@ -64,7 +64,8 @@ void ReferenceMetric::compute_brick(int brick, const std::vector<std::uint16_t>&
   for (int z = own.lo[2]; z < own.hi[2]; ++z)
     for (int y = own.lo[1]; y < own.hi[1]; ++y)
       for (int x = own.lo[0]; x < own.hi[0]; ++x)
-        sc.own.push_back((x - samples.lo[0]) + sx * ((y - samples.lo[1]) + sy * (z - samples.lo[2])));
+        sc.own.push_back((x - samples.lo[0]) +
+                         sx * ((y - samples.lo[1]) + sy * (z - samples.lo[2])));
   const std::size_t n = sc.own.size();
   sc.level.resize(time.depth() + 1);
   for (auto& lv : sc.level)
@@ -158,7 +159,8 @@ int ReferenceMetric::update(const TransferFunction& tf, int threads) {
   }
 
   std::vector<std::uint16_t> lut(std::size_t(kQuantMax) + 1);
-  for (int c = 0; c <= kQuantMax; ++c) lut[c] = std::uint16_t(tf.entry_of(quant.decode(std::uint16_t(c))));
+  for (int c = 0; c <= kQuantMax; ++c)
+    lut[c] = std::uint16_t(tf.entry_of(quant.decode(std::uint16_t(c))));
   std::vector<EntryQuantities> quantities(tf.size());
   for (int j = 0; j < tf.size(); ++j) {
     const Rgba& c = tf.entry(j);

@@ -49,7 +49,8 @@ TransferFunction parse_ours(const json& doc, const std::string& origin, int entr
   const json& range = require(doc, "range", origin);
   if (!range.is_array() || range.size() != 2)
     fail(origin, "range", "expected [lo, hi], found " + range.dump());
-  const ValueRange domain{number(range[0], origin, "range[0]"), number(range[1], origin, "range[1]")};
+  const ValueRange domain{number(range[0], origin, "range[0]"),
+                          number(range[1], origin, "range[1]")};
   if (!(domain.lo < domain.hi)) fail(origin, "range", "expected lo < hi, found " + range.dump());
   const json& pts = require(doc, "points", origin);
   if (!pts.is_array() || pts.empty())
@@ -58,7 +59,8 @@ TransferFunction parse_ours(const json& doc, const std::string& origin, int entr
   for (std::size_t i = 0; i < pts.size(); ++i) {
     const std::string key = "points[" + std::to_string(i) + "]";
     const json& p = pts[i];
-    if (!p.is_array() || p.size() != 5) fail(origin, key, "expected [x, r, g, b, a], found " + p.dump());
+    if (!p.is_array() || p.size() != 5)
+      fail(origin, key, "expected [x, r, g, b, a], found " + p.dump());
     points.push_back({number(p[0], origin, key + "[0]"),
                       {unit(p[1], origin, key + "[1]"), unit(p[2], origin, key + "[2]"),
                        unit(p[3], origin, key + "[3]"), unit(p[4], origin, key + "[4]")}});
@@ -90,20 +92,21 @@ double interpolate(const std::vector<std::pair<double, double>>& knots, double x
 }
 
 TransferFunction parse_paraview(const json& preset, const std::string& origin, int entries) {
-  const std::vector<double> rgb =
-      flat_numbers(require(preset, "RGBPoints", origin), origin, "RGBPoints", kParaViewColourStride);
+  const std::vector<double> rgb = flat_numbers(require(preset, "RGBPoints", origin), origin,
+                                               "RGBPoints", kParaViewColourStride);
   std::vector<TfPoint> colour;
   for (std::size_t i = 0; i < rgb.size(); i += kParaViewColourStride) {
     auto key = [&](std::size_t k) { return "RGBPoints[" + std::to_string(i + k) + "]"; };
     auto check = [&](std::size_t k) {
       if (rgb[i + k] < 0 || rgb[i + k] > 1)
-        fail(origin, key(k), "expected a colour component in [0, 1], found " + std::to_string(rgb[i + k]));
+        fail(origin, key(k),
+             "expected a colour component in [0, 1], found " + std::to_string(rgb[i + k]));
       return float(rgb[i + k]);
     };
     colour.push_back({rgb[i], {check(1), check(2), check(3), 0}});
   }
-  auto [lo_it, hi_it] = std::minmax_element(colour.begin(), colour.end(),
-                                            [](auto& a, auto& b) { return a.x < b.x; });
+  auto [lo_it, hi_it] =
+      std::minmax_element(colour.begin(), colour.end(), [](auto& a, auto& b) { return a.x < b.x; });
   const ValueRange domain{lo_it->x, hi_it->x};
   if (!(domain.lo < domain.hi))
     fail(origin, "RGBPoints", "all points lie at x = " + std::to_string(domain.lo));

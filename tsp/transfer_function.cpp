@@ -18,9 +18,13 @@ void check_domain(ValueRange d) {
                      std::to_string(d.hi) + "] is not a finite interval with lo < hi");
 }
 
-float clamp01(float v) { return std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f); }
+float clamp01(float v) {
+  return std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f);
+}
 
-Rgba clamped(Rgba c) { return {clamp01(c.r), clamp01(c.g), clamp01(c.b), clamp01(c.a)}; }
+Rgba clamped(Rgba c) {
+  return {clamp01(c.r), clamp01(c.g), clamp01(c.b), clamp01(c.a)};
+}
 
 Rgba lerp(const Rgba& a, const Rgba& b, double t) {
   auto mix = [t](float u, float v) { return float(u + (v - u) * t); };
@@ -55,7 +59,9 @@ bool ChangedEntries::touches(int lo, int hi) const {
   return lo <= hi && prefix_[hi + 1] > prefix_[lo];
 }
 
-bool ChangedEntries::none() const { return prefix_.back() == 0; }
+bool ChangedEntries::none() const {
+  return prefix_.back() == 0;
+}
 
 // ---- TransferFunction --------------------------------------------------------------------------
 
@@ -102,7 +108,9 @@ int TransferFunction::entry_of(double v) const {
   return int(f);
 }
 
-void TransferFunction::set_entry(int j, Rgba c) { set_entries(j, std::span<const Rgba>(&c, 1)); }
+void TransferFunction::set_entry(int j, Rgba c) {
+  set_entries(j, std::span<const Rgba>(&c, 1));
+}
 
 void TransferFunction::set_entries(int first, std::span<const Rgba> colours) {
   assert(first >= 0 && first + int(colours.size()) <= size());
@@ -135,7 +143,8 @@ void TransferFunction::rebuild_prefix(int from) {
 ChangedEntries TransferFunction::changed_since(std::uint64_t since) const {
   if (since < log_floor_) return ChangedEntries::all(size());
   ChangedEntries c(size());
-  for (auto it = log_.rbegin(); it != log_.rend() && it->version > since; ++it) c.mark(it->lo, it->hi);
+  for (auto it = log_.rbegin(); it != log_.rend() && it->version > since; ++it)
+    c.mark(it->lo, it->hi);
   return c;
 }
 

@@ -54,7 +54,8 @@ TspTree brute_force_tree(const MemorySeries& s, int brick_size, std::optional<Va
             }
             const double vmean = vsum / m;
             double vdev = 0;
-            for (int t = sp.t0; t <= sp.t1; ++t) vdev += (s.at(t, x, y, z) - vmean) * (s.at(t, x, y, z) - vmean);
+            for (int t = sp.t0; t <= sp.t1; ++t)
+              vdev += (s.at(t, x, y, z) - vmean) * (s.at(t, x, y, z) - vmean);
             cov_sum += tsp::coefficient_of_variation(std::sqrt(vdev / m), vmean, r.width());
             sum += vsum;
             n_all += m;
@@ -65,7 +66,8 @@ TspTree brute_force_tree(const MemorySeries& s, int brick_size, std::optional<Va
       for (int z = b.lo[2]; z < b.hi[2]; ++z)
         for (int y = b.lo[1]; y < b.hi[1]; ++y)
           for (int x = b.lo[0]; x < b.hi[0]; ++x)
-            for (int t = sp.t0; t <= sp.t1; ++t) dev += (s.at(t, x, y, z) - mean) * (s.at(t, x, y, z) - mean);
+            for (int t = sp.t0; t <= sp.t1; ++t)
+              dev += (s.at(t, x, y, z) - mean) * (s.at(t, x, y, z) - mean);
       tsp::NodeStats& st = tree.stats(tree.id(o, tau));
       st.mean = mean;
       st.std = std::sqrt(dev / n_all);
@@ -84,7 +86,8 @@ MemoryBrickStore::MemoryBrickStore(const MemorySeries& series, int brick_size,
 
 void MemoryBrickStore::read_brick(int brick, int step, std::span<std::uint16_t> out) const {
   ++reads_;
-  if (fail_) throw tsp::IoError("memory store: injected read failure of brick " + std::to_string(brick));
+  if (fail_)
+    throw tsp::IoError("memory store: injected read failure of brick " + std::to_string(brick));
   const Box b = tree_.octree().brick_samples(brick);
   const tsp::Quantizer q{tree_.value_range()};
   std::size_t i = 0;

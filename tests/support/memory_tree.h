@@ -22,7 +22,8 @@ struct MemorySeries {
                                const std::function<float(int, int, int, int)>& f);
   /// Sample at step t, voxel (x, y, z).
   float at(int t, int x, int y, int z) const {
-    return values[std::size_t(t) * dims.count() + x + std::size_t(dims.x) * (y + std::size_t(dims.y) * z)];
+    return values[std::size_t(t) * dims.count() + x +
+                  std::size_t(dims.x) * (y + std::size_t(dims.y) * z)];
   }
 };
 

@@ -20,8 +20,8 @@ TransferFunction smooth_tf(ValueRange domain, int k = kDefaultTfEntries) {
   TransferFunction tf(domain, k);
   for (int j = 0; j < k; ++j) {
     const double t = (j + 0.5) / k;
-    tf.set_entry(j, {float(t), float(0.5 + 0.4 * std::sin(6 * t)), float(1 - t * t),
-                     float(0.1 + 0.8 * t)});
+    tf.set_entry(
+        j, {float(t), float(0.5 + 0.4 * std::sin(6 * t)), float(1 - t * t), float(0.1 + 0.8 * t)});
   }
   return tf;
 }
@@ -66,7 +66,8 @@ Direct direct(const TransferFunction& tf, const NodeStats& s, bool luv, bool loc
     dev += p[j] / ptot * d(c, mean);
   }
   const int from = local_variation ? lo : 0, to = local_variation ? hi : tf.size() - 1;
-  const double peak = std::exp(-std::pow(tf.entry_value(tf.entry_of(s.mean)) - s.mean, 2) / (2 * s.std * s.std));
+  const double peak =
+      std::exp(-std::pow(tf.entry_value(tf.entry_of(s.mean)) - s.mean, 2) / (2 * s.std * s.std));
   for (int j = from; j < to; ++j) {
     double a[4], b[4];
     coords(j, a);
@@ -113,8 +114,9 @@ TEST(ApproximateMetric, MatchesEquations14To20Directly) {
 TEST(ApproximateMetric, PerceptualUsesLuvAndTheLocalWeightedVariation) {
   const TransferFunction tf = smooth_tf({0, 1}, 64);
   const ApproximateMetric pm(Metric::perceptual, tf);
-  for (auto [mean, sd, lo, hi] : {std::tuple{0.5, 0.1, 0.2f, 0.8f}, std::tuple{0.3, 0.02, 0.25f, 0.4f},
-                                  std::tuple{0.9, 0.3, 0.05f, 1.0f}}) {
+  for (auto [mean, sd, lo, hi] :
+       {std::tuple{0.5, 0.1, 0.2f, 0.8f}, std::tuple{0.3, 0.02, 0.25f, 0.4f},
+        std::tuple{0.9, 0.3, 0.05f, 1.0f}}) {
     const NodeStats s = stats(mean, sd, lo, hi);
     const NodeResult r = pm.evaluate(s);
     const Direct want = direct(tf, s, true, true);
@@ -127,7 +129,8 @@ TEST(ApproximateMetric, PerceptualTemporalIgnoresTfVariationOutsideTheNode) {
   // Flat grey below 0.5, a rainbow above: a node living below 0.5 sees no variation.
   TransferFunction tf({0, 1}, 64);
   for (int j = 0; j < 64; ++j)
-    tf.set_entry(j, j < 32 ? Rgba{0.5f, 0.5f, 0.5f, 0.5f} : Rgba{float(j % 2), float(j % 3) / 2, 0.3f, 1});
+    tf.set_entry(
+        j, j < 32 ? Rgba{0.5f, 0.5f, 0.5f, 0.5f} : Rgba{float(j % 2), float(j % 3) / 2, 0.3f, 1});
   const NodeStats s = stats(0.2, 0.05, 0.1f, 0.3f);
   EXPECT_EQ(ApproximateMetric(Metric::perceptual, tf).evaluate(s).temporal, 0.0f);
   EXPECT_GT(ApproximateMetric(Metric::approximate, tf).evaluate(s).temporal, 0.1f);
@@ -164,7 +167,8 @@ TEST(ApproximateMetric, TransparentOverTheNodeRangeIsExact) {
 
 TEST(ApproximateMetric, ScalarMetricPassesTheStatisticsThrough) {
   const TransferFunction tf = smooth_tf({0, 1}, 16);
-  const NodeResult r = ApproximateMetric(Metric::scalar, tf).evaluate(stats(0.5, 0.1, 0.2f, 0.8f, 0.75f));
+  const NodeResult r =
+      ApproximateMetric(Metric::scalar, tf).evaluate(stats(0.5, 0.1, 0.2f, 0.8f, 0.75f));
   EXPECT_FLOAT_EQ(r.spatial, 0.125f);
   EXPECT_FLOAT_EQ(r.temporal, 0.75f);
   EXPECT_GT(r.mean.a, 0.0f);
@@ -178,7 +182,8 @@ TEST(ApproximateMetric, CloseToReferenceOnNormalDataWithASmoothTf) {
   constexpr double kSpatialRelTolerance = 0.02;
   constexpr double kMeanColourTolerance = 0.005;
   std::mt19937 rng(2024);
-  const double mu[8] = {2, 3, 4, 5, 6, 4.5, 3.5, 5.5}, sd[8] = {0.3, 0.5, 0.8, 0.4, 0.6, 1.0, 0.7, 0.35};
+  const double mu[8] = {2, 3, 4, 5, 6, 4.5, 3.5, 5.5},
+               sd[8] = {0.3, 0.5, 0.8, 0.4, 0.6, 1.0, 0.7, 0.35};
   std::vector<std::normal_distribution<float>> dist;
   for (int k = 0; k < 8; ++k) dist.emplace_back(float(mu[k]), float(sd[k]));
   // 63³ with 32-sample bricks: 2 × 2 × 2 bricks of ~31³ voxels, brick k = bx + 2·by + 4·bz.

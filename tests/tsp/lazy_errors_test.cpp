@@ -27,7 +27,8 @@ TspTree test_tree() {
 
 TransferFunction ramp_tf(ValueRange d) {
   TransferFunction tf(d, 64);
-  for (int j = 0; j < 64; ++j) tf.set_entry(j, {j / 63.f, 0.5f, 1 - j / 63.f, j < 8 ? 0.f : j / 63.f});
+  for (int j = 0; j < 64; ++j)
+    tf.set_entry(j, {j / 63.f, 0.5f, 1 - j / 63.f, j < 8 ? 0.f : j / 63.f});
   return tf;
 }
 

@@ -18,7 +18,8 @@ namespace {
 using tsptest::MemoryBrickStore;
 using tsptest::MemorySeries;
 
-constexpr Metric kAll[] = {Metric::scalar, Metric::reference, Metric::approximate, Metric::perceptual};
+constexpr Metric kAll[] = {Metric::scalar, Metric::reference, Metric::approximate,
+                           Metric::perceptual};
 
 TEST(Metrics, NamesRoundTripAndUnknownIsAUsageError) {
   for (Metric m : kAll) EXPECT_EQ(parse_metric(to_string(m)), m);

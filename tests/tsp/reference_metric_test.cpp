@@ -68,7 +68,8 @@ NodeResult brute_force(const MemoryBrickStore& store, const TransferFunction& tf
         for (double& v : vm) v /= sp.length();
         double vdev = 0;
         for (int t = sp.t0; t <= sp.t1; ++t) vdev += dist(colour(t, x, y, z), vm);
-        const double fi = std::sqrt(vm[3] * (vm[0] * vm[0] + vm[1] * vm[1] + vm[2] * vm[2]) + vm[3] * vm[3]);
+        const double fi =
+            std::sqrt(vm[3] * (vm[0] * vm[0] + vm[1] * vm[1] + vm[2] * vm[2]) + vm[3] * vm[3]);
         if (fi > 0) temporal += std::sqrt(vdev / sp.length()) / fi;
         voxels += 1;
       }
@@ -121,7 +122,8 @@ TEST(ReferenceMetric, TfDomainNarrowerThanTheDataClampsLikeTheBruteForce) {
   const TransferFunction tf = test_tf({r.lo + 0.3 * r.width(), r.hi - 0.3 * r.width()}, 32);
   ReferenceMetric ref(store);
   ref.update(tf, 1);
-  for (int id = 0; id < store.tree().size(); ++id) expect_same(ref.node(id), brute_force(store, tf, id), id);
+  for (int id = 0; id < store.tree().size(); ++id)
+    expect_same(ref.node(id), brute_force(store, tf, id), id);
 }
 
 TEST(ReferenceMetric, EditRereadsOnlyBricksTouchingChangedEntries) {
@@ -136,7 +138,7 @@ TEST(ReferenceMetric, EditRereadsOnlyBricksTouchingChangedEntries) {
   TransferFunction tf = test_tf({0, 40}, 40);  // one entry per unit
   ReferenceMetric ref(store);
   EXPECT_EQ(ref.update(tf), bricks);
-  EXPECT_EQ(ref.update(tf), 0);  // nothing changed
+  EXPECT_EQ(ref.update(tf), 0);    // nothing changed
   tf.set_entry(20, {1, 0, 0, 1});  // only the third row of bricks uses entry 20
   const std::int64_t reads_before = store.reads();
   EXPECT_EQ(ref.update(tf), bricks / 4);
@@ -172,7 +174,8 @@ TEST(ReferenceMetric, ReadFailurePropagatesAndTheNextUpdateStartsOver) {
   EXPECT_THROW(ref.update(tf, 2), IoError);
   store.fail_reads(false);
   EXPECT_EQ(ref.update(tf, 2), store.tree().octree().brick_count());
-  for (int id = 0; id < store.tree().size(); ++id) expect_same(ref.node(id), brute_force(store, tf, id), id);
+  for (int id = 0; id < store.tree().size(); ++id)
+    expect_same(ref.node(id), brute_force(store, tf, id), id);
 }
 
 }  // namespace

@@ -79,7 +79,8 @@ TEST(TfIo, ParaViewPresetWithOpacityCurve) {
 }
 
 TEST(TfIo, ParaViewPresetWithoutOpacityGetsTheDefaultRamp) {
-  std::string path = write("pv.json", R"({"Name": "gray", "RGBPoints": [-1, 0, 0, 0, 1, 1, 1, 1]})");
+  std::string path =
+      write("pv.json", R"({"Name": "gray", "RGBPoints": [-1, 0, 0, 0, 1, 1, 1, 1]})");
   TransferFunction tf = load_transfer_function(path, 4);  // centres −0.75, −0.25, 0.25, 0.75
   EXPECT_EQ(tf.domain(), (ValueRange{-1, 1}));
   EXPECT_NEAR(tf.entry(0).a, 0.125, 1e-6);

@@ -37,7 +37,7 @@ TEST(TransferFunction, RejectsBadDomainsAndSizes) {
 
 TEST(TransferFunction, FromPointsInterpolatesLinearlyAndClampsBeyondTheEnds) {
   // Red rises 0 → 1 between x = 2 and x = 6; outside, the end colours hold.
-  std::vector<TfPoint> pts = {{6, {1, 0, 0, 1}}, {2, {0, 0, 1, 0}}};  // unsorted on purpose
+  std::vector<TfPoint> pts = {{6, {1, 0, 0, 1}}, {2, {0, 0, 1, 0}}};    // unsorted on purpose
   TransferFunction tf = TransferFunction::from_points({0, 8}, pts, 8);  // centres 0.5, 1.5, ...
   for (int j = 0; j < 8; ++j) {
     double x = 0.5 + j;
