@@ -88,6 +88,9 @@ struct Packing {
     return p;
   }
 
+  /// True when no sample is changed: values can be read straight into floats.
+  bool identity() const { return missing.empty() && scale == 1.0 && offset == 0.0; }
+
   void apply(std::span<const double> in, std::span<float> out) const {
     constexpr double kFloatMax = std::numeric_limits<float>::max();
     for (std::size_t i = 0; i < in.size(); ++i) {
@@ -139,9 +142,10 @@ class Hdf5Source final : public VolumeSource {
     VolumeSlab slab;
     if (step.indexed) slab.fixed = {step.index};
     slab.spatial = {hsize_t(dims_.z), hsize_t(dims_.y), hsize_t(dims_.x)};
-    read_volume(
-        ds.get(), slab, out,
-        [&](std::span<const double> in, std::span<float> o) { packing.apply(in, o); }, where);
+    BatchConverter convert;
+    if (!packing.identity() || !converts_exactly_to_float(ds.get()))
+      convert = [&](std::span<const double> in, std::span<float> o) { packing.apply(in, o); };
+    read_volume(ds.get(), slab, out, convert, where);
   }
 
  private:

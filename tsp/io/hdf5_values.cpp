@@ -9,6 +9,10 @@
 namespace tsp::io {
 namespace {
 
+constexpr const char* kUnreadable =
+    ": data cannot be read (truncated or corrupt file, or a compression filter this HDF5 "
+    "library lacks)";
+
 // Values per read batch: bounds the temporary double buffer (32 MiB) whatever the volume size.
 constexpr hsize_t kBatchValues = hsize_t(1) << 22;
 
@@ -118,6 +122,14 @@ std::optional<std::string> string_attribute(hid_t obj, const std::string& name,
   return trim_padding(s);
 }
 
+bool converts_exactly_to_float(hid_t dataset) {
+  h5::Handle type(H5Dget_type(dataset));
+  if (!type) return false;
+  H5T_class_t cls = H5Tget_class(type.get());
+  std::size_t size = H5Tget_size(type.get());
+  return (cls == H5T_FLOAT && size == 4) || (cls == H5T_INTEGER && size <= 2);
+}
+
 void read_volume(hid_t dataset, const VolumeSlab& slab, std::span<float> out,
                  const BatchConverter& convert, const std::string& where) {
   assert(!slab.spatial.empty());
@@ -130,6 +142,22 @@ void read_volume(hid_t dataset, const VolumeSlab& slab, std::span<float> out,
 
   h5::Handle file_space(H5Dget_space(dataset));
   if (!file_space) throw FormatError(where + ": cannot read the dataspace");
+  if (!convert) {
+    // Direct path: one read into out, the memory space shaped like the file selection so
+    // HDF5 copies whole contiguous runs instead of iterating element by element.
+    std::vector<hsize_t> start(rank, 0), count(rank, 1);
+    for (std::size_t a = 0; a < slab.fixed.size(); ++a) start[a] = slab.fixed[a];
+    for (std::size_t a = 0; a < slab.spatial.size(); ++a)
+      count[slab.fixed.size() + a] = slab.spatial[a];
+    if (H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(),
+                            nullptr) < 0)
+      throw FormatError(where + ": selection outside the dataset");
+    h5::Handle mem_space(H5Screate_simple(int(rank), count.data(), nullptr));
+    if (H5Dread(dataset, H5T_NATIVE_FLOAT, mem_space.get(), file_space.get(), H5P_DEFAULT,
+                out.data()) < 0)
+      throw FormatError(where + kUnreadable);
+    return;
+  }
   std::vector<double> buffer(static_cast<std::size_t>(std::min(per_batch, outer) * plane));
   std::vector<hsize_t> start(rank, 0), count(rank, 1);
   for (std::size_t a = 0; a < slab.fixed.size(); ++a) start[a] = slab.fixed[a];
@@ -147,9 +175,7 @@ void read_volume(hid_t dataset, const VolumeSlab& slab, std::span<float> out,
     h5::Handle mem_space(H5Screate_simple(1, &values, nullptr));
     if (H5Dread(dataset, H5T_NATIVE_DOUBLE, mem_space.get(), file_space.get(), H5P_DEFAULT,
                 buffer.data()) < 0)
-      throw FormatError(where +
-                        ": data cannot be read (truncated or corrupt file, or a compression "
-                        "filter this HDF5 library lacks)");
+      throw FormatError(where + kUnreadable);
     convert(std::span<const double>(buffer.data(), values),
             out.subspan(static_cast<std::size_t>(o * plane), static_cast<std::size_t>(values)));
   }

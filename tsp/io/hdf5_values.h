@@ -38,11 +38,15 @@ struct VolumeSlab {
   int trailing = 0;
 };
 
+/// True when every value of dataset's element type is a float32 exactly (float32, ints of ≤ 16 bits).
+bool converts_exactly_to_float(hid_t dataset);
+
 /// Converts one batch of values read as doubles into floats (same length).
 using BatchConverter = std::function<void(std::span<const double>, std::span<float>)>;
 
 /// Reads the slab of dataset into out (product of slab.spatial floats, x fastest) in batches
-/// of outer planes, passing each batch through convert. Throws FormatError naming `where`
+/// of outer planes, passing each batch through convert; an empty convert reads float32 directly
+/// in one call (use it only when the file type converts to float exactly or as the caller wants). Throws FormatError naming `where`
 /// when HDF5 cannot read the data (truncated file, corrupt chunk, unavailable filter).
 void read_volume(hid_t dataset, const VolumeSlab& slab, std::span<float> out,
                  const BatchConverter& convert, const std::string& where);
