@@ -13,7 +13,9 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // --help and --version exit 0; every other parse error is a usage error (exit 2).
+    int code = app.exit(e);
+    return code == 0 ? 0 : 2;
   } catch (const tsp::UsageError& e) {
     std::fprintf(stderr, "tspplay: usage error: %s\n", e.what());
     return 2;

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "tsp/error.h"
+#include "tsp/io/hdf5_writer.h"
 #include "tsp/procedural_source.h"
 
 namespace tsp {
@@ -96,6 +97,16 @@ void ProceduralSource::read_step(int t, std::span<float> out) {
       fill_slab(tau, slab_begin(k), slab_begin(k + 1), out.data());
     });
   fill_slab(tau, slab_begin(0), slab_begin(1), out.data());
+}
+
+void write_generated_dataset(GeneratedSource& source, const std::string& path, int gzip_level) {
+  Hdf5WriteOptions w;
+  w.dataset = source.name();
+  w.gzip_level = gzip_level;
+  w.attributes = {{"generator", source.name()},
+                  {"seed", source.seed()},
+                  {"generator_version", std::int64_t(kGeneratorVersion)}};
+  write_hdf5(source, path, w);
 }
 
 }  // namespace tsp

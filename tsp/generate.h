@@ -54,4 +54,9 @@ class GeneratedSource : public VolumeSource {
 std::unique_ptr<GeneratedSource> make_generated_source(const std::string& name,
                                                        const GenerateOptions& options = {});
 
+/// Writes source to path as the HDF5 dataset /NAME (T,Z,Y,X) with its provenance attributes
+/// (generator, seed, generator_version), atomically; gzip_level 0 = uncompressed.
+/// Throws IoError/UsageError as write_hdf5 does.
+void write_generated_dataset(GeneratedSource& source, const std::string& path, int gzip_level = 0);
+
 }  // namespace tsp

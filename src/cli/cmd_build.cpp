@@ -1,12 +1,12 @@
 // tspplay build INPUT -o OUT.tsp: bricks and TSP tree from a time series.
-#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
 #include <string>
 
+#include "cli/args.h"
 #include "cli/commands.h"
-#include "cli/progress_bar.h"
+#include "cli/build_runner.h"
 #include "tsp/build.h"
 #include "tsp/error.h"
 #include "tsp/tsp_file.h"
@@ -21,52 +21,10 @@ struct BuildArgs {
   bool big_endian = false;
 };
 
-// Set by SIGINT/SIGTERM; the progress callback turns it into an exception, so the build unwinds
-// and removes its temporary file instead of leaving it behind.
-volatile std::sig_atomic_t g_interrupted = 0;
-extern "C" void on_interrupt(int) {
-  g_interrupted = 1;
-}
-
-double parse_number(const std::string& text, const std::string& option) {
-  char* end = nullptr;
-  double v = std::strtod(text.c_str(), &end);
-  if (text.empty() || end != text.c_str() + text.size())
-    throw tsp::UsageError(option + ": '" + text + "' is not a number");
-  return v;
-}
-
-// "LO:HI" → a range; the builder checks LO < HI.
-tsp::ValueRange parse_range(const std::string& text) {
-  auto colon = text.find(':', 1);  // a leading '-' is a sign, never the separator
-  if (colon == std::string::npos)
-    throw tsp::UsageError("--range " + text + ": expected LO:HI, e.g. --range=-5:40");
-  return {parse_number(text.substr(0, colon), "--range"),
-          parse_number(text.substr(colon + 1), "--range")};
-}
-
-// "X,Y,Z" → grid size.
-tsp::Dims parse_dims(const std::string& text) {
-  int v[3];
-  std::size_t pos = 0;
-  for (int i = 0; i < 3; ++i) {
-    std::size_t next = text.find(',', pos);
-    if ((i < 2) != (next != std::string::npos))
-      throw tsp::UsageError("--raw-dims " + text + ": expected X,Y,Z");
-    double d =
-        parse_number(text.substr(pos, next == std::string::npos ? next : next - pos), "--raw-dims");
-    if (d < 1 || d != int(d))
-      throw tsp::UsageError("--raw-dims " + text + ": sizes must be positive integers");
-    v[i] = int(d);
-    pos = next + 1;
-  }
-  return {v[0], v[1], v[2]};
-}
-
 void run_build(const BuildArgs& a) {
   tsp::SourceOptions so;
   so.field = a.field;
-  if (!a.raw_dims.empty()) so.raw_dims = parse_dims(a.raw_dims);
+  if (!a.raw_dims.empty()) so.raw_dims = parse_dims(a.raw_dims, "--raw-dims", 1 << 20, false);
   so.raw_type = a.raw_type == "u8"    ? tsp::RawType::u8
                 : a.raw_type == "u16" ? tsp::RawType::u16
                                       : tsp::RawType::f32;
@@ -76,42 +34,10 @@ void run_build(const BuildArgs& a) {
   bo.brick_size = a.brick;
   bo.threads = a.threads;
   bo.field_name = a.field;
-  if (!a.range.empty()) bo.range = parse_range(a.range);
+  if (!a.range.empty()) bo.range = parse_range(a.range, "--range");
   auto source = tsp::open_source(a.input, so);
-  ProgressBar bar;
-  bo.progress = [&bar](const std::string& phase, std::int64_t done, std::int64_t total) {
-    if (g_interrupted) throw tsp::Error("interrupted; no output written");
-    bar.update(phase, done, total);
-  };
-  auto old_int = std::signal(SIGINT, on_interrupt);
-  auto old_term = std::signal(SIGTERM, on_interrupt);
-  tsp::BuildReport r;
-  try {
-    r = tsp::build_tsp_file(*source, a.output, bo);
-  } catch (...) {
-    bar.finish();
-    std::signal(SIGINT, old_int);
-    std::signal(SIGTERM, old_term);
-    throw;
-  }
-  bar.finish();
-  std::signal(SIGINT, old_int);
-  std::signal(SIGTERM, old_term);
-
-  if (r.nonfinite_count > 0)
-    std::fprintf(
-        stderr,
-        "tspplay: warning: %lld NaN/Inf samples replaced (NaN and -Inf by %g, +Inf by %g)\n",
-        static_cast<long long>(r.nonfinite_count), r.value_range.lo, r.value_range.hi);
-  auto file = tsp::TspFile::open(a.output);
-  const tsp::TspTree& tree = file->tree();
-  const double mb = double(r.source_bytes) / 1e6;
-  std::printf("wrote %s: %s voxels, %d steps, brick %d: %d bricks, %d TSP nodes\n",
-              a.output.c_str(), tsp::to_string(tree.octree().dims()).c_str(), tree.time().steps(),
-              tree.octree().brick_size(), tree.octree().brick_count(), tree.size());
-  std::printf("value range [%g, %g], data range [%g, %g]; %.1f MB in %.2f s (%.1f MB/s)\n",
-              r.value_range.lo, r.value_range.hi, r.data_range.lo, r.data_range.hi, mb, r.seconds,
-              r.seconds > 0 ? mb / r.seconds : 0.0);
+  tsp::BuildReport r = build_with_progress(*source, a.output, bo);
+  print_build_summary(a.output, r);
 }
 
 const CommandRegistrar reg(10, [](CLI::App& app) {

@@ -5,6 +5,7 @@
 #include <memory>
 #include <string>
 
+#include "cli/args.h"
 #include "cli/commands.h"
 #include "tsp/error.h"
 #include "tsp/generate.h"
@@ -23,44 +24,6 @@ struct GenerateArgs {
   bool list = false;
 };
 
-// Whole-string decimal integer in [lo, hi]; anything else is a UsageError naming the option.
-long long parse_integer(const std::string& text, const std::string& option, long long lo,
-                        long long hi, const std::string& expected) {
-  std::size_t used = 0;
-  long long v = 0;
-  bool ok = !text.empty() && text[0] != '+' && text[0] != ' ';
-  if (ok) {
-    try {
-      v = std::stoll(text, &used);
-    } catch (const std::exception&) {
-      ok = false;
-    }
-  }
-  if (!ok || used != text.size() || v < lo || v > hi)
-    throw tsp::UsageError(option + " '" + text + "': expected " + expected);
-  return v;
-}
-
-// "X,Y,Z" or "N" (a cube).
-tsp::Dims parse_dims(const std::string& text) {
-  const std::string expected =
-      "X,Y,Z or N with every edge in [1, " + std::to_string(tsp::kMaxGeneratedEdge) + "]";
-  int v[3];
-  std::size_t pos = 0;
-  int n = 0;
-  for (; n < 3; ++n) {
-    std::size_t comma = text.find(',', pos);
-    std::string part = text.substr(pos, comma == std::string::npos ? comma : comma - pos);
-    v[n] = int(parse_integer(part, "--dims", 1, tsp::kMaxGeneratedEdge, expected));
-    if (comma == std::string::npos) break;
-    pos = comma + 1;
-  }
-  if (n == 0) return {v[0], v[0], v[0]};
-  if (n != 2 || text.find(',', pos) != std::string::npos)
-    throw tsp::UsageError("--dims '" + text + "': expected " + expected);
-  return {v[0], v[1], v[2]};
-}
-
 void print_list() {
   for (const auto& d : tsp::list_datasets())
     std::printf("%-8s %s (default %s, %d steps)\n", d.name.c_str(), d.description.c_str(),
@@ -74,7 +37,7 @@ void run(const GenerateArgs& a) {
   }
   if (a.output.empty()) throw tsp::UsageError("generate: expected an output file, -o out.h5");
   tsp::GenerateOptions opt;
-  if (!a.dims.empty()) opt.dims = parse_dims(a.dims);
+  if (!a.dims.empty()) opt.dims = parse_dims(a.dims, "--dims", tsp::kMaxGeneratedEdge, true);
   if (!a.steps.empty())
     opt.steps =
         int(parse_integer(a.steps, "--steps", 1, tsp::kMaxGeneratedSteps,
@@ -83,20 +46,16 @@ void run(const GenerateArgs& a) {
     opt.seed =
         std::uint64_t(parse_integer(a.seed, "--seed", 0, std::numeric_limits<long long>::max(),
                                     "a non-negative integer below 2^63"));
-  tsp::Hdf5WriteOptions wopt;
+  int gzip = 0;
   if (!a.gzip.empty())
-    wopt.gzip_level = int(parse_integer(a.gzip, "--gzip", 0, tsp::kMaxGzipLevel, "a level 0..9"));
+    gzip = int(parse_integer(a.gzip, "--gzip", 0, tsp::kMaxGzipLevel, "a level 0..9"));
   auto source = tsp::make_generated_source(a.name, opt);
-  wopt.dataset = source->name();
-  wopt.attributes = {{"generator", source->name()},
-                     {"seed", source->seed()},
-                     {"generator_version", std::int64_t(tsp::kGeneratorVersion)}};
   const auto start = std::chrono::steady_clock::now();
-  tsp::write_hdf5(*source, a.output, wopt);
+  tsp::write_generated_dataset(*source, a.output, gzip);
   const double secs =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::printf("wrote %s: /%s %s x %d steps, float32, seed %llu (%.2f s)\n", a.output.c_str(),
-              wopt.dataset.c_str(), tsp::to_string(source->dims()).c_str(), source->steps(),
+              source->name().c_str(), tsp::to_string(source->dims()).c_str(), source->steps(),
               static_cast<unsigned long long>(source->seed()), secs);
 }
 

@@ -1,13 +1,12 @@
 #include "tsp/io/hdf5_writer.h"
 
-#include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
 #include <set>
 #include <utility>
 
 #include "tsp/error.h"
+#include "tsp/temp_output.h"
 #include "tsp/hdf5_handle.h"
 
 namespace tsp {
@@ -25,15 +24,6 @@ void check(herr_t status, const fs::path& path, const std::string& what) {
 h5::Handle checked(hid_t id, const fs::path& path, const std::string& what) {
   if (id < 0) throw IoError(path.string() + ": HDF5 failed to " + what);
   return h5::Handle(id);
-}
-
-// A hidden name beside target, unique within this process and across processes.
-fs::path temp_name(const fs::path& target) {
-  static std::atomic<unsigned> counter{0};
-  fs::path dir = target.parent_path();
-  std::string name = "." + target.filename().string() + ".tmp-" + std::to_string(getpid()) + "-" +
-                     std::to_string(counter++);
-  return dir.empty() ? fs::path(name) : dir / name;
 }
 
 void write_attribute(hid_t obj, const Hdf5Attribute& a, const fs::path& path) {
@@ -111,7 +101,7 @@ void write_file(VolumeSource& source, const fs::path& tmp, const fs::path& shown
     ~FileGuard() {
       if (id >= 0) H5Fclose(id);
     }
-  } file{H5Fcreate(tmp.c_str(), H5F_ACC_EXCL, H5P_DEFAULT, H5P_DEFAULT)};
+  } file{H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT)};
   if (file.id < 0)
     throw IoError(shown.string() + ": cannot create the file (directory not writable?)");
   const hsize_t shape[4] = {hsize_t(steps), hsize_t(d.z), hsize_t(d.y), hsize_t(d.x)};
@@ -161,23 +151,9 @@ void write_file(VolumeSource& source, const fs::path& tmp, const fs::path& shown
 void write_hdf5(VolumeSource& source, const fs::path& path, const Hdf5WriteOptions& options) {
   validate(options);
   h5::silence_errors();
-  std::error_code ec;
-  const fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
-  if (!fs::is_directory(dir, ec))
-    throw IoError(path.string() + ": cannot write, directory " + dir.string() + " does not exist");
-  if (fs::is_directory(path, ec))
-    throw IoError(path.string() + ": is a directory, expected a file name to write");
-  const fs::path tmp = temp_name(path);
-  try {
-    write_file(source, tmp, path, options);
-    fs::rename(tmp, path, ec);
-    if (ec)
-      throw IoError(path.string() +
-                    ": cannot rename the finished file into place: " + ec.message());
-  } catch (...) {
-    fs::remove(tmp, ec);
-    throw;
-  }
+  TempOutput out(path.string());  // checks the directory; removes the temporary file on failure
+  write_file(source, out.tmp(), path, options);
+  out.commit();
 }
 
 }  // namespace tsp

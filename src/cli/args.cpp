@@ -1,0 +1,62 @@
+#include "cli/args.h"
+
+#include <cstdlib>
+
+#include "tsp/error.h"
+
+namespace tspcli {
+
+long long parse_integer(const std::string& text, const std::string& option, long long lo,
+                        long long hi, const std::string& expected) {
+  std::size_t used = 0;
+  long long v = 0;
+  bool ok = !text.empty() && text[0] != '+' && text[0] != ' ';
+  if (ok) {
+    try {
+      v = std::stoll(text, &used);
+    } catch (const std::exception&) {
+      ok = false;
+    }
+  }
+  if (!ok || used != text.size() || v < lo || v > hi)
+    throw tsp::UsageError(option + " '" + text + "': expected " + expected);
+  return v;
+}
+
+double parse_number(const std::string& text, const std::string& option) {
+  char* end = nullptr;
+  double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size())
+    throw tsp::UsageError(option + " '" + text + "': not a number");
+  return v;
+}
+
+tsp::Dims parse_dims(const std::string& text, const std::string& option, int max_edge,
+                     bool allow_cube) {
+  const std::string expected = std::string(allow_cube ? "X,Y,Z or N" : "X,Y,Z") +
+                               " with every edge in [1, " + std::to_string(max_edge) + "]";
+  int v[3];
+  std::size_t pos = 0;
+  int n = 0;
+  for (; n < 3; ++n) {
+    std::size_t comma = text.find(',', pos);
+    std::string part = text.substr(pos, comma == std::string::npos ? comma : comma - pos);
+    v[n] = int(parse_integer(part, option, 1, max_edge, expected));
+    if (comma == std::string::npos) break;
+    pos = comma + 1;
+  }
+  if (n == 0 && allow_cube) return {v[0], v[0], v[0]};
+  if (n != 2 || text.find(',', pos) != std::string::npos)
+    throw tsp::UsageError(option + " '" + text + "': expected " + expected);
+  return {v[0], v[1], v[2]};
+}
+
+tsp::ValueRange parse_range(const std::string& text, const std::string& option) {
+  auto colon = text.find(':', 1);  // a leading '-' is a sign, never the separator
+  if (colon == std::string::npos)
+    throw tsp::UsageError(option + " '" + text + "': expected LO:HI, e.g. " + option + "=-5:40");
+  return {parse_number(text.substr(0, colon), option),
+          parse_number(text.substr(colon + 1), option)};
+}
+
+}  // namespace tspcli

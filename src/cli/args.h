@@ -1,0 +1,24 @@
+// Parsing of option values shared by the subcommands; every failure is a tsp::UsageError that
+// names the option, the text given and what was expected.
+#pragma once
+#include <string>
+
+#include "tsp/types.h"
+
+namespace tspcli {
+
+/// Whole-string decimal integer in [lo, hi]; throws UsageError("OPTION 'TEXT': expected EXPECTED").
+long long parse_integer(const std::string& text, const std::string& option, long long lo,
+                        long long hi, const std::string& expected);
+
+/// Whole-string floating-point number; throws UsageError naming the option.
+double parse_number(const std::string& text, const std::string& option);
+
+/// "X,Y,Z" (or "N" for a cube when allow_cube) with every edge in [1, max_edge]; throws UsageError.
+tsp::Dims parse_dims(const std::string& text, const std::string& option, int max_edge,
+                     bool allow_cube);
+
+/// "LO:HI" in data units (a leading '-' is a sign); throws UsageError. LO < HI is checked later.
+tsp::ValueRange parse_range(const std::string& text, const std::string& option);
+
+}  // namespace tspcli

@@ -1,0 +1,18 @@
+// Running a build from the command line: progress bar, clean Ctrl-C, the closing summary.
+#pragma once
+#include <string>
+
+#include "tsp/build.h"
+
+namespace tspcli {
+
+/// Builds out_path from source with a progress bar on a terminal; SIGINT/SIGTERM cancel the
+/// build cleanly (no output, no temporary file) by throwing tsp::Error. Prints the NaN/Inf
+/// warning. Throws whatever build_tsp_file throws.
+tsp::BuildReport build_with_progress(tsp::VolumeSource& source, const std::string& out_path,
+                                     tsp::BuildOptions options);
+
+/// Prints "wrote OUT: ..." with the tree's size, ranges and throughput (reopens the file).
+void print_build_summary(const std::string& out_path, const tsp::BuildReport& report);
+
+}  // namespace tspcli

@@ -1,0 +1,148 @@
+// The summary `tspplay info` prints, shared with `tspplay demo`.
+#include "cli/info_report.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace tspcli {
+
+using nlohmann::json;
+
+namespace {
+
+// Distribution of the scalar errors over all TSP nodes of one octree level.
+struct LevelErrors {
+  int octree_nodes = 0;
+  int tsp_nodes = 0;
+  double es_sum = 0, es_max = 0, et_sum = 0, et_max = 0;
+};
+
+std::vector<LevelErrors> errors_by_level(const tsp::TspTree& tree) {
+  std::vector<LevelErrors> levels(std::size_t(tree.octree().depth()) + 1);
+  for (int o = 0; o < tree.octree().size(); ++o) {
+    LevelErrors& l = levels[tree.octree().node(o).level];
+    ++l.octree_nodes;
+    for (int t = 0; t < tree.time().size(); ++t) {
+      const tsp::NodeStats& s = tree.stats(tree.id(o, t));
+      ++l.tsp_nodes;
+      l.es_sum += s.spatial_error;
+      l.et_sum += s.temporal_error;
+      l.es_max = std::max(l.es_max, double(s.spatial_error));
+      l.et_max = std::max(l.et_max, double(s.temporal_error));
+    }
+  }
+  return levels;
+}
+
+json box_json(const tsp::Box& b) {
+  return {b.lo[0], b.lo[1], b.lo[2], b.hi[0], b.hi[1], b.hi[2]};
+}
+
+}  // namespace
+
+json info_json(const tsp::TspFile& f, bool with_nodes) {
+  const tsp::TspTree& tree = f.tree();
+  const tsp::Octree& o = tree.octree();
+  const tsp::TspMetadata& m = f.metadata();
+  const tsp::Dims d = o.dims();
+  json j;
+  j["file"] = f.path();
+  j["file_size"] = std::filesystem::file_size(f.path());
+  j["format_version"] = tsp::kTspFormatVersion;
+  j["created_by"] = m.created_by;
+  j["source"] = m.source;
+  j["field"] = m.field;
+  j["dims"] = {d.x, d.y, d.z};
+  j["steps"] = tree.time().steps();
+  j["brick"] = o.brick_size();
+  j["brick_grid"] = o.brick_grid();
+  j["leaf_bricks"] = o.brick_count();
+  j["octree_nodes"] = o.size();
+  j["octree_depth"] = o.depth();
+  j["time_nodes"] = tree.time().size();
+  j["tsp_nodes"] = tree.size();
+  j["value_range"] = {tree.value_range().lo, tree.value_range().hi};
+  j["data_range"] = {m.data_range.lo, m.data_range.hi};
+  j["nonfinite_count"] = m.nonfinite_count;
+  j["histogram"] = m.histogram;
+  json levels = json::array();
+  for (const LevelErrors& l : errors_by_level(tree))
+    levels.push_back({{"octree_nodes", l.octree_nodes},
+                      {"spatial_error_mean", l.tsp_nodes ? l.es_sum / l.tsp_nodes : 0.0},
+                      {"spatial_error_max", l.es_max},
+                      {"temporal_error_mean", l.tsp_nodes ? l.et_sum / l.tsp_nodes : 0.0},
+                      {"temporal_error_max", l.et_max}});
+  j["levels"] = levels;
+  if (with_nodes) {
+    json nodes = json::array();
+    for (int id = 0; id < tree.size(); ++id) {
+      const int oid = tree.octree_of(id);
+      const tsp::Span span = tree.time().span(tree.time_of(id));
+      const tsp::NodeStats& s = tree.stats(id);
+      nodes.push_back({{"id", id},
+                       {"octree_id", oid},
+                       {"time_id", tree.time_of(id)},
+                       {"level", o.node(oid).level},
+                       {"box", box_json(o.node(oid).box)},
+                       {"span", {span.t0, span.t1}},
+                       {"mean", s.mean},
+                       {"std", s.std},
+                       {"min", s.min},
+                       {"max", s.max},
+                       {"spatial_error", s.spatial_error},
+                       {"temporal_error", s.temporal_error}});
+    }
+    j["nodes"] = nodes;
+  }
+  return j;
+}
+
+void print_info(const tsp::TspFile& f, bool with_nodes) {
+  const tsp::TspTree& tree = f.tree();
+  const tsp::Octree& o = tree.octree();
+  const tsp::TspMetadata& m = f.metadata();
+  const auto g = o.brick_grid();
+  const double mib = double(std::filesystem::file_size(f.path())) / (1024.0 * 1024.0);
+  std::printf("file          %s (%.2f MiB, format version %d, %s)\n", f.path().c_str(), mib,
+              tsp::kTspFormatVersion, m.created_by.c_str());
+  std::printf("source        %s\n", m.source.c_str());
+  std::printf("field         %s\n", m.field.empty() ? "(unnamed)" : m.field.c_str());
+  std::printf("dims          %s voxels\n", tsp::to_string(o.dims()).c_str());
+  std::printf("steps         %d\n", tree.time().steps());
+  std::printf("brick         %d samples (shared layer included)\n", o.brick_size());
+  std::printf("bricks        %d (%d x %d x %d)\n", o.brick_count(), g[0], g[1], g[2]);
+  std::printf("nodes         %d octree (depth %d) x %d time = %d TSP nodes\n", o.size(), o.depth(),
+              tree.time().size(), tree.size());
+  std::printf("value range   [%g, %g] (16-bit quantization)\n", tree.value_range().lo,
+              tree.value_range().hi);
+  std::printf("data range    [%g, %g]\n", m.data_range.lo, m.data_range.hi);
+  if (m.nonfinite_count > 0)
+    std::printf("non-finite    %lld samples replaced\n", static_cast<long long>(m.nonfinite_count));
+  std::printf("\nscalar errors by octree level (over all time nodes)\n");
+  std::printf("  level  nodes   e_ss mean    e_ss max   e_st mean    e_st max\n");
+  int level = 0;
+  for (const LevelErrors& l : errors_by_level(tree)) {
+    std::printf("  %5d  %5d  %10.4g  %10.4g  %10.4g  %10.4g\n", level++, l.octree_nodes,
+                l.tsp_nodes ? l.es_sum / l.tsp_nodes : 0.0, l.es_max,
+                l.tsp_nodes ? l.et_sum / l.tsp_nodes : 0.0, l.et_max);
+  }
+  if (!with_nodes) return;
+  std::printf(
+      "\n      id  octree  level  span        mean         std         min         max"
+      "      e_ss      e_st\n");
+  for (int id = 0; id < tree.size(); ++id) {
+    const int oid = tree.octree_of(id);
+    const tsp::Span span = tree.time().span(tree.time_of(id));
+    const tsp::NodeStats& s = tree.stats(id);
+    std::printf(
+        "%8d  %6d  %5d  [%d,%d]%*s %11.5g %11.5g %11.5g %11.5g %9.4g %9.4g\n", id, oid,
+        o.node(oid).level, span.t0, span.t1,
+        std::max(0, 8 - int(std::to_string(span.t0).size() + std::to_string(span.t1).size())), "",
+        s.mean, s.std, s.min, s.max, s.spatial_error, s.temporal_error);
+  }
+}
+
+}  // namespace tspcli

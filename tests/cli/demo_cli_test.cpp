@@ -1,0 +1,72 @@
+// tspplay demo end to end: the files it promises, the report's contents checked against the
+// .tsp file it built, reuse on a second run, and usage errors that leave nothing behind.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "support/paths.h"
+#include "tsp/generate.h"
+#include "tsp/tsp_file.h"
+#include "tsp/volume_source.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using tsptest::run_tspplay;
+
+TEST(DemoCli, GeneratesBuildsReportsAndReuses) {
+  fs::path dir = tsptest::temp_dir() / "demo";
+  auto r = run_tspplay("demo -o '" + dir.string() + "' --dims 20,17,9 --steps 5");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const fs::path h5 = dir / "shock_20x17x9_5.h5", tsp_path = dir / "shock_20x17x9_5.tsp";
+  ASSERT_TRUE(fs::exists(h5));
+  ASSERT_TRUE(fs::exists(tsp_path));
+  ASSERT_TRUE(fs::exists(dir / "sparse_tf.json"));
+
+  // The .h5 holds exactly what the generator makes.
+  auto gen = tsp::make_generated_source("shock", {tsp::Dims{20, 17, 9}, 5});
+  tsp::SourceOptions so;
+  so.field = "shock";
+  auto back = tsp::open_source(h5.string(), so);
+  std::vector<float> a(gen->dims().count()), b(a.size());
+  for (int t = 0; t < 5; ++t) {
+    gen->read_step(t, a);
+    back->read_step(t, b);
+    ASSERT_EQ(a, b) << "step " << t;
+  }
+
+  std::ifstream in(dir / "report.json");
+  json rep = json::parse(in);
+  auto file = tsp::TspFile::open(tsp_path.string());
+  EXPECT_EQ(rep["dataset"]["name"], "shock");
+  EXPECT_EQ(rep["tree"]["tsp_nodes"], file->tree().size());
+  EXPECT_EQ(rep["tree"]["steps"], 5);
+  ASSERT_EQ(rep["metrics"].size(), 4u);
+  for (const auto& m : rep["metrics"]) {
+    EXPECT_EQ(m["tsp_nodes"], file->tree().size());
+    EXPECT_GE(m["transparent_nodes"].get<int>(), 0);
+  }
+  // Every metric uses the same exact transparency test, so they agree on the count.
+  EXPECT_EQ(rep["metrics"][0]["transparent_nodes"], rep["metrics"][3]["transparent_nodes"]);
+  EXPECT_GT(rep["build"]["source_bytes"].get<long long>(), 0);
+
+  auto again = run_tspplay("demo -o '" + dir.string() + "' --dims 20,17,9 --steps 5");
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_NE(again.out.find("reusing " + h5.string()), std::string::npos) << again.out;
+  EXPECT_NE(again.out.find("reusing " + tsp_path.string()), std::string::npos) << again.out;
+}
+
+TEST(DemoCli, BadOptionsAreUsageErrorsAndWriteNothing) {
+  fs::path dir = tsptest::temp_dir() / "demo";
+  for (const char* args : {"--steps 0", "--dims 4,4", "--dataset nope"}) {
+    auto r = run_tspplay("demo -o '" + dir.string() + "' " + args);
+    EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err;
+    EXPECT_NE(r.err.find("usage error"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir)) << args;
+  }
+}
+
+}  // namespace
