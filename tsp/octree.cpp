@@ -16,8 +16,14 @@ Octree::Octree(Dims dims, int brick_size) : dims_(dims), brick_size_(brick_size)
                      std::to_string(kMinBrickSize) + ", " + std::to_string(kMaxBrickSize) + "]");
   if (dims.x <= 0 || dims.y <= 0 || dims.z <= 0)
     throw UsageError("grid size " + to_string(dims) + " has an empty axis");
-  const int cells_per_brick = brick_size - 1;
-  for (int a = 0; a < 3; ++a) grid_[a] = std::max(1, (dims[a] - 1 + cells_per_brick - 1) / cells_per_brick);
+  // As few bricks as B allows, with the cells spread evenly over them: a 64-sample axis becomes
+  // 3 bricks of 21 cells rather than 31 + 31 + 2, so edge bricks are not slivers.
+  const int max_cells = brick_size - 1;
+  for (int a = 0; a < 3; ++a) {
+    const int cells = dims[a] - 1;
+    grid_[a] = std::max(1, (cells + max_cells - 1) / max_cells);
+    cells_[a] = std::max(1, (cells + grid_[a] - 1) / grid_[a]);
+  }
   brick_node_.assign(brick_count(), -1);
 
   OctreeNode root;
@@ -64,10 +70,10 @@ Octree::Octree(Dims dims, int brick_size) : dims_(dims), brick_size_(brick_size)
   }
 }
 
-int Octree::axis_lo(int /*a*/, int k) const { return k * (brick_size_ - 1); }
+int Octree::axis_lo(int a, int k) const { return k * cells_[a]; }
 
 int Octree::axis_hi(int a, int k) const {
-  return k == grid_[a] - 1 ? dims_[a] : (k + 1) * (brick_size_ - 1);
+  return k == grid_[a] - 1 ? dims_[a] : (k + 1) * cells_[a];
 }
 
 std::array<int, 3> Octree::brick_coord(int b) const {
@@ -84,9 +90,14 @@ Box Octree::brick_box(int b) const {
   return box;
 }
 
+std::array<int, 3> Octree::max_brick_samples() const {
+  Box s = brick_samples(0);
+  return {s.size(0), s.size(1), s.size(2)};
+}
+
 Box Octree::brick_samples(int b) const {
   Box box = brick_box(b);
-  for (int a = 0; a < 3; ++a) box.hi[a] = std::min(dims_[a], box.lo[a] + brick_size_);
+  for (int a = 0; a < 3; ++a) box.hi[a] = std::min(dims_[a], box.lo[a] + cells_[a] + 1);
   return box;
 }
 

@@ -1,10 +1,11 @@
 // The spatial skeleton of the TSP tree: a complete octree over the grid of leaf bricks.
 //
-// Bricks: along each axis the grid of D samples has D − 1 cells; leaf bricks cover
-// S = B − 1 cells each (the last may cover fewer), so a brick stores at most B samples
-// per axis and shares one sample layer with its upper neighbour. A brick's own voxel box
-// (used for statistics, each voxel counted once) is [k·S, (k+1)·S), and the last brick
-// along an axis also owns the final layer: [k·S, D).
+// Bricks: along each axis the grid of D samples has D − 1 cells. That axis gets the fewest
+// bricks n = ⌈(D − 1)/(B − 1)⌉ that keep each at most B samples, and the cells are spread
+// evenly: every brick covers S = ⌈(D − 1)/n⌉ cells except the last, which covers the rest. A
+// brick stores S + 1 samples (≤ B) and shares one sample layer with its upper neighbour. A brick's
+// own voxel box (used for statistics, each voxel counted once) is [k·S, (k+1)·S), and the last
+// brick along an axis also owns the final layer: [k·S, D).
 #pragma once
 #include <array>
 #include <vector>
@@ -57,11 +58,16 @@ class Octree {
   int brick_node(int b) const { return brick_node_[b]; }
   /// Largest node level (leaves of the deepest branch).
   int depth() const { return depth_; }
+  /// Cells S each brick covers along axis a (the last brick may cover fewer).
+  int brick_cells(int a) const { return cells_[a]; }
+  /// Largest stored sample extent of any brick along each axis (brick 0's, ≤ B).
+  std::array<int, 3> max_brick_samples() const;
 
  private:
   Dims dims_;
   int brick_size_;
   std::array<int, 3> grid_;
+  std::array<int, 3> cells_;
   int depth_ = 0;
   std::vector<OctreeNode> nodes_;
   std::vector<int> brick_node_;

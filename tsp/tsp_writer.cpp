@@ -66,9 +66,7 @@ std::array<int, 6> flat(const Box& b) {
 }  // namespace
 
 std::array<int, 3> stored_brick_shape(const Octree& octree) {
-  const Dims d = octree.dims();
-  const int B = octree.brick_size();
-  return {std::min(B, d.x), std::min(B, d.y), std::min(B, d.z)};
+  return octree.max_brick_samples();
 }
 
 struct TspWriter::Impl {

@@ -12,7 +12,8 @@
 
 namespace tsp {
 
-/// Brick edge as stored in /bricks/data along x, y, z: min(B, dims) (edge bricks are padded).
+/// Brick extent as stored in /bricks/data along x, y, z: the largest brick's samples (≤ B);
+/// smaller edge bricks are padded by repeating their last sample.
 std::array<int, 3> stored_brick_shape(const Octree& octree);
 
 /// An open .tsp file being written. Every method holds hdf5_mutex() while it calls HDF5, so

@@ -87,3 +87,26 @@ TEST(Octree, RejectsBadBrickSizes) {
 
 }  // namespace
 }  // namespace tsp
+
+namespace tsp {
+namespace {
+
+TEST(Octree, CellsAreSpreadEvenlySoEdgeBricksAreNotSlivers) {
+  Octree o({64, 64, 64}, 32);  // 63 cells: 3 bricks of 21, not 31 + 31 + 1
+  EXPECT_EQ(o.brick_grid(), (std::array<int, 3>{3, 3, 3}));
+  for (int b = 0; b < o.brick_count(); ++b) {
+    Box s = o.brick_samples(b);
+    for (int a = 0; a < 3; ++a) EXPECT_EQ(s.size(a), 22) << "brick " << b;
+  }
+  EXPECT_EQ(o.max_brick_samples(), (std::array<int, 3>{22, 22, 22}));
+  // x: 256 cells need ⌈256/31⌉ = 9 bricks of ⌈256/9⌉ = 29 cells (30 samples);
+  // y: 32 cells are one too many for one brick of 32 samples → 2 bricks of 16 (17 samples);
+  // z: 31 cells fit one brick of exactly B = 32 samples.
+  Octree p({257, 33, 32}, 32);
+  EXPECT_EQ(p.brick_grid(), (std::array<int, 3>{9, 2, 1}));
+  EXPECT_EQ(p.brick_cells(0), 29);
+  EXPECT_EQ(p.max_brick_samples(), (std::array<int, 3>{30, 17, 32}));
+}
+
+}  // namespace
+}  // namespace tsp

@@ -178,29 +178,34 @@ TEST(TspFile, EdgeBricksArePaddedByRepeatingTheLastSample) {
   auto path = built_file({21, 14, 9}, 2, 8);
   auto f = TspFile::open(path);
   const Octree& o = f->tree().octree();
-  const int b = o.brick_count() - 1;  // the upper corner brick: 21 → samples [14,21): 7 of 8
+  // x: 20 cells in 3 bricks of 7 → the upper corner brick holds samples [14,21): 7 of 8.
+  const int b = o.brick_count() - 1;
   const Box s = o.brick_samples(b);
-  ASSERT_LT(s.size(0), 8);
+  const auto shape = stored_brick_shape(o);
+  ASSERT_EQ(shape, (std::array<int, 3>{8, 8, 5}));
+  ASSERT_LT(s.size(0), shape[0]);
   std::vector<std::uint16_t> unpadded(std::size_t(s.count()));
   f->read_brick(b, 1, unpadded);
   hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   hid_t ds = H5Dopen2(file, "/bricks/data", H5P_DEFAULT);
-  hsize_t start[5] = {hsize_t(b), 1, 0, 0, 0}, count[5] = {1, 1, 8, 8, 8};
+  hsize_t start[5] = {hsize_t(b), 1, 0, 0, 0};
+  hsize_t count[5] = {1, 1, hsize_t(shape[2]), hsize_t(shape[1]), hsize_t(shape[0])};
   hid_t fs = H5Dget_space(ds);
   H5Sselect_hyperslab(fs, H5S_SELECT_SET, start, nullptr, count, nullptr);
   hid_t ms = H5Screate_simple(3, count + 2, nullptr);
-  std::vector<std::uint16_t> padded(512);
+  std::vector<std::uint16_t> padded(std::size_t(shape[0]) * shape[1] * shape[2]);
   ASSERT_GE(H5Dread(ds, H5T_NATIVE_UINT16, ms, fs, H5P_DEFAULT, padded.data()), 0);
   H5Sclose(ms);
   H5Sclose(fs);
   H5Dclose(ds);
   H5Fclose(file);
-  for (int z = 0; z < 8; ++z)
-    for (int y = 0; y < 8; ++y)
-      for (int x = 0; x < 8; ++x) {
+  for (int z = 0; z < shape[2]; ++z)
+    for (int y = 0; y < shape[1]; ++y)
+      for (int x = 0; x < shape[0]; ++x) {
         int cx = std::min(x, s.size(0) - 1), cy = std::min(y, s.size(1) - 1),
             cz = std::min(z, s.size(2) - 1);
-        ASSERT_EQ(padded[x + 8 * (y + 8 * z)], unpadded[cx + s.size(0) * (cy + s.size(1) * cz)]);
+        ASSERT_EQ(padded[x + shape[0] * (y + shape[1] * z)],
+                  unpadded[cx + s.size(0) * (cy + s.size(1) * cz)]);
       }
 }
 
