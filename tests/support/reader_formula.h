@@ -2,9 +2,13 @@
 #pragma once
 #include <gtest/gtest.h>
 
+#include <memory>
 #include <span>
+#include <string>
+#include <vector>
 
 #include "tsp/types.h"
+#include "tsp/volume_source.h"
 
 namespace tsptest {
 
@@ -31,6 +35,36 @@ inline void expect_formula(std::span<const float> out, tsp::Dims d, double t, fl
                         << ", want " << want;
       }
   EXPECT_EQ(bad, 0);
+}
+
+/// Opens path through open_source with only the field set.
+inline std::unique_ptr<tsp::VolumeSource> open_field(const std::string& path,
+                                                     const std::string& field) {
+  tsp::SourceOptions o;
+  o.field = field;
+  return tsp::open_source(path, o);
+}
+
+/// Reads step t of s into a new vector.
+inline std::vector<float> read_step(tsp::VolumeSource& s, int t) {
+  std::vector<float> out(std::size_t(s.dims().count()));
+  s.read_step(t, out);
+  return out;
+}
+
+/// Message of the E the callable throws; fails the test when it throws nothing or another type.
+template <typename E, typename F>
+std::string error_of(F&& f) {
+  try {
+    f();
+  } catch (const E& e) {
+    return e.what();
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "wrong exception type: " << e.what();
+    return "";
+  }
+  ADD_FAILURE() << "no exception";
+  return "";
 }
 
 }  // namespace tsptest

@@ -15,61 +15,40 @@ namespace tsp {
 namespace {
 
 namespace fs = std::filesystem;
+using tsptest::error_of;
 using tsptest::expect_formula;
+
+std::unique_ptr<VolumeSource> open(const std::string& path, const std::string& field) {
+  return tsptest::open_field(path, field);
+}
+
 using tsptest::kFixtureDims;
 
 std::string h5_fixture(const std::string& name) {
   return (tsptest::test_data_dir() / "h5" / name).string();
 }
 
-std::unique_ptr<VolumeSource> open(const std::string& path, const std::string& field) {
-  SourceOptions o;
-  o.field = field;
-  return open_source(path, o);
-}
-
-std::vector<float> read(VolumeSource& s, int t) {
-  std::vector<float> out(std::size_t(s.dims().count()));
-  s.read_step(t, out);
-  return out;
-}
-
-// Message of the tsp::Error the callable throws; fails the test when none is thrown.
-template <typename E, typename F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const E& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "wrong exception type: " << e.what();
-    return "";
-  }
-  ADD_FAILURE() << "no exception";
-  return "";
-}
-
 TEST(Hdf5Source, FourDDatasetGivesOneStepPerLeadingIndex) {
   auto s = open(h5_fixture("grid4d.h5"), "f");
   EXPECT_EQ(s->dims(), kFixtureDims);
   ASSERT_EQ(s->steps(), 3);
-  for (int t = 0; t < 3; ++t) expect_formula(read(*s, t), kFixtureDims, t);
+  for (int t = 0; t < 3; ++t) expect_formula(tsptest::read_step(*s, t), kFixtureDims, t);
   EXPECT_NE(s->describe().find("/f"), std::string::npos);
 }
 
 TEST(Hdf5Source, EmptyFieldPicksTheOnlyFourDDataset) {
   auto s = open(h5_fixture("grid4d.h5"), "");
   ASSERT_EQ(s->steps(), 3);
-  expect_formula(read(*s, 2), kFixtureDims, 2);
+  expect_formula(tsptest::read_step(*s, 2), kFixtureDims, 2);
 }
 
 TEST(Hdf5Source, ThreeDDatasetIsOneStepByBareNameOrPath) {
   auto s = open(h5_fixture("grid4d.h5"), "single");
   ASSERT_EQ(s->steps(), 1);
-  expect_formula(read(*s, 0), kFixtureDims, 0);
+  expect_formula(tsptest::read_step(*s, 0), kFixtureDims, 0);
   auto g = open(h5_fixture("grid4d.h5"), "/grp/d");
   ASSERT_EQ(g->steps(), 1);
-  expect_formula(read(*g, 0), kFixtureDims, 2);
+  expect_formula(tsptest::read_step(*g, 0), kFixtureDims, 2);
 }
 
 TEST(Hdf5Source, GroupOfStepsReadsInNaturalNameOrder) {
@@ -77,7 +56,7 @@ TEST(Hdf5Source, GroupOfStepsReadsInNaturalNameOrder) {
   EXPECT_EQ(s->dims(), kFixtureDims);
   ASSERT_EQ(s->steps(), 3);
   const int names[] = {1, 2, 10};  // t1, t2, t10; the datasets hold f at t = their number
-  for (int t = 0; t < 3; ++t) expect_formula(read(*s, t), kFixtureDims, names[t]);
+  for (int t = 0; t < 3; ++t) expect_formula(tsptest::read_step(*s, t), kFixtureDims, names[t]);
 }
 
 TEST(Hdf5Source, GroupWithStepsOfDifferentShapesIsRejected) {
@@ -92,7 +71,7 @@ TEST(Hdf5Source, IntegerDatasetsConvertToFloat) {
   for (const char* field : {"plain", "u64"}) {
     auto s = open(h5_fixture("int16.h5"), field);
     ASSERT_EQ(s->steps(), 3) << field;
-    for (int t = 0; t < 3; ++t) expect_formula(read(*s, t), kFixtureDims, t);
+    for (int t = 0; t < 3; ++t) expect_formula(tsptest::read_step(*s, t), kFixtureDims, t);
   }
 }
 
@@ -101,12 +80,12 @@ TEST(Hdf5Source, NetcdfPackingAppliesScaleOffsetAndMapsFillToNaN) {
   // to _FillValue (step 1, x=y=z=0) and the one set to missing_value (step 2, x=3 y=2 z=1).
   auto s = open(h5_fixture("int16.h5"), "packed");
   ASSERT_EQ(s->steps(), 3);
-  expect_formula(read(*s, 0), kFixtureDims, 0, 100);
-  std::vector<float> s1 = read(*s, 1);
+  expect_formula(tsptest::read_step(*s, 0), kFixtureDims, 0, 100);
+  std::vector<float> s1 = tsptest::read_step(*s, 1);
   EXPECT_TRUE(std::isnan(s1[0]));
   s1[0] = tsptest::formula(0, 0, 0, 1) + 100;
   expect_formula(s1, kFixtureDims, 1, 100);
-  std::vector<float> s2 = read(*s, 2);
+  std::vector<float> s2 = tsptest::read_step(*s, 2);
   const std::size_t i = std::size_t((1 * 4 + 2) * 5 + 3);
   EXPECT_TRUE(std::isnan(s2[i]));
   s2[i] = tsptest::formula(3, 2, 1, 2) + 100;
@@ -161,7 +140,7 @@ TEST(Hdf5Source, TruncatedFileIsAnErrorNotACrash) {
     EXPECT_THROW(
         {
           auto s = open(p.string(), "f");
-          for (int t = 0; t < s->steps(); ++t) read(*s, t);
+          for (int t = 0; t < s->steps(); ++t) tsptest::read_step(*s, t);
         },
         FormatError)
         << keep;
@@ -217,7 +196,7 @@ TEST(Hdf5Source, WrfTemperatureMatchesH5dump) {
   };
   for (Sample smp : {Sample{0, 0, 0, 0, 1.27993f}, Sample{3, 13, 47, 47, 42.4775f},
                      Sample{1, 5, 20, 30, 3.92902f}, Sample{2, 7, 10, 40, 7.95246f}}) {
-    std::vector<float> v = read(*s, smp.t);
+    std::vector<float> v = tsptest::read_step(*s, smp.t);
     EXPECT_NEAR(at(v, smp.x, smp.y, smp.z), smp.value, 1e-5 * std::fabs(smp.value) + 1e-6)
         << smp.t << "," << smp.z << "," << smp.y << "," << smp.x;
   }
@@ -236,7 +215,7 @@ TEST(Hdf5Source, WrfCloudWaterMatchesH5dump) {
   for (Sample smp : {Sample{0, 9, 43, 43, 0.00181097f}, Sample{1, 5, 45, 43, 0.000562077f},
                      Sample{2, 7, 46, 41, 0.000880334f}, Sample{3, 6, 46, 39, 0.000532236f},
                      Sample{1, 5, 20, 30, 0.0f}}) {
-    std::vector<float> v = read(*s, smp.t);
+    std::vector<float> v = tsptest::read_step(*s, smp.t);
     EXPECT_NEAR(at(v, smp.x, smp.y, smp.z), smp.value, 1e-5 * std::fabs(smp.value) + 1e-12)
         << smp.t << "," << smp.z << "," << smp.y << "," << smp.x;
   }

@@ -17,22 +17,9 @@ namespace tsp {
 namespace {
 
 namespace fs = std::filesystem;
+using tsptest::error_of;
 using tsptest::expect_formula;
 using tsptest::kFixtureDims;
-
-template <typename E, typename F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const E& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "wrong exception type: " << e.what();
-    return "";
-  }
-  ADD_FAILURE() << "no exception";
-  return "";
-}
 
 // Writes f at time t as raw samples of type T, little or big endian, x fastest.
 template <typename T>
@@ -58,12 +45,6 @@ SourceOptions raw_options(RawType type = RawType::f32, bool big_endian = false) 
   return o;
 }
 
-std::vector<float> read(VolumeSource& s, int t) {
-  std::vector<float> out(std::size_t(s.dims().count()));
-  s.read_step(t, out);
-  return out;
-}
-
 TEST(RawSource, PrintfPatternFromZeroUntilFirstGap) {
   fs::path dir = tsptest::temp_dir();
   for (int t : {0, 1, 2, 4}) {  // 3 is missing: the series stops at 2
@@ -74,7 +55,7 @@ TEST(RawSource, PrintfPatternFromZeroUntilFirstGap) {
   auto s = open_source((dir / "u_%04d.raw").string(), raw_options());
   EXPECT_EQ(s->dims(), kFixtureDims);
   ASSERT_EQ(s->steps(), 3);
-  for (int t = 0; t < 3; ++t) expect_formula(read(*s, t), kFixtureDims, t);
+  for (int t = 0; t < 3; ++t) expect_formula(tsptest::read_step(*s, t), kFixtureDims, t);
 }
 
 TEST(RawSource, PrintfPatternStartsAtOneWhenZeroIsMissing) {
@@ -82,8 +63,8 @@ TEST(RawSource, PrintfPatternStartsAtOneWhenZeroIsMissing) {
   for (int t : {1, 2}) write_raw<float>(dir / ("v" + std::to_string(t) + ".raw"), t, false);
   auto s = open_source((dir / "v%d.raw").string(), raw_options());
   ASSERT_EQ(s->steps(), 2);
-  expect_formula(read(*s, 0), kFixtureDims, 1);
-  expect_formula(read(*s, 1), kFixtureDims, 2);
+  expect_formula(tsptest::read_step(*s, 0), kFixtureDims, 1);
+  expect_formula(tsptest::read_step(*s, 1), kFixtureDims, 2);
 }
 
 TEST(RawSource, GlobSortsNumericAware) {
@@ -92,7 +73,7 @@ TEST(RawSource, GlobSortsNumericAware) {
   auto s = open_source((dir / "s*.raw").string(), raw_options());
   ASSERT_EQ(s->steps(), 3);
   const int order[] = {1, 2, 10};
-  for (int i = 0; i < 3; ++i) expect_formula(read(*s, i), kFixtureDims, order[i]);
+  for (int i = 0; i < 3; ++i) expect_formula(tsptest::read_step(*s, i), kFixtureDims, order[i]);
 }
 
 TEST(RawSource, EveryTypeAndByteOrder) {
@@ -104,18 +85,18 @@ TEST(RawSource, EveryTypeAndByteOrder) {
     SourceOptions o = raw_options(RawType::u8);
     o.raw_dims = small;
     auto s = open_source((dir / "b_%d.raw").string(), o);
-    expect_formula(read(*s, 0), small, 0);
+    expect_formula(tsptest::read_step(*s, 0), small, 0);
   }
   for (bool big : {false, true}) {
     std::string tag = big ? "be" : "le";
     write_raw<std::uint16_t>(dir / ("w" + tag + "_0.raw"), 1, big);
     auto s16 =
         open_source((dir / ("w" + tag + "_%d.raw")).string(), raw_options(RawType::u16, big));
-    expect_formula(read(*s16, 0), kFixtureDims, 1);
+    expect_formula(tsptest::read_step(*s16, 0), kFixtureDims, 1);
     write_raw<float>(dir / ("f" + tag + "_0.raw"), 2, big);
     auto s32 =
         open_source((dir / ("f" + tag + "_%d.raw")).string(), raw_options(RawType::f32, big));
-    expect_formula(read(*s32, 0), kFixtureDims, 2);
+    expect_formula(tsptest::read_step(*s32, 0), kFixtureDims, 2);
   }
 }
 
@@ -134,7 +115,7 @@ TEST(RawSource, FileShrunkAfterOpenFailsAtRead) {
   write_raw<float>(dir / "c_0.raw", 0, false);
   auto s = open_source((dir / "c_%d.raw").string(), raw_options());
   fs::resize_file(dir / "c_0.raw", 100);
-  std::string msg = error_of<FormatError>([&] { read(*s, 0); });
+  std::string msg = error_of<FormatError>([&] { tsptest::read_step(*s, 0); });
   EXPECT_NE(msg.find("c_0.raw"), std::string::npos) << msg;
   EXPECT_NE(msg.find("expected 240"), std::string::npos) << msg;
 }
@@ -171,7 +152,7 @@ TEST(RawSource, PercentEscapeInPattern) {
   write_raw<float>(dir / "p%_1.raw", 1, false);
   auto s = open_source((dir / "p%%_%d.raw").string(), raw_options());
   ASSERT_EQ(s->steps(), 2);
-  expect_formula(read(*s, 1), kFixtureDims, 1);
+  expect_formula(tsptest::read_step(*s, 1), kFixtureDims, 1);
 }
 
 TEST(RawSource, SingleRawFileIsOneStep) {
@@ -179,7 +160,7 @@ TEST(RawSource, SingleRawFileIsOneStep) {
   write_raw<float>(dir / "one.raw", 2, false);
   auto s = open_source((dir / "one.raw").string(), raw_options());
   ASSERT_EQ(s->steps(), 1);
-  expect_formula(read(*s, 0), kFixtureDims, 2);
+  expect_formula(tsptest::read_step(*s, 0), kFixtureDims, 2);
 }
 
 }  // namespace

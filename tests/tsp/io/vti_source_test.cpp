@@ -15,38 +15,18 @@ namespace tsp {
 namespace {
 
 namespace fs = std::filesystem;
+using tsptest::error_of;
 using tsptest::expect_formula;
+
+std::unique_ptr<VolumeSource> open(const fs::path& path, const std::string& field) {
+  return tsptest::open_field(path.string(), field);
+}
+
 using tsptest::kFixtureCellDims;
 using tsptest::kFixtureDims;
 
 fs::path vti_dir() {
   return tsptest::test_data_dir() / "vti";
-}
-
-std::unique_ptr<VolumeSource> open(const fs::path& path, const std::string& field) {
-  SourceOptions o;
-  o.field = field;
-  return open_source(path.string(), o);
-}
-
-std::vector<float> read(VolumeSource& s, int t) {
-  std::vector<float> out(std::size_t(s.dims().count()));
-  s.read_step(t, out);
-  return out;
-}
-
-template <typename E, typename F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const E& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "wrong exception type: " << e.what();
-    return "";
-  }
-  ADD_FAILURE() << "no exception";
-  return "";
 }
 
 std::string slurp(const fs::path& p) {
@@ -81,7 +61,7 @@ void expect_series(VolumeSource& s, const std::string& field, Dims d, const std:
   SCOPED_TRACE(tag + " field " + field);
   EXPECT_EQ(s.dims(), d);
   ASSERT_EQ(s.steps(), 3);
-  for (int t = 0; t < 3; ++t) expect_formula(read(s, t), d, t);
+  for (int t = 0; t < 3; ++t) expect_formula(tsptest::read_step(s, t), d, t);
 }
 
 TEST(VtiSource, PvdInEveryEncodingReadsExactValuesInTimeOrder) {
@@ -121,7 +101,7 @@ TEST(VtiSource, SingleVtiIsOneStepAndDefaultsToActiveScalars) {
   auto s = open(vti_dir() / "binary_2.vti", "");
   EXPECT_EQ(s->dims(), kFixtureDims);
   ASSERT_EQ(s->steps(), 1);
-  expect_formula(read(*s, 0), kFixtureDims, 2);
+  expect_formula(tsptest::read_step(*s, 0), kFixtureDims, 2);
 }
 
 TEST(VtiSource, VectorFieldIsRejected) {
@@ -194,7 +174,7 @@ TEST(VtiSource, TruncatedAppendedDataFailsWithoutCrashing) {
       EXPECT_THROW(
           {
             auto s = open(p, "c");  // c is the last array, so every cut reaches its data
-            read(*s, 0);
+            tsptest::read_step(*s, 0);
           },
           FormatError)
           << fixture << " cut " << cut;
@@ -205,7 +185,7 @@ TEST(VtiSource, TruncatedAppendedDataFailsWithoutCrashing) {
 TEST(VtiSource, CorruptBase64IsNamed) {
   // Replace one base64 character of the inline data with a character outside the alphabet.
   fs::path p = patched("binary_0.vti", "AAAAAAAAAAAAIA/", "AAAAAAAAAAA#IA/");
-  std::string msg = error_of<FormatError>([&] { read(*open(p, "f"), 0); });
+  std::string msg = error_of<FormatError>([&] { tsptest::read_step(*open(p, "f"), 0); });
   EXPECT_NE(msg.find("base64"), std::string::npos) << msg;
   EXPECT_NE(msg.find("array f"), std::string::npos) << msg;
 }
@@ -217,7 +197,7 @@ TEST(VtiSource, CorruptZlibBlockIsNamed) {
   for (std::size_t i = data + 60; i < data + 70; ++i) bytes[i] = char(bytes[i] ^ 0x5a);
   fs::path p = tsptest::temp_dir() / "zlib.vti";
   write(p, bytes);
-  std::string msg = error_of<FormatError>([&] { read(*open(p, "f"), 0); });
+  std::string msg = error_of<FormatError>([&] { tsptest::read_step(*open(p, "f"), 0); });
   EXPECT_NE(msg.find("zlib"), std::string::npos) << msg;
 }
 
@@ -225,13 +205,13 @@ TEST(VtiSource, PiecesNotCoveringWholeExtentAreRejected) {
   // Same-length edit keeps every appended offset valid but makes the grid one layer taller.
   fs::path p =
       patched("pieces_0.vti", "WholeExtent=\"0 4 0 3 0 2\"", "WholeExtent=\"0 4 0 3 0 3\"");
-  std::string msg = error_of<FormatError>([&] { read(*open(p, "f"), 0); });
+  std::string msg = error_of<FormatError>([&] { tsptest::read_step(*open(p, "f"), 0); });
   EXPECT_NE(msg.find("do not cover WholeExtent"), std::string::npos) << msg;
 }
 
 TEST(VtiSource, UnknownElementTypeIsNamed) {
   fs::path p = patched("ascii_0.vti", "type=\"Float32\" Name=\"f\"", "type=\"Bogus32\" Name=\"f\"");
-  std::string msg = error_of<FormatError>([&] { read(*open(p, "f"), 0); });
+  std::string msg = error_of<FormatError>([&] { tsptest::read_step(*open(p, "f"), 0); });
   EXPECT_NE(msg.find("Bogus32"), std::string::npos) << msg;
 }
 
@@ -239,7 +219,7 @@ TEST(VtiSource, WrongValueCountInAsciiIsNamed) {
   // Drop the first value of f (f is the first array, so the first match is its data).
   fs::path p =
       patched("ascii_0.vti", "RangeMax=\"234\">\n        0 1 2", "RangeMax=\"234\">\n        1 2");
-  std::string msg = error_of<FormatError>([&] { read(*open(p, "f"), 0); });
+  std::string msg = error_of<FormatError>([&] { tsptest::read_step(*open(p, "f"), 0); });
   EXPECT_NE(msg.find("holds 59 values, expected 60"), std::string::npos) << msg;
 }
 

@@ -15,38 +15,18 @@ namespace tsp {
 namespace {
 
 namespace fs = std::filesystem;
+using tsptest::error_of;
 using tsptest::expect_formula;
+
+std::unique_ptr<VolumeSource> open(const std::string& path, const std::string& field) {
+  return tsptest::open_field(path, field);
+}
+
 using tsptest::kFixtureCellDims;
 using tsptest::kFixtureDims;
 
 std::string fixture(const std::string& name) {
   return (tsptest::test_data_dir() / "h5" / name).string();
-}
-
-std::unique_ptr<VolumeSource> open(const std::string& path, const std::string& field) {
-  SourceOptions o;
-  o.field = field;
-  return open_source(path, o);
-}
-
-std::vector<float> read(VolumeSource& s, int t) {
-  std::vector<float> out(std::size_t(s.dims().count()));
-  s.read_step(t, out);
-  return out;
-}
-
-template <typename E, typename F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const E& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "wrong exception type: " << e.what();
-    return "";
-  }
-  ADD_FAILURE() << "no exception";
-  return "";
 }
 
 // The fixture's transient file replays stored volumes 0, 1, 1, 2 (Steps/*DataOffsets).
@@ -56,21 +36,21 @@ TEST(VtkHdfSource, TransientPointDataFollowsTheOffsetsTable) {
   auto s = open(fixture("vtkhdf_transient.hdf"), "f");
   EXPECT_EQ(s->dims(), kFixtureDims);
   ASSERT_EQ(s->steps(), 4);
-  for (int t = 0; t < 4; ++t) expect_formula(read(*s, t), kFixtureDims, kStoredIndex[t]);
+  for (int t = 0; t < 4; ++t) expect_formula(tsptest::read_step(*s, t), kFixtureDims, kStoredIndex[t]);
   EXPECT_NE(s->describe().find("PointData/f"), std::string::npos) << s->describe();
 }
 
 TEST(VtkHdfSource, EmptyFieldUsesTheActiveScalars) {
   auto s = open(fixture("vtkhdf_transient.hdf"), "");
   ASSERT_EQ(s->steps(), 4);
-  expect_formula(read(*s, 3), kFixtureDims, 2);
+  expect_formula(tsptest::read_step(*s, 3), kFixtureDims, 2);
 }
 
 TEST(VtkHdfSource, CellDataIsReadAsTheGridOfCells) {
   auto s = open(fixture("vtkhdf_transient.hdf"), "c");
   EXPECT_EQ(s->dims(), kFixtureCellDims);
   ASSERT_EQ(s->steps(), 4);
-  for (int t = 0; t < 4; ++t) expect_formula(read(*s, t), kFixtureCellDims, kStoredIndex[t]);
+  for (int t = 0; t < 4; ++t) expect_formula(tsptest::read_step(*s, t), kFixtureCellDims, kStoredIndex[t]);
 }
 
 TEST(VtkHdfSource, VectorFieldIsRejected) {
@@ -92,7 +72,7 @@ TEST(VtkHdfSource, StaticImageDataIsOneStep) {
   auto s = open(fixture("vtkhdf_static.hdf"), "");
   EXPECT_EQ(s->dims(), kFixtureDims);
   ASSERT_EQ(s->steps(), 1);
-  expect_formula(read(*s, 0), kFixtureDims, 0);
+  expect_formula(tsptest::read_step(*s, 0), kFixtureDims, 0);
 }
 
 TEST(VtkHdfSource, UnstructuredGridIsRejectedByType) {
@@ -223,7 +203,7 @@ TEST(VtkHdfSource, WithoutOffsetsTableStepTReadsIndexT) {
   }
   auto s = open(p.string(), "f");
   ASSERT_EQ(s->steps(), 2);
-  std::vector<float> v = read(*s, 1);
+  std::vector<float> v = tsptest::read_step(*s, 1);
   for (float x : v) ASSERT_EQ(x, 1.0f);
 }
 
@@ -264,7 +244,7 @@ TEST(VtkHdfSource, FlatImageStoresTwoDimensionalArrays) {
   }
   auto s = open(p.string(), "f");
   EXPECT_EQ(s->dims(), (Dims{5, 4, 1}));
-  std::vector<float> v = read(*s, 0);
+  std::vector<float> v = tsptest::read_step(*s, 0);
   for (float x : v) ASSERT_EQ(x, 1.0f);
 }
 
