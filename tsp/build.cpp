@@ -56,12 +56,15 @@ InputScan scatter_steps(VolumeSource& source, const Octree& octree, ScratchFile&
   const Dims d = octree.dims();
   const std::int64_t step_bytes = d.count() * std::int64_t(sizeof(float));
   InputScan scan;
-  std::vector<float> brick;
-  // The reader thread also scans each step, which balances the two threads of this pass.
+  // The reader thread also scans each step, which balances the threads of this pass.
   StepPrefetcher prefetch(source, [&scan](int, const std::vector<float>& v) { scan.add(v); });
-  for (int t = 0; t < source.steps(); ++t) {
-    const std::vector<float>& vol = prefetch.next();
-    for (int b = 0; b < octree.brick_count(); ++b) {
+  // Copying into the page cache is kernel time that parallelises: two scatter workers split
+  // each step's bricks (pwrite at fixed offsets needs no ordering).
+  constexpr int kScatterWorkers = 2;
+  std::vector<std::vector<float>> bricks(kScatterWorkers);
+  auto scatter = [&](const std::vector<float>& vol, int t, int worker) {
+    std::vector<float>& brick = bricks[std::size_t(worker)];
+    for (int b = worker; b < octree.brick_count(); b += kScatterWorkers) {
       const Box s = octree.brick_samples(b);
       brick.resize(std::size_t(s.count()));
       float* out = brick.data();
@@ -72,6 +75,25 @@ InputScan scatter_steps(VolumeSource& source, const Octree& octree, ScratchFile&
                       row * sizeof(float));
       scratch.write(b, t, brick);
     }
+  };
+  for (int t = 0; t < source.steps(); ++t) {
+    const std::vector<float>& vol = prefetch.next();
+    std::exception_ptr helper_error;
+    std::thread helper([&] {
+      try {
+        scatter(vol, t, 1);
+      } catch (...) {
+        helper_error = std::current_exception();
+      }
+    });
+    try {
+      scatter(vol, t, 0);
+    } catch (...) {
+      helper.join();
+      throw;
+    }
+    helper.join();
+    if (helper_error) std::rethrow_exception(helper_error);
     prefetch.release();
     if (progress) progress(kPhaseRead, (t + 1) * step_bytes, total_bytes);
   }

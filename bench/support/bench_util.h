@@ -22,8 +22,11 @@ struct ChildRun {
   double peak_rss_mib = 0;   ///< the child's peak resident set size
 };
 
-/// Runs fn in a forked child and returns its wall time and peak RSS; fn returns false on failure.
+/// Runs fn in a forked child (after sync()) and returns its wall time and peak RSS; fn returns
+/// false on failure.
 inline ChildRun run_in_child(const std::function<bool()>& fn) {
+  // Flush earlier runs' dirty pages first: their writeback would otherwise be charged to this run.
+  sync();
   int fds[2];
   if (pipe(fds) != 0) return {};
   pid_t pid = fork();
