@@ -138,7 +138,7 @@ void run(const DemoArgs& a) {
     report["metrics"].push_back(s);
   }
   write_text(report_path, report.dump(2) + "\n");
-  std::printf("\nwrote %s\nnext: tspplay info %s --json --nodes | tspplay metrics %s --tf %s\n",
+  std::printf("\nwrote %s\nnext:\n  tspplay info %s --json --nodes\n  tspplay metrics %s --tf %s\n",
               report_path.string().c_str(), tsp_path.string().c_str(), tsp_path.string().c_str(),
               tf_path.string().c_str());
 }
