@@ -10,11 +10,11 @@ namespace tsp {
 
 /// Summary of the per-pixel ΔE*uv between two equally sized images.
 struct DiffStats {
-  double mean = 0;          ///< mean ΔE over all pixels
-  double p99 = 0;           ///< 99th percentile ΔE (nearest rank: the ⌈0.99·n⌉-th smallest)
-  double max = 0;           ///< largest ΔE
-  std::int64_t pixels = 0;  ///< number of pixels compared
-  int width = 0, height = 0;
+  double mean = 0;            ///< mean ΔE over all pixels
+  double p99 = 0;             ///< 99th percentile ΔE (nearest rank: the ⌈0.99·n⌉-th smallest)
+  double max = 0;             ///< largest ΔE
+  std::int64_t pixels = 0;    ///< number of pixels compared
+  int width = 0, height = 0;  ///< size of both images
 };
 
 /// ΔE that maps to white in the difference image (grey level = min(255, round(ΔE·255/10))).

@@ -19,11 +19,15 @@ std::string shader_source(const std::string& name);
 /// A linked GL program; deletes it on destruction (with its context current). Move-only.
 class Program {
  public:
+  /// An empty program (id 0).
   Program() = default;
   /// Takes ownership of program id of the context whose functions are gl.
   Program(const GlApi& gl, GLuint id) : gl_(&gl), id_(id) {}
+  /// Deletes the program (its context must be current).
   ~Program();
+  /// Takes o's program, leaving o empty.
   Program(Program&& o) noexcept : gl_(o.gl_), id_(o.id_) { o.id_ = 0; }
+  /// Deletes this program and takes o's.
   Program& operator=(Program&& o) noexcept;
   Program(const Program&) = delete;
   Program& operator=(const Program&) = delete;
