@@ -1,0 +1,109 @@
+// tspplay render run.tsp --tf tf.json [...] -o frames/: headless frames and frames.json.
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "cli/args.h"
+#include "cli/commands.h"
+#include "cli/progress_bar.h"
+#include "render/render_job.h"
+#include "tsp/error.h"
+
+namespace tspcli {
+namespace {
+
+struct RenderArgs {
+  std::string file, tf = "preset:sparse", out, steps, size = "640x480", view = "30,20";
+  std::string metric = "approximate", cache = "on";
+  double spatial = 0, temporal = 0, spacing = tspgl::kDefaultSliceSpacing;
+  int passes = 1;
+  double texture_budget_mb = double(tspgl::kDefaultTextureBudget) / (1 << 20);
+  bool baseline = false, perspective = false;
+};
+
+// "A:B", "A:" or "A" (inclusive); −1 stands for the last step.
+std::pair<int, int> parse_steps(const std::string& text) {
+  if (text.empty()) return {0, -1};
+  const std::string expected = "A:B, A: or A with step numbers from 0";
+  auto colon = text.find(':');
+  int a = int(parse_integer(text.substr(0, colon), "--steps", 0, 1 << 30, expected));
+  if (colon == std::string::npos) return {a, a};
+  std::string rest = text.substr(colon + 1);
+  return {a, rest.empty() ? -1 : int(parse_integer(rest, "--steps", 0, 1 << 30, expected))};
+}
+
+void run(const RenderArgs& a) {
+  tspgl::RenderJobOptions o;
+  o.tsp_path = a.file;
+  o.tf = a.tf;
+  o.out_dir = a.out;
+  std::tie(o.first_step, o.last_step) = parse_steps(a.steps);
+  o.tol = {a.spatial, a.temporal};
+  o.metric = tsp::parse_metric(a.metric);
+  o.cache = a.cache == "off" ? tsp::CachePolicy::off : tsp::CachePolicy::on;
+  o.baseline = a.baseline;
+  auto x = a.size.find('x');
+  if (x == std::string::npos) throw tsp::UsageError("--size '" + a.size + "': expected WxH");
+  o.camera.width = int(parse_integer(a.size.substr(0, x), "--size", 1, 8192, "WxH, 1..8192"));
+  o.camera.height = int(parse_integer(a.size.substr(x + 1), "--size", 1, 8192, "WxH, 1..8192"));
+  auto view = tsp::parse_view_angles(a.view);
+  o.camera.azimuth_deg = view[0];
+  o.camera.elevation_deg = view[1];
+  o.camera.projection = a.perspective ? tsp::Projection::perspective : tsp::Projection::orthographic;
+  o.passes = a.passes;
+  o.spacing = a.spacing;
+  if (!(a.texture_budget_mb > 0)) throw tsp::UsageError("--texture-budget must be positive (MiB)");
+  o.texture_budget = std::int64_t(a.texture_budget_mb * (1 << 20));
+
+  ProgressBar bar;
+  auto result = tspgl::run_render_job(o, [&bar](int done, int total) {
+    bar.update("render", done, total);
+  });
+  bar.finish();
+  const int last_pass = o.passes;
+  double nr = 0, up = 0, rt = 0, nt = 0;
+  int n = 0;
+  for (const auto& f : result.frames) {
+    if (f.pass != last_pass) continue;
+    nr += f.report.class_percent[0];
+    up += f.report.class_percent[1];
+    rt += f.report.class_percent[2];
+    nt += f.report.class_percent[3];
+    ++n;
+  }
+  std::printf("rendered %zu frames (%d steps x %d passes) with %s\n", result.frames.size(), n,
+              o.passes, result.renderer.c_str());
+  std::printf("median frame %.2f ms (last pass), %.2f ms (all passes)\n",
+              tspgl::median_frame_ms(result, last_pass), tspgl::median_frame_ms(result, 0));
+  if (!o.baseline && n > 0)
+    std::printf("voxels: %.1f%% not rendered, %.1f%% untextured, %.1f%% reused, %.1f%% new texture"
+                " (last pass mean); metric %.1f ms\n",
+                nr / n, up / n, rt / n, nt / n, result.metric_ms);
+  if (!o.out_dir.empty()) std::printf("wrote %s/frames.json\n", o.out_dir.c_str());
+}
+
+const CommandRegistrar reg(30, [](CLI::App& app) {
+  auto* c = app.add_subcommand("render", "Render steps headless (OSMesa) to PNGs and frames.json");
+  auto a = std::make_shared<RenderArgs>();
+  c->add_option("file", a->file, "The .tsp file")->required();
+  c->add_option("--tf", a->tf, "Transfer function: a JSON file or preset:NAME (default preset:sparse)");
+  c->add_option("-o,--output", a->out, "Directory for step_NNNN.png and frames.json")->required();
+  c->add_option("--steps", a->steps, "Steps A:B (inclusive), A: or A (default: all)");
+  c->add_option("--spatial-tol", a->spatial, "Spatial error tolerance (default 0)");
+  c->add_option("--temporal-tol", a->temporal, "Temporal error tolerance (default 0)");
+  c->add_option("--metric", a->metric, "scalar|reference|approximate|perceptual (default approximate)")
+      ->check(CLI::IsMember({"scalar", "reference", "approximate", "perceptual"}));
+  c->add_option("--cache", a->cache, "Texture cache on|off (default on)")
+      ->check(CLI::IsMember({"on", "off"}));
+  c->add_flag("--baseline", a->baseline, "Render without the TSP tree (the non-TSP reference)");
+  c->add_option("--size", a->size, "Image size WxH (default 640x480)");
+  c->add_option("--view", a->view, "Azimuth,elevation in degrees (default 30,20)");
+  c->add_flag("--perspective", a->perspective, "Perspective projection (default orthographic)");
+  c->add_option("--passes", a->passes, "Play the steps this many times (default 1)");
+  c->add_option("--spacing", a->spacing, "Slice spacing in voxels (default 0.5)");
+  c->add_option("--texture-budget", a->texture_budget_mb, "Texture cache budget in MiB (default 512)");
+  c->callback([a] { run(*a); });
+});
+
+}  // namespace
+}  // namespace tspcli

@@ -1,0 +1,321 @@
+#include "render/volume_renderer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "gl/gl_error.h"
+#include "tsp/slicer.h"
+#include "tsp/traversal.h"
+
+namespace tspgl {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+constexpr int kVolumeUnit = 0;  // texture unit of the brick (or whole-volume) texture
+constexpr int kTfUnit = 1;      // texture unit of the transfer-function lookup
+
+// Opacity for a slice spacing of `spacing` voxels when the TF's opacity is per voxel (spec §9).
+float corrected_alpha(float alpha, double spacing) {
+  return float(1.0 - std::pow(1.0 - std::clamp(double(alpha), 0.0, 1.0), spacing));
+}
+
+tsp::ViewOrder view_order(const tsp::Camera& camera) {
+  return camera.perspective() ? tsp::ViewOrder::perspective(camera.eye())
+                              : tsp::ViewOrder::orthographic(camera.direction());
+}
+
+}  // namespace
+
+VolumeRenderer::VolumeRenderer(GlContext& ctx, const tsp::TspFile& file, tsp::CachePolicy cache,
+                               std::int64_t texture_budget, std::int64_t brick_budget)
+    : ctx_(ctx),
+      gl_(ctx.gl()),
+      file_(file),
+      cache_(texture_budget, cache),
+      bricks_(file, brick_budget),
+      textured_(load_program(ctx.gl(), "slice.vert", "slice_textured.frag")),
+      flat_(load_program(ctx.gl(), "slice.vert", "slice_flat.frag")) {
+  gl_.GenVertexArrays(1, &vao_);
+  gl_.BindVertexArray(vao_);
+  gl_.GenBuffers(1, &vbo_);
+  gl_.BindBuffer(GL_ARRAY_BUFFER, vbo_);
+  gl_.EnableVertexAttribArray(0);
+  gl_.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
+  gl_.GenTextures(1, &tf_texture_);
+  textured_.use();
+  gl_.Uniform1i(textured_.uniform("volume"), kVolumeUnit);
+  gl_.Uniform1i(textured_.uniform("transfer_function"), kTfUnit);
+  // 16-bit rows of odd width are not 4-byte aligned.
+  gl_.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  check_gl(gl_, "setting up the volume renderer");
+}
+
+VolumeRenderer::~VolumeRenderer() {
+  clear_textures();
+  if (baseline_texture_) gl_.DeleteTextures(1, &baseline_texture_);
+  gl_.DeleteTextures(1, &tf_texture_);
+  gl_.DeleteBuffers(1, &vbo_);
+  gl_.DeleteVertexArrays(1, &vao_);
+}
+
+void VolumeRenderer::set_transfer_function(const tsp::TransferFunction& tf) {
+  // Nearest lookup: the rendered TF is exactly the K-entry table the metrics and the exact
+  // transparency test reason about (entry_of = floor(u·K)).
+  std::vector<float> rgba;
+  rgba.reserve(std::size_t(tf.size()) * 4);
+  for (const tsp::Rgba& e : tf.entries()) rgba.insert(rgba.end(), {e.r, e.g, e.b, e.a});
+  gl_.ActiveTexture(GL_TEXTURE0 + kTfUnit);
+  gl_.BindTexture(GL_TEXTURE_1D, tf_texture_);
+  gl_.TexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  gl_.TexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  gl_.TexParameteri(GL_TEXTURE_1D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  gl_.TexImage1D(GL_TEXTURE_1D, 0, GL_RGBA32F, tf.size(), 0, GL_RGBA, GL_FLOAT, rgba.data());
+  gl_.ActiveTexture(GL_TEXTURE0 + kVolumeUnit);
+  // A normalised code s means v = q.lo + s·q.width; its TF coordinate is (v − tf.lo)/tf.width.
+  const tsp::ValueRange q = file_.tree().value_range(), d = tf.domain();
+  tf_scale_ = q.width() / d.width();
+  tf_offset_ = (q.lo - d.lo) / d.width();
+  check_gl(gl_, "uploading the transfer function");
+}
+
+void VolumeRenderer::clear_textures() {
+  for (auto& [key, id] : textures_) gl_.DeleteTextures(1, &id);
+  textures_.clear();
+  cache_.clear();
+}
+
+void VolumeRenderer::delete_texture(const tsp::TextureKey& key) {
+  auto it = textures_.find(key);
+  if (it == textures_.end()) return;
+  gl_.DeleteTextures(1, &it->second);
+  textures_.erase(it);
+}
+
+GLuint VolumeRenderer::upload_brick(int brick, int step) {
+  tsp::BrickSamples samples = bricks_.get(brick, step);
+  const tsp::Box s = file_.tree().octree().brick_samples(brick);
+  GLuint id = 0;
+  gl_.GenTextures(1, &id);
+  gl_.BindTexture(GL_TEXTURE_3D, id);
+  gl_.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  gl_.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+    gl_.TexParameteri(GL_TEXTURE_3D, wrap, GL_CLAMP_TO_EDGE);
+  gl_.TexImage3D(GL_TEXTURE_3D, 0, GL_R16, s.size(0), s.size(1), s.size(2), 0, GL_RED,
+                 GL_UNSIGNED_SHORT, samples->data());
+  return id;
+}
+
+void VolumeRenderer::begin_frame(const tsp::Camera& camera, const RenderSettings& settings) {
+  ctx_.make_current();
+  gl_.Viewport(0, 0, ctx_.width(), ctx_.height());
+  gl_.ClearColor(settings.background[0], settings.background[1], settings.background[2], 1.f);
+  gl_.Clear(GL_COLOR_BUFFER_BIT);
+  gl_.Disable(GL_DEPTH_TEST);
+  gl_.Disable(GL_CULL_FACE);
+  gl_.Enable(GL_BLEND);
+  // Premultiplied colours composited back to front with "over"; alpha stays 1 (opaque image).
+  gl_.BlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  gl_.BindVertexArray(vao_);
+  const glm::mat4 vp(camera.view_projection());
+  for (const Program* p : {&textured_, &flat_}) {
+    p->use();
+    gl_.UniformMatrix4fv(p->uniform("view_projection"), 1, GL_FALSE, glm::value_ptr(vp));
+  }
+  textured_.use();
+  gl_.Uniform2f(textured_.uniform("tf_map"), float(tf_scale_), float(tf_offset_));
+  gl_.Uniform1f(textured_.uniform("spacing_ratio"), float(settings.spacing));
+  gl_.ActiveTexture(GL_TEXTURE0 + kTfUnit);
+  gl_.BindTexture(GL_TEXTURE_1D, tf_texture_);
+  gl_.ActiveTexture(GL_TEXTURE0 + kVolumeUnit);
+}
+
+void VolumeRenderer::upload_vertices() {
+  vertices_.assign(soup_.xyz.begin(), soup_.xyz.end());
+  firsts_.resize(soup_.size());
+  counts_.resize(soup_.size());
+  GLint next = 0;
+  for (std::size_t i = 0; i < soup_.size(); ++i) {
+    firsts_[i] = next;
+    counts_[i] = GLsizei(soup_.counts[i]);
+    next += counts_[i];
+  }
+  gl_.BindBuffer(GL_ARRAY_BUFFER, vbo_);
+  gl_.BufferData(GL_ARRAY_BUFFER, GLsizeiptr(vertices_.size() * sizeof(float)), vertices_.data(),
+                 GL_STREAM_DRAW);
+}
+
+void VolumeRenderer::draw_items(const std::vector<DrawItem>& items,
+                                const std::vector<GLuint>& textures,
+                                const std::vector<tsp::Box>& sample_boxes,
+                                const RenderSettings& settings) {
+  (void)settings;
+  const Program* current = nullptr;
+  for (const DrawItem& it : items) {
+    if (it.polygon_count == 0) continue;
+    const Program* want = it.texture >= 0 ? &textured_ : &flat_;
+    if (want != current) {
+      want->use();
+      current = want;
+    }
+    if (it.texture >= 0) {
+      const tsp::Box& s = sample_boxes[std::size_t(it.texture)];
+      gl_.BindTexture(GL_TEXTURE_3D, textures[std::size_t(it.texture)]);
+      gl_.Uniform3f(textured_.uniform("tex_origin"), float(s.lo[0]) - 0.5f,
+                    float(s.lo[1]) - 0.5f, float(s.lo[2]) - 0.5f);
+      gl_.Uniform3f(textured_.uniform("tex_scale"), 1.f / float(s.size(0)),
+                    1.f / float(s.size(1)), 1.f / float(s.size(2)));
+    } else {
+      gl_.Uniform4fv(flat_.uniform("flat_colour"), 1, it.colour.data());
+    }
+    gl_.MultiDrawArrays(GL_TRIANGLE_FAN, firsts_.data() + it.first_polygon,
+                        counts_.data() + it.first_polygon, it.polygon_count);
+  }
+}
+
+FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
+                                   const RenderSettings& settings,
+                                   const tsp::MetricResult& metric) {
+  const auto t_frame = Clock::now();
+  const tsp::TspTree& tree = file_.tree();
+  const tsp::Octree& octree = tree.octree();
+  FrameReport r;
+  r.step = step;
+  begin_frame(camera, settings);
+
+  auto t0 = Clock::now();
+  const tsp::ViewOrder order = view_order(camera);
+  const std::vector<tsp::Emitted> emitted =
+      tsp::traverse(tree, step, settings.tol, metric.errors, order);
+  const tsp::FramePlan plan = tsp::plan_frame(tree, step, emitted, tsp::node_info(metric),
+                                              settings.tol, order, cache_);
+  r.traversal_ms = ms_since(t0);
+
+  t0 = Clock::now();
+  const tsp::IncrementalSlicer slicer(tsp::SlicePlanes::toward(camera.direction(), settings.spacing));
+  soup_.clear();
+  std::vector<DrawItem> items;
+  std::vector<tsp::Box> sample_boxes(plan.textures.size());
+  auto add = [&](const tsp::Aabb& box, int texture, std::array<float, 4> colour) {
+    DrawItem it;
+    it.first_polygon = int(soup_.size());
+    slicer.slice(box, soup_);
+    it.polygon_count = int(soup_.size()) - it.first_polygon;
+    it.texture = texture;
+    it.colour = colour;
+    items.push_back(it);
+  };
+  for (const tsp::PlannedNode& n : plan.nodes) {
+    if (n.cls == tsp::DrawClass::not_rendered) continue;
+    const int tsp_id = tree.id(n.node.octree_id, n.node.time_id);
+    if (n.cls == tsp::DrawClass::untextured) {
+      const tsp::Rgba c = metric.mean_colour[std::size_t(tsp_id)];
+      const float a = corrected_alpha(c.a, settings.spacing);
+      add(tsp::geometric_box(octree.node(n.node.octree_id).box, octree.dims()), -1,
+          {c.r * a, c.g * a, c.b * a, a});
+      continue;
+    }
+    for (int i = n.first_texture; i < n.first_texture + n.texture_count; ++i) {
+      const int brick = plan.textures[std::size_t(i)].key.brick;
+      sample_boxes[std::size_t(i)] = octree.brick_samples(brick);
+      add(tsp::geometric_box(octree.brick_box(brick), octree.dims()), i, {});
+    }
+  }
+  upload_vertices();
+  r.slicing_ms = ms_since(t0);
+  r.polygons = std::int64_t(soup_.size());
+
+  for (const tsp::TextureKey& k : plan.evict_before) delete_texture(k);
+  t0 = Clock::now();
+  std::vector<GLuint> textures(plan.textures.size(), 0);
+  for (std::size_t i = 0; i < plan.textures.size(); ++i) {
+    const tsp::PlannedTexture& pt = plan.textures[i];
+    if (pt.upload) {
+      delete_texture(pt.key);
+      textures_[pt.key] = upload_brick(pt.key.brick, pt.key.t0);
+    }
+    textures[i] = textures_.at(pt.key);
+  }
+  r.upload_ms = ms_since(t0);
+
+  t0 = Clock::now();
+  draw_items(items, textures, sample_boxes, settings);
+  for (const tsp::TextureKey& k : plan.release_after) delete_texture(k);
+  ctx_.finish();
+  r.draw_ms = ms_since(t0);
+  r.ms = ms_since(t_frame);
+
+  for (int c = 0; c < tsp::kDrawClassCount; ++c)
+    r.class_percent[std::size_t(c)] = plan.percent(tsp::DrawClass(c));
+  r.bytes_uploaded = plan.bytes_uploaded;
+  r.textures_resident = plan.textures_resident;
+  r.texture_bytes = plan.texture_bytes;
+  return r;
+}
+
+FrameReport VolumeRenderer::render_baseline(int step, const tsp::Camera& camera,
+                                            const RenderSettings& settings) {
+  const auto t_frame = Clock::now();
+  const tsp::Octree& octree = file_.tree().octree();
+  const tsp::Dims d = octree.dims();
+  FrameReport r;
+  r.step = step;
+  begin_frame(camera, settings);
+
+  // The whole step, assembled from the bricks and uploaded as one texture, every frame.
+  auto t0 = Clock::now();
+  volume_.resize(std::size_t(d.count()));
+  for (int b = 0; b < octree.brick_count(); ++b) {
+    tsp::BrickSamples samples = bricks_.get(b, step);
+    const tsp::Box s = octree.brick_samples(b);
+    const std::uint16_t* src = samples->data();
+    for (int z = s.lo[2]; z < s.hi[2]; ++z)
+      for (int y = s.lo[1]; y < s.hi[1]; ++y, src += s.size(0))
+        std::memcpy(volume_.data() + s.lo[0] + std::size_t(d.x) * (y + std::size_t(d.y) * z), src,
+                    std::size_t(s.size(0)) * sizeof(std::uint16_t));
+  }
+  if (baseline_texture_) gl_.DeleteTextures(1, &baseline_texture_);
+  gl_.GenTextures(1, &baseline_texture_);
+  gl_.BindTexture(GL_TEXTURE_3D, baseline_texture_);
+  gl_.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  gl_.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+    gl_.TexParameteri(GL_TEXTURE_3D, wrap, GL_CLAMP_TO_EDGE);
+  gl_.TexImage3D(GL_TEXTURE_3D, 0, GL_R16, d.x, d.y, d.z, 0, GL_RED, GL_UNSIGNED_SHORT,
+                 volume_.data());
+  r.upload_ms = ms_since(t0);
+  r.bytes_uploaded = d.count() * std::int64_t(sizeof(std::uint16_t));
+  r.textures_resident = 1;
+  r.texture_bytes = r.bytes_uploaded;
+
+  t0 = Clock::now();
+  const tsp::IncrementalSlicer slicer(tsp::SlicePlanes::toward(camera.direction(), settings.spacing));
+  soup_.clear();
+  const tsp::Box whole{{0, 0, 0}, {d.x, d.y, d.z}};
+  DrawItem item;
+  slicer.slice(tsp::geometric_box(whole, d), soup_);
+  item.polygon_count = int(soup_.size());
+  item.texture = 0;
+  upload_vertices();
+  r.slicing_ms = ms_since(t0);
+  r.polygons = std::int64_t(soup_.size());
+
+  t0 = Clock::now();
+  draw_items({item}, {baseline_texture_}, {whole}, settings);
+  ctx_.finish();
+  r.draw_ms = ms_since(t0);
+  r.ms = ms_since(t_frame);
+  r.class_percent[std::size_t(tsp::DrawClass::new_texture)] = 100.0;
+  return r;
+}
+
+}  // namespace tspgl
