@@ -84,6 +84,8 @@ class VolumeRenderer {
     tsp::Aabb box;
   };
   void begin_frame(const tsp::Camera& camera, const RenderSettings& settings);
+  void end_frame();
+  void ensure_target();
   void upload_vertices();
   void draw_items(const std::vector<DrawItem>& items, const std::vector<GLuint>& textures,
                   const std::vector<tsp::Box>& sample_boxes, const RenderSettings& settings);
@@ -97,6 +99,8 @@ class VolumeRenderer {
   tsp::BrickCache bricks_;
   Program textured_, flat_;
   GLuint vao_ = 0, vbo_ = 0, tf_texture_ = 0, baseline_texture_ = 0;
+  GLuint fbo_ = 0, fbo_colour_ = 0;  ///< float render target: 8-bit blending of many thin slices drifts
+  int fbo_width_ = 0, fbo_height_ = 0;
   double tf_scale_ = 1, tf_offset_ = 0;  ///< normalised scalar → TF texture coordinate
   std::unordered_map<tsp::TextureKey, GLuint, tsp::TextureKeyHash> textures_;
   tsp::PolygonSoup soup_;

@@ -1,0 +1,208 @@
+// The renderer on OSMesa: an analytic constant cube, zero-tolerance TSP frames against the
+// non-TSP baseline on generated and real data, cache on/off giving identical images, and the
+// class shares of a frame against the traversal. Failing image comparisons write actual,
+// expected and difference PNGs under test-output/ in the working directory.
+#include "render/volume_renderer.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "support/memory_source.h"
+#include "support/paths.h"
+#include "tsp/build.h"
+#include "tsp/color.h"
+#include "tsp/generate.h"
+#include "tsp/image.h"
+#include "tsp/image_diff.h"
+#include "tsp/tf_io.h"
+#include "tsp/traversal.h"
+
+namespace tspgl {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string build(tsp::VolumeSource& src, const std::string& name, std::optional<tsp::ValueRange> range = {},
+                  int brick = 16) {
+  std::string path = (tsptest::temp_dir() / (name + ".tsp")).string();
+  tsp::BuildOptions o;
+  o.brick_size = brick;
+  o.range = range;
+  tsp::build_tsp_file(src, path, o);
+  return path;
+}
+
+// Writes actual / expected / difference images for a failed comparison and returns the folder.
+std::string keep_failure(const std::string& name, const tsp::Image& actual,
+                         const tsp::Image& expected) {
+  fs::path dir = fs::current_path() / "test-output" / name;
+  fs::create_directories(dir);
+  tsp::write_png((dir / "actual.png").string(), actual);
+  tsp::write_png((dir / "expected.png").string(), expected);
+  tsp::Image diff;
+  tsp::diff_images(actual, expected, &diff);
+  tsp::write_png((dir / "difference.png").string(), diff);
+  return dir.string();
+}
+
+void expect_close(const std::string& name, const tsp::Image& actual, const tsp::Image& expected,
+                  double max_mean, double max_p99) {
+  tsp::DiffStats d = tsp::diff_images(actual, expected);
+  bool ok = d.mean < max_mean && d.p99 < max_p99;
+  EXPECT_TRUE(ok) << name << ": mean ΔE " << d.mean << " (limit " << max_mean << "), p99 " << d.p99
+                  << " (limit " << max_p99 << "), max " << d.max << "; images in "
+                  << (ok ? "" : keep_failure(name, actual, expected));
+}
+
+struct Scene {
+  std::unique_ptr<tsp::TspFile> file;
+  std::unique_ptr<GlContext> ctx;
+  std::unique_ptr<VolumeRenderer> renderer;
+  tsp::TransferFunction tf;
+  tsp::MetricResult metric;
+  Scene(const std::string& path, const tsp::TransferFunction& t, tsp::CachePolicy cache, int w = 160,
+        int h = 120, tsp::Metric m = tsp::Metric::reference)
+      : file(tsp::TspFile::open(path)), ctx(create_offscreen_context(w, h)), tf(t) {
+    renderer = std::make_unique<VolumeRenderer>(*ctx, *file, cache);
+    renderer->set_transfer_function(tf);
+    metric = tsp::compute_errors(m, file->tree(), tf, file.get(), 0);
+  }
+  tsp::Camera camera(double az = 30, double el = 20) const {
+    tsp::CameraParams p;
+    p.azimuth_deg = az;
+    p.elevation_deg = el;
+    p.width = ctx->width();
+    p.height = ctx->height();
+    return tsp::Camera(file->tree().octree().dims(), p);
+  }
+  tsp::Image tsp_frame(int step, const tsp::Camera& cam, tsp::Tolerances tol = {}) {
+    RenderSettings s;
+    s.tol = tol;
+    renderer->render(step, cam, s, metric);
+    return ctx->read_pixels();
+  }
+  tsp::Image baseline_frame(int step, const tsp::Camera& cam) {
+    renderer->render_baseline(step, cam, RenderSettings{});
+    return ctx->read_pixels();
+  }
+};
+
+tsp::TransferFunction flat_tf(tsp::Rgba c) {
+  std::vector<tsp::TfPoint> pts = {{0.0, c}, {1.0, c}};
+  return tsp::TransferFunction::from_points({0, 1}, pts);
+}
+
+TEST(VolumeRenderer, ConstantCubeMatchesFrontToBackCompositing) {
+  // 33³ samples: geometry [0, 32]³. Looking along +y through the centre, the planes at
+  // y = (k + ½)·0.5 cut the ray 64 times, each slice with α' = 1 − (1 − α)^0.5.
+  auto src = tsptest::MemorySource::from_function({33, 33, 33}, 2,
+                                                  [](int, int, int, int) { return 0.5f; });
+  const std::string path = build(src, "cube", tsp::ValueRange{0, 1});
+  const tsp::Rgba c{0.9f, 0.5f, 0.2f, 0.04f};
+  Scene scene(path, flat_tf(c), tsp::CachePolicy::on);
+  const tsp::Camera cam = scene.camera(0, 0);
+  const double opacity = 1 - std::pow(1 - double(c.a), 0.5 * 64);
+  const std::uint8_t want[3] = {std::uint8_t(std::lround(255 * c.r * opacity)),
+                                std::uint8_t(std::lround(255 * c.g * opacity)),
+                                std::uint8_t(std::lround(255 * c.b * opacity))};
+  for (bool baseline : {false, true}) {
+    tsp::Image img = baseline ? scene.baseline_frame(0, cam) : scene.tsp_frame(0, cam);
+    const std::uint8_t* px = img.at(img.width / 2, img.height / 2);
+    tsp::Luv got = tsp::srgb8_to_luv(px[0], px[1], px[2]);
+    tsp::Luv exp = tsp::srgb8_to_luv(want[0], want[1], want[2]);
+    EXPECT_LT(tsp::delta_e_luv(got, exp), 1.0)
+        << (baseline ? "baseline" : "tsp") << ": got " << int(px[0]) << "," << int(px[1]) << ","
+        << int(px[2]) << " want " << int(want[0]) << "," << int(want[1]) << "," << int(want[2]);
+    // Outside the cube's projection the background stays black.
+    const std::uint8_t* corner = img.at(0, 0);
+    EXPECT_EQ(corner[0] + corner[1] + corner[2], 0);
+  }
+}
+
+TEST(VolumeRenderer, ZeroToleranceMatchesBaselineOnGeneratedData) {
+  auto src = tsp::make_generated_source("shock", {tsp::Dims{40, 36, 30}, 6});
+  const std::string path = build(*src, "shock");
+  auto file = tsp::TspFile::open(path);
+  for (const char* preset : {"sparse", "filled"}) {
+    Scene scene(path, tsp::preset_transfer_function(preset, file->tree().value_range()),
+                tsp::CachePolicy::on);
+    for (int step : {0, 3, 5}) {
+      for (auto [az, el] : {std::pair{30.0, 20.0}, std::pair{-120.0, 55.0}}) {
+        const tsp::Camera cam = scene.camera(az, el);
+        expect_close(std::string("shock_") + preset + "_" + std::to_string(step),
+                     scene.tsp_frame(step, cam), scene.baseline_frame(step, cam), 0.5, 3.0);
+      }
+    }
+  }
+}
+
+TEST(VolumeRenderer, ZeroToleranceMatchesBaselineOnRealData) {
+  const fs::path nc = tsptest::shared_data_dir() / "wrf-katrina" / "ci_test_file.nc";
+  if (!fs::exists(nc)) GTEST_SKIP() << nc << " not present";
+  tsp::SourceOptions so;
+  so.field = "QCLOUD";
+  auto src = tsp::open_source(nc.string(), so);
+  const std::string path = build(*src, "katrina");
+  auto file = tsp::TspFile::open(path);
+  Scene scene(path, tsp::preset_transfer_function("filled", file->tree().value_range()),
+              tsp::CachePolicy::on);
+  for (int step = 0; step < 4; ++step) {
+    const tsp::Camera cam = scene.camera(20, 35);
+    expect_close("katrina_" + std::to_string(step), scene.tsp_frame(step, cam),
+                 scene.baseline_frame(step, cam), 0.5, 3.0);
+  }
+}
+
+TEST(VolumeRenderer, CacheOnAndOffGiveIdenticalImages) {
+  auto src = tsp::make_generated_source("shock", {tsp::Dims{33, 30, 28}, 8});
+  const std::string path = build(*src, "shock", {}, 8);
+  auto file = tsp::TspFile::open(path);
+  const auto tf = tsp::preset_transfer_function("filled", file->tree().value_range());
+  Scene on(path, tf, tsp::CachePolicy::on), off(path, tf, tsp::CachePolicy::off);
+  const tsp::Camera cam = on.camera();
+  // A temporal tolerance makes spans longer than one step, so textures are reused (RT).
+  for (tsp::Tolerances tol : {tsp::Tolerances{0, 0}, tsp::Tolerances{0, 0.05}}) {
+    for (int step : {0, 1, 2, 3, 7, 6, 0, 4}) {
+      tsp::Image a = on.tsp_frame(step, cam, tol), b = off.tsp_frame(step, cam, tol);
+      EXPECT_EQ(a.rgba, b.rgba) << "step " << step << " temporal tol " << tol.temporal
+                                << (a.rgba == b.rgba ? "" : keep_failure("cache_" + std::to_string(step), a, b));
+    }
+  }
+}
+
+TEST(VolumeRenderer, ClassSharesSumTo100AndMatchTheTraversal) {
+  auto src = tsp::make_generated_source("shock", {tsp::Dims{33, 33, 33}, 8});
+  const std::string path = build(*src, "shock", {}, 8);
+  auto file = tsp::TspFile::open(path);
+  Scene scene(path, tsp::preset_transfer_function("sparse", file->tree().value_range()),
+              tsp::CachePolicy::on, 64, 48, tsp::Metric::approximate);
+  const tsp::Camera cam = scene.camera();
+  const tsp::TspTree& tree = file->tree();
+  for (tsp::Tolerances tol : {tsp::Tolerances{0, 0}, tsp::Tolerances{0.3, 0.2}}) {
+    for (int step = 0; step < 8; ++step) {
+      RenderSettings s;
+      s.tol = tol;
+      FrameReport r = scene.renderer->render(step, cam, s, scene.metric);
+      double sum = 0;
+      for (double p : r.class_percent) sum += p;
+      EXPECT_NEAR(sum, 100.0, 1e-9);
+      // NR and UP from the traversal's own output, counted independently.
+      auto emitted = tsp::traverse(tree, step, tol, scene.metric.errors,
+                                   tsp::ViewOrder::orthographic(cam.direction()));
+      double nr = 0, up = 0, total = double(tree.octree().dims().count());
+      for (const auto& e : emitted) {
+        const int id = tree.id(e.octree_id, e.time_id);
+        const double v = double(tree.octree().node(e.octree_id).box.count());
+        if (scene.metric.transparent[std::size_t(id)]) nr += v;
+        else if (scene.metric.errors.spatial[std::size_t(id)] <= tol.spatial) up += v;
+      }
+      EXPECT_NEAR(r.class_percent[0], 100 * nr / total, 1e-9) << "step " << step;
+      EXPECT_NEAR(r.class_percent[1], 100 * up / total, 1e-9) << "step " << step;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace tspgl
