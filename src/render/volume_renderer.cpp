@@ -70,23 +70,35 @@ VolumeRenderer::~VolumeRenderer() {
 }
 
 void VolumeRenderer::set_transfer_function(const tsp::TransferFunction& tf) {
-  // Nearest lookup: the rendered TF is exactly the K-entry table the metrics and the exact
-  // transparency test reason about (entry_of = floor(u·K)).
+  tf_entries_.assign(tf.entries().begin(), tf.entries().end());
+  tf_spacing_ = -1;  // re-uploaded, corrected for the spacing, by the next frame
+  // A normalised code s means v = q.lo + s·q.width; its TF coordinate is (v − tf.lo)/tf.width.
+  const tsp::ValueRange q = file_.tree().value_range(), d = tf.domain();
+  tf_scale_ = q.width() / d.width();
+  tf_offset_ = (q.lo - d.lo) / d.width();
+}
+
+// The lookup texture holds, per entry, the colour premultiplied by the opacity corrected for the
+// slice spacing. Nearest lookup: the rendered TF is exactly the K-entry table the metrics and the
+// exact transparency test reason about (entry_of = floor(u·K)).
+void VolumeRenderer::upload_tf(double spacing) {
+  if (spacing == tf_spacing_) return;
   std::vector<float> rgba;
-  rgba.reserve(std::size_t(tf.size()) * 4);
-  for (const tsp::Rgba& e : tf.entries()) rgba.insert(rgba.end(), {e.r, e.g, e.b, e.a});
+  rgba.reserve(tf_entries_.size() * 4);
+  for (const tsp::Rgba& e : tf_entries_) {
+    const float a = corrected_alpha(e.a, spacing);
+    rgba.insert(rgba.end(), {e.r * a, e.g * a, e.b * a, a});
+  }
   gl_.ActiveTexture(GL_TEXTURE0 + kTfUnit);
   gl_.BindTexture(GL_TEXTURE_1D, tf_texture_);
   gl_.TexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   gl_.TexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   gl_.TexParameteri(GL_TEXTURE_1D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  gl_.TexImage1D(GL_TEXTURE_1D, 0, GL_RGBA32F, tf.size(), 0, GL_RGBA, GL_FLOAT, rgba.data());
+  gl_.TexImage1D(GL_TEXTURE_1D, 0, GL_RGBA32F, GLsizei(tf_entries_.size()), 0, GL_RGBA, GL_FLOAT,
+                 rgba.data());
   gl_.ActiveTexture(GL_TEXTURE0 + kVolumeUnit);
-  // A normalised code s means v = q.lo + s·q.width; its TF coordinate is (v − tf.lo)/tf.width.
-  const tsp::ValueRange q = file_.tree().value_range(), d = tf.domain();
-  tf_scale_ = q.width() / d.width();
-  tf_offset_ = (q.lo - d.lo) / d.width();
   check_gl(gl_, "uploading the transfer function");
+  tf_spacing_ = spacing;
 }
 
 void VolumeRenderer::clear_textures() {
@@ -117,7 +129,7 @@ GLuint VolumeRenderer::upload_brick(int brick, int step) {
   return id;
 }
 
-// Slices are composited in a 32-bit float colour buffer: in 8 bits each thin slice's
+// Slices are composited in a 16-bit-per-channel colour buffer: in 8 bits each thin slice's
 // premultiplied contribution (a few 1/255 steps) is rounded, and over hundreds of slices the
 // error reaches ΔE 10 (tests/render: the constant cube). The result is blitted (converted) to the
 // context's default framebuffer once per frame.
@@ -126,11 +138,12 @@ void VolumeRenderer::ensure_target() {
   if (!fbo_) gl_.GenFramebuffers(1, &fbo_);
   if (!fbo_colour_) gl_.GenRenderbuffers(1, &fbo_colour_);
   gl_.BindRenderbuffer(GL_RENDERBUFFER, fbo_colour_);
-  gl_.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA32F, ctx_.width(), ctx_.height());
+  // RGBA16 (unorm) blends fastest on llvmpipe of RGBA16/16F/32F and keeps 16 bits.
+  gl_.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA16, ctx_.width(), ctx_.height());
   gl_.BindFramebuffer(GL_FRAMEBUFFER, fbo_);
   gl_.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, fbo_colour_);
   if (gl_.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-    throw tsp::GlError("the float render target (RGBA32F framebuffer) is not supported");
+    throw tsp::GlError("the 16-bit render target (RGBA16 framebuffer) is not supported");
   fbo_width_ = ctx_.width();
   fbo_height_ = ctx_.height();
 }
@@ -163,7 +176,7 @@ void VolumeRenderer::begin_frame(const tsp::Camera& camera, const RenderSettings
   }
   textured_.use();
   gl_.Uniform2f(textured_.uniform("tf_map"), float(tf_scale_), float(tf_offset_));
-  gl_.Uniform1f(textured_.uniform("spacing_ratio"), float(settings.spacing));
+  upload_tf(settings.spacing);
   gl_.ActiveTexture(GL_TEXTURE0 + kTfUnit);
   gl_.BindTexture(GL_TEXTURE_1D, tf_texture_);
   gl_.ActiveTexture(GL_TEXTURE0 + kVolumeUnit);

@@ -85,6 +85,7 @@ class VolumeRenderer {
   };
   void begin_frame(const tsp::Camera& camera, const RenderSettings& settings);
   void end_frame();
+  void upload_tf(double spacing);
   void ensure_target();
   void upload_vertices();
   void draw_items(const std::vector<DrawItem>& items, const std::vector<GLuint>& textures,
@@ -99,9 +100,11 @@ class VolumeRenderer {
   tsp::BrickCache bricks_;
   Program textured_, flat_;
   GLuint vao_ = 0, vbo_ = 0, tf_texture_ = 0, baseline_texture_ = 0;
-  GLuint fbo_ = 0, fbo_colour_ = 0;  ///< float render target: 8-bit blending of many thin slices drifts
+  GLuint fbo_ = 0, fbo_colour_ = 0;  ///< 16-bit render target: 8-bit blending of thin slices drifts
   int fbo_width_ = 0, fbo_height_ = 0;
   double tf_scale_ = 1, tf_offset_ = 0;  ///< normalised scalar → TF texture coordinate
+  std::vector<tsp::Rgba> tf_entries_;      ///< the TF as given (uncorrected, not premultiplied)
+  double tf_spacing_ = -1;                 ///< spacing the TF texture was corrected for
   std::unordered_map<tsp::TextureKey, GLuint, tsp::TextureKeyHash> textures_;
   tsp::PolygonSoup soup_;
   std::vector<float> vertices_;
