@@ -1,0 +1,100 @@
+// tspplay render / diff end to end: the files and frames.json keys the issue promises, TSP at zero
+// tolerance against --baseline through `diff --json`, and bad input that writes nothing.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "support/paths.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using tsptest::run_tspplay;
+
+std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
+
+fs::path make_tsp() {
+  fs::path dir = tsptest::temp_dir();
+  auto g = run_tspplay("generate shock -o " + q(dir / "s.h5") + " --dims 30,28,26 --steps 4");
+  EXPECT_EQ(g.exit_code, 0) << g.err;
+  auto b = run_tspplay("build " + q(dir / "s.h5") + " --field shock --brick 16 -o " + q(dir / "s.tsp"));
+  EXPECT_EQ(b.exit_code, 0) << b.err;
+  return dir / "s.tsp";
+}
+
+json read_json(const fs::path& p) {
+  std::ifstream in(p);
+  return json::parse(in);
+}
+
+TEST(RenderCli, WritesFramesAndReportWithEveryKey) {
+  fs::path tsp = make_tsp(), out = tsptest::temp_dir() / "frames";
+  auto r = run_tspplay("render " + q(tsp) + " --tf preset:filled --steps 1:3 --size 96x64 --passes 2 -o " +
+                       q(out));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (int t = 1; t <= 3; ++t) {
+    char name[32];
+    std::snprintf(name, sizeof name, "step_%04d.png", t);
+    EXPECT_TRUE(fs::exists(out / name)) << name;
+  }
+  EXPECT_FALSE(fs::exists(out / "step_0000.png"));
+  json j = read_json(out / "frames.json");
+  ASSERT_EQ(j["frames"].size(), 6u);  // 3 steps × 2 passes, in order
+  int i = 0;
+  for (const json& f : j["frames"]) {
+    EXPECT_EQ(f["pass"], 1 + i / 3);
+    EXPECT_EQ(f["step"], 1 + i % 3);
+    ++i;
+    for (const char* k : {"ms", "traversal_ms", "slicing_ms", "upload_ms", "draw_ms", "not_rendered",
+                          "untextured", "reused_texture", "new_texture", "bytes_uploaded",
+                          "textures_resident", "texture_bytes"})
+      EXPECT_TRUE(f.contains(k)) << k;
+    double sum = f["not_rendered"].get<double>() + f["untextured"].get<double>() +
+                 f["reused_texture"].get<double>() + f["new_texture"].get<double>();
+    EXPECT_NEAR(sum, 100.0, 1e-6);
+    EXPECT_GE(f["ms"].get<double>(), f["draw_ms"].get<double>());
+  }
+  // The second pass finds every texture resident (cache on, budget ample): nothing new.
+  for (int k = 3; k < 6; ++k) EXPECT_EQ(j["frames"][k]["new_texture"], 0.0) << k;
+}
+
+TEST(RenderCli, ZeroToleranceMatchesBaselineThroughDiff) {
+  fs::path tsp = make_tsp(), a = tsptest::temp_dir() / "tsp", b = tsptest::temp_dir() / "base";
+  const std::string common = " --tf preset:sparse --steps 2 --size 120x90 --view 50,30 -o ";
+  ASSERT_EQ(run_tspplay("render " + q(tsp) + common + q(a)).exit_code, 0);
+  ASSERT_EQ(run_tspplay("render " + q(tsp) + " --baseline" + common + q(b)).exit_code, 0);
+  auto d = run_tspplay("diff " + q(a / "step_0002.png") + " " + q(b / "step_0002.png") + " --json");
+  ASSERT_EQ(d.exit_code, 0) << d.err;
+  json j = json::parse(d.out);
+  EXPECT_LT(j["mean"].get<double>(), 0.5);
+  EXPECT_LT(j["p99"].get<double>(), 3.0);
+  EXPECT_EQ(read_json(b / "frames.json")["mode"], "baseline");
+}
+
+TEST(RenderCli, BadInputIsAClearErrorAndWritesNothing) {
+  fs::path tsp = make_tsp(), out = tsptest::temp_dir() / "none";
+  struct Case {
+    std::string args;
+    int code;
+    std::string message;
+  };
+  const Case cases[] = {
+      {"render " + q(tsp) + " --steps 2:9 -o " + q(out), 2, "has steps 0..3"},
+      {"render " + q(tsp) + " --size 0x10 -o " + q(out), 2, "--size"},
+      {"render " + q(tsp) + " --view 10,95 -o " + q(out), 2, "elevation"},
+      {"render " + q(tsp) + " --tf /nonexistent/tf.json -o " + q(out), 1, "/nonexistent/tf.json"},
+      {"render " + q(tsptest::temp_dir() / "missing.tsp") + " -o " + q(out), 1, "missing.tsp"},
+      {"render " + q(tsp) + " --metric nope -o " + q(out), 2, "metric"},
+  };
+  for (const Case& c : cases) {
+    auto r = run_tspplay(c.args);
+    EXPECT_EQ(r.exit_code, c.code) << c.args << "\n" << r.err;
+    EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << "\n" << r.err;
+    EXPECT_FALSE(fs::exists(out)) << c.args;
+  }
+}
+
+}  // namespace
