@@ -107,6 +107,13 @@ void VolumeRenderer::clear_textures() {
   cache_.clear();
 }
 
+int VolumeRenderer::drop_unreachable(const tsp::MetricResult& metric, const tsp::Tolerances& tol) {
+  const auto dropped =
+      cache_.drop_unreachable(tsp::reachable_textures(file_.tree(), metric, tol));
+  for (const tsp::TextureKey& k : dropped) delete_texture(k);
+  return int(dropped.size());
+}
+
 void VolumeRenderer::delete_texture(const tsp::TextureKey& key) {
   auto it = textures_.find(key);
   if (it == textures_.end()) return;

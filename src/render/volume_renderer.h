@@ -75,6 +75,11 @@ class VolumeRenderer {
   tsp::TextureCache& texture_cache() { return cache_; }
   /// Deletes every cached texture.
   void clear_textures();
+  /// After a tolerance (or metric) change: deletes the textures no frame can draw any more under
+  /// metric and tol (one traversal per step) and returns how many. TF edits need no call.
+  int drop_unreachable(const tsp::MetricResult& metric, const tsp::Tolerances& tol);
+  /// Number of GL brick textures alive.
+  int texture_count() const { return int(textures_.size()); }
 
  private:
   struct DrawItem {

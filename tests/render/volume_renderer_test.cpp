@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <tuple>
 
 #include "support/memory_source.h"
 #include "support/paths.h"
@@ -69,8 +70,9 @@ struct Scene {
     renderer->set_transfer_function(tf);
     metric = tsp::compute_errors(m, file->tree(), tf, file.get(), 0);
   }
-  tsp::Camera camera(double az = 30, double el = 20) const {
+  tsp::Camera camera(double az = 30, double el = 20, bool perspective = false) const {
     tsp::CameraParams p;
+    p.projection = perspective ? tsp::Projection::perspective : tsp::Projection::orthographic;
     p.azimuth_deg = az;
     p.elevation_deg = el;
     p.width = ctx->width();
@@ -129,9 +131,11 @@ TEST(VolumeRenderer, ZeroToleranceMatchesBaselineOnGeneratedData) {
     Scene scene(path, tsp::preset_transfer_function(preset, file->tree().value_range()),
                 tsp::CachePolicy::on);
     for (int step : {0, 3, 5}) {
-      for (auto [az, el] : {std::pair{30.0, 20.0}, std::pair{-120.0, 55.0}}) {
-        const tsp::Camera cam = scene.camera(az, el);
-        expect_close(std::string("shock_") + preset + "_" + std::to_string(step),
+      for (auto [az, el, persp] : {std::tuple{30.0, 20.0, false}, std::tuple{-120.0, 55.0, false},
+                                   std::tuple{70.0, -25.0, true}}) {
+        const tsp::Camera cam = scene.camera(az, el, persp);
+        expect_close(std::string("shock_") + preset + "_" + std::to_string(step) +
+                         (persp ? "_perspective" : ""),
                      scene.tsp_frame(step, cam), scene.baseline_frame(step, cam), 0.5, 3.0);
       }
     }
@@ -170,6 +174,28 @@ TEST(VolumeRenderer, CacheOnAndOffGiveIdenticalImages) {
                                 << (a.rgba == b.rgba ? "" : keep_failure("cache_" + std::to_string(step), a, b));
     }
   }
+}
+
+TEST(VolumeRenderer, ToleranceChangeDropsUnreachableTexturesAndKeepsThePicture) {
+  auto src = tsp::make_generated_source("shock", {tsp::Dims{33, 30, 28}, 6});
+  const std::string path = build(*src, "shock", {}, 8);
+  auto file = tsp::TspFile::open(path);
+  Scene scene(path, tsp::preset_transfer_function("filled", file->tree().value_range()),
+              tsp::CachePolicy::on, 80, 60, tsp::Metric::approximate);
+  const tsp::Camera cam = scene.camera();
+  for (int step = 0; step < 6; ++step) scene.tsp_frame(step, cam);
+  const int before = scene.renderer->texture_count();
+  ASSERT_GT(before, 0);
+  // A spatial tolerance above every e_s draws everything flat: no texture stays reachable.
+  float max_es = 0;
+  for (float e : scene.metric.errors.spatial) max_es = std::max(max_es, e);
+  const tsp::Tolerances loose{double(max_es) + 1, 1e9};
+  EXPECT_EQ(scene.renderer->drop_unreachable(scene.metric, loose), before);
+  EXPECT_EQ(scene.renderer->texture_count(), 0);
+  // Back at zero tolerance nothing is reachable-but-missing: frames render as before.
+  EXPECT_EQ(scene.renderer->drop_unreachable(scene.metric, {}), 0);
+  tsp::Image again = scene.tsp_frame(3, cam);
+  expect_close("tolerance_round_trip", again, scene.baseline_frame(3, cam), 0.5, 3.0);
 }
 
 TEST(VolumeRenderer, ClassSharesSumTo100AndMatchTheTraversal) {
