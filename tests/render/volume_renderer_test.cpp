@@ -159,6 +159,25 @@ TEST(VolumeRenderer, ZeroToleranceMatchesBaselineOnRealData) {
   }
 }
 
+TEST(VolumeRenderer, ZeroToleranceMatchesBaselineOnRealCfd) {
+  // Two buoyant plumes from OpenFOAM (datasets/README.md), 32³ × 41 steps.
+  const fs::path h5 = tsptest::datasets_dir() / "samples" / "hotPlume_32.h5";
+  tsp::SourceOptions so;
+  so.field = "T";
+  auto src = tsp::open_source(h5.string(), so);
+  const std::string path = build(*src, "plume");
+  auto file = tsp::TspFile::open(path);
+  for (const char* preset : {"sparse", "filled"}) {
+    Scene scene(path, tsp::preset_transfer_function(preset, file->tree().value_range()),
+                tsp::CachePolicy::on);
+    for (int step : {5, 25, 40}) {
+      const tsp::Camera cam = scene.camera(35, 15);
+      expect_close(std::string("plume_") + preset + "_" + std::to_string(step),
+                   scene.tsp_frame(step, cam), scene.baseline_frame(step, cam), 0.5, 3.0);
+    }
+  }
+}
+
 TEST(VolumeRenderer, CacheOnAndOffGiveIdenticalImages) {
   auto src = tsp::make_generated_source("shock", {tsp::Dims{33, 30, 28}, 8});
   const std::string path = build(*src, "shock", {}, 8);
