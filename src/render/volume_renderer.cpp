@@ -206,9 +206,7 @@ void VolumeRenderer::upload_vertices() {
 
 void VolumeRenderer::draw_items(const std::vector<DrawItem>& items,
                                 const std::vector<GLuint>& textures,
-                                const std::vector<tsp::Box>& sample_boxes,
-                                const RenderSettings& settings) {
-  (void)settings;
+                                const std::vector<tsp::Box>& sample_boxes) {
   const Program* current = nullptr;
   for (const DrawItem& it : items) {
     if (it.polygon_count == 0) continue;
@@ -298,7 +296,7 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
   r.upload_ms = ms_since(t0);
 
   t0 = Clock::now();
-  draw_items(items, textures, sample_boxes, settings);
+  draw_items(items, textures, sample_boxes);
   for (const tsp::TextureKey& k : plan.release_after) delete_texture(k);
   end_frame();
   ctx_.finish();
@@ -361,7 +359,7 @@ FrameReport VolumeRenderer::render_baseline(int step, const tsp::Camera& camera,
   r.polygons = std::int64_t(soup_.size());
 
   t0 = Clock::now();
-  draw_items({item}, {baseline_texture_}, {whole}, settings);
+  draw_items({item}, {baseline_texture_}, {whole});
   end_frame();
   ctx_.finish();
   r.draw_ms = ms_since(t0);

@@ -86,7 +86,6 @@ class VolumeRenderer {
     int first_polygon = 0, polygon_count = 0;
     int texture = -1;  ///< index into the plan's textures, −1 for a flat item
     std::array<float, 4> colour{};
-    tsp::Aabb box;
   };
   void begin_frame(const tsp::Camera& camera, const RenderSettings& settings);
   void end_frame();
@@ -94,7 +93,7 @@ class VolumeRenderer {
   void ensure_target();
   void upload_vertices();
   void draw_items(const std::vector<DrawItem>& items, const std::vector<GLuint>& textures,
-                  const std::vector<tsp::Box>& sample_boxes, const RenderSettings& settings);
+                  const std::vector<tsp::Box>& sample_boxes);
   GLuint upload_brick(int brick, int step);
   void delete_texture(const tsp::TextureKey& key);
 
