@@ -18,7 +18,7 @@ struct BenchArgs {
   std::string file, out, steps, size = "640x480", view = "30,20";
   std::vector<std::string> tfs;
   std::string metrics = "scalar,approximate,perceptual,reference", targets = "1,3";
-  int search_steps = 8, search_iterations = 7, passes = 2;
+  int search_steps = 8, search_iterations = 10, passes = 2;
 };
 
 std::vector<std::string> split(const std::string& text) {
@@ -115,7 +115,7 @@ const CommandRegistrar reg(45, [](CLI::App& app) {
   c->add_option("--metrics", a->metrics, "Comma-separated metrics (default all four)");
   c->add_option("--targets", a->targets, "Target mean dE values for Table 4 (default 1,3)");
   c->add_option("--search-steps", a->search_steps, "Steps rendered per search probe (default 8)");
-  c->add_option("--search-iterations", a->search_iterations, "Bisection steps (default 7)");
+  c->add_option("--search-iterations", a->search_iterations, "Bisection steps (default 10)");
   c->add_option("--passes", a->passes, "Timed passes over the steps; the last counts (default 2)");
   c->callback([a] { run(*a); });
 });

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <memory>
 #include <sstream>
@@ -28,9 +29,9 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-// The search's low bracket: this many decades below the largest node error. Below it the
-// traversal already descends to (almost) the leaves, so the picture is the zero-tolerance one.
-constexpr double kSearchDecades = 4;
+// The search's low bracket is the smallest positive node error (below it every traversal is the
+// zero-tolerance one), but at most this many decades below the largest, to bound the bisection.
+constexpr double kMaxSearchDecades = 9;
 
 // A timed run: run_render_job without files, summarised over its last pass.
 struct Timing {
@@ -111,16 +112,25 @@ double mean_delta_e(const std::vector<tsp::Image>& a, const std::vector<tsp::Ima
   return a.empty() ? 0 : sum / double(a.size());
 }
 
-// Largest finite e_s or e_t of a non-transparent node: at or above it the traversal stops at
-// the root everywhere.
-double largest_error(const tsp::MetricResult& m) {
-  double hi = 0;
+// Smallest positive and largest finite e_s or e_t of a non-transparent node: below the first
+// every traversal is the zero-tolerance one; at or above the second it stops at the root.
+struct ErrorSpan {
+  double smallest_positive = 0, largest = 0;
+};
+
+ErrorSpan error_span(const tsp::MetricResult& m) {
+  ErrorSpan s;
+  s.smallest_positive = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < m.errors.spatial.size(); ++i) {
     if (m.transparent[i]) continue;
-    for (float e : {m.errors.spatial[i], m.errors.temporal[i]})
-      if (std::isfinite(e)) hi = std::max(hi, double(e));
+    for (float e : {m.errors.spatial[i], m.errors.temporal[i]}) {
+      if (!std::isfinite(e)) continue;
+      s.largest = std::max(s.largest, double(e));
+      if (e > 0) s.smallest_positive = std::min(s.smallest_positive, double(e));
+    }
   }
-  return hi;
+  if (!std::isfinite(s.smallest_positive)) s.smallest_positive = 0;
+  return s;
 }
 
 // One search result.
@@ -143,7 +153,8 @@ std::vector<Found> search(ImageProbe& probe, const std::vector<tsp::Image>& base
     return de;
   };
   const double zero_de = eval(0);
-  const double top = largest_error(metric);
+  const ErrorSpan span = error_span(metric);
+  const double top = span.largest;
   std::vector<Found> out;
   for (double target : targets) {
     Found f;
@@ -153,7 +164,8 @@ std::vector<Found> search(ImageProbe& probe, const std::vector<tsp::Image>& base
     } else if (eval(top) <= target) {
       f.tol = top;  // even the coarsest picture is within the target
     } else {
-      double lo = top * std::pow(10.0, -kSearchDecades), hi = top;
+      double lo = std::max(span.smallest_positive, top * std::pow(10.0, -kMaxSearchDecades));
+      double hi = top;
       if (eval(lo) > target) {
         f.tol = 0;
       } else {
@@ -328,7 +340,8 @@ json run_bench(const BenchOptions& o, const BenchProgress& progress) {
         zero_de[m] = evals[0]["mean_delta_e"];
         searches.push_back({{"tf", tf_arg},
                             {"metric", name},
-                            {"largest_error", largest_error(metric)},
+                            {"largest_error", error_span(metric).largest},
+                            {"smallest_positive_error", error_span(metric).smallest_positive},
                             {"evaluations", evals}});
         ++done;
       }

@@ -24,7 +24,7 @@ struct BenchOptions {
                                    tsp::Metric::perceptual, tsp::Metric::reference};
   std::vector<double> targets{1.0, 3.0};  ///< target mean ΔE per Table-4 row ("slight", "moderate")
   int search_steps = 8;  ///< at most this many evenly spread steps are rendered per search probe
-  int search_iterations = 7;  ///< bisection steps on the log-tolerance scale
+  int search_iterations = 10;  ///< bisection steps on the log-tolerance scale
   int passes = 2;             ///< timed runs play the steps this many times; the last pass counts
 };
 
