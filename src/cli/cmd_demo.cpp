@@ -12,6 +12,7 @@
 #include "cli/build_runner.h"
 #include "cli/commands.h"
 #include "cli/info_report.h"
+#include "cli/movie.h"
 #include "render/render_job.h"
 #include "tsp/error.h"
 #include "tsp/image.h"
@@ -112,6 +113,23 @@ json render_frames(const fs::path& tsp_path, const fs::path& tf_path, const fs::
   return out;
 }
 
+// Encodes DIR/frames into DIR/demo.mp4 when ffmpeg is installed; returns its path or null.
+// A failing encoder is reported, not fatal: the movie is an extra.
+json make_movie(const fs::path& dir) {
+  const fs::path movie = dir / "demo.mp4";
+  try {
+    if (encode_movie(dir / "frames", 0, movie)) {
+      std::printf("  movie: %s (%d frames a second)\n", movie.string().c_str(), kMovieFps);
+      return movie.string();
+    }
+    std::printf("  movie: skipped (no ffmpeg on PATH; the frames are in %s)\n",
+                (dir / "frames").string().c_str());
+  } catch (const tsp::Error& e) {
+    std::printf("  movie: skipped (%s)\n", e.what());
+  }
+  return nullptr;
+}
+
 void run(const DemoArgs& a) {
   tsp::GenerateOptions gen;
   if (!a.dims.empty()) gen.dims = parse_dims(a.dims, "--dims", tsp::kMaxGeneratedEdge, true);
@@ -184,6 +202,7 @@ void run(const DemoArgs& a) {
     report["metrics"].push_back(s);
   }
   report["render"] = render_frames(tsp_path, tf_path, dir);
+  report["movie"] = make_movie(dir);
   write_text(report_path, report.dump(2) + "\n");
   std::printf("\nwrote %s\nnext:\n  tspplay info %s --json --nodes\n  tspplay metrics %s --tf %s\n",
               report_path.string().c_str(), tsp_path.string().c_str(), tsp_path.string().c_str(),

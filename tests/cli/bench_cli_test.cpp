@@ -1,0 +1,185 @@
+// tspplay bench end to end on a tiny generated dataset: the files, CSV columns and JSON keys the
+// issue promises, SVG that parses, and Table 4's tolerances checked by rendering them again
+// through `tspplay render` and `tspplay diff`.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <pugixml.hpp>
+#include <sstream>
+
+#include "support/paths.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using tsptest::run_tspplay;
+
+std::string q(const fs::path& p) {
+  return "'" + p.string() + "'";
+}
+
+json read_json(const fs::path& p) {
+  std::ifstream in(p);
+  return json::parse(in);
+}
+
+std::string first_line(const fs::path& p) {
+  std::ifstream in(p);
+  std::string line;
+  std::getline(in, line);
+  return line;
+}
+
+int line_count(const fs::path& p) {
+  std::ifstream in(p);
+  std::string line;
+  int n = 0;
+  while (std::getline(in, line)) ++n;
+  return n;
+}
+
+std::string step_png(int t) {
+  char name[32];
+  std::snprintf(name, sizeof name, "step_%04d.png", t);
+  return name;
+}
+
+// One bench run shared by the tests (it is the slow part).
+class BenchCli : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new fs::path(tsptest::temp_dir());
+    auto g = run_tspplay("generate shock -o " + q(*dir_ / "s.h5") + " --dims 24 --steps 4");
+    ASSERT_EQ(g.exit_code, 0) << g.err;
+    auto b = run_tspplay("build " + q(*dir_ / "s.h5") + " --field shock --brick 8 -o " +
+                         q(*dir_ / "s.tsp"));
+    ASSERT_EQ(b.exit_code, 0) << b.err;
+    auto r =
+        run_tspplay("bench " + q(*dir_ / "s.tsp") + " " + kArgs + " -o " + q(*dir_ / "report"));
+    ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+    out_ = new std::string(r.out);
+  }
+  static void TearDownTestSuite() {
+    delete dir_;
+    delete out_;
+  }
+  static inline const std::string kArgs =
+      "--tf preset:filled --steps 1:2 --size 96x72 --view 40,25 --metrics approximate,scalar "
+      "--targets 1,3 --search-iterations 6";
+  static inline fs::path* dir_ = nullptr;
+  static inline std::string* out_ = nullptr;
+};
+
+TEST_F(BenchCli, WritesEveryFileWithItsColumns) {
+  const fs::path r = *dir_ / "report";
+  EXPECT_EQ(
+      first_line(r / "table3.csv"),
+      "tf,renderer,metric,cache,median_ms,first_pass_median_ms,speedup,metric_ms,mean_delta_e");
+  EXPECT_EQ(line_count(r / "table3.csv"), 1 + 1 + 2 * 2);  // header, baseline, 2 metrics × cache
+  EXPECT_EQ(first_line(r / "table4.csv"),
+            "tf,metric,target_delta_e,tolerance,mean_delta_e,target_met,median_ms_cache_off,"
+            "median_ms_cache_on,speedup_cache_off,speedup_cache_on");
+  EXPECT_EQ(line_count(r / "table4.csv"), 1 + 2 * 2);  // 2 metrics × 2 targets
+  EXPECT_EQ(first_line(r / "table5.csv"),
+            "tf,metric,cache,tolerance,target_delta_e,not_rendered,untextured,reused_texture,"
+            "new_texture");
+  EXPECT_EQ(line_count(r / "table5.csv"), 1 + 2 * 2 + 2 * 2 * 2);
+  EXPECT_NE(out_->find("Table 3"), std::string::npos);
+  EXPECT_NE(out_->find("[  1/"), std::string::npos) << "progress lines";
+}
+
+TEST_F(BenchCli, ReportHasEveryKey) {
+  json j = read_json(*dir_ / "report" / "report.json");
+  for (const char* k :
+       {"file", "dims", "brick_size", "steps", "size", "view", "passes", "targets", "search_steps",
+        "tolerance_rule", "renderer", "table3", "table4", "table5", "searches", "plots"})
+    EXPECT_TRUE(j.contains(k)) << k;
+  EXPECT_EQ(j["search_steps"], json({1, 2}));
+  ASSERT_EQ(j["table3"].size(), 5u);
+  for (const json& r : j["table3"]) {
+    for (const char* k : {"median_ms", "step_ms", "steps", "not_rendered", "untextured",
+                          "reused_texture", "new_texture"})
+      EXPECT_TRUE(r.contains(k)) << k;
+    EXPECT_EQ(r["steps"], json({1, 2}));
+    const double sum = r["not_rendered"].get<double>() + r["untextured"].get<double>() +
+                       r["reused_texture"].get<double>() + r["new_texture"].get<double>();
+    EXPECT_NEAR(sum, 100.0, 1e-6);
+    EXPECT_GT(r["median_ms"].get<double>(), 0);
+  }
+  // Zero tolerance with the TSP tree draws what the baseline draws.
+  for (const json& r : j["table3"])
+    if (r["renderer"] == "tsp") {
+      EXPECT_LT(r["mean_delta_e"].get<double>(), 0.5);
+    }
+}
+
+TEST_F(BenchCli, PlotsAreWellFormedSvg) {
+  json j = read_json(*dir_ / "report" / "report.json");
+  ASSERT_EQ(j["plots"].size(), 2u);
+  for (const json& p : j["plots"]) {
+    pugi::xml_document doc;
+    pugi::xml_parse_result r = doc.load_file((*dir_ / "report" / p.get<std::string>()).c_str());
+    EXPECT_TRUE(r) << p << ": " << r.description();
+    EXPECT_TRUE(doc.child("svg")) << p;
+    EXPECT_TRUE(doc.child("svg").child("polyline")) << p;
+  }
+}
+
+// Renders the search steps at the tolerance and compares them with the baseline through the CLI.
+double rerendered_mean_delta_e(const fs::path& tsp, const std::string& metric, double tol,
+                               const fs::path& base) {
+  const fs::path out = tsptest::temp_dir() / "t";
+  std::ostringstream args;
+  args.precision(17);
+  args << "render " << q(tsp) << " --tf preset:filled --steps 1:2 --size 96x72 --view 40,25"
+       << " --metric " << metric << " --spatial-tol " << tol << " --temporal-tol " << tol << " -o "
+       << q(out);
+  auto r = run_tspplay(args.str());
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  double sum = 0;
+  for (int t = 1; t <= 2; ++t) {
+    auto d = run_tspplay("diff " + q(out / step_png(t)) + " " + q(base / step_png(t)) + " --json");
+    EXPECT_EQ(d.exit_code, 0) << d.err;
+    sum += json::parse(d.out)["mean"].get<double>();
+  }
+  return sum / 2;
+}
+
+TEST_F(BenchCli, FoundTolerancesReallyMeetTheirTargets) {
+  const fs::path tsp = *dir_ / "s.tsp", base = tsptest::temp_dir() / "base";
+  ASSERT_EQ(run_tspplay("render " + q(tsp) +
+                        " --baseline --tf preset:filled --steps 1:2 --size 96x72 --view 40,25 -o " +
+                        q(base))
+                .exit_code,
+            0);
+  json j = read_json(*dir_ / "report" / "report.json");
+  std::map<std::string, std::map<double, double>> tol;  // metric → target → tolerance
+  for (const json& r : j["table4"]) {
+    const std::string metric = r["metric"];
+    const double target = r["target_delta_e"], t = r["tolerance"];
+    ASSERT_TRUE(r["target_met"].get<bool>()) << metric << " " << target;
+    const double de = rerendered_mean_delta_e(tsp, metric, t, base);
+    EXPECT_LE(de, target) << metric << " target " << target << " tol " << t;
+    EXPECT_NEAR(de, r["mean_delta_e"].get<double>(), 1e-6) << metric;
+    tol[metric][target] = t;
+  }
+  ASSERT_EQ(tol.size(), 2u);
+  for (auto& [metric, by_target] : tol) EXPECT_GT(by_target[3.0], by_target[1.0]) << metric;
+}
+
+TEST(BenchCliErrors, BadInputIsAClearErrorAndWritesNothing) {
+  const fs::path dir = tsptest::temp_dir();
+  auto r = run_tspplay("bench " + q(dir / "missing.tsp") + " -o " + q(dir / "rep"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("missing.tsp"), std::string::npos) << r.err;
+  auto t = run_tspplay("bench " + q(dir / "missing.tsp") + " --targets 1,x -o " + q(dir / "rep"));
+  EXPECT_EQ(t.exit_code, 2);
+  EXPECT_NE(t.err.find("--targets"), std::string::npos) << t.err;
+  EXPECT_FALSE(fs::exists(dir / "rep"));
+}
+
+}  // namespace
