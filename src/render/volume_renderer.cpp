@@ -114,6 +114,18 @@ int VolumeRenderer::drop_unreachable(const tsp::MetricResult& metric, const tsp:
   return int(dropped.size());
 }
 
+int VolumeRenderer::drop_unreachable(tsp::LazyErrors& metric, const tsp::Tolerances& tol) {
+  const tsp::NodeErrors& errors = metric.all();
+  auto info = [&metric](int id) {
+    const tsp::NodeResult& n = metric.node(id);
+    return tsp::NodeClassInfo{n.spatial, n.transparent};
+  };
+  const auto dropped =
+      cache_.drop_unreachable(tsp::reachable_textures(file_.tree(), errors, info, tol));
+  for (const tsp::TextureKey& k : dropped) delete_texture(k);
+  return int(dropped.size());
+}
+
 void VolumeRenderer::delete_texture(const tsp::TextureKey& key) {
   auto it = textures_.find(key);
   if (it == textures_.end()) return;
@@ -235,6 +247,27 @@ void VolumeRenderer::draw_items(const std::vector<DrawItem>& items,
 FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
                                    const RenderSettings& settings,
                                    const tsp::MetricResult& metric) {
+  return render_tree(step, camera, settings, metric.errors, tsp::node_info(metric),
+                     [&metric](int id) { return metric.mean_colour[std::size_t(id)]; });
+}
+
+FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
+                                   const RenderSettings& settings, tsp::LazyErrors& metric) {
+  const tsp::NodeErrors& errors = metric.errors_for_step(step);
+  // errors_for_step made every node this step's traversal can reach current, so node(id) below
+  // only reads memoised results.
+  auto info = [&metric](int id) {
+    const tsp::NodeResult& n = metric.node(id);
+    return tsp::NodeClassInfo{n.spatial, n.transparent};
+  };
+  return render_tree(step, camera, settings, errors, info,
+                     [&metric](int id) { return metric.node(id).mean; });
+}
+
+FrameReport VolumeRenderer::render_tree(int step, const tsp::Camera& camera,
+                                        const RenderSettings& settings,
+                                        const tsp::NodeErrors& errors, const tsp::NodeInfoFn& info,
+                                        const ColourFn& colour) {
   const auto t_frame = Clock::now();
   const tsp::TspTree& tree = file_.tree();
   const tsp::Octree& octree = tree.octree();
@@ -245,9 +278,9 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
   auto t0 = Clock::now();
   const tsp::ViewOrder order = view_order(camera);
   const std::vector<tsp::Emitted> emitted =
-      tsp::traverse(tree, step, settings.tol, metric.errors, order);
-  const tsp::FramePlan plan = tsp::plan_frame(tree, step, emitted, tsp::node_info(metric),
-                                              settings.tol, order, cache_);
+      tsp::traverse(tree, step, settings.tol, errors, order);
+  const tsp::FramePlan plan =
+      tsp::plan_frame(tree, step, emitted, info, settings.tol, order, cache_);
   r.traversal_ms = ms_since(t0);
 
   t0 = Clock::now();
@@ -268,7 +301,7 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
     if (n.cls == tsp::DrawClass::not_rendered) continue;
     const int tsp_id = tree.id(n.node.octree_id, n.node.time_id);
     if (n.cls == tsp::DrawClass::untextured) {
-      const tsp::Rgba c = metric.mean_colour[std::size_t(tsp_id)];
+      const tsp::Rgba c = colour(tsp_id);
       const float a = corrected_alpha(c.a, settings.spacing);
       add(tsp::geometric_box(octree.node(n.node.octree_id).box, octree.dims()), -1,
           {c.r * a, c.g * a, c.b * a, a});

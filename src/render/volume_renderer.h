@@ -4,6 +4,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <unordered_map>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "tsp/brick_cache.h"
 #include "tsp/camera.h"
 #include "tsp/frame_plan.h"
+#include "tsp/lazy_errors.h"
 #include "tsp/metrics.h"
 #include "tsp/slicing.h"
 #include "tsp/texture_cache.h"
@@ -68,6 +70,10 @@ class VolumeRenderer {
   /// transparency. Throws tsp::Error on brick read failures, tsp::GlError on GL failures.
   FrameReport render(int step, const tsp::Camera& camera, const RenderSettings& settings,
                      const tsp::MetricResult& metric);
+  /// Same, with live errors: only the nodes step's traversal can visit are (re)evaluated, so a
+  /// TF edit costs what the next frame needs (spec §4). Throws like render.
+  FrameReport render(int step, const tsp::Camera& camera, const RenderSettings& settings,
+                     tsp::LazyErrors& metric);
   /// Draws step without the tree: the whole volume uploaded as one texture and sliced as one
   /// box. Class shares report everything as new texture. Throws like render.
   FrameReport render_baseline(int step, const tsp::Camera& camera, const RenderSettings& settings);
@@ -78,6 +84,8 @@ class VolumeRenderer {
   /// After a tolerance (or metric) change: deletes the textures no frame can draw any more under
   /// metric and tol (one traversal per step) and returns how many. TF edits need no call.
   int drop_unreachable(const tsp::MetricResult& metric, const tsp::Tolerances& tol);
+  /// Same with live errors (evaluates every node once for the current TF).
+  int drop_unreachable(tsp::LazyErrors& metric, const tsp::Tolerances& tol);
   /// Number of GL brick textures alive.
   int texture_count() const { return int(textures_.size()); }
 
@@ -88,6 +96,11 @@ class VolumeRenderer {
     std::array<float, 4> colour{};
     tsp::Aabb box;
   };
+  /// Mean (unpremultiplied) colour of a TSP node under the frame's metric.
+  using ColourFn = std::function<tsp::Rgba(int tsp_id)>;
+  FrameReport render_tree(int step, const tsp::Camera& camera, const RenderSettings& settings,
+                          const tsp::NodeErrors& errors, const tsp::NodeInfoFn& info,
+                          const ColourFn& colour);
   void begin_frame(const tsp::Camera& camera, const RenderSettings& settings);
   void end_frame();
   void upload_tf(double spacing);

@@ -249,5 +249,52 @@ TEST(VolumeRenderer, ClassSharesSumTo100AndMatchTheTraversal) {
   }
 }
 
+// The live-metric overload draws exactly what the whole-tree metric draws, also after a TF edit
+// (which LazyErrors notices through the TF's version) and at non-zero tolerances.
+TEST(VolumeRenderer, LazyErrorsRenderLikeTheWholeTreeMetricAcrossATfEdit) {
+  auto src = tsp::make_generated_source("shock", {tsp::Dims{33, 30, 28}, 6});
+  const std::string path = build(*src, "shock", {}, 8);
+  auto file = tsp::TspFile::open(path);
+  const tsp::ValueRange range = file->tree().value_range();
+  Scene whole(path, tsp::preset_transfer_function("sparse", range), tsp::CachePolicy::on, 80, 60,
+              tsp::Metric::approximate);
+  tsp::TransferFunction live_tf = whole.tf;
+  auto live_ctx = create_offscreen_context(80, 60);
+  VolumeRenderer live(*live_ctx, *whole.file, tsp::CachePolicy::on);
+  live.set_transfer_function(live_tf);
+  tsp::LazyErrors lazy(whole.file->tree(), tsp::Metric::approximate, live_tf);
+  const tsp::Camera cam = whole.camera();
+  auto compare = [&](const std::string& what) {
+    for (tsp::Tolerances tol : {tsp::Tolerances{0, 0}, tsp::Tolerances{0.05, 0.02}}) {
+      for (int step : {0, 3, 5}) {
+        RenderSettings s;
+        s.tol = tol;
+        FrameReport a = whole.renderer->render(step, cam, s, whole.metric);
+        tsp::Image ia = whole.ctx->read_pixels();
+        FrameReport b = live.render(step, cam, s, lazy);
+        tsp::Image ib = live_ctx->read_pixels();
+        EXPECT_EQ(ia.rgba, ib.rgba) << what << " step " << step << " tol " << tol.spatial;
+        EXPECT_EQ(a.class_percent, b.class_percent) << what << " step " << step;
+      }
+    }
+  };
+  compare("before the edit");
+  const tsp::TransferFunction filled = tsp::preset_transfer_function("filled", range);
+  live_tf.set_entries(0, filled.entries());
+  live.set_transfer_function(live_tf);
+  whole.tf = filled;
+  whole.renderer->set_transfer_function(filled);
+  whole.metric = tsp::compute_errors(tsp::Metric::approximate, whole.file->tree(), filled);
+  compare("after the edit");
+  // Through the live metric: drop_unreachable agrees with the whole-tree metric's, and above
+  // every error everything is flat, so no texture stays.
+  EXPECT_EQ(live.drop_unreachable(lazy, {0, 0}),
+            whole.renderer->drop_unreachable(whole.metric, {0, 0}));
+  const int before = live.texture_count();
+  ASSERT_GT(before, 0);
+  EXPECT_EQ(live.drop_unreachable(lazy, {1e9, 1e9}), before);
+  EXPECT_EQ(live.texture_count(), 0);
+}
+
 }  // namespace
 }  // namespace tspgl
