@@ -31,6 +31,8 @@ constexpr double kOrbitDegPerPixel = 0.4;
 constexpr double kZoomPerWheelStep = 1.1;
 constexpr double kMaxElevation = 89;
 constexpr float kMinToleranceCeiling = 1e-3f;
+constexpr float kKnotEpsilon = 1e-4f;  // slope change that marks a TF knot
+constexpr int kMaxEditorPoints = 24;
 constexpr double kMaxFrameDt = 0.25;  // a stalled frame does not skip many steps at once
 
 // Largest finite error in e: the tolerance sliders' upper end (a tolerance above every error
@@ -41,6 +43,32 @@ float largest_error(const tsp::NodeErrors& e) {
     for (float x : *v)
       if (std::isfinite(x)) m = std::max(m, x);
   return std::max(m, kMinToleranceCeiling);
+}
+
+// The TF's knots: the first and last entries and every entry where the table's slope changes, so
+// that rebuilding from them reproduces a piecewise-linear TF (presets, our JSON). A TF with more
+// knots than kMaxEditorPoints gets kEditorPoints evenly spaced samples instead.
+std::vector<tsp::TfPoint> editor_points(const tsp::TransferFunction& tf) {
+  const int n = tf.size();
+  std::vector<tsp::TfPoint> pts;
+  auto slope_changes = [&tf](int j) {
+    const tsp::Rgba a = tf.entry(j - 1), b = tf.entry(j), c = tf.entry(j + 1);
+    const float d[4] = {(c.r - b.r) - (b.r - a.r), (c.g - b.g) - (b.g - a.g),
+                        (c.b - b.b) - (b.b - a.b), (c.a - b.a) - (b.a - a.a)};
+    for (float v : d)
+      if (std::fabs(v) > kKnotEpsilon) return true;
+    return false;
+  };
+  for (int j = 0; j < n; ++j)
+    if (j == 0 || j == n - 1 || slope_changes(j)) pts.push_back({tf.entry_value(j), tf.entry(j)});
+  if (int(pts.size()) <= kMaxEditorPoints) return pts;
+  pts.clear();
+  const tsp::ValueRange d = tf.domain();
+  for (int i = 0; i < kEditorPoints; ++i) {
+    const double x = d.lo + (d.hi - d.lo) * i / (kEditorPoints - 1);
+    pts.push_back({x, tf.lookup(x)});
+  }
+  return pts;
 }
 
 }  // namespace
@@ -74,9 +102,7 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
 
   ctx = tspgl::create_window_context(options.width, options.height, "tspplay - " + options.tsp_path,
                                      true);
-  renderer = std::make_unique<tspgl::VolumeRenderer>(*ctx, *file, tsp::CachePolicy::on,
-                                                     std::int64_t(texture_budget_mb * (1 << 20)));
-  renderer->set_transfer_function(tf);
+  make_renderer();
 
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
@@ -96,7 +122,19 @@ PlayerApp::~PlayerApp() {
     ImGui_ImplGlfw_Shutdown();
     ImGui::DestroyContext();
   }
-  renderer.reset();  // its GL objects go before the context
+  prefetcher.reset();  // its thread reads into the renderer's brick cache
+  renderer.reset();    // its GL objects go before the context
+}
+
+void PlayerApp::make_renderer() {
+  prefetcher.reset();
+  renderer.reset();
+  renderer = std::make_unique<tspgl::VolumeRenderer>(
+      *ctx, *file, cache_on ? tsp::CachePolicy::on : tsp::CachePolicy::off,
+      std::int64_t(texture_budget_mb * (1 << 20)));
+  renderer->set_transfer_function(tf);
+  prefetcher = std::make_unique<Prefetcher>(renderer->brick_cache());
+  prefetched_for_ = -1;
 }
 
 int PlayerApp::steps() const {
@@ -127,14 +165,7 @@ void PlayerApp::set_tf(const tsp::TransferFunction& next, bool resample_points) 
       lazy_->set_transfer_function(tf);
     }
   }
-  if (resample_points) {
-    tf_points.clear();
-    const tsp::ValueRange d = tf.domain();
-    for (int i = 0; i < kEditorPoints; ++i) {
-      const double x = d.lo + (d.hi - d.lo) * i / (kEditorPoints - 1);
-      tf_points.push_back({x, tf.lookup(x)});
-    }
-  }
+  if (resample_points) tf_points = editor_points(tf);
   if (renderer) renderer->set_transfer_function(tf);
 }
 
@@ -177,11 +208,27 @@ void PlayerApp::set_tolerances(tsp::Tolerances t) {
 void PlayerApp::set_cache(bool on, double budget_mb) {
   cache_on = on;
   texture_budget_mb = std::max(1.0, budget_mb);
-  renderer.reset();
-  renderer = std::make_unique<tspgl::VolumeRenderer>(
-      *ctx, *file, on ? tsp::CachePolicy::on : tsp::CachePolicy::off,
-      std::int64_t(texture_budget_mb * (1 << 20)));
-  renderer->set_transfer_function(tf);
+  make_renderer();
+}
+
+// During playback: the bricks the next kPrefetchSteps frames would upload, in playing order,
+// go to the prefetch thread once per step change (the request replaces the previous one).
+void PlayerApp::request_prefetch(const tsp::Camera& cam, const tspgl::RenderSettings& settings) {
+  if (!playing || !prefetch_on || prefetched_for_ == step) return;
+  prefetched_for_ = step;
+  std::vector<tsp::BrickKey> keys;
+  for (int k = 1; k <= kPrefetchSteps; ++k) {
+    int t = step + k;
+    if (t >= steps()) {
+      if (!loop) break;
+      t %= steps();
+    }
+    std::vector<tsp::BrickKey> more = metric == tsp::Metric::reference
+                                          ? renderer->bricks_to_upload(t, cam, settings, reference_)
+                                          : renderer->bricks_to_upload(t, cam, settings, *lazy_);
+    keys.insert(keys.end(), more.begin(), more.end());
+  }
+  prefetcher->request(std::move(keys));
 }
 
 void PlayerApp::request_save() {
@@ -208,6 +255,7 @@ void PlayerApp::render_volume() {
   if (metric == tsp::Metric::reference) {
     refresh_reference();
     last = renderer->render(step, cam, settings, reference_);
+    request_prefetch(cam, settings);
     return;
   }
   // Evaluate this step's nodes here so the HUD can show the recompute cost; render() then only
@@ -221,6 +269,7 @@ void PlayerApp::render_volume() {
     metric_evaluations = lazy_->evaluations() - before;
   }
   last = renderer->render(step, cam, settings, *lazy_);
+  request_prefetch(cam, settings);
 }
 
 void PlayerApp::advance_playback(double dt) {
@@ -402,7 +451,12 @@ void PlayerApp::frame() {
 }
 
 void PlayerApp::run() {
-  while (!quit_ && !ctx->should_close()) frame();
+  int frames = 0;
+  for (; !quit_ && !ctx->should_close(); ++frames) frame();
+  const tsp::BrickCacheStats b = renderer->brick_cache().stats();
+  std::printf("played %d frames; bricks: %lld hits, %lld misses, %lld prefetched\n", frames,
+              static_cast<long long>(b.hits), static_cast<long long>(b.misses),
+              static_cast<long long>(b.prefetched));
 }
 
 }  // namespace tspplayer

@@ -9,6 +9,7 @@
 
 #include "gl/context.h"
 #include "player/player.h"
+#include "player/prefetcher.h"
 #include "player/script.h"
 #include "render/volume_renderer.h"
 #include "tsp/camera.h"
@@ -21,8 +22,10 @@ namespace tspplayer {
 
 /// Seconds of frame times kept for the HUD plot.
 inline constexpr double kFrameHistorySeconds = 5.0;
-/// Control points the TF editor samples from a loaded transfer function.
+/// Control points the TF editor samples from a TF without few clear knots.
 inline constexpr int kEditorPoints = 9;
+/// Steps ahead whose bricks are read in the background during playback.
+inline constexpr int kPrefetchSteps = 2;
 
 /// One frame time sample for the HUD.
 struct FrameSample {
@@ -45,6 +48,7 @@ class PlayerApp {
   std::unique_ptr<tsp::TspFile> file;
   std::unique_ptr<tspgl::GlContext> ctx;
   std::unique_ptr<tspgl::VolumeRenderer> renderer;
+  std::unique_ptr<Prefetcher> prefetcher;  ///< reads into renderer's brick cache; made after it
   tsp::TransferFunction tf;
   std::vector<tsp::TfPoint> tf_points;  ///< the editor's control points
   std::string tf_path = "tf.json";      ///< load/save path in the editor
@@ -53,6 +57,7 @@ class PlayerApp {
   tsp::Tolerances tol;
   float tol_max = 1;  ///< upper end of the tolerance sliders (largest error of a step)
   bool cache_on = true;
+  bool prefetch_on = true;  ///< read the next steps' bricks in the background while playing
   double texture_budget_mb = double(tspgl::kDefaultTextureBudget) / (1 << 20);
   int step = 0;
   bool playing = false, loop = true;
@@ -92,6 +97,8 @@ class PlayerApp {
   void render_volume();
   void save_pending_shot();
   void refresh_reference();
+  void request_prefetch(const tsp::Camera& cam, const tspgl::RenderSettings& settings);
+  void make_renderer();
   void update_tol_max();
 
   PlayerOptions options_;
@@ -107,6 +114,7 @@ class PlayerApp {
   bool quit_ = false;
   bool imgui_ = false;
   double play_accum_ = 0;
+  int prefetched_for_ = -1;  ///< step whose successors were last requested
   double start_s_ = 0, last_frame_s_ = 0;
 };
 

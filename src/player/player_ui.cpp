@@ -82,6 +82,8 @@ void settings(PlayerApp& app) {
 
   bool cache = app.cache_on;
   if (ImGui::Checkbox("texture cache", &cache)) app.set_cache(cache, app.texture_budget_mb);
+  ImGui::SameLine();
+  ImGui::Checkbox("prefetch", &app.prefetch_on);
   static double budget = -1;
   if (budget < 0) budget = app.texture_budget_mb;
   ImGui::SetNextItemWidth(120);
@@ -106,8 +108,8 @@ void settings(PlayerApp& app) {
 }
 
 void hud(PlayerApp& app) {
-  ImGui::SetNextWindowPos(ImVec2(float(app.ctx->width()) - 310, 10), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(300, 250), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowPos(ImVec2(float(app.ctx->width()) - 390, 10), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(380, 330), ImGuiCond_FirstUseEver);
   ImGui::Begin("Statistics");
   std::vector<float> ms;
   double sum = 0;
@@ -131,6 +133,11 @@ void hud(PlayerApp& app) {
   ImGui::Text("uploaded this frame %.2f MiB", double(r.bytes_uploaded) / kBytesPerMiB);
   ImGui::Text("metric recompute %.2f ms (%lld nodes)", app.metric_ms,
               static_cast<long long>(app.metric_evaluations));
+  const tsp::BrickCacheStats b = app.renderer->brick_cache().stats();
+  ImGui::Text("bricks in RAM %lld (%.1f MiB): %lld hits, %lld misses, %lld prefetched",
+              static_cast<long long>(b.resident_count), double(b.resident_bytes) / kBytesPerMiB,
+              static_cast<long long>(b.hits), static_cast<long long>(b.misses),
+              static_cast<long long>(b.prefetched));
   ImGui::End();
 }
 

@@ -114,6 +114,40 @@ int VolumeRenderer::drop_unreachable(const tsp::MetricResult& metric, const tsp:
   return int(dropped.size());
 }
 
+std::vector<tsp::BrickKey> VolumeRenderer::bricks_needed(int step, const tsp::Camera& camera,
+                                                         const RenderSettings& settings,
+                                                         const tsp::NodeErrors& errors,
+                                                         const tsp::NodeInfoFn& info) const {
+  const tsp::TspTree& tree = file_.tree();
+  const tsp::ViewOrder order = view_order(camera);
+  std::vector<tsp::BrickKey> keys;
+  for (const tsp::Emitted& e : tsp::traverse(tree, step, settings.tol, errors, order)) {
+    const int id = tree.id(e.octree_id, e.time_id);
+    if (tsp::shading_of(info(id), settings.tol) != tsp::Shading::textured) continue;
+    for (int brick : tsp::leaf_bricks(tree.octree(), e.octree_id, order))
+      if (!textures_.contains(tsp::TextureKey{brick, e.span.t0, 0}))
+        keys.push_back({brick, e.span.t0});
+  }
+  return keys;
+}
+
+std::vector<tsp::BrickKey> VolumeRenderer::bricks_to_upload(int step, const tsp::Camera& camera,
+                                                            const RenderSettings& settings,
+                                                            tsp::LazyErrors& metric) const {
+  const tsp::NodeErrors& errors = metric.errors_for_step(step);
+  auto info = [&metric](int id) {
+    const tsp::NodeResult& n = metric.node(id);
+    return tsp::NodeClassInfo{n.spatial, n.transparent};
+  };
+  return bricks_needed(step, camera, settings, errors, info);
+}
+
+std::vector<tsp::BrickKey> VolumeRenderer::bricks_to_upload(
+    int step, const tsp::Camera& camera, const RenderSettings& settings,
+    const tsp::MetricResult& metric) const {
+  return bricks_needed(step, camera, settings, metric.errors, tsp::node_info(metric));
+}
+
 int VolumeRenderer::drop_unreachable(tsp::LazyErrors& metric, const tsp::Tolerances& tol) {
   const tsp::NodeErrors& errors = metric.all();
   auto info = [&metric](int id) {

@@ -74,6 +74,17 @@ class VolumeRenderer {
   /// TF edit costs what the next frame needs (spec §4). Throws like render.
   FrameReport render(int step, const tsp::Camera& camera, const RenderSettings& settings,
                      tsp::LazyErrors& metric);
+  /// The bricks (brick, span start) step's frame would read and upload under metric: leaf
+  /// bricks of textured nodes whose texture is not resident. For background prefetching.
+  std::vector<tsp::BrickKey> bricks_to_upload(int step, const tsp::Camera& camera,
+                                              const RenderSettings& settings,
+                                              tsp::LazyErrors& metric) const;
+  /// Same with a whole-tree metric.
+  std::vector<tsp::BrickKey> bricks_to_upload(int step, const tsp::Camera& camera,
+                                              const RenderSettings& settings,
+                                              const tsp::MetricResult& metric) const;
+  /// The RAM brick cache uploads read through (thread-safe; for a prefetch thread).
+  tsp::BrickCache& brick_cache() { return bricks_; }
   /// Draws step without the tree: the whole volume uploaded as one texture and sliced as one
   /// box. Class shares report everything as new texture. Throws like render.
   FrameReport render_baseline(int step, const tsp::Camera& camera, const RenderSettings& settings);
@@ -101,6 +112,10 @@ class VolumeRenderer {
   FrameReport render_tree(int step, const tsp::Camera& camera, const RenderSettings& settings,
                           const tsp::NodeErrors& errors, const tsp::NodeInfoFn& info,
                           const ColourFn& colour);
+  std::vector<tsp::BrickKey> bricks_needed(int step, const tsp::Camera& camera,
+                                           const RenderSettings& settings,
+                                           const tsp::NodeErrors& errors,
+                                           const tsp::NodeInfoFn& info) const;
   void begin_frame(const tsp::Camera& camera, const RenderSettings& settings);
   void end_frame();
   void upload_tf(double spacing);

@@ -296,5 +296,34 @@ TEST(VolumeRenderer, LazyErrorsRenderLikeTheWholeTreeMetricAcrossATfEdit) {
   EXPECT_EQ(live.texture_count(), 0);
 }
 
+// bricks_to_upload lists exactly what the frame reads: prefetched, the frame misses nothing in
+// the brick cache and uploads their bytes; once drawn (cache on), nothing is left to upload.
+TEST(VolumeRenderer, BricksToUploadAreWhatTheFrameReadsAndUploads) {
+  auto src = tsp::make_generated_source("shock", {tsp::Dims{33, 30, 28}, 6});
+  const std::string path = build(*src, "shock", {}, 8);
+  auto file = tsp::TspFile::open(path);
+  Scene scene(path, tsp::preset_transfer_function("filled", file->tree().value_range()),
+              tsp::CachePolicy::on, 64, 48, tsp::Metric::approximate);
+  const tsp::Camera cam = scene.camera();
+  for (tsp::Tolerances tol : {tsp::Tolerances{0, 0}, tsp::Tolerances{0.05, 0.05}}) {
+    RenderSettings s;
+    s.tol = tol;
+    for (int step : {1, 4}) {
+      const auto keys = scene.renderer->bricks_to_upload(step, cam, s, scene.metric);
+      ASSERT_FALSE(keys.empty());
+      std::int64_t bytes = 0;
+      for (const tsp::BrickKey& k : keys)
+        bytes += tsp::texture_bytes(file->tree().octree(), tsp::TextureKey{k.brick, k.step, 0});
+      tsp::BrickCache& bricks = scene.renderer->brick_cache();
+      bricks.prefetch(keys);
+      const std::int64_t misses = bricks.stats().misses;
+      FrameReport r = scene.renderer->render(step, cam, s, scene.metric);
+      EXPECT_EQ(bricks.stats().misses, misses) << "step " << step;
+      EXPECT_EQ(r.bytes_uploaded, bytes) << "step " << step;
+      EXPECT_TRUE(scene.renderer->bricks_to_upload(step, cam, s, scene.metric).empty());
+    }
+  }
+}
+
 }  // namespace
 }  // namespace tspgl
