@@ -88,6 +88,9 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
     throw tsp::UsageError("--step " + std::to_string(options.step) + ": " + options.tsp_path +
                           " has steps 0.." + std::to_string(tree.time().steps() - 1));
   step = options.step;
+  if (!(options.upload_budget_mb >= 0))
+    throw tsp::UsageError("--upload-budget must not be negative (MiB per frame, 0: no limit)");
+  upload_budget_mb = options.upload_budget_mb;
   if (!options.script.empty()) script_ = load_script(options.script);
   if (!options.screenshot.empty()) {
     ScriptAction shot;
@@ -252,6 +255,7 @@ void PlayerApp::render_volume() {
   const tsp::Camera cam(file->tree().octree().dims(), camera);
   tspgl::RenderSettings settings;
   settings.tol = tol;
+  settings.upload_budget = std::int64_t(std::max(0.0, upload_budget_mb) * (1 << 20));
   if (metric == tsp::Metric::reference) {
     refresh_reference();
     last = renderer->render(step, cam, settings, reference_);
@@ -423,7 +427,9 @@ void PlayerApp::frame() {
   render_volume();
 
   // Screenshots hold the volume only (read before the UI is drawn).
-  if (!pending_shot_.empty() && !pending_with_ui_) save_pending_shot();
+  // A screenshot waits for the first complete frame (no texture left for later frames).
+  const bool shot_now = !pending_shot_.empty() && last.complete();
+  if (shot_now && !pending_with_ui_) save_pending_shot();
   if (save_requested_) {
     save_requested_ = false;
     char name[64];
@@ -442,7 +448,7 @@ void PlayerApp::frame() {
   ctx->gl().BindFramebuffer(GL_FRAMEBUFFER, 0);
   ctx->gl().Viewport(0, 0, ctx->width(), ctx->height());
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-  if (!pending_shot_.empty()) save_pending_shot();
+  if (shot_now && !pending_shot_.empty()) save_pending_shot();
   ctx->swap_buffers();
 
   history.push_back({now - start_s_, ms_since(t_frame)});

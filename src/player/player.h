@@ -13,6 +13,7 @@ struct PlayerOptions {
   std::string screenshot;         ///< --screenshot: save the first complete frame here, then exit
   std::string script;             ///< --script: action script (run before --screenshot)
   int width = 960, height = 720;  ///< --size: window size in pixels
+  double upload_budget_mb = 16;   ///< --upload-budget: texture MiB uploaded per frame (0: no limit)
 };
 
 /// Opens the window and runs until it is closed, the script quits or the screenshot is saved.

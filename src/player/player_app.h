@@ -57,7 +57,8 @@ class PlayerApp {
   tsp::Tolerances tol;
   float tol_max = 1;  ///< upper end of the tolerance sliders (largest error of a step)
   bool cache_on = true;
-  bool prefetch_on = true;  ///< read the next steps' bricks in the background while playing
+  double upload_budget_mb = 16;  ///< texture MiB one frame may upload (0: no limit)
+  bool prefetch_on = true;       ///< read the next steps' bricks in the background while playing
   double texture_budget_mb = double(tspgl::kDefaultTextureBudget) / (1 << 20);
   int step = 0;
   bool playing = false, loop = true;

@@ -84,6 +84,10 @@ void settings(PlayerApp& app) {
   if (ImGui::Checkbox("texture cache", &cache)) app.set_cache(cache, app.texture_budget_mb);
   ImGui::SameLine();
   ImGui::Checkbox("prefetch", &app.prefetch_on);
+  float upload = float(app.upload_budget_mb);
+  if (ImGui::SliderFloat("upload MiB/frame", &upload, 0.f, 256.f, upload > 0 ? "%.1f" : "no limit",
+                         ImGuiSliderFlags_Logarithmic))
+    app.upload_budget_mb = std::max(0.0, double(upload));
   static double budget = -1;
   if (budget < 0) budget = app.texture_budget_mb;
   ImGui::SetNextItemWidth(120);
@@ -122,7 +126,8 @@ void hud(PlayerApp& app) {
               mean > 0 ? 1000.0 / mean : 0.0);
   if (!ms.empty())
     ImGui::PlotLines("##ms", ms.data(), int(ms.size()), 0, "frame ms, last 5 s", 0.f,
-                     *std::max_element(ms.begin(), ms.end()) * 1.1f, ImVec2(-1, kHudPlotHeight));
+                     *std::max_element(ms.begin(), ms.end()) * 1.1f,
+                     ImVec2(ImGui::GetContentRegionAvail().x, kHudPlotHeight));
   const tspgl::FrameReport& r = app.last;
   ImGui::Text("render %.1f ms: traversal %.1f, slicing %.1f, upload %.1f, draw %.1f", r.ms,
               r.traversal_ms, r.slicing_ms, r.upload_ms, r.draw_ms);
@@ -131,6 +136,10 @@ void hud(PlayerApp& app) {
   ImGui::Text("textures %lld resident, %.1f MiB", static_cast<long long>(r.textures_resident),
               double(r.texture_bytes) / kBytesPerMiB);
   ImGui::Text("uploaded this frame %.2f MiB", double(r.bytes_uploaded) / kBytesPerMiB);
+  if (!r.complete())
+    ImGui::TextColored(ImVec4(1, 0.8f, 0.2f, 1),
+                       "%lld textures wait for later frames (flat meanwhile)",
+                       static_cast<long long>(r.deferred_textures));
   ImGui::Text("metric recompute %.2f ms (%lld nodes)", app.metric_ms,
               static_cast<long long>(app.metric_evaluations));
   const tsp::BrickCacheStats b = app.renderer->brick_cache().stats();

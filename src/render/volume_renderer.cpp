@@ -317,6 +317,28 @@ FrameReport VolumeRenderer::render_tree(int step, const tsp::Camera& camera,
       tsp::plan_frame(tree, step, emitted, info, settings.tol, order, cache_);
   r.traversal_ms = ms_since(t0);
 
+  // Uploads over the frame's budget wait for later frames; the first upload always goes ahead
+  // so that repeated frames of one step complete.
+  std::vector<std::uint8_t> deferred(plan.textures.size(), 0);
+  tsp::TextureKeySet deferred_keys;
+  std::int64_t deferred_bytes = 0;
+  if (settings.upload_budget > 0) {
+    std::int64_t planned = 0;
+    bool first = true;
+    for (std::size_t i = 0; i < plan.textures.size(); ++i) {
+      const tsp::PlannedTexture& pt = plan.textures[i];
+      if (!pt.upload) continue;
+      if (!first && planned + pt.bytes > settings.upload_budget) {
+        deferred[i] = 1;
+        deferred_keys.insert(pt.key);
+        deferred_bytes += pt.bytes;
+        continue;
+      }
+      planned += pt.bytes;
+      first = false;
+    }
+  }
+
   t0 = Clock::now();
   const tsp::IncrementalSlicer slicer(tsp::SlicePlanes::toward(camera.direction(), settings.spacing));
   soup_.clear();
@@ -343,8 +365,15 @@ FrameReport VolumeRenderer::render_tree(int step, const tsp::Camera& camera,
     }
     for (int i = n.first_texture; i < n.first_texture + n.texture_count; ++i) {
       const int brick = plan.textures[std::size_t(i)].key.brick;
+      const tsp::Aabb box = tsp::geometric_box(octree.brick_box(brick), octree.dims());
+      if (deferred[std::size_t(i)]) {  // not uploaded yet: the node's mean colour meanwhile
+        const tsp::Rgba c = colour(tsp_id);
+        const float a = corrected_alpha(c.a, settings.spacing);
+        add(box, -1, {c.r * a, c.g * a, c.b * a, a});
+        continue;
+      }
       sample_boxes[std::size_t(i)] = octree.brick_samples(brick);
-      add(tsp::geometric_box(octree.brick_box(brick), octree.dims()), i, {});
+      add(box, i, {});
     }
   }
   upload_vertices();
@@ -356,6 +385,7 @@ FrameReport VolumeRenderer::render_tree(int step, const tsp::Camera& camera,
   std::vector<GLuint> textures(plan.textures.size(), 0);
   for (std::size_t i = 0; i < plan.textures.size(); ++i) {
     const tsp::PlannedTexture& pt = plan.textures[i];
+    if (deferred[i]) continue;
     if (pt.upload) {
       delete_texture(pt.key);
       textures_[pt.key] = upload_brick(pt.key.brick, pt.key.t0);
@@ -374,9 +404,19 @@ FrameReport VolumeRenderer::render_tree(int step, const tsp::Camera& camera,
 
   for (int c = 0; c < tsp::kDrawClassCount; ++c)
     r.class_percent[std::size_t(c)] = plan.percent(tsp::DrawClass(c));
-  r.bytes_uploaded = plan.bytes_uploaded;
+  r.bytes_uploaded = plan.bytes_uploaded - deferred_bytes;
   r.textures_resident = plan.textures_resident;
   r.texture_bytes = plan.texture_bytes;
+  if (!deferred_keys.empty()) {
+    // The plan entered the deferred keys into the cache; they have no GL texture yet.
+    const auto dropped =
+        cache_.drop_unreachable([&](const tsp::TextureKey& k) { return !deferred_keys.count(k); });
+    for (const tsp::TextureKey& k : dropped) {
+      --r.textures_resident;
+      r.texture_bytes -= tsp::texture_bytes(octree, k);
+    }
+    r.deferred_textures = std::int64_t(deferred_keys.size());
+  }
   return r;
 }
 

@@ -35,6 +35,10 @@ struct RenderSettings {
   tsp::Tolerances tol;                       ///< spatial and temporal tolerances
   double spacing = kDefaultSliceSpacing;     ///< slice spacing in voxels (> 0)
   std::array<float, 3> background{0, 0, 0};  ///< opaque background colour
+  /// Texture bytes one frame may upload (0: no limit). At least one texture is uploaded per
+  /// frame; the bricks over the budget are drawn flat in their node's mean colour and uploaded
+  /// by later frames (FrameReport::deferred_textures > 0 until the frame is complete).
+  std::int64_t upload_budget = 0;
 };
 
 /// Timings and counts of one frame (the frames.json record, less pass).
@@ -50,6 +54,9 @@ struct FrameReport {
   std::int64_t textures_resident = 0;
   std::int64_t texture_bytes = 0;
   std::int64_t polygons = 0;  ///< slice polygons drawn
+  std::int64_t deferred_textures = 0;  ///< textures left for later frames (upload_budget)
+  /// True when every texture the frame needs was drawn (nothing deferred).
+  bool complete() const { return deferred_textures == 0; }
 };
 
 /// Renders steps of one .tsp file into the current framebuffer of a GL context.

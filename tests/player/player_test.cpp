@@ -129,4 +129,16 @@ TEST(Player, StepOutOfRangeAndMissingFilesAreErrors) {
   EXPECT_EQ(r.exit_code, 2);
 }
 
+// A tiny upload budget spreads the uploads over frames; the screenshot waits for the complete one.
+TEST(Player, ScreenshotWaitsForTheCompleteFrameUnderAnUploadBudget) {
+  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  fs::path tsp = make_tsp(), shot = tsptest::temp_dir() / "shot.png";
+  auto r = run_tspplay("play " + q(tsp) + " --step 1 --upload-budget 0.000001 --size " + kSize +
+                       " --screenshot " + q(shot));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_LT(tsp::diff_images(tsp::read_png(shot.string()), render_step(tsp, 1)).mean,
+            kSameFrameDeltaE);
+  EXPECT_EQ(run_tspplay("play " + q(tsp) + " --upload-budget -1").exit_code, 2);
+}
+
 }  // namespace

@@ -325,5 +325,31 @@ TEST(VolumeRenderer, BricksToUploadAreWhatTheFrameReadsAndUploads) {
   }
 }
 
+// With a one-byte upload budget each frame uploads one texture and draws the others flat;
+// repeated frames of one step complete one texture at a time and then match the unlimited frame.
+TEST(VolumeRenderer, UploadBudgetDefersTexturesUntilTheFrameCompletes) {
+  auto src = tsp::make_generated_source("shock", {tsp::Dims{33, 30, 28}, 4});
+  const std::string path = build(*src, "shock", {}, 8);
+  auto file = tsp::TspFile::open(path);
+  const auto tf = tsp::preset_transfer_function("filled", file->tree().value_range());
+  Scene unlimited(path, tf, tsp::CachePolicy::on, 80, 60, tsp::Metric::approximate);
+  Scene limited(path, tf, tsp::CachePolicy::on, 80, 60, tsp::Metric::approximate);
+  const tsp::Camera cam = unlimited.camera();
+  RenderSettings s;
+  const tsp::Image expected = unlimited.tsp_frame(2, cam);
+  const auto n = std::int64_t(limited.renderer->bricks_to_upload(2, cam, s, limited.metric).size());
+  ASSERT_GT(n, 2);
+  s.upload_budget = 1;
+  for (std::int64_t f = 1; f <= n; ++f) {
+    FrameReport r = limited.renderer->render(2, cam, s, limited.metric);
+    EXPECT_EQ(r.deferred_textures, n - f) << "frame " << f;
+    EXPECT_EQ(r.complete(), f == n);
+    EXPECT_EQ(limited.renderer->texture_count(), f);
+    EXPECT_EQ(r.textures_resident, f);
+  }
+  const tsp::Image done = limited.ctx->read_pixels();
+  EXPECT_EQ(done.rgba, expected.rgba);
+}
+
 }  // namespace
 }  // namespace tspgl
