@@ -47,10 +47,17 @@ void timeline(PlayerApp& app) {
     app.speed = std::clamp(double(speed), double(kMinSpeed), double(kMaxSpeed));
   int step = app.step;
   ImGui::SetNextItemWidth(-1);
-  if (ImGui::SliderInt("##step", &step, 0, app.steps() - 1, "step %d")) {
-    const bool was_playing = app.playing;
-    app.go_to(step);
-    app.playing = was_playing && !ImGui::IsItemActive();
+  // Dragging the scrubber pauses playback; releasing it resumes if it was playing.
+  static bool resume_after_scrub = false;
+  const bool was_playing = app.playing;
+  if (ImGui::SliderInt("##step", &step, 0, app.steps() - 1, "step %d")) app.go_to(step);
+  if (ImGui::IsItemActivated()) {
+    resume_after_scrub = was_playing;
+    app.playing = false;
+  }
+  if (ImGui::IsItemDeactivated() && resume_after_scrub) {
+    app.playing = true;
+    resume_after_scrub = false;
   }
   ImGui::End();
 }
