@@ -136,7 +136,7 @@ void PlayerApp::make_renderer() {
       *ctx, *file, cache_on ? tsp::CachePolicy::on : tsp::CachePolicy::off,
       std::int64_t(texture_budget_mb * (1 << 20)));
   renderer->set_transfer_function(tf);
-  prefetcher = std::make_unique<Prefetcher>(renderer->brick_cache());
+  prefetcher = std::make_unique<tsp::BrickPrefetcher>(renderer->brick_cache());
   prefetched_for_ = -1;
 }
 

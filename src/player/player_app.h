@@ -9,9 +9,9 @@
 
 #include "gl/context.h"
 #include "player/player.h"
-#include "player/prefetcher.h"
 #include "player/script.h"
 #include "render/volume_renderer.h"
+#include "tsp/brick_prefetcher.h"
 #include "tsp/camera.h"
 #include "tsp/lazy_errors.h"
 #include "tsp/metrics.h"
@@ -48,7 +48,8 @@ class PlayerApp {
   std::unique_ptr<tsp::TspFile> file;
   std::unique_ptr<tspgl::GlContext> ctx;
   std::unique_ptr<tspgl::VolumeRenderer> renderer;
-  std::unique_ptr<Prefetcher> prefetcher;  ///< reads into renderer's brick cache; made after it
+  std::unique_ptr<tsp::BrickPrefetcher>
+      prefetcher;  ///< reads into renderer's brick cache; made after it
   tsp::TransferFunction tf;
   std::vector<tsp::TfPoint> tf_points;  ///< the editor's control points
   std::string tf_path = "tf.json";      ///< load/save path in the editor
