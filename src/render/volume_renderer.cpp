@@ -114,6 +114,52 @@ int VolumeRenderer::drop_unreachable(const tsp::MetricResult& metric, const tsp:
   return int(dropped.size());
 }
 
+std::vector<tsp::BrickKey> VolumeRenderer::bricks_needed(int step, const tsp::Camera& camera,
+                                                         const RenderSettings& settings,
+                                                         const tsp::NodeErrors& errors,
+                                                         const tsp::NodeInfoFn& info) const {
+  const tsp::TspTree& tree = file_.tree();
+  const tsp::ViewOrder order = view_order(camera);
+  std::vector<tsp::BrickKey> keys;
+  for (const tsp::Emitted& e : tsp::traverse(tree, step, settings.tol, errors, order)) {
+    const int id = tree.id(e.octree_id, e.time_id);
+    if (tsp::shading_of(info(id), settings.tol) != tsp::Shading::textured) continue;
+    for (int brick : tsp::leaf_bricks(tree.octree(), e.octree_id, order))
+      if (!textures_.contains(tsp::TextureKey{brick, e.span.t0, 0}))
+        keys.push_back({brick, e.span.t0});
+  }
+  return keys;
+}
+
+std::vector<tsp::BrickKey> VolumeRenderer::bricks_to_upload(int step, const tsp::Camera& camera,
+                                                            const RenderSettings& settings,
+                                                            tsp::LazyErrors& metric) const {
+  const tsp::NodeErrors& errors = metric.errors_for_step(step);
+  auto info = [&metric](int id) {
+    const tsp::NodeResult& n = metric.node(id);
+    return tsp::NodeClassInfo{n.spatial, n.transparent};
+  };
+  return bricks_needed(step, camera, settings, errors, info);
+}
+
+std::vector<tsp::BrickKey> VolumeRenderer::bricks_to_upload(
+    int step, const tsp::Camera& camera, const RenderSettings& settings,
+    const tsp::MetricResult& metric) const {
+  return bricks_needed(step, camera, settings, metric.errors, tsp::node_info(metric));
+}
+
+int VolumeRenderer::drop_unreachable(tsp::LazyErrors& metric, const tsp::Tolerances& tol) {
+  const tsp::NodeErrors& errors = metric.all();
+  auto info = [&metric](int id) {
+    const tsp::NodeResult& n = metric.node(id);
+    return tsp::NodeClassInfo{n.spatial, n.transparent};
+  };
+  const auto dropped =
+      cache_.drop_unreachable(tsp::reachable_textures(file_.tree(), errors, info, tol));
+  for (const tsp::TextureKey& k : dropped) delete_texture(k);
+  return int(dropped.size());
+}
+
 void VolumeRenderer::delete_texture(const tsp::TextureKey& key) {
   auto it = textures_.find(key);
   if (it == textures_.end()) return;
@@ -233,6 +279,27 @@ void VolumeRenderer::draw_items(const std::vector<DrawItem>& items,
 FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
                                    const RenderSettings& settings,
                                    const tsp::MetricResult& metric) {
+  return render_tree(step, camera, settings, metric.errors, tsp::node_info(metric),
+                     [&metric](int id) { return metric.mean_colour[std::size_t(id)]; });
+}
+
+FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
+                                   const RenderSettings& settings, tsp::LazyErrors& metric) {
+  const tsp::NodeErrors& errors = metric.errors_for_step(step);
+  // errors_for_step made every node this step's traversal can reach current, so node(id) below
+  // only reads memoised results.
+  auto info = [&metric](int id) {
+    const tsp::NodeResult& n = metric.node(id);
+    return tsp::NodeClassInfo{n.spatial, n.transparent};
+  };
+  return render_tree(step, camera, settings, errors, info,
+                     [&metric](int id) { return metric.node(id).mean; });
+}
+
+FrameReport VolumeRenderer::render_tree(int step, const tsp::Camera& camera,
+                                        const RenderSettings& settings,
+                                        const tsp::NodeErrors& errors, const tsp::NodeInfoFn& info,
+                                        const ColourFn& colour) {
   const auto t_frame = Clock::now();
   const tsp::TspTree& tree = file_.tree();
   const tsp::Octree& octree = tree.octree();
@@ -243,10 +310,32 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
   auto t0 = Clock::now();
   const tsp::ViewOrder order = view_order(camera);
   const std::vector<tsp::Emitted> emitted =
-      tsp::traverse(tree, step, settings.tol, metric.errors, order);
-  const tsp::FramePlan plan = tsp::plan_frame(tree, step, emitted, tsp::node_info(metric),
-                                              settings.tol, order, cache_);
+      tsp::traverse(tree, step, settings.tol, errors, order);
+  const tsp::FramePlan plan =
+      tsp::plan_frame(tree, step, emitted, info, settings.tol, order, cache_);
   r.traversal_ms = ms_since(t0);
+
+  // Uploads over the frame's budget wait for later frames; the first upload always goes ahead
+  // so that repeated frames of one step complete.
+  std::vector<std::uint8_t> deferred(plan.textures.size(), 0);
+  tsp::TextureKeySet deferred_keys;
+  std::int64_t deferred_bytes = 0;
+  if (settings.upload_budget > 0) {
+    std::int64_t planned = 0;
+    bool first = true;
+    for (std::size_t i = 0; i < plan.textures.size(); ++i) {
+      const tsp::PlannedTexture& pt = plan.textures[i];
+      if (!pt.upload) continue;
+      if (!first && planned + pt.bytes > settings.upload_budget) {
+        deferred[i] = 1;
+        deferred_keys.insert(pt.key);
+        deferred_bytes += pt.bytes;
+        continue;
+      }
+      planned += pt.bytes;
+      first = false;
+    }
+  }
 
   t0 = Clock::now();
   const tsp::IncrementalSlicer slicer(tsp::SlicePlanes::toward(camera.direction(), settings.spacing));
@@ -266,7 +355,7 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
     if (n.cls == tsp::DrawClass::not_rendered) continue;
     const int tsp_id = tree.id(n.node.octree_id, n.node.time_id);
     if (n.cls == tsp::DrawClass::untextured) {
-      const tsp::Rgba c = metric.mean_colour[std::size_t(tsp_id)];
+      const tsp::Rgba c = colour(tsp_id);
       const float a = corrected_alpha(c.a, settings.spacing);
       add(tsp::geometric_box(octree.node(n.node.octree_id).box, octree.dims()), -1,
           {c.r * a, c.g * a, c.b * a, a});
@@ -274,8 +363,15 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
     }
     for (int i = n.first_texture; i < n.first_texture + n.texture_count; ++i) {
       const int brick = plan.textures[std::size_t(i)].key.brick;
+      const tsp::Aabb box = tsp::geometric_box(octree.brick_box(brick), octree.dims());
+      if (deferred[std::size_t(i)]) {  // not uploaded yet: the node's mean colour meanwhile
+        const tsp::Rgba c = colour(tsp_id);
+        const float a = corrected_alpha(c.a, settings.spacing);
+        add(box, -1, {c.r * a, c.g * a, c.b * a, a});
+        continue;
+      }
       sample_boxes[std::size_t(i)] = octree.brick_samples(brick);
-      add(tsp::geometric_box(octree.brick_box(brick), octree.dims()), i, {});
+      add(box, i, {});
     }
   }
   upload_vertices();
@@ -287,6 +383,7 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
   std::vector<GLuint> textures(plan.textures.size(), 0);
   for (std::size_t i = 0; i < plan.textures.size(); ++i) {
     const tsp::PlannedTexture& pt = plan.textures[i];
+    if (deferred[i]) continue;
     if (pt.upload) {
       delete_texture(pt.key);
       textures_[pt.key] = upload_brick(pt.key.brick, pt.key.t0);
@@ -305,9 +402,19 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
 
   for (int c = 0; c < tsp::kDrawClassCount; ++c)
     r.class_percent[std::size_t(c)] = plan.percent(tsp::DrawClass(c));
-  r.bytes_uploaded = plan.bytes_uploaded;
+  r.bytes_uploaded = plan.bytes_uploaded - deferred_bytes;
   r.textures_resident = plan.textures_resident;
   r.texture_bytes = plan.texture_bytes;
+  if (!deferred_keys.empty()) {
+    // The plan entered the deferred keys into the cache; they have no GL texture yet.
+    const auto dropped =
+        cache_.drop_unreachable([&](const tsp::TextureKey& k) { return !deferred_keys.count(k); });
+    for (const tsp::TextureKey& k : dropped) {
+      --r.textures_resident;
+      r.texture_bytes -= tsp::texture_bytes(octree, k);
+    }
+    r.deferred_textures = std::int64_t(deferred_keys.size());
+  }
   return r;
 }
 

@@ -4,6 +4,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <unordered_map>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "tsp/brick_cache.h"
 #include "tsp/camera.h"
 #include "tsp/frame_plan.h"
+#include "tsp/lazy_errors.h"
 #include "tsp/metrics.h"
 #include "tsp/slicing.h"
 #include "tsp/texture_cache.h"
@@ -33,6 +35,10 @@ struct RenderSettings {
   tsp::Tolerances tol;                       ///< spatial and temporal tolerances
   double spacing = kDefaultSliceSpacing;     ///< slice spacing in voxels (> 0)
   std::array<float, 3> background{0, 0, 0};  ///< opaque background colour
+  /// Texture bytes one frame may upload (0: no limit). At least one texture is uploaded per
+  /// frame; the bricks over the budget are drawn flat in their node's mean colour and uploaded
+  /// by later frames (FrameReport::deferred_textures > 0 until the frame is complete).
+  std::int64_t upload_budget = 0;
 };
 
 /// Timings and counts of one frame (the frames.json record, less pass).
@@ -48,6 +54,9 @@ struct FrameReport {
   std::int64_t textures_resident = 0;
   std::int64_t texture_bytes = 0;
   std::int64_t polygons = 0;  ///< slice polygons drawn
+  std::int64_t deferred_textures = 0;  ///< textures left for later frames (upload_budget)
+  /// True when every texture the frame needs was drawn (nothing deferred).
+  bool complete() const { return deferred_textures == 0; }
 };
 
 /// Renders steps of one .tsp file into the current framebuffer of a GL context.
@@ -68,6 +77,21 @@ class VolumeRenderer {
   /// transparency. Throws tsp::Error on brick read failures, tsp::GlError on GL failures.
   FrameReport render(int step, const tsp::Camera& camera, const RenderSettings& settings,
                      const tsp::MetricResult& metric);
+  /// Same, with live errors: only the nodes step's traversal can visit are (re)evaluated, so a
+  /// TF edit costs what the next frame needs (spec §4). Throws like render.
+  FrameReport render(int step, const tsp::Camera& camera, const RenderSettings& settings,
+                     tsp::LazyErrors& metric);
+  /// The bricks (brick, span start) step's frame would read and upload under metric: leaf
+  /// bricks of textured nodes whose texture is not resident. For background prefetching.
+  std::vector<tsp::BrickKey> bricks_to_upload(int step, const tsp::Camera& camera,
+                                              const RenderSettings& settings,
+                                              tsp::LazyErrors& metric) const;
+  /// Same with a whole-tree metric.
+  std::vector<tsp::BrickKey> bricks_to_upload(int step, const tsp::Camera& camera,
+                                              const RenderSettings& settings,
+                                              const tsp::MetricResult& metric) const;
+  /// The RAM brick cache uploads read through (thread-safe; for a prefetch thread).
+  tsp::BrickCache& brick_cache() { return bricks_; }
   /// Draws step without the tree: the whole volume uploaded as one texture and sliced as one
   /// box. Class shares report everything as new texture. Throws like render.
   FrameReport render_baseline(int step, const tsp::Camera& camera, const RenderSettings& settings);
@@ -78,6 +102,8 @@ class VolumeRenderer {
   /// After a tolerance (or metric) change: deletes the textures no frame can draw any more under
   /// metric and tol (one traversal per step) and returns how many. TF edits need no call.
   int drop_unreachable(const tsp::MetricResult& metric, const tsp::Tolerances& tol);
+  /// Same with live errors (evaluates every node once for the current TF).
+  int drop_unreachable(tsp::LazyErrors& metric, const tsp::Tolerances& tol);
   /// Number of GL brick textures alive.
   int texture_count() const { return int(textures_.size()); }
 
@@ -87,6 +113,15 @@ class VolumeRenderer {
     int texture = -1;  ///< index into the plan's textures, −1 for a flat item
     std::array<float, 4> colour{};
   };
+  /// Mean (unpremultiplied) colour of a TSP node under the frame's metric.
+  using ColourFn = std::function<tsp::Rgba(int tsp_id)>;
+  FrameReport render_tree(int step, const tsp::Camera& camera, const RenderSettings& settings,
+                          const tsp::NodeErrors& errors, const tsp::NodeInfoFn& info,
+                          const ColourFn& colour);
+  std::vector<tsp::BrickKey> bricks_needed(int step, const tsp::Camera& camera,
+                                           const RenderSettings& settings,
+                                           const tsp::NodeErrors& errors,
+                                           const tsp::NodeInfoFn& info) const;
   void begin_frame(const tsp::Camera& camera, const RenderSettings& settings);
   void end_frame();
   void upload_tf(double spacing);

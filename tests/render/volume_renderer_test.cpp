@@ -249,5 +249,107 @@ TEST(VolumeRenderer, ClassSharesSumTo100AndMatchTheTraversal) {
   }
 }
 
+// The live-metric overload draws exactly what the whole-tree metric draws, also after a TF edit
+// (which LazyErrors notices through the TF's version) and at non-zero tolerances.
+TEST(VolumeRenderer, LazyErrorsRenderLikeTheWholeTreeMetricAcrossATfEdit) {
+  auto src = tsp::make_generated_source("shock", {tsp::Dims{33, 30, 28}, 6});
+  const std::string path = build(*src, "shock", {}, 8);
+  auto file = tsp::TspFile::open(path);
+  const tsp::ValueRange range = file->tree().value_range();
+  Scene whole(path, tsp::preset_transfer_function("sparse", range), tsp::CachePolicy::on, 80, 60,
+              tsp::Metric::approximate);
+  tsp::TransferFunction live_tf = whole.tf;
+  auto live_ctx = create_offscreen_context(80, 60);
+  VolumeRenderer live(*live_ctx, *whole.file, tsp::CachePolicy::on);
+  live.set_transfer_function(live_tf);
+  tsp::LazyErrors lazy(whole.file->tree(), tsp::Metric::approximate, live_tf);
+  const tsp::Camera cam = whole.camera();
+  auto compare = [&](const std::string& what) {
+    for (tsp::Tolerances tol : {tsp::Tolerances{0, 0}, tsp::Tolerances{0.05, 0.02}}) {
+      for (int step : {0, 3, 5}) {
+        RenderSettings s;
+        s.tol = tol;
+        FrameReport a = whole.renderer->render(step, cam, s, whole.metric);
+        tsp::Image ia = whole.ctx->read_pixels();
+        FrameReport b = live.render(step, cam, s, lazy);
+        tsp::Image ib = live_ctx->read_pixels();
+        EXPECT_EQ(ia.rgba, ib.rgba) << what << " step " << step << " tol " << tol.spatial;
+        EXPECT_EQ(a.class_percent, b.class_percent) << what << " step " << step;
+      }
+    }
+  };
+  compare("before the edit");
+  const tsp::TransferFunction filled = tsp::preset_transfer_function("filled", range);
+  live_tf.set_entries(0, filled.entries());
+  live.set_transfer_function(live_tf);
+  whole.tf = filled;
+  whole.renderer->set_transfer_function(filled);
+  whole.metric = tsp::compute_errors(tsp::Metric::approximate, whole.file->tree(), filled);
+  compare("after the edit");
+  // Through the live metric: drop_unreachable agrees with the whole-tree metric's, and above
+  // every error everything is flat, so no texture stays.
+  EXPECT_EQ(live.drop_unreachable(lazy, {0, 0}),
+            whole.renderer->drop_unreachable(whole.metric, {0, 0}));
+  const int before = live.texture_count();
+  ASSERT_GT(before, 0);
+  EXPECT_EQ(live.drop_unreachable(lazy, {1e9, 1e9}), before);
+  EXPECT_EQ(live.texture_count(), 0);
+}
+
+// bricks_to_upload lists exactly what the frame reads: prefetched, the frame misses nothing in
+// the brick cache and uploads their bytes; once drawn (cache on), nothing is left to upload.
+TEST(VolumeRenderer, BricksToUploadAreWhatTheFrameReadsAndUploads) {
+  auto src = tsp::make_generated_source("shock", {tsp::Dims{33, 30, 28}, 6});
+  const std::string path = build(*src, "shock", {}, 8);
+  auto file = tsp::TspFile::open(path);
+  Scene scene(path, tsp::preset_transfer_function("filled", file->tree().value_range()),
+              tsp::CachePolicy::on, 64, 48, tsp::Metric::approximate);
+  const tsp::Camera cam = scene.camera();
+  for (tsp::Tolerances tol : {tsp::Tolerances{0, 0}, tsp::Tolerances{0.05, 0.05}}) {
+    RenderSettings s;
+    s.tol = tol;
+    for (int step : {1, 4}) {
+      const auto keys = scene.renderer->bricks_to_upload(step, cam, s, scene.metric);
+      ASSERT_FALSE(keys.empty());
+      std::int64_t bytes = 0;
+      for (const tsp::BrickKey& k : keys)
+        bytes += tsp::texture_bytes(file->tree().octree(), tsp::TextureKey{k.brick, k.step, 0});
+      tsp::BrickCache& bricks = scene.renderer->brick_cache();
+      bricks.prefetch(keys);
+      const std::int64_t misses = bricks.stats().misses;
+      FrameReport r = scene.renderer->render(step, cam, s, scene.metric);
+      EXPECT_EQ(bricks.stats().misses, misses) << "step " << step;
+      EXPECT_EQ(r.bytes_uploaded, bytes) << "step " << step;
+      EXPECT_TRUE(scene.renderer->bricks_to_upload(step, cam, s, scene.metric).empty());
+    }
+  }
+}
+
+// With a one-byte upload budget each frame uploads one texture and draws the others flat;
+// repeated frames of one step complete one texture at a time and then match the unlimited frame.
+TEST(VolumeRenderer, UploadBudgetDefersTexturesUntilTheFrameCompletes) {
+  auto src = tsp::make_generated_source("shock", {tsp::Dims{33, 30, 28}, 4});
+  const std::string path = build(*src, "shock", {}, 8);
+  auto file = tsp::TspFile::open(path);
+  const auto tf = tsp::preset_transfer_function("filled", file->tree().value_range());
+  Scene unlimited(path, tf, tsp::CachePolicy::on, 80, 60, tsp::Metric::approximate);
+  Scene limited(path, tf, tsp::CachePolicy::on, 80, 60, tsp::Metric::approximate);
+  const tsp::Camera cam = unlimited.camera();
+  RenderSettings s;
+  const tsp::Image expected = unlimited.tsp_frame(2, cam);
+  const auto n = std::int64_t(limited.renderer->bricks_to_upload(2, cam, s, limited.metric).size());
+  ASSERT_GT(n, 2);
+  s.upload_budget = 1;
+  for (std::int64_t f = 1; f <= n; ++f) {
+    FrameReport r = limited.renderer->render(2, cam, s, limited.metric);
+    EXPECT_EQ(r.deferred_textures, n - f) << "frame " << f;
+    EXPECT_EQ(r.complete(), f == n);
+    EXPECT_EQ(limited.renderer->texture_count(), f);
+    EXPECT_EQ(r.textures_resident, f);
+  }
+  const tsp::Image done = limited.ctx->read_pixels();
+  EXPECT_EQ(done.rgba, expected.rgba);
+}
+
 }  // namespace
 }  // namespace tspgl

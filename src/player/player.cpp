@@ -1,0 +1,468 @@
+#include "player/player.h"
+
+// Our loader (gl/gl_api.h) declares the GL functions; GLFW must not pull in GL/gl.h.
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <imgui_impl_glfw.h>
+#include <imgui_impl_opengl3.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "player/player_app.h"
+#include "tsp/error.h"
+#include "tsp/image.h"
+#include "tsp/tf_io.h"
+
+namespace tspplayer {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+constexpr double kOrbitDegPerPixel = 0.4;
+constexpr double kZoomPerWheelStep = 1.1;
+constexpr double kMaxElevation = 89;
+constexpr float kMinToleranceCeiling = 1e-3f;
+constexpr float kKnotEpsilon = 1e-4f;  // slope change that marks a TF knot
+constexpr int kMaxEditorPoints = 24;
+constexpr double kMaxFrameDt = 0.25;  // a stalled frame does not skip many steps at once
+
+// Largest finite error in e: the tolerance sliders' upper end (a tolerance above every error
+// draws the root only).
+float largest_error(const tsp::NodeErrors& e) {
+  float m = 0;
+  for (const auto* v : {&e.spatial, &e.temporal})
+    for (float x : *v)
+      if (std::isfinite(x)) m = std::max(m, x);
+  return std::max(m, kMinToleranceCeiling);
+}
+
+// The TF's knots: the first and last entries and every entry where the table's slope changes, so
+// that rebuilding from them reproduces a piecewise-linear TF (presets, our JSON). A TF with more
+// knots than kMaxEditorPoints gets kEditorPoints evenly spaced samples instead.
+std::vector<tsp::TfPoint> editor_points(const tsp::TransferFunction& tf) {
+  const int n = tf.size();
+  std::vector<tsp::TfPoint> pts;
+  auto slope_changes = [&tf](int j) {
+    const tsp::Rgba a = tf.entry(j - 1), b = tf.entry(j), c = tf.entry(j + 1);
+    const float d[4] = {(c.r - b.r) - (b.r - a.r), (c.g - b.g) - (b.g - a.g),
+                        (c.b - b.b) - (b.b - a.b), (c.a - b.a) - (b.a - a.a)};
+    for (float v : d)
+      if (std::fabs(v) > kKnotEpsilon) return true;
+    return false;
+  };
+  for (int j = 0; j < n; ++j)
+    if (j == 0 || j == n - 1 || slope_changes(j)) pts.push_back({tf.entry_value(j), tf.entry(j)});
+  if (int(pts.size()) <= kMaxEditorPoints) return pts;
+  pts.clear();
+  const tsp::ValueRange d = tf.domain();
+  for (int i = 0; i < kEditorPoints; ++i) {
+    const double x = d.lo + (d.hi - d.lo) * i / (kEditorPoints - 1);
+    pts.push_back({x, tf.lookup(x)});
+  }
+  return pts;
+}
+
+}  // namespace
+
+void run_player(const PlayerOptions& options) {
+  PlayerApp app(options);
+  app.run();
+}
+
+PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
+  if (options.width < 1 || options.height < 1)
+    throw tsp::UsageError("--size must be positive, found " + std::to_string(options.width) + "x" +
+                          std::to_string(options.height));
+  file = tsp::TspFile::open(options.tsp_path);
+  const tsp::TspTree& tree = file->tree();
+  if (options.step < 0 || options.step >= tree.time().steps())
+    throw tsp::UsageError("--step " + std::to_string(options.step) + ": " + options.tsp_path +
+                          " has steps 0.." + std::to_string(tree.time().steps() - 1));
+  step = options.step;
+  if (!(options.upload_budget_mb >= 0))
+    throw tsp::UsageError("--upload-budget must not be negative (MiB per frame, 0: no limit)");
+  upload_budget_mb = options.upload_budget_mb;
+  if (!options.script.empty()) script_ = load_script(options.script);
+  if (!options.screenshot.empty()) {
+    ScriptAction shot;
+    shot.kind = ScriptAction::Kind::screenshot;
+    shot.text = options.screenshot;
+    script_.push_back(shot);
+    script_.push_back(ScriptAction{});  // quit
+  }
+  tf = tsp::transfer_function_from_arg(options.tf, tree.value_range());
+  lazy_ = std::make_unique<tsp::LazyErrors>(tree, metric, tf);
+  set_tf(tf, true);
+
+  ctx = tspgl::create_window_context(options.width, options.height, "tspplay - " + options.tsp_path,
+                                     true);
+  make_renderer();
+
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini in the user's directory
+  ImGui::StyleColorsDark();
+  ImGui_ImplGlfw_InitForOpenGL(static_cast<GLFWwindow*>(ctx->native_window()), true);
+  ImGui_ImplOpenGL3_Init("#version 330 core");
+  imgui_ = true;
+  update_tol_max();
+  start_s_ = last_frame_s_ = glfwGetTime();
+}
+
+PlayerApp::~PlayerApp() {
+  if (imgui_) {
+    ctx->make_current();
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+  }
+  prefetcher.reset();  // its thread reads into the renderer's brick cache
+  renderer.reset();    // its GL objects go before the context
+}
+
+void PlayerApp::make_renderer() {
+  prefetcher.reset();
+  renderer.reset();
+  renderer = std::make_unique<tspgl::VolumeRenderer>(
+      *ctx, *file, cache_on ? tsp::CachePolicy::on : tsp::CachePolicy::off,
+      std::int64_t(texture_budget_mb * (1 << 20)));
+  renderer->set_transfer_function(tf);
+  prefetcher = std::make_unique<tsp::BrickPrefetcher>(renderer->brick_cache());
+  prefetched_for_ = -1;
+}
+
+int PlayerApp::steps() const {
+  return file->tree().time().steps();
+}
+
+void PlayerApp::go_to(int t) {
+  playing = false;
+  step = std::clamp(t, 0, steps() - 1);
+}
+
+void PlayerApp::set_tf(const tsp::TransferFunction& next, bool resample_points) {
+  if (&next != &tf) {
+    if (next.size() == tf.size() && next.domain().lo == tf.domain().lo &&
+        next.domain().hi == tf.domain().hi) {
+      // Only the entries that differ are marked changed, so the lazy metric re-evaluates only
+      // the nodes whose [j_min, j_max] they touch.
+      int lo = -1, hi = -1;
+      for (int j = 0; j < tf.size(); ++j)
+        if (!(next.entry(j) == tf.entry(j))) {
+          if (lo < 0) lo = j;
+          hi = j;
+        }
+      if (lo >= 0)
+        tf.set_entries(lo, next.entries().subspan(std::size_t(lo), std::size_t(hi - lo + 1)));
+    } else {
+      tf = next;
+      lazy_->set_transfer_function(tf);
+    }
+  }
+  if (resample_points) tf_points = editor_points(tf);
+  if (renderer) renderer->set_transfer_function(tf);
+}
+
+void PlayerApp::apply_tf_points() {
+  std::vector<tsp::TfPoint> sorted = tf_points;
+  std::stable_sort(sorted.begin(), sorted.end(),
+                   [](const tsp::TfPoint& a, const tsp::TfPoint& b) { return a.x < b.x; });
+  set_tf(tsp::TransferFunction::from_points(tf.domain(), sorted, tf.size()), false);
+}
+
+void PlayerApp::set_metric(tsp::Metric m) {
+  if (m == metric) return;
+  metric = m;
+  if (m != tsp::Metric::reference) {
+    lazy_ = std::make_unique<tsp::LazyErrors>(file->tree(), m, tf);
+    renderer->drop_unreachable(*lazy_, tol);
+  } else {
+    reference_version_ = ~std::uint64_t(0);
+    refresh_reference();
+    renderer->drop_unreachable(reference_, tol);
+  }
+  update_tol_max();
+}
+
+void PlayerApp::update_tol_max() {
+  tol_max = largest_error(metric == tsp::Metric::reference ? reference_.errors
+                                                           : lazy_->errors_for_step(step));
+}
+
+void PlayerApp::set_tolerances(tsp::Tolerances t) {
+  tol = {std::max(0.0, t.spatial), std::max(0.0, t.temporal)};
+  if (metric == tsp::Metric::reference) {
+    refresh_reference();
+    renderer->drop_unreachable(reference_, tol);
+  } else {
+    renderer->drop_unreachable(*lazy_, tol);
+  }
+}
+
+void PlayerApp::set_cache(bool on, double budget_mb) {
+  cache_on = on;
+  texture_budget_mb = std::max(1.0, budget_mb);
+  make_renderer();
+}
+
+// During playback: the bricks the next kPrefetchSteps frames would upload, in playing order,
+// go to the prefetch thread once per step change (the request replaces the previous one).
+void PlayerApp::request_prefetch(const tsp::Camera& cam, const tspgl::RenderSettings& settings) {
+  if (!playing || !prefetch_on || prefetched_for_ == step) return;
+  prefetched_for_ = step;
+  std::vector<tsp::BrickKey> keys;
+  for (int k = 1; k <= kPrefetchSteps; ++k) {
+    int t = step + k;
+    if (t >= steps()) {
+      if (!loop) break;
+      t %= steps();
+    }
+    std::vector<tsp::BrickKey> more = metric == tsp::Metric::reference
+                                          ? renderer->bricks_to_upload(t, cam, settings, reference_)
+                                          : renderer->bricks_to_upload(t, cam, settings, *lazy_);
+    keys.insert(keys.end(), more.begin(), more.end());
+  }
+  prefetcher->request(std::move(keys));
+}
+
+void PlayerApp::request_save() {
+  save_requested_ = true;
+}
+
+void PlayerApp::refresh_reference() {
+  if (reference_version_ == tf.version()) return;
+  // The reference metric reads every voxel: computed in full, blocking (the UI says so).
+  const auto t0 = Clock::now();
+  reference_ = tsp::compute_errors(tsp::Metric::reference, file->tree(), tf, file.get(), 0);
+  metric_ms = ms_since(t0);
+  metric_evaluations = std::int64_t(reference_.transparent.size());
+  reference_version_ = tf.version();
+}
+
+void PlayerApp::render_volume() {
+  camera.width = ctx->width();
+  camera.height = ctx->height();
+  if (camera.width < 1 || camera.height < 1) return;  // minimised
+  const tsp::Camera cam(file->tree().octree().dims(), camera);
+  tspgl::RenderSettings settings;
+  settings.tol = tol;
+  settings.upload_budget = std::int64_t(std::max(0.0, upload_budget_mb) * (1 << 20));
+  if (metric == tsp::Metric::reference) {
+    refresh_reference();
+    last = renderer->render(step, cam, settings, reference_);
+    request_prefetch(cam, settings);
+    return;
+  }
+  // Evaluate this step's nodes here so the HUD can show the recompute cost; render() then only
+  // reads memoised results.
+  const std::int64_t before = lazy_->evaluations();
+  const auto t0 = Clock::now();
+  lazy_->errors_for_step(step);
+  const double ms = ms_since(t0);
+  if (lazy_->evaluations() > before) {
+    metric_ms = ms;
+    metric_evaluations = lazy_->evaluations() - before;
+  }
+  last = renderer->render(step, cam, settings, *lazy_);
+  request_prefetch(cam, settings);
+}
+
+void PlayerApp::advance_playback(double dt) {
+  if (!playing) {
+    play_accum_ = 0;
+    return;
+  }
+  play_accum_ += std::min(dt, kMaxFrameDt) * speed;
+  while (play_accum_ >= 1) {
+    play_accum_ -= 1;
+    if (step + 1 < steps()) {
+      ++step;
+    } else if (loop) {
+      step = 0;
+    } else {
+      playing = false;
+      play_accum_ = 0;
+      break;
+    }
+  }
+}
+
+void PlayerApp::handle_input() {
+  const ImGuiIO& io = ImGui::GetIO();
+  if (!io.WantCaptureMouse) {
+    const bool pan = io.MouseDown[1] || io.MouseDown[2] || (io.MouseDown[0] && io.KeyShift);
+    if (pan) {
+      const double scale = 2.0 / (camera.zoom * std::max(1, std::min(camera.width, camera.height)));
+      camera.pan[0] -= io.MouseDelta.x * scale;
+      camera.pan[1] += io.MouseDelta.y * scale;
+    } else if (io.MouseDown[0]) {
+      camera.azimuth_deg -= io.MouseDelta.x * kOrbitDegPerPixel;
+      camera.elevation_deg = std::clamp(camera.elevation_deg + io.MouseDelta.y * kOrbitDegPerPixel,
+                                        -kMaxElevation, kMaxElevation);
+    }
+    if (io.MouseWheel != 0) camera.zoom *= std::pow(kZoomPerWheelStep, io.MouseWheel);
+  }
+  if (io.WantCaptureKeyboard) return;
+  if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Space), false)) playing = !playing;
+  if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_LeftArrow))) go_to(step - 1);
+  if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_RightArrow))) go_to(step + 1);
+  if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Home), false)) go_to(0);
+  if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_End), false)) go_to(steps() - 1);
+  // The GLFW back end of ImGui 1.86 indexes KeysDown by GLFW key codes.
+  if (ImGui::IsKeyPressed(GLFW_KEY_S, false)) request_save();
+  if (ImGui::IsKeyPressed(GLFW_KEY_P, false))
+    camera.projection = camera.projection == tsp::Projection::orthographic
+                            ? tsp::Projection::perspective
+                            : tsp::Projection::orthographic;
+}
+
+void PlayerApp::apply(const ScriptAction& a) {
+  using Kind = ScriptAction::Kind;
+  switch (a.kind) {
+    case Kind::step:
+      if (a.number >= steps())
+        throw tsp::UsageError(options_.script + ":" + std::to_string(a.line) + ": step " +
+                              std::to_string(a.number) + ": the file has steps 0.." +
+                              std::to_string(steps() - 1));
+      go_to(a.number);
+      break;
+    case Kind::play:
+      playing = true;
+      break;
+    case Kind::pause:
+      playing = false;
+      break;
+    case Kind::speed:
+      speed = a.value;
+      break;
+    case Kind::loop:
+      loop = a.flag;
+      break;
+    case Kind::tf:
+      set_tf(tsp::transfer_function_from_arg(a.text, file->tree().value_range(), tf.size()), true);
+      break;
+    case Kind::tolerance:
+      set_tolerances({a.value, a.value2});
+      break;
+    case Kind::metric:
+      set_metric(tsp::parse_metric(a.text));
+      break;
+    case Kind::cache:
+      set_cache(a.flag, texture_budget_mb);
+      break;
+    case Kind::view:
+      camera.azimuth_deg = a.value;
+      camera.elevation_deg = a.value2;
+      break;
+    case Kind::zoom:
+      camera.zoom = a.value;
+      break;
+    case Kind::projection:
+      camera.projection = a.flag ? tsp::Projection::perspective : tsp::Projection::orthographic;
+      break;
+    case Kind::screenshot:
+    case Kind::screenshot_ui:
+      pending_shot_ = a.text;
+      pending_with_ui_ = a.kind == Kind::screenshot_ui;
+      break;
+    case Kind::wait_frames:
+      wait_frames_ = a.number;
+      break;
+    case Kind::quit:
+      quit_ = true;
+      break;
+  }
+}
+
+// Runs actions until one needs frames to pass: a screenshot (saved after this frame's render),
+// wait-frames or quit.
+void PlayerApp::run_script() {
+  if (!pending_shot_.empty()) return;
+  if (wait_frames_ > 0) {
+    --wait_frames_;
+    return;
+  }
+  while (script_pos_ < script_.size() && !quit_) {
+    const ScriptAction& a = script_[script_pos_++];
+    apply(a);
+    if (a.kind == ScriptAction::Kind::screenshot || a.kind == ScriptAction::Kind::screenshot_ui ||
+        a.kind == ScriptAction::Kind::wait_frames)
+      break;
+  }
+}
+
+void PlayerApp::save_pending_shot() {
+  tsp::write_png(pending_shot_, ctx->read_pixels());
+  std::printf("saved %s (step %d)\n", pending_shot_.c_str(), step);
+  std::fflush(stdout);
+  pending_shot_.clear();
+}
+
+void PlayerApp::frame() {
+  ctx->poll_events();
+  const double now = glfwGetTime();
+  const double dt = now - last_frame_s_;
+  last_frame_s_ = now;
+  const auto t_frame = Clock::now();
+
+  ImGui_ImplOpenGL3_NewFrame();
+  ImGui_ImplGlfw_NewFrame();
+  ImGui::NewFrame();
+  run_script();
+  if (quit_) {
+    ImGui::EndFrame();
+    return;
+  }
+  handle_input();
+  advance_playback(dt);
+  render_volume();
+
+  // Screenshots hold the volume only (read before the UI is drawn).
+  // A screenshot waits for the first complete frame (no texture left for later frames).
+  const bool shot_now = !pending_shot_.empty() && last.complete();
+  if (shot_now && !pending_with_ui_) save_pending_shot();
+  if (save_requested_) {
+    save_requested_ = false;
+    char name[64];
+    std::snprintf(name, sizeof name, "tspplay_step_%04d.png", step);
+    try {
+      tsp::write_png(name, ctx->read_pixels());
+      status = std::string("saved ") + name;
+    } catch (const tsp::Error& e) {
+      status = e.what();
+    }
+    std::printf("%s\n", status.c_str());
+  }
+
+  draw_ui();
+  ImGui::Render();
+  ctx->gl().BindFramebuffer(GL_FRAMEBUFFER, 0);
+  ctx->gl().Viewport(0, 0, ctx->width(), ctx->height());
+  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+  if (shot_now && !pending_shot_.empty()) save_pending_shot();
+  ctx->swap_buffers();
+
+  history.push_back({now - start_s_, ms_since(t_frame)});
+  while (!history.empty() && history.front().at_s < now - start_s_ - kFrameHistorySeconds)
+    history.pop_front();
+}
+
+void PlayerApp::run() {
+  int frames = 0;
+  for (; !quit_ && !ctx->should_close(); ++frames) frame();
+  const tsp::BrickCacheStats b = renderer->brick_cache().stats();
+  std::printf("played %d frames; bricks: %lld hits, %lld misses, %lld prefetched\n", frames,
+              static_cast<long long>(b.hits), static_cast<long long>(b.misses),
+              static_cast<long long>(b.prefetched));
+}
+
+}  // namespace tspplayer

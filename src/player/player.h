@@ -1,0 +1,24 @@
+// `tspplay play`: the window player (GLFW + Dear ImGui) over one .tsp file. Controls, script
+// format and behaviour: docs/player.md.
+#pragma once
+#include <string>
+
+namespace tspplayer {
+
+/// Everything `tspplay play` takes.
+struct PlayerOptions {
+  std::string tsp_path;              ///< the .tsp file
+  std::string tf = "preset:sparse";  ///< --tf: a file or preset:NAME
+  int step = 0;                      ///< --step: the step shown first
+  std::string screenshot;         ///< --screenshot: save the first complete frame here, then exit
+  std::string script;             ///< --script: action script (run before --screenshot)
+  int width = 960, height = 720;  ///< --size: window size in pixels
+  double upload_budget_mb = 16;   ///< --upload-budget: texture MiB uploaded per frame (0: no limit)
+};
+
+/// Opens the window and runs until it is closed, the script quits or the screenshot is saved.
+/// Throws tsp::UsageError (bad step, size), tsp::IoError / tsp::FormatError (files, script),
+/// tsp::GlError (no display, no GL 3.3 context).
+void run_player(const PlayerOptions& options);
+
+}  // namespace tspplayer

@@ -1,0 +1,262 @@
+// The player's Dear ImGui panels: timeline, view and metric settings, heads-up statistics and
+// the transfer-function editor. Drawn after the volume each frame (docs/player.md).
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+#include "player/player_app.h"
+#include "tsp/error.h"
+#include "tsp/tf_io.h"
+
+namespace tspplayer {
+
+namespace {
+
+constexpr float kMaxSpeed = 60.f;  // steps per second
+constexpr float kMinSpeed = 0.25f;
+constexpr float kHistogramHeight = 80.f;
+constexpr float kHudPlotHeight = 60.f;
+constexpr double kBytesPerMiB = 1 << 20;
+constexpr const char* kMetricNames[] = {"scalar", "reference", "approximate", "perceptual"};
+constexpr const char* kClassNames[] = {"not rendered", "untextured", "reused texture",
+                                       "new texture"};
+
+void timeline(PlayerApp& app) {
+  ImGui::SetNextWindowPos(ImVec2(10, float(app.ctx->height()) - 110), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(float(app.ctx->width()) - 20, 100), ImGuiCond_FirstUseEver);
+  ImGui::Begin("Timeline");
+  if (ImGui::Button(app.playing ? "Pause" : "Play")) app.playing = !app.playing;
+  ImGui::SameLine();
+  if (ImGui::Button("|<")) app.go_to(0);
+  ImGui::SameLine();
+  if (ImGui::Button("<")) app.go_to(app.step - 1);
+  ImGui::SameLine();
+  if (ImGui::Button(">")) app.go_to(app.step + 1);
+  ImGui::SameLine();
+  if (ImGui::Button(">|")) app.go_to(app.steps() - 1);
+  ImGui::SameLine();
+  ImGui::Checkbox("loop", &app.loop);
+  ImGui::SameLine();
+  float speed = float(app.speed);
+  ImGui::SetNextItemWidth(160);
+  if (ImGui::SliderFloat("steps/s", &speed, kMinSpeed, kMaxSpeed, "%.2f",
+                         ImGuiSliderFlags_Logarithmic))
+    app.speed = std::clamp(double(speed), double(kMinSpeed), double(kMaxSpeed));
+  int step = app.step;
+  ImGui::SetNextItemWidth(-1);
+  // Dragging the scrubber pauses playback; releasing it resumes if it was playing.
+  static bool resume_after_scrub = false;
+  const bool was_playing = app.playing;
+  if (ImGui::SliderInt("##step", &step, 0, app.steps() - 1, "step %d")) app.go_to(step);
+  if (ImGui::IsItemActivated()) {
+    resume_after_scrub = was_playing;
+    app.playing = false;
+  }
+  if (ImGui::IsItemDeactivated() && resume_after_scrub) {
+    app.playing = true;
+    resume_after_scrub = false;
+  }
+  ImGui::End();
+}
+
+void settings(PlayerApp& app) {
+  ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(300, 260), ImGuiCond_FirstUseEver);
+  ImGui::Begin("Settings");
+  int m = int(app.metric);
+  if (ImGui::Combo("metric", &m, kMetricNames, IM_ARRAYSIZE(kMetricNames)))
+    app.set_metric(tsp::Metric(m));
+  if (app.metric == tsp::Metric::reference)
+    ImGui::TextWrapped(
+        "reference: every voxel is read; computed in full on each TF change "
+        "(the window waits)");
+  else
+    ImGui::TextWrapped("live: only the nodes a frame visits are recomputed after a TF edit");
+
+  float s = float(app.tol.spatial), t = float(app.tol.temporal);
+  bool changed =
+      ImGui::SliderFloat("spatial tol", &s, 0.f, app.tol_max, "%.4g", ImGuiSliderFlags_Logarithmic);
+  bool done = ImGui::IsItemDeactivatedAfterEdit();
+  changed |= ImGui::SliderFloat("temporal tol", &t, 0.f, app.tol_max, "%.4g",
+                                ImGuiSliderFlags_Logarithmic);
+  done |= ImGui::IsItemDeactivatedAfterEdit();
+  // Frames follow the slider at once; unreachable textures are dropped when it is released.
+  if (changed) app.tol = {double(s), double(t)};
+  if (done) app.set_tolerances(app.tol);
+
+  bool cache = app.cache_on;
+  if (ImGui::Checkbox("texture cache", &cache)) app.set_cache(cache, app.texture_budget_mb);
+  ImGui::SameLine();
+  ImGui::Checkbox("prefetch", &app.prefetch_on);
+  float upload = float(app.upload_budget_mb);
+  if (ImGui::SliderFloat("upload MiB/frame", &upload, 0.f, 256.f, upload > 0 ? "%.1f" : "no limit",
+                         ImGuiSliderFlags_Logarithmic))
+    app.upload_budget_mb = std::max(0.0, double(upload));
+  static double budget = -1;
+  if (budget < 0) budget = app.texture_budget_mb;
+  ImGui::SetNextItemWidth(120);
+  ImGui::InputDouble("budget MiB", &budget, 16, 128, "%.0f");
+  if (ImGui::IsItemDeactivatedAfterEdit()) app.set_cache(app.cache_on, budget);
+
+  int proj = app.camera.projection == tsp::Projection::perspective;
+  ImGui::RadioButton("orthographic", &proj, 0);
+  ImGui::SameLine();
+  ImGui::RadioButton("perspective", &proj, 1);
+  app.camera.projection = proj ? tsp::Projection::perspective : tsp::Projection::orthographic;
+  if (ImGui::Button("save PNG (S)")) app.request_save();
+  ImGui::SameLine();
+  if (ImGui::Button("reset view")) {
+    const int w = app.camera.width, h = app.camera.height;
+    app.camera = tsp::CameraParams{};
+    app.camera.width = w;
+    app.camera.height = h;
+  }
+  if (!app.status.empty()) ImGui::TextWrapped("%s", app.status.c_str());
+  ImGui::End();
+}
+
+void hud(PlayerApp& app) {
+  ImGui::SetNextWindowPos(ImVec2(float(app.ctx->width()) - 390, 10), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(380, 330), ImGuiCond_FirstUseEver);
+  ImGui::Begin("Statistics");
+  std::vector<float> ms;
+  double sum = 0;
+  for (const FrameSample& f : app.history) {
+    ms.push_back(float(f.ms));
+    sum += f.ms;
+  }
+  const double mean = ms.empty() ? 0 : sum / double(ms.size());
+  ImGui::Text("frame %.1f ms (mean %.1f), %.1f fps", ms.empty() ? 0.0 : double(ms.back()), mean,
+              mean > 0 ? 1000.0 / mean : 0.0);
+  if (!ms.empty())
+    ImGui::PlotLines("##ms", ms.data(), int(ms.size()), 0, "frame ms, last 5 s", 0.f,
+                     *std::max_element(ms.begin(), ms.end()) * 1.1f,
+                     ImVec2(ImGui::GetContentRegionAvail().x, kHudPlotHeight));
+  const tspgl::FrameReport& r = app.last;
+  ImGui::Text("render %.1f ms: traversal %.1f, slicing %.1f, upload %.1f, draw %.1f", r.ms,
+              r.traversal_ms, r.slicing_ms, r.upload_ms, r.draw_ms);
+  for (int c = 0; c < tsp::kDrawClassCount; ++c)
+    ImGui::Text("%-15s %5.1f %%", kClassNames[c], r.class_percent[std::size_t(c)]);
+  ImGui::Text("textures %lld resident, %.1f MiB", static_cast<long long>(r.textures_resident),
+              double(r.texture_bytes) / kBytesPerMiB);
+  ImGui::Text("uploaded this frame %.2f MiB", double(r.bytes_uploaded) / kBytesPerMiB);
+  if (!r.complete())
+    ImGui::TextColored(ImVec4(1, 0.8f, 0.2f, 1),
+                       "%lld textures wait for later frames (flat meanwhile)",
+                       static_cast<long long>(r.deferred_textures));
+  ImGui::Text("metric recompute %.2f ms (%lld nodes)", app.metric_ms,
+              static_cast<long long>(app.metric_evaluations));
+  const tsp::BrickCacheStats b = app.renderer->brick_cache().stats();
+  ImGui::Text("bricks in RAM %lld (%.1f MiB): %lld hits, %lld misses, %lld prefetched",
+              static_cast<long long>(b.resident_count), double(b.resident_bytes) / kBytesPerMiB,
+              static_cast<long long>(b.hits), static_cast<long long>(b.misses),
+              static_cast<long long>(b.prefetched));
+  ImGui::End();
+}
+
+void tf_editor(PlayerApp& app) {
+  ImGui::SetNextWindowPos(ImVec2(10, 280), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(340, 330), ImGuiCond_FirstUseEver);
+  ImGui::Begin("Transfer function");
+  // Histogram (log counts) with the opacity curve drawn over it.
+  const auto& hist = app.file->metadata().histogram;
+  std::vector<float> logh;
+  for (std::uint64_t c : hist) logh.push_back(std::log1p(float(c)));
+  const ImVec2 origin = ImGui::GetCursorScreenPos();
+  const float width = ImGui::GetContentRegionAvail().x;
+  ImGui::PlotHistogram("##hist", logh.data(), int(logh.size()), 0, nullptr, 0.f, FLT_MAX,
+                       ImVec2(width, kHistogramHeight));
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  const tsp::ValueRange d = app.tf.domain();
+  const int n = app.tf.size();
+  for (int j = 1; j < n; ++j) {
+    const tsp::Rgba a = app.tf.entry(j - 1), b = app.tf.entry(j);
+    const float x0 = origin.x + width * float(j - 1) / float(n - 1);
+    const float x1 = origin.x + width * float(j) / float(n - 1);
+    dl->AddLine(ImVec2(x0, origin.y + kHistogramHeight * (1 - a.a)),
+                ImVec2(x1, origin.y + kHistogramHeight * (1 - b.a)),
+                ImGui::ColorConvertFloat4ToU32(ImVec4(b.r, b.g, b.b, 1)), 2.f);
+  }
+  ImGui::Text("domain %.4g .. %.4g", d.lo, d.hi);
+
+  bool edited = false;
+  int remove = -1;
+  for (std::size_t i = 0; i < app.tf_points.size(); ++i) {
+    tsp::TfPoint& p = app.tf_points[i];
+    ImGui::PushID(int(i));
+    float x = float(p.x);
+    ImGui::SetNextItemWidth(110);
+    if (ImGui::DragFloat("##x", &x, float(d.hi - d.lo) / 500.f, float(d.lo), float(d.hi), "%.4g")) {
+      p.x = std::clamp(double(x), d.lo, d.hi);
+      edited = true;
+    }
+    ImGui::SameLine();
+    float c[4] = {p.c.r, p.c.g, p.c.b, p.c.a};
+    if (ImGui::ColorEdit4("##c", c, ImGuiColorEditFlags_AlphaBar | ImGuiColorEditFlags_NoInputs)) {
+      p.c = {c[0], c[1], c[2], c[3]};
+      edited = true;
+    }
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(90);
+    if (ImGui::SliderFloat("##a", &c[3], 0.f, 1.f, "a %.3f")) {
+      p.c.a = c[3];
+      edited = true;
+    }
+    ImGui::SameLine();
+    if (app.tf_points.size() > 2 && ImGui::SmallButton("x")) remove = int(i);
+    ImGui::PopID();
+  }
+  if (remove >= 0) {
+    app.tf_points.erase(app.tf_points.begin() + remove);
+    edited = true;
+  }
+  if (ImGui::Button("add point")) {
+    app.tf_points.push_back({(d.lo + d.hi) / 2, app.tf.lookup((d.lo + d.hi) / 2)});
+    edited = true;
+  }
+  if (edited) app.apply_tf_points();  // lazy metric: only touched nodes recompute next frame
+
+  static int preset = 0;
+  const std::vector<std::string> names = tsp::preset_names();
+  std::vector<const char*> cnames;
+  for (const auto& s : names) cnames.push_back(s.c_str());
+  ImGui::SetNextItemWidth(120);
+  ImGui::Combo("##preset", &preset, cnames.data(), int(cnames.size()));
+  ImGui::SameLine();
+  if (ImGui::Button("apply preset"))
+    app.set_tf(tsp::preset_transfer_function(names[std::size_t(preset)], d, app.tf.size()), true);
+
+  static char path[512] = "";
+  if (path[0] == 0) std::snprintf(path, sizeof path, "%s", app.tf_path.c_str());
+  ImGui::SetNextItemWidth(-1);
+  ImGui::InputText("##path", path, sizeof path);
+  app.tf_path = path;
+  try {
+    if (ImGui::Button("load")) {
+      app.set_tf(tsp::transfer_function_from_arg(app.tf_path, d, app.tf.size()), true);
+      app.status = "loaded " + app.tf_path;
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("save")) {
+      tsp::save_transfer_function(app.tf, app.tf_path);
+      app.status = "saved " + app.tf_path;
+    }
+  } catch (const tsp::Error& e) {
+    app.status = e.what();  // shown in the settings panel; the player keeps running
+  }
+  ImGui::End();
+}
+
+}  // namespace
+
+void PlayerApp::draw_ui() {
+  timeline(*this);
+  settings(*this);
+  hud(*this);
+  tf_editor(*this);
+}
+
+}  // namespace tspplayer

@@ -1,0 +1,151 @@
+#include "player/script.h"
+
+#include <charconv>
+#include <fstream>
+#include <sstream>
+
+#include "tsp/error.h"
+
+namespace tspplayer {
+
+namespace {
+
+using Kind = ScriptAction::Kind;
+
+struct LineParser {
+  const std::string& origin;
+  int line;
+  std::vector<std::string> words;
+
+  [[noreturn]] void fail(const std::string& what) const {
+    throw tsp::FormatError(origin + ":" + std::to_string(line) + ": " + what);
+  }
+  void expect_args(std::size_t n, const char* usage) const {
+    if (words.size() != n + 1)
+      fail("'" + words[0] + "' takes " + std::to_string(n) + " argument(s): expected '" + usage +
+           "', found " + std::to_string(words.size() - 1));
+  }
+  double number(std::size_t i, const char* usage) const {
+    const std::string& w = words[i];
+    double v = 0;
+    auto [end, ec] = std::from_chars(w.data(), w.data() + w.size(), v);
+    if (ec != std::errc() || end != w.data() + w.size())
+      fail("'" + w + "' is not a number (expected '" + usage + "')");
+    return v;
+  }
+  int integer(std::size_t i, const char* usage, int lo) const {
+    const std::string& w = words[i];
+    int v = 0;
+    auto [end, ec] = std::from_chars(w.data(), w.data() + w.size(), v);
+    if (ec != std::errc() || end != w.data() + w.size() || v < lo)
+      fail("'" + w + "' is not an integer >= " + std::to_string(lo) + " (expected '" + usage +
+           "')");
+    return v;
+  }
+  bool choice(std::size_t i, const char* yes, const char* no) const {
+    if (words[i] == yes) return true;
+    if (words[i] == no) return false;
+    fail("'" + words[i] + "': expected " + yes + " or " + no);
+  }
+};
+
+ScriptAction parse_line(const LineParser& p) {
+  ScriptAction a;
+  a.line = p.line;
+  const std::string& cmd = p.words[0];
+  if (cmd == "step") {
+    p.expect_args(1, "step K");
+    a.kind = Kind::step;
+    a.number = p.integer(1, "step K", 0);
+  } else if (cmd == "play" || cmd == "pause" || cmd == "quit") {
+    p.expect_args(0, cmd.c_str());
+    a.kind = cmd == "play" ? Kind::play : cmd == "pause" ? Kind::pause : Kind::quit;
+  } else if (cmd == "speed") {
+    p.expect_args(1, "speed STEPS_PER_SECOND");
+    a.kind = Kind::speed;
+    a.value = p.number(1, "speed STEPS_PER_SECOND");
+    if (!(a.value > 0)) p.fail("speed must be positive");
+  } else if (cmd == "loop") {
+    p.expect_args(1, "loop on|off");
+    a.kind = Kind::loop;
+    a.flag = p.choice(1, "on", "off");
+  } else if (cmd == "tf") {
+    p.expect_args(1, "tf FILE|preset:NAME");
+    a.kind = Kind::tf;
+    a.text = p.words[1];
+  } else if (cmd == "tolerance") {
+    p.expect_args(2, "tolerance SPATIAL TEMPORAL");
+    a.kind = Kind::tolerance;
+    a.value = p.number(1, "tolerance SPATIAL TEMPORAL");
+    a.value2 = p.number(2, "tolerance SPATIAL TEMPORAL");
+    if (a.value < 0 || a.value2 < 0) p.fail("tolerances must not be negative");
+  } else if (cmd == "metric") {
+    p.expect_args(1, "metric scalar|reference|approximate|perceptual");
+    a.kind = Kind::metric;
+    a.text = p.words[1];
+    if (a.text != "scalar" && a.text != "reference" && a.text != "approximate" &&
+        a.text != "perceptual")
+      p.fail("unknown metric '" + a.text +
+             "': expected scalar, reference, approximate or perceptual");
+  } else if (cmd == "cache") {
+    p.expect_args(1, "cache on|off");
+    a.kind = Kind::cache;
+    a.flag = p.choice(1, "on", "off");
+  } else if (cmd == "view") {
+    p.expect_args(2, "view AZIMUTH ELEVATION");
+    a.kind = Kind::view;
+    a.value = p.number(1, "view AZIMUTH ELEVATION");
+    a.value2 = p.number(2, "view AZIMUTH ELEVATION");
+    if (!(a.value2 > -90 && a.value2 < 90)) p.fail("elevation must be in (-90, 90) degrees");
+  } else if (cmd == "zoom") {
+    p.expect_args(1, "zoom FACTOR");
+    a.kind = Kind::zoom;
+    a.value = p.number(1, "zoom FACTOR");
+    if (!(a.value > 0)) p.fail("zoom must be positive");
+  } else if (cmd == "projection") {
+    p.expect_args(1, "projection ortho|persp");
+    a.kind = Kind::projection;
+    a.flag = p.choice(1, "persp", "ortho");
+  } else if (cmd == "screenshot" || cmd == "screenshot-ui") {
+    p.expect_args(1, "screenshot PATH.png");
+    a.kind = cmd == "screenshot" ? Kind::screenshot : Kind::screenshot_ui;
+    a.text = p.words[1];
+  } else if (cmd == "wait-frames") {
+    p.expect_args(1, "wait-frames N");
+    a.kind = Kind::wait_frames;
+    a.number = p.integer(1, "wait-frames N", 0);
+  } else {
+    p.fail("unknown action '" + cmd +
+           "': expected step, play, pause, speed, loop, tf, tolerance, metric, cache, view, zoom, "
+           "projection, screenshot, screenshot-ui, wait-frames or quit");
+  }
+  return a;
+}
+
+}  // namespace
+
+std::vector<ScriptAction> parse_script(const std::string& text, const std::string& origin) {
+  std::vector<ScriptAction> actions;
+  std::istringstream in(text);
+  std::string line;
+  int number = 0;
+  while (std::getline(in, line)) {
+    ++number;
+    std::istringstream words(line);
+    LineParser p{origin, number, {}};
+    for (std::string w; words >> w;) p.words.push_back(w);
+    if (p.words.empty() || p.words[0][0] == '#') continue;
+    actions.push_back(parse_line(p));
+  }
+  return actions;
+}
+
+std::vector<ScriptAction> load_script(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw tsp::IoError(path + ": cannot read the player script");
+  std::stringstream text;
+  text << in.rdbuf();
+  return parse_script(text.str(), path);
+}
+
+}  // namespace tspplayer

@@ -1,0 +1,43 @@
+// The player's action script (`tspplay play --script FILE`): one action per line, for tests and
+// demos. Format and behaviour: docs/player.md.
+#pragma once
+#include <string>
+#include <vector>
+
+namespace tspplayer {
+
+/// One scripted action.
+struct ScriptAction {
+  enum class Kind {
+    step,           ///< go to step `number` (pauses playback)
+    play,           ///< start playback
+    pause,          ///< stop playback
+    speed,          ///< playback speed `value` steps per second
+    loop,           ///< loop on (`flag`) or off
+    tf,             ///< transfer function `text`: a file or preset:NAME
+    tolerance,      ///< spatial `value`, temporal `value2`
+    metric,         ///< metric `text`
+    cache,          ///< texture cache on (`flag`) or off
+    view,           ///< azimuth `value`, elevation `value2` (degrees)
+    zoom,           ///< zoom `value` (> 0)
+    projection,     ///< perspective (`flag`) or orthographic
+    screenshot,     ///< save the next complete frame (volume only) to `text`
+    screenshot_ui,  ///< save the next complete frame with the UI panels to `text`
+    wait_frames,    ///< let `number` frames pass
+    quit            ///< close the player
+  };
+  Kind kind = Kind::quit;
+  int number = 0;
+  double value = 0, value2 = 0;
+  bool flag = false;
+  std::string text;
+  int line = 0;  ///< 1-based line in the script, for messages
+};
+
+/// Parses script text; origin names it in messages. Blank lines and lines starting with '#' are
+/// skipped. Throws tsp::FormatError naming origin, the line and what was expected.
+std::vector<ScriptAction> parse_script(const std::string& text, const std::string& origin);
+/// Reads and parses a script file. Throws tsp::IoError when unreadable, else like parse_script.
+std::vector<ScriptAction> load_script(const std::string& path);
+
+}  // namespace tspplayer

@@ -1,0 +1,144 @@
+// tspplay play under the current display (xvfb-run in scripts/test.sh), driven by --screenshot and
+// --script: the volume shows, scrubbing to step k shows step k (against `tspplay render` of the
+// same view and size), a TF edit changes the picture; bad scripts and steps are clear errors.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "gl/context.h"
+#include "support/paths.h"
+#include "tsp/error.h"
+#include "tsp/image.h"
+#include "tsp/image_diff.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using tsptest::run_tspplay;
+
+constexpr const char* kSize = "128x96";
+// Same view, TF and metric as `render`'s defaults, so frames should match up to blending noise.
+constexpr double kSameFrameDeltaE = 0.5;
+constexpr double kDifferentFrameDeltaE = 1.0;
+
+std::string q(const fs::path& p) {
+  return "'" + p.string() + "'";
+}
+
+bool window_possible() {
+  try {
+    auto ctx = tspgl::create_window_context(16, 16, "probe", false);
+    return true;
+  } catch (const tsp::Error&) {
+    return false;
+  }
+}
+
+fs::path make_tsp() {
+  fs::path dir = tsptest::temp_dir();
+  auto g = run_tspplay("generate shock -o " + q(dir / "s.h5") + " --dims 30,28,26 --steps 4");
+  EXPECT_EQ(g.exit_code, 0) << g.err;
+  auto b =
+      run_tspplay("build " + q(dir / "s.h5") + " --field shock --brick 16 -o " + q(dir / "s.tsp"));
+  EXPECT_EQ(b.exit_code, 0) << b.err;
+  return dir / "s.tsp";
+}
+
+fs::path write_script(const std::string& text) {
+  fs::path p = tsptest::temp_dir() / "actions.txt";
+  std::ofstream(p) << text;
+  return p;
+}
+
+// Share of pixels that are not the black background.
+double covered(const tsp::Image& im) {
+  std::int64_t n = 0;
+  for (int y = 0; y < im.height; ++y)
+    for (int x = 0; x < im.width; ++x) {
+      const std::uint8_t* p = im.at(x, y);
+      if (p[0] + p[1] + p[2] > 6) ++n;
+    }
+  return double(n) / double(im.width * im.height);
+}
+
+tsp::Image render_step(const fs::path& tsp, int step, const std::string& tf = "preset:sparse") {
+  fs::path out = tsptest::temp_dir() / "frames";
+  auto r = run_tspplay("render " + q(tsp) + " --tf " + tf + " --steps " + std::to_string(step) +
+                       " --size " + kSize + " -o " + q(out));
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  char name[32];
+  std::snprintf(name, sizeof name, "step_%04d.png", step);
+  return tsp::read_png((out / name).string());
+}
+
+TEST(Player, ScreenshotShowsTheVolumeAtTheRequestedStep) {
+  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  fs::path tsp = make_tsp(), shot = tsptest::temp_dir() / "shot.png";
+  auto r = run_tspplay("play " + q(tsp) + " --step 2 --size " + kSize + " --screenshot " + q(shot));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const tsp::Image im = tsp::read_png(shot.string());
+  ASSERT_EQ(im.width, 128);
+  ASSERT_EQ(im.height, 96);
+  EXPECT_GT(covered(im), 0.05);
+  const tsp::DiffStats same = tsp::diff_images(im, render_step(tsp, 2));
+  EXPECT_LT(same.mean, kSameFrameDeltaE);
+}
+
+TEST(Player, ScriptedScrubShowsEachStepAndATfEditChangesThePicture) {
+  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
+  fs::path s0 = dir / "s0.png", s3 = dir / "s3.png", s3f = dir / "s3f.png";
+  fs::path script = write_script("# scrub, then edit the TF\nscreenshot " + s0.string() +
+                                 "\nstep 3\nwait-frames 1\nscreenshot " + s3.string() +
+                                 "\ntf preset:filled\nscreenshot " + s3f.string() + "\nquit\n");
+  auto r = run_tspplay("play " + q(tsp) + " --size " + kSize + " --script " + q(script));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const tsp::Image a = tsp::read_png(s0.string()), b = tsp::read_png(s3.string()),
+                   c = tsp::read_png(s3f.string());
+  EXPECT_LT(tsp::diff_images(a, render_step(tsp, 0)).mean, kSameFrameDeltaE);
+  EXPECT_LT(tsp::diff_images(b, render_step(tsp, 3)).mean, kSameFrameDeltaE);
+  EXPECT_GT(tsp::diff_images(a, b).mean, kDifferentFrameDeltaE);  // step 3 is not step 0
+  EXPECT_GT(tsp::diff_images(b, c).mean, kDifferentFrameDeltaE);  // the TF edit shows
+  EXPECT_LT(tsp::diff_images(c, render_step(tsp, 3, "preset:filled")).mean, kSameFrameDeltaE);
+}
+
+// Errors are found before any window opens, so these run without a display too.
+TEST(Player, BadScriptLineIsAnErrorNamingFileAndLine) {
+  fs::path tsp = make_tsp();
+  fs::path script = write_script("step 1\nzoom fast\n");
+  auto r = run_tspplay("play " + q(tsp) + " --script " + q(script));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("actions.txt:2"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("'fast' is not a number"), std::string::npos) << r.err;
+  script = write_script("jump 3\n");
+  r = run_tspplay("play " + q(tsp) + " --script " + q(script));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("unknown action 'jump'"), std::string::npos) << r.err;
+}
+
+TEST(Player, StepOutOfRangeAndMissingFilesAreErrors) {
+  fs::path tsp = make_tsp();
+  auto r = run_tspplay("play " + q(tsp) + " --step 4");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("has steps 0..3"), std::string::npos) << r.err;
+  r = run_tspplay("play " + q(tsp) + " --script " + q(tsptest::temp_dir() / "none.txt"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("none.txt"), std::string::npos) << r.err;
+  r = run_tspplay("play " + q(tsp) + " --size 0x10");
+  EXPECT_EQ(r.exit_code, 2);
+}
+
+// A tiny upload budget spreads the uploads over frames; the screenshot waits for the complete one.
+TEST(Player, ScreenshotWaitsForTheCompleteFrameUnderAnUploadBudget) {
+  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  fs::path tsp = make_tsp(), shot = tsptest::temp_dir() / "shot.png";
+  auto r = run_tspplay("play " + q(tsp) + " --step 1 --upload-budget 0.000001 --size " + kSize +
+                       " --screenshot " + q(shot));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_LT(tsp::diff_images(tsp::read_png(shot.string()), render_step(tsp, 1)).mean,
+            kSameFrameDeltaE);
+  EXPECT_EQ(run_tspplay("play " + q(tsp) + " --upload-budget -1").exit_code, 2);
+}
+
+}  // namespace
