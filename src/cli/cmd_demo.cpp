@@ -1,18 +1,21 @@
 // tspplay demo: the README's main job. Generates the built-in dataset, builds its TSP tree,
 // summarises it, and writes a report; files already made are reused.
 #include <chrono>
+#include <cstdlib>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <unistd.h>
 
 #include "cli/args.h"
 #include "cli/build_runner.h"
 #include "cli/commands.h"
 #include "cli/info_report.h"
 #include "cli/movie.h"
+#include "player/player.h"
 #include "render/render_job.h"
 #include "tsp/error.h"
 #include "tsp/image.h"
@@ -34,7 +37,16 @@ struct DemoArgs {
   std::string dataset = "shock";
   std::string dims, steps;
   bool force = false;
+  bool no_play = false;
 };
+
+// The player opens only for a person at a terminal with a display: scripts, CI and tests
+// (stdin from /dev/null) stay headless even under Xvfb.
+bool interactive_display() {
+  const char* x = std::getenv("DISPLAY");
+  const char* w = std::getenv("WAYLAND_DISPLAY");
+  return ((x && *x) || (w && *w)) && isatty(STDIN_FILENO) && isatty(STDOUT_FILENO);
+}
 
 // Bricks of 16 samples: on the 64³ default they skip much more empty space than 32 (docs/results.md).
 constexpr int kDemoBrick = 16;
@@ -207,6 +219,14 @@ void run(const DemoArgs& a) {
   std::printf("\nwrote %s\nnext:\n  tspplay info %s --json --nodes\n  tspplay metrics %s --tf %s\n",
               report_path.string().c_str(), tsp_path.string().c_str(), tsp_path.string().c_str(),
               tf_path.string().c_str());
+  if (!a.no_play && interactive_display()) {
+    std::printf("\nopening the player (close the window to exit; --no-play to skip)\n");
+    std::fflush(stdout);
+    tspplayer::PlayerOptions po;
+    po.tsp_path = tsp_path.string();
+    po.tf = tf_path.string();
+    tspplayer::run_player(po);
+  }
 }
 
 const CommandRegistrar reg(1, [](CLI::App& app) {
@@ -218,6 +238,7 @@ const CommandRegistrar reg(1, [](CLI::App& app) {
   c->add_option("--dims", a->dims, "Grid size X,Y,Z or N (default: the dataset's)");
   c->add_option("--steps", a->steps, "Number of steps (default: the dataset's)");
   c->add_flag("--force", a->force, "Regenerate and rebuild even when the files exist");
+  c->add_flag("--no-play", a->no_play, "Do not open the player afterwards, even with a display");
   c->callback([a] { run(*a); });
 });
 
