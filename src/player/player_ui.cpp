@@ -136,7 +136,7 @@ void hud(PlayerApp& app) {
                      *std::max_element(ms.begin(), ms.end()) * 1.1f,
                      ImVec2(ImGui::GetContentRegionAvail().x, kHudPlotHeight));
   const tspgl::FrameReport& r = app.last;
-  ImGui::Text("render %.1f ms: traversal %.1f, slicing %.1f, upload %.1f, draw %.1f", r.ms,
+  ImGui::Text("render %.1f ms: traversal %.1f, slicing %.1f,\n  upload %.1f, draw %.1f", r.ms,
               r.traversal_ms, r.slicing_ms, r.upload_ms, r.draw_ms);
   for (int c = 0; c < tsp::kDrawClassCount; ++c)
     ImGui::Text("%-15s %5.1f %%", kClassNames[c], r.class_percent[std::size_t(c)]);
@@ -150,7 +150,7 @@ void hud(PlayerApp& app) {
   ImGui::Text("metric recompute %.2f ms (%lld nodes)", app.metric_ms,
               static_cast<long long>(app.metric_evaluations));
   const tsp::BrickCacheStats b = app.renderer->brick_cache().stats();
-  ImGui::Text("bricks in RAM %lld (%.1f MiB): %lld hits, %lld misses, %lld prefetched",
+  ImGui::Text("bricks in RAM %lld (%.1f MiB)\n  %lld hits, %lld misses, %lld prefetched",
               static_cast<long long>(b.resident_count), double(b.resident_bytes) / kBytesPerMiB,
               static_cast<long long>(b.hits), static_cast<long long>(b.misses),
               static_cast<long long>(b.prefetched));
