@@ -359,6 +359,12 @@ void PlayerApp::apply(const ScriptAction& a) {
     case Kind::cache:
       set_cache(a.flag, texture_budget_mb);
       break;
+    case Kind::prefetch:
+      prefetch_on = a.flag;
+      break;
+    case Kind::upload_budget:
+      upload_budget_mb = a.value;
+      break;
     case Kind::view:
       camera.azimuth_deg = a.value;
       camera.elevation_deg = a.value2;

@@ -19,6 +19,7 @@ constexpr float kMaxSpeed = 60.f;  // steps per second
 constexpr float kMinSpeed = 0.25f;
 constexpr float kHistogramHeight = 80.f;
 constexpr float kHudPlotHeight = 60.f;
+constexpr float kHandleRadius = 5.f;  // TF control point handles, pixels
 constexpr double kBytesPerMiB = 1 << 20;
 constexpr const char* kMetricNames[] = {"scalar", "reference", "approximate", "perceptual"};
 constexpr const char* kClassNames[] = {"not rendered", "untextured", "reused texture",
@@ -136,7 +137,7 @@ void hud(PlayerApp& app) {
                      *std::max_element(ms.begin(), ms.end()) * 1.1f,
                      ImVec2(ImGui::GetContentRegionAvail().x, kHudPlotHeight));
   const tspgl::FrameReport& r = app.last;
-  ImGui::Text("render %.1f ms: traversal %.1f, slicing %.1f, upload %.1f, draw %.1f", r.ms,
+  ImGui::Text("render %.1f ms: traversal %.1f, slicing %.1f,\n  upload %.1f, draw %.1f", r.ms,
               r.traversal_ms, r.slicing_ms, r.upload_ms, r.draw_ms);
   for (int c = 0; c < tsp::kDrawClassCount; ++c)
     ImGui::Text("%-15s %5.1f %%", kClassNames[c], r.class_percent[std::size_t(c)]);
@@ -150,7 +151,7 @@ void hud(PlayerApp& app) {
   ImGui::Text("metric recompute %.2f ms (%lld nodes)", app.metric_ms,
               static_cast<long long>(app.metric_evaluations));
   const tsp::BrickCacheStats b = app.renderer->brick_cache().stats();
-  ImGui::Text("bricks in RAM %lld (%.1f MiB): %lld hits, %lld misses, %lld prefetched",
+  ImGui::Text("bricks in RAM %lld (%.1f MiB)\n  %lld hits, %lld misses, %lld prefetched",
               static_cast<long long>(b.resident_count), double(b.resident_bytes) / kBytesPerMiB,
               static_cast<long long>(b.hits), static_cast<long long>(b.misses),
               static_cast<long long>(b.prefetched));
@@ -174,16 +175,65 @@ void tf_editor(PlayerApp& app) {
   const int n = app.tf.size();
   for (int j = 1; j < n; ++j) {
     const tsp::Rgba a = app.tf.entry(j - 1), b = app.tf.entry(j);
-    const float x0 = origin.x + width * float(j - 1) / float(n - 1);
-    const float x1 = origin.x + width * float(j) / float(n - 1);
+    // Entries at their values, so the curve and the handles share the TF domain's scale.
+    const float x0 = origin.x + width * float((app.tf.entry_value(j - 1) - d.lo) / (d.hi - d.lo));
+    const float x1 = origin.x + width * float((app.tf.entry_value(j) - d.lo) / (d.hi - d.lo));
     dl->AddLine(ImVec2(x0, origin.y + kHistogramHeight * (1 - a.a)),
                 ImVec2(x1, origin.y + kHistogramHeight * (1 - b.a)),
                 ImGui::ColorConvertFloat4ToU32(ImVec4(b.r, b.g, b.b, 1)), 2.f);
   }
-  ImGui::Text("domain %.4g .. %.4g", d.lo, d.hi);
-
   bool edited = false;
   int remove = -1;
+  // Handles on the curve: drag to move a point (value, opacity), double-click empty space to
+  // add one, right-click a point to remove it.
+  ImGui::SetCursorScreenPos(origin);
+  ImGui::InvisibleButton("##canvas", ImVec2(width, kHistogramHeight));
+  const double span = d.hi > d.lo ? d.hi - d.lo : 1.0;
+  auto screen = [&](const tsp::TfPoint& p) {
+    return ImVec2(origin.x + width * float((p.x - d.lo) / span),
+                  origin.y + kHistogramHeight * (1 - p.c.a));
+  };
+  const ImVec2 mouse = ImGui::GetIO().MousePos;
+  const double mouse_x = std::clamp(d.lo + double(mouse.x - origin.x) / width * span, d.lo, d.hi);
+  const float mouse_a = std::clamp(1.f - (mouse.y - origin.y) / kHistogramHeight, 0.f, 1.f);
+  int hovered = -1;
+  float best = kHandleRadius * kHandleRadius * 4;
+  for (std::size_t i = 0; i < app.tf_points.size(); ++i) {
+    const ImVec2 h = screen(app.tf_points[i]);
+    const float dist = (h.x - mouse.x) * (h.x - mouse.x) + (h.y - mouse.y) * (h.y - mouse.y);
+    if (dist < best) {
+      best = dist;
+      hovered = int(i);
+    }
+  }
+  static int dragging = -1;
+  if (ImGui::IsItemActivated()) dragging = hovered;
+  if (ImGui::IsItemActive() && dragging >= 0 && dragging < int(app.tf_points.size()) &&
+      (ImGui::GetIO().MouseDelta.x != 0 || ImGui::GetIO().MouseDelta.y != 0)) {
+    app.tf_points[std::size_t(dragging)].x = mouse_x;
+    app.tf_points[std::size_t(dragging)].c.a = mouse_a;
+    edited = true;
+  }
+  if (ImGui::IsItemDeactivated()) dragging = -1;
+  if (ImGui::IsItemHovered() && ImGui::IsMouseDoubleClicked(0) && hovered < 0) {
+    tsp::Rgba c = app.tf.lookup(mouse_x);
+    c.a = mouse_a;
+    app.tf_points.push_back({mouse_x, c});
+    edited = true;
+  }
+  if (ImGui::IsItemHovered() && ImGui::IsMouseClicked(1) && hovered >= 0 &&
+      app.tf_points.size() > 2)
+    remove = hovered;
+  for (std::size_t i = 0; i < app.tf_points.size(); ++i) {
+    const tsp::TfPoint& p = app.tf_points[i];
+    const ImVec2 h = screen(p);
+    dl->AddCircleFilled(h, kHandleRadius,
+                        ImGui::ColorConvertFloat4ToU32(ImVec4(p.c.r, p.c.g, p.c.b, 1)));
+    dl->AddCircle(h, kHandleRadius,
+                  int(i) == hovered ? IM_COL32(255, 255, 0, 255) : IM_COL32_WHITE);
+  }
+  ImGui::Text("domain %.4g .. %.4g", d.lo, d.hi);
+  ImGui::TextDisabled("drag a point; double-click adds, right-click removes");
   for (std::size_t i = 0; i < app.tf_points.size(); ++i) {
     tsp::TfPoint& p = app.tf_points[i];
     ImGui::PushID(int(i));

@@ -91,6 +91,15 @@ ScriptAction parse_line(const LineParser& p) {
     p.expect_args(1, "cache on|off");
     a.kind = Kind::cache;
     a.flag = p.choice(1, "on", "off");
+  } else if (cmd == "prefetch") {
+    p.expect_args(1, "prefetch on|off");
+    a.kind = Kind::prefetch;
+    a.flag = p.choice(1, "on", "off");
+  } else if (cmd == "upload-budget") {
+    p.expect_args(1, "upload-budget MIB");
+    a.kind = Kind::upload_budget;
+    a.value = p.number(1, "upload-budget MIB");
+    if (a.value < 0) p.fail("upload-budget must not be negative (0: no limit)");
   } else if (cmd == "view") {
     p.expect_args(2, "view AZIMUTH ELEVATION");
     a.kind = Kind::view;
@@ -116,8 +125,8 @@ ScriptAction parse_line(const LineParser& p) {
     a.number = p.integer(1, "wait-frames N", 0);
   } else {
     p.fail("unknown action '" + cmd +
-           "': expected step, play, pause, speed, loop, tf, tolerance, metric, cache, view, zoom, "
-           "projection, screenshot, screenshot-ui, wait-frames or quit");
+           "': expected step, play, pause, speed, loop, tf, tolerance, metric, cache, prefetch, "
+           "upload-budget, view, zoom, projection, screenshot, screenshot-ui, wait-frames or quit");
   }
   return a;
 }

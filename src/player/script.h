@@ -18,6 +18,8 @@ struct ScriptAction {
     tolerance,      ///< spatial `value`, temporal `value2`
     metric,         ///< metric `text`
     cache,          ///< texture cache on (`flag`) or off
+    prefetch,       ///< background brick prefetch on (`flag`) or off
+    upload_budget,  ///< texture MiB per frame `value` (0: no limit)
     view,           ///< azimuth `value`, elevation `value2` (degrees)
     zoom,           ///< zoom `value` (> 0)
     projection,     ///< perspective (`flag`) or orthographic

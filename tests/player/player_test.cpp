@@ -141,4 +141,19 @@ TEST(Player, ScreenshotWaitsForTheCompleteFrameUnderAnUploadBudget) {
   EXPECT_EQ(run_tspplay("play " + q(tsp) + " --upload-budget -1").exit_code, 2);
 }
 
+// The UI panels are drawn over the volume (ImGui's OpenGL3 back end works in the window), and
+// the volume-only screenshot of the same frame has none of them.
+TEST(Player, ScreenshotUiShowsThePanelsOverTheVolume) {
+  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
+  fs::path vol = dir / "vol.png", ui = dir / "ui.png";
+  fs::path script = write_script("step 1\nscreenshot " + vol.string() + "\nscreenshot-ui " +
+                                 ui.string() + "\nquit\n");
+  auto r = run_tspplay("play " + q(tsp) + " --size 640x480 --script " + q(script));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const tsp::Image a = tsp::read_png(vol.string()), b = tsp::read_png(ui.string());
+  EXPECT_GT(tsp::diff_images(a, b).mean, kDifferentFrameDeltaE);
+  EXPECT_GT(covered(b), covered(a) + 0.1);  // the panels cover much of the black background
+}
+
 }  // namespace
