@@ -156,12 +156,7 @@ std::string svg_plot(const PlotSpec& spec) {
 }
 
 void write_svg_plot(const PlotSpec& spec, const std::string& path) {
-  TempOutput out(path);
-  std::ofstream f(out.tmp(), std::ios::binary | std::ios::trunc);
-  f << svg_plot(spec);
-  f.close();
-  if (!f) throw IoError(path + ": cannot write the plot (disk full?)");
-  out.commit();
+  write_file_atomically(path, svg_plot(spec));
 }
 
 }  // namespace tsp

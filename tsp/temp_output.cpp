@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 
 #include "tsp/error.h"
 
@@ -45,6 +46,15 @@ void TempOutput::commit() {
     throw IoError(final_ + ": cannot rename the finished file into place (" + std::strerror(errno) +
                   ")");
   committed_ = true;
+}
+
+void write_file_atomically(const std::string& path, const std::string& text) {
+  TempOutput out(path);
+  std::ofstream f(out.tmp(), std::ios::binary | std::ios::trunc);
+  f << text;
+  f.close();
+  if (!f) throw IoError(path + ": cannot write (disk full?)");
+  out.commit();
 }
 
 }  // namespace tsp

@@ -27,4 +27,7 @@ class TempOutput {
   bool committed_ = false;
 };
 
+/// Writes text to path atomically (temporary name, renamed when complete). Throws IoError.
+void write_file_atomically(const std::string& path, const std::string& text);
+
 }  // namespace tsp

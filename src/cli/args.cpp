@@ -59,4 +59,21 @@ tsp::ValueRange parse_range(const std::string& text, const std::string& option) 
           parse_number(text.substr(colon + 1), option)};
 }
 
+std::pair<int, int> parse_steps(const std::string& text) {
+  if (text.empty()) return {0, -1};
+  const std::string expected = "A:B, A: or A with step numbers from 0";
+  auto colon = text.find(':');
+  int a = int(parse_integer(text.substr(0, colon), "--steps", 0, 1 << 30, expected));
+  if (colon == std::string::npos) return {a, a};
+  std::string rest = text.substr(colon + 1);
+  return {a, rest.empty() ? -1 : int(parse_integer(rest, "--steps", 0, 1 << 30, expected))};
+}
+
+std::pair<int, int> parse_size(const std::string& text) {
+  auto x = text.find('x');
+  if (x == std::string::npos) throw tsp::UsageError("--size '" + text + "': expected WxH");
+  return {int(parse_integer(text.substr(0, x), "--size", 1, 8192, "WxH, 1..8192")),
+          int(parse_integer(text.substr(x + 1), "--size", 1, 8192, "WxH, 1..8192"))};
+}
+
 }  // namespace tspcli

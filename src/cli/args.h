@@ -2,6 +2,7 @@
 // names the option, the text given and what was expected.
 #pragma once
 #include <string>
+#include <utility>
 
 #include "tsp/types.h"
 
@@ -20,5 +21,11 @@ tsp::Dims parse_dims(const std::string& text, const std::string& option, int max
 
 /// "LO:HI" in data units (a leading '-' is a sign); throws UsageError. LO < HI is checked later.
 tsp::ValueRange parse_range(const std::string& text, const std::string& option);
+
+/// --steps "A:B", "A:" or "A" (inclusive); an open end is −1 (the last step). Throws UsageError.
+std::pair<int, int> parse_steps(const std::string& text);
+
+/// --size "WxH" with both in [1, 8192]; throws UsageError.
+std::pair<int, int> parse_size(const std::string& text);
 
 }  // namespace tspcli

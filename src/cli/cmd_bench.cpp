@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "cli/args.h"
@@ -48,20 +49,9 @@ void run(const BenchArgs& a) {
   o.tsp_path = a.file;
   o.out_dir = a.out;
   if (!a.tfs.empty()) o.tfs = a.tfs;
-  if (!a.steps.empty()) {
-    const std::string expected = "A:B, A: or A with step numbers from 0";
-    auto colon = a.steps.find(':');
-    o.first_step = int(parse_integer(a.steps.substr(0, colon), "--steps", 0, 1 << 30, expected));
-    if (colon == std::string::npos) {
-      o.last_step = o.first_step;
-    } else if (colon + 1 < a.steps.size()) {
-      o.last_step = int(parse_integer(a.steps.substr(colon + 1), "--steps", 0, 1 << 30, expected));
-    }
-  }
-  auto x = a.size.find('x');
-  if (x == std::string::npos) throw tsp::UsageError("--size '" + a.size + "': expected WxH");
-  o.camera.width = int(parse_integer(a.size.substr(0, x), "--size", 1, 8192, "WxH, 1..8192"));
-  o.camera.height = int(parse_integer(a.size.substr(x + 1), "--size", 1, 8192, "WxH, 1..8192"));
+  if (!a.steps.empty()) std::tie(o.first_step, o.last_step) = parse_steps(a.steps);
+
+  std::tie(o.camera.width, o.camera.height) = parse_size(a.size);
   auto view = tsp::parse_view_angles(a.view);
   o.camera.azimuth_deg = view[0];
   o.camera.elevation_deg = view[1];

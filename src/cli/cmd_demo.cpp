@@ -62,16 +62,6 @@ bool up_to_date(const fs::path& out, const fs::path& in) {
   return in.empty() || fs::last_write_time(out, ec) >= fs::last_write_time(in, ec);
 }
 
-// Writes text to path atomically.
-void write_text(const fs::path& path, const std::string& text) {
-  tsp::TempOutput out(path.string());
-  std::ofstream f(out.tmp(), std::ios::binary | std::ios::trunc);
-  f << text;
-  f.close();
-  if (!f) throw tsp::IoError(path.string() + ": cannot write (disk full?)");
-  out.commit();
-}
-
 // Error statistics of one metric with the sparse preset, for the report.
 json metric_summary(tsp::Metric metric, const tsp::TspFile& file, const tsp::TransferFunction& tf) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -215,7 +205,7 @@ void run(const DemoArgs& a) {
   }
   report["render"] = render_frames(tsp_path, tf_path, dir);
   report["movie"] = make_movie(dir);
-  write_text(report_path, report.dump(2) + "\n");
+  tsp::write_file_atomically(report_path.string(), report.dump(2) + "\n");
   std::printf("\nwrote %s\nnext:\n  tspplay info %s --json --nodes\n  tspplay metrics %s --tf %s\n",
               report_path.string().c_str(), tsp_path.string().c_str(), tsp_path.string().c_str(),
               tf_path.string().c_str());

@@ -2,6 +2,7 @@
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <tuple>
 
 #include "cli/args.h"
 #include "cli/commands.h"
@@ -21,17 +22,6 @@ struct RenderArgs {
   bool baseline = false, perspective = false;
 };
 
-// "A:B", "A:" or "A" (inclusive); −1 stands for the last step.
-std::pair<int, int> parse_steps(const std::string& text) {
-  if (text.empty()) return {0, -1};
-  const std::string expected = "A:B, A: or A with step numbers from 0";
-  auto colon = text.find(':');
-  int a = int(parse_integer(text.substr(0, colon), "--steps", 0, 1 << 30, expected));
-  if (colon == std::string::npos) return {a, a};
-  std::string rest = text.substr(colon + 1);
-  return {a, rest.empty() ? -1 : int(parse_integer(rest, "--steps", 0, 1 << 30, expected))};
-}
-
 void run(const RenderArgs& a) {
   tspgl::RenderJobOptions o;
   o.tsp_path = a.file;
@@ -42,10 +32,7 @@ void run(const RenderArgs& a) {
   o.metric = tsp::parse_metric(a.metric);
   o.cache = a.cache == "off" ? tsp::CachePolicy::off : tsp::CachePolicy::on;
   o.baseline = a.baseline;
-  auto x = a.size.find('x');
-  if (x == std::string::npos) throw tsp::UsageError("--size '" + a.size + "': expected WxH");
-  o.camera.width = int(parse_integer(a.size.substr(0, x), "--size", 1, 8192, "WxH, 1..8192"));
-  o.camera.height = int(parse_integer(a.size.substr(x + 1), "--size", 1, 8192, "WxH, 1..8192"));
+  std::tie(o.camera.width, o.camera.height) = parse_size(a.size);
   auto view = tsp::parse_view_angles(a.view);
   o.camera.azimuth_deg = view[0];
   o.camera.elevation_deg = view[1];

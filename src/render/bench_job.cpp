@@ -184,15 +184,6 @@ std::vector<Found> search(ImageProbe& probe, const std::vector<tsp::Image>& base
   return out;
 }
 
-void write_text(const fs::path& path, const std::string& text) {
-  tsp::TempOutput out(path.string());
-  std::ofstream f(out.tmp(), std::ios::binary | std::ios::trunc);
-  f << text;
-  f.close();
-  if (!f) throw tsp::IoError(path.string() + ": cannot write (disk full?)");
-  out.commit();
-}
-
 // A CSV field: quoted when it holds a comma or a quote.
 std::string csv(const std::string& s) {
   if (s.find_first_of(",\"\n") == std::string::npos) return s;
@@ -446,10 +437,10 @@ json run_bench(const BenchOptions& o, const BenchProgress& progress) {
     report["plots"].push_back(error_svg);
   }
   tick("done");
-  write_text(dir / "table3.csv", t3.str());
-  write_text(dir / "table4.csv", t4.str());
-  write_text(dir / "table5.csv", t5.str());
-  write_text(dir / "report.json", report.dump(2) + "\n");
+  tsp::write_file_atomically((dir / "table3.csv").string(), t3.str());
+  tsp::write_file_atomically((dir / "table4.csv").string(), t4.str());
+  tsp::write_file_atomically((dir / "table5.csv").string(), t5.str());
+  tsp::write_file_atomically((dir / "report.json").string(), report.dump(2) + "\n");
   return report;
 }
 

@@ -128,12 +128,7 @@ RenderJobResult run_render_job(const RenderJobOptions& o, const RenderProgress& 
                                                                           : "orthographic";
     j["spacing"] = o.spacing;
     j["median_ms"] = median_frame_ms(result, o.passes);
-    tsp::TempOutput out((dir / "frames.json").string());
-    std::ofstream f(out.tmp(), std::ios::trunc);
-    f << j.dump(2) << "\n";
-    f.close();
-    if (!f) throw tsp::IoError((dir / "frames.json").string() + ": cannot write (disk full?)");
-    out.commit();
+    tsp::write_file_atomically((dir / "frames.json").string(), j.dump(2) + "\n");
   }
   return result;
 }
