@@ -239,11 +239,7 @@ json run_bench(const BenchOptions& o, const BenchProgress& progress) {
   if (o.passes < 1) throw tsp::UsageError("--passes must be at least 1");
   auto file = tsp::TspFile::open(o.tsp_path);
   const tsp::TspTree& tree = file->tree();
-  const int steps = tree.time().steps();
-  const int last = o.last_step < 0 ? steps - 1 : o.last_step;
-  if (o.first_step < 0 || o.first_step > last || last >= steps)
-    throw tsp::UsageError("--steps " + std::to_string(o.first_step) + ":" + std::to_string(last) +
-                          ": " + o.tsp_path + " has steps 0.." + std::to_string(steps - 1));
+  const int last = checked_last_step(tree, o.first_step, o.last_step, o.tsp_path);
   std::vector<tsp::TransferFunction> tfs;
   for (const std::string& arg : o.tfs)
     tfs.push_back(tsp::transfer_function_from_arg(arg, tree.value_range()));

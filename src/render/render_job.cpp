@@ -47,6 +47,15 @@ std::string step_png(const fs::path& dir, int step) {
 
 }  // namespace
 
+int checked_last_step(const tsp::TspTree& tree, int first, int last, const std::string& path) {
+  const int steps = tree.time().steps();
+  if (last < 0) last = steps - 1;
+  if (first < 0 || first > last || last >= steps)
+    throw tsp::UsageError("--steps " + std::to_string(first) + ":" + std::to_string(last) + ": " +
+                          path + " has steps 0.." + std::to_string(steps - 1));
+  return last;
+}
+
 double median_frame_ms(const RenderJobResult& result, int pass) {
   std::vector<double> ms;
   for (const FrameRecord& f : result.frames)
@@ -59,11 +68,7 @@ double median_frame_ms(const RenderJobResult& result, int pass) {
 RenderJobResult run_render_job(const RenderJobOptions& o, const RenderProgress& progress) {
   auto file = tsp::TspFile::open(o.tsp_path);
   const tsp::TspTree& tree = file->tree();
-  const int steps = tree.time().steps();
-  const int last = o.last_step < 0 ? steps - 1 : o.last_step;
-  if (o.first_step < 0 || o.first_step > last || last >= steps)
-    throw tsp::UsageError("--steps " + std::to_string(o.first_step) + ":" + std::to_string(last) +
-                          ": " + o.tsp_path + " has steps 0.." + std::to_string(steps - 1));
+  const int last = checked_last_step(tree, o.first_step, o.last_step, o.tsp_path);
   if (o.passes < 1) throw tsp::UsageError("--passes must be at least 1");
   if (!(o.spacing > 0)) throw tsp::UsageError("--spacing must be positive");
   if (o.tol.spatial < 0 || o.tol.temporal < 0)

@@ -9,6 +9,7 @@
 #include "tsp/camera.h"
 #include "tsp/metrics.h"
 #include "tsp/texture_cache.h"
+#include "tsp/tsp_tree.h"
 
 namespace tspgl {
 
@@ -48,6 +49,10 @@ using RenderProgress = std::function<void(int done, int total)>;
 /// Runs the job on an offscreen OSMesa context. Throws tsp::UsageError (bad steps, sizes),
 /// tsp::IoError / tsp::FormatError (files), tsp::GlError.
 RenderJobResult run_render_job(const RenderJobOptions& options, const RenderProgress& progress = {});
+
+/// The inclusive step range [first, last] of path's tree (last −1: the final step), validated;
+/// returns last. Throws tsp::UsageError naming the file and its steps.
+int checked_last_step(const tsp::TspTree& tree, int first, int last, const std::string& path);
 
 /// Median of the frames' `ms` in pass `pass` (0: all passes).
 double median_frame_ms(const RenderJobResult& result, int pass = 0);

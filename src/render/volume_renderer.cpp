@@ -170,6 +170,11 @@ void VolumeRenderer::delete_texture(const tsp::TextureKey& key) {
 GLuint VolumeRenderer::upload_brick(int brick, int step) {
   tsp::BrickSamples samples = bricks_.get(brick, step);
   const tsp::Box s = file_.tree().octree().brick_samples(brick);
+  return create_scalar_texture(s.size(0), s.size(1), s.size(2), samples->data());
+}
+
+// A trilinear, edge-clamped 16-bit scalar texture of w × h × d samples (x fastest).
+GLuint VolumeRenderer::create_scalar_texture(int w, int h, int d, const std::uint16_t* data) {
   GLuint id = 0;
   gl_.GenTextures(1, &id);
   gl_.BindTexture(GL_TEXTURE_3D, id);
@@ -177,8 +182,7 @@ GLuint VolumeRenderer::upload_brick(int brick, int step) {
   gl_.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
     gl_.TexParameteri(GL_TEXTURE_3D, wrap, GL_CLAMP_TO_EDGE);
-  gl_.TexImage3D(GL_TEXTURE_3D, 0, GL_R16, s.size(0), s.size(1), s.size(2), 0, GL_RED,
-                 GL_UNSIGNED_SHORT, samples->data());
+  gl_.TexImage3D(GL_TEXTURE_3D, 0, GL_R16, w, h, d, 0, GL_RED, GL_UNSIGNED_SHORT, data);
   return id;
 }
 
@@ -440,14 +444,7 @@ FrameReport VolumeRenderer::render_baseline(int step, const tsp::Camera& camera,
                     std::size_t(s.size(0)) * sizeof(std::uint16_t));
   }
   if (baseline_texture_) gl_.DeleteTextures(1, &baseline_texture_);
-  gl_.GenTextures(1, &baseline_texture_);
-  gl_.BindTexture(GL_TEXTURE_3D, baseline_texture_);
-  gl_.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-  gl_.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
-    gl_.TexParameteri(GL_TEXTURE_3D, wrap, GL_CLAMP_TO_EDGE);
-  gl_.TexImage3D(GL_TEXTURE_3D, 0, GL_R16, d.x, d.y, d.z, 0, GL_RED, GL_UNSIGNED_SHORT,
-                 volume_.data());
+  baseline_texture_ = create_scalar_texture(d.x, d.y, d.z, volume_.data());
   r.upload_ms = ms_since(t0);
   r.bytes_uploaded = d.count() * std::int64_t(sizeof(std::uint16_t));
   r.textures_resident = 1;

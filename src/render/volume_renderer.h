@@ -130,6 +130,7 @@ class VolumeRenderer {
   void draw_items(const std::vector<DrawItem>& items, const std::vector<GLuint>& textures,
                   const std::vector<tsp::Box>& sample_boxes);
   GLuint upload_brick(int brick, int step);
+  GLuint create_scalar_texture(int w, int h, int d, const std::uint16_t* data);
   void delete_texture(const tsp::TextureKey& key);
 
   GlContext& ctx_;

@@ -18,9 +18,7 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 using tsptest::run_tspplay;
 
-std::string q(const fs::path& p) {
-  return "'" + p.string() + "'";
-}
+std::string q(const fs::path& p) { return tsptest::quote(p); }
 
 json read_json(const fs::path& p) {
   std::ifstream in(p);

@@ -14,9 +14,7 @@ namespace {
 namespace fs = std::filesystem;
 using tsptest::run_tspplay;
 
-std::string q(const fs::path& p) {
-  return "'" + p.string() + "'";
-}
+std::string q(const fs::path& p) { return tsptest::quote(p); }
 
 TEST(GenerateCli, ListNamesEveryDataset) {
   auto r = run_tspplay("generate --list");

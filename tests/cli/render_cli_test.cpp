@@ -14,7 +14,7 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 using tsptest::run_tspplay;
 
-std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
+std::string q(const fs::path& p) { return tsptest::quote(p); }
 
 fs::path make_tsp() {
   fs::path dir = tsptest::temp_dir();

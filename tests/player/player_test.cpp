@@ -22,9 +22,7 @@ constexpr const char* kSize = "128x96";
 constexpr double kSameFrameDeltaE = 0.5;
 constexpr double kDifferentFrameDeltaE = 1.0;
 
-std::string q(const fs::path& p) {
-  return "'" + p.string() + "'";
-}
+std::string q(const fs::path& p) { return tsptest::quote(p); }
 
 bool window_possible() {
   try {

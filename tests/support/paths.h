@@ -15,6 +15,9 @@ std::filesystem::path tspplay_bin();
 /// A fresh, empty temporary directory unique to the calling test; removed at process exit.
 std::filesystem::path temp_dir();
 
+/// p in single quotes, for the shell command lines run_tspplay takes.
+inline std::string quote(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
+
 /// Result of running a command line: exit code and captured stdout/stderr.
 struct RunResult {
   int exit_code = -1;

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "support/random_metric.h"
 #include "support/memory_tree.h"
 #include "tsp/tf_io.h"
 
@@ -157,26 +158,6 @@ TEST(FramePlan, TexturedInternalNodeIsDrawnByItsLeafBricksBackToFront) {
   EXPECT_EQ(c.textures[1].key.brick, 1);
 }
 
-// Random errors (some exactly 0) and transparency on a tree over several octree levels.
-MetricResult random_metric(const TspTree& tree, std::mt19937& rng) {
-  std::uniform_real_distribution<float> u(0.f, 1.f);
-  MetricResult m;
-  const int n = tree.size();
-  m.errors.spatial.resize(n);
-  m.errors.temporal.resize(n);
-  m.mean_colour.resize(n);
-  m.transparent.resize(n);
-  for (int id = 0; id < n; ++id) {
-    const int above = tree.octree().depth() - tree.octree().node(tree.octree_of(id)).level +
-                      tree.time().depth() - tree.time().level(tree.time_of(id));
-    const float scale = std::pow(1.25f, float(above));
-    m.errors.spatial[id] = u(rng) < 0.2f ? 0.f : u(rng) * scale;
-    m.errors.temporal[id] = u(rng) < 0.2f ? 0.f : u(rng) * scale;
-    m.transparent[id] = u(rng) < 0.15f;
-  }
-  return m;
-}
-
 TEST(FramePlan, SharesSumTo100AndMatchTheTraversalsOutput) {
   const TspTree tree({40, 33, 17}, 7, 8);
   std::mt19937 rng(77);
@@ -184,7 +165,7 @@ TEST(FramePlan, SharesSumTo100AndMatchTheTraversalsOutput) {
   std::uniform_real_distribution<double> tol_u(0, 1.5);
   int textured_frames = 0, flat_frames = 0, hidden_frames = 0;
   for (int round = 0; round < 60; ++round) {
-    const MetricResult m = random_metric(tree, rng);
+    const MetricResult m = tsptest::random_metric(tree, rng, 0.2f);
     const Tolerances tol{round % 5 == 0 ? 0.0 : tol_u(rng), tol_u(rng)};
     const int t = int(rng() % 7);
     const std::vector<Emitted> out = traverse(tree, t, tol, m.errors, kView);
@@ -266,7 +247,7 @@ TEST(FramePlan, ReachableTexturesAreTheUnionOfEveryStepsTextures) {
   const TspTree tree({40, 33, 17}, 9, 8);
   std::mt19937 rng(8);
   for (int round = 0; round < 10; ++round) {
-    const MetricResult m = random_metric(tree, rng);
+    const MetricResult m = tsptest::random_metric(tree, rng, 0.2f);
     const Tolerances tol{0.2 + 0.1 * round, 0.3 + 0.05 * round};
     TextureCache cache(kUnlimited, CachePolicy::on);
     TextureKeySet drawn;

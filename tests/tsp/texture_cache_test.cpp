@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "support/random_metric.h"
 #include "support/memory_tree.h"
 #include "tsp/error.h"
 #include "tsp/frame_plan.h"
@@ -222,27 +223,6 @@ TEST(TextureCache, DropUnreachableKeepsExactlyTheReachableSet) {
 
 // ---- whole frames on a real tree ------------------------------------------------------
 
-// Transparency and errors of every node drawn at random; errors grow towards the root so that
-// traversals mix levels and span lengths.
-MetricResult random_metric(const TspTree& tree, std::mt19937& rng) {
-  std::uniform_real_distribution<float> u(0.f, 1.f);
-  MetricResult m;
-  const int n = tree.size();
-  m.errors.spatial.resize(n);
-  m.errors.temporal.resize(n);
-  m.mean_colour.resize(n);
-  m.transparent.resize(n);
-  for (int id = 0; id < n; ++id) {
-    const int above = tree.octree().depth() - tree.octree().node(tree.octree_of(id)).level +
-                      tree.time().depth() - tree.time().level(tree.time_of(id));
-    const float scale = std::pow(1.25f, float(above));
-    m.errors.spatial[id] = u(rng) * scale;
-    m.errors.temporal[id] = u(rng) * scale;
-    m.transparent[id] = u(rng) < 0.15f;
-  }
-  return m;
-}
-
 // Textures (brick, span start) a frame draws, found without the library's planner: every brick
 // whose box lies inside a textured emitted node's box.
 std::vector<TextureKey> drawn_textures(const TspTree& tree, const std::vector<Emitted>& out,
@@ -349,7 +329,7 @@ TEST(TextureCache, HitsAndMissesEqualABruteForceModelOverRandomTraversals) {
   const std::int64_t budgets[] = {kUnlimited, 6 * brick_bytes, 17 * brick_bytes, 0};
   int frames_with_hits = 0, frames_with_evictions = 0;
   for (int round = 0; round < 12; ++round) {
-    const MetricResult m = random_metric(tree, rng);
+    const MetricResult m = tsptest::random_metric(tree, rng);
     for (CachePolicy policy : {CachePolicy::on, CachePolicy::off})
       for (std::int64_t budget : budgets) {
         TextureCache cache(budget, policy);
