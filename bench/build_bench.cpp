@@ -27,9 +27,9 @@
 #include <vector>
 
 #include "bench/support/bench_util.h"
-#include "tsp/build.h"
-#include "tsp/generate.h"
-#include "tsp/tsp_file.h"
+#include "tsp/build/build.h"
+#include "tsp/source/procedural/generate.h"
+#include "tsp/store/tsp_file.h"
 
 namespace {
 

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "tsp/error.h"
-#include "tsp/generate.h"
+#include "tsp/core/error.h"
+#include "tsp/source/procedural/generate.h"
 
 int main(int argc, char** argv) {
   const std::string name = argc > 1 ? argv[1] : "shock";

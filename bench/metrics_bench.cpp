@@ -16,11 +16,11 @@
 #include <thread>
 #include <vector>
 
-#include "tsp/brick_store.h"
-#include "tsp/lazy_errors.h"
-#include "tsp/metrics.h"
-#include "tsp/reference_metric.h"
-#include "tsp/tf_io.h"
+#include "tsp/store/brick_store.h"
+#include "tsp/metric/lazy_errors.h"
+#include "tsp/metric/metrics.h"
+#include "tsp/metric/reference_metric.h"
+#include "tsp/metric/tf_io.h"
 
 namespace {
 

@@ -28,13 +28,13 @@
 #include "bench/support/bench_util.h"
 #include "gl/context.h"
 #include "render/volume_renderer.h"
-#include "tsp/brick_prefetcher.h"
-#include "tsp/camera.h"
-#include "tsp/error.h"
-#include "tsp/frame_plan.h"
-#include "tsp/lazy_errors.h"
-#include "tsp/tf_io.h"
-#include "tsp/tsp_file.h"
+#include "tsp/store/brick_prefetcher.h"
+#include "tsp/frame/camera.h"
+#include "tsp/core/error.h"
+#include "tsp/frame/frame_plan.h"
+#include "tsp/metric/lazy_errors.h"
+#include "tsp/metric/tf_io.h"
+#include "tsp/store/tsp_file.h"
 
 namespace {
 

@@ -13,10 +13,10 @@
 #include <string>
 #include <vector>
 
-#include "render/render_job.h"
-#include "tsp/build.h"
-#include "tsp/generate.h"
-#include "tsp/tsp_file.h"
+#include "jobs/render_job.h"
+#include "tsp/build/build.h"
+#include "tsp/source/procedural/generate.h"
+#include "tsp/store/tsp_file.h"
 
 namespace {
 

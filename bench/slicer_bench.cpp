@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "tsp/naive_slicer.h"
-#include "tsp/slicer.h"
+#include "tsp/frame/naive_slicer.h"
+#include "tsp/frame/slicer.h"
 
 namespace {
 

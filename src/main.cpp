@@ -3,7 +3,7 @@
 #include <exception>
 
 #include "cli/commands.h"
-#include "tsp/error.h"
+#include "tsp/core/error.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"tspplay " TSPPLAY_VERSION " - play time-varying volume data with TSP trees"};

@@ -2,7 +2,7 @@
 
 #include <cstdlib>
 
-#include "tsp/error.h"
+#include "tsp/core/error.h"
 
 namespace tspcli {
 

@@ -4,7 +4,7 @@
 #include <string>
 #include <utility>
 
-#include "tsp/types.h"
+#include "tsp/core/types.h"
 
 namespace tspcli {
 

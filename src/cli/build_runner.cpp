@@ -4,8 +4,8 @@
 #include <cstdio>
 
 #include "cli/progress_bar.h"
-#include "tsp/error.h"
-#include "tsp/tsp_file.h"
+#include "tsp/core/error.h"
+#include "tsp/store/tsp_file.h"
 
 namespace tspcli {
 namespace {

@@ -2,7 +2,7 @@
 #pragma once
 #include <string>
 
-#include "tsp/build.h"
+#include "tsp/build/build.h"
 
 namespace tspcli {
 

@@ -9,8 +9,8 @@
 
 #include "cli/args.h"
 #include "cli/commands.h"
-#include "render/bench_job.h"
-#include "tsp/error.h"
+#include "jobs/bench_job.h"
+#include "tsp/core/error.h"
 
 namespace tspcli {
 namespace {

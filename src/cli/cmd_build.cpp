@@ -7,9 +7,9 @@
 #include "cli/args.h"
 #include "cli/commands.h"
 #include "cli/build_runner.h"
-#include "tsp/build.h"
-#include "tsp/error.h"
-#include "tsp/tsp_file.h"
+#include "tsp/build/build.h"
+#include "tsp/core/error.h"
+#include "tsp/store/tsp_file.h"
 
 namespace tspcli {
 namespace {

@@ -6,8 +6,8 @@
 #include <string>
 
 #include "cli/commands.h"
-#include "tsp/image.h"
-#include "tsp/image_diff.h"
+#include "tsp/report/image.h"
+#include "tsp/report/image_diff.h"
 
 namespace tspcli {
 namespace {

@@ -7,9 +7,9 @@
 
 #include "cli/args.h"
 #include "cli/commands.h"
-#include "tsp/error.h"
-#include "tsp/generate.h"
-#include "tsp/io/hdf5_writer.h"
+#include "tsp/core/error.h"
+#include "tsp/source/procedural/generate.h"
+#include "tsp/source/hdf5_writer.h"
 
 namespace tspcli {
 namespace {

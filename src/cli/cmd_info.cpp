@@ -10,7 +10,7 @@
 
 #include "cli/commands.h"
 #include "cli/info_report.h"
-#include "tsp/tsp_file.h"
+#include "tsp/store/tsp_file.h"
 
 namespace tspcli {
 namespace {

@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "cli/commands.h"
-#include "tsp/metrics.h"
-#include "tsp/tf_io.h"
-#include "tsp/tsp_file.h"
+#include "tsp/metric/metrics.h"
+#include "tsp/metric/tf_io.h"
+#include "tsp/store/tsp_file.h"
 
 namespace tspcli {
 namespace {

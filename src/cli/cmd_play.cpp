@@ -6,7 +6,7 @@
 #include "cli/args.h"
 #include "cli/commands.h"
 #include "player/player.h"
-#include "tsp/error.h"
+#include "tsp/core/error.h"
 
 namespace tspcli {
 namespace {

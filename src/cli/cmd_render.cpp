@@ -7,8 +7,8 @@
 #include "cli/args.h"
 #include "cli/commands.h"
 #include "cli/progress_bar.h"
-#include "render/render_job.h"
-#include "tsp/error.h"
+#include "jobs/render_job.h"
+#include "tsp/core/error.h"
 
 namespace tspcli {
 namespace {

@@ -2,7 +2,7 @@
 #pragma once
 #include <nlohmann/json.hpp>
 
-#include "tsp/tsp_file.h"
+#include "tsp/store/tsp_file.h"
 
 namespace tspcli {
 

@@ -8,8 +8,8 @@
 #include <cstdlib>
 #include <vector>
 
-#include "tsp/error.h"
-#include "tsp/temp_output.h"
+#include "tsp/core/error.h"
+#include "tsp/core/temp_output.h"
 
 extern char** environ;
 

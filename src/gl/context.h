@@ -5,7 +5,7 @@
 #include <string>
 
 #include "gl/gl_api.h"
-#include "tsp/image.h"
+#include "tsp/report/image.h"
 
 namespace tspgl {
 

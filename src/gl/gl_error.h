@@ -1,6 +1,6 @@
 // The error thrown when OpenGL or a context fails.
 #pragma once
-#include "tsp/error.h"
+#include "tsp/core/error.h"
 
 namespace tsp {
 

@@ -13,9 +13,9 @@
 #include <cstdio>
 
 #include "player/player_app.h"
-#include "tsp/error.h"
-#include "tsp/image.h"
-#include "tsp/tf_io.h"
+#include "tsp/core/error.h"
+#include "tsp/report/image.h"
+#include "tsp/metric/tf_io.h"
 
 namespace tspplayer {
 

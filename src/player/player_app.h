@@ -11,12 +11,12 @@
 #include "player/player.h"
 #include "player/script.h"
 #include "render/volume_renderer.h"
-#include "tsp/brick_prefetcher.h"
-#include "tsp/camera.h"
-#include "tsp/lazy_errors.h"
-#include "tsp/metrics.h"
-#include "tsp/transfer_function.h"
-#include "tsp/tsp_file.h"
+#include "tsp/store/brick_prefetcher.h"
+#include "tsp/frame/camera.h"
+#include "tsp/metric/lazy_errors.h"
+#include "tsp/metric/metrics.h"
+#include "tsp/metric/transfer_function.h"
+#include "tsp/store/tsp_file.h"
 
 namespace tspplayer {
 

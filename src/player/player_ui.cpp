@@ -8,8 +8,8 @@
 #include <cstring>
 
 #include "player/player_app.h"
-#include "tsp/error.h"
-#include "tsp/tf_io.h"
+#include "tsp/core/error.h"
+#include "tsp/metric/tf_io.h"
 
 namespace tspplayer {
 

@@ -4,7 +4,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "tsp/error.h"
+#include "tsp/core/error.h"
 
 namespace tspplayer {
 

@@ -7,8 +7,8 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "gl/gl_error.h"
-#include "tsp/slicer.h"
-#include "tsp/traversal.h"
+#include "tsp/frame/slicer.h"
+#include "tsp/tree/traversal.h"
 
 namespace tspgl {
 

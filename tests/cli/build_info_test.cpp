@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "support/paths.h"
-#include "tsp/tsp_tree.h"
-#include "tsp/volume_source.h"
+#include "tsp/tree/tsp_tree.h"
+#include "tsp/source/volume_source.h"
 
 namespace {
 

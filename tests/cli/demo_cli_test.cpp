@@ -7,9 +7,9 @@
 #include <nlohmann/json.hpp>
 
 #include "support/paths.h"
-#include "tsp/generate.h"
-#include "tsp/tsp_file.h"
-#include "tsp/volume_source.h"
+#include "tsp/source/procedural/generate.h"
+#include "tsp/store/tsp_file.h"
+#include "tsp/source/volume_source.h"
 
 namespace {
 

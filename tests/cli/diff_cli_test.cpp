@@ -6,8 +6,8 @@
 #include <random>
 
 #include "support/paths.h"
-#include "tsp/image.h"
-#include "tsp/image_diff.h"
+#include "tsp/report/image.h"
+#include "tsp/report/image_diff.h"
 
 namespace {
 

@@ -4,9 +4,9 @@
 #include <nlohmann/json.hpp>
 
 #include "support/paths.h"
-#include "tsp/metrics.h"
-#include "tsp/tf_io.h"
-#include "tsp/tsp_file.h"
+#include "tsp/metric/metrics.h"
+#include "tsp/metric/tf_io.h"
+#include "tsp/store/tsp_file.h"
 
 namespace {
 

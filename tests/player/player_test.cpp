@@ -8,9 +8,9 @@
 
 #include "gl/context.h"
 #include "support/paths.h"
-#include "tsp/error.h"
-#include "tsp/image.h"
-#include "tsp/image_diff.h"
+#include "tsp/core/error.h"
+#include "tsp/report/image.h"
+#include "tsp/report/image_diff.h"
 
 namespace {
 

@@ -12,13 +12,13 @@
 
 #include "support/memory_source.h"
 #include "support/paths.h"
-#include "tsp/build.h"
-#include "tsp/color.h"
-#include "tsp/generate.h"
-#include "tsp/image.h"
-#include "tsp/image_diff.h"
-#include "tsp/tf_io.h"
-#include "tsp/traversal.h"
+#include "tsp/build/build.h"
+#include "tsp/core/color.h"
+#include "tsp/source/procedural/generate.h"
+#include "tsp/report/image.h"
+#include "tsp/report/image_diff.h"
+#include "tsp/metric/tf_io.h"
+#include "tsp/tree/traversal.h"
 
 namespace tspgl {
 namespace {

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cassert>
 
-#include "tsp/error.h"
+#include "tsp/core/error.h"
 
 namespace tsptest {
 

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "tsp/volume_source.h"
+#include "tsp/source/volume_source.h"
 
 namespace tsptest {
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "tsp/error.h"
+#include "tsp/core/error.h"
 
 namespace tsptest {
 

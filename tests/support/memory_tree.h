@@ -7,8 +7,8 @@
 #include <optional>
 #include <vector>
 
-#include "tsp/brick_store.h"
-#include "tsp/tsp_tree.h"
+#include "tsp/store/brick_store.h"
+#include "tsp/tree/tsp_tree.h"
 
 namespace tsptest {
 

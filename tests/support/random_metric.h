@@ -3,8 +3,8 @@
 #include <cmath>
 #include <random>
 
-#include "tsp/metrics.h"
-#include "tsp/tsp_tree.h"
+#include "tsp/metric/metrics.h"
+#include "tsp/tree/tsp_tree.h"
 
 namespace tsptest {
 

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "tsp/types.h"
-#include "tsp/volume_source.h"
+#include "tsp/core/types.h"
+#include "tsp/source/volume_source.h"
 
 namespace tsptest {
 

@@ -1,0 +1,43 @@
+// `tspplay bench` as a library call: the paper's Table 3 (zero tolerance: baseline against the
+// TSP renderer per metric, texture cache off and on), Table 4 (per target image error and
+// metric, the tolerance that reaches it, timed) and Table 5 (class shares) on any .tsp file.
+// Writes table3.csv, table4.csv, table5.csv, report.json and SVG plots. See docs/bench.md.
+#pragma once
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "tsp/frame/camera.h"
+#include "tsp/metric/metrics.h"
+
+namespace tspgl {
+
+/// Everything `tspplay bench` takes.
+struct BenchOptions {
+  std::string tsp_path;                           ///< the .tsp file
+  std::vector<std::string> tfs{"preset:sparse"};  ///< transfer functions (file or preset:NAME)
+  std::string out_dir;                            ///< report/ (created)
+  int first_step = 0, last_step = -1;             ///< inclusive; −1: the last step
+  tsp::CameraParams camera;                       ///< size and view
+  std::vector<tsp::Metric> metrics{tsp::Metric::scalar, tsp::Metric::approximate,
+                                   tsp::Metric::perceptual, tsp::Metric::reference};
+  std::vector<double> targets{1.0, 3.0};  ///< target mean ΔE per Table-4 row ("slight", "moderate")
+  int search_steps = 8;  ///< at most this many evenly spread steps are rendered per search probe
+  int search_iterations = 10;  ///< bisection steps on the log-tolerance scale
+  int passes = 2;             ///< timed runs play the steps this many times; the last pass counts
+};
+
+/// Progress: a line of text describing the phase, runs done and runs total.
+using BenchProgress = std::function<void(const std::string& phase, int done, int total)>;
+
+/// Runs every table and writes the report files into options.out_dir; returns report.json's
+/// content. Throws tsp::UsageError (bad options), tsp::IoError / tsp::FormatError (files),
+/// tsp::GlError.
+nlohmann::json run_bench(const BenchOptions& options, const BenchProgress& progress = {});
+
+/// The steps a tolerance search renders: all of first..last when there are at most `count`,
+/// else `count` steps spread evenly with both ends included.
+std::vector<int> search_step_sample(int first, int last, int count);
+
+}  // namespace tspgl

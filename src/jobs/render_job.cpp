@@ -1,0 +1,141 @@
+#include "jobs/render_job.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "tsp/core/error.h"
+#include "tsp/report/image.h"
+#include "tsp/core/temp_output.h"
+#include "tsp/metric/tf_io.h"
+#include "tsp/store/tsp_file.h"
+
+namespace tspgl {
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+json frame_json(const FrameRecord& f) {
+  const FrameReport& r = f.report;
+  return {{"pass", f.pass},
+          {"step", r.step},
+          {"ms", r.ms},
+          {"traversal_ms", r.traversal_ms},
+          {"slicing_ms", r.slicing_ms},
+          {"upload_ms", r.upload_ms},
+          {"draw_ms", r.draw_ms},
+          {"not_rendered", r.class_percent[0]},
+          {"untextured", r.class_percent[1]},
+          {"reused_texture", r.class_percent[2]},
+          {"new_texture", r.class_percent[3]},
+          {"bytes_uploaded", r.bytes_uploaded},
+          {"textures_resident", r.textures_resident},
+          {"texture_bytes", r.texture_bytes},
+          {"polygons", r.polygons}};
+}
+
+std::string step_png(const fs::path& dir, int step) {
+  char name[32];
+  std::snprintf(name, sizeof name, "step_%04d.png", step);
+  return (dir / name).string();
+}
+
+}  // namespace
+
+int checked_last_step(const tsp::TspTree& tree, int first, int last, const std::string& path) {
+  const int steps = tree.time().steps();
+  if (last < 0) last = steps - 1;
+  if (first < 0 || first > last || last >= steps)
+    throw tsp::UsageError("--steps " + std::to_string(first) + ":" + std::to_string(last) + ": " +
+                          path + " has steps 0.." + std::to_string(steps - 1));
+  return last;
+}
+
+double median_frame_ms(const RenderJobResult& result, int pass) {
+  std::vector<double> ms;
+  for (const FrameRecord& f : result.frames)
+    if (pass == 0 || f.pass == pass) ms.push_back(f.report.ms);
+  if (ms.empty()) return 0;
+  std::nth_element(ms.begin(), ms.begin() + std::ptrdiff_t(ms.size() / 2), ms.end());
+  return ms[ms.size() / 2];
+}
+
+RenderJobResult run_render_job(const RenderJobOptions& o, const RenderProgress& progress) {
+  auto file = tsp::TspFile::open(o.tsp_path);
+  const tsp::TspTree& tree = file->tree();
+  const int last = checked_last_step(tree, o.first_step, o.last_step, o.tsp_path);
+  if (o.passes < 1) throw tsp::UsageError("--passes must be at least 1");
+  if (!(o.spacing > 0)) throw tsp::UsageError("--spacing must be positive");
+  if (o.tol.spatial < 0 || o.tol.temporal < 0)
+    throw tsp::UsageError("tolerances must not be negative");
+  const tsp::TransferFunction tf = tsp::transfer_function_from_arg(o.tf, tree.value_range());
+
+  fs::path dir;
+  if (!o.out_dir.empty()) {
+    dir = o.out_dir;
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec) throw tsp::IoError(o.out_dir + ": cannot create the output directory: " + ec.message());
+  }
+
+  RenderJobResult result;
+  tsp::MetricResult metric;
+  if (!o.baseline) {
+    const auto t0 = std::chrono::steady_clock::now();
+    metric = tsp::compute_errors(o.metric, tree, tf, file.get(), 0);
+    result.metric_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  }
+  auto ctx = create_offscreen_context(o.camera.width, o.camera.height);
+  result.renderer = ctx->describe();
+  VolumeRenderer renderer(*ctx, *file, o.cache, o.texture_budget);
+  renderer.set_transfer_function(tf);
+  const tsp::Camera camera(tree.octree().dims(), o.camera);
+  RenderSettings settings;
+  settings.tol = o.tol;
+  settings.spacing = o.spacing;
+
+  const int total = o.passes * (last - o.first_step + 1);
+  for (int pass = 1; pass <= o.passes; ++pass) {
+    for (int t = o.first_step; t <= last; ++t) {
+      FrameRecord rec;
+      rec.pass = pass;
+      rec.report = o.baseline ? renderer.render_baseline(t, camera, settings)
+                              : renderer.render(t, camera, settings, metric);
+      result.frames.push_back(rec);
+      // The last pass's images win; earlier passes only measure.
+      if (!dir.empty() && o.write_images && pass == o.passes)
+        tsp::write_png(step_png(dir, t), ctx->read_pixels());
+      if (progress) progress(int(result.frames.size()), total);
+    }
+  }
+
+  if (!dir.empty()) {
+    json j;
+    j["frames"] = json::array();
+    for (const FrameRecord& f : result.frames) j["frames"].push_back(frame_json(f));
+    j["file"] = o.tsp_path;
+    j["renderer"] = result.renderer;
+    j["mode"] = o.baseline ? "baseline" : "tsp";
+    j["metric"] = o.baseline ? "none" : tsp::to_string(o.metric);
+    j["metric_ms"] = result.metric_ms;
+    j["cache"] = o.cache == tsp::CachePolicy::on ? "on" : "off";
+    j["spatial_tol"] = o.tol.spatial;
+    j["temporal_tol"] = o.tol.temporal;
+    j["size"] = {o.camera.width, o.camera.height};
+    j["view"] = {o.camera.azimuth_deg, o.camera.elevation_deg};
+    j["projection"] = o.camera.projection == tsp::Projection::perspective ? "perspective"
+                                                                          : "orthographic";
+    j["spacing"] = o.spacing;
+    j["median_ms"] = median_frame_ms(result, o.passes);
+    tsp::write_file_atomically((dir / "frames.json").string(), j.dump(2) + "\n");
+  }
+  return result;
+}
+
+}  // namespace tspgl

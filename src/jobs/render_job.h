@@ -1,0 +1,60 @@
+// `tspplay render` as a library call: render a range of steps of a .tsp file headless, write
+// step_NNNN.png and frames.json, and return the per-frame reports.
+#pragma once
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "render/volume_renderer.h"
+#include "tsp/frame/camera.h"
+#include "tsp/metric/metrics.h"
+#include "tsp/frame/texture_cache.h"
+#include "tsp/tree/tsp_tree.h"
+
+namespace tspgl {
+
+/// Everything `tspplay render` takes.
+struct RenderJobOptions {
+  std::string tsp_path;                       ///< the .tsp file
+  std::string tf = "preset:sparse";           ///< --tf: a file or preset:NAME
+  std::string out_dir;                        ///< frames/ (created); empty: no files written
+  int first_step = 0, last_step = -1;         ///< inclusive; −1: the last step
+  tsp::Tolerances tol;                        ///< --spatial-tol, --temporal-tol
+  tsp::Metric metric = tsp::Metric::approximate;
+  tsp::CachePolicy cache = tsp::CachePolicy::on;
+  bool baseline = false;                      ///< render without the TSP tree
+  tsp::CameraParams camera;                   ///< size, view, projection
+  int passes = 1;                             ///< times the step range is played
+  double spacing = kDefaultSliceSpacing;      ///< slice spacing in voxels
+  std::int64_t texture_budget = kDefaultTextureBudget;
+  bool write_images = true;                   ///< PNGs (frames.json is written when out_dir is set)
+};
+
+/// One frame of a job.
+struct FrameRecord {
+  int pass = 1;
+  FrameReport report;
+};
+
+/// What a job did.
+struct RenderJobResult {
+  std::vector<FrameRecord> frames;
+  double metric_ms = 0;   ///< whole-tree metric computation before the first frame
+  std::string renderer;   ///< the GL renderer string
+};
+
+/// Progress callback: frames done, frames total.
+using RenderProgress = std::function<void(int done, int total)>;
+
+/// Runs the job on an offscreen OSMesa context. Throws tsp::UsageError (bad steps, sizes),
+/// tsp::IoError / tsp::FormatError (files), tsp::GlError.
+RenderJobResult run_render_job(const RenderJobOptions& options, const RenderProgress& progress = {});
+
+/// The inclusive step range [first, last] of path's tree (last −1: the final step), validated;
+/// returns last. Throws tsp::UsageError naming the file and its steps.
+int checked_last_step(const tsp::TspTree& tree, int first, int last, const std::string& path);
+
+/// Median of the frames' `ms` in pass `pass` (0: all passes).
+double median_frame_ms(const RenderJobResult& result, int pass = 0);
+
+}  // namespace tspgl

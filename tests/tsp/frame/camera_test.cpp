@@ -1,0 +1,89 @@
+#include "tsp/frame/camera.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "tsp/core/error.h"
+
+namespace tsp {
+namespace {
+
+glm::dvec3 project(const Camera& c, glm::dvec3 p) {
+  glm::dvec4 clip = c.view_projection() * glm::dvec4(p, 1.0);
+  return glm::dvec3(clip) / clip.w;
+}
+
+std::array<glm::dvec3, 8> corners(Dims d) {
+  std::array<glm::dvec3, 8> c;
+  for (int i = 0; i < 8; ++i)
+    c[i] = {(i & 1) ? d.x - 1.0 : 0.0, (i & 2) ? d.y - 1.0 : 0.0, (i & 4) ? d.z - 1.0 : 0.0};
+  return c;
+}
+
+TEST(Camera, FrontViewLooksAlongPlusYWithZUp) {
+  CameraParams p;
+  p.azimuth_deg = 0;
+  p.elevation_deg = 0;
+  Camera c({11, 21, 31}, p);
+  auto d = c.direction();
+  EXPECT_NEAR(d[0], 0, 1e-12);
+  EXPECT_NEAR(d[1], 1, 1e-12);
+  EXPECT_NEAR(d[2], 0, 1e-12);
+  // +x is to the right and +z is up on screen.
+  glm::dvec3 centre(5, 10, 15);
+  EXPECT_GT(project(c, centre + glm::dvec3(1, 0, 0)).x, project(c, centre).x);
+  EXPECT_GT(project(c, centre + glm::dvec3(0, 0, 1)).y, project(c, centre).y);
+  EXPECT_NEAR(project(c, centre).x, 0, 1e-12);
+  EXPECT_NEAR(project(c, centre).y, 0, 1e-12);
+}
+
+TEST(Camera, DirectionMatchesEyeToCentreAndAnglesForBothProjections) {
+  for (Projection proj : {Projection::orthographic, Projection::perspective}) {
+    for (double az : {0.0, 37.0, 90.0, 200.0, -45.0})
+      for (double el : {-60.0, 0.0, 25.0, 80.0}) {
+        CameraParams p;
+        p.azimuth_deg = az;
+        p.elevation_deg = el;
+        p.projection = proj;
+        Camera c({64, 32, 16}, p);
+        auto d = c.direction();
+        auto e = c.eye();
+        glm::dvec3 centre(31.5, 15.5, 7.5);
+        glm::dvec3 to_centre = glm::normalize(centre - glm::dvec3(e[0], e[1], e[2]));
+        EXPECT_NEAR(to_centre.x, d[0], 1e-9);
+        EXPECT_NEAR(to_centre.y, d[1], 1e-9);
+        EXPECT_NEAR(to_centre.z, d[2], 1e-9);
+        // Elevation is the angle above the x-y plane, seen from the eye side.
+        EXPECT_NEAR(std::asin(-d[2]) * 180 / 3.14159265358979323846, el, 1e-9);
+        // The whole volume is inside the view volume at zoom 1.
+        for (auto q : corners({64, 32, 16})) {
+          glm::dvec3 n = project(c, q);
+          EXPECT_LE(std::fabs(n.x), 1.0 + 1e-9);
+          EXPECT_LE(std::fabs(n.y), 1.0 + 1e-9);
+          EXPECT_LE(std::fabs(n.z), 1.0 + 1e-9);
+        }
+      }
+  }
+}
+
+TEST(Camera, ZoomScalesTheImageAboutTheCentre) {
+  CameraParams p;
+  Camera a({50, 50, 50}, p);
+  p.zoom = 2;
+  Camera b({50, 50, 50}, p);
+  glm::dvec3 q(40, 10, 30);
+  EXPECT_NEAR(project(b, q).x, 2 * project(a, q).x, 1e-9);
+  EXPECT_NEAR(project(b, q).y, 2 * project(a, q).y, 1e-9);
+}
+
+TEST(Camera, ParsesViewAnglesAndRejectsBadText) {
+  auto v = parse_view_angles("30,-20.5");
+  EXPECT_EQ(v[0], 30);
+  EXPECT_EQ(v[1], -20.5);
+  for (const char* bad : {"", "30", "a,b", "30,90", "30,-90", "1,2,3", "nan,1"})
+    EXPECT_THROW(parse_view_angles(bad), UsageError) << bad;
+}
+
+}  // namespace
+}  // namespace tsp

@@ -1,0 +1,132 @@
+#include "tsp/metric/tf_io.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+
+#include "support/paths.h"
+#include "tsp/core/error.h"
+
+namespace tsp {
+namespace {
+
+std::string write(const std::string& name, const std::string& text) {
+  auto p = tsptest::temp_dir() / name;
+  std::ofstream(p) << text;
+  return p.string();
+}
+
+// Expects a FormatError whose message names the file and contains `key`.
+void expect_format_error(const std::string& text, const std::string& key) {
+  std::string path = write("bad.json", text);
+  try {
+    load_transfer_function(path, 16);
+    ADD_FAILURE() << "no error for " << text;
+  } catch (const FormatError& e) {
+    std::string msg = e.what();
+    EXPECT_NE(msg.find(path), std::string::npos) << msg;
+    EXPECT_NE(msg.find(key), std::string::npos) << msg;
+  }
+}
+
+TEST(TfIo, OurJsonIsPiecewiseLinearInDataUnits) {
+  std::string path = write("tf.json", R"({"range": [10, 20],
+      "points": [[12, 0, 0, 0, 0], [16, 1, 0.5, 0.25, 1]]})");
+  TransferFunction tf = load_transfer_function(path, 10);  // centres 10.5, 11.5, ...
+  EXPECT_EQ(tf.size(), 10);
+  EXPECT_EQ(tf.domain(), (ValueRange{10, 20}));
+  for (int j = 0; j < 10; ++j) {
+    double t = std::clamp((10.5 + j - 12) / 4, 0.0, 1.0);
+    EXPECT_NEAR(tf.entry(j).r, t, 1e-6);
+    EXPECT_NEAR(tf.entry(j).g, 0.5 * t, 1e-6);
+    EXPECT_NEAR(tf.entry(j).b, 0.25 * t, 1e-6);
+    EXPECT_NEAR(tf.entry(j).a, t, 1e-6);
+  }
+}
+
+TEST(TfIo, SaveThenLoadReproducesTheTable) {
+  TransferFunction tf = preset_transfer_function("sparse", {-5, 5}, 64);
+  std::string path = (tsptest::temp_dir() / "saved.json").string();
+  save_transfer_function(tf, path);
+  TransferFunction back = load_transfer_function(path, 64);
+  EXPECT_EQ(back.domain(), tf.domain());
+  for (int j = 0; j < 64; ++j) {
+    EXPECT_NEAR(back.entry(j).a, tf.entry(j).a, 1e-6);
+    EXPECT_NEAR(back.entry(j).r, tf.entry(j).r, 1e-6);
+  }
+  EXPECT_FALSE(std::filesystem::exists(path + ".tmp"));
+}
+
+TEST(TfIo, ParaViewPresetWithOpacityCurve) {
+  // As ParaView's "Save as preset" writes it: a list of presets, flat RGBPoints (x r g b) and
+  // an opacity curve Points (x alpha midpoint sharpness), in data units.
+  std::string path = write("pv.json", R"([{
+      "ColorSpace": "Diverging", "Name": "Cool to Warm", "NanColor": [1, 1, 0],
+      "RGBPoints": [0, 0.23, 0.299, 0.754,  50, 0.865, 0.865, 0.865,  100, 0.706, 0.016, 0.15],
+      "Points": [0, 0, 0.5, 0,  40, 0, 0.5, 0,  100, 0.8, 0.5, 0]}])");
+  TransferFunction tf = load_transfer_function(path, 100);  // centres 0.5, 1.5, ...
+  EXPECT_EQ(tf.domain(), (ValueRange{0, 100}));
+  // Colour: linear between the RGB points.
+  EXPECT_NEAR(tf.entry(0).r, 0.23 + (0.865 - 0.23) * 0.5 / 50, 1e-5);
+  EXPECT_NEAR(tf.entry(75).g, 0.865 + (0.016 - 0.865) * 25.5 / 50, 1e-5);
+  // Opacity: 0 below 40, then linear to 0.8 at 100.
+  EXPECT_FLOAT_EQ(tf.entry(39).a, 0.0f);
+  EXPECT_NEAR(tf.entry(70).a, 0.8 * (70.5 - 40) / 60, 1e-5);
+  EXPECT_NEAR(tf.entry(99).a, 0.8 * (99.5 - 40) / 60, 1e-5);
+  EXPECT_TRUE(tf.transparent(0, 39));
+}
+
+TEST(TfIo, ParaViewPresetWithoutOpacityGetsTheDefaultRamp) {
+  std::string path =
+      write("pv.json", R"({"Name": "gray", "RGBPoints": [-1, 0, 0, 0, 1, 1, 1, 1]})");
+  TransferFunction tf = load_transfer_function(path, 4);  // centres −0.75, −0.25, 0.25, 0.75
+  EXPECT_EQ(tf.domain(), (ValueRange{-1, 1}));
+  EXPECT_NEAR(tf.entry(0).a, 0.125, 1e-6);
+  EXPECT_NEAR(tf.entry(3).a, 0.875, 1e-6);
+  EXPECT_NEAR(tf.entry(2).r, 0.625, 1e-6);
+}
+
+TEST(TfIo, MalformedFilesNameTheFileAndTheKey) {
+  expect_format_error("{not json", "not valid JSON");
+  expect_format_error(R"({"points": [[0, 0, 0, 0, 0]]})", "\"range\"");
+  expect_format_error(R"({"range": [1], "points": [[0, 0, 0, 0, 0]]})", "\"range\"");
+  expect_format_error(R"({"range": [2, 1], "points": [[0, 0, 0, 0, 0]]})", "\"range\"");
+  expect_format_error(R"({"range": [0, "x"], "points": [[0, 0, 0, 0, 0]]})", "range[1]");
+  expect_format_error(R"({"range": [0, 1], "points": []})", "\"points\"");
+  expect_format_error(R"({"range": [0, 1], "points": [[0, 0, 0, 0]]})", "points[0]");
+  expect_format_error(R"({"range": [0, 1], "points": [[0, 0, 0, 0, 0], [1, 0, 2, 0, 0]]})",
+                      "points[1][2]");
+  expect_format_error(R"({"RGBPoints": [0, 0, 0]})", "\"RGBPoints\"");
+  expect_format_error(R"({"RGBPoints": [0, 0, 0, 0, 0, 1, 1, 1]})", "\"RGBPoints\"");  // x = 0 only
+  expect_format_error(R"({"RGBPoints": [0, 0, 0, 0, 1, 1, 1.5, 1]})", "RGBPoints[6]");
+  expect_format_error(R"({"RGBPoints": [0, 0, 0, 0, 1, 1, 1, 1], "Points": [0, 2, 0.5, 0]})",
+                      "Points[1]");
+  expect_format_error(R"([{"Name": "x"}])", "RGBPoints");
+  expect_format_error(R"({"colors": []})", "neither");
+}
+
+TEST(TfIo, MissingFileIsAnIoError) {
+  EXPECT_THROW(load_transfer_function((tsptest::temp_dir() / "nope.json").string()), IoError);
+}
+
+TEST(TfIo, PresetsSparseIsMostlyTransparentFilledIsNot) {
+  auto names = preset_names();
+  EXPECT_EQ(names.size(), 3u);
+  TransferFunction sparse = preset_transfer_function("sparse", {0, 1000});
+  TransferFunction filled = preset_transfer_function("filled", {0, 1000});
+  int sparse_clear = 0, filled_clear = 0;
+  for (int j = 0; j < sparse.size(); ++j) {
+    sparse_clear += sparse.entry(j).a == 0;
+    filled_clear += filled.entry(j).a == 0;
+  }
+  EXPECT_GT(sparse_clear, sparse.size() * 3 / 4);
+  EXPECT_EQ(filled_clear, 0);
+  EXPECT_THROW(preset_transfer_function("nope", {0, 1}), UsageError);
+  TransferFunction viaarg = transfer_function_from_arg("preset:filled", {0, 1000});
+  EXPECT_EQ(viaarg.entry(100), filled.entry(100));
+}
+
+}  // namespace
+}  // namespace tsp

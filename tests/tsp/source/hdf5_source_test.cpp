@@ -1,0 +1,233 @@
+#include "tsp/source/hdf5_source.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <vector>
+
+#include "support/paths.h"
+#include "support/reader_formula.h"
+#include "tsp/core/error.h"
+
+namespace tsp {
+namespace {
+
+namespace fs = std::filesystem;
+using tsptest::error_of;
+using tsptest::expect_formula;
+
+std::unique_ptr<VolumeSource> open(const std::string& path, const std::string& field) {
+  return tsptest::open_field(path, field);
+}
+
+using tsptest::kFixtureDims;
+
+std::string h5_fixture(const std::string& name) {
+  return (tsptest::test_data_dir() / "h5" / name).string();
+}
+
+TEST(Hdf5Source, FourDDatasetGivesOneStepPerLeadingIndex) {
+  auto s = open(h5_fixture("grid4d.h5"), "f");
+  EXPECT_EQ(s->dims(), kFixtureDims);
+  ASSERT_EQ(s->steps(), 3);
+  for (int t = 0; t < 3; ++t) expect_formula(tsptest::read_step(*s, t), kFixtureDims, t);
+  EXPECT_NE(s->describe().find("/f"), std::string::npos);
+}
+
+TEST(Hdf5Source, EmptyFieldPicksTheOnlyFourDDataset) {
+  auto s = open(h5_fixture("grid4d.h5"), "");
+  ASSERT_EQ(s->steps(), 3);
+  expect_formula(tsptest::read_step(*s, 2), kFixtureDims, 2);
+}
+
+TEST(Hdf5Source, ThreeDDatasetIsOneStepByBareNameOrPath) {
+  auto s = open(h5_fixture("grid4d.h5"), "single");
+  ASSERT_EQ(s->steps(), 1);
+  expect_formula(tsptest::read_step(*s, 0), kFixtureDims, 0);
+  auto g = open(h5_fixture("grid4d.h5"), "/grp/d");
+  ASSERT_EQ(g->steps(), 1);
+  expect_formula(tsptest::read_step(*g, 0), kFixtureDims, 2);
+}
+
+TEST(Hdf5Source, GroupOfStepsReadsInNaturalNameOrder) {
+  auto s = open(h5_fixture("group_steps.h5"), "steps");
+  EXPECT_EQ(s->dims(), kFixtureDims);
+  ASSERT_EQ(s->steps(), 3);
+  const int names[] = {1, 2, 10};  // t1, t2, t10; the datasets hold f at t = their number
+  for (int t = 0; t < 3; ++t) expect_formula(tsptest::read_step(*s, t), kFixtureDims, names[t]);
+}
+
+TEST(Hdf5Source, GroupWithStepsOfDifferentShapesIsRejected) {
+  std::string msg = error_of<FormatError>([] { open(h5_fixture("group_steps.h5"), "/mixed"); });
+  EXPECT_NE(msg.find("group_steps.h5"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("/mixed/a1"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("3x4x6"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("3x4x5"), std::string::npos) << msg;
+}
+
+TEST(Hdf5Source, IntegerDatasetsConvertToFloat) {
+  for (const char* field : {"plain", "u64"}) {
+    auto s = open(h5_fixture("int16.h5"), field);
+    ASSERT_EQ(s->steps(), 3) << field;
+    for (int t = 0; t < 3; ++t) expect_formula(tsptest::read_step(*s, t), kFixtureDims, t);
+  }
+}
+
+TEST(Hdf5Source, NetcdfPackingAppliesScaleOffsetAndMapsFillToNaN) {
+  // Stored 2·f with scale_factor 0.5 and add_offset 100: values f + 100, except the sample set
+  // to _FillValue (step 1, x=y=z=0) and the one set to missing_value (step 2, x=3 y=2 z=1).
+  auto s = open(h5_fixture("int16.h5"), "packed");
+  ASSERT_EQ(s->steps(), 3);
+  expect_formula(tsptest::read_step(*s, 0), kFixtureDims, 0, 100);
+  std::vector<float> s1 = tsptest::read_step(*s, 1);
+  EXPECT_TRUE(std::isnan(s1[0]));
+  s1[0] = tsptest::formula(0, 0, 0, 1) + 100;
+  expect_formula(s1, kFixtureDims, 1, 100);
+  std::vector<float> s2 = tsptest::read_step(*s, 2);
+  const std::size_t i = std::size_t((1 * 4 + 2) * 5 + 3);
+  EXPECT_TRUE(std::isnan(s2[i]));
+  s2[i] = tsptest::formula(3, 2, 1, 2) + 100;
+  expect_formula(s2, kFixtureDims, 2, 100);
+}
+
+TEST(Hdf5Source, NonNumericTypesAreFormatErrors) {
+  std::string msg = error_of<FormatError>([] { open(h5_fixture("bad_types.h5"), "text"); });
+  EXPECT_NE(msg.find("bad_types.h5"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("/text"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("string"), std::string::npos) << msg;
+  msg = error_of<FormatError>([] { open(h5_fixture("bad_types.h5"), "compound"); });
+  EXPECT_NE(msg.find("compound"), std::string::npos) << msg;
+}
+
+TEST(Hdf5Source, WrongRankNamesShapeAndExpectation) {
+  std::string msg = error_of<FormatError>([] { open(h5_fixture("grid4d.h5"), "plane"); });
+  EXPECT_NE(msg.find("/plane"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("rank 2"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("4x5"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("expected 3-D"), std::string::npos) << msg;
+}
+
+TEST(Hdf5Source, NonNumericPackingAttributeIsAFormatError) {
+  std::string msg = error_of<FormatError>([] { open(h5_fixture("bad_types.h5"), "bad_scale"); });
+  EXPECT_NE(msg.find("scale_factor"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("expected a number"), std::string::npos) << msg;
+}
+
+TEST(Hdf5Source, MissingFieldListsTheAvailableFields) {
+  std::string msg = error_of<FormatError>([] { open(h5_fixture("grid4d.h5"), "nope"); });
+  EXPECT_NE(msg.find("grid4d.h5"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("'nope'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("/f (3x3x4x5)"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("/grp/d (3x4x5)"), std::string::npos) << msg;
+  EXPECT_EQ(msg.find("/time"), std::string::npos) << msg;  // 1-D: not a candidate
+}
+
+TEST(Hdf5Source, EmptyFieldWithSeveralFourDDatasetsListsThem) {
+  std::string msg = error_of<FormatError>([] { open(h5_fixture("int16.h5"), ""); });
+  for (const char* name : {"/plain", "/packed", "/u64"})
+    EXPECT_NE(msg.find(name), std::string::npos) << msg;
+}
+
+TEST(Hdf5Source, TruncatedFileIsAnErrorNotACrash) {
+  fs::path dir = tsptest::temp_dir();
+  std::ifstream in(h5_fixture("grid4d.h5"), std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (std::size_t keep : {bytes.size() / 2, std::size_t(600), std::size_t(100)}) {
+    fs::path p = dir / ("cut" + std::to_string(keep) + ".h5");
+    std::ofstream(p, std::ios::binary).write(bytes.data(), std::streamsize(keep));
+    EXPECT_THROW(
+        {
+          auto s = open(p.string(), "f");
+          for (int t = 0; t < s->steps(); ++t) tsptest::read_step(*s, t);
+        },
+        FormatError)
+        << keep;
+  }
+}
+
+TEST(Hdf5Source, NonHdf5FileWithHdf5ExtensionIsAFormatError) {
+  fs::path p = tsptest::temp_dir() / "fake.h5";
+  std::ofstream(p) << "just text\n";
+  std::string msg = error_of<FormatError>([&] { open(p.string(), "f"); });
+  EXPECT_NE(msg.find("fake.h5"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("not an HDF5 file"), std::string::npos) << msg;
+}
+
+TEST(Hdf5Source, NetcdfClassicFileIsNamedAsSuch) {
+  fs::path p = tsptest::temp_dir() / "classic.nc";
+  std::ofstream(p, std::ios::binary) << std::string("CDF\x01\0\0\0\0", 8);
+  std::string msg = error_of<FormatError>([&] { open(p.string(), "T"); });
+  EXPECT_NE(msg.find("NetCDF classic"), std::string::npos) << msg;
+}
+
+TEST(Hdf5Source, MissingFileIsAnIoError) {
+  std::string msg = error_of<IoError>([] { open(h5_fixture("absent.h5"), "f"); });
+  EXPECT_NE(msg.find("absent.h5"), std::string::npos) << msg;
+}
+
+TEST(Hdf5Source, HdfSignatureIsDetectedWhateverTheExtension) {
+  fs::path p = tsptest::temp_dir() / "grid.data";
+  fs::copy_file(h5_fixture("grid4d.h5"), p);
+  auto s = open(p.string(), "f");
+  EXPECT_EQ(s->steps(), 3);
+}
+
+// The real WRF (NetCDF-4) file: 4 steps of 14 × 48 × 48, float32.
+fs::path wrf_file() {
+  return tsptest::shared_data_dir() / "wrf-katrina" / "ci_test_file.nc";
+}
+
+float at(const std::vector<float>& v, int x, int y, int z) {
+  return v[std::size_t((z * 48 + y) * 48 + x)];
+}
+
+TEST(Hdf5Source, WrfTemperatureMatchesH5dump) {
+  if (!fs::exists(wrf_file())) GTEST_SKIP() << "shared data absent: " << wrf_file();
+  auto s = open(wrf_file().string(), "T");
+  EXPECT_EQ(s->dims(), (Dims{48, 48, 14}));
+  ASSERT_EQ(s->steps(), 4);
+  // Reference values printed by `h5dump -d /T -s "t,z,y,x" -c "1,1,1,1" ci_test_file.nc`
+  // (6 significant digits), indices (t, z, y, x).
+  struct Sample {
+    int t, z, y, x;
+    float value;
+  };
+  for (Sample smp : {Sample{0, 0, 0, 0, 1.27993f}, Sample{3, 13, 47, 47, 42.4775f},
+                     Sample{1, 5, 20, 30, 3.92902f}, Sample{2, 7, 10, 40, 7.95246f}}) {
+    std::vector<float> v = tsptest::read_step(*s, smp.t);
+    EXPECT_NEAR(at(v, smp.x, smp.y, smp.z), smp.value, 1e-5 * std::fabs(smp.value) + 1e-6)
+        << smp.t << "," << smp.z << "," << smp.y << "," << smp.x;
+  }
+}
+
+TEST(Hdf5Source, WrfCloudWaterMatchesH5dump) {
+  if (!fs::exists(wrf_file())) GTEST_SKIP() << "shared data absent: " << wrf_file();
+  auto s = open(wrf_file().string(), "/QCLOUD");
+  EXPECT_EQ(s->dims(), (Dims{48, 48, 14}));
+  ASSERT_EQ(s->steps(), 4);
+  // From `h5dump -d /QCLOUD -s "t,z,y,x" -c "1,1,1,1" ci_test_file.nc`.
+  struct Sample {
+    int t, z, y, x;
+    float value;
+  };
+  for (Sample smp : {Sample{0, 9, 43, 43, 0.00181097f}, Sample{1, 5, 45, 43, 0.000562077f},
+                     Sample{2, 7, 46, 41, 0.000880334f}, Sample{3, 6, 46, 39, 0.000532236f},
+                     Sample{1, 5, 20, 30, 0.0f}}) {
+    std::vector<float> v = tsptest::read_step(*s, smp.t);
+    EXPECT_NEAR(at(v, smp.x, smp.y, smp.z), smp.value, 1e-5 * std::fabs(smp.value) + 1e-12)
+        << smp.t << "," << smp.z << "," << smp.y << "," << smp.x;
+  }
+}
+
+TEST(Hdf5Source, WrfWithoutFieldListsItsVariables) {
+  if (!fs::exists(wrf_file())) GTEST_SKIP() << "shared data absent: " << wrf_file();
+  std::string msg = error_of<FormatError>([] { open(wrf_file().string(), ""); });
+  EXPECT_NE(msg.find("/T (4x14x48x48)"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("/QCLOUD"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("--field"), std::string::npos) << msg;
+}
+
+}  // namespace
+}  // namespace tsp

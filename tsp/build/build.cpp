@@ -1,0 +1,297 @@
+#include "tsp/build/build.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <exception>
+#include <limits>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include "tsp/build/brick_stats.h"
+#include "tsp/core/error.h"
+#include "tsp/build/scratch_file.h"
+#include "tsp/build/step_prefetcher.h"
+#include "tsp/core/temp_output.h"
+#include "tsp/store/tsp_file.h"
+#include "tsp/tree/tsp_tree.h"
+#include "tsp/store/tsp_writer.h"
+
+namespace tsp {
+
+namespace {
+
+constexpr const char* kPhaseRead = "reading";
+constexpr const char* kPhaseBricks = "bricks";
+
+// Finite extremes and non-finite count of the input, over every voxel of every step.
+struct InputScan {
+  float lo = std::numeric_limits<float>::infinity();
+  float hi = -std::numeric_limits<float>::infinity();
+  std::int64_t nonfinite = 0;
+  void add(const std::vector<float>& v) {
+    float l = lo, h = hi;
+    std::int64_t bad = 0;
+    for (float x : v) {
+      if (std::isfinite(x)) {
+        l = std::min(l, x);
+        h = std::max(h, x);
+      } else {
+        ++bad;
+      }
+    }
+    lo = l;
+    hi = h;
+    nonfinite += bad;
+  }
+  ValueRange range() const { return lo <= hi ? ValueRange{lo, hi} : ValueRange{0, 0}; }
+};
+
+// Pass 1: every step once, in order; each brick's samples go to its place in the scratch file.
+InputScan scatter_steps(VolumeSource& source, const Octree& octree, ScratchFile& scratch,
+                        const ProgressFn& progress, std::int64_t total_bytes) {
+  const Dims d = octree.dims();
+  const std::int64_t step_bytes = d.count() * std::int64_t(sizeof(float));
+  InputScan scan;
+  // The reader thread also scans each step, which balances the threads of this pass.
+  StepPrefetcher prefetch(source, [&scan](int, const std::vector<float>& v) { scan.add(v); });
+  // Copying into the page cache is kernel time that parallelises: two scatter workers split
+  // each step's bricks (pwrite at fixed offsets needs no ordering).
+  constexpr int kScatterWorkers = 2;
+  std::vector<std::vector<float>> bricks(kScatterWorkers);
+  auto scatter = [&](const std::vector<float>& vol, int t, int worker) {
+    std::vector<float>& brick = bricks[std::size_t(worker)];
+    for (int b = worker; b < octree.brick_count(); b += kScatterWorkers) {
+      const Box s = octree.brick_samples(b);
+      brick.resize(std::size_t(s.count()));
+      float* out = brick.data();
+      const std::size_t row = std::size_t(s.size(0));
+      for (int z = s.lo[2]; z < s.hi[2]; ++z)
+        for (int y = s.lo[1]; y < s.hi[1]; ++y, out += row)
+          std::memcpy(out, vol.data() + s.lo[0] + std::int64_t(d.x) * (y + std::int64_t(d.y) * z),
+                      row * sizeof(float));
+      scratch.write(b, t, brick);
+    }
+  };
+  for (int t = 0; t < source.steps(); ++t) {
+    const std::vector<float>& vol = prefetch.next();
+    std::exception_ptr helper_error;
+    std::thread helper([&] {
+      try {
+        scatter(vol, t, 1);
+      } catch (...) {
+        helper_error = std::current_exception();
+      }
+    });
+    try {
+      scatter(vol, t, 0);
+    } catch (...) {
+      helper.join();
+      throw;
+    }
+    helper.join();
+    if (helper_error) std::rethrow_exception(helper_error);
+    prefetch.release();
+    if (progress) progress(kPhaseRead, (t + 1) * step_bytes, total_bytes);
+  }
+  return scan;
+}
+
+// NaN and −Inf become lo, +Inf hi; everything is clamped into [lo, hi].
+void sanitize(std::span<float> v, ValueRange r) {
+  const float lo = float(r.lo), hi = float(r.hi);
+  for (float& x : v) x = std::isnan(x) ? lo : std::clamp(x, lo, hi);
+}
+
+// Bit-for-bit the same code as Quantizer::encode for sanitized (non-NaN) samples, without a libm
+// call per sample: adding and subtracting 2^52 rounds half to even like nearbyint in the default
+// rounding mode.
+struct FastQuantizer {
+  double lo, width;
+  bool flat;
+  explicit FastQuantizer(ValueRange r) : lo(r.lo), width(r.width()), flat(!(r.width() > 0)) {}
+  std::uint16_t operator()(float v) const {
+    if (flat) return 0;
+    constexpr double kRound = 4503599627370496.0;  // 2^52
+    double q = (double(v) - lo) / width * kQuantMax;
+    q = (q + kRound) - kRound;
+    // Branch-free clamp (v is never NaN here: sanitize() ran first); −0 converts to 0.
+    q = std::min(std::max(q, 0.0), double(kQuantMax));
+    return std::uint16_t(int(q));
+  }
+};
+
+// Quantizes a brick's series [T][samples] into the padded stored layout [T][Bz][By][Bx],
+// repeating the last sample along each axis into the padding.
+void quantize_padded(std::span<const float> series, const Box& s, std::array<int, 3> shape,
+                     int steps, const FastQuantizer& q, std::vector<std::uint16_t>& out) {
+  const int sx = s.size(0), sy = s.size(1), sz = s.size(2);
+  out.resize(std::size_t(steps) * shape[0] * shape[1] * shape[2]);
+  std::uint16_t* o = out.data();
+  for (int t = 0; t < steps; ++t) {
+    const float* step = series.data() + std::size_t(t) * s.count();
+    for (int z = 0; z < shape[2]; ++z)
+      for (int y = 0; y < shape[1]; ++y) {
+        const float* row =
+            step + std::size_t(sx) * (std::min(y, sy - 1) + std::size_t(sy) * std::min(z, sz - 1));
+        for (int x = 0; x < sx; ++x) o[x] = q(row[x]);
+        for (int x = sx; x < shape[0]; ++x) o[x] = o[sx - 1];
+        o += shape[0];
+      }
+  }
+}
+
+// Histogram of the brick's own voxels over all steps: bin floor((v − lo)·bins/(hi − lo)),
+// clamped to the last bin; everything in bin 0 for a zero-width range.
+void add_histogram(std::span<const float> series, const Box& s, const Box& own, int steps,
+                   ValueRange r, std::vector<std::uint64_t>& hist) {
+  const double scale = r.width() > 0 ? kHistogramBins / r.width() : 0;
+  for (int t = 0; t < steps; ++t) {
+    const float* step = series.data() + std::size_t(t) * s.count();
+    for (int z = own.lo[2]; z < own.hi[2]; ++z)
+      for (int y = own.lo[1]; y < own.hi[1]; ++y) {
+        const float* row = step + std::size_t(s.size(0)) *
+                                      ((y - s.lo[1]) + std::size_t(s.size(1)) * (z - s.lo[2]));
+        for (int x = own.lo[0]; x < own.hi[0]; ++x) {
+          int bin = int((double(row[x - s.lo[0]]) - r.lo) * scale);
+          hist[std::clamp(bin, 0, kHistogramBins - 1)]++;
+        }
+      }
+  }
+}
+
+// Pass 2: brick-major over the scratch file, on `threads` workers.
+struct BrickPass {
+  BrickPass(const TspTree& t, ScratchFile& s, TspWriter& w, ValueRange r, std::vector<NodeAccum>& a)
+      : tree(t), scratch(s), writer(w), range(r), acc(a) {}
+  const TspTree& tree;
+  ScratchFile& scratch;
+  TspWriter& writer;
+  ValueRange range;
+  std::vector<NodeAccum>& acc;  // by TSP node id; each worker fills its leaves' slices
+  std::vector<std::uint64_t> histogram = std::vector<std::uint64_t>(kHistogramBins, 0);
+
+  std::atomic<int> next{0};
+  std::atomic<bool> failed{false};
+  std::mutex mutex;  // guards error, histogram merge and progress calls
+  std::exception_ptr error;
+  int done = 0;
+
+  void worker(const ProgressFn& progress, std::int64_t total_bytes) {
+    const Octree& o = tree.octree();
+    const TimeTree& time = tree.time();
+    const int steps = time.steps();
+    const auto shape = stored_brick_shape(o);
+    const FastQuantizer quant(range);
+    std::vector<float> series;
+    std::vector<std::uint16_t> codes;
+    std::vector<std::uint64_t> hist(kHistogramBins, 0);
+    try {
+      for (int b = next++; b < o.brick_count() && !failed; b = next++) {
+        const Box s = o.brick_samples(b), own = o.brick_box(b);
+        series.resize(std::size_t(s.count()) * steps);
+        scratch.read_series(b, series);
+        scratch.discard(b);
+        sanitize(series, range);
+        quantize_padded(series, s, shape, steps, quant, codes);
+        writer.write_brick_series(b, codes);
+        add_histogram(series, s, own, steps, range, hist);
+        std::span<NodeAccum> leaf(acc.data() + tree.id(o.brick_node(b), 0), time.size());
+        brick_time_stats(time, s, own, series, range.width(), leaf);
+        std::lock_guard lock(mutex);
+        ++done;
+        if (progress) progress(kPhaseBricks, total_bytes * done / o.brick_count(), total_bytes);
+      }
+    } catch (...) {
+      std::lock_guard lock(mutex);
+      if (!error) error = std::current_exception();
+      failed = true;
+    }
+    std::lock_guard lock(mutex);
+    for (int i = 0; i < kHistogramBins; ++i) histogram[i] += hist[i];
+  }
+
+  void run(int threads, const ProgressFn& progress, std::int64_t total_bytes) {
+    std::vector<std::thread> pool;
+    for (int i = 1; i < threads; ++i) pool.emplace_back([&] { worker(progress, total_bytes); });
+    worker(progress, total_bytes);
+    for (auto& th : pool) th.join();
+    if (error) std::rethrow_exception(error);
+  }
+};
+
+// Internal octree nodes combine their children's sums per time node, bottom-up.
+void combine_octree(const TspTree& tree, std::vector<NodeAccum>& acc) {
+  const Octree& o = tree.octree();
+  const int nt = tree.time().size();
+  for (int i = o.size() - 1; i >= 0; --i) {
+    if (o.node(i).is_leaf()) continue;
+    for (int c : o.node(i).children) {
+      if (c < 0) continue;
+      for (int t = 0; t < nt; ++t) acc[tree.id(i, t)].merge(acc[tree.id(c, t)]);
+    }
+  }
+}
+
+ValueRange checked_range(const std::optional<ValueRange>& r, ValueRange data) {
+  if (!r) return data;
+  if (!std::isfinite(r->lo) || !std::isfinite(r->hi) || !(r->lo < r->hi))
+    throw UsageError("--range " + std::to_string(r->lo) + ":" + std::to_string(r->hi) +
+                     ": expected finite LO < HI");
+  return *r;
+}
+
+}  // namespace
+
+BuildReport build_tsp_file(VolumeSource& source, const std::string& out_path,
+                           const BuildOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  if (options.range) checked_range(options.range, {});  // reject a bad range before any work
+  if (options.threads < 0)
+    throw UsageError("--threads " + std::to_string(options.threads) + ": expected 0 or more");
+  const Dims dims = source.dims();
+  const int steps = source.steps();
+  if (steps < 1) throw FormatError(source.describe() + ": no time steps");
+  TspTree tree(dims, steps, options.brick_size);
+  const Octree& o = tree.octree();
+
+  BuildReport report;
+  report.source_bytes = dims.count() * steps * std::int64_t(sizeof(float));
+  TempOutput out(out_path);
+
+  std::vector<std::int64_t> samples(o.brick_count());
+  for (int b = 0; b < o.brick_count(); ++b) samples[b] = o.brick_samples(b).count();
+  ScratchFile scratch(out.dir(), samples, steps);
+  InputScan scan = scatter_steps(source, o, scratch, options.progress, report.source_bytes);
+  report.data_range = scan.range();
+  report.nonfinite_count = scan.nonfinite;
+  report.value_range = checked_range(options.range, report.data_range);
+  tree.set_value_range(report.value_range);
+
+  std::vector<NodeAccum> acc(tree.size());
+  TspMetadata meta;
+  {
+    TspWriter writer(out.tmp(), tree);
+    BrickPass pass(tree, scratch, writer, report.value_range, acc);
+    int threads = options.threads > 0 ? options.threads
+                                      : int(std::max(1u, std::thread::hardware_concurrency()));
+    pass.run(std::min(threads, o.brick_count()), options.progress, report.source_bytes);
+    combine_octree(tree, acc);
+    for (int i = 0; i < tree.size(); ++i) tree.stats(i) = acc[i].finish(report.value_range.width());
+    meta.source = source.describe();
+    meta.field = options.field_name;
+    meta.data_range = report.data_range;
+    meta.nonfinite_count = report.nonfinite_count;
+    meta.histogram = pass.histogram;
+    meta.created_by = "tspplay " TSPPLAY_VERSION;
+    writer.finish(tree, meta);
+  }
+  out.commit();
+  report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return report;
+}
+
+}  // namespace tsp

@@ -1,0 +1,44 @@
+// Building a .tsp file from a VolumeSource: bricks, the TSP tree and its statistics.
+#pragma once
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+
+#include "tsp/core/types.h"
+#include "tsp/source/volume_source.h"
+
+namespace tsp {
+
+/// Progress callback: phase name ("reading", "bricks"), units done, units total (bytes of source
+/// data). Called from one thread at a time, not necessarily the caller's. It may throw to cancel
+/// the build: the exception reaches the caller and no output or temporary file remains.
+using ProgressFn =
+    std::function<void(const std::string& phase, std::int64_t done, std::int64_t total)>;
+
+/// Options of `tspplay build`.
+struct BuildOptions {
+  int brick_size = kDefaultBrickSize;  ///< B, a power of two
+  std::optional<ValueRange> range;     ///< quantization range; default: the data's finite range
+  int threads = 0;                     ///< worker threads; 0 = hardware concurrency
+  std::string field_name;              ///< recorded in the file
+  ProgressFn progress;                 ///< may be empty
+};
+
+/// What a build did, for the CLI and the benchmark.
+struct BuildReport {
+  std::int64_t source_bytes = 0;     ///< voxels × steps × 4 (float samples read)
+  std::int64_t nonfinite_count = 0;  ///< NaN/Inf samples replaced
+  double seconds = 0;                ///< wall time of the whole build
+  ValueRange data_range;             ///< finite min/max of the input ({0, 0} when none)
+  ValueRange value_range;            ///< quantization range written to the file
+};
+
+/// Reads every step of source once, writes out_path (via a temporary name renamed at the end),
+/// and returns what it did. Samples are clamped to the quantization range (NaN and −Inf become
+/// its lo, +Inf its hi) before statistics and quantization. Throws IoError/FormatError/
+/// UsageError (bad brick size or range); never leaves a partial out_path or a temporary file.
+BuildReport build_tsp_file(VolumeSource& source, const std::string& out_path,
+                           const BuildOptions& options);
+
+}  // namespace tsp

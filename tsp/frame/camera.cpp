@@ -1,0 +1,69 @@
+#include "tsp/frame/camera.h"
+
+#include <cassert>
+#include <cmath>
+#include <cstdlib>
+#include <glm/gtc/matrix_transform.hpp>
+#include <string>
+
+#include "tsp/core/error.h"
+
+namespace tsp {
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+double radians(double deg) { return deg * kPi / 180.0; }
+}  // namespace
+
+Camera::Camera(Dims dims, const CameraParams& p) : params_(p) {
+  assert(p.width > 0 && p.height > 0 && p.zoom > 0);
+  const glm::dvec3 extent(std::max(dims.x - 1, 0), std::max(dims.y - 1, 0), std::max(dims.z - 1, 0));
+  const glm::dvec3 centre = extent * 0.5;
+  // Bounding-sphere radius; a single-voxel volume still gets a unit sphere.
+  const double radius = std::max(0.5 * glm::length(extent), 0.5);
+  const double az = radians(p.azimuth_deg), el = radians(p.elevation_deg);
+  const glm::dvec3 to_eye(std::cos(el) * std::sin(az), -std::cos(el) * std::cos(az), std::sin(el));
+  const glm::dvec3 up_hint(0, 0, 1);
+  // Right and up of the image plane; elevation stays inside (−90°, 90°) so up_hint is never parallel.
+  const glm::dvec3 right = glm::normalize(glm::cross(-to_eye, up_hint));
+  const glm::dvec3 up = glm::cross(right, -to_eye);
+  const glm::dvec3 target = centre + radius * (p.pan[0] * right + p.pan[1] * up);
+  const double aspect = double(p.width) / double(p.height);
+  double distance;
+  if (p.projection == Projection::perspective) {
+    const double half_fov = radians(p.fov_deg) * 0.5;
+    // Fits the sphere in the smaller of the two fields of view.
+    const double half = std::min(half_fov, std::atan(std::tan(half_fov) * aspect));
+    distance = radius / std::sin(half) / p.zoom;
+    const double near_plane = std::max(distance - radius * 1.01, radius * 1e-3);
+    projection_ = glm::perspective(radians(p.fov_deg), aspect, near_plane, distance + radius * 1.01);
+  } else {
+    distance = radius * 3;
+    const double half_h = radius / p.zoom * (aspect < 1 ? 1 / aspect : 1);
+    const double half_w = half_h * aspect;
+    projection_ = glm::ortho(-half_w, half_w, -half_h, half_h, distance - radius * 1.01,
+                             distance + radius * 1.01);
+  }
+  eye_ = target + to_eye * distance;
+  dir_ = -to_eye;
+  view_ = glm::lookAt(eye_, target, up);
+}
+
+std::array<double, 2> parse_view_angles(const std::string& text) {
+  auto comma = text.find(',');
+  auto number = [&](const std::string& s) {
+    char* end = nullptr;
+    double v = std::strtod(s.c_str(), &end);
+    if (s.empty() || end != s.c_str() + s.size() || !std::isfinite(v))
+      throw UsageError("--view '" + text + "': expected AZ,EL in degrees, e.g. 30,20");
+    return v;
+  };
+  if (comma == std::string::npos)
+    throw UsageError("--view '" + text + "': expected AZ,EL in degrees, e.g. 30,20");
+  double az = number(text.substr(0, comma)), el = number(text.substr(comma + 1));
+  if (el <= -90 || el >= 90)
+    throw UsageError("--view '" + text + "': elevation must lie strictly between -90 and 90");
+  return {az, el};
+}
+
+}  // namespace tsp

@@ -1,0 +1,54 @@
+// The view of the volume: an orbit camera given as azimuth/elevation around the volume's centre,
+// orthographic or perspective. Pure math (GLM), shared by the renderer, slicing and ordering.
+#pragma once
+#include <array>
+#include <glm/glm.hpp>
+
+#include "tsp/core/types.h"
+
+namespace tsp {
+
+/// Projection kind.
+enum class Projection { orthographic, perspective };
+
+/// What the user chooses: angles in degrees, zoom (1 = the whole volume fits), viewport size.
+struct CameraParams {
+  double azimuth_deg = 30;    ///< around +z; 0 looks from −y towards +y (x right, z up)
+  double elevation_deg = 20;  ///< above the x-y plane, in (−90, 90)
+  double zoom = 1;            ///< > 0; 2 shows half the width
+  Projection projection = Projection::orthographic;
+  double fov_deg = 30;        ///< vertical field of view for perspective
+  std::array<double, 2> pan{0, 0};  ///< shift of the look-at point, in units of the bounding radius
+  int width = 640, height = 480;
+};
+
+/// A camera fitted to a volume's geometry [0, D−1]³ in sample coordinates.
+class Camera {
+ public:
+  /// Fits the view to dims; asserts width, height > 0 and zoom > 0.
+  Camera(Dims dims, const CameraParams& params);
+  /// World (sample coordinates) → eye space.
+  const glm::dmat4& view() const { return view_; }
+  /// Eye space → clip space.
+  const glm::dmat4& projection() const { return projection_; }
+  /// projection · view.
+  glm::dmat4 view_projection() const { return projection_ * view_; }
+  /// Eye position in sample coordinates.
+  std::array<double, 3> eye() const { return {eye_.x, eye_.y, eye_.z}; }
+  /// Unit view direction (from the eye into the scene) in sample coordinates.
+  std::array<double, 3> direction() const { return {dir_.x, dir_.y, dir_.z}; }
+  /// True for perspective projection.
+  bool perspective() const { return params_.projection == Projection::perspective; }
+  /// The parameters it was made from.
+  const CameraParams& params() const { return params_; }
+
+ private:
+  CameraParams params_;
+  glm::dmat4 view_{1.0}, projection_{1.0};
+  glm::dvec3 eye_{0.0}, dir_{0.0, 1.0, 0.0};
+};
+
+/// Parses "AZ,EL" in degrees; throws UsageError naming the option text.
+std::array<double, 2> parse_view_angles(const std::string& text);
+
+}  // namespace tsp

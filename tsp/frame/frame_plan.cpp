@@ -1,0 +1,127 @@
+#include "tsp/frame/frame_plan.h"
+
+#include <cassert>
+#include <cmath>
+
+namespace tsp {
+
+namespace {
+// Any view: which nodes a traversal emits does not depend on the order it visits them in.
+const ViewOrder kAnyView = ViewOrder::orthographic({1, 1, 1});
+
+void collect_leaves(const Octree& octree, int id, const ViewOrder& view, std::vector<int>& out) {
+  const OctreeNode& n = octree.node(id);
+  if (n.is_leaf()) {
+    out.push_back(n.brick);
+    return;
+  }
+  const ChildOrder order = back_to_front_children(octree, id, view);
+  for (int i = 0; i < order.count; ++i) collect_leaves(octree, order.ids[i], view, out);
+}
+}  // namespace
+
+const char* to_string(DrawClass c) {
+  switch (c) {
+    case DrawClass::not_rendered:
+      return "not_rendered";
+    case DrawClass::untextured:
+      return "untextured";
+    case DrawClass::reused_texture:
+      return "reused_texture";
+    case DrawClass::new_texture:
+      return "new_texture";
+  }
+  return "?";
+}
+
+NodeInfoFn node_info(const MetricResult& m) {
+  return [&m](int id) { return NodeClassInfo{m.errors.spatial[id], m.transparent[id] != 0}; };
+}
+
+Shading shading_of(const NodeClassInfo& info, const Tolerances& tol) {
+  if (info.transparent) return Shading::none;
+  if (info.spatial <= tol.spatial) return Shading::flat;  // false for NaN: textured
+  return Shading::textured;
+}
+
+std::int64_t texture_bytes(const Octree& octree, const TextureKey& key) {
+  assert(key.level == 0 && "only full-resolution textures exist so far");
+  return octree.brick_samples(key.brick).count() * std::int64_t(sizeof(std::uint16_t));
+}
+
+std::vector<int> leaf_bricks(const Octree& octree, int id, const ViewOrder& view) {
+  std::vector<int> out;
+  collect_leaves(octree, id, view, out);
+  return out;
+}
+
+double FramePlan::percent(DrawClass c) const {
+  if (total_voxels == 0) return 0;
+  return 100.0 * double(class_voxels[int(c)]) / double(total_voxels);
+}
+
+FramePlan plan_frame(const TspTree& tree, int step, std::span<const Emitted> emitted,
+                     const NodeInfoFn& info, const Tolerances& tol, const ViewOrder& view,
+                     TextureCache& cache) {
+  const Octree& octree = tree.octree();
+  FramePlan plan;
+  plan.step = step;
+  plan.nodes.reserve(emitted.size());
+  cache.begin_frame();
+  for (const Emitted& e : emitted) {
+    assert(e.span.contains(step) && "emitted span must hold the frame's step");
+    PlannedNode p;
+    p.node = e;
+    p.voxels = octree.node(e.octree_id).box.count();
+    const Shading shading = shading_of(info(tree.id(e.octree_id, e.time_id)), tol);
+    if (shading == Shading::none) {
+      p.cls = DrawClass::not_rendered;
+    } else if (shading == Shading::flat) {
+      p.cls = DrawClass::untextured;
+    } else {
+      p.first_texture = int(plan.textures.size());
+      bool uploaded = false;
+      for (int brick : leaf_bricks(octree, e.octree_id, view)) {
+        const TextureKey key{brick, e.span.t0, 0};
+        const std::int64_t bytes = texture_bytes(octree, key);
+        TextureRequest r = cache.request(key, bytes);
+        plan.evict_before.insert(plan.evict_before.end(), r.evicted.begin(), r.evicted.end());
+        plan.textures.push_back(PlannedTexture{key, bytes, !r.hit});
+        if (!r.hit) {
+          uploaded = true;
+          ++plan.uploads;
+          plan.bytes_uploaded += bytes;
+        }
+      }
+      p.texture_count = int(plan.textures.size()) - p.first_texture;
+      p.cls = uploaded ? DrawClass::new_texture : DrawClass::reused_texture;
+    }
+    plan.class_voxels[int(p.cls)] += p.voxels;
+    plan.total_voxels += p.voxels;
+    plan.nodes.push_back(p);
+  }
+  plan.release_after = cache.end_frame();
+  plan.textures_resident = cache.stats().resident_count;
+  plan.texture_bytes = cache.stats().resident_bytes;
+  return plan;
+}
+
+TextureKeySet reachable_textures(const TspTree& tree, const NodeErrors& errors,
+                                 const NodeInfoFn& info, const Tolerances& tol) {
+  TextureKeySet keys;
+  for (int t = 0; t < tree.time().steps(); ++t) {
+    for (const Emitted& e : traverse(tree, t, tol, errors, kAnyView)) {
+      if (shading_of(info(tree.id(e.octree_id, e.time_id)), tol) != Shading::textured) continue;
+      for (int brick : leaf_bricks(tree.octree(), e.octree_id, kAnyView))
+        keys.insert(TextureKey{brick, e.span.t0, 0});
+    }
+  }
+  return keys;
+}
+
+TextureKeySet reachable_textures(const TspTree& tree, const MetricResult& m,
+                                 const Tolerances& tol) {
+  return reachable_textures(tree, m.errors, node_info(m), tol);
+}
+
+}  // namespace tsp

@@ -1,0 +1,100 @@
+// The per-frame plan (spec §5 classes, paper Table 5): how each node the traversal emitted for a
+// step is drawn — not at all (NR), as flat polygons (UP), or from a brick texture that is resident
+// (RT) or uploaded now (NT) — which textures to upload and delete, and the class shares by voxels.
+// Pure logic: the renderer carries the plan out with GL. Rules: docs/caching.md.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <vector>
+
+#include "tsp/metric/metrics.h"
+#include "tsp/frame/texture_cache.h"
+#include "tsp/tree/traversal.h"
+#include "tsp/tree/tsp_tree.h"
+
+namespace tsp {
+
+/// The paper's Table-5 classes, in report order.
+enum class DrawClass : std::uint8_t { not_rendered, untextured, reused_texture, new_texture };
+/// Number of DrawClass values.
+inline constexpr int kDrawClassCount = 4;
+/// "not_rendered", "untextured", "reused_texture" or "new_texture" (the frames.json names).
+const char* to_string(DrawClass c);
+
+/// How a node is shaded, before the cache decides between RT and NT.
+enum class Shading { none, flat, textured };
+
+/// What the plan needs of one TSP node under the current metric and transfer function.
+struct NodeClassInfo {
+  float spatial = 0;         ///< e_s
+  bool transparent = false;  ///< max α over [j_min, j_max] is 0
+};
+/// Looks up a TSP node id's NodeClassInfo (from a MetricResult, LazyErrors, …).
+using NodeInfoFn = std::function<NodeClassInfo(int tsp_id)>;
+/// A NodeInfoFn reading m, which must outlive it.
+NodeInfoFn node_info(const MetricResult& m);
+
+/// none for a transparent node, flat when e_s ≤ tol.spatial, textured otherwise (also for NaN).
+Shading shading_of(const NodeClassInfo& info, const Tolerances& tol);
+
+/// Bytes of a brick texture: 2 per stored sample (16-bit scalars, R16), LOD level 0 only
+/// (asserts level 0).
+std::int64_t texture_bytes(const Octree& octree, const TextureKey& key);
+
+/// Leaf bricks below octree node id (the node's own brick for a leaf) in back-to-front order.
+std::vector<int> leaf_bricks(const Octree& octree, int id, const ViewOrder& view);
+
+/// One emitted node and how to draw it.
+struct PlannedNode {
+  Emitted node;
+  DrawClass cls = DrawClass::not_rendered;
+  std::int64_t voxels = 0;  ///< node.box.count() of the octree node
+  int first_texture = 0;    ///< its textures: FramePlan::textures[first, first + count)
+  int texture_count = 0;    ///< 0 unless RT/NT; the leaf bricks back-to-front for an internal node
+};
+
+/// One texture a node draws with.
+struct PlannedTexture {
+  TextureKey key;
+  std::int64_t bytes = 0;
+  bool upload = false;  ///< not resident: create and fill it before drawing
+};
+
+/// Everything the renderer needs for one frame. GL order: delete evict_before, draw `nodes`
+/// in order (uploading textures marked upload), then delete release_after.
+struct FramePlan {
+  int step = 0;
+  std::vector<PlannedNode> nodes;        ///< as emitted: back to front
+  std::vector<PlannedTexture> textures;  ///< per textured node, see PlannedNode
+  std::vector<TextureKey> evict_before;  ///< evicted to make room (may include keys uploaded again)
+  std::vector<TextureKey>
+      release_after;  ///< deleted at the end of the frame (cache policy, budget)
+  std::array<std::int64_t, kDrawClassCount> class_voxels{};  ///< voxels per DrawClass
+  std::int64_t total_voxels = 0;       ///< sum of class_voxels (the grid's voxel count)
+  std::int64_t uploads = 0;            ///< textures uploaded this frame
+  std::int64_t bytes_uploaded = 0;     ///< their bytes
+  std::int64_t textures_resident = 0;  ///< resident after the frame
+  std::int64_t texture_bytes = 0;      ///< their bytes
+  /// Share of the voxels in class c, in percent (the four sum to 100 up to rounding).
+  double percent(DrawClass c) const;
+};
+
+/// Plans the frame of `step` from the traversal's output `emitted` (every span must hold
+/// step): classifies each node, requests the textures of RT/NT nodes from cache inside one
+/// begin_frame()/end_frame(), and counts voxels per class. A node that is textured is drawn by
+/// the textures (brick, span.t0, level 0) of all its leaf bricks, ordered back-to-front by view;
+/// it is NT when any of them is uploaded now, RT otherwise. Asserts the cache has no open frame.
+FramePlan plan_frame(const TspTree& tree, int step, std::span<const Emitted> emitted,
+                     const NodeInfoFn& info, const Tolerances& tol, const ViewOrder& view,
+                     TextureCache& cache);
+
+/// Every texture key some step's frame could draw under errors, info and tol — the set to keep
+/// with TextureCache::drop_unreachable after a tolerance change. Costs one traversal per step.
+TextureKeySet reachable_textures(const TspTree& tree, const NodeErrors& errors,
+                                 const NodeInfoFn& info, const Tolerances& tol);
+/// Same, with the errors and classes of m.
+TextureKeySet reachable_textures(const TspTree& tree, const MetricResult& m, const Tolerances& tol);
+
+}  // namespace tsp

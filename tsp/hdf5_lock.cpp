@@ -1,8 +1,0 @@
-#include "tsp/hdf5_lock.h"
-
-namespace tsp {
-std::mutex& hdf5_mutex() {
-  static std::mutex m;
-  return m;
-}
-}  // namespace tsp

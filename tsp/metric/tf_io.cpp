@@ -1,0 +1,256 @@
+#include "tsp/metric/tf_io.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "tsp/core/error.h"
+
+namespace tsp {
+
+namespace {
+
+using nlohmann::json;
+
+// ParaView stores each colour point as (x, r, g, b) and each opacity point as
+// (x, alpha, midpoint, sharpness).
+constexpr std::size_t kParaViewColourStride = 4;
+constexpr std::size_t kParaViewOpacityStride = 4;
+constexpr const char* kPresetPrefix = "preset:";
+
+[[noreturn]] void fail(const std::string& origin, const std::string& key, const std::string& what) {
+  throw FormatError(origin + ": transfer function key \"" + key + "\": " + what);
+}
+
+double number(const json& v, const std::string& origin, const std::string& key) {
+  if (!v.is_number()) fail(origin, key, "expected a number, found " + v.dump());
+  const double d = v.get<double>();
+  if (!std::isfinite(d)) fail(origin, key, "expected a finite number, found " + v.dump());
+  return d;
+}
+
+float unit(const json& v, const std::string& origin, const std::string& key) {
+  const double d = number(v, origin, key);
+  if (d < 0 || d > 1) fail(origin, key, "expected a value in [0, 1], found " + v.dump());
+  return float(d);
+}
+
+const json& require(const json& obj, const char* key, const std::string& origin) {
+  auto it = obj.find(key);
+  if (it == obj.end()) fail(origin, key, "missing");
+  return *it;
+}
+
+TransferFunction parse_ours(const json& doc, const std::string& origin, int entries) {
+  const json& range = require(doc, "range", origin);
+  if (!range.is_array() || range.size() != 2)
+    fail(origin, "range", "expected [lo, hi], found " + range.dump());
+  const ValueRange domain{number(range[0], origin, "range[0]"),
+                          number(range[1], origin, "range[1]")};
+  if (!(domain.lo < domain.hi)) fail(origin, "range", "expected lo < hi, found " + range.dump());
+  const json& pts = require(doc, "points", origin);
+  if (!pts.is_array() || pts.empty())
+    fail(origin, "points", "expected a non-empty list of [x, r, g, b, a]");
+  std::vector<TfPoint> points;
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    const std::string key = "points[" + std::to_string(i) + "]";
+    const json& p = pts[i];
+    if (!p.is_array() || p.size() != 5)
+      fail(origin, key, "expected [x, r, g, b, a], found " + p.dump());
+    points.push_back({number(p[0], origin, key + "[0]"),
+                      {unit(p[1], origin, key + "[1]"), unit(p[2], origin, key + "[2]"),
+                       unit(p[3], origin, key + "[3]"), unit(p[4], origin, key + "[4]")}});
+  }
+  return TransferFunction::from_points(domain, points, entries);
+}
+
+std::vector<double> flat_numbers(const json& arr, const std::string& origin, const char* key,
+                                 std::size_t stride) {
+  if (!arr.is_array() || arr.empty() || arr.size() % stride != 0)
+    fail(origin, key,
+         "expected a non-empty flat list with a multiple of " + std::to_string(stride) +
+             " numbers, found " + std::to_string(arr.is_array() ? arr.size() : 0) + " values");
+  std::vector<double> v;
+  for (std::size_t i = 0; i < arr.size(); ++i)
+    v.push_back(number(arr[i], origin, std::string(key) + "[" + std::to_string(i) + "]"));
+  return v;
+}
+
+// Piecewise-linear interpolation of (x, y) knots at x, constant beyond the ends.
+double interpolate(const std::vector<std::pair<double, double>>& knots, double x) {
+  if (x <= knots.front().first) return knots.front().second;
+  if (x >= knots.back().first) return knots.back().second;
+  auto hi = std::upper_bound(knots.begin(), knots.end(), x,
+                             [](double v, const auto& k) { return v < k.first; });
+  auto lo = hi - 1;
+  const double w = hi->first - lo->first;
+  return w > 0 ? lo->second + (hi->second - lo->second) * (x - lo->first) / w : hi->second;
+}
+
+TransferFunction parse_paraview(const json& preset, const std::string& origin, int entries) {
+  const std::vector<double> rgb = flat_numbers(require(preset, "RGBPoints", origin), origin,
+                                               "RGBPoints", kParaViewColourStride);
+  std::vector<TfPoint> colour;
+  for (std::size_t i = 0; i < rgb.size(); i += kParaViewColourStride) {
+    auto key = [&](std::size_t k) { return "RGBPoints[" + std::to_string(i + k) + "]"; };
+    auto check = [&](std::size_t k) {
+      if (rgb[i + k] < 0 || rgb[i + k] > 1)
+        fail(origin, key(k),
+             "expected a colour component in [0, 1], found " + std::to_string(rgb[i + k]));
+      return float(rgb[i + k]);
+    };
+    colour.push_back({rgb[i], {check(1), check(2), check(3), 0}});
+  }
+  auto [lo_it, hi_it] =
+      std::minmax_element(colour.begin(), colour.end(), [](auto& a, auto& b) { return a.x < b.x; });
+  const ValueRange domain{lo_it->x, hi_it->x};
+  if (!(domain.lo < domain.hi))
+    fail(origin, "RGBPoints", "all points lie at x = " + std::to_string(domain.lo));
+  // ParaView's default opacity when a preset carries none: a ramp from 0 to 1 over the domain.
+  std::vector<std::pair<double, double>> opacity = {{domain.lo, 0.0}, {domain.hi, 1.0}};
+  if (auto it = preset.find("Points"); it != preset.end()) {
+    const std::vector<double> pts = flat_numbers(*it, origin, "Points", kParaViewOpacityStride);
+    opacity.clear();
+    for (std::size_t i = 0; i < pts.size(); i += kParaViewOpacityStride) {
+      if (pts[i + 1] < 0 || pts[i + 1] > 1)
+        fail(origin, "Points[" + std::to_string(i + 1) + "]",
+             "expected an opacity in [0, 1], found " + std::to_string(pts[i + 1]));
+      opacity.push_back({pts[i], pts[i + 1]});
+    }
+    std::stable_sort(opacity.begin(), opacity.end(),
+                     [](auto& a, auto& b) { return a.first < b.first; });
+  }
+  TransferFunction tf = TransferFunction::from_points(domain, colour, entries);
+  std::vector<Rgba> table(tf.entries().begin(), tf.entries().end());
+  for (int j = 0; j < entries; ++j) table[j].a = float(interpolate(opacity, tf.entry_value(j)));
+  tf.set_entries(0, table);
+  return tf;
+}
+
+std::string slurp(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw IoError(path + ": transfer function file does not exist or is not a regular file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw IoError(path + ": cannot open transfer function file");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  if (in.bad()) throw IoError(path + ": read error");
+  return ss.str();
+}
+
+struct PresetKnot {
+  double t;  // position in [0, 1] of the domain
+  Rgba c;
+};
+
+const std::vector<std::pair<std::string, std::vector<PresetKnot>>>& presets() {
+  static const std::vector<std::pair<std::string, std::vector<PresetKnot>>> p = {
+      // Two narrow opaque bands, transparent elsewhere: most nodes become transparent (the
+      // paper's "sparse" transfer functions).
+      {"sparse",
+       {{0.00, {0, 0, 0, 0}},
+        {0.55, {1.0f, 0.6f, 0.1f, 0}},
+        {0.60, {1.0f, 0.6f, 0.1f, 0.6f}},
+        {0.65, {1.0f, 0.6f, 0.1f, 0}},
+        {0.80, {0.3f, 0.6f, 1.0f, 0}},
+        {0.85, {0.3f, 0.6f, 1.0f, 0.9f}},
+        {0.90, {0.3f, 0.6f, 1.0f, 0}},
+        {1.00, {0, 0, 0, 0}}}},
+      // Every value visible: a blue–white–red map with opacity rising over the domain.
+      {"filled",
+       {{0.0, {0.23f, 0.30f, 0.75f, 0.05f}},
+        {0.5, {0.87f, 0.87f, 0.87f, 0.30f}},
+        {1.0, {0.71f, 0.02f, 0.15f, 0.60f}}}},
+      // Grey ramp with ParaView's default linear opacity.
+      {"grey", {{0.0, {0, 0, 0, 0}}, {1.0, {1, 1, 1, 1}}}},
+  };
+  return p;
+}
+
+}  // namespace
+
+TransferFunction parse_transfer_function(const std::string& text, const std::string& origin,
+                                         int entries) {
+  json doc;
+  try {
+    doc = json::parse(text);
+  } catch (const json::parse_error& e) {
+    throw FormatError(origin + ": not valid JSON: " + e.what());
+  }
+  if (doc.is_object() && doc.contains("points")) return parse_ours(doc, origin, entries);
+  if (doc.is_object() && doc.contains("RGBPoints")) return parse_paraview(doc, origin, entries);
+  if (doc.is_array()) {
+    // A ParaView preset file is a list of presets; we take the first colour map in it.
+    for (const json& p : doc)
+      if (p.is_object() && p.contains("RGBPoints")) return parse_paraview(p, origin, entries);
+    throw FormatError(origin + ": a list without any ParaView preset holding \"RGBPoints\"");
+  }
+  throw FormatError(origin +
+                    ": neither our transfer function (keys \"range\", \"points\") nor a ParaView "
+                    "preset (key \"RGBPoints\")");
+}
+
+TransferFunction load_transfer_function(const std::string& path, int entries) {
+  return parse_transfer_function(slurp(path), path, entries);
+}
+
+void save_transfer_function(const TransferFunction& tf, const std::string& path) {
+  json doc;
+  doc["range"] = {tf.domain().lo, tf.domain().hi};
+  json pts = json::array();
+  for (int j = 0; j < tf.size(); ++j) {
+    const Rgba& c = tf.entry(j);
+    pts.push_back({tf.entry_value(j), c.r, c.g, c.b, c.a});
+  }
+  doc["points"] = std::move(pts);
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) throw IoError(path + ": cannot write transfer function (temporary " + tmp + ")");
+    out << doc.dump(1) << "\n";
+    out.close();
+    if (!out) {
+      std::remove(tmp.c_str());
+      throw IoError(path + ": write failed (disk full?)");
+    }
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) {
+    std::remove(tmp.c_str());
+    throw IoError(path + ": cannot rename temporary file: " + ec.message());
+  }
+}
+
+std::vector<std::string> preset_names() {
+  std::vector<std::string> names;
+  for (auto& [name, knots] : presets()) names.push_back(name);
+  return names;
+}
+
+TransferFunction preset_transfer_function(const std::string& name, ValueRange domain, int entries) {
+  for (auto& [n, knots] : presets()) {
+    if (n != name) continue;
+    std::vector<TfPoint> points;
+    for (const PresetKnot& k : knots) points.push_back({domain.lo + k.t * domain.width(), k.c});
+    return TransferFunction::from_points(domain, points, entries);
+  }
+  std::string known;
+  for (auto& n : preset_names()) known += (known.empty() ? "" : ", ") + n;
+  throw UsageError("unknown transfer function preset \"" + name + "\" (known: " + known + ")");
+}
+
+TransferFunction transfer_function_from_arg(const std::string& arg, ValueRange default_domain,
+                                            int entries) {
+  const std::string prefix = kPresetPrefix;
+  if (arg.rfind(prefix, 0) == 0)
+    return preset_transfer_function(arg.substr(prefix.size()), default_domain, entries);
+  return load_transfer_function(arg, entries);
+}
+
+}  // namespace tsp

@@ -1,0 +1,86 @@
+#include "tsp/report/image_diff.h"
+
+#include <algorithm>
+#include <cmath>
+#include <span>
+#include <vector>
+
+#include "tsp/core/color.h"
+#include "tsp/core/error.h"
+
+namespace tsp {
+
+namespace {
+
+constexpr double kMax8 = 255.0;
+// The percentile as a fraction kPercentNum / kPercentDen, so the rank is exact integer arithmetic.
+constexpr std::size_t kPercentNum = 99, kPercentDen = 100;
+// Pixels converted per littleCMS call: big enough to amortise the call, small enough to stay in
+// cache.
+constexpr std::size_t kChunk = 4096;
+
+std::string size_text(const Image& img) {
+  return std::to_string(img.width) + "x" + std::to_string(img.height);
+}
+
+// L*u*v* of pixels [first, first + n) of img, composited over black.
+void to_luv(const Image& img, std::size_t first, std::size_t n, std::vector<double>& rgb,
+            std::vector<double>& xyz, std::vector<Luv>& out) {
+  rgb.resize(3 * n);
+  xyz.resize(3 * n);
+  out.resize(n);
+  const std::uint8_t* p = img.rgba.data() + 4 * first;
+  for (std::size_t k = 0; k < n; ++k, p += 4) {
+    const double alpha = p[3] / kMax8;
+    for (int c = 0; c < 3; ++c) rgb[3 * k + c] = p[c] / kMax8 * alpha;
+  }
+  srgb_to_xyz(rgb, xyz);
+  for (std::size_t k = 0; k < n; ++k)
+    out[k] = xyz_to_luv({xyz[3 * k], xyz[3 * k + 1], xyz[3 * k + 2]});
+}
+
+}  // namespace
+
+DiffStats diff_images(const Image& a, const Image& b, Image* diff_image, const std::string& name_a,
+                      const std::string& name_b) {
+  if (a.width != b.width || a.height != b.height)
+    throw UsageError("cannot compare images of different sizes: " + name_a + " is " + size_text(a) +
+                     ", " + name_b + " is " + size_text(b));
+  DiffStats s;
+  s.width = a.width;
+  s.height = a.height;
+  s.pixels = a.pixels();
+  if (diff_image) *diff_image = Image(a.width, a.height);
+  const std::size_t n = std::size_t(s.pixels);
+  std::vector<double> de(n);
+  std::vector<double> rgb, xyz;
+  std::vector<Luv> la, lb;
+  for (std::size_t first = 0; first < n; first += kChunk) {
+    const std::size_t m = std::min(kChunk, n - first);
+    to_luv(a, first, m, rgb, xyz, la);
+    to_luv(b, first, m, rgb, xyz, lb);
+    for (std::size_t k = 0; k < m; ++k) de[first + k] = delta_e_luv(la[k], lb[k]);
+  }
+  if (n == 0) return s;
+  double sum = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    sum += de[k];
+    s.max = std::max(s.max, de[k]);
+    if (diff_image) {
+      std::uint8_t* q = diff_image->rgba.data() + 4 * k;
+      const auto grey =
+          std::uint8_t(std::lround(std::min(kMax8, de[k] * kMax8 / kDiffImageFullScale)));
+      q[0] = q[1] = q[2] = grey;
+      q[3] = std::uint8_t(kMax8);
+    }
+  }
+  s.mean = sum / double(n);
+  // Nearest rank: the smallest value with at least 99 % of the pixels at or below it.
+  const std::size_t rank = (kPercentNum * n + kPercentDen - 1) / kPercentDen;  // ⌈0.99·n⌉ ≥ 1
+  auto nth = de.begin() + std::ptrdiff_t(rank - 1);
+  std::nth_element(de.begin(), nth, de.end());
+  s.p99 = *nth;
+  return s;
+}
+
+}  // namespace tsp

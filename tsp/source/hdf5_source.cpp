@@ -1,0 +1,273 @@
+#include "tsp/source/hdf5_source.h"
+
+#include <cassert>
+#include <climits>
+#include <cmath>
+#include <fstream>
+#include <limits>
+
+#include "tsp/core/error.h"
+#include "tsp/hdf5/hdf5_handle.h"
+#include "tsp/hdf5/hdf5_values.h"
+#include "tsp/source/natural_order.h"
+#include "tsp/source/vtkhdf_source.h"
+
+namespace tsp::io {
+namespace {
+
+using h5::Handle;
+
+std::string shape_text(const std::vector<hsize_t>& shape) {
+  if (shape.empty()) return "scalar";
+  std::string s;
+  for (std::size_t i = 0; i < shape.size(); ++i) s += (i ? "x" : "") + std::to_string(shape[i]);
+  return s;
+}
+
+// Every dataset of rank 3 or 4 in the file, as "/path (shape)", for messages and the default.
+struct Candidate {
+  std::string path;
+  std::vector<hsize_t> shape;
+};
+
+herr_t collect_candidate(hid_t group, const char* name, const H5L_info_t*, void* data) {
+  auto* out = static_cast<std::vector<Candidate>*>(data);
+  // Soft or external links that dangle are skipped: only reachable datasets are candidates.
+  if (H5Oexists_by_name(group, name, H5P_DEFAULT) <= 0) return 0;
+  Handle obj(H5Oopen(group, name, H5P_DEFAULT));
+  if (!obj || H5Iget_type(obj.get()) != H5I_DATASET) return 0;
+  std::vector<hsize_t> shape = h5::dataset_shape(obj.get());
+  if (shape.size() == 3 || shape.size() == 4) out->push_back({"/" + std::string(name), shape});
+  return 0;
+}
+
+std::vector<Candidate> list_candidates(hid_t file) {
+  std::vector<Candidate> found;
+  H5Lvisit(file, H5_INDEX_NAME, H5_ITER_INC, collect_candidate, &found);
+  return found;
+}
+
+std::string candidates_text(const std::vector<Candidate>& c) {
+  if (c.empty()) return "none (no 3-D or 4-D dataset in the file)";
+  std::string s;
+  for (std::size_t i = 0; i < c.size(); ++i)
+    s += (i ? ", " : "") + c[i].path + " (" + shape_text(c[i].shape) + ")";
+  return s;
+}
+
+// Converts (Z,Y,X) extents to Dims, refusing empty or oversized grids.
+Dims dims_from_zyx(const hsize_t* zyx, const std::string& where) {
+  for (int a = 0; a < 3; ++a)
+    if (zyx[a] == 0 || zyx[a] > hsize_t(INT_MAX))
+      throw FormatError(where + ": grid extent " + std::to_string(zyx[a]) +
+                        " is out of range, expected 1.." + std::to_string(INT_MAX));
+  return Dims{int(zyx[2]), int(zyx[1]), int(zyx[0])};
+}
+
+// NetCDF (CF) packing of one variable: fill/missing samples → NaN, then v·scale + offset.
+struct Packing {
+  std::vector<double> missing;
+  double scale = 1.0;
+  double offset = 0.0;
+
+  static Packing of(hid_t dataset, const std::string& where) {
+    Packing p;
+    for (const char* name : {"_FillValue", "missing_value"})
+      if (auto v = numeric_attribute(dataset, name, where))
+        p.missing.insert(p.missing.end(), v->begin(), v->end());
+    auto single = [&](const char* name, double& dst) {
+      if (auto v = numeric_attribute(dataset, name, where)) {
+        if (v->size() != 1)
+          throw FormatError(where + ": attribute " + name + " has " + std::to_string(v->size()) +
+                            " values, expected 1");
+        dst = (*v)[0];
+      }
+    };
+    single("scale_factor", p.scale);
+    single("add_offset", p.offset);
+    return p;
+  }
+
+  /// True when no sample is changed: values can be read straight into floats.
+  bool identity() const { return missing.empty() && scale == 1.0 && offset == 0.0; }
+
+  void apply(std::span<const double> in, std::span<float> out) const {
+    constexpr double kFloatMax = std::numeric_limits<float>::max();
+    for (std::size_t i = 0; i < in.size(); ++i) {
+      double v = in[i];
+      bool is_missing = false;
+      for (double m : missing) is_missing = is_missing || v == m;
+      if (is_missing) {
+        out[i] = std::numeric_limits<float>::quiet_NaN();
+        continue;
+      }
+      v = v * scale + offset;
+      // Out-of-range doubles become ±inf explicitly (a plain cast would be undefined).
+      if (v > kFloatMax) v = std::numeric_limits<double>::infinity();
+      if (v < -kFloatMax) v = -std::numeric_limits<double>::infinity();
+      out[i] = static_cast<float>(v);
+    }
+  }
+};
+
+// One step: a dataset and, for 4-D datasets, the index along its first dimension.
+struct StepRef {
+  std::string dataset;
+  bool indexed = false;
+  hsize_t index = 0;
+};
+
+class Hdf5Source final : public VolumeSource {
+ public:
+  Hdf5Source(std::string path, Handle file, std::string field_text, Dims dims,
+             std::vector<StepRef> steps)
+      : path_(std::move(path)),
+        file_(std::move(file)),
+        field_text_(std::move(field_text)),
+        dims_(dims),
+        steps_(std::move(steps)) {}
+
+  Dims dims() const override { return dims_; }
+  int steps() const override { return int(steps_.size()); }
+  std::string describe() const override { return path_ + ", " + field_text_; }
+
+  void read_step(int t, std::span<float> out) override {
+    assert(t >= 0 && t < steps());
+    assert(std::int64_t(out.size()) == dims_.count());
+    const StepRef& step = steps_[std::size_t(t)];
+    const std::string where = path_ + ", dataset " + step.dataset;
+    Handle ds(H5Dopen2(file_.get(), step.dataset.c_str(), H5P_DEFAULT));
+    if (!ds) throw FormatError(where + ": dataset cannot be opened");
+    Packing packing = Packing::of(ds.get(), where);
+    VolumeSlab slab;
+    if (step.indexed) slab.fixed = {step.index};
+    slab.spatial = {hsize_t(dims_.z), hsize_t(dims_.y), hsize_t(dims_.x)};
+    BatchConverter convert;
+    if (!packing.identity() || !converts_exactly_to_float(ds.get()))
+      convert = [&](std::span<const double> in, std::span<float> o) { packing.apply(in, o); };
+    read_volume(ds.get(), slab, out, convert, where);
+  }
+
+ private:
+  std::string path_;
+  Handle file_;
+  std::string field_text_;
+  Dims dims_;
+  std::vector<StepRef> steps_;
+};
+
+std::unique_ptr<VolumeSource> open_dataset(const std::string& path, Handle file,
+                                           const std::string& ds_path) {
+  const std::string where = path + ", dataset " + ds_path;
+  Handle ds(H5Dopen2(file.get(), ds_path.c_str(), H5P_DEFAULT));
+  if (!ds) throw FormatError(where + ": dataset cannot be opened");
+  std::vector<hsize_t> shape = h5::dataset_shape(ds.get());
+  if (shape.size() != 3 && shape.size() != 4)
+    throw FormatError(where + ": has rank " + std::to_string(shape.size()) + " (shape " +
+                      shape_text(shape) + "), expected 3-D (Z,Y,X) or 4-D (T,Z,Y,X)");
+  require_numeric_dataset(ds.get(), where);
+  Packing::of(ds.get(), where);  // fail now, not at the first step, on bad packing attributes
+  std::vector<StepRef> steps;
+  Dims dims;
+  if (shape.size() == 4) {
+    if (shape[0] == 0 || shape[0] > hsize_t(INT_MAX))
+      throw FormatError(where + ": has " + std::to_string(shape[0]) +
+                        " time steps, expected at least 1");
+    dims = dims_from_zyx(&shape[1], where);
+    for (hsize_t t = 0; t < shape[0]; ++t) steps.push_back({ds_path, true, t});
+  } else {
+    dims = dims_from_zyx(&shape[0], where);
+    steps.push_back({ds_path, false, 0});
+  }
+  return std::make_unique<Hdf5Source>(path, std::move(file), "dataset " + ds_path, dims,
+                                      std::move(steps));
+}
+
+std::unique_ptr<VolumeSource> open_group(const std::string& path, Handle file,
+                                         const std::string& group_path) {
+  const std::string where = path + ", group " + group_path;
+  Handle group(H5Gopen2(file.get(), group_path.c_str(), H5P_DEFAULT));
+  if (!group) throw FormatError(where + ": group cannot be opened");
+  std::vector<std::string> names = h5::group_members(group.get());
+  if (names.empty())
+    throw FormatError(where + ": is empty, expected one 3-D dataset per time step");
+  natural_sort(names);
+  std::vector<StepRef> steps;
+  std::vector<hsize_t> first_shape;
+  for (const std::string& name : names) {
+    std::string member = (group_path == "/" ? "/" : group_path + "/") + name;
+    const std::string mwhere = path + ", dataset " + member;
+    Handle obj(H5Oopen(file.get(), member.c_str(), H5P_DEFAULT));
+    if (!obj || H5Iget_type(obj.get()) != H5I_DATASET)
+      throw FormatError(where + ": member " + name +
+                        " is not a dataset, expected only 3-D datasets (one per step)");
+    std::vector<hsize_t> shape = h5::dataset_shape(obj.get());
+    if (shape.size() != 3)
+      throw FormatError(mwhere + ": has rank " + std::to_string(shape.size()) + " (shape " +
+                        shape_text(shape) + "), expected a 3-D (Z,Y,X) step");
+    require_numeric_dataset(obj.get(), mwhere);
+    Packing::of(obj.get(), mwhere);
+    if (first_shape.empty()) first_shape = shape;
+    if (shape != first_shape)
+      throw FormatError(mwhere + ": shape " + shape_text(shape) +
+                        " differs from the first step's " + shape_text(first_shape) +
+                        "; all steps must have the same shape");
+    steps.push_back({member, false, 0});
+  }
+  Dims dims = dims_from_zyx(first_shape.data(), where);
+  std::string text = "group " + group_path + " (" + std::to_string(steps.size()) + " steps)";
+  return std::make_unique<Hdf5Source>(path, std::move(file), text, dims, std::move(steps));
+}
+
+// NetCDF classic files ("CDF\x01", "CDF\x02", "CDF\x05") share the .nc extension but are not HDF5.
+bool is_netcdf_classic(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  char magic[4] = {};
+  in.read(magic, 4);
+  return in.gcount() == 4 && magic[0] == 'C' && magic[1] == 'D' && magic[2] == 'F' &&
+         (magic[3] == 1 || magic[3] == 2 || magic[3] == 5);
+}
+
+}  // namespace
+
+std::unique_ptr<VolumeSource> open_hdf5_source(const std::string& path,
+                                               const SourceOptions& options) {
+  if (is_netcdf_classic(path))
+    throw FormatError(path +
+                      ": NetCDF classic (version 3) file, expected NetCDF-4/HDF5; convert "
+                      "it with `nccopy -k nc4 in.nc out.nc`");
+  Handle file = h5::open_file_readonly(path);
+  if (is_vtkhdf(file.get())) return open_vtkhdf_source(path, std::move(file), options);
+
+  std::string field = options.field;
+  if (field.empty()) {
+    std::vector<Candidate> all = list_candidates(file.get());
+    std::vector<Candidate> four, three;
+    for (const Candidate& c : all) (c.shape.size() == 4 ? four : three).push_back(c);
+    if (four.size() == 1) {
+      field = four[0].path;
+    } else if (four.empty() && three.size() == 1) {
+      field = three[0].path;
+    } else {
+      throw FormatError(path + ": no field given and " +
+                        (all.empty() ? std::string("the file holds no 3-D or 4-D dataset")
+                                     : "no single 4-D dataset to default to; candidates: " +
+                                           candidates_text(all)) +
+                        "; name one with --field");
+    }
+  }
+  const std::string obj_path = field[0] == '/' ? field : "/" + field;
+  if (!h5::exists(file.get(), obj_path))
+    throw FormatError(path + ": field '" + field + "' not found; available 3-D/4-D fields: " +
+                      candidates_text(list_candidates(file.get())));
+  Handle obj(H5Oopen(file.get(), obj_path.c_str(), H5P_DEFAULT));
+  if (!obj) throw FormatError(path + ": field '" + field + "' cannot be opened");
+  H5I_type_t kind = H5Iget_type(obj.get());
+  obj.reset();
+  if (kind == H5I_DATASET) return open_dataset(path, std::move(file), obj_path);
+  if (kind == H5I_GROUP) return open_group(path, std::move(file), obj_path);
+  throw FormatError(path + ": field '" + field +
+                    "' is neither a dataset nor a group (a named datatype?)");
+}
+
+}  // namespace tsp::io

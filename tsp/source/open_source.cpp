@@ -1,0 +1,66 @@
+// tsp::open_source: picks the reader from the input's form.
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+
+#include "tsp/core/error.h"
+#include "tsp/hdf5/hdf5_handle.h"
+#include "tsp/source/hdf5_source.h"
+#include "tsp/source/raw_source.h"
+#include "tsp/source/vtk/vti_source.h"
+#include "tsp/source/volume_source.h"
+
+namespace tsp {
+namespace {
+
+bool ends_with(const std::string& s, const std::string& suffix) {
+  if (s.size() < suffix.size()) return false;
+  return std::equal(suffix.rbegin(), suffix.rend(), s.rbegin(), [](char a, char b) {
+    return std::tolower(static_cast<unsigned char>(a)) ==
+           std::tolower(static_cast<unsigned char>(b));
+  });
+}
+
+bool has_hdf5_extension(const std::string& s) {
+  for (const char* ext : {".h5", ".hdf5", ".nc", ".hdf", ".vtkhdf", ".he5", ".nc4"})
+    if (ends_with(s, ext)) return true;
+  return false;
+}
+
+bool has_hdf5_signature(const std::string& path) {
+  h5::silence_errors();
+  return H5Fis_hdf5(path.c_str()) > 0;
+}
+
+}  // namespace
+
+std::unique_ptr<VolumeSource> open_source(const std::string& input, const SourceOptions& options) {
+  if (input.empty()) throw UsageError("no input given");
+  std::error_code ec;
+  const bool exists = std::filesystem::exists(input, ec);
+  // A pattern names many files; an existing file whose name merely contains '%' or '*' is
+  // read as itself.
+  if (!exists && io::is_file_pattern(input)) {
+    if (ends_with(input, ".vti")) return io::open_vti_pattern_source(input, options);
+    if (has_hdf5_extension(input))
+      throw UsageError(input +
+                       ": a file pattern of HDF5 files is not supported; store the steps "
+                       "in one file (a 4-D dataset or a group of 3-D datasets)");
+    return io::open_raw_source(input, options);
+  }
+  if (ends_with(input, ".pvd")) return io::open_pvd_source(input, options);
+  if (ends_with(input, ".vti.series")) return io::open_vti_series_source(input, options);
+  if (ends_with(input, ".vti")) return io::open_vti_source(input, options);
+  if (!exists) throw IoError(input + ": no such file");
+  if (std::filesystem::is_directory(input, ec))
+    throw IoError(input + ": is a directory, expected a file or a file pattern");
+  if (has_hdf5_extension(input) || has_hdf5_signature(input))
+    return io::open_hdf5_source(input, options);
+  if (ends_with(input, ".raw") || options.raw_dims) return io::open_raw_source(input, options);
+  throw FormatError(input +
+                    ": unrecognised input; expected HDF5/NetCDF-4/VTKHDF (.h5 .hdf5 .nc .hdf), "
+                    "VTK image data (.vti .pvd .vti.series) or raw data (.raw, a %d pattern or a "
+                    "glob, with --dims)");
+}
+
+}  // namespace tsp

@@ -1,0 +1,233 @@
+#include "tsp/source/vtk/vtk_xml.h"
+
+#include <zlib.h>
+
+#include <array>
+#include <bit>
+#include <cctype>
+#include <charconv>
+#include <cstring>
+#include <limits>
+
+#include "tsp/core/error.h"
+
+namespace tsp::io::vtkxml {
+namespace {
+
+// 0..63 for base64 alphabet characters, -1 otherwise.
+constexpr std::array<int, 256> make_base64_table() {
+  std::array<int, 256> t{};
+  for (int& v : t) v = -1;
+  const char* alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  for (int i = 0; i < 64; ++i) t[static_cast<unsigned char>(alphabet[i])] = i;
+  return t;
+}
+constexpr std::array<int, 256> kBase64 = make_base64_table();
+
+std::uint64_t read_word(const unsigned char* p, int size, bool big_endian) {
+  std::uint64_t v = 0;
+  for (int i = 0; i < size; ++i) {
+    int shift = 8 * (big_endian ? size - 1 - i : i);
+    v |= std::uint64_t(p[i]) << shift;
+  }
+  return v;
+}
+
+float saturate(double v) {
+  constexpr double kMax = std::numeric_limits<float>::max();
+  if (v > kMax) return std::numeric_limits<float>::infinity();
+  if (v < -kMax) return -std::numeric_limits<float>::infinity();
+  return static_cast<float>(v);
+}
+
+template <typename T>
+void convert_typed(std::span<const unsigned char> bytes, bool swap, std::span<float> out) {
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    unsigned char tmp[sizeof(T)];
+    std::memcpy(tmp, bytes.data() + i * sizeof(T), sizeof(T));
+    if (swap)
+      for (std::size_t k = 0; k < sizeof(T) / 2; ++k) std::swap(tmp[k], tmp[sizeof(T) - 1 - k]);
+    T v;
+    std::memcpy(&v, tmp, sizeof(T));
+    out[i] = saturate(static_cast<double>(v));
+  }
+}
+
+}  // namespace
+
+ElemType parse_elem_type(const std::string& name, const std::string& where) {
+  static const std::pair<const char*, ElemType> kNames[] = {
+      {"Int8", ElemType::i8},     {"UInt8", ElemType::u8},   {"Int16", ElemType::i16},
+      {"UInt16", ElemType::u16},  {"Int32", ElemType::i32},  {"UInt32", ElemType::u32},
+      {"Int64", ElemType::i64},   {"UInt64", ElemType::u64}, {"Float32", ElemType::f32},
+      {"Float64", ElemType::f64}, {"Char", ElemType::i8},    {"UnsignedChar", ElemType::u8}};
+  for (const auto& [n, t] : kNames)
+    if (name == n) return t;
+  throw FormatError(where + ": DataArray type \"" + name +
+                    "\" is not supported, expected Int8…UInt64, Float32 or Float64");
+}
+
+int elem_size(ElemType t) {
+  switch (t) {
+    case ElemType::i8:
+    case ElemType::u8:
+      return 1;
+    case ElemType::i16:
+    case ElemType::u16:
+      return 2;
+    case ElemType::i32:
+    case ElemType::u32:
+    case ElemType::f32:
+      return 4;
+    case ElemType::i64:
+    case ElemType::u64:
+    case ElemType::f64:
+      return 8;
+  }
+  return 1;
+}
+
+std::vector<unsigned char> base64_decode(std::string_view text, const std::string& where) {
+  std::vector<unsigned char> out;
+  out.reserve(text.size() / 4 * 3);
+  int quad[4];
+  int n = 0, pad = 0;
+  auto flush = [&] {
+    out.push_back(static_cast<unsigned char>((quad[0] << 2) | (quad[1] >> 4)));
+    if (pad < 2) out.push_back(static_cast<unsigned char>(((quad[1] & 15) << 4) | (quad[2] >> 2)));
+    if (pad < 1) out.push_back(static_cast<unsigned char>(((quad[2] & 3) << 6) | quad[3]));
+  };
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    unsigned char c = static_cast<unsigned char>(text[i]);
+    if (std::isspace(c)) continue;
+    if (c == '=') {
+      if (n < 2)
+        throw FormatError(where + ": malformed base64 data ('=' at character " + std::to_string(i) +
+                          ")");
+      quad[n++] = 0;
+      ++pad;
+    } else {
+      if (kBase64[c] < 0 || pad > 0)
+        throw FormatError(where + ": malformed base64 data (character " + std::to_string(i) +
+                          " is '" + std::string(1, char(c)) + "')");
+      quad[n++] = kBase64[c];
+    }
+    if (n == 4) {
+      flush();
+      n = 0;
+      pad = 0;
+    }
+  }
+  if (n != 0) throw FormatError(where + ": base64 data ends in the middle of a group");
+  return out;
+}
+
+std::vector<unsigned char> unpack_binary(std::span<const unsigned char> bytes,
+                                         const BinaryLayout& layout, std::uint64_t expected_bytes,
+                                         const std::string& where) {
+  const int ws = layout.header64 ? 8 : 4;
+  auto word = [&](std::uint64_t index) -> std::uint64_t {
+    std::uint64_t at = index * ws;
+    if (at + ws > bytes.size())
+      throw FormatError(where + ": binary data truncated inside its header (" +
+                        std::to_string(bytes.size()) + " bytes available)");
+    return read_word(bytes.data() + at, ws, layout.big_endian);
+  };
+  if (!layout.zlib) {
+    std::uint64_t n = word(0);
+    if (n != expected_bytes)
+      throw FormatError(where + ": binary header says " + std::to_string(n) + " bytes, expected " +
+                        std::to_string(expected_bytes));
+    if (bytes.size() - ws < n)
+      throw FormatError(where + ": binary data truncated: " + std::to_string(bytes.size() - ws) +
+                        " of " + std::to_string(n) + " bytes present");
+    return std::vector<unsigned char>(bytes.begin() + ws, bytes.begin() + ws + std::ptrdiff_t(n));
+  }
+  const std::uint64_t blocks = word(0), block_size = word(1), last_size = word(2);
+  const std::uint64_t last = last_size ? last_size : block_size;
+  const std::uint64_t total = blocks ? (blocks - 1) * block_size + last : 0;
+  if (total != expected_bytes || (blocks && (block_size == 0 || last > block_size)))
+    throw FormatError(where + ": zlib header describes " + std::to_string(blocks) +
+                      " blocks holding " + std::to_string(total) + " bytes, expected " +
+                      std::to_string(expected_bytes));
+  std::vector<unsigned char> out(total);
+  std::uint64_t src = (3 + blocks) * ws;
+  if (blocks) word(3 + blocks - 1);  // the whole header is present
+  for (std::uint64_t b = 0; b < blocks; ++b) {
+    std::uint64_t csize = word(3 + b);
+    std::uint64_t usize = b + 1 == blocks ? last : block_size;
+    if (src + csize > bytes.size())
+      throw FormatError(where + ": zlib block " + std::to_string(b) + " truncated (needs " +
+                        std::to_string(csize) + " bytes, " +
+                        std::to_string(bytes.size() > src ? bytes.size() - src : 0) + " present)");
+    uLongf dest_len = static_cast<uLongf>(usize);
+    int rc = uncompress(out.data() + b * block_size, &dest_len, bytes.data() + src,
+                        static_cast<uLong>(csize));
+    if (rc != Z_OK || dest_len != usize)
+      throw FormatError(where + ": zlib block " + std::to_string(b) + " does not inflate to " +
+                        std::to_string(usize) + " bytes (zlib error " + std::to_string(rc) + ")");
+    src += csize;
+  }
+  return out;
+}
+
+void convert_to_float(std::span<const unsigned char> bytes, ElemType t, bool big_endian,
+                      std::span<float> out) {
+  const bool swap = big_endian != (std::endian::native == std::endian::big);
+  switch (t) {
+    case ElemType::i8:
+      convert_typed<std::int8_t>(bytes, swap, out);
+      break;
+    case ElemType::u8:
+      convert_typed<std::uint8_t>(bytes, swap, out);
+      break;
+    case ElemType::i16:
+      convert_typed<std::int16_t>(bytes, swap, out);
+      break;
+    case ElemType::u16:
+      convert_typed<std::uint16_t>(bytes, swap, out);
+      break;
+    case ElemType::i32:
+      convert_typed<std::int32_t>(bytes, swap, out);
+      break;
+    case ElemType::u32:
+      convert_typed<std::uint32_t>(bytes, swap, out);
+      break;
+    case ElemType::i64:
+      convert_typed<std::int64_t>(bytes, swap, out);
+      break;
+    case ElemType::u64:
+      convert_typed<std::uint64_t>(bytes, swap, out);
+      break;
+    case ElemType::f32:
+      convert_typed<float>(bytes, swap, out);
+      break;
+    case ElemType::f64:
+      convert_typed<double>(bytes, swap, out);
+      break;
+  }
+}
+
+void parse_ascii(std::string_view text, std::span<float> out, const std::string& where) {
+  std::size_t count = 0, i = 0;
+  const char* base = text.data();
+  while (true) {
+    while (i < text.size() && std::isspace(static_cast<unsigned char>(text[i]))) ++i;
+    if (i >= text.size()) break;
+    std::size_t end = i;
+    while (end < text.size() && !std::isspace(static_cast<unsigned char>(text[end]))) ++end;
+    double v = 0;
+    auto [ptr, ec] = std::from_chars(base + i, base + end, v);
+    if (ec != std::errc() || ptr != base + end)
+      throw FormatError(where + ": ascii value \"" + std::string(text.substr(i, end - i)) +
+                        "\" is not a number");
+    if (count < out.size()) out[count] = saturate(v);
+    ++count;
+    i = end;
+  }
+  if (count != out.size())
+    throw FormatError(where + ": ascii data holds " + std::to_string(count) + " values, expected " +
+                      std::to_string(out.size()));
+}
+
+}  // namespace tsp::io::vtkxml

@@ -1,0 +1,22 @@
+// Read access to quantized brick samples, one (brick, step) at a time.
+#pragma once
+#include <cstdint>
+#include <span>
+
+#include "tsp/tree/tsp_tree.h"
+
+namespace tsp {
+
+/// Source of quantized leaf-brick samples. Implemented by the .tsp file reader and by
+/// in-memory stores in tests.
+class BrickStore {
+ public:
+  virtual ~BrickStore() = default;
+  /// The tree the bricks belong to.
+  virtual const TspTree& tree() const = 0;
+  /// Reads brick b at step t into out: tree().octree().brick_samples(b).count() codes,
+  /// x fastest. Throws IoError/FormatError.
+  virtual void read_brick(int brick, int step, std::span<std::uint16_t> out) const = 0;
+};
+
+}  // namespace tsp

@@ -1,0 +1,287 @@
+#include "tsp/store/tsp_file.h"
+
+#include <cassert>
+#include <cmath>
+#include <mutex>
+#include <sstream>
+
+#include "tsp/core/error.h"
+#include "tsp/hdf5/hdf5_handle.h"
+#include "tsp/hdf5/hdf5_lock.h"
+#include "tsp/store/tsp_layout.h"
+#include "tsp/store/tsp_writer.h"
+
+namespace tsp {
+
+namespace {
+
+using h5::Handle;
+
+std::string shape_text(const std::vector<hsize_t>& s) {
+  std::ostringstream o;
+  o << "[";
+  for (std::size_t i = 0; i < s.size(); ++i) o << (i ? "," : "") << s[i];
+  o << "]";
+  return o.str();
+}
+
+// Reads the .tsp layout of one open file, turning every inconsistency into a FormatError that
+// names the file and the object.
+class Reader {
+ public:
+  Reader(const std::string& path, hid_t file) : path_(path), file_(file) {}
+
+  [[noreturn]] void fail(const std::string& what, const std::string& msg) const {
+    throw FormatError(path_ + ": " + what + ": " + msg);
+  }
+
+  bool has_attr(const char* name) const { return H5Aexists(file_, name) > 0; }
+
+  Handle open_attr(const char* name) const {
+    if (!has_attr(name)) fail(std::string("attribute ") + name, "missing");
+    Handle a(H5Aopen(file_, name, H5P_DEFAULT));
+    if (!a) fail(std::string("attribute ") + name, "cannot be opened");
+    return a;
+  }
+
+  std::string attr_string(const char* name) const {
+    Handle a = open_attr(name);
+    Handle type(H5Aget_type(a.get()));
+    if (H5Tget_class(type.get()) != H5T_STRING)
+      fail(std::string("attribute ") + name, "expected a string");
+    Handle space(H5Aget_space(a.get()));
+    if (H5Sget_simple_extent_npoints(space.get()) != 1)
+      fail(std::string("attribute ") + name, "expected one string");
+    if (H5Tis_variable_str(type.get()) > 0) {
+      Handle mem(H5Tcopy(H5T_C_S1));
+      H5Tset_size(mem.get(), H5T_VARIABLE);
+      H5Tset_cset(mem.get(), H5Tget_cset(type.get()));
+      char* p = nullptr;
+      if (H5Aread(a.get(), mem.get(), &p) < 0) fail(std::string("attribute ") + name, "unreadable");
+      std::string s = p ? p : "";
+      H5free_memory(p);
+      return s;
+    }
+    std::size_t n = H5Tget_size(type.get());
+    std::string s(n, '\0');
+    if (H5Aread(a.get(), type.get(), s.data()) < 0)
+      fail(std::string("attribute ") + name, "unreadable");
+    s.resize(s.find('\0') == std::string::npos ? n : s.find('\0'));
+    return s;
+  }
+
+  template <class T>
+  std::vector<T> attr_numbers(const char* name, hid_t mem_type, hssize_t count) const {
+    Handle a = open_attr(name);
+    Handle type(H5Aget_type(a.get()));
+    H5T_class_t c = H5Tget_class(type.get());
+    if (c != H5T_INTEGER && c != H5T_FLOAT)
+      fail(std::string("attribute ") + name, "expected numbers");
+    Handle space(H5Aget_space(a.get()));
+    hssize_t n = H5Sget_simple_extent_npoints(space.get());
+    if (n != count)
+      fail(std::string("attribute ") + name,
+           "expected " + std::to_string(count) + " value(s), found " + std::to_string(n));
+    std::vector<T> v(static_cast<std::size_t>(count));
+    if (H5Aread(a.get(), mem_type, v.data()) < 0)
+      fail(std::string("attribute ") + name, "unreadable");
+    return v;
+  }
+
+  Handle open_dataset(const char* name, const std::vector<hsize_t>& shape, H5T_class_t cls) const {
+    if (!h5::exists(file_, name)) fail(std::string("dataset ") + name, "missing");
+    Handle ds(H5Dopen2(file_, name, H5P_DEFAULT));
+    if (!ds) fail(std::string("dataset ") + name, "cannot be opened");
+    auto found = h5::dataset_shape(ds.get());
+    if (found != shape)
+      fail(std::string("dataset ") + name,
+           "expected shape " + shape_text(shape) + ", found " + shape_text(found));
+    Handle type(H5Dget_type(ds.get()));
+    if (H5Tget_class(type.get()) != cls)
+      fail(std::string("dataset ") + name,
+           cls == H5T_FLOAT ? "expected floating-point values" : "expected integers");
+    return ds;
+  }
+
+  template <class T>
+  std::vector<T> dataset(const char* name, const std::vector<hsize_t>& shape, hid_t mem_type,
+                         H5T_class_t cls) const {
+    Handle ds = open_dataset(name, shape, cls);
+    std::size_t n = 1;
+    for (hsize_t d : shape) n *= d;
+    std::vector<T> v(n);
+    if (n > 0 && H5Dread(ds.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()) < 0)
+      fail(std::string("dataset ") + name, "unreadable (truncated or corrupt file?)");
+    return v;
+  }
+
+  template <class T>
+  void expect_equal(const char* name, const std::vector<T>& found,
+                    const std::vector<T>& want) const {
+    if (found.size() != want.size()) fail(std::string("dataset ") + name, "wrong size");
+    for (std::size_t i = 0; i < want.size(); ++i)
+      if (found[i] != want[i])
+        fail(std::string("dataset ") + name,
+             "element " + std::to_string(i) + " is " + std::to_string(found[i]) + ", expected " +
+                 std::to_string(want[i]) + " for the file's dims and brick size");
+  }
+
+ private:
+  std::string path_;
+  hid_t file_;
+};
+
+void append_box(std::vector<int>& v, const Box& b) {
+  v.insert(v.end(), {b.lo[0], b.lo[1], b.lo[2], b.hi[0], b.hi[1], b.hi[2]});
+}
+
+}  // namespace
+
+struct TspFile::Impl {
+  std::string path;
+  Handle file;
+  Handle data;
+  std::unique_ptr<TspTree> tree;
+  TspMetadata meta;
+};
+
+TspFile::TspFile(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+
+TspFile::~TspFile() {
+  std::lock_guard lock(hdf5_mutex());
+  impl_->data.reset();
+  impl_->file.reset();
+}
+
+std::unique_ptr<TspFile> TspFile::open(const std::string& path) {
+  std::lock_guard lock(hdf5_mutex());
+  auto impl = std::make_unique<Impl>();
+  impl->path = path;
+  impl->file = h5::open_file_readonly(path);
+  Reader r(path, impl->file.get());
+
+  if (!r.has_attr(layout::kAttrFormat))
+    throw FormatError(path +
+                      ": not a tspplay .tsp file (HDF5 without a 'format' attribute; "
+                      "an unfinished build or another kind of file)");
+  std::string format = r.attr_string(layout::kAttrFormat);
+  if (format != layout::kFormatName)
+    r.fail("attribute format",
+           "expected \"" + std::string(layout::kFormatName) + "\", found \"" + format + "\"");
+  int version = r.attr_numbers<int>(layout::kAttrVersion, H5T_NATIVE_INT, 1)[0];
+  if (version != kTspFormatVersion)
+    throw FormatError(path + ": .tsp format version " + std::to_string(version) +
+                      ", this tspplay reads version " + std::to_string(kTspFormatVersion) +
+                      " only; rebuild the file with this tspplay");
+
+  auto dims = r.attr_numbers<int>(layout::kAttrDims, H5T_NATIVE_INT, 3);
+  int steps = r.attr_numbers<int>(layout::kAttrSteps, H5T_NATIVE_INT, 1)[0];
+  int brick = r.attr_numbers<int>(layout::kAttrBrickSize, H5T_NATIVE_INT, 1)[0];
+  if (steps < 1) r.fail("attribute steps", "expected at least 1, found " + std::to_string(steps));
+  try {
+    impl->tree = std::make_unique<TspTree>(Dims{dims[0], dims[1], dims[2]}, steps, brick);
+  } catch (const UsageError& e) {
+    r.fail("attributes dims/brick_size", e.what());
+  }
+  TspTree& tree = *impl->tree;
+  auto vr = r.attr_numbers<double>(layout::kAttrValueRange, H5T_NATIVE_DOUBLE, 2);
+  if (!std::isfinite(vr[0]) || !std::isfinite(vr[1]) || vr[0] > vr[1])
+    r.fail("attribute value_range", "expected finite lo <= hi");
+  tree.set_value_range({vr[0], vr[1]});
+  auto dr = r.attr_numbers<double>(layout::kAttrDataRange, H5T_NATIVE_DOUBLE, 2);
+  TspMetadata& m = impl->meta;
+  m.data_range = {dr[0], dr[1]};
+  m.nonfinite_count = r.attr_numbers<std::int64_t>(layout::kAttrNonfinite, H5T_NATIVE_INT64, 1)[0];
+  m.source = r.attr_string(layout::kAttrSource);
+  m.field = r.attr_string(layout::kAttrField);
+  m.created_by = r.attr_string(layout::kAttrCreatedBy);
+
+  // The stored shape must be the one these dims and brick size produce.
+  const Octree& o = tree.octree();
+  const hsize_t nb = hsize_t(o.brick_count()), no = hsize_t(o.size());
+  std::vector<int> samples, own, box, level, parent, children, leaf_brick, spans;
+  for (int b = 0; b < o.brick_count(); ++b) {
+    append_box(samples, o.brick_samples(b));
+    append_box(own, o.brick_box(b));
+  }
+  for (int i = 0; i < o.size(); ++i) {
+    const OctreeNode& n = o.node(i);
+    append_box(box, n.box);
+    level.push_back(n.level);
+    parent.push_back(n.parent);
+    children.insert(children.end(), n.children.begin(), n.children.end());
+    leaf_brick.push_back(n.brick);
+  }
+  const TimeTree& time = tree.time();
+  for (int i = 0; i < time.size(); ++i)
+    spans.insert(spans.end(), {time.span(i).t0, time.span(i).t1});
+  auto ints = [&](const char* name, std::vector<hsize_t> shape, const std::vector<int>& want) {
+    r.expect_equal(name, r.dataset<int>(name, shape, H5T_NATIVE_INT, H5T_INTEGER), want);
+  };
+  ints(layout::kBrickSamplesBox, {nb, 6}, samples);
+  ints(layout::kBrickOwnBox, {nb, 6}, own);
+  ints(layout::kOctreeBox, {no, 6}, box);
+  ints(layout::kOctreeLevel, {no}, level);
+  ints(layout::kOctreeParent, {no}, parent);
+  ints(layout::kOctreeChildren, {no, 8}, children);
+  ints(layout::kOctreeBrick, {no}, leaf_brick);
+  ints(layout::kTimeSpan, {hsize_t(time.size()), 2}, spans);
+
+  const std::vector<hsize_t> n = {hsize_t(tree.size())};
+  auto mean = r.dataset<double>(layout::kStatsMean, n, H5T_NATIVE_DOUBLE, H5T_FLOAT);
+  auto sd = r.dataset<double>(layout::kStatsStd, n, H5T_NATIVE_DOUBLE, H5T_FLOAT);
+  auto mn = r.dataset<float>(layout::kStatsMin, n, H5T_NATIVE_FLOAT, H5T_FLOAT);
+  auto mx = r.dataset<float>(layout::kStatsMax, n, H5T_NATIVE_FLOAT, H5T_FLOAT);
+  auto es = r.dataset<float>(layout::kStatsSpatial, n, H5T_NATIVE_FLOAT, H5T_FLOAT);
+  auto et = r.dataset<float>(layout::kStatsTemporal, n, H5T_NATIVE_FLOAT, H5T_FLOAT);
+  for (int i = 0; i < tree.size(); ++i) {
+    NodeStats& s = tree.stats(i);
+    s.mean = mean[i];
+    s.std = sd[i];
+    s.min = mn[i];
+    s.max = mx[i];
+    s.spatial_error = es[i];
+    s.temporal_error = et[i];
+  }
+  m.histogram = r.dataset<std::uint64_t>(layout::kHistogram, {hsize_t(kHistogramBins)},
+                                         H5T_NATIVE_UINT64, H5T_INTEGER);
+
+  auto shape = stored_brick_shape(o);
+  impl->data = r.open_dataset(
+      layout::kBrickData,
+      {nb, hsize_t(steps), hsize_t(shape[2]), hsize_t(shape[1]), hsize_t(shape[0])}, H5T_INTEGER);
+  Handle type(H5Dget_type(impl->data.get()));
+  if (H5Tget_size(type.get()) != 2 || H5Tget_sign(type.get()) != H5T_SGN_NONE)
+    r.fail(std::string("dataset ") + layout::kBrickData, "expected 16-bit unsigned codes");
+  return std::unique_ptr<TspFile>(new TspFile(std::move(impl)));
+}
+
+const TspTree& TspFile::tree() const {
+  return *impl_->tree;
+}
+const TspMetadata& TspFile::metadata() const {
+  return impl_->meta;
+}
+const std::string& TspFile::path() const {
+  return impl_->path;
+}
+
+void TspFile::read_brick(int brick, int step, std::span<std::uint16_t> out) const {
+  const Octree& o = impl_->tree->octree();
+  assert(brick >= 0 && brick < o.brick_count() && step >= 0 && step < impl_->tree->time().steps());
+  const Box s = o.brick_samples(brick);
+  assert(std::int64_t(out.size()) == s.count());
+  std::lock_guard lock(hdf5_mutex());
+  hsize_t start[5] = {hsize_t(brick), hsize_t(step), 0, 0, 0};
+  hsize_t count[5] = {1, 1, hsize_t(s.size(2)), hsize_t(s.size(1)), hsize_t(s.size(0))};
+  Handle fspace(H5Dget_space(impl_->data.get()));
+  Handle mspace(H5Screate_simple(3, count + 2, nullptr));
+  if (H5Sselect_hyperslab(fspace.get(), H5S_SELECT_SET, start, nullptr, count, nullptr) < 0 ||
+      H5Dread(impl_->data.get(), H5T_NATIVE_UINT16, mspace.get(), fspace.get(), H5P_DEFAULT,
+              out.data()) < 0)
+    throw FormatError(impl_->path + ": dataset " + layout::kBrickData + ": cannot read brick " +
+                      std::to_string(brick) + " at step " + std::to_string(step) +
+                      " (truncated or corrupt file?)");
+}
+
+}  // namespace tsp

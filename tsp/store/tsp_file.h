@@ -1,0 +1,50 @@
+// The .tsp file: an HDF5 file holding quantized leaf bricks and the TSP tree with statistics.
+// Layout and versioning: docs/formats.md.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "tsp/store/brick_store.h"
+
+namespace tsp {
+
+/// Format version written by this build; readers accept exactly this version.
+inline constexpr int kTspFormatVersion = 1;
+/// Bins of the value histogram stored in the file (over the quantization range).
+inline constexpr int kHistogramBins = 256;
+
+/// Everything in a .tsp file besides the tree and the bricks.
+struct TspMetadata {
+  std::string source;                  ///< what was read (VolumeSource::describe())
+  std::string field;                   ///< field name, may be empty
+  ValueRange data_range;               ///< min and max of the finite input samples
+  std::int64_t nonfinite_count = 0;    ///< NaN/Inf samples replaced by the NaN/Inf rule
+  std::vector<std::uint64_t> histogram;  ///< kHistogramBins counts over value_range()
+  std::string created_by;              ///< "tspplay VERSION"
+};
+
+/// An open .tsp file: tree, metadata, and brick reads (one HDF5 chunk per brick and step).
+class TspFile : public BrickStore {
+ public:
+  /// Opens path and loads the tree; throws IoError (missing/unreadable) or FormatError
+  /// (not a .tsp file, other version, inconsistent contents), naming the file.
+  static std::unique_ptr<TspFile> open(const std::string& path);
+  ~TspFile() override;
+  /// The tree with every node's statistics.
+  const TspTree& tree() const override;
+  /// Provenance, ranges, histogram.
+  const TspMetadata& metadata() const;
+  /// Path the file was opened from.
+  const std::string& path() const;
+  /// Reads one brick at one step; thread-safe. Throws IoError/FormatError.
+  void read_brick(int brick, int step, std::span<std::uint16_t> out) const override;
+
+ private:
+  struct Impl;
+  explicit TspFile(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace tsp

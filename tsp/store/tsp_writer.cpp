@@ -1,0 +1,232 @@
+#include "tsp/store/tsp_writer.h"
+
+#include <algorithm>
+#include <cassert>
+#include <mutex>
+#include <vector>
+
+#include "tsp/core/error.h"
+#include "tsp/hdf5/hdf5_handle.h"
+#include "tsp/hdf5/hdf5_lock.h"
+#include "tsp/store/tsp_layout.h"
+
+namespace tsp {
+
+namespace {
+
+using h5::Handle;
+
+// Throws IoError naming the file and the object when an HDF5 call failed.
+hid_t check_id(hid_t id, const std::string& path, const std::string& what) {
+  if (id < 0) throw IoError(path + ": cannot write " + what + " (HDF5 error; disk full?)");
+  return id;
+}
+void check_status(herr_t status, const std::string& path, const std::string& what) {
+  if (status < 0) throw IoError(path + ": cannot write " + what + " (HDF5 error; disk full?)");
+}
+
+void write_attr(hid_t loc, const std::string& path, const char* name, hid_t mem_type,
+                hid_t file_type, std::vector<hsize_t> dims, const void* data) {
+  Handle space(check_id(dims.empty() ? H5Screate(H5S_SCALAR)
+                                     : H5Screate_simple(int(dims.size()), dims.data(), nullptr),
+                        path, name));
+  Handle attr(check_id(H5Acreate2(loc, name, file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT),
+                       path, std::string("attribute ") + name));
+  check_status(H5Awrite(attr.get(), mem_type, data), path, std::string("attribute ") + name);
+}
+
+void write_attr_string(hid_t loc, const std::string& path, const char* name, const std::string& s) {
+  // Variable-length UTF-8: h5py returns a Python str.
+  Handle type(check_id(H5Tcopy(H5T_C_S1), path, name));
+  H5Tset_size(type.get(), H5T_VARIABLE);
+  H5Tset_cset(type.get(), H5T_CSET_UTF8);
+  const char* p = s.c_str();
+  write_attr(loc, path, name, type.get(), type.get(), {}, &p);
+}
+
+void write_dataset(hid_t loc, const std::string& path, const char* name, hid_t mem_type,
+                   hid_t file_type, std::vector<hsize_t> dims, const void* data) {
+  Handle space(check_id(H5Screate_simple(int(dims.size()), dims.data(), nullptr), path, name));
+  Handle ds(
+      check_id(H5Dcreate2(loc, name, file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+               path, name));
+  bool empty = std::any_of(dims.begin(), dims.end(), [](hsize_t d) { return d == 0; });
+  if (!empty)
+    check_status(H5Dwrite(ds.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), path, name);
+}
+
+void make_group(hid_t file, const std::string& path, const char* name) {
+  Handle g(check_id(H5Gcreate2(file, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), path, name));
+}
+
+std::array<int, 6> flat(const Box& b) {
+  return {b.lo[0], b.lo[1], b.lo[2], b.hi[0], b.hi[1], b.hi[2]};
+}
+
+}  // namespace
+
+std::array<int, 3> stored_brick_shape(const Octree& octree) {
+  return octree.max_brick_samples();
+}
+
+struct TspWriter::Impl {
+  std::string path;
+  Handle file;
+  Handle data;
+  int steps = 0;
+  std::array<int, 3> shape{};  // x, y, z
+};
+
+TspWriter::TspWriter(const std::string& path, const TspTree& tree)
+    : impl_(std::make_unique<Impl>()) {
+  std::lock_guard lock(hdf5_mutex());
+  h5::silence_errors();
+  Impl& w = *impl_;
+  w.path = path;
+  w.steps = tree.time().steps();
+  w.shape = stored_brick_shape(tree.octree());
+  Handle fapl(H5Pcreate(H5P_FILE_ACCESS));
+  // The newest 1.10 structures: chunk indexes suited to fixed-size datasets. h5py reads them.
+  H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_LATEST, H5F_LIBVER_LATEST);
+  w.file = Handle(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()));
+  if (!w.file) throw IoError(path + ": cannot create the output file");
+  make_group(w.file.get(), path, layout::kBricks);
+  make_group(w.file.get(), path, layout::kOctree);
+  make_group(w.file.get(), path, layout::kTime);
+  make_group(w.file.get(), path, layout::kStats);
+
+  const int nb = tree.octree().brick_count();
+  std::vector<hsize_t> dims = {hsize_t(nb), hsize_t(w.steps), hsize_t(w.shape[2]),
+                               hsize_t(w.shape[1]), hsize_t(w.shape[0])};
+  std::vector<hsize_t> chunk = {1, 1, dims[2], dims[3], dims[4]};
+  Handle space(check_id(H5Screate_simple(5, dims.data(), nullptr), path, layout::kBrickData));
+  Handle dcpl(H5Pcreate(H5P_DATASET_CREATE));
+  H5Pset_chunk(dcpl.get(), 5, chunk.data());
+  H5Pset_fill_time(dcpl.get(), H5D_FILL_TIME_NEVER);  // every chunk is written exactly once
+  Handle dapl(H5Pcreate(H5P_DATASET_ACCESS));
+  // No chunk cache: whole chunks go straight to the file instead of being copied first.
+  H5Pset_chunk_cache(dapl.get(), 0, 0, 1.0);
+  w.data = Handle(check_id(H5Dcreate2(w.file.get(), layout::kBrickData, H5T_STD_U16LE, space.get(),
+                                      H5P_DEFAULT, dcpl.get(), dapl.get()),
+                           path, layout::kBrickData));
+}
+
+TspWriter::~TspWriter() {
+  std::lock_guard lock(hdf5_mutex());
+  impl_->data.reset();
+  impl_->file.reset();
+}
+
+void TspWriter::write_brick_series(int brick, std::span<const std::uint16_t> codes) {
+  Impl& w = *impl_;
+  const hsize_t per_step = hsize_t(w.shape[0]) * w.shape[1] * w.shape[2];
+  assert(codes.size() == per_step * w.steps);
+  (void)per_step;
+  std::lock_guard lock(hdf5_mutex());
+  hsize_t start[5] = {hsize_t(brick), 0, 0, 0, 0};
+  hsize_t count[5] = {1, hsize_t(w.steps), hsize_t(w.shape[2]), hsize_t(w.shape[1]),
+                      hsize_t(w.shape[0])};
+  Handle fspace(H5Dget_space(w.data.get()));
+  H5Sselect_hyperslab(fspace.get(), H5S_SELECT_SET, start, nullptr, count, nullptr);
+  Handle mspace(H5Screate_simple(5, count, nullptr));
+  check_status(H5Dwrite(w.data.get(), H5T_NATIVE_UINT16, mspace.get(), fspace.get(), H5P_DEFAULT,
+                        codes.data()),
+               w.path, "brick " + std::to_string(brick));
+}
+
+void TspWriter::finish(const TspTree& tree, const TspMetadata& meta) {
+  std::lock_guard lock(hdf5_mutex());
+  Impl& w = *impl_;
+  const std::string& p = w.path;
+  hid_t f = w.file.get();
+  const Octree& o = tree.octree();
+  const Dims d = o.dims();
+
+  // Shape of the tree, as the reader recomputes and checks it.
+  const int nb = o.brick_count();
+  std::vector<std::array<int, 6>> samples(nb), own(nb);
+  for (int b = 0; b < nb; ++b) {
+    samples[b] = flat(o.brick_samples(b));
+    own[b] = flat(o.brick_box(b));
+  }
+  write_dataset(f, p, layout::kBrickSamplesBox, H5T_NATIVE_INT32, H5T_STD_I32LE, {hsize_t(nb), 6},
+                samples.data());
+  write_dataset(f, p, layout::kBrickOwnBox, H5T_NATIVE_INT32, H5T_STD_I32LE, {hsize_t(nb), 6},
+                own.data());
+  const hsize_t no = hsize_t(o.size());
+  std::vector<std::array<int, 6>> box(no);
+  std::vector<std::array<int, 8>> children(no);
+  std::vector<int> level(no), parent(no), brick(no);
+  for (int i = 0; i < o.size(); ++i) {
+    const OctreeNode& n = o.node(i);
+    box[i] = flat(n.box);
+    children[i] = n.children;
+    level[i] = n.level;
+    parent[i] = n.parent;
+    brick[i] = n.brick;
+  }
+  write_dataset(f, p, layout::kOctreeBox, H5T_NATIVE_INT32, H5T_STD_I32LE, {no, 6}, box.data());
+  write_dataset(f, p, layout::kOctreeLevel, H5T_NATIVE_INT32, H5T_STD_I32LE, {no}, level.data());
+  write_dataset(f, p, layout::kOctreeParent, H5T_NATIVE_INT32, H5T_STD_I32LE, {no}, parent.data());
+  write_dataset(f, p, layout::kOctreeChildren, H5T_NATIVE_INT32, H5T_STD_I32LE, {no, 8},
+                children.data());
+  write_dataset(f, p, layout::kOctreeBrick, H5T_NATIVE_INT32, H5T_STD_I32LE, {no}, brick.data());
+  const TimeTree& time = tree.time();
+  std::vector<std::array<int, 2>> spans(time.size());
+  for (int i = 0; i < time.size(); ++i) spans[i] = {time.span(i).t0, time.span(i).t1};
+  write_dataset(f, p, layout::kTimeSpan, H5T_NATIVE_INT32, H5T_STD_I32LE, {hsize_t(time.size()), 2},
+                spans.data());
+
+  // Statistics by TSP node id.
+  const std::size_t n = std::size_t(tree.size());
+  std::vector<double> mean(n), sd(n);
+  std::vector<float> mn(n), mx(n), es(n), et(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const NodeStats& s = tree.stats(int(i));
+    mean[i] = s.mean;
+    sd[i] = s.std;
+    mn[i] = s.min;
+    mx[i] = s.max;
+    es[i] = s.spatial_error;
+    et[i] = s.temporal_error;
+  }
+  write_dataset(f, p, layout::kStatsMean, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, {n}, mean.data());
+  write_dataset(f, p, layout::kStatsStd, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, {n}, sd.data());
+  write_dataset(f, p, layout::kStatsMin, H5T_NATIVE_FLOAT, H5T_IEEE_F32LE, {n}, mn.data());
+  write_dataset(f, p, layout::kStatsMax, H5T_NATIVE_FLOAT, H5T_IEEE_F32LE, {n}, mx.data());
+  write_dataset(f, p, layout::kStatsSpatial, H5T_NATIVE_FLOAT, H5T_IEEE_F32LE, {n}, es.data());
+  write_dataset(f, p, layout::kStatsTemporal, H5T_NATIVE_FLOAT, H5T_IEEE_F32LE, {n}, et.data());
+  assert(meta.histogram.size() == std::size_t(kHistogramBins));
+  write_dataset(f, p, layout::kHistogram, H5T_NATIVE_UINT64, H5T_STD_U64LE,
+                {hsize_t(meta.histogram.size())}, meta.histogram.data());
+
+  // Root attributes last: a file cut short before this point has no format tag and is rejected.
+  Handle root(check_id(H5Gopen2(f, "/", H5P_DEFAULT), p, "/"));
+  hid_t r = root.get();
+  const int version = kTspFormatVersion, steps = time.steps(), bs = o.brick_size();
+  const int dims[3] = {d.x, d.y, d.z};
+  const ValueRange vr = tree.value_range();
+  const double value_range[2] = {vr.lo, vr.hi};
+  const double data_range[2] = {meta.data_range.lo, meta.data_range.hi};
+  const std::int64_t nonfinite = meta.nonfinite_count;
+  write_attr_string(r, p, layout::kAttrFormat, layout::kFormatName);
+  write_attr(r, p, layout::kAttrVersion, H5T_NATIVE_INT, H5T_STD_I32LE, {}, &version);
+  write_attr(r, p, layout::kAttrDims, H5T_NATIVE_INT, H5T_STD_I32LE, {3}, dims);
+  write_attr(r, p, layout::kAttrSteps, H5T_NATIVE_INT, H5T_STD_I32LE, {}, &steps);
+  write_attr(r, p, layout::kAttrBrickSize, H5T_NATIVE_INT, H5T_STD_I32LE, {}, &bs);
+  write_attr(r, p, layout::kAttrValueRange, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, {2}, value_range);
+  write_attr(r, p, layout::kAttrDataRange, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, {2}, data_range);
+  write_attr(r, p, layout::kAttrNonfinite, H5T_NATIVE_INT64, H5T_STD_I64LE, {}, &nonfinite);
+  write_attr_string(r, p, layout::kAttrSource, meta.source);
+  write_attr_string(r, p, layout::kAttrField, meta.field);
+  write_attr_string(r, p, layout::kAttrCreatedBy, meta.created_by);
+  write_attr_string(r, p, layout::kAttrQuantization, layout::kQuantizationRule);
+  write_attr_string(r, p, layout::kAttrNodeId, layout::kNodeIdRule);
+  root.reset();
+
+  w.data.reset();
+  if (H5Fflush(f, H5F_SCOPE_GLOBAL) < 0) throw IoError(p + ": cannot flush the output file");
+  w.file.reset();
+}
+
+}  // namespace tsp

@@ -1,0 +1,40 @@
+// Writes a .tsp file (layout: docs/formats.md). Used by the builder; the caller writes to a
+// temporary name and renames it when finish() returned.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+
+#include "tsp/store/tsp_file.h"
+#include "tsp/tree/tsp_tree.h"
+
+namespace tsp {
+
+/// Brick extent as stored in /bricks/data along x, y, z: the largest brick's samples (≤ B);
+/// smaller edge bricks are padded by repeating their last sample.
+std::array<int, 3> stored_brick_shape(const Octree& octree);
+
+/// An open .tsp file being written. Every method holds hdf5_mutex() while it calls HDF5, so
+/// bricks may be written from several threads.
+class TspWriter {
+ public:
+  /// Creates (truncates) path with room for the bricks of tree's shape; throws IoError.
+  TspWriter(const std::string& path, const TspTree& tree);
+  ~TspWriter();
+  TspWriter(const TspWriter&) = delete;
+  TspWriter& operator=(const TspWriter&) = delete;
+  /// Writes brick b at every step: codes is [T][Bz][By][Bx] (stored_brick_shape, padded).
+  /// Throws IoError.
+  void write_brick_series(int brick, std::span<const std::uint16_t> codes);
+  /// Writes the tree (shape and statistics), the ranges and the metadata, then closes the file.
+  /// Throws IoError.
+  void finish(const TspTree& tree, const TspMetadata& metadata);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace tsp

@@ -1,0 +1,78 @@
+// The spatial skeleton of the TSP tree: a complete octree over the grid of leaf bricks.
+//
+// Bricks: along each axis the grid of D samples has D − 1 cells. That axis gets the fewest
+// bricks n = ⌈(D − 1)/(B − 1)⌉ that keep each at most B samples, and the cells are spread
+// evenly: every brick covers S = ⌈(D − 1)/n⌉ cells except the last, which covers the rest. A
+// brick stores S + 1 samples (≤ B) and shares one sample layer with its upper neighbour. A brick's
+// own voxel box (used for statistics, each voxel counted once) is [k·S, (k+1)·S), and the last
+// brick along an axis also owns the final layer: [k·S, D).
+#pragma once
+#include <array>
+#include <vector>
+
+#include "tsp/core/types.h"
+
+namespace tsp {
+
+/// One octree node. Children are indexed by octant: bit 0 = upper x half, bit 1 = upper y,
+/// bit 2 = upper z; −1 where the node is not split along that axis (thin grids).
+struct OctreeNode {
+  Box box;                       ///< own voxel box, half-open, without the overlap layer
+  std::array<int, 3> brick_lo;   ///< brick-grid range covered, half-open
+  std::array<int, 3> brick_hi;
+  int level = 0;                 ///< root = 0
+  int parent = -1;
+  std::array<int, 8> children{-1, -1, -1, -1, -1, -1, -1, -1};
+  int brick = -1;                ///< leaf brick index, −1 for internal nodes
+  /// True for leaves (one brick).
+  bool is_leaf() const { return brick >= 0; }
+};
+
+/// Complete octree over the brick grid; nodes numbered breadth-first, root = 0. A node splits
+/// each axis whose brick range is longer than 1 at lo + ⌈n/2⌉.
+class Octree {
+ public:
+  /// Builds the octree for a dims grid with bricks of brick_size samples per axis.
+  /// Throws UsageError when brick_size is not a power of two in [kMinBrickSize, kMaxBrickSize]
+  /// or dims has a non-positive size.
+  Octree(Dims dims, int brick_size);
+  /// Grid size.
+  Dims dims() const { return dims_; }
+  /// B, brick edge in samples including the overlap layer.
+  int brick_size() const { return brick_size_; }
+  /// Number of octree nodes.
+  int size() const { return int(nodes_.size()); }
+  /// Node id.
+  const OctreeNode& node(int id) const { return nodes_[id]; }
+  /// Number of leaf bricks along each axis.
+  std::array<int, 3> brick_grid() const { return grid_; }
+  /// Number of leaf bricks.
+  int brick_count() const { return grid_[0] * grid_[1] * grid_[2]; }
+  /// Brick-grid coordinates of brick b (index = bx + nx·(by + ny·bz)).
+  std::array<int, 3> brick_coord(int b) const;
+  /// Own voxel box of brick b (half-open, no overlap).
+  Box brick_box(int b) const;
+  /// Stored sample box of brick b: the own box plus the upper neighbours' first layer.
+  Box brick_samples(int b) const;
+  /// Octree leaf node holding brick b.
+  int brick_node(int b) const { return brick_node_[b]; }
+  /// Largest node level (leaves of the deepest branch).
+  int depth() const { return depth_; }
+  /// Cells S each brick covers along axis a (the last brick may cover fewer).
+  int brick_cells(int a) const { return cells_[a]; }
+  /// Largest stored sample extent of any brick along each axis (brick 0's, ≤ B).
+  std::array<int, 3> max_brick_samples() const;
+
+ private:
+  Dims dims_;
+  int brick_size_;
+  std::array<int, 3> grid_;
+  std::array<int, 3> cells_;
+  int depth_ = 0;
+  std::vector<OctreeNode> nodes_;
+  std::vector<int> brick_node_;
+  int axis_lo(int a, int k) const;
+  int axis_hi(int a, int k) const;
+};
+
+}  // namespace tsp

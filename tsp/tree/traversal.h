@@ -1,0 +1,71 @@
+// TSP tree traversal (spec §5, paper Fig. 2) and back-to-front child order (spec §6).
+#pragma once
+#include <array>
+#include <span>
+#include <vector>
+
+#include "tsp/tree/tsp_tree.h"
+
+namespace tsp {
+
+/// User error tolerances compared with each node's e_s and e_t.
+struct Tolerances {
+  double spatial = 0;
+  double temporal = 0;
+};
+
+/// Per-TSP-node errors the traversal compares with the tolerances (any metric).
+struct NodeErrors {
+  std::vector<float> spatial;   ///< e_s, indexed by TSP node id
+  std::vector<float> temporal;  ///< e_t, indexed by TSP node id
+};
+
+/// The scalar metric's errors (e_ss, e_st) copied out of the tree's statistics.
+NodeErrors scalar_errors(const TspTree& tree);
+
+/// One node the traversal emits: draw octree node `octree_id` with the data of time node
+/// `time_id`, whose span holds the current step.
+struct Emitted {
+  int octree_id = -1;
+  int time_id = -1;
+  Span span;
+  bool operator==(const Emitted&) const = default;
+};
+
+/// Chooses the order of an octree node's children, farthest first. Voxel coordinates: sample
+/// i along an axis lies at coordinate i, so a node's split plane along axis a is its upper
+/// child's box.lo[a] (also the lower child's shared last sample layer).
+class ViewOrder {
+ public:
+  /// Orthographic view looking along dir (from the eye into the scene), voxel coordinates.
+  static ViewOrder orthographic(std::array<double, 3> dir);
+  /// Perspective view from eye, in voxel coordinates.
+  static ViewOrder perspective(std::array<double, 3> eye);
+  /// The octant (bit a set = upper half along axis a) to visit first below node id; bits of
+  /// axes the node does not split are 0, so the octant is an existing child (0 for a leaf).
+  int farthest_octant(const Octree& octree, int id) const;
+  /// True for a perspective view.
+  bool is_perspective() const { return perspective_; }
+
+ private:
+  bool perspective_ = false;
+  std::array<double, 3> v_{0, 0, 1};
+};
+
+/// An octree node's existing children in back-to-front order; ids[0, count) are valid.
+struct ChildOrder {
+  std::array<int, 8> ids{-1, -1, -1, -1, -1, -1, -1, -1};
+  int count = 0;
+};
+
+/// Children of octree node id farthest first: octants f^0, f^1, …, f^7 (XOR order) with
+/// f = view.farthest_octant(octree, id), absent ones skipped. Empty for a leaf.
+ChildOrder back_to_front_children(const Octree& octree, int id, const ViewOrder& view);
+
+/// Traverses the tree for step t and returns the emitted nodes in back-to-front order.
+/// The emitted octree nodes tile the volume exactly once. Asserts 0 ≤ t < steps and that
+/// errors hold tree.size() entries each.
+std::vector<Emitted> traverse(const TspTree& tree, int t, const Tolerances& tol,
+                              const NodeErrors& errors, const ViewOrder& view);
+
+}  // namespace tsp
