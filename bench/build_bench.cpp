@@ -28,6 +28,7 @@
 
 #include "bench/support/bench_util.h"
 #include "tsp/build/build.h"
+#include "tsp/source/open_source.h"
 #include "tsp/source/procedural/generate.h"
 #include "tsp/store/tsp_file.h"
 

@@ -1,12 +1,12 @@
 // Throughput of the built-in datasets: seconds per step at a given size and thread count.
 // Usage: generate_bench [NAME] [EDGE] [STEPS] [THREADS]   (defaults: shock 256 8 0 = all cores)
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
 #include <vector>
 
 #include "tsp/core/error.h"
+#include "tsp/core/stopwatch.h"
 #include "tsp/source/procedural/generate.h"
 
 int main(int argc, char** argv) {
@@ -22,10 +22,9 @@ int main(int argc, char** argv) {
     std::vector<float> buf(std::size_t(src->dims().count()));
     double total = 0, worst = 0;
     for (int t = 0; t < src->steps(); ++t) {
-      const auto start = std::chrono::steady_clock::now();
+      const tsp::Stopwatch watch;
       src->read_step(t, buf);
-      const double s =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      const double s = watch.seconds();
       total += s;
       worst = s > worst ? s : worst;
     }

@@ -7,7 +7,6 @@
 //   metrics_bench [--dims N] [--steps T] [--brick B] [--threads W]   (default 256³ × 32, B = 32)
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -16,18 +15,15 @@
 #include <thread>
 #include <vector>
 
-#include "tsp/store/brick_store.h"
+#include "tsp/core/parallel_for.h"
+#include "tsp/core/stopwatch.h"
+#include "tsp/metric/compute_errors.h"
 #include "tsp/metric/lazy_errors.h"
-#include "tsp/metric/metrics.h"
 #include "tsp/metric/reference_metric.h"
 #include "tsp/metric/tf_io.h"
+#include "tsp/store/brick_store.h"
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
 
 constexpr int kNoiseTable = 1 << 16;
 constexpr float kValueLo = -1.5f, kValueHi = 3.5f;  // covers every generated value
@@ -200,23 +196,23 @@ int main(int argc, char** argv) {
       "tree          %d^3 x %d steps, brick %d: %d leaf bricks, %d octree nodes, %d TSP nodes\n", n,
       steps, brick, tree.octree().brick_count(), tree.octree().size(), tree.size());
   std::printf("threads       %d\n", threads);
-  auto t0 = Clock::now();
+  tsp::Stopwatch t0;
   compute_stats(store, threads);
-  std::printf("statistics    %.0f ms (streaming pass, setup only)\n", ms_since(t0));
+  std::printf("statistics    %.0f ms (streaming pass, setup only)\n", t0.ms());
 
   tsp::TransferFunction tf = tsp::preset_transfer_function("filled", tree.value_range());
   std::printf("\nwhole-tree recompute, TF preset \"filled\", %d entries\n", tf.size());
-  t0 = Clock::now();
+  t0.restart();
   tsp::ReferenceMetric ref(store);
   ref.update(tf, threads);
-  const double ref_ms = ms_since(t0);
+  const double ref_ms = t0.ms();
   std::printf("  %-12s %12.1f ms\n", "reference", ref_ms);
   for (tsp::Metric m : {tsp::Metric::scalar, tsp::Metric::approximate, tsp::Metric::perceptual}) {
     std::vector<double> times;
     for (int rep = 0; rep < 5; ++rep) {
-      t0 = Clock::now();
+      t0.restart();
       const tsp::MetricResult r = tsp::compute_errors(m, tree, tf, nullptr, threads);
-      times.push_back(ms_since(t0));
+      times.push_back(t0.ms());
     }
     const double t = median(times);
     std::printf("  %-12s %12.3f ms   reference / this = %.0fx\n", tsp::to_string(m), t, ref_ms / t);
@@ -226,9 +222,9 @@ int main(int argc, char** argv) {
   for (tsp::Metric m : {tsp::Metric::approximate, tsp::Metric::perceptual}) {
     std::vector<double> times;
     for (int rep = 0; rep < 5; ++rep) {
-      t0 = Clock::now();
+      t0.restart();
       tsp::compute_errors(m, tree, tf, nullptr, 1);
-      times.push_back(ms_since(t0));
+      times.push_back(t0.ms());
     }
     double span = 0;
     for (int id = 0; id < tree.size(); ++id) {
@@ -242,27 +238,27 @@ int main(int argc, char** argv) {
   std::printf("\nreference metric after a 16-entry edit (skips bricks not touching it)\n");
   for (int round = 1; round <= 3; ++round) {
     edit(tf, round);
-    t0 = Clock::now();
+    t0.restart();
     const int reread = ref.update(tf, threads);
     std::printf("  edit %d: %4d of %d bricks re-read, %10.1f ms\n", round, reread,
-                tree.octree().brick_count(), ms_since(t0));
+                tree.octree().brick_count(), t0.ms());
   }
 
   std::printf("\nlazy recompute of one step after a TF edit (median of 20 edits)\n");
   for (tsp::Metric m : {tsp::Metric::approximate, tsp::Metric::perceptual}) {
     tsp::TransferFunction live = tsp::preset_transfer_function("filled", tree.value_range());
     tsp::LazyErrors lazy(tree, m, live);
-    t0 = Clock::now();
+    t0.restart();
     lazy.errors_for_step(steps / 2);
-    const double cold = ms_since(t0);
+    const double cold = t0.ms();
     std::vector<double> times;
     std::int64_t evaluated = 0;
     for (int round = 0; round < 20; ++round) {
       edit(live, round);
       const std::int64_t before = lazy.evaluations();
-      t0 = Clock::now();
+      t0.restart();
       lazy.errors_for_step((round * 7) % steps);
-      times.push_back(ms_since(t0));
+      times.push_back(t0.ms());
       evaluated += lazy.evaluations() - before;
     }
     std::printf(

@@ -17,7 +17,6 @@
 // wall clock; llvmpipe timings say little about a GPU. The file's bricks come from the page cache
 // after the first pass (the file is read once up front).
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
@@ -28,17 +27,17 @@
 #include "bench/support/bench_util.h"
 #include "gl/context.h"
 #include "render/volume_renderer.h"
-#include "tsp/store/brick_prefetcher.h"
-#include "tsp/frame/camera.h"
 #include "tsp/core/error.h"
+#include "tsp/core/stopwatch.h"
+#include "tsp/frame/camera.h"
 #include "tsp/frame/frame_plan.h"
 #include "tsp/metric/lazy_errors.h"
 #include "tsp/metric/tf_io.h"
+#include "tsp/store/brick_prefetcher.h"
 #include "tsp/store/tsp_file.h"
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
 constexpr int kPrefetchSteps = 2;
 constexpr double kMiB = 1 << 20;
 
@@ -48,10 +47,6 @@ struct Args {
   unsigned seed = 1;
   double texture_budget_mib = 0, brick_budget_mib = 0;  // 0: half of all steps' bricks
 };
-
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 [[noreturn]] void usage(const std::string& what) {
   std::fprintf(stderr,
@@ -145,7 +140,7 @@ int main(int argc, char** argv) try {
     Player p(*ctx, *file, tf, tex_budget, brick_budget, prefetch);
     double rate[2] = {0, 0};
     for (int pass = 0; pass < 2; ++pass) {
-      const auto t0 = Clock::now();
+      const tsp::Stopwatch t0;
       for (int t = 0; t < steps; ++t) {
         p.renderer->render(t, cam, settings, lazy);
         if (p.prefetcher) {
@@ -157,7 +152,7 @@ int main(int argc, char** argv) try {
           p.prefetcher->request(std::move(keys));
         }
       }
-      rate[pass] = steps / seconds_since(t0);
+      rate[pass] = steps / t0.seconds();
     }
     const tsp::BrickCacheStats s = p.renderer->brick_cache().stats();
     std::printf("%-12s %10.2f %10.2f %12lld %12lld\n", prefetch ? "on" : "off", rate[0], rate[1],
@@ -171,17 +166,17 @@ int main(int argc, char** argv) try {
   std::vector<double> cold, warm;
   for (int t : jumps) {
     Player p(*ctx, *file, tf, tex_budget, brick_budget, false);
-    const auto t0 = Clock::now();
+    const tsp::Stopwatch t0;
     p.renderer->render(t, cam, settings, lazy);
-    cold.push_back(seconds_since(t0) * 1000);
+    cold.push_back(t0.seconds() * 1000);
   }
   {
     Player p(*ctx, *file, tf, tex_budget, brick_budget, false);
     for (int t = 0; t < steps; ++t) p.renderer->render(t, cam, settings, lazy);
     for (int t : jumps) {
-      const auto t0 = Clock::now();
+      const tsp::Stopwatch t0;
       p.renderer->render(t, cam, settings, lazy);
-      warm.push_back(seconds_since(t0) * 1000);
+      warm.push_back(t0.seconds() * 1000);
     }
   }
   auto median = [](std::vector<double> v) {

@@ -5,7 +5,6 @@
 // slicers alternate view by view; each one's fastest of 3 passes over all views is reported.
 //
 //   slicer_bench [--views N] [--spacing S] [--seed K]   (defaults 100, 0.5, 1)
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -14,12 +13,12 @@
 #include <string>
 #include <vector>
 
+#include "tsp/core/stopwatch.h"
 #include "tsp/frame/naive_slicer.h"
 #include "tsp/frame/slicer.h"
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
 constexpr int kRepeats = 3;
 
 struct Options {
@@ -51,9 +50,9 @@ template <class SliceFrame>
 void time_frame(const tsp::SlicePlanes& planes, SliceFrame& slice_frame, tsp::PolygonSoup& soup,
                 Result& r) {
   soup.clear();
-  const auto t0 = Clock::now();
+  const tsp::Stopwatch t0;
   slice_frame(planes, soup);
-  r.seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+  r.seconds += t0.seconds();
   r.polygons += soup.size();
   r.vertices += soup.vertex_count();
 }

@@ -5,10 +5,11 @@
 #include <string>
 
 #include "cli/args.h"
-#include "cli/commands.h"
 #include "cli/build_runner.h"
+#include "cli/commands.h"
 #include "tsp/build/build.h"
 #include "tsp/core/error.h"
+#include "tsp/source/open_source.h"
 #include "tsp/store/tsp_file.h"
 
 namespace tspcli {

@@ -1,6 +1,5 @@
 // tspplay demo: the README's main job. Generates the built-in dataset, builds its TSP tree,
 // summarises it, and writes a report; files already made are reused.
-#include <chrono>
 #include <cstdlib>
 #include <cstdio>
 #include <filesystem>
@@ -15,15 +14,17 @@
 #include "cli/commands.h"
 #include "cli/info_report.h"
 #include "cli/movie.h"
-#include "player/player.h"
 #include "jobs/render_job.h"
+#include "player/player.h"
 #include "tsp/core/error.h"
+#include "tsp/core/stopwatch.h"
+#include "tsp/core/temp_output.h"
+#include "tsp/metric/compute_errors.h"
+#include "tsp/metric/tf_io.h"
 #include "tsp/report/image.h"
 #include "tsp/report/image_diff.h"
+#include "tsp/source/open_source.h"
 #include "tsp/source/procedural/generate.h"
-#include "tsp/metric/metrics.h"
-#include "tsp/core/temp_output.h"
-#include "tsp/metric/tf_io.h"
 #include "tsp/store/tsp_file.h"
 
 namespace tspcli {
@@ -51,10 +52,6 @@ bool interactive_display() {
 // Bricks of 16 samples: on the 64³ default they skip much more empty space than 32 (docs/results.md).
 constexpr int kDemoBrick = 16;
 
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
 // True when `out` exists and is at least as new as `in`: the step that makes it can be skipped.
 bool up_to_date(const fs::path& out, const fs::path& in) {
   std::error_code ec;
@@ -64,9 +61,9 @@ bool up_to_date(const fs::path& out, const fs::path& in) {
 
 // Error statistics of one metric with the sparse preset, for the report.
 json metric_summary(tsp::Metric metric, const tsp::TspFile& file, const tsp::TransferFunction& tf) {
-  const auto t0 = std::chrono::steady_clock::now();
+  const tsp::Stopwatch watch;
   tsp::MetricResult r = tsp::compute_errors(metric, file.tree(), tf, &file, 0);
-  const double ms = seconds_since(t0) * 1e3;
+  const double ms = watch.ms();
   const int n = file.tree().size();
   const int transparent = r.transparent_count();
   return {{"metric", tsp::to_string(metric)},
@@ -159,9 +156,9 @@ void run(const DemoArgs& a) {
   std::printf("tspplay demo: %s %s x %d steps in %s\n", source->name().c_str(),
               tsp::to_string(source->dims()).c_str(), source->steps(), dir.string().c_str());
   if (a.force || !up_to_date(h5, {})) {
-    const auto t0 = std::chrono::steady_clock::now();
+    const tsp::Stopwatch watch;
     tsp::write_generated_dataset(*source, h5.string());
-    report["generate_s"] = seconds_since(t0);
+    report["generate_s"] = watch.seconds();
     std::printf("generated %s (%.2f s)\n", h5.string().c_str(), double(report["generate_s"]));
   } else {
     std::printf("reusing %s\n", h5.string().c_str());

@@ -1,5 +1,4 @@
 // tspplay generate [NAME] -o out.h5 [--dims X,Y,Z] [--steps T] [--seed S] [--gzip L] | --list
-#include <chrono>
 #include <cstdio>
 #include <limits>
 #include <memory>
@@ -8,8 +7,9 @@
 #include "cli/args.h"
 #include "cli/commands.h"
 #include "tsp/core/error.h"
-#include "tsp/source/procedural/generate.h"
+#include "tsp/core/stopwatch.h"
 #include "tsp/source/hdf5_writer.h"
+#include "tsp/source/procedural/generate.h"
 
 namespace tspcli {
 namespace {
@@ -50,10 +50,9 @@ void run(const GenerateArgs& a) {
   if (!a.gzip.empty())
     gzip = int(parse_integer(a.gzip, "--gzip", 0, tsp::kMaxGzipLevel, "a level 0..9"));
   auto source = tsp::make_generated_source(a.name, opt);
-  const auto start = std::chrono::steady_clock::now();
+  const tsp::Stopwatch watch;
   tsp::write_generated_dataset(*source, a.output, gzip);
-  const double secs =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double secs = watch.seconds();
   std::printf("wrote %s: /%s %s x %d steps, float32, seed %llu (%.2f s)\n", a.output.c_str(),
               source->name().c_str(), tsp::to_string(source->dims()).c_str(), source->steps(),
               static_cast<unsigned long long>(source->seed()), secs);

@@ -2,7 +2,6 @@
 // error metric for a transfer function, time it, and summarise the errors over
 // the TSP nodes.
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -10,7 +9,9 @@
 #include <vector>
 
 #include "cli/commands.h"
-#include "tsp/metric/metrics.h"
+#include "tsp/core/parallel_for.h"
+#include "tsp/core/stopwatch.h"
+#include "tsp/metric/compute_errors.h"
 #include "tsp/metric/tf_io.h"
 #include "tsp/store/tsp_file.h"
 
@@ -73,12 +74,9 @@ void run(const MetricsArgs &a) {
   const tsp::TransferFunction tf =
       tsp::transfer_function_from_arg(a.tf, tree.value_range(), a.entries);
   const int threads = tsp::resolve_threads(a.threads);
-  const auto start = std::chrono::steady_clock::now();
-  const tsp::MetricResult r =
-      tsp::compute_errors(metric, tree, tf, file.get(), threads);
-  const double ms = std::chrono::duration<double, std::milli>(
-                        std::chrono::steady_clock::now() - start)
-                        .count();
+  const tsp::Stopwatch watch;
+  const tsp::MetricResult r = tsp::compute_errors(metric, tree, tf, file.get(), threads);
+  const double ms = watch.ms();
   const Distribution es = distribution(r.errors.spatial, r.transparent);
   const Distribution et = distribution(r.errors.temporal, r.transparent);
 

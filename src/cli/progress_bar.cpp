@@ -8,7 +8,7 @@
 namespace tspcli {
 
 namespace {
-constexpr auto kRedrawInterval = std::chrono::milliseconds(100);  // at most 10 redraws a second
+constexpr double kRedrawIntervalMs = 100;  // at most 10 redraws a second
 constexpr int kBarWidth = 30;
 constexpr double kMegabyte = 1e6;
 
@@ -47,15 +47,14 @@ std::string ProgressBar::format(const std::string& phase, std::int64_t done, std
 
 void ProgressBar::update(const std::string& phase, std::int64_t done, std::int64_t total) {
   if (!enabled_) return;
-  const auto now = Clock::now();
   bool new_phase = phase != phase_;
   if (new_phase) {
     phase_ = phase;
-    phase_start_ = now;
+    phase_watch_.restart();
   }
-  if (!new_phase && done < total && now - last_draw_ < kRedrawInterval) return;
-  last_draw_ = now;
-  const double seconds = std::chrono::duration<double>(now - phase_start_).count();
+  if (!new_phase && done < total && redraw_watch_.ms() < kRedrawIntervalMs) return;
+  redraw_watch_.restart();
+  const double seconds = phase_watch_.seconds();
   std::fprintf(stream_, "\r%s\x1b[K", format(phase, done, total, seconds).c_str());
   std::fflush(stream_);
   drawn_ = true;

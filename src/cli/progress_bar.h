@@ -1,6 +1,6 @@
 // A one-line progress bar on stderr (phase, percent, MB/s, ETA), drawn only on a terminal.
 #pragma once
-#include <chrono>
+#include "tsp/core/stopwatch.h"
 #include <cstdint>
 #include <cstdio>
 #include <string>
@@ -29,13 +29,12 @@ class ProgressBar {
  private:
   static std::string format(const std::string& phase, std::int64_t done, std::int64_t total,
                             double seconds);
-  using Clock = std::chrono::steady_clock;
   std::FILE* stream_;
   bool enabled_;
   bool drawn_ = false;
   std::string phase_;
-  Clock::time_point phase_start_;
-  Clock::time_point last_draw_;
+  tsp::Stopwatch phase_watch_;      ///< since the phase began
+  tsp::Stopwatch redraw_watch_;     ///< since the last redraw
 };
 
 }  // namespace tspcli

@@ -15,11 +15,12 @@
 #include "jobs/render_job.h"
 #include "render/volume_renderer.h"
 #include "tsp/core/error.h"
+#include "tsp/core/temp_output.h"
+#include "tsp/metric/compute_errors.h"
+#include "tsp/metric/tf_io.h"
 #include "tsp/report/image.h"
 #include "tsp/report/image_diff.h"
 #include "tsp/report/svg_plot.h"
-#include "tsp/core/temp_output.h"
-#include "tsp/metric/tf_io.h"
 #include "tsp/store/tsp_file.h"
 
 namespace tspgl {

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "tsp/frame/camera.h"
-#include "tsp/metric/metrics.h"
+#include "tsp/metric/metric.h"
 
 namespace tspgl {
 

@@ -1,16 +1,17 @@
 #include "jobs/render_job.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "tsp/core/error.h"
-#include "tsp/report/image.h"
+#include "tsp/core/stopwatch.h"
 #include "tsp/core/temp_output.h"
+#include "tsp/metric/compute_errors.h"
 #include "tsp/metric/tf_io.h"
+#include "tsp/report/image.h"
 #include "tsp/store/tsp_file.h"
 
 namespace tspgl {
@@ -86,10 +87,9 @@ RenderJobResult run_render_job(const RenderJobOptions& o, const RenderProgress& 
   RenderJobResult result;
   tsp::MetricResult metric;
   if (!o.baseline) {
-    const auto t0 = std::chrono::steady_clock::now();
+    const tsp::Stopwatch watch;
     metric = tsp::compute_errors(o.metric, tree, tf, file.get(), 0);
-    result.metric_ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    result.metric_ms = watch.ms();
   }
   auto ctx = create_offscreen_context(o.camera.width, o.camera.height);
   result.renderer = ctx->describe();

@@ -7,8 +7,8 @@
 
 #include "render/volume_renderer.h"
 #include "tsp/frame/camera.h"
-#include "tsp/metric/metrics.h"
 #include "tsp/frame/texture_cache.h"
+#include "tsp/metric/metric.h"
 #include "tsp/tree/tsp_tree.h"
 
 namespace tspgl {

@@ -8,24 +8,19 @@
 #include <imgui_impl_opengl3.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 
 #include "player/player_app.h"
 #include "tsp/core/error.h"
-#include "tsp/report/image.h"
+#include "tsp/core/stopwatch.h"
+#include "tsp/metric/compute_errors.h"
 #include "tsp/metric/tf_io.h"
+#include "tsp/report/image.h"
 
 namespace tspplayer {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double ms_since(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
 
 constexpr double kOrbitDegPerPixel = 0.4;
 constexpr double kZoomPerWheelStep = 1.1;
@@ -241,9 +236,9 @@ void PlayerApp::request_save() {
 void PlayerApp::refresh_reference() {
   if (reference_version_ == tf.version()) return;
   // The reference metric reads every voxel: computed in full, blocking (the UI says so).
-  const auto t0 = Clock::now();
+  const tsp::Stopwatch t0;
   reference_ = tsp::compute_errors(tsp::Metric::reference, file->tree(), tf, file.get(), 0);
-  metric_ms = ms_since(t0);
+  metric_ms = t0.ms();
   metric_evaluations = std::int64_t(reference_.transparent.size());
   reference_version_ = tf.version();
 }
@@ -265,9 +260,9 @@ void PlayerApp::render_volume() {
   // Evaluate this step's nodes here so the HUD can show the recompute cost; render() then only
   // reads memoised results.
   const std::int64_t before = lazy_->evaluations();
-  const auto t0 = Clock::now();
+  const tsp::Stopwatch t0;
   lazy_->errors_for_step(step);
-  const double ms = ms_since(t0);
+  const double ms = t0.ms();
   if (lazy_->evaluations() > before) {
     metric_ms = ms;
     metric_evaluations = lazy_->evaluations() - before;
@@ -418,7 +413,7 @@ void PlayerApp::frame() {
   const double now = glfwGetTime();
   const double dt = now - last_frame_s_;
   last_frame_s_ = now;
-  const auto t_frame = Clock::now();
+  const tsp::Stopwatch t_frame;
 
   ImGui_ImplOpenGL3_NewFrame();
   ImGui_ImplGlfw_NewFrame();
@@ -457,7 +452,7 @@ void PlayerApp::frame() {
   if (shot_now && !pending_shot_.empty()) save_pending_shot();
   ctx->swap_buffers();
 
-  history.push_back({now - start_s_, ms_since(t_frame)});
+  history.push_back({now - start_s_, t_frame.ms()});
   while (!history.empty() && history.front().at_s < now - start_s_ - kFrameHistorySeconds)
     history.pop_front();
 }

@@ -11,11 +11,11 @@
 #include "player/player.h"
 #include "player/script.h"
 #include "render/volume_renderer.h"
-#include "tsp/store/brick_prefetcher.h"
 #include "tsp/frame/camera.h"
 #include "tsp/metric/lazy_errors.h"
-#include "tsp/metric/metrics.h"
+#include "tsp/metric/metric.h"
 #include "tsp/metric/transfer_function.h"
+#include "tsp/store/brick_prefetcher.h"
 #include "tsp/store/tsp_file.h"
 
 namespace tspplayer {

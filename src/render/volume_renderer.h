@@ -11,14 +11,14 @@
 
 #include "gl/context.h"
 #include "gl/shader.h"
-#include "tsp/store/brick_cache.h"
 #include "tsp/frame/camera.h"
 #include "tsp/frame/frame_plan.h"
-#include "tsp/metric/lazy_errors.h"
-#include "tsp/metric/metrics.h"
 #include "tsp/frame/slicing.h"
 #include "tsp/frame/texture_cache.h"
+#include "tsp/metric/lazy_errors.h"
+#include "tsp/metric/metric.h"
 #include "tsp/metric/transfer_function.h"
+#include "tsp/store/brick_cache.h"
 #include "tsp/store/tsp_file.h"
 
 namespace tspgl {

@@ -9,8 +9,9 @@
 #include <vector>
 
 #include "support/paths.h"
-#include "tsp/tree/tsp_tree.h"
+#include "tsp/source/open_source.h"
 #include "tsp/source/volume_source.h"
+#include "tsp/tree/tsp_tree.h"
 
 namespace {
 

@@ -7,9 +7,10 @@
 #include <nlohmann/json.hpp>
 
 #include "support/paths.h"
+#include "tsp/source/open_source.h"
 #include "tsp/source/procedural/generate.h"
-#include "tsp/store/tsp_file.h"
 #include "tsp/source/volume_source.h"
+#include "tsp/store/tsp_file.h"
 
 namespace {
 

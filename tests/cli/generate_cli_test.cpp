@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "support/paths.h"
-#include "tsp/source/procedural/generate.h"
 #include "tsp/hdf5/hdf5_handle.h"
+#include "tsp/source/procedural/generate.h"
 
 namespace {
 

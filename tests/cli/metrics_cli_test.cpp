@@ -4,7 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "support/paths.h"
-#include "tsp/metric/metrics.h"
+#include "tsp/metric/compute_errors.h"
 #include "tsp/metric/tf_io.h"
 #include "tsp/store/tsp_file.h"
 

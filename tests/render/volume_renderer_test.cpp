@@ -14,10 +14,12 @@
 #include "support/paths.h"
 #include "tsp/build/build.h"
 #include "tsp/core/color.h"
-#include "tsp/source/procedural/generate.h"
+#include "tsp/metric/compute_errors.h"
+#include "tsp/metric/tf_io.h"
 #include "tsp/report/image.h"
 #include "tsp/report/image_diff.h"
-#include "tsp/metric/tf_io.h"
+#include "tsp/source/open_source.h"
+#include "tsp/source/procedural/generate.h"
 #include "tsp/tree/traversal.h"
 
 namespace tspgl {

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <random>
 
-#include "tsp/metric/metrics.h"
+#include "tsp/metric/metric.h"
 #include "tsp/tree/tsp_tree.h"
 
 namespace tsptest {

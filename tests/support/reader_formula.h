@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "tsp/core/types.h"
+#include "tsp/source/open_source.h"
 #include "tsp/source/volume_source.h"
 
 namespace tsptest {

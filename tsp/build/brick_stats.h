@@ -2,9 +2,9 @@
 #pragma once
 #include <span>
 
+#include "tsp/core/types.h"
 #include "tsp/tree/moments.h"
 #include "tsp/tree/time_tree.h"
-#include "tsp/core/types.h"
 
 namespace tsp {
 

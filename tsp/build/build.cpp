@@ -1,24 +1,23 @@
 #include "tsp/build/build.h"
 
 #include <algorithm>
-#include <atomic>
-#include <chrono>
 #include <cmath>
 #include <cstring>
-#include <exception>
 #include <limits>
 #include <mutex>
-#include <thread>
 #include <vector>
 
 #include "tsp/build/brick_stats.h"
-#include "tsp/core/error.h"
 #include "tsp/build/scratch_file.h"
 #include "tsp/build/step_prefetcher.h"
+#include "tsp/core/error.h"
+#include "tsp/core/parallel_for.h"
+#include "tsp/core/stopwatch.h"
 #include "tsp/core/temp_output.h"
 #include "tsp/store/tsp_file.h"
-#include "tsp/tree/tsp_tree.h"
+#include "tsp/store/tsp_layout.h"
 #include "tsp/store/tsp_writer.h"
+#include "tsp/tree/tsp_tree.h"
 
 namespace tsp {
 
@@ -62,38 +61,26 @@ InputScan scatter_steps(VolumeSource& source, const Octree& octree, ScratchFile&
   // each step's bricks (pwrite at fixed offsets needs no ordering).
   constexpr int kScatterWorkers = 2;
   std::vector<std::vector<float>> bricks(kScatterWorkers);
-  auto scatter = [&](const std::vector<float>& vol, int t, int worker) {
-    std::vector<float>& brick = bricks[std::size_t(worker)];
-    for (int b = worker; b < octree.brick_count(); b += kScatterWorkers) {
-      const Box s = octree.brick_samples(b);
-      brick.resize(std::size_t(s.count()));
-      float* out = brick.data();
-      const std::size_t row = std::size_t(s.size(0));
-      for (int z = s.lo[2]; z < s.hi[2]; ++z)
-        for (int y = s.lo[1]; y < s.hi[1]; ++y, out += row)
-          std::memcpy(out, vol.data() + s.lo[0] + std::int64_t(d.x) * (y + std::int64_t(d.y) * z),
-                      row * sizeof(float));
-      scratch.write(b, t, brick);
-    }
+  const int n = octree.brick_count();
+  auto scatter = [&](const std::vector<float>& vol, int t, int b, std::vector<float>& brick) {
+    const Box s = octree.brick_samples(b);
+    brick.resize(std::size_t(s.count()));
+    float* out = brick.data();
+    const std::size_t row = std::size_t(s.size(0));
+    for (int z = s.lo[2]; z < s.hi[2]; ++z)
+      for (int y = s.lo[1]; y < s.hi[1]; ++y, out += row)
+        std::memcpy(out, vol.data() + s.lo[0] + std::int64_t(d.x) * (y + std::int64_t(d.y) * z),
+                    row * sizeof(float));
+    scratch.write(b, t, brick);
   };
   for (int t = 0; t < source.steps(); ++t) {
     const std::vector<float>& vol = prefetch.next();
-    std::exception_ptr helper_error;
-    std::thread helper([&] {
-      try {
-        scatter(vol, t, 1);
-      } catch (...) {
-        helper_error = std::current_exception();
-      }
-    });
-    try {
-      scatter(vol, t, 0);
-    } catch (...) {
-      helper.join();
-      throw;
-    }
-    helper.join();
-    if (helper_error) std::rethrow_exception(helper_error);
+    // Each worker takes one contiguous half of the step's bricks.
+    parallel_for(n, (n + kScatterWorkers - 1) / kScatterWorkers, kScatterWorkers,
+                 [&](int w, std::int64_t first, std::int64_t last) {
+                   for (auto b = first; b < last; ++b)
+                     scatter(vol, t, int(b), bricks[std::size_t(w)]);
+                 });
     prefetch.release();
     if (progress) progress(kPhaseRead, (t + 1) * step_bytes, total_bytes);
   }
@@ -174,52 +161,44 @@ struct BrickPass {
   std::vector<NodeAccum>& acc;  // by TSP node id; each worker fills its leaves' slices
   std::vector<std::uint64_t> histogram = std::vector<std::uint64_t>(kHistogramBins, 0);
 
-  std::atomic<int> next{0};
-  std::atomic<bool> failed{false};
-  std::mutex mutex;  // guards error, histogram merge and progress calls
-  std::exception_ptr error;
+  std::mutex mutex;  // guards progress calls
   int done = 0;
 
-  void worker(const ProgressFn& progress, std::int64_t total_bytes) {
+  // Per-worker buffers and histogram (merged after the pass, in worker order).
+  struct Scratch {
+    std::vector<float> series;
+    std::vector<std::uint16_t> codes;
+    std::vector<std::uint64_t> hist = std::vector<std::uint64_t>(kHistogramBins, 0);
+  };
+
+  void brick(int b, Scratch& w, const ProgressFn& progress, std::int64_t total_bytes) {
     const Octree& o = tree.octree();
     const TimeTree& time = tree.time();
     const int steps = time.steps();
-    const auto shape = stored_brick_shape(o);
-    const FastQuantizer quant(range);
-    std::vector<float> series;
-    std::vector<std::uint16_t> codes;
-    std::vector<std::uint64_t> hist(kHistogramBins, 0);
-    try {
-      for (int b = next++; b < o.brick_count() && !failed; b = next++) {
-        const Box s = o.brick_samples(b), own = o.brick_box(b);
-        series.resize(std::size_t(s.count()) * steps);
-        scratch.read_series(b, series);
-        scratch.discard(b);
-        sanitize(series, range);
-        quantize_padded(series, s, shape, steps, quant, codes);
-        writer.write_brick_series(b, codes);
-        add_histogram(series, s, own, steps, range, hist);
-        std::span<NodeAccum> leaf(acc.data() + tree.id(o.brick_node(b), 0), time.size());
-        brick_time_stats(time, s, own, series, range.width(), leaf);
-        std::lock_guard lock(mutex);
-        ++done;
-        if (progress) progress(kPhaseBricks, total_bytes * done / o.brick_count(), total_bytes);
-      }
-    } catch (...) {
-      std::lock_guard lock(mutex);
-      if (!error) error = std::current_exception();
-      failed = true;
-    }
+    const Box s = o.brick_samples(b), own = o.brick_box(b);
+    w.series.resize(std::size_t(s.count()) * steps);
+    scratch.read_series(b, w.series);
+    scratch.discard(b);
+    sanitize(w.series, range);
+    quantize_padded(w.series, s, stored_brick_shape(o), steps, FastQuantizer(range), w.codes);
+    writer.write_brick_series(b, w.codes);
+    add_histogram(w.series, s, own, steps, range, w.hist);
+    std::span<NodeAccum> leaf(acc.data() + tree.id(o.brick_node(b), 0), time.size());
+    brick_time_stats(time, s, own, w.series, range.width(), leaf);
     std::lock_guard lock(mutex);
-    for (int i = 0; i < kHistogramBins; ++i) histogram[i] += hist[i];
+    ++done;
+    if (progress) progress(kPhaseBricks, total_bytes * done / o.brick_count(), total_bytes);
   }
 
   void run(int threads, const ProgressFn& progress, std::int64_t total_bytes) {
-    std::vector<std::thread> pool;
-    for (int i = 1; i < threads; ++i) pool.emplace_back([&] { worker(progress, total_bytes); });
-    worker(progress, total_bytes);
-    for (auto& th : pool) th.join();
-    if (error) std::rethrow_exception(error);
+    const int bricks = tree.octree().brick_count();
+    std::vector<Scratch> workers(std::size_t(parallel_workers(bricks, 1, threads)));
+    parallel_for(bricks, 1, threads, [&](int w, std::int64_t first, std::int64_t last) {
+      for (auto b = first; b < last; ++b)
+        brick(int(b), workers[std::size_t(w)], progress, total_bytes);
+    });
+    for (const Scratch& w : workers)
+      for (int i = 0; i < kHistogramBins; ++i) histogram[i] += w.hist[i];
   }
 };
 
@@ -248,7 +227,7 @@ ValueRange checked_range(const std::optional<ValueRange>& r, ValueRange data) {
 
 BuildReport build_tsp_file(VolumeSource& source, const std::string& out_path,
                            const BuildOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch watch;
   if (options.range) checked_range(options.range, {});  // reject a bad range before any work
   if (options.threads < 0)
     throw UsageError("--threads " + std::to_string(options.threads) + ": expected 0 or more");
@@ -276,9 +255,7 @@ BuildReport build_tsp_file(VolumeSource& source, const std::string& out_path,
   {
     TspWriter writer(out.tmp(), tree);
     BrickPass pass(tree, scratch, writer, report.value_range, acc);
-    int threads = options.threads > 0 ? options.threads
-                                      : int(std::max(1u, std::thread::hardware_concurrency()));
-    pass.run(std::min(threads, o.brick_count()), options.progress, report.source_bytes);
+    pass.run(resolve_threads(options.threads), options.progress, report.source_bytes);
     combine_octree(tree, acc);
     for (int i = 0; i < tree.size(); ++i) tree.stats(i) = acc[i].finish(report.value_range.width());
     meta.source = source.describe();
@@ -290,7 +267,7 @@ BuildReport build_tsp_file(VolumeSource& source, const std::string& out_path,
     writer.finish(tree, meta);
   }
   out.commit();
-  report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  report.seconds = watch.seconds();
   return report;
 }
 

@@ -9,8 +9,8 @@
 #include <span>
 #include <vector>
 
-#include "tsp/metric/metrics.h"
 #include "tsp/frame/texture_cache.h"
+#include "tsp/metric/metric.h"
 #include "tsp/tree/traversal.h"
 #include "tsp/tree/tsp_tree.h"
 

@@ -1,4 +1,4 @@
-// Internal to the two slicers (tsp/slicer.cpp, tsp/naive_slicer.cpp): the numeric rules both
+// Internal to the two slicers (slicer.cpp, naive_slicer.cpp; defined in slice_rules.cpp): the numeric rules both
 // apply, so that they agree exactly even when a plane passes through a corner or an edge.
 // Corner c of a box has bit a set when it sits at hi on axis a (bit0 = x, bit1 = y, bit2 = z).
 #pragma once

@@ -1,5 +1,5 @@
 // View-aligned slicing of boxes (spec §7): the box, the slice planes shared by every box, and
-// the polygon list both slicers (tsp/slicer.h, tsp/naive_slicer.h) append to. Pure geometry in
+// the polygon list both slicers (slicer.h, naive_slicer.h) append to. Pure geometry in
 // sample coordinates (sample i of an axis sits at coordinate i).
 #pragma once
 #include <array>
@@ -7,20 +7,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "tsp/core/types.h"
+#include "tsp/core/geometry.h"
 
 namespace tsp {
-
-/// Closed axis-aligned box [lo, hi] per axis, in sample coordinates.
-struct Aabb {
-  std::array<double, 3> lo{0, 0, 0};
-  std::array<double, 3> hi{0, 0, 0};
-  bool operator==(const Aabb&) const = default;
-};
-
-/// The geometric box of voxel box `box` in a volume of dims d: [lo, min(hi, D − 1)] per axis, so
-/// that bricks and octree nodes tile [0, D − 1]³ with shared faces.
-Aabb geometric_box(const Box& box, const Dims& d);
 
 /// Planes perpendicular to the view: plane k is dot(p, dir) = (k + ½)·spacing for every integer
 /// k, the same planes for every box, so neighbouring boxes' polygons meet exactly. The half

@@ -4,7 +4,7 @@
 #pragma once
 #include <vector>
 
-#include "tsp/metric/metrics.h"
+#include "tsp/metric/metric.h"
 
 namespace tsp {
 

@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <atomic>
 #include <cassert>
-#include <thread>
 
 #include "tsp/core/error.h"
+#include "tsp/core/parallel_for.h"
 
 namespace tsp {
 
@@ -76,20 +76,13 @@ const NodeErrors& LazyErrors::all(int threads) {
   sync();
   const int n = tree_.size();
   constexpr int kChunk = 1024;
-  std::atomic<int> next{0};
   std::atomic<std::int64_t> evaluated{0};
   // Workers refresh disjoint nodes; refresh() touches only node id's slots.
-  auto worker = [&] {
+  parallel_for(n, kChunk, threads, [&](int, std::int64_t first, std::int64_t last) {
     std::int64_t mine = 0;
-    for (int first; (first = next.fetch_add(kChunk)) < n;)
-      for (int id = first; id < std::min(n, first + kChunk); ++id) mine += refresh(id);
+    for (auto id = first; id < last; ++id) mine += refresh(int(id));
     evaluated += mine;
-  };
-  const int workers = std::max(1, std::min(resolve_threads(threads), (n + kChunk - 1) / kChunk));
-  std::vector<std::thread> pool;
-  for (int w = 1; w < workers; ++w) pool.emplace_back(worker);
-  worker();
-  for (auto& th : pool) th.join();
+  });
   evaluations_ += evaluated;
   return errors_;
 }

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "tsp/metric/approximate_metric.h"
-#include "tsp/metric/metrics.h"
+#include "tsp/metric/metric.h"
 
 namespace tsp {
 

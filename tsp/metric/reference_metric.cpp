@@ -1,11 +1,9 @@
 #include "tsp/metric/reference_metric.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <exception>
-#include <mutex>
-#include <thread>
+
+#include "tsp/core/parallel_for.h"
 
 namespace tsp {
 
@@ -169,28 +167,13 @@ int ReferenceMetric::update(const TransferFunction& tf, int threads) {
   }
 
   last_.reset();  // until this update completes, nothing counts as computed
-  std::atomic<std::size_t> next{0};
-  std::exception_ptr error;
-  std::mutex error_mutex;
-  auto worker = [&] {
-    BrickScratch scratch;
-    scratch.quantities = &quantities;
-    for (std::size_t i; (i = next.fetch_add(1)) < todo.size();) {
-      try {
-        compute_brick(todo[i], lut, scratch);
-      } catch (...) {
-        std::lock_guard<std::mutex> lock(error_mutex);
-        if (!error) error = std::current_exception();
-        next = todo.size();  // stop the others early
-      }
-    }
-  };
-  const int workers = std::max(1, std::min<int>(resolve_threads(threads), int(todo.size())));
-  std::vector<std::thread> pool;
-  for (int w = 1; w < workers; ++w) pool.emplace_back(worker);
-  worker();
-  for (auto& t : pool) t.join();
-  if (error) std::rethrow_exception(error);
+  const auto count = std::int64_t(todo.size());
+  std::vector<BrickScratch> scratch(std::size_t(parallel_workers(count, 1, threads)));
+  for (BrickScratch& s : scratch) s.quantities = &quantities;
+  parallel_for(count, 1, threads, [&](int worker, std::int64_t first, std::int64_t last) {
+    for (auto i = first; i < last; ++i)
+      compute_brick(todo[std::size_t(i)], lut, scratch[std::size_t(worker)]);
+  });
 
   combine_internal_nodes();
   for (int id = 0; id < tree.size(); ++id) {

@@ -7,8 +7,8 @@
 #include <optional>
 #include <vector>
 
+#include "tsp/metric/metric.h"
 #include "tsp/store/brick_store.h"
-#include "tsp/metric/metrics.h"
 
 namespace tsp {
 

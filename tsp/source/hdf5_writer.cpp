@@ -1,6 +1,5 @@
 #include "tsp/source/hdf5_writer.h"
 
-
 #include <algorithm>
 #include <set>
 #include <utility>

@@ -1,4 +1,6 @@
 // tsp::open_source: picks the reader from the input's form.
+#include "tsp/source/open_source.h"
+
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
@@ -7,8 +9,8 @@
 #include "tsp/hdf5/hdf5_handle.h"
 #include "tsp/source/hdf5_source.h"
 #include "tsp/source/raw_source.h"
-#include "tsp/source/vtk/vti_source.h"
 #include "tsp/source/volume_source.h"
+#include "tsp/source/vti_source.h"
 
 namespace tsp {
 namespace {

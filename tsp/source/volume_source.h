@@ -37,8 +37,4 @@ struct SourceOptions {
   bool raw_big_endian = false;          ///< raw series: byte order
 };
 
-/// Opens INPUT by its form: .h5/.hdf5/.nc/.hdf (HDF5, NetCDF-4, VTKHDF), .pvd / .vti.series /
-/// .vti (VTK image data), or a printf pattern / glob of raw files. Throws IoError/FormatError/UsageError.
-std::unique_ptr<VolumeSource> open_source(const std::string& input, const SourceOptions& options);
-
 }  // namespace tsp

@@ -9,7 +9,6 @@
 #include "tsp/hdf5/hdf5_handle.h"
 #include "tsp/hdf5/hdf5_lock.h"
 #include "tsp/store/tsp_layout.h"
-#include "tsp/store/tsp_writer.h"
 
 namespace tsp {
 

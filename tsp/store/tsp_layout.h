@@ -1,6 +1,19 @@
 // Names inside a .tsp file, shared by its writer and reader. The layout is documented in
 // docs/formats.md; change both together and bump kTspFormatVersion (tsp/tsp_file.h).
 #pragma once
+#include <array>
+
+#include "tsp/tree/octree.h"
+
+namespace tsp {
+
+/// Brick extent as stored in /bricks/data along x, y, z: the largest brick's samples (≤ B);
+/// smaller edge bricks are padded by repeating their last sample. Never throws.
+inline std::array<int, 3> stored_brick_shape(const Octree& octree) {
+  return octree.max_brick_samples();
+}
+
+}  // namespace tsp
 
 namespace tsp::layout {
 

@@ -65,10 +65,6 @@ std::array<int, 6> flat(const Box& b) {
 
 }  // namespace
 
-std::array<int, 3> stored_brick_shape(const Octree& octree) {
-  return octree.max_brick_samples();
-}
-
 struct TspWriter::Impl {
   std::string path;
   Handle file;

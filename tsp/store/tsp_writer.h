@@ -12,10 +12,6 @@
 
 namespace tsp {
 
-/// Brick extent as stored in /bricks/data along x, y, z: the largest brick's samples (≤ B);
-/// smaller edge bricks are padded by repeating their last sample.
-std::array<int, 3> stored_brick_shape(const Octree& octree);
-
 /// An open .tsp file being written. Every method holds hdf5_mutex() while it calls HDF5, so
 /// bricks may be written from several threads.
 class TspWriter {

@@ -4,9 +4,9 @@
 #include <span>
 #include <vector>
 
+#include "tsp/core/types.h"
 #include "tsp/tree/octree.h"
 #include "tsp/tree/time_tree.h"
-#include "tsp/core/types.h"
 
 namespace tsp {
 

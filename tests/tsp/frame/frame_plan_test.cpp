@@ -10,8 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "support/random_metric.h"
 #include "support/memory_tree.h"
+#include "support/random_metric.h"
+#include "tsp/metric/compute_errors.h"
 #include "tsp/metric/tf_io.h"
 
 namespace tsp {

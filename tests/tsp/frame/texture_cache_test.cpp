@@ -9,11 +9,11 @@
 #include <string>
 #include <vector>
 
-#include "support/random_metric.h"
 #include "support/memory_tree.h"
+#include "support/random_metric.h"
 #include "tsp/core/error.h"
 #include "tsp/frame/frame_plan.h"
-#include "tsp/metric/metrics.h"
+#include "tsp/metric/compute_errors.h"
 #include "tsp/metric/tf_io.h"
 #include "tsp/tree/traversal.h"
 

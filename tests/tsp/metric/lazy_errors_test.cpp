@@ -8,6 +8,7 @@
 
 #include "support/memory_tree.h"
 #include "tsp/core/error.h"
+#include "tsp/metric/compute_errors.h"
 
 namespace tsp {
 namespace {

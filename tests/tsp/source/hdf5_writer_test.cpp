@@ -11,8 +11,8 @@
 
 #include "support/paths.h"
 #include "tsp/core/error.h"
-#include "tsp/source/procedural/generate.h"
 #include "tsp/hdf5/hdf5_handle.h"
+#include "tsp/source/procedural/generate.h"
 
 namespace tsp {
 namespace {

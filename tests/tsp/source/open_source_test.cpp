@@ -6,6 +6,7 @@
 
 #include "support/paths.h"
 #include "tsp/core/error.h"
+#include "tsp/source/open_source.h"
 #include "tsp/source/volume_source.h"
 
 namespace tsp {

@@ -1,3 +1,4 @@
+#include "tsp/source/open_source.h"
 #include "tsp/source/raw_source.h"
 
 #include <gtest/gtest.h>

@@ -14,6 +14,7 @@
 #include "support/paths.h"
 #include "tsp/build/build.h"
 #include "tsp/core/error.h"
+#include "tsp/store/tsp_layout.h"
 #include "tsp/store/tsp_writer.h"
 
 namespace tsp {

@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cassert>
-#include <thread>
 #include <vector>
 
 #include "tsp/core/error.h"
+#include "tsp/core/parallel_for.h"
 #include "tsp/source/hdf5_writer.h"
 #include "tsp/source/procedural/procedural_source.h"
 
@@ -71,7 +71,7 @@ std::unique_ptr<GeneratedSource> make_generated_source(const std::string& name,
 ProceduralSource::ProceduralSource(std::string name, Dims dims, int steps, std::uint64_t seed,
                                    int threads)
     : name_(std::move(name)), dims_(dims), steps_(steps), seed_(seed), threads_(threads) {
-  if (threads_ <= 0) threads_ = int(std::max(1u, std::thread::hardware_concurrency()));
+  threads_ = resolve_threads(threads_);
 }
 
 std::string ProceduralSource::describe() const {
@@ -83,20 +83,11 @@ void ProceduralSource::read_step(int t, std::span<float> out) {
   assert(t >= 0 && t < steps_);
   assert(std::int64_t(out.size()) == dims_.count());
   double tau = normalised_time(t, steps_);
-  int workers = std::min(threads_, dims_.z);
-  if (workers <= 1) {
-    fill_slab(tau, 0, dims_.z, out.data());
-    return;
-  }
-  // Contiguous z-slabs, one per worker; the calling thread takes the first.
-  auto slab_begin = [&](int k) { return int(std::int64_t(dims_.z) * k / workers); };
-  std::vector<std::jthread> pool;
-  pool.reserve(workers - 1);
-  for (int k = 1; k < workers; ++k)
-    pool.emplace_back([this, tau, k, &slab_begin, &out] {
-      fill_slab(tau, slab_begin(k), slab_begin(k + 1), out.data());
-    });
-  fill_slab(tau, slab_begin(0), slab_begin(1), out.data());
+  // Contiguous z-slabs, one per worker (values do not depend on the split).
+  const int slab = (dims_.z + threads_ - 1) / threads_;
+  parallel_for(dims_.z, slab, threads_, [&](int, std::int64_t z0, std::int64_t z1) {
+    fill_slab(tau, int(z0), int(z1), out.data());
+  });
 }
 
 void write_generated_dataset(GeneratedSource& source, const std::string& path, int gzip_level) {

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "tsp/core/types.h"
-#include "tsp/source/volume_source.h"
+#include "tsp/source/procedural/generated_source.h"
 
 namespace tsp {
 
@@ -37,16 +37,6 @@ struct GenerateOptions {
   std::optional<int> steps;           ///< number of steps; empty: the dataset's default
   std::uint64_t seed = kDefaultSeed;  ///< changes the noise patterns, not the geometry
   int threads = 0;                    ///< worker threads per read_step; 0: hardware concurrency
-};
-
-/// A procedural VolumeSource. Values depend only on (name, seed, normalised position x/(X−1),
-/// normalised time t/(T−1)), never on the thread count.
-class GeneratedSource : public VolumeSource {
- public:
-  /// The dataset's name ("shock", "vortex").
-  virtual const std::string& name() const = 0;
-  /// The seed the noise is derived from.
-  virtual std::uint64_t seed() const = 0;
 };
 
 /// Makes the named built-in dataset. Throws UsageError for an unknown name (listing the known ones)

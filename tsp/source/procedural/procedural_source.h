@@ -1,11 +1,11 @@
-// Shared machinery of the built-in datasets (internal to tsp/generate*.cpp and the tests):
+// Shared machinery of the built-in datasets (internal to tsp/source/procedural/*.cpp and the tests):
 // size bookkeeping, normalised coordinates and the z-slab thread split of read_step.
 #pragma once
 #include <cstdint>
 #include <memory>
 #include <string>
 
-#include "tsp/source/procedural/generate.h"
+#include "tsp/source/procedural/generated_source.h"
 
 namespace tsp {
 
@@ -45,9 +45,9 @@ class ProceduralSource : public GeneratedSource {
   int threads_;
 };
 
-/// The "shock" dataset (tsp/generate_shock.cpp).
+/// The "shock" dataset (generate_shock.cpp).
 std::unique_ptr<GeneratedSource> make_shock(Dims dims, int steps, std::uint64_t seed, int threads);
-/// The "vortex" dataset (tsp/generate_vortex.cpp).
+/// The "vortex" dataset (generate_vortex.cpp).
 std::unique_ptr<GeneratedSource> make_vortex(Dims dims, int steps, std::uint64_t seed, int threads);
 
 }  // namespace tsp

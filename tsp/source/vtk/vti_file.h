@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "tsp/source/vtk/vtk_xml.h"
 #include "tsp/core/types.h"
+#include "tsp/source/vtk/vtk_xml.h"
 
 namespace tsp::io {
 

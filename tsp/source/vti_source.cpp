@@ -1,4 +1,4 @@
-#include "tsp/source/vtk/vti_source.h"
+#include "tsp/source/vti_source.h"
 
 #include <algorithm>
 #include <cassert>

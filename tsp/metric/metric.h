@@ -1,12 +1,13 @@
-// The four error metrics (spec §4) over a whole TSP tree: scalar, reference colour, approximate
-// colour and perceptual. Each gives e_s and e_t per TSP node, the node's mean colour and the
-// exact transparency flag (spec §3). Formulas and our rules: docs/metrics.md.
+// tsp/metric: transfer functions and the four error metrics (spec §4) a TF edit recomputes —
+// scalar, reference colour, approximate colour and perceptual. This header holds the types they
+// share: which metric, and each TSP node's e_s, e_t, mean colour and exact transparency flag
+// (spec §3). May include core/, tree/ and store/ (brick data for the reference metric).
+// Formulas and our rules: docs/metrics.md.
 #pragma once
 #include <cstdint>
 #include <string>
 #include <vector>
 
-#include "tsp/store/brick_store.h"
 #include "tsp/metric/transfer_function.h"
 #include "tsp/tree/traversal.h"
 #include "tsp/tree/tsp_tree.h"
@@ -45,14 +46,5 @@ struct EntryRange {
 };
 /// Entries of stats.min and stats.max in tf.
 EntryRange entry_range(const TransferFunction& tf, const NodeStats& stats);
-
-/// Worker threads to use for a request of `threads` (0 = all hardware threads, at least 1).
-int resolve_threads(int threads);
-
-/// Computes metric for every node of tree under tf, with `threads` workers (0 = all cores).
-/// The reference metric reads every voxel through bricks (UsageError when bricks is null);
-/// the others use only the tree's statistics. Throws what bricks->read_brick throws.
-MetricResult compute_errors(Metric metric, const TspTree& tree, const TransferFunction& tf,
-                            const BrickStore* bricks = nullptr, int threads = 0);
 
 }  // namespace tsp

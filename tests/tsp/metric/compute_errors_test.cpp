@@ -1,4 +1,4 @@
-#include "tsp/metric/metrics.h"
+#include "tsp/metric/compute_errors.h"
 
 #include <gtest/gtest.h>
 
@@ -7,8 +7,8 @@
 #include <random>
 
 #include "support/memory_tree.h"
-#include "tsp/metric/approximate_metric.h"
 #include "tsp/core/error.h"
+#include "tsp/metric/approximate_metric.h"
 #include "tsp/metric/reference_metric.h"
 #include "tsp/metric/tf_io.h"
 

@@ -1,0 +1,15 @@
+// Opening an input by its form: picks the reader (HDF5/NetCDF-4/VTKHDF, VTK image data, raw
+// series) for a path or file pattern.
+#pragma once
+#include <memory>
+#include <string>
+
+#include "tsp/source/volume_source.h"
+
+namespace tsp {
+
+/// Opens INPUT by its form: .h5/.hdf5/.nc/.hdf (HDF5, NetCDF-4, VTKHDF), .pvd / .vti.series /
+/// .vti (VTK image data), or a printf pattern / glob of raw files. Throws IoError/FormatError/UsageError.
+std::unique_ptr<VolumeSource> open_source(const std::string& input, const SourceOptions& options);
+
+}  // namespace tsp
