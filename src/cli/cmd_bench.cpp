@@ -1,6 +1,7 @@
 // tspplay bench run.tsp [--tf ...] -o report/: the paper's Tables 3, 4 and 5 with plots.
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -35,13 +36,10 @@ std::vector<std::string> split(const std::string& text) {
 }
 
 double parse_target(const std::string& text) {
-  try {
-    std::size_t used = 0;
-    double v = std::stod(text, &used);
-    if (used == text.size() && v > 0) return v;
-  } catch (const std::exception&) {
-  }
-  throw tsp::UsageError("--targets: '" + text + "' is not a positive mean dE (e.g. 1,3)");
+  const double v = parse_number(text, "--targets");
+  if (!(v > 0) || !std::isfinite(v))
+    throw tsp::UsageError("--targets '" + text + "': expected a positive mean dE (e.g. 1,3)");
+  return v;
 }
 
 void run(const BenchArgs& a) {

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "jobs/tolerance_search.h"
 #include "tsp/frame/camera.h"
 #include "tsp/metric/metric.h"
 
@@ -35,9 +36,5 @@ using BenchProgress = std::function<void(const std::string& phase, int done, int
 /// content. Throws tsp::UsageError (bad options), tsp::IoError / tsp::FormatError (files),
 /// tsp::GlError.
 nlohmann::json run_bench(const BenchOptions& options, const BenchProgress& progress = {});
-
-/// The steps a tolerance search renders: all of first..last when there are at most `count`,
-/// else `count` steps spread evenly with both ends included.
-std::vector<int> search_step_sample(int first, int last, int count);
 
 }  // namespace tspgl

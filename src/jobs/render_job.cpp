@@ -4,8 +4,11 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <nlohmann/json.hpp>
 
+#include "render/baseline_renderer.h"
+#include "render/volume_renderer.h"
 #include "tsp/core/error.h"
 #include "tsp/core/stopwatch.h"
 #include "tsp/core/temp_output.h"
@@ -93,8 +96,15 @@ RenderJobResult run_render_job(const RenderJobOptions& o, const RenderProgress& 
   }
   auto ctx = create_offscreen_context(o.camera.width, o.camera.height);
   result.renderer = ctx->describe();
-  VolumeRenderer renderer(*ctx, *file, o.cache, o.texture_budget);
-  renderer.set_transfer_function(tf);
+  std::unique_ptr<VolumeRenderer> renderer;
+  std::unique_ptr<BaselineRenderer> baseline;
+  if (o.baseline)
+    baseline = std::make_unique<BaselineRenderer>(*ctx, *file);
+  else
+    renderer = std::make_unique<VolumeRenderer>(*ctx, *file, o.cache, o.texture_budget);
+  if (baseline) baseline->set_transfer_function(tf);
+  if (renderer) renderer->set_transfer_function(tf);
+  tsp::WholeTreeMetric nodes(metric);
   const tsp::Camera camera(tree.octree().dims(), o.camera);
   RenderSettings settings;
   settings.tol = o.tol;
@@ -105,8 +115,8 @@ RenderJobResult run_render_job(const RenderJobOptions& o, const RenderProgress& 
     for (int t = o.first_step; t <= last; ++t) {
       FrameRecord rec;
       rec.pass = pass;
-      rec.report = o.baseline ? renderer.render_baseline(t, camera, settings)
-                              : renderer.render(t, camera, settings, metric);
+      rec.report = baseline ? baseline->render(t, camera, settings)
+                            : renderer->render(t, camera, settings, nodes);
       result.frames.push_back(rec);
       // The last pass's images win; earlier passes only measure.
       if (!dir.empty() && o.write_images && pass == o.passes)

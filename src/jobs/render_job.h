@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "render/volume_renderer.h"
+#include "render/frame_report.h"
 #include "tsp/frame/camera.h"
 #include "tsp/frame/texture_cache.h"
 #include "tsp/metric/metric.h"

@@ -177,14 +177,11 @@ void PlayerApp::apply_tf_points() {
 void PlayerApp::set_metric(tsp::Metric m) {
   if (m == metric) return;
   metric = m;
-  if (m != tsp::Metric::reference) {
+  if (m != tsp::Metric::reference)
     lazy_ = std::make_unique<tsp::LazyErrors>(file->tree(), m, tf);
-    renderer->drop_unreachable(*lazy_, tol);
-  } else {
+  else
     reference_version_ = ~std::uint64_t(0);
-    refresh_reference();
-    renderer->drop_unreachable(reference_, tol);
-  }
+  renderer->drop_unreachable(frame_metric(), tol);
   update_tol_max();
 }
 
@@ -195,12 +192,7 @@ void PlayerApp::update_tol_max() {
 
 void PlayerApp::set_tolerances(tsp::Tolerances t) {
   tol = {std::max(0.0, t.spatial), std::max(0.0, t.temporal)};
-  if (metric == tsp::Metric::reference) {
-    refresh_reference();
-    renderer->drop_unreachable(reference_, tol);
-  } else {
-    renderer->drop_unreachable(*lazy_, tol);
-  }
+  renderer->drop_unreachable(frame_metric(), tol);
 }
 
 void PlayerApp::set_cache(bool on, double budget_mb) {
@@ -221,9 +213,7 @@ void PlayerApp::request_prefetch(const tsp::Camera& cam, const tspgl::RenderSett
       if (!loop) break;
       t %= steps();
     }
-    std::vector<tsp::BrickKey> more = metric == tsp::Metric::reference
-                                          ? renderer->bricks_to_upload(t, cam, settings, reference_)
-                                          : renderer->bricks_to_upload(t, cam, settings, *lazy_);
+    std::vector<tsp::BrickKey> more = renderer->bricks_to_upload(t, cam, settings, frame_metric());
     keys.insert(keys.end(), more.begin(), more.end());
   }
   prefetcher->request(std::move(keys));
@@ -231,6 +221,12 @@ void PlayerApp::request_prefetch(const tsp::Camera& cam, const tspgl::RenderSett
 
 void PlayerApp::request_save() {
   save_requested_ = true;
+}
+
+tsp::FrameMetric& PlayerApp::frame_metric() {
+  if (metric != tsp::Metric::reference) return *lazy_;
+  refresh_reference();
+  return reference_nodes_;
 }
 
 void PlayerApp::refresh_reference() {
@@ -251,23 +247,19 @@ void PlayerApp::render_volume() {
   tspgl::RenderSettings settings;
   settings.tol = tol;
   settings.upload_budget = std::int64_t(std::max(0.0, upload_budget_mb) * (1 << 20));
-  if (metric == tsp::Metric::reference) {
-    refresh_reference();
-    last = renderer->render(step, cam, settings, reference_);
-    request_prefetch(cam, settings);
-    return;
+  if (metric != tsp::Metric::reference) {
+    // Evaluate this step's nodes here so the HUD can show the recompute cost; render() then
+    // only reads memoised results.
+    const std::int64_t before = lazy_->evaluations();
+    const tsp::Stopwatch t0;
+    lazy_->errors_for_step(step);
+    const double ms = t0.ms();
+    if (lazy_->evaluations() > before) {
+      metric_ms = ms;
+      metric_evaluations = lazy_->evaluations() - before;
+    }
   }
-  // Evaluate this step's nodes here so the HUD can show the recompute cost; render() then only
-  // reads memoised results.
-  const std::int64_t before = lazy_->evaluations();
-  const tsp::Stopwatch t0;
-  lazy_->errors_for_step(step);
-  const double ms = t0.ms();
-  if (lazy_->evaluations() > before) {
-    metric_ms = ms;
-    metric_evaluations = lazy_->evaluations() - before;
-  }
-  last = renderer->render(step, cam, settings, *lazy_);
+  last = renderer->render(step, cam, settings, frame_metric());
   request_prefetch(cam, settings);
 }
 

@@ -12,6 +12,7 @@
 #include "player/script.h"
 #include "render/volume_renderer.h"
 #include "tsp/frame/camera.h"
+#include "tsp/metric/frame_metric.h"
 #include "tsp/metric/lazy_errors.h"
 #include "tsp/metric/metric.h"
 #include "tsp/metric/transfer_function.h"
@@ -99,6 +100,8 @@ class PlayerApp {
   void render_volume();
   void save_pending_shot();
   void refresh_reference();
+  /// The current metric as frames read it (the reference metric brought up to date first).
+  tsp::FrameMetric& frame_metric();
   void request_prefetch(const tsp::Camera& cam, const tspgl::RenderSettings& settings);
   void make_renderer();
   void update_tol_max();
@@ -106,6 +109,7 @@ class PlayerApp {
   PlayerOptions options_;
   std::unique_ptr<tsp::LazyErrors> lazy_;
   tsp::MetricResult reference_;
+  tsp::WholeTreeMetric reference_nodes_{reference_};  ///< reference_ as a FrameMetric
   std::uint64_t reference_version_ = ~std::uint64_t(0);
   std::vector<ScriptAction> script_;
   std::size_t script_pos_ = 0;

@@ -11,15 +11,18 @@
 #include <tuple>
 
 #include "support/memory_source.h"
+#include "render/baseline_renderer.h"
 #include "support/paths.h"
 #include "tsp/build/build.h"
 #include "tsp/core/color.h"
 #include "tsp/metric/compute_errors.h"
+#include "tsp/metric/lazy_errors.h"
 #include "tsp/metric/tf_io.h"
 #include "tsp/report/image.h"
 #include "tsp/report/image_diff.h"
 #include "tsp/source/open_source.h"
 #include "tsp/source/procedural/generate.h"
+#include "tsp/store/tsp_file.h"
 #include "tsp/tree/traversal.h"
 
 namespace tspgl {
@@ -63,13 +66,17 @@ struct Scene {
   std::unique_ptr<tsp::TspFile> file;
   std::unique_ptr<GlContext> ctx;
   std::unique_ptr<VolumeRenderer> renderer;
+  std::unique_ptr<BaselineRenderer> baseline;
   tsp::TransferFunction tf;
   tsp::MetricResult metric;
+  tsp::WholeTreeMetric nodes{metric};  ///< metric as the renderer reads it
   Scene(const std::string& path, const tsp::TransferFunction& t, tsp::CachePolicy cache, int w = 160,
         int h = 120, tsp::Metric m = tsp::Metric::reference)
       : file(tsp::TspFile::open(path)), ctx(create_offscreen_context(w, h)), tf(t) {
     renderer = std::make_unique<VolumeRenderer>(*ctx, *file, cache);
     renderer->set_transfer_function(tf);
+    baseline = std::make_unique<BaselineRenderer>(*ctx, *file);
+    baseline->set_transfer_function(tf);
     metric = tsp::compute_errors(m, file->tree(), tf, file.get(), 0);
   }
   tsp::Camera camera(double az = 30, double el = 20, bool perspective = false) const {
@@ -84,11 +91,11 @@ struct Scene {
   tsp::Image tsp_frame(int step, const tsp::Camera& cam, tsp::Tolerances tol = {}) {
     RenderSettings s;
     s.tol = tol;
-    renderer->render(step, cam, s, metric);
+    renderer->render(step, cam, s, nodes);
     return ctx->read_pixels();
   }
   tsp::Image baseline_frame(int step, const tsp::Camera& cam) {
-    renderer->render_baseline(step, cam, RenderSettings{});
+    baseline->render(step, cam, RenderSettings{});
     return ctx->read_pixels();
   }
 };
@@ -211,10 +218,10 @@ TEST(VolumeRenderer, ToleranceChangeDropsUnreachableTexturesAndKeepsThePicture) 
   float max_es = 0;
   for (float e : scene.metric.errors.spatial) max_es = std::max(max_es, e);
   const tsp::Tolerances loose{double(max_es) + 1, 1e9};
-  EXPECT_EQ(scene.renderer->drop_unreachable(scene.metric, loose), before);
+  EXPECT_EQ(scene.renderer->drop_unreachable(scene.nodes, loose), before);
   EXPECT_EQ(scene.renderer->texture_count(), 0);
   // Back at zero tolerance nothing is reachable-but-missing: frames render as before.
-  EXPECT_EQ(scene.renderer->drop_unreachable(scene.metric, {}), 0);
+  EXPECT_EQ(scene.renderer->drop_unreachable(scene.nodes, {}), 0);
   tsp::Image again = scene.tsp_frame(3, cam);
   expect_close("tolerance_round_trip", again, scene.baseline_frame(3, cam), 0.5, 3.0);
 }
@@ -231,7 +238,7 @@ TEST(VolumeRenderer, ClassSharesSumTo100AndMatchTheTraversal) {
     for (int step = 0; step < 8; ++step) {
       RenderSettings s;
       s.tol = tol;
-      FrameReport r = scene.renderer->render(step, cam, s, scene.metric);
+      FrameReport r = scene.renderer->render(step, cam, s, scene.nodes);
       double sum = 0;
       for (double p : r.class_percent) sum += p;
       EXPECT_NEAR(sum, 100.0, 1e-9);
@@ -271,7 +278,7 @@ TEST(VolumeRenderer, LazyErrorsRenderLikeTheWholeTreeMetricAcrossATfEdit) {
       for (int step : {0, 3, 5}) {
         RenderSettings s;
         s.tol = tol;
-        FrameReport a = whole.renderer->render(step, cam, s, whole.metric);
+        FrameReport a = whole.renderer->render(step, cam, s, whole.nodes);
         tsp::Image ia = whole.ctx->read_pixels();
         FrameReport b = live.render(step, cam, s, lazy);
         tsp::Image ib = live_ctx->read_pixels();
@@ -286,12 +293,13 @@ TEST(VolumeRenderer, LazyErrorsRenderLikeTheWholeTreeMetricAcrossATfEdit) {
   live.set_transfer_function(live_tf);
   whole.tf = filled;
   whole.renderer->set_transfer_function(filled);
+  whole.baseline->set_transfer_function(filled);
   whole.metric = tsp::compute_errors(tsp::Metric::approximate, whole.file->tree(), filled);
   compare("after the edit");
   // Through the live metric: drop_unreachable agrees with the whole-tree metric's, and above
   // every error everything is flat, so no texture stays.
   EXPECT_EQ(live.drop_unreachable(lazy, {0, 0}),
-            whole.renderer->drop_unreachable(whole.metric, {0, 0}));
+            whole.renderer->drop_unreachable(whole.nodes, {0, 0}));
   const int before = live.texture_count();
   ASSERT_GT(before, 0);
   EXPECT_EQ(live.drop_unreachable(lazy, {1e9, 1e9}), before);
@@ -311,7 +319,7 @@ TEST(VolumeRenderer, BricksToUploadAreWhatTheFrameReadsAndUploads) {
     RenderSettings s;
     s.tol = tol;
     for (int step : {1, 4}) {
-      const auto keys = scene.renderer->bricks_to_upload(step, cam, s, scene.metric);
+      const auto keys = scene.renderer->bricks_to_upload(step, cam, s, scene.nodes);
       ASSERT_FALSE(keys.empty());
       std::int64_t bytes = 0;
       for (const tsp::BrickKey& k : keys)
@@ -319,10 +327,10 @@ TEST(VolumeRenderer, BricksToUploadAreWhatTheFrameReadsAndUploads) {
       tsp::BrickCache& bricks = scene.renderer->brick_cache();
       bricks.prefetch(keys);
       const std::int64_t misses = bricks.stats().misses;
-      FrameReport r = scene.renderer->render(step, cam, s, scene.metric);
+      FrameReport r = scene.renderer->render(step, cam, s, scene.nodes);
       EXPECT_EQ(bricks.stats().misses, misses) << "step " << step;
       EXPECT_EQ(r.bytes_uploaded, bytes) << "step " << step;
-      EXPECT_TRUE(scene.renderer->bricks_to_upload(step, cam, s, scene.metric).empty());
+      EXPECT_TRUE(scene.renderer->bricks_to_upload(step, cam, s, scene.nodes).empty());
     }
   }
 }
@@ -339,11 +347,11 @@ TEST(VolumeRenderer, UploadBudgetDefersTexturesUntilTheFrameCompletes) {
   const tsp::Camera cam = unlimited.camera();
   RenderSettings s;
   const tsp::Image expected = unlimited.tsp_frame(2, cam);
-  const auto n = std::int64_t(limited.renderer->bricks_to_upload(2, cam, s, limited.metric).size());
+  const auto n = std::int64_t(limited.renderer->bricks_to_upload(2, cam, s, limited.nodes).size());
   ASSERT_GT(n, 2);
   s.upload_budget = 1;
   for (std::int64_t f = 1; f <= n; ++f) {
-    FrameReport r = limited.renderer->render(2, cam, s, limited.metric);
+    FrameReport r = limited.renderer->render(2, cam, s, limited.nodes);
     EXPECT_EQ(r.deferred_textures, n - f) << "frame " << f;
     EXPECT_EQ(r.complete(), f == n);
     EXPECT_EQ(limited.renderer->texture_count(), f);

@@ -38,6 +38,10 @@ NodeInfoFn node_info(const MetricResult& m) {
   return [&m](int id) { return NodeClassInfo{m.errors.spatial[id], m.transparent[id] != 0}; };
 }
 
+NodeInfoFn node_info(const FrameMetric& m) {
+  return [&m](int id) { return m.class_info(id); };
+}
+
 Shading shading_of(const NodeClassInfo& info, const Tolerances& tol) {
   if (info.transparent) return Shading::none;
   if (info.spatial <= tol.spatial) return Shading::flat;  // false for NaN: textured
@@ -62,7 +66,7 @@ double FramePlan::percent(DrawClass c) const {
 
 FramePlan plan_frame(const TspTree& tree, int step, std::span<const Emitted> emitted,
                      const NodeInfoFn& info, const Tolerances& tol, const ViewOrder& view,
-                     TextureCache& cache) {
+                     TextureCache& cache, std::int64_t upload_budget) {
   const Octree& octree = tree.octree();
   FramePlan plan;
   plan.step = step;
@@ -84,6 +88,15 @@ FramePlan plan_frame(const TspTree& tree, int step, std::span<const Emitted> emi
       for (int brick : leaf_bricks(octree, e.octree_id, view)) {
         const TextureKey key{brick, e.span.t0, 0};
         const std::int64_t bytes = texture_bytes(octree, key);
+        if (upload_budget > 0 && plan.uploads > 0 && !cache.contains(key) &&
+            plan.bytes_uploaded + bytes > upload_budget) {
+          PlannedTexture deferred{key, bytes, false};
+          deferred.deferred = true;
+          plan.textures.push_back(deferred);
+          ++plan.deferred;
+          uploaded = true;  // drawn as new data once it arrives
+          continue;
+        }
         TextureRequest r = cache.request(key, bytes);
         plan.evict_before.insert(plan.evict_before.end(), r.evicted.begin(), r.evicted.end());
         plan.textures.push_back(PlannedTexture{key, bytes, !r.hit});
@@ -122,6 +135,11 @@ TextureKeySet reachable_textures(const TspTree& tree, const NodeErrors& errors,
 TextureKeySet reachable_textures(const TspTree& tree, const MetricResult& m,
                                  const Tolerances& tol) {
   return reachable_textures(tree, m.errors, node_info(m), tol);
+}
+
+TextureKeySet reachable_textures(const TspTree& tree, FrameMetric& m, const Tolerances& tol) {
+  const NodeErrors& errors = m.all_errors();
+  return reachable_textures(tree, errors, node_info(m), tol);
 }
 
 }  // namespace tsp

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "tsp/frame/texture_cache.h"
+#include "tsp/metric/frame_metric.h"
 #include "tsp/metric/metric.h"
 #include "tsp/tree/traversal.h"
 #include "tsp/tree/tsp_tree.h"
@@ -26,15 +27,12 @@ const char* to_string(DrawClass c);
 /// How a node is shaded, before the cache decides between RT and NT.
 enum class Shading { none, flat, textured };
 
-/// What the plan needs of one TSP node under the current metric and transfer function.
-struct NodeClassInfo {
-  float spatial = 0;         ///< e_s
-  bool transparent = false;  ///< max α over [j_min, j_max] is 0
-};
-/// Looks up a TSP node id's NodeClassInfo (from a MetricResult, LazyErrors, …).
+/// Looks up a TSP node id's NodeClassInfo (from a FrameMetric, or a table in tests).
 using NodeInfoFn = std::function<NodeClassInfo(int tsp_id)>;
 /// A NodeInfoFn reading m, which must outlive it.
 NodeInfoFn node_info(const MetricResult& m);
+/// A NodeInfoFn reading m.class_info, m outliving it.
+NodeInfoFn node_info(const FrameMetric& m);
 
 /// none for a transparent node, flat when e_s ≤ tol.spatial, textured otherwise (also for NaN).
 Shading shading_of(const NodeClassInfo& info, const Tolerances& tol);
@@ -59,7 +57,8 @@ struct PlannedNode {
 struct PlannedTexture {
   TextureKey key;
   std::int64_t bytes = 0;
-  bool upload = false;  ///< not resident: create and fill it before drawing
+  bool upload = false;    ///< not resident: create and fill it before drawing
+  bool deferred = false;  ///< over the frame's upload budget: not resident, not uploaded now
 };
 
 /// Everything the renderer needs for one frame. GL order: delete evict_before, draw `nodes`
@@ -74,6 +73,7 @@ struct FramePlan {
   std::array<std::int64_t, kDrawClassCount> class_voxels{};  ///< voxels per DrawClass
   std::int64_t total_voxels = 0;       ///< sum of class_voxels (the grid's voxel count)
   std::int64_t uploads = 0;            ///< textures uploaded this frame
+  std::int64_t deferred = 0;           ///< textures left to later frames (upload budget)
   std::int64_t bytes_uploaded = 0;     ///< their bytes
   std::int64_t textures_resident = 0;  ///< resident after the frame
   std::int64_t texture_bytes = 0;      ///< their bytes
@@ -85,10 +85,15 @@ struct FramePlan {
 /// step): classifies each node, requests the textures of RT/NT nodes from cache inside one
 /// begin_frame()/end_frame(), and counts voxels per class. A node that is textured is drawn by
 /// the textures (brick, span.t0, level 0) of all its leaf bricks, ordered back-to-front by view;
-/// it is NT when any of them is uploaded now, RT otherwise. Asserts the cache has no open frame.
+/// it is NT when any of them is uploaded now (or deferred), RT otherwise. With upload_budget > 0,
+/// a texture not resident whose upload would take the frame's uploads over upload_budget bytes
+/// is deferred — not requested from the cache, so it stays absent until a later frame uploads it
+/// — except the frame's first upload, which always goes ahead so that repeated frames of one step
+/// complete. The renderer draws deferred bricks flat in their node's mean colour. Asserts the
+/// cache has no open frame.
 FramePlan plan_frame(const TspTree& tree, int step, std::span<const Emitted> emitted,
                      const NodeInfoFn& info, const Tolerances& tol, const ViewOrder& view,
-                     TextureCache& cache);
+                     TextureCache& cache, std::int64_t upload_budget = 0);
 
 /// Every texture key some step's frame could draw under errors, info and tol — the set to keep
 /// with TextureCache::drop_unreachable after a tolerance change. Costs one traversal per step.
@@ -96,5 +101,7 @@ TextureKeySet reachable_textures(const TspTree& tree, const NodeErrors& errors,
                                  const NodeInfoFn& info, const Tolerances& tol);
 /// Same, with the errors and classes of m.
 TextureKeySet reachable_textures(const TspTree& tree, const MetricResult& m, const Tolerances& tol);
+/// Same, with every node of m made current (FrameMetric::all_errors). Throws what m throws.
+TextureKeySet reachable_textures(const TspTree& tree, FrameMetric& m, const Tolerances& tol);
 
 }  // namespace tsp

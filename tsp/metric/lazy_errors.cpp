@@ -59,6 +59,17 @@ const NodeResult& LazyErrors::node(int id) {
   return results_[id];
 }
 
+NodeClassInfo LazyErrors::class_info(int id) const {
+  assert(stamp_[std::size_t(id)] == tf_->version() && "node not made current for this TF");
+  const NodeResult& r = results_[std::size_t(id)];
+  return {r.spatial, r.transparent};
+}
+
+Rgba LazyErrors::mean_colour(int id) const {
+  assert(stamp_[std::size_t(id)] == tf_->version() && "node not made current for this TF");
+  return results_[std::size_t(id)].mean;
+}
+
 const NodeErrors& LazyErrors::errors_for_step(int t) {
   const TimeTree& time = tree_.time();
   assert(t >= 0 && t < time.steps());

@@ -7,12 +7,14 @@
 #include <vector>
 
 #include "tsp/metric/approximate_metric.h"
+#include "tsp/metric/frame_metric.h"
 #include "tsp/metric/metric.h"
 
 namespace tsp {
 
-/// Memoised per-node errors for one tree and one (editable) transfer function.
-class LazyErrors {
+/// Memoised per-node errors for one tree and one (editable) transfer function; serves frames as
+/// a FrameMetric. Not thread-safe (all() runs its own workers inside).
+class LazyErrors final : public FrameMetric {
  public:
   /// metric must be scalar, approximate or perceptual (UsageError for reference, which needs
   /// the bricks: use ReferenceMetric). tf is held by reference and must outlive this object;
@@ -27,9 +29,15 @@ class LazyErrors {
   /// Makes every node a traversal of step t can visit current (for each octree node, the time
   /// nodes on the path from the root to step t's leaf) and returns the error vectors; entries
   /// of other nodes may be stale. Asserts 0 ≤ t < steps.
-  const NodeErrors& errors_for_step(int t);
+  const NodeErrors& errors_for_step(int t) override;
   /// Makes every node current with `threads` workers (0 = all cores) and returns the errors.
   const NodeErrors& all(int threads = 0);
+  /// all() on every core.
+  const NodeErrors& all_errors() override { return all(); }
+  /// e_s and transparency of a node made current by errors_for_step() or all() (asserted).
+  NodeClassInfo class_info(int id) const override;
+  /// Mean colour of a node made current by errors_for_step() or all() (asserted).
+  Rgba mean_colour(int id) const override;
 
   /// Node evaluations performed so far (for tests and benchmarks).
   std::int64_t evaluations() const { return evaluations_; }

@@ -64,6 +64,8 @@ class BrickCache {
   BrickCacheStats stats() const;
   /// Byte budget.
   std::int64_t budget() const { return budget_; }
+  /// The store it reads from.
+  const BrickStore& store() const { return store_; }
   /// Bytes of one (brick, step) entry: its stored sample count × 2.
   std::int64_t entry_bytes(int brick) const;
 

@@ -1,0 +1,131 @@
+#include "jobs/bench_report.h"
+
+#include <cstdio>
+#include <filesystem>
+
+#include "tsp/core/temp_output.h"
+
+namespace tspgl {
+
+namespace {
+
+using nlohmann::json;
+
+// A CSV field: quoted when it holds a comma, a quote or a newline.
+std::string csv(const std::string& s) {
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+}  // namespace
+
+std::string fmt(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+json timing_json(const Timing& t) {
+  return {{"median_ms", t.median_ms},    {"first_pass_median_ms", t.first_pass_median_ms},
+          {"metric_ms", t.metric_ms},    {"steps", t.steps},
+          {"step_ms", t.step_ms},        {"not_rendered", t.classes[0]},
+          {"untextured", t.classes[1]},  {"reused_texture", t.classes[2]},
+          {"new_texture", t.classes[3]}, {"bytes_uploaded_per_frame", t.bytes_uploaded}};
+}
+
+BenchReport::BenchReport(json header) : report_(std::move(header)) {
+  for (const char* k : {"table3", "table4", "table5", "searches", "plots"})
+    report_[k] = json::array();
+  t3_ << "tf,renderer,metric,cache,median_ms,first_pass_median_ms,speedup,metric_ms,"
+         "mean_delta_e\n";
+  t4_ << "tf,metric,target_delta_e,tolerance,mean_delta_e,target_met,median_ms_cache_off,"
+         "median_ms_cache_on,speedup_cache_off,speedup_cache_on\n";
+  t5_ << "tf,metric,cache,tolerance,target_delta_e,not_rendered,untextured,reused_texture,"
+         "new_texture\n";
+}
+
+void BenchReport::add_search(const std::string& tf, const std::string& metric,
+                             const ErrorSpan& span, const json& evaluations) {
+  report_["searches"].push_back({{"tf", tf},
+                                 {"metric", metric},
+                                 {"largest_error", span.largest},
+                                 {"smallest_positive_error", span.smallest_positive},
+                                 {"evaluations", evaluations}});
+}
+
+void BenchReport::add_baseline(const std::string& tf, const Timing& b) {
+  report_["renderer"] = b.renderer;
+  t3_ << csv(tf) << ",baseline,,," << fmt(b.median_ms) << ',' << fmt(b.first_pass_median_ms)
+      << ",1,,0\n";
+  json rb = timing_json(b);
+  rb["tf"] = tf;
+  rb["renderer"] = "baseline";
+  report_["table3"].push_back(rb);
+}
+
+void BenchReport::add_zero_tolerance(const std::string& tf, const std::string& metric,
+                                     const char* cache, const Timing& t, double baseline_ms,
+                                     double mean_de) {
+  t3_ << csv(tf) << ",tsp," << metric << ',' << cache << ',' << fmt(t.median_ms) << ','
+      << fmt(t.first_pass_median_ms) << ',' << fmt(baseline_ms / t.median_ms) << ','
+      << fmt(t.metric_ms) << ',' << fmt(mean_de) << '\n';
+  json r = timing_json(t);
+  r["tf"] = tf;
+  r["renderer"] = "tsp";
+  r["metric"] = metric;
+  r["cache"] = cache;
+  r["speedup"] = baseline_ms / t.median_ms;
+  r["mean_delta_e"] = mean_de;
+  report_["table3"].push_back(r);
+  add_classes(tf, metric, cache, 0, 0, t);
+}
+
+void BenchReport::add_target(const std::string& tf, const std::string& metric,
+                             const FoundTolerance& f, const Timing& off, const Timing& on,
+                             double baseline_ms) {
+  add_classes(tf, metric, "off", f.tol, f.target, off);
+  add_classes(tf, metric, "on", f.tol, f.target, on);
+  t4_ << csv(tf) << ',' << metric << ',' << fmt(f.target) << ',' << fmt(f.tol) << ','
+      << fmt(f.mean_de) << ',' << (f.met ? 1 : 0) << ',' << fmt(off.median_ms) << ','
+      << fmt(on.median_ms) << ',' << fmt(baseline_ms / off.median_ms) << ','
+      << fmt(baseline_ms / on.median_ms) << '\n';
+  report_["table4"].push_back({{"tf", tf},
+                               {"metric", metric},
+                               {"target_delta_e", f.target},
+                               {"tolerance", f.tol},
+                               {"mean_delta_e", f.mean_de},
+                               {"target_met", f.met},
+                               {"cache_off", timing_json(off)},
+                               {"cache_on", timing_json(on)}});
+}
+
+void BenchReport::add_classes(const std::string& tf, const std::string& metric, const char* cache,
+                              double tol, double target, const Timing& t) {
+  t5_ << csv(tf) << ',' << metric << ',' << cache << ',' << fmt(tol) << ','
+      << (target > 0 ? fmt(target) : "") << ',' << fmt(t.classes[0]) << ',' << fmt(t.classes[1])
+      << ',' << fmt(t.classes[2]) << ',' << fmt(t.classes[3]) << '\n';
+  report_["table5"].push_back({{"tf", tf},
+                               {"metric", metric},
+                               {"cache", cache},
+                               {"tolerance", tol},
+                               {"target_delta_e", target > 0 ? json(target) : json()},
+                               {"not_rendered", t.classes[0]},
+                               {"untextured", t.classes[1]},
+                               {"reused_texture", t.classes[2]},
+                               {"new_texture", t.classes[3]}});
+}
+
+void BenchReport::add_plot(const std::string& file) { report_["plots"].push_back(file); }
+
+json BenchReport::write(const std::string& dir) {
+  const std::filesystem::path d = dir;
+  tsp::write_file_atomically((d / "table3.csv").string(), t3_.str());
+  tsp::write_file_atomically((d / "table4.csv").string(), t4_.str());
+  tsp::write_file_atomically((d / "table5.csv").string(), t5_.str());
+  tsp::write_file_atomically((d / "report.json").string(), report_.dump(2) + "\n");
+  return report_;
+}
+
+}  // namespace tspgl

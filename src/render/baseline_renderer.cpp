@@ -1,0 +1,72 @@
+#include "render/baseline_renderer.h"
+
+#include <cstring>
+
+#include "render/brick_textures.h"
+#include "tsp/core/stopwatch.h"
+#include "tsp/frame/frame_plan.h"
+#include "tsp/frame/slicer.h"
+
+namespace tspgl {
+
+BaselineRenderer::BaselineRenderer(GlContext& ctx, const tsp::BrickStore& bricks,
+                                   std::int64_t brick_budget)
+    : tree_(bricks.tree()), bricks_(bricks, brick_budget), compositor_(ctx) {}
+
+BaselineRenderer::~BaselineRenderer() {
+  if (texture_) compositor_.context().gl().DeleteTextures(1, &texture_);
+}
+
+void BaselineRenderer::set_transfer_function(const tsp::TransferFunction& tf) {
+  compositor_.set_transfer_function(tf, tree_.value_range());
+}
+
+FrameReport BaselineRenderer::render(int step, const tsp::Camera& camera,
+                                     const RenderSettings& settings) {
+  const tsp::Stopwatch frame;
+  const tsp::Octree& octree = tree_.octree();
+  const tsp::Dims d = octree.dims();
+  const GlApi& gl = compositor_.context().gl();
+  FrameReport r;
+  r.step = step;
+  compositor_.begin_frame(camera, settings);
+
+  // The whole step, assembled from the bricks and uploaded as one texture, every frame.
+  tsp::Stopwatch phase;
+  volume_.resize(std::size_t(d.count()));
+  for (int b = 0; b < octree.brick_count(); ++b) {
+    tsp::BrickSamples samples = bricks_.get(b, step);
+    const tsp::Box s = octree.brick_samples(b);
+    const std::uint16_t* src = samples->data();
+    for (int z = s.lo[2]; z < s.hi[2]; ++z)
+      for (int y = s.lo[1]; y < s.hi[1]; ++y, src += s.size(0))
+        std::memcpy(volume_.data() + s.lo[0] + std::size_t(d.x) * (y + std::size_t(d.y) * z), src,
+                    std::size_t(s.size(0)) * sizeof(std::uint16_t));
+  }
+  if (texture_) gl.DeleteTextures(1, &texture_);
+  texture_ = create_scalar_texture(gl, d.x, d.y, d.z, volume_.data());
+  r.upload_ms = phase.lap_ms();
+  r.bytes_uploaded = d.count() * std::int64_t(sizeof(std::uint16_t));
+  r.textures_resident = 1;
+  r.texture_bytes = r.bytes_uploaded;
+
+  const tsp::IncrementalSlicer slicer(tsp::SlicePlanes::toward(camera.direction(), settings.spacing));
+  soup_.clear();
+  DrawItem item;
+  item.samples = tsp::Box{{0, 0, 0}, {d.x, d.y, d.z}};
+  slicer.slice(tsp::geometric_box(item.samples, d), soup_);
+  item.polygon_count = int(soup_.size());
+  item.texture = texture_;
+  compositor_.upload(soup_);
+  r.slicing_ms = phase.lap_ms();
+  r.polygons = std::int64_t(soup_.size());
+
+  compositor_.draw({item});
+  compositor_.end_frame();
+  r.draw_ms = phase.lap_ms();
+  r.ms = frame.ms();
+  r.class_percent[std::size_t(tsp::DrawClass::new_texture)] = 100.0;
+  return r;
+}
+
+}  // namespace tspgl

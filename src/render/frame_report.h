@@ -1,0 +1,48 @@
+// What a frame is drawn with (besides camera and metric) and what it reports: shared by the TSP
+// renderer, the non-TSP baseline, the render and bench jobs and the player.
+#pragma once
+#include <array>
+#include <cstdint>
+
+#include "tsp/frame/frame_plan.h"
+#include "tsp/tree/traversal.h"
+
+namespace tspgl {
+
+/// Slice spacing in voxels (half a voxel: Nyquist, spec §7).
+inline constexpr double kDefaultSliceSpacing = 0.5;
+/// Default texture budget of the TSP renderer's cache.
+inline constexpr std::int64_t kDefaultTextureBudget = std::int64_t(512) << 20;
+/// Default RAM budget for bricks read from the .tsp file.
+inline constexpr std::int64_t kDefaultBrickBudget = std::int64_t(1024) << 20;
+
+/// What a frame is drawn with, besides the camera and the metric.
+struct RenderSettings {
+  tsp::Tolerances tol;                       ///< spatial and temporal tolerances
+  double spacing = kDefaultSliceSpacing;     ///< slice spacing in voxels (> 0)
+  std::array<float, 3> background{0, 0, 0};  ///< opaque background colour
+  /// Texture bytes one frame may upload (0: no limit). At least one texture is uploaded per
+  /// frame; the bricks over the budget are drawn flat in their node's mean colour and uploaded
+  /// by later frames (FrameReport::deferred_textures > 0 until the frame is complete).
+  std::int64_t upload_budget = 0;
+};
+
+/// Timings and counts of one frame (the frames.json record, less pass).
+struct FrameReport {
+  int step = 0;
+  double ms = 0;            ///< whole frame, glFinish included
+  double traversal_ms = 0;  ///< traversal and frame plan
+  double slicing_ms = 0;    ///< slice polygons and their vertex buffer
+  double upload_ms = 0;     ///< brick reads and texture uploads
+  double draw_ms = 0;       ///< draw calls and glFinish
+  std::array<double, tsp::kDrawClassCount> class_percent{};  ///< NR, UP, RT, NT by voxels
+  std::int64_t bytes_uploaded = 0;
+  std::int64_t textures_resident = 0;
+  std::int64_t texture_bytes = 0;
+  std::int64_t polygons = 0;           ///< slice polygons drawn
+  std::int64_t deferred_textures = 0;  ///< textures left for later frames (upload_budget)
+  /// True when every texture the frame needs was drawn (nothing deferred).
+  bool complete() const { return deferred_textures == 0; }
+};
+
+}  // namespace tspgl

@@ -1,0 +1,33 @@
+// The 16-bit colour buffer frames are composited in: in 8 bits each thin slice's premultiplied
+// contribution (a few 1/255 steps) is rounded, and over hundreds of slices the error reaches
+// ΔE 10 (tests/render: the constant cube). Blitted to the default framebuffer once per frame.
+#pragma once
+#include "gl/context.h"
+
+namespace tspgl {
+
+/// An RGBA16 framebuffer the size of a context's default framebuffer. Use from the context's
+/// thread with the context current; not copyable.
+class RenderTarget {
+ public:
+  /// Nothing is allocated until bind().
+  explicit RenderTarget(GlContext& ctx) : ctx_(ctx), gl_(ctx.gl()) {}
+  /// Deletes the framebuffer (the context must be current).
+  ~RenderTarget();
+  RenderTarget(const RenderTarget&) = delete;
+  RenderTarget& operator=(const RenderTarget&) = delete;
+
+  /// (Re)allocates it at the context's current size when needed, binds it and sets the
+  /// viewport. Throws tsp::GlError when RGBA16 framebuffers are not supported.
+  void bind();
+  /// Copies it into the context's default framebuffer and binds that.
+  void resolve();
+
+ private:
+  GlContext& ctx_;
+  const GlApi& gl_;
+  GLuint fbo_ = 0, colour_ = 0;
+  int width_ = 0, height_ = 0;
+};
+
+}  // namespace tspgl

@@ -1,0 +1,44 @@
+#include "render/tf_texture.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace tspgl {
+
+float corrected_alpha(float alpha, double spacing) {
+  return float(1.0 - std::pow(1.0 - std::clamp(double(alpha), 0.0, 1.0), spacing));
+}
+
+TfTexture::TfTexture(const GlApi& gl) : gl_(gl) { gl_.GenTextures(1, &id_); }
+
+TfTexture::~TfTexture() { gl_.DeleteTextures(1, &id_); }
+
+void TfTexture::set(const tsp::TransferFunction& tf, tsp::ValueRange quantized) {
+  entries_.assign(tf.entries().begin(), tf.entries().end());
+  spacing_ = -1;  // re-uploaded, corrected for the spacing, by the next bind
+  // A normalised code s means v = q.lo + s·q.width; its TF coordinate is (v − tf.lo)/tf.width.
+  const tsp::ValueRange d = tf.domain();
+  scale_ = quantized.width() / d.width();
+  offset_ = (quantized.lo - d.lo) / d.width();
+}
+
+void TfTexture::bind(int unit, double spacing) {
+  gl_.ActiveTexture(GLenum(GL_TEXTURE0 + unit));
+  gl_.BindTexture(GL_TEXTURE_1D, id_);
+  if (spacing == spacing_) return;
+  std::vector<float> rgba;
+  rgba.reserve(entries_.size() * 4);
+  for (const tsp::Rgba& e : entries_) {
+    const float a = corrected_alpha(e.a, spacing);
+    rgba.insert(rgba.end(), {e.r * a, e.g * a, e.b * a, a});
+  }
+  gl_.TexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  gl_.TexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  gl_.TexParameteri(GL_TEXTURE_1D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  gl_.TexImage1D(GL_TEXTURE_1D, 0, GL_RGBA32F, GLsizei(entries_.size()), 0, GL_RGBA, GL_FLOAT,
+                 rgba.data());
+  check_gl(gl_, "uploading the transfer function");
+  spacing_ = spacing;
+}
+
+}  // namespace tspgl

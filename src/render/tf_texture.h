@@ -1,0 +1,45 @@
+// The transfer function as the renderer samples it: a 1-D lookup texture holding, per entry, the
+// colour premultiplied by the opacity corrected for the slice spacing (spec §9), with nearest
+// lookup so the rendered TF is exactly the K-entry table the metrics reason about.
+#pragma once
+#include <vector>
+
+#include "gl/gl_api.h"
+#include "tsp/core/types.h"
+#include "tsp/metric/transfer_function.h"
+
+namespace tspgl {
+
+/// Opacity for a slice spacing of `spacing` voxels when the TF's opacity is per voxel (spec §9):
+/// 1 − (1 − α)^spacing, α clamped to [0, 1]. Never throws.
+float corrected_alpha(float alpha, double spacing);
+
+/// One lookup texture of a GL context. Use from the context's thread with it current.
+class TfTexture {
+ public:
+  /// Creates the texture object (empty until the first bind()).
+  explicit TfTexture(const GlApi& gl);
+  /// Deletes it.
+  ~TfTexture();
+  TfTexture(const TfTexture&) = delete;
+  TfTexture& operator=(const TfTexture&) = delete;
+
+  /// Uses tf for bricks quantized over `quantized` from the next bind() on.
+  void set(const tsp::TransferFunction& tf, tsp::ValueRange quantized);
+  /// Binds it to texture unit `unit`, re-uploading first when the TF or spacing changed.
+  /// Throws tsp::GlError.
+  void bind(int unit, double spacing);
+  /// TF coordinate = normalised code · scale + offset (the shader's tf_map).
+  float scale() const { return float(scale_); }
+  /// See scale().
+  float offset() const { return float(offset_); }
+
+ private:
+  const GlApi& gl_;
+  GLuint id_ = 0;
+  double scale_ = 1, offset_ = 0;
+  std::vector<tsp::Rgba> entries_;  ///< the TF as given (uncorrected, not premultiplied)
+  double spacing_ = -1;             ///< spacing the texture was corrected for (−1: stale)
+};
+
+}  // namespace tspgl
