@@ -1,5 +1,6 @@
 // The bench's search sample: every step when few, else evenly spread with both ends.
 #include "jobs/bench_job.h"
+#include "jobs/tolerance_search.h"
 
 #include <gtest/gtest.h>
 

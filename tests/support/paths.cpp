@@ -41,6 +41,8 @@ std::string slurp(const fs::path& p) {
 }
 }  // namespace
 
+std::string read_file(const fs::path& p) { return slurp(p); }
+
 fs::path temp_dir() {
   static std::atomic<int> counter{0};
   const auto* info = testing::UnitTest::GetInstance()->current_test_info();

@@ -15,6 +15,9 @@ std::filesystem::path tspplay_bin();
 /// A fresh, empty temporary directory unique to the calling test; removed at process exit.
 std::filesystem::path temp_dir();
 
+/// The bytes of file p (empty when it cannot be read).
+std::string read_file(const std::filesystem::path& p);
+
 /// p in single quotes, for the shell command lines run_tspplay takes.
 inline std::string quote(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
 

@@ -13,6 +13,7 @@
 #include "support/memory_tree.h"
 #include "support/random_metric.h"
 #include "tsp/metric/compute_errors.h"
+#include "tsp/metric/lazy_errors.h"
 #include "tsp/metric/tf_io.h"
 
 namespace tsp {
@@ -262,6 +263,69 @@ TEST(FramePlan, ReachableTexturesAreTheUnionOfEveryStepsTextures) {
     // Keeping the reachable set of these tolerances drops nothing.
     EXPECT_TRUE(cache.drop_unreachable(reachable_textures(tree, m, tol)).empty());
   }
+}
+
+// The upload budget is an input of the plan: the first upload always goes ahead, the textures
+// over the budget are deferred (never entered in the cache), and later frames complete them.
+TEST(FramePlan, UploadBudgetDefersTexturesWithoutEnteringTheCache) {
+  HandCase hc;
+  const Tolerances tol{0.1, 0.1};
+  TextureCache cache(kUnlimited, CachePolicy::on);
+  // Budget below one texture (1024 bytes): one upload per frame.
+  const FramePlan p0 = plan_frame(hc.tree, 0, hc.frame(0), hc.fn(), tol, kView, cache, 1);
+  ASSERT_EQ(p0.textures.size(), 2u);
+  EXPECT_TRUE(p0.textures[0].upload);
+  EXPECT_FALSE(p0.textures[0].deferred);
+  EXPECT_FALSE(p0.textures[1].upload);
+  EXPECT_TRUE(p0.textures[1].deferred);
+  EXPECT_EQ(p0.uploads, 1);
+  EXPECT_EQ(p0.deferred, 1);
+  EXPECT_EQ(p0.bytes_uploaded, 1024);
+  EXPECT_EQ(p0.textures_resident, 1);
+  EXPECT_FALSE(cache.contains(p0.textures[1].key));
+  // The node whose texture waits still counts as new data, as it will be once it arrives.
+  EXPECT_EQ(p0.nodes[3].cls, DrawClass::new_texture);
+  EXPECT_TRUE(p0.evict_before.empty());
+  // The same frame again: the first texture is resident, the second is uploaded now.
+  const FramePlan again = plan_frame(hc.tree, 0, hc.frame(0), hc.fn(), tol, kView, cache, 1);
+  EXPECT_FALSE(again.textures[0].upload);
+  EXPECT_TRUE(again.textures[1].upload);
+  EXPECT_EQ(again.deferred, 0);
+  EXPECT_EQ(again.textures_resident, 2);
+  // A budget that holds both defers nothing; no budget (0) neither.
+  TextureCache roomy(kUnlimited, CachePolicy::on), unlimited(kUnlimited, CachePolicy::on);
+  EXPECT_EQ(plan_frame(hc.tree, 0, hc.frame(0), hc.fn(), tol, kView, roomy, 2048).deferred, 0);
+  EXPECT_EQ(plan_frame(hc.tree, 0, hc.frame(0), hc.fn(), tol, kView, unlimited, 0).deferred, 0);
+}
+
+// A whole-tree metric and the live LazyErrors serve frames the same classes and colours.
+TEST(FramePlan, WholeTreeAndLiveMetricsPlanTheSameFrames) {
+  auto s = tsptest::MemorySeries::generate({24, 20, 12}, 5, [](int t, int x, int y, int z) {
+    return float(std::sin(0.3 * x + 0.2 * t) + 0.1 * y - 0.05 * z);
+  });
+  tsptest::MemoryBrickStore store(s, 8);
+  const TspTree& tree = store.tree();
+  const TransferFunction tf = preset_transfer_function("sparse", tree.value_range());
+  const MetricResult m = compute_errors(Metric::approximate, tree, tf, nullptr, 1);
+  WholeTreeMetric whole(m);
+  LazyErrors live(tree, Metric::approximate, tf);
+  const Tolerances tol{0.05, 0.05};
+  for (int t = 0; t < 5; ++t) {
+    TextureCache a(kUnlimited, CachePolicy::off), b(kUnlimited, CachePolicy::off);
+    const FramePlan pa = plan_frame(tree, t, traverse(tree, t, tol, whole.errors_for_step(t), kView),
+                                    node_info(whole), tol, kView, a);
+    const FramePlan pb = plan_frame(tree, t, traverse(tree, t, tol, live.errors_for_step(t), kView),
+                                    node_info(live), tol, kView, b);
+    ASSERT_EQ(pa.nodes.size(), pb.nodes.size());
+    EXPECT_EQ(pa.class_voxels, pb.class_voxels);
+    for (const PlannedNode& n : pb.nodes) {
+      const int id = tree.id(n.node.octree_id, n.node.time_id);
+      const Rgba x = whole.mean_colour(id), y = live.mean_colour(id);
+      EXPECT_FLOAT_EQ(x.r, y.r);
+      EXPECT_FLOAT_EQ(x.a, y.a);
+    }
+  }
+  EXPECT_EQ(reachable_textures(tree, whole, tol), reachable_textures(tree, live, tol));
 }
 
 }  // namespace

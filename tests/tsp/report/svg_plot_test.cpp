@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <pugixml.hpp>
 #include <string>
@@ -85,7 +86,24 @@ TEST(SvgPlot, LargerValuesAreHigherUp) {
 
 TEST(SvgPlot, EmptyPlotIsStillValid) {
   tsp::PlotSpec s;
-  parse(tsp::svg_plot(s));
+  s.title = "nothing yet";
+  pugi::xml_document doc = parse(tsp::svg_plot(s));
+  pugi::xml_node svg = doc.child("svg");
+  ASSERT_TRUE(svg);
+  // The frame, the axes' ticks and the title are drawn; no data.
+  EXPECT_FALSE(svg.child("polyline"));
+  EXPECT_FALSE(svg.child("circle"));
+  int frames = 0, titles = 0, lines = 0;
+  for (pugi::xml_node r : svg.children("rect"))
+    frames += std::string(r.attribute("fill").value()) == "none";
+  for (pugi::xml_node t : svg.children("text")) titles += std::string(t.child_value()) == "nothing yet";
+  for (pugi::xml_node l : svg.children("line")) {
+    ++lines;
+    for (const char* a : {"x1", "y1", "x2", "y2"}) EXPECT_TRUE(std::isfinite(l.attribute(a).as_double()));
+  }
+  EXPECT_EQ(frames, 1);
+  EXPECT_EQ(titles, 1);
+  EXPECT_GT(lines, 0);  // grid lines of the default [0, 1] axes
 }
 
 TEST(SvgPlot, WritesAFileAndRejectsAMissingDirectory) {

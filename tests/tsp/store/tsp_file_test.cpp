@@ -322,9 +322,9 @@ TEST(TspFile, FailingSourceLeavesNoOutputAndNoTempFile) {
   // An existing file at the output path survives a failed rebuild unchanged.
   MemorySource good = wavy_source({20, 20, 20}, 2);
   build_tsp_file(good, path, opt);
-  auto before = fs::file_size(path);
+  const std::string before = tsptest::read_file(path);
   EXPECT_THROW(build_tsp_file(src, path, opt), IoError);
-  EXPECT_EQ(fs::file_size(path), before);
+  EXPECT_EQ(tsptest::read_file(path), before);
   EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
   EXPECT_NO_THROW(TspFile::open(path));
 }

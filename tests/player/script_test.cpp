@@ -1,0 +1,101 @@
+// The player's action script parser: every action with its arguments, comments and blank
+// lines, and errors naming the origin, the line and what was expected.
+#include "player/script.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "support/paths.h"
+#include "tsp/core/error.h"
+
+namespace {
+
+using tspplayer::parse_script;
+using Kind = tspplayer::ScriptAction::Kind;
+
+std::string error_of(const std::string& text) {
+  try {
+    parse_script(text, "s.txt");
+  } catch (const tsp::FormatError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(PlayerScript, ParsesEveryAction) {
+  const auto a = parse_script(
+      "# a comment\n"
+      "\n"
+      "step 3\nplay\npause\nspeed 2.5\nloop off\ntf preset:filled\ntolerance 0.1 0.02\n"
+      "metric perceptual\ncache on\nprefetch off\nupload-budget 16\nview 30 -20\nzoom 1.5\n"
+      "projection persp\nscreenshot a.png\nscreenshot-ui b.png\nwait-frames 4\n   quit   \n",
+      "s.txt");
+  ASSERT_EQ(a.size(), 18u);
+  EXPECT_EQ(a[0].kind, Kind::step);
+  EXPECT_EQ(a[0].number, 3);
+  EXPECT_EQ(a[0].line, 3);
+  EXPECT_EQ(a[1].kind, Kind::play);
+  EXPECT_EQ(a[2].kind, Kind::pause);
+  EXPECT_EQ(a[3].kind, Kind::speed);
+  EXPECT_DOUBLE_EQ(a[3].value, 2.5);
+  EXPECT_EQ(a[4].kind, Kind::loop);
+  EXPECT_FALSE(a[4].flag);
+  EXPECT_EQ(a[5].kind, Kind::tf);
+  EXPECT_EQ(a[5].text, "preset:filled");
+  EXPECT_EQ(a[6].kind, Kind::tolerance);
+  EXPECT_DOUBLE_EQ(a[6].value, 0.1);
+  EXPECT_DOUBLE_EQ(a[6].value2, 0.02);
+  EXPECT_EQ(a[7].text, "perceptual");
+  EXPECT_TRUE(a[8].flag);
+  EXPECT_EQ(a[9].kind, Kind::prefetch);
+  EXPECT_FALSE(a[9].flag);
+  EXPECT_EQ(a[10].kind, Kind::upload_budget);
+  EXPECT_DOUBLE_EQ(a[10].value, 16);
+  EXPECT_EQ(a[11].kind, Kind::view);
+  EXPECT_DOUBLE_EQ(a[11].value2, -20);
+  EXPECT_DOUBLE_EQ(a[12].value, 1.5);
+  EXPECT_TRUE(a[13].flag);
+  EXPECT_EQ(a[14].kind, Kind::screenshot);
+  EXPECT_EQ(a[15].kind, Kind::screenshot_ui);
+  EXPECT_EQ(a[15].text, "b.png");
+  EXPECT_EQ(a[16].number, 4);
+  EXPECT_EQ(a[17].kind, Kind::quit);
+  EXPECT_EQ(a[17].line, 20);
+  EXPECT_TRUE(parse_script("", "empty").empty());
+}
+
+TEST(PlayerScript, ErrorsNameTheLineAndWhatWasExpected) {
+  EXPECT_NE(error_of("play\nstep x\n").find("s.txt:2: 'x' is not an integer >= 0"),
+            std::string::npos);
+  EXPECT_NE(error_of("step 1 2").find("'step' takes 1 argument(s)"), std::string::npos);
+  EXPECT_NE(error_of("jump 3").find("unknown action 'jump'"), std::string::npos);
+  EXPECT_NE(error_of("loop maybe").find("expected on or off"), std::string::npos);
+  EXPECT_NE(error_of("metric fancy").find("unknown metric 'fancy'"), std::string::npos);
+  EXPECT_NE(error_of("speed 0").find("speed must be positive"), std::string::npos);
+  EXPECT_NE(error_of("speed nan").find("speed must be positive"), std::string::npos);
+  EXPECT_NE(error_of("tolerance -1 0").find("must not be negative"), std::string::npos);
+  EXPECT_NE(error_of("view 0 90").find("elevation must be in (-90, 90)"), std::string::npos);
+  EXPECT_NE(error_of("zoom -2").find("zoom must be positive"), std::string::npos);
+  EXPECT_NE(error_of("upload-budget -1").find("must not be negative"), std::string::npos);
+  EXPECT_NE(error_of("wait-frames -1").find("not an integer >= 0"), std::string::npos);
+  EXPECT_NE(error_of("projection iso").find("expected persp or ortho"), std::string::npos);
+  EXPECT_NE(error_of("speed 1e999").find("s.txt:1"), std::string::npos);
+}
+
+TEST(PlayerScript, LoadsAFileAndNamesAMissingOne) {
+  const auto dir = tsptest::temp_dir();
+  std::ofstream(dir / "s.txt") << "step 2\nquit\n";
+  const auto a = tspplayer::load_script((dir / "s.txt").string());
+  ASSERT_EQ(a.size(), 2u);
+  EXPECT_EQ(a[0].number, 2);
+  try {
+    tspplayer::load_script((dir / "none.txt").string());
+    FAIL() << "no error";
+  } catch (const tsp::IoError& e) {
+    EXPECT_NE(std::string(e.what()).find("none.txt"), std::string::npos);
+  }
+}
+
+}  // namespace
