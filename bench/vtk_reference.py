@@ -16,7 +16,7 @@ dependencies) and a display (run under `xvfb-run -a -s "-screen 0 1280x1024x24"`
 TF.json is tspplay's own format (e.g. the demo's sparse_tf.json or `tspplay` presets saved with
 save_transfer_function); its points become VTK's colour and opacity functions. Opacity is per
 unit distance of one voxel in both (spec §9), the sample distance is --spacing voxels, shading off,
-trilinear interpolation, orthographic camera fitted as tsp/camera.cpp fits it.
+trilinear interpolation, orthographic camera fitted as tsp/frame/camera.cpp fits it.
 """
 import argparse
 import json

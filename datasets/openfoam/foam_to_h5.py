@@ -8,7 +8,7 @@ Reads the ASCII ``internalField`` (``uniform V``, ``nonuniform List<scalar> N (.
 compact ``N{V}``) of each named field in every time directory of CASE (plain or ``.gz``
 files), checks the cell count against the lattice dims, and writes one 4-D float32 dataset
 ``/NAME`` with shape (T, Z, Y, X), x fastest, per field. The layout follows
-``tsp/io/hdf5_writer.h``: chunked by step, attributes ``dims`` (int64[3], x y z), ``steps``,
+``tsp/source/hdf5_writer.h``: chunked by step, attributes ``dims`` (int64[3], x y z), ``steps``,
 ``axes`` ("t,z,y,x"), ``source``, plus ``times`` (float64[T], simulated seconds),
 ``case``, ``solver``, ``origin`` and ``spacing`` (float64[3], metres, x y z), ``foam_class``
 and ``foam_dimensions``. The file is written under a hidden temporary name beside the target

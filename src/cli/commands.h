@@ -1,3 +1,4 @@
+// src/cli: the subcommands; may include every other folder.
 // Subcommands register themselves here; main() only parses and dispatches.
 #pragma once
 #include <CLI/CLI.hpp>

@@ -1,3 +1,4 @@
+// src/gl: OpenGL contexts, our loader and shaders; may include tsp/.
 // An OpenGL 3.3 core context with its default framebuffer: offscreen (OSMesa, headless; used by
 // `tspplay render` and the tests) or a window (GLFW; used by the player).
 #pragma once

@@ -1,3 +1,4 @@
+// src/jobs: headless CLI jobs (render, bench) as library calls; may include tsp/, gl/, render/.
 // `tspplay render` as a library call: render a range of steps of a .tsp file headless, write
 // step_NNNN.png and frames.json, and return the per-frame reports.
 #pragma once

@@ -1,3 +1,4 @@
+// src/player: the window player and its action script; may include tsp/, gl/, render/.
 // `tspplay play`: the window player (GLFW + Dear ImGui) over one .tsp file. Controls, script
 // format and behaviour: docs/player.md.
 #pragma once

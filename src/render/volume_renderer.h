@@ -1,3 +1,4 @@
+// src/render: drawing frames with GL (TSP renderer, baseline, compositing); may include tsp/, gl/.
 // The TSP renderer: one time step of a TSP tree drawn with OpenGL — traversal → frame plan →
 // flat or textured slice polygons, back to front, composited by a SliceCompositor. The non-TSP
 // baseline is baseline_renderer.h.

@@ -1,3 +1,4 @@
+// tsp/build: turning a VolumeSource into a .tsp file; may include core/, source/, tree/, store/.
 // Building a .tsp file from a VolumeSource: bricks, the TSP tree and its statistics.
 #pragma once
 #include <cstdint>

@@ -1,3 +1,5 @@
+// tsp/core: what every other folder builds on (value types, errors, colour, geometry, atomic
+// output, parallel_for, Stopwatch); includes nothing else of tsp/.
 // Small value types shared by the whole library: grid sizes, voxel boxes, time spans, limits.
 #pragma once
 #include <array>

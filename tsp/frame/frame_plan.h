@@ -1,3 +1,5 @@
+// tsp/frame: everything a frame decides without GL (camera, plan, texture-cache policy, slicers);
+// may include core/, tree/ and metric/.
 // The per-frame plan (spec §5 classes, paper Table 5): how each node the traversal emitted for a
 // step is drawn — not at all (NR), as flat polygons (UP), or from a brick texture that is resident
 // (RT) or uploaded now (NT) — which textures to upload and delete, and the class shares by voxels.

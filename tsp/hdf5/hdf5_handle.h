@@ -1,3 +1,5 @@
+// tsp/hdf5: the HDF5 plumbing the readers and the .tsp file share (handles, lock, typed values);
+// may include core/.
 // Minimal RAII and error plumbing over the HDF5 C API, shared by the readers and the .tsp file.
 #pragma once
 #include <hdf5.h>

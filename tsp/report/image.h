@@ -1,3 +1,4 @@
+// tsp/report: images, image differences and plots for reports and tests; may include core/.
 // RGBA8 images and PNG files (libpng). No OpenGL here.
 #pragma once
 #include <cstdint>

@@ -1,3 +1,5 @@
+// tsp/source: where time series come from — this interface, open_source() and the readers;
+// may include core/, hdf5/ and source/vtk/.
 // The one interface every reader feeds: a scalar field on a regular grid over T time steps.
 // Later importers (unstructured-grid voxelizer, multiresolution levels) plug in here too.
 #pragma once

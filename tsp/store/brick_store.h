@@ -1,3 +1,5 @@
+// tsp/store: where bricks are kept — the .tsp file, this interface, the RAM cache and its
+// prefetcher; may include core/, hdf5/ and tree/.
 // Read access to quantized brick samples, one (brick, step) at a time.
 #pragma once
 #include <cstdint>

@@ -1,3 +1,5 @@
+// tsp/tree: the TSP tree's shape, statistics and traversal, no data and no files; may include
+// core/.
 // The TSP tree: octree skeleton × one binary time tree per octree node, with every node's
 // statistics (spec §2). A TSP node id is octree_id · (2T − 1) + time_id.
 #pragma once

@@ -1,3 +1,4 @@
+// tsp/source/procedural: the built-in datasets; may include core/ and source/.
 // Built-in procedural time-varying datasets: VolumeSources computed on the fly, so builds, tests
 // and benchmarks can use realistic-looking data without a file. See docs/datasets.md.
 #pragma once

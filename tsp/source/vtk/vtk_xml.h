@@ -1,3 +1,4 @@
+// tsp/source/vtk: parsing of VTK XML files, independent of VolumeSource; may include core/.
 // Decoding of VTK XML DataArray contents: ascii text, inline base64, appended raw or base64
 // data, optional zlib block compression, any byte order, 8…64-bit integer and float types.
 #pragma once
