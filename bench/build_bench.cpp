@@ -15,19 +15,18 @@
 // (mean, then squared deviations; per-voxel temporal means, then deviations). It computes the
 // statistics only (no quantization, no file), so the ratio flatters it. Its statistics are
 // compared with the file's, which checks both.
-#include <atomic>
-#include <chrono>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "bench/support/bench_util.h"
 #include "tsp/build/build.h"
+#include "tsp/core/parallel_for.h"
 #include "tsp/source/open_source.h"
 #include "tsp/source/procedural/generate.h"
 #include "tsp/store/tsp_file.h"
@@ -74,6 +73,17 @@ Args parse(int argc, char** argv) {
   return a;
 }
 
+// Runs body(node, vsum, vdev) for every octree node on `threads` workers with per-worker buffers.
+template <class Body>
+void parallel_for_nodes(int nodes, int threads, const Body& body) {
+  std::vector<std::array<std::vector<double>, 2>> buffers(
+      std::size_t(tsp::parallel_workers(nodes, 1, threads)));
+  tsp::parallel_for(nodes, 1, threads, [&](int w, std::int64_t first, std::int64_t last) {
+    auto& b = buffers[std::size_t(w)];
+    for (auto oid = first; oid < last; ++oid) body(int(oid), b[0], b[1]);
+  });
+}
+
 // Fills tree's statistics by brute force from every step in memory.
 void naive_statistics(tsp::TspTree& tree, const std::vector<std::vector<float>>& steps,
                       int threads) {
@@ -81,10 +91,9 @@ void naive_statistics(tsp::TspTree& tree, const std::vector<std::vector<float>>&
   const tsp::TimeTree& time = tree.time();
   const tsp::Dims d = o.dims();
   const double width = tree.value_range().width();
-  std::atomic<int> next{0};
-  auto worker = [&] {
-    std::vector<double> vsum, vdev;
-    for (int oid; (oid = next++) < o.size();) {
+  parallel_for_nodes(o.size(), threads, [&](int oid, std::vector<double>& vsum,
+                                            std::vector<double>& vdev) {
+    {
       const tsp::Box b = o.node(oid).box;
       const std::size_t n = std::size_t(b.count());
       for (int tid = 0; tid < time.size(); ++tid) {
@@ -128,10 +137,7 @@ void naive_statistics(tsp::TspTree& tree, const std::vector<std::vector<float>>&
         st.temporal_error = float(est / double(n));
       }
     }
-  };
-  std::vector<std::thread> pool;
-  for (int i = 0; i < threads; ++i) pool.emplace_back(worker);
-  for (auto& t : pool) t.join();
+  });
 }
 
 std::unique_ptr<tsp::VolumeSource> open_input(const Args& a, const std::string& path) {
@@ -144,7 +150,7 @@ std::unique_ptr<tsp::VolumeSource> open_input(const Args& a, const std::string& 
 
 int main(int argc, char** argv) {
   Args a = parse(argc, argv);
-  const int threads = a.threads > 0 ? a.threads : int(std::max(1u, std::thread::hardware_concurrency()));
+  const int threads = tsp::resolve_threads(a.threads);
   std::string input = a.input;
   if (input.empty()) {
     input = a.dir + "/build_bench_shock.h5";

@@ -12,7 +12,6 @@
 #include <cstdlib>
 #include <cstring>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "tsp/core/parallel_for.h"
@@ -82,11 +81,13 @@ void compute_stats(ProceduralStore& store, int threads) {
   const tsp::TimeTree& time = tree.time();
   const double width = tree.value_range().width();
   std::vector<StatSums> sums(tree.size());
-  std::atomic<int> next{0};
-  auto worker = [&] {
-    std::vector<std::array<std::vector<double>, 2>> lv(time.depth() + 1);
-    std::vector<float> vals;
-    for (int b; (b = next.fetch_add(1)) < oct.brick_count();) {
+  // Per-worker level buffers.
+  using Levels = std::vector<std::array<std::vector<double>, 2>>;
+  std::vector<Levels> levels(std::size_t(tsp::parallel_workers(oct.brick_count(), 1, threads)),
+                             Levels(std::size_t(time.depth() + 1)));
+  tsp::parallel_for(oct.brick_count(), 1, threads, [&](int w, std::int64_t first, std::int64_t last) {
+    Levels& lv = levels[std::size_t(w)];
+    for (int b = int(first); b < int(last); ++b) {
       const tsp::Box box = oct.brick_box(b);
       const std::size_t n = std::size_t(box.count());
       for (auto& l : lv)
@@ -133,11 +134,7 @@ void compute_stats(ProceduralStore& store, int threads) {
       };
       process(process, 0, 0, 0);
     }
-  };
-  std::vector<std::thread> pool;
-  for (int w = 1; w < threads; ++w) pool.emplace_back(worker);
-  worker();
-  for (auto& th : pool) th.join();
+  });
   for (int o = oct.size() - 1; o >= 0; --o) {
     if (oct.node(o).is_leaf()) continue;
     for (int tau = 0; tau < time.size(); ++tau) {

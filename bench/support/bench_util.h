@@ -5,13 +5,14 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <functional>
 #include <string>
 #include <vector>
+
+#include "tsp/core/stopwatch.h"
 
 namespace tspbench {
 
@@ -32,9 +33,9 @@ inline ChildRun run_in_child(const std::function<bool()>& fn) {
   pid_t pid = fork();
   if (pid == 0) {
     close(fds[0]);
-    auto t0 = std::chrono::steady_clock::now();
+    const tsp::Stopwatch watch;
     bool ok = fn();
-    double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    double s = watch.seconds();
     if (write(fds[1], &s, sizeof s) != sizeof s) _exit(3);
     _exit(ok ? 0 : 1);
   }
