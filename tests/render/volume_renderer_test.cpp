@@ -12,9 +12,11 @@
 
 #include "support/memory_source.h"
 #include "render/baseline_renderer.h"
+#include "support/memory_tree.h"
 #include "support/paths.h"
 #include "tsp/build/build.h"
 #include "tsp/core/color.h"
+#include "tsp/core/error.h"
 #include "tsp/metric/compute_errors.h"
 #include "tsp/metric/lazy_errors.h"
 #include "tsp/metric/tf_io.h"
@@ -333,6 +335,40 @@ TEST(VolumeRenderer, BricksToUploadAreWhatTheFrameReadsAndUploads) {
       EXPECT_TRUE(scene.renderer->bricks_to_upload(step, cam, s, scene.nodes).empty());
     }
   }
+}
+
+// The renderer reads through the BrickStore interface: an in-memory store (no file) renders, its
+// zero-tolerance frames match the baseline over the same store, and a failing store's error
+// reaches the caller.
+TEST(VolumeRenderer, RendersFromAnInMemoryBrickStore) {
+  auto series = tsptest::MemorySeries::generate({30, 26, 20}, 4, [](int t, int x, int y, int z) {
+    return float(std::sin(0.25 * x + 0.4 * t) * std::cos(0.2 * y) + 0.05 * z);
+  });
+  tsptest::MemoryBrickStore store(series, 8);
+  auto ctx = create_offscreen_context(96, 72);
+  VolumeRenderer renderer(*ctx, store, tsp::CachePolicy::on);
+  BaselineRenderer baseline(*ctx, store);
+  const tsp::TransferFunction tf = tsp::preset_transfer_function("filled", store.tree().value_range());
+  renderer.set_transfer_function(tf);
+  baseline.set_transfer_function(tf);
+  const tsp::MetricResult m = tsp::compute_errors(tsp::Metric::reference, store.tree(), tf, &store, 1);
+  tsp::WholeTreeMetric nodes(m);
+  tsp::CameraParams p;
+  p.width = 96;
+  p.height = 72;
+  const tsp::Camera cam(store.tree().octree().dims(), p);
+  for (int step = 0; step < 4; ++step) {
+    const FrameReport r = renderer.render(step, cam, RenderSettings{}, nodes);
+    EXPECT_GT(r.polygons, 0);
+    const tsp::Image a = ctx->read_pixels();
+    baseline.render(step, cam, RenderSettings{});
+    expect_close("memory_store_" + std::to_string(step), a, ctx->read_pixels(), 0.5, 3.0);
+  }
+  EXPECT_GT(store.reads(), 0);
+  renderer.clear_textures();
+  store.fail_reads(true);
+  renderer.brick_cache().clear();
+  EXPECT_THROW(renderer.render(0, cam, RenderSettings{}, nodes), tsp::IoError);
 }
 
 // With a one-byte upload budget each frame uploads one texture and draws the others flat;
