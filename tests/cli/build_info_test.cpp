@@ -214,7 +214,7 @@ TEST(BuildInfoCli, InfoRejectsFilesThatAreNotTsp) {
   EXPECT_NE(r.err.find("not a tspplay .tsp file"), std::string::npos) << r.err;
   r = run_tspplay("info " + q(dir / "none.tsp") + " --json");
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_NE(r.err.find("no such file"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("does not exist"), std::string::npos) << r.err;
   EXPECT_EQ(r.out, "");
 }
 

@@ -11,6 +11,7 @@
 #include "tsp/build/scratch_file.h"
 #include "tsp/build/step_prefetcher.h"
 #include "tsp/core/error.h"
+#include "tsp/core/file_check.h"
 #include "tsp/core/parallel_for.h"
 #include "tsp/core/stopwatch.h"
 #include "tsp/core/temp_output.h"
@@ -231,6 +232,8 @@ BuildReport build_tsp_file(VolumeSource& source, const std::string& out_path,
   if (options.range) checked_range(options.range, {});  // reject a bad range before any work
   if (options.threads < 0)
     throw UsageError("--threads " + std::to_string(options.threads) + ": expected 0 or more");
+  if (out_path.empty()) throw UsageError("no output file given (-o)");
+  require_not_an_input(out_path, source.files());
   const Dims dims = source.dims();
   const int steps = source.steps();
   if (steps < 1) throw FormatError(source.describe() + ": no time steps");

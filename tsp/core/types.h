@@ -16,6 +16,18 @@ inline constexpr int kMaxBrickSize = 256;
 /// Quantized brick samples are 16-bit: q in [0, kQuantMax].
 inline constexpr int kQuantMax = 65535;
 
+/// Size limits every input and every .tsp file is checked against before anything is allocated
+/// (docs/inputs.md): the largest grid edge in samples,
+inline constexpr int kMaxGridEdge = 1 << 16;
+/// the most samples in one time step (16 GiB of float32),
+inline constexpr std::int64_t kMaxStepSamples = std::int64_t(1) << 32;
+/// the most time steps,
+inline constexpr int kMaxSteps = 1 << 20;
+/// the most leaf bricks,
+inline constexpr std::int64_t kMaxBricks = std::int64_t(1) << 24;
+/// and the most TSP nodes (octree nodes × (2T − 1)).
+inline constexpr std::int64_t kMaxTspNodes = std::int64_t(1) << 28;
+
 /// Grid size in voxels along x, y, z (x varies fastest in memory).
 struct Dims {
   int x = 0, y = 0, z = 0;
@@ -59,5 +71,11 @@ struct ValueRange {
 
 /// "XxYxZ" for messages.
 std::string to_string(const Dims& d);
+
+/// Throws FormatError "where: …" naming what was found and the limit unless every edge of d is
+/// in [1, kMaxGridEdge], d.count() ≤ kMaxStepSamples and steps is in [1, kMaxSteps]. Edges are
+/// given as 64-bit values so that a file's sizes are checked before any narrowing.
+void check_grid(std::int64_t x, std::int64_t y, std::int64_t z, std::int64_t steps,
+                const std::string& where);
 
 }  // namespace tsp

@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "tsp/core/error.h"
+#include "tsp/core/file_check.h"
 
 namespace tsp::h5 {
 
@@ -25,9 +26,7 @@ void silence_errors() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
 
 Handle open_file_readonly(const std::string& path) {
   silence_errors();
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw IoError(path + ": no such file");
-  if (std::filesystem::is_directory(path, ec)) throw IoError(path + ": is a directory, expected a file");
+  require_regular_file(path, "file");
   htri_t is_h5 = H5Fis_hdf5(path.c_str());
   if (is_h5 < 0) throw IoError(path + ": cannot be read");
   if (is_h5 == 0) throw FormatError(path + ": not an HDF5 file (no HDF5 signature)");

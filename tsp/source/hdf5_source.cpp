@@ -56,11 +56,9 @@ std::string candidates_text(const std::vector<Candidate>& c) {
 }
 
 // Converts (Z,Y,X) extents to Dims, refusing empty or oversized grids.
-Dims dims_from_zyx(const hsize_t* zyx, const std::string& where) {
-  for (int a = 0; a < 3; ++a)
-    if (zyx[a] == 0 || zyx[a] > hsize_t(INT_MAX))
-      throw FormatError(where + ": grid extent " + std::to_string(zyx[a]) +
-                        " is out of range, expected 1.." + std::to_string(INT_MAX));
+Dims dims_from_zyx(const hsize_t* zyx, std::int64_t steps, const std::string& where) {
+  auto edge = [](hsize_t v) { return std::int64_t(std::min<hsize_t>(v, hsize_t(INT64_MAX))); };
+  check_grid(edge(zyx[2]), edge(zyx[1]), edge(zyx[0]), steps, where);
   return Dims{int(zyx[2]), int(zyx[1]), int(zyx[0])};
 }
 
@@ -130,6 +128,7 @@ class Hdf5Source final : public VolumeSource {
   Dims dims() const override { return dims_; }
   int steps() const override { return int(steps_.size()); }
   std::string describe() const override { return path_ + ", " + field_text_; }
+  std::vector<std::string> files() const override { return {path_}; }
 
   void read_step(int t, std::span<float> out) override {
     assert(t >= 0 && t < steps());
@@ -170,13 +169,10 @@ std::unique_ptr<VolumeSource> open_dataset(const std::string& path, Handle file,
   std::vector<StepRef> steps;
   Dims dims;
   if (shape.size() == 4) {
-    if (shape[0] == 0 || shape[0] > hsize_t(INT_MAX))
-      throw FormatError(where + ": has " + std::to_string(shape[0]) +
-                        " time steps, expected at least 1");
-    dims = dims_from_zyx(&shape[1], where);
+    dims = dims_from_zyx(&shape[1], std::int64_t(std::min<hsize_t>(shape[0], INT64_MAX)), where);
     for (hsize_t t = 0; t < shape[0]; ++t) steps.push_back({ds_path, true, t});
   } else {
-    dims = dims_from_zyx(&shape[0], where);
+    dims = dims_from_zyx(&shape[0], 1, where);
     steps.push_back({ds_path, false, 0});
   }
   return std::make_unique<Hdf5Source>(path, std::move(file), "dataset " + ds_path, dims,
@@ -214,7 +210,7 @@ std::unique_ptr<VolumeSource> open_group(const std::string& path, Handle file,
                         "; all steps must have the same shape");
     steps.push_back({member, false, 0});
   }
-  Dims dims = dims_from_zyx(first_shape.data(), where);
+  Dims dims = dims_from_zyx(first_shape.data(), std::int64_t(steps.size()), where);
   std::string text = "group " + group_path + " (" + std::to_string(steps.size()) + " steps)";
   return std::make_unique<Hdf5Source>(path, std::move(file), text, dims, std::move(steps));
 }

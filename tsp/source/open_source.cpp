@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "tsp/core/error.h"
+#include "tsp/core/file_check.h"
 #include "tsp/hdf5/hdf5_handle.h"
 #include "tsp/source/hdf5_source.h"
 #include "tsp/source/raw_source.h"
@@ -53,9 +54,11 @@ std::unique_ptr<VolumeSource> open_source(const std::string& input, const Source
   if (ends_with(input, ".pvd")) return io::open_pvd_source(input, options);
   if (ends_with(input, ".vti.series")) return io::open_vti_series_source(input, options);
   if (ends_with(input, ".vti")) return io::open_vti_source(input, options);
-  if (!exists) throw IoError(input + ": no such file");
+  if (!exists) throw IoError(input + ": input does not exist");
   if (std::filesystem::is_directory(input, ec))
-    throw IoError(input + ": is a directory, expected a file or a file pattern");
+    throw IoError(input + ": input is a directory, expected a file or a file pattern");
+  // Before anything opens it: a FIFO would block the HDF5 signature check forever.
+  require_regular_file(input, "input");
   if (has_hdf5_extension(input) || has_hdf5_signature(input))
     return io::open_hdf5_source(input, options);
   if (ends_with(input, ".raw") || options.raw_dims) return io::open_raw_source(input, options);

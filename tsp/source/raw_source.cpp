@@ -13,6 +13,7 @@
 #include <optional>
 
 #include "tsp/core/error.h"
+#include "tsp/core/file_check.h"
 #include "tsp/source/natural_order.h"
 
 namespace tsp::io {
@@ -113,6 +114,7 @@ class RawSource final : public VolumeSource {
 
   Dims dims() const override { return dims_; }
   int steps() const override { return int(files_.size()); }
+  std::vector<std::string> files() const override { return files_; }
   std::string describe() const override {
     return pattern_ + " (" + std::to_string(files_.size()) + " raw " + type_name(type_) + " " +
            (big_endian_ ? "big" : "little") + "-endian files of " + to_string(dims_) + ")";
@@ -201,7 +203,7 @@ std::vector<std::string> expand_file_pattern(const std::string& pattern) {
     natural_sort(files);
     return files;
   }
-  if (!file_exists(pattern)) throw IoError(pattern + ": no such file");
+  require_regular_file(pattern, "input");
   return {pattern};
 }
 

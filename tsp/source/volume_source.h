@@ -7,6 +7,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "tsp/core/types.h"
 
@@ -22,6 +23,9 @@ class VolumeSource {
   virtual int steps() const = 0;
   /// Names what is read ("file.h5, dataset /T"), for messages and the .tsp file's provenance.
   virtual std::string describe() const = 0;
+  /// Every file it reads (empty for a source computed in memory), so that an output is never
+  /// written over an input. Never throws.
+  virtual std::vector<std::string> files() const { return {}; }
   /// Reads step t (0 ≤ t < steps()) into out, dims().count() floats, x fastest then y then z.
   /// Non-finite values are passed through; the builder applies the NaN/Inf rule.
   /// Throws IoError or FormatError naming the file and field.

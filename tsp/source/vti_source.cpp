@@ -1,6 +1,7 @@
 #include "tsp/source/vti_source.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cassert>
 #include <filesystem>
 #include <fstream>
@@ -8,6 +9,7 @@
 #include <pugixml.hpp>
 
 #include "tsp/core/error.h"
+#include "tsp/core/file_check.h"
 #include "tsp/source/raw_source.h"
 #include "tsp/source/vtk/vti_file.h"
 
@@ -30,6 +32,11 @@ class VtiSeriesSource final : public VolumeSource {
 
   Dims dims() const override { return dims_; }
   int steps() const override { return int(files_.size()); }
+  std::vector<std::string> files() const override {
+    std::vector<std::string> all = files_;
+    if (std::find(all.begin(), all.end(), input_) == all.end()) all.push_back(input_);
+    return all;
+  }
   std::string describe() const override {
     return input_ + ", " + (field_.cells ? "CellData " : "PointData ") + field_.name +
            (files_.size() > 1 ? " (" + std::to_string(files_.size()) + " .vti steps)" : "");
@@ -78,9 +85,11 @@ std::unique_ptr<VolumeSource> open_series(const std::string& input, std::vector<
                         "; several parts per time step are not supported");
   std::vector<std::string> files;
   for (const StepFile& s : steps) {
-    std::error_code ec;
-    if (!fs::is_regular_file(s.file, ec))
-      throw IoError(input + ": step file " + s.file + " does not exist");
+    try {
+      require_regular_file(s.file, "step file");
+    } catch (const IoError& e) {
+      throw IoError(input + ": " + e.what());
+    }
     files.push_back(s.file);
   }
   VtiFile first(files[0], true);
@@ -97,10 +106,7 @@ std::string resolve_relative(const std::string& list_file, const std::string& na
   return (fs::path(list_file).parent_path() / p).string();
 }
 
-void require_file(const std::string& path) {
-  std::error_code ec;
-  if (!fs::exists(path, ec)) throw IoError(path + ": no such file");
-}
+void require_file(const std::string& path) { require_regular_file(path, "input"); }
 
 }  // namespace
 
@@ -140,6 +146,8 @@ std::unique_ptr<VolumeSource> open_pvd_source(const std::string& path,
     }
     if (used == 0 || used != text.size())
       throw FormatError(dwhere + ": timestep \"" + text + "\" is not a number");
+    if (!std::isfinite(time))
+      throw FormatError(dwhere + ": timestep \"" + text + "\" is not a finite number");
     steps.push_back({resolve_relative(path, ds.attribute("file").value()), time});
   }
   return open_series(path, std::move(steps), options);

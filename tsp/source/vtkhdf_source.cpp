@@ -96,6 +96,7 @@ class VtkHdfSource final : public VolumeSource {
   Dims dims() const override { return dims_; }
   int steps() const override { return transient_ ? int(time_index_.size()) : 1; }
   std::string describe() const override { return path_ + ", VTKHDF ImageData " + array_path_; }
+  std::vector<std::string> files() const override { return {path_}; }
 
   void read_step(int t, std::span<float> out) override {
     assert(t >= 0 && t < steps());
@@ -208,11 +209,12 @@ std::unique_ptr<VolumeSource> open_vtkhdf_source(const std::string& path, h5::Ha
   const std::string awhere = path + ", dataset " + array_path;
 
   // Grid size: points, or cells (an axis flat in the extent still counts one cell).
-  int n[3];
+  long long n[3];
   for (int a = 0; a < 3; ++a) {
     long long len = extent[2 * a + 1] - extent[2 * a];
-    n[a] = int(cells ? std::max(len, 1LL) : len + 1);
+    n[a] = cells ? std::max(len, 1LL) : len + 1;
   }
+  check_grid(n[0], n[1], n[2], 1, where + ", WholeExtent");
   const bool flat_z = extent[5] == extent[4], flat_y = extent[3] == extent[2];
   if (flat_y && !flat_z)
     throw FormatError(where + ": WholeExtent is flat in y but not in z, which VTKHDF cannot store");
@@ -232,6 +234,7 @@ std::unique_ptr<VolumeSource> open_vtkhdf_source(const std::string& path, h5::Ha
     if (!ns || ns->size() != 1 || (*ns)[0] < 1 || (*ns)[0] != std::floor((*ns)[0]) ||
         (*ns)[0] > INT_MAX)
       throw FormatError(where + "/Steps: attribute NSteps missing or not a positive integer");
+    check_grid(n[0], n[1], n[2], std::int64_t((*ns)[0]), where + "/Steps, NSteps");
     nsteps = int((*ns)[0]);
     const std::string table = "/VTKHDF/Steps/" + kind + "Offsets/" + name;
     if (h5::exists(file.get(), table)) {
@@ -283,7 +286,7 @@ std::unique_ptr<VolumeSource> open_vtkhdf_source(const std::string& path, h5::Ha
   VolumeSlab slab;
   slab.spatial = spatial;
   slab.trailing = trailing;
-  return std::make_unique<VtkHdfSource>(path, std::move(file), array_path, Dims{n[0], n[1], n[2]},
+  return std::make_unique<VtkHdfSource>(path, std::move(file), array_path, Dims{int(n[0]), int(n[1]), int(n[2])},
                                         std::move(slab), transient, std::move(time_index));
 }
 

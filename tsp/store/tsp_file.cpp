@@ -1,5 +1,6 @@
 #include "tsp/store/tsp_file.h"
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <mutex>
@@ -177,6 +178,7 @@ std::unique_ptr<TspFile> TspFile::open(const std::string& path) {
   int steps = r.attr_numbers<int>(layout::kAttrSteps, H5T_NATIVE_INT, 1)[0];
   int brick = r.attr_numbers<int>(layout::kAttrBrickSize, H5T_NATIVE_INT, 1)[0];
   if (steps < 1) r.fail("attribute steps", "expected at least 1, found " + std::to_string(steps));
+  check_grid(dims[0], dims[1], dims[2], steps, path + ": attributes dims/steps");
   try {
     impl->tree = std::make_unique<TspTree>(Dims{dims[0], dims[1], dims[2]}, steps, brick);
   } catch (const UsageError& e) {
@@ -190,7 +192,13 @@ std::unique_ptr<TspFile> TspFile::open(const std::string& path) {
   auto dr = r.attr_numbers<double>(layout::kAttrDataRange, H5T_NATIVE_DOUBLE, 2);
   TspMetadata& m = impl->meta;
   m.data_range = {dr[0], dr[1]};
+  if (!std::isfinite(dr[0]) || !std::isfinite(dr[1]) || dr[0] > dr[1])
+    r.fail("attribute data_range", "expected finite lo <= hi, found [" + std::to_string(dr[0]) +
+                                       ", " + std::to_string(dr[1]) + "]");
   m.nonfinite_count = r.attr_numbers<std::int64_t>(layout::kAttrNonfinite, H5T_NATIVE_INT64, 1)[0];
+  if (m.nonfinite_count < 0)
+    r.fail("attribute nonfinite_count",
+           "expected a count >= 0, found " + std::to_string(m.nonfinite_count));
   m.source = r.attr_string(layout::kAttrSource);
   m.field = r.attr_string(layout::kAttrField);
   m.created_by = r.attr_string(layout::kAttrCreatedBy);
@@ -233,6 +241,21 @@ std::unique_ptr<TspFile> TspFile::open(const std::string& path) {
   auto mx = r.dataset<float>(layout::kStatsMax, n, H5T_NATIVE_FLOAT, H5T_FLOAT);
   auto es = r.dataset<float>(layout::kStatsSpatial, n, H5T_NATIVE_FLOAT, H5T_FLOAT);
   auto et = r.dataset<float>(layout::kStatsTemporal, n, H5T_NATIVE_FLOAT, H5T_FLOAT);
+  // Statistics the builder can write: finite, σ ≥ 0, min ≤ max, errors ≥ 0, the mean inside
+  // [min, max] (up to rounding).
+  for (int i = 0; i < tree.size(); ++i) {
+    const double tol = 1e-6 * std::max({1.0, std::fabs(double(mn[i])), std::fabs(double(mx[i]))});
+    const bool ok = std::isfinite(mean[i]) && std::isfinite(sd[i]) && sd[i] >= 0 &&
+                    std::isfinite(mn[i]) && std::isfinite(mx[i]) && mn[i] <= mx[i] &&
+                    mean[i] >= mn[i] - tol && mean[i] <= mx[i] + tol && std::isfinite(es[i]) &&
+                    es[i] >= 0 && std::isfinite(et[i]) && et[i] >= 0;
+    if (!ok)
+      r.fail("statistics of TSP node " + std::to_string(i),
+             "expected finite values with std >= 0, min <= mean <= max and errors >= 0, found "
+             "mean " + std::to_string(mean[i]) + ", std " + std::to_string(sd[i]) + ", min " +
+                 std::to_string(mn[i]) + ", max " + std::to_string(mx[i]) + ", e_s " +
+                 std::to_string(es[i]) + ", e_t " + std::to_string(et[i]));
+  }
   for (int i = 0; i < tree.size(); ++i) {
     NodeStats& s = tree.stats(i);
     s.mean = mean[i];
@@ -280,7 +303,7 @@ void TspFile::read_brick(int brick, int step, std::span<std::uint16_t> out) cons
               out.data()) < 0)
     throw FormatError(impl_->path + ": dataset " + layout::kBrickData + ": cannot read brick " +
                       std::to_string(brick) + " at step " + std::to_string(step) +
-                      " (truncated or corrupt file?)");
+                      " (checksum mismatch: the brick is corrupted, or the file is truncated)");
 }
 
 }  // namespace tsp

@@ -16,6 +16,9 @@ Octree::Octree(Dims dims, int brick_size) : dims_(dims), brick_size_(brick_size)
                      std::to_string(kMinBrickSize) + ", " + std::to_string(kMaxBrickSize) + "]");
   if (dims.x <= 0 || dims.y <= 0 || dims.z <= 0)
     throw UsageError("grid size " + to_string(dims) + " has an empty axis");
+  if (dims.x > kMaxGridEdge || dims.y > kMaxGridEdge || dims.z > kMaxGridEdge)
+    throw UsageError("grid size " + to_string(dims) + ": every edge must be at most " +
+                     std::to_string(kMaxGridEdge) + " samples");
   // As few bricks as B allows, with the cells spread evenly over them: a 64-sample axis becomes
   // 3 bricks of 21 cells rather than 31 + 31 + 2, so edge bricks are not slivers.
   const int max_cells = brick_size - 1;
@@ -24,7 +27,13 @@ Octree::Octree(Dims dims, int brick_size) : dims_(dims), brick_size_(brick_size)
     grid_[a] = std::max(1, (cells + max_cells - 1) / max_cells);
     cells_[a] = std::max(1, (cells + grid_[a] - 1) / grid_[a]);
   }
-  brick_node_.assign(brick_count(), -1);
+  const std::int64_t bricks = std::int64_t(grid_[0]) * grid_[1] * grid_[2];
+  if (bricks > kMaxBricks)
+    throw UsageError("grid size " + to_string(dims) + " with bricks of " +
+                     std::to_string(brick_size) + " needs " + std::to_string(bricks) +
+                     " bricks, at most " + std::to_string(kMaxBricks) +
+                     " are supported (use larger bricks)");
+  brick_node_.assign(std::size_t(bricks), -1);
 
   OctreeNode root;
   root.brick_lo = {0, 0, 0};

@@ -2,10 +2,29 @@
 
 #include <cmath>
 
+#include "tsp/core/error.h"
+
 namespace tsp {
 
+namespace {
+// The time tree, after checking the step count and the TSP node count for these dims.
+TimeTree checked_time_tree(const Octree& octree, int steps) {
+  if (steps < 1 || steps > kMaxSteps)
+    throw UsageError(std::to_string(steps) + " time steps, expected 1 to " +
+                     std::to_string(kMaxSteps));
+  const std::int64_t nodes = std::int64_t(octree.size()) * (2 * std::int64_t(steps) - 1);
+  if (nodes > kMaxTspNodes)
+    throw UsageError(to_string(octree.dims()) + " x " + std::to_string(steps) + " steps needs " +
+                     std::to_string(nodes) + " TSP nodes, at most " +
+                     std::to_string(kMaxTspNodes) + " are supported (use larger bricks)");
+  return TimeTree(steps);
+}
+}  // namespace
+
 TspTree::TspTree(Dims dims, int steps, int brick_size)
-    : octree_(dims, brick_size), time_(steps), stats_(std::size_t(octree_.size()) * time_.size()) {}
+    : octree_(dims, brick_size),
+      time_(checked_time_tree(octree_, steps)),
+      stats_(std::size_t(octree_.size()) * time_.size()) {}
 
 double coefficient_of_variation(double sigma, double mean, double range_width) {
   if (sigma == 0) return 0;

@@ -120,7 +120,11 @@ TEST(TspFile, WriterReaderRoundTripIsExact) {
   std::uniform_real_distribution<double> u(-10, 10);
   for (int i = 0; i < tree.size(); ++i) {
     NodeStats& s = tree.stats(i);
-    s = {u(rng), std::fabs(u(rng)), float(u(rng)), float(u(rng)), float(u(rng)), float(u(rng))};
+    // Random but valid statistics (the reader refuses min > max, σ < 0, negative errors).
+    const float a = float(u(rng)), c = float(u(rng));
+    const float lo = std::min(a, c), hi = std::max(a, c);
+    const double mean = lo + (hi - lo) * (u(rng) + 10) / 20;
+    s = {mean, std::fabs(u(rng)), lo, hi, float(std::fabs(u(rng))), float(std::fabs(u(rng)))};
   }
   TspMetadata meta;
   meta.source = "ünïcode source";

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cassert>
 #include <cctype>
+#include <charconv>
+#include <climits>
 #include <cstdint>
 #include <fstream>
 #include <sstream>
@@ -60,6 +62,10 @@ void parse_extent(const char* text, long long out[6], const std::string& where, 
       throw FormatError(where + ": " + what + " \"" + (text ? text : "") + "\" is not 6 integers");
   std::string rest;
   if (in >> rest) throw FormatError(where + ": " + what + " has more than 6 values");
+  for (int i = 0; i < 6; ++i)
+    if (out[i] < INT32_MIN || out[i] > INT32_MAX)
+      throw FormatError(where + ": " + what + " value " + std::to_string(out[i]) +
+                        " is outside the 32-bit range");
   for (int a = 0; a < 3; ++a)
     if (out[2 * a + 1] < out[2 * a])
       throw FormatError(where + ": " + what + " axis " + std::to_string(a) + " is [" +
@@ -86,12 +92,33 @@ pugi::xml_node find_array(const pugi::xml_node& section, const std::string& name
   return {};
 }
 
-void collect_appended_offsets(const pugi::xml_node& node, std::set<unsigned long long>& out) {
-  for (pugi::xml_node c : node.children()) {
-    if (std::string(c.name()) == "DataArray" &&
-        std::string(c.attribute("format").value()) == "appended")
-      out.insert(c.attribute("offset").as_ullong());
-    collect_appended_offsets(c, out);
+// An appended DataArray's offset: a whole non-negative decimal number. Throws FormatError.
+unsigned long long appended_offset(const pugi::xml_node& array, const std::string& where) {
+  const std::string text = array.attribute("offset").value();
+  unsigned long long v = 0;
+  const char* end = text.data() + text.size();
+  auto [p, ec] = std::from_chars(text.data(), end, v);
+  if (text.empty() || ec != std::errc() || p != end)
+    throw FormatError(where + ": appended offset \"" + text +
+                      "\" is not a non-negative whole number");
+  return v;
+}
+
+// Every appended DataArray's offset, walking the tree without recursion (a file may nest
+// elements tens of thousands deep).
+void collect_appended_offsets(const pugi::xml_node& root, std::set<unsigned long long>& out,
+                              const std::string& where) {
+  pugi::xml_node n = root.first_child();
+  while (n && n != root) {
+    if (std::string(n.name()) == "DataArray" &&
+        std::string(n.attribute("format").value()) == "appended" && n.attribute("offset"))
+      out.insert(appended_offset(n, where + ", array " + n.attribute("Name").value()));
+    if (n.first_child()) {
+      n = n.first_child();
+      continue;
+    }
+    while (n && n != root && !n.next_sibling()) n = n.parent();
+    if (n && n != root) n = n.next_sibling();
   }
 }
 
@@ -154,7 +181,7 @@ VtiFile::VtiFile(const std::string& path, bool header_only)
     appended_end_ = appended_base64_
                         ? std::min(content_.find("</AppendedData>", appended_), content_.size())
                         : content_.size();
-    collect_appended_offsets(root, appended_offsets_);
+    collect_appended_offsets(root, appended_offsets_, path);
   }
 }
 
@@ -193,14 +220,13 @@ VtiField VtiFile::resolve(const std::string& requested) const {
 }
 
 Dims VtiFile::dims(const VtiField& f) const {
-  int n[3];
+  long long n[3];
   for (int a = 0; a < 3; ++a) {
-    long long len = whole_[2 * a + 1] - whole_[2 * a];
-    long long v = f.cells ? std::max(len, 1LL) : len + 1;
-    if (v > INT32_MAX) throw FormatError(path_ + ": WholeExtent is too large");
-    n[a] = int(v);
+    const long long len = whole_[2 * a + 1] - whole_[2 * a];  // both within 32 bits
+    n[a] = f.cells ? std::max(len, 1LL) : len + 1;
   }
-  return Dims{n[0], n[1], n[2]};
+  check_grid(n[0], n[1], n[2], 1, path_ + ", WholeExtent");
+  return Dims{int(n[0]), int(n[1]), int(n[2])};
 }
 
 void VtiFile::read(const VtiField& f, std::span<float> out) const {
@@ -266,7 +292,7 @@ void VtiFile::decode(const pugi::xml_node& array, std::span<float> out) const {
       throw FormatError(awhere + ": format=\"appended\" but the file has no <AppendedData>");
     if (!array.attribute("offset"))
       throw FormatError(awhere + ": format=\"appended\" without an offset attribute");
-    const unsigned long long offset = array.attribute("offset").as_ullong();
+    const unsigned long long offset = appended_offset(array, awhere);
     if (offset > appended_end_ - appended_)
       throw FormatError(awhere + ": appended offset " + std::to_string(offset) +
                         " lies beyond the end of the file (truncated?)");

@@ -127,11 +127,10 @@ std::vector<unsigned char> unpack_binary(std::span<const unsigned char> bytes,
                                          const std::string& where) {
   const int ws = layout.header64 ? 8 : 4;
   auto word = [&](std::uint64_t index) -> std::uint64_t {
-    std::uint64_t at = index * ws;
-    if (at + ws > bytes.size())
+    if (index >= bytes.size() / ws)
       throw FormatError(where + ": binary data truncated inside its header (" +
                         std::to_string(bytes.size()) + " bytes available)");
-    return read_word(bytes.data() + at, ws, layout.big_endian);
+    return read_word(bytes.data() + index * ws, ws, layout.big_endian);
   };
   if (!layout.zlib) {
     std::uint64_t n = word(0);
@@ -145,23 +144,37 @@ std::vector<unsigned char> unpack_binary(std::span<const unsigned char> bytes,
   }
   const std::uint64_t blocks = word(0), block_size = word(1), last_size = word(2);
   const std::uint64_t last = last_size ? last_size : block_size;
-  const std::uint64_t total = blocks ? (blocks - 1) * block_size + last : 0;
-  if (total != expected_bytes || (blocks && (block_size == 0 || last > block_size)))
-    throw FormatError(where + ": zlib header describes " + std::to_string(blocks) +
-                      " blocks holding " + std::to_string(total) + " bytes, expected " +
-                      std::to_string(expected_bytes));
+  // Every product and sum of header values is checked: a header may describe sizes that wrap
+  // around to the expected total.
+  std::uint64_t total = 0;
+  bool ok = true;
+  if (blocks) {
+    ok = block_size > 0 && last <= block_size &&
+         !__builtin_mul_overflow(blocks - 1, block_size, &total) &&
+         !__builtin_add_overflow(total, last, &total);
+  }
+  if (!ok || total != expected_bytes)
+    throw FormatError(where + ": zlib header describes " + std::to_string(blocks) + " blocks of " +
+                      std::to_string(block_size) + " bytes (last " + std::to_string(last) +
+                      "), expected " + std::to_string(expected_bytes) + " bytes in all");
+  // The block-size table must lie inside the data (3 + blocks words).
+  if (blocks > bytes.size() / ws - 3 || bytes.size() / ws < 3)
+    throw FormatError(where + ": zlib header lists " + std::to_string(blocks) +
+                      " blocks but the data holds only " + std::to_string(bytes.size()) + " bytes");
   std::vector<unsigned char> out(total);
   std::uint64_t src = (3 + blocks) * ws;
-  if (blocks) word(3 + blocks - 1);  // the whole header is present
   for (std::uint64_t b = 0; b < blocks; ++b) {
-    std::uint64_t csize = word(3 + b);
-    std::uint64_t usize = b + 1 == blocks ? last : block_size;
-    if (src + csize > bytes.size())
+    const std::uint64_t csize = word(3 + b);
+    const std::uint64_t usize = b + 1 == blocks ? last : block_size;
+    const std::uint64_t dst = b * block_size;  // < total: no overflow
+    if (csize > bytes.size() - src)
       throw FormatError(where + ": zlib block " + std::to_string(b) + " truncated (needs " +
-                        std::to_string(csize) + " bytes, " +
-                        std::to_string(bytes.size() > src ? bytes.size() - src : 0) + " present)");
+                        std::to_string(csize) + " bytes, " + std::to_string(bytes.size() - src) +
+                        " present)");
+    if (usize > out.size() - dst)
+      throw FormatError(where + ": zlib block " + std::to_string(b) + " overruns the array");
     uLongf dest_len = static_cast<uLongf>(usize);
-    int rc = uncompress(out.data() + b * block_size, &dest_len, bytes.data() + src,
+    int rc = uncompress(out.data() + dst, &dest_len, bytes.data() + src,
                         static_cast<uLong>(csize));
     if (rc != Z_OK || dest_len != usize)
       throw FormatError(where + ": zlib block " + std::to_string(b) + " does not inflate to " +
