@@ -17,6 +17,7 @@
 #include "jobs/render_job.h"
 #include "player/player.h"
 #include "tsp/core/error.h"
+#include "tsp/core/json_text.h"
 #include "tsp/core/stopwatch.h"
 #include "tsp/core/temp_output.h"
 #include "tsp/metric/compute_errors.h"
@@ -189,7 +190,7 @@ void run(const DemoArgs& a) {
   report["tree"] = info;
 
   const tsp::TransferFunction tf =
-      tsp::preset_transfer_function("sparse", file->tree().value_range());
+      tsp::preset_transfer_function("sparse", tsp::preset_domain(file->tree().value_range()));
   tsp::save_transfer_function(tf, tf_path.string());
   std::printf("\nerror metrics with the sparse colour map (%s):\n", tf_path.string().c_str());
   for (tsp::Metric m : {tsp::Metric::scalar, tsp::Metric::approximate, tsp::Metric::perceptual,
@@ -202,7 +203,7 @@ void run(const DemoArgs& a) {
   }
   report["render"] = render_frames(tsp_path, tf_path, dir);
   report["movie"] = make_movie(dir);
-  tsp::write_file_atomically(report_path.string(), report.dump(2) + "\n");
+  tsp::write_file_atomically(report_path.string(), tsp::json_text(report, 2) + "\n");
   std::printf("\nwrote %s\nnext:\n  tspplay info %s --json --nodes\n  tspplay metrics %s --tf %s\n",
               report_path.string().c_str(), tsp_path.string().c_str(), tsp_path.string().c_str(),
               tf_path.string().c_str());

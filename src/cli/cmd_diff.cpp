@@ -6,6 +6,7 @@
 #include <string>
 
 #include "cli/commands.h"
+#include "tsp/core/json_text.h"
 #include "tsp/report/image.h"
 #include "tsp/report/image_diff.h"
 
@@ -33,7 +34,7 @@ const CommandRegistrar reg(60, [](CLI::App& app) {
     if (a->json) {
       nlohmann::json j = {{"mean", s.mean},     {"p99", s.p99},     {"max", s.max},
                           {"pixels", s.pixels}, {"width", s.width}, {"height", s.height}};
-      std::cout << j.dump(2) << "\n";
+      std::cout << tsp::json_text(j, 2) << "\n";
     } else {
       std::printf("%dx%d pixels, ΔE*uv (CIE L*u*v*): mean %.4f  p99 %.4f  max %.4f\n", s.width,
                   s.height, s.mean, s.p99, s.max);

@@ -10,6 +10,7 @@
 
 #include "cli/commands.h"
 #include "cli/info_report.h"
+#include "tsp/core/json_text.h"
 #include "tsp/store/tsp_file.h"
 
 namespace tspcli {
@@ -30,7 +31,7 @@ const CommandRegistrar reg(20, [](CLI::App& app) {
   c->callback([a] {
     auto f = tsp::TspFile::open(a->file);
     if (a->json)
-      std::cout << info_json(*f, a->nodes).dump(2) << "\n";
+      std::cout << tsp::json_text(info_json(*f, a->nodes), 2) << "\n";
     else
       print_info(*f, a->nodes);
   });

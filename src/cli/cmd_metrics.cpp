@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cli/commands.h"
+#include "tsp/core/json_text.h"
 #include "tsp/core/parallel_for.h"
 #include "tsp/core/stopwatch.h"
 #include "tsp/metric/compute_errors.h"
@@ -105,7 +106,7 @@ void run(const MetricsArgs &a) {
       }
       j["nodes"] = std::move(nodes);
     }
-    std::cout << j.dump(1) << "\n";
+    std::cout << tsp::json_text(j, 1) << "\n";
     return;
   }
   const std::int64_t clear = r.transparent_count();

@@ -39,8 +39,12 @@ void run(const RenderArgs& a) {
   o.camera.projection = a.perspective ? tsp::Projection::perspective : tsp::Projection::orthographic;
   o.passes = a.passes;
   o.spacing = a.spacing;
-  if (!(a.texture_budget_mb > 0)) throw tsp::UsageError("--texture-budget must be positive (MiB)");
-  o.texture_budget = std::int64_t(a.texture_budget_mb * (1 << 20));
+  if (a.out.empty()) throw tsp::UsageError("-o: the output directory must not be empty");
+  if (!(a.texture_budget_mb > 0) || !(a.texture_budget_mb <= double(tspgl::kMaxBudgetBytes >> 20)))
+    throw tsp::UsageError("--texture-budget " + std::to_string(a.texture_budget_mb) +
+                          ": expected a budget in (0, " +
+                          std::to_string(tspgl::kMaxBudgetBytes >> 20) + "] MiB");
+  o.texture_budget = std::max<std::int64_t>(1, std::int64_t(a.texture_budget_mb * (1 << 20)));
 
   ProgressBar bar;
   auto result = tspgl::run_render_job(o, [&bar](int done, int total) {

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "tsp/core/json_text.h"
 #include "tsp/core/temp_output.h"
 
 namespace tspgl {
@@ -124,7 +125,7 @@ json BenchReport::write(const std::string& dir) {
   tsp::write_file_atomically((d / "table3.csv").string(), t3_.str());
   tsp::write_file_atomically((d / "table4.csv").string(), t4_.str());
   tsp::write_file_atomically((d / "table5.csv").string(), t5_.str());
-  tsp::write_file_atomically((d / "report.json").string(), report_.dump(2) + "\n");
+  tsp::write_file_atomically((d / "report.json").string(), tsp::json_text(report_, 2) + "\n");
   return report_;
 }
 

@@ -10,6 +10,7 @@
 #include "render/baseline_renderer.h"
 #include "render/volume_renderer.h"
 #include "tsp/core/error.h"
+#include "tsp/core/json_text.h"
 #include "tsp/core/stopwatch.h"
 #include "tsp/core/temp_output.h"
 #include "tsp/metric/compute_errors.h"
@@ -70,13 +71,18 @@ double median_frame_ms(const RenderJobResult& result, int pass) {
 }
 
 RenderJobResult run_render_job(const RenderJobOptions& o, const RenderProgress& progress) {
+  // Options first: nothing is opened or rendered with a bad one.
+  if (o.passes < 1 || o.passes > kMaxPasses)
+    throw tsp::UsageError("--passes " + std::to_string(o.passes) + ": expected 1 to " +
+                          std::to_string(kMaxPasses));
+  RenderSettings settings;
+  settings.tol = o.tol;
+  settings.spacing = o.spacing;
+  validate(settings);
+  validate_budget(o.texture_budget, "--texture-budget");
   auto file = tsp::TspFile::open(o.tsp_path);
   const tsp::TspTree& tree = file->tree();
   const int last = checked_last_step(tree, o.first_step, o.last_step, o.tsp_path);
-  if (o.passes < 1) throw tsp::UsageError("--passes must be at least 1");
-  if (!(o.spacing > 0)) throw tsp::UsageError("--spacing must be positive");
-  if (o.tol.spatial < 0 || o.tol.temporal < 0)
-    throw tsp::UsageError("tolerances must not be negative");
   const tsp::TransferFunction tf = tsp::transfer_function_from_arg(o.tf, tree.value_range());
 
   fs::path dir;
@@ -106,10 +112,6 @@ RenderJobResult run_render_job(const RenderJobOptions& o, const RenderProgress& 
   if (renderer) renderer->set_transfer_function(tf);
   tsp::WholeTreeMetric nodes(metric);
   const tsp::Camera camera(tree.octree().dims(), o.camera);
-  RenderSettings settings;
-  settings.tol = o.tol;
-  settings.spacing = o.spacing;
-
   const int total = o.passes * (last - o.first_step + 1);
   for (int pass = 1; pass <= o.passes; ++pass) {
     for (int t = o.first_step; t <= last; ++t) {
@@ -143,7 +145,7 @@ RenderJobResult run_render_job(const RenderJobOptions& o, const RenderProgress& 
                                                                           : "orthographic";
     j["spacing"] = o.spacing;
     j["median_ms"] = median_frame_ms(result, o.passes);
-    tsp::write_file_atomically((dir / "frames.json").string(), j.dump(2) + "\n");
+    tsp::write_file_atomically((dir / "frames.json").string(), tsp::json_text(j, 2) + "\n");
   }
   return result;
 }

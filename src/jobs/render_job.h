@@ -31,6 +31,9 @@ struct RenderJobOptions {
   bool write_images = true;                   ///< PNGs (frames.json is written when out_dir is set)
 };
 
+/// Most passes a job plays.
+inline constexpr int kMaxPasses = 1000;
+
 /// One frame of a job.
 struct FrameRecord {
   int pass = 1;

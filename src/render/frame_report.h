@@ -3,6 +3,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <string>
 
 #include "tsp/frame/frame_plan.h"
 #include "tsp/tree/traversal.h"
@@ -15,6 +16,11 @@ inline constexpr double kDefaultSliceSpacing = 0.5;
 inline constexpr std::int64_t kDefaultTextureBudget = std::int64_t(512) << 20;
 /// Default RAM budget for bricks read from the .tsp file.
 inline constexpr std::int64_t kDefaultBrickBudget = std::int64_t(1024) << 20;
+/// Slice spacings accepted, in voxels: below 1/64 a frame costs thousands of slices per brick
+/// for no visible gain; above 64 a slice skips whole bricks.
+inline constexpr double kMinSliceSpacing = 1.0 / 64, kMaxSliceSpacing = 64;
+/// Largest texture, brick or upload budget accepted (1 TiB).
+inline constexpr std::int64_t kMaxBudgetBytes = std::int64_t(1) << 40;
 
 /// What a frame is drawn with, besides the camera and the metric.
 struct RenderSettings {
@@ -26,6 +32,14 @@ struct RenderSettings {
   /// by later frames (FrameReport::deferred_textures > 0 until the frame is complete).
   std::int64_t upload_budget = 0;
 };
+
+/// Throws tsp::UsageError naming the setting, its value and the accepted range unless spacing is
+/// in [kMinSliceSpacing, kMaxSliceSpacing], both tolerances are finite and ≥ 0 and the upload
+/// budget is in [0, kMaxBudgetBytes].
+void validate(const RenderSettings& s);
+
+/// Throws tsp::UsageError unless bytes is in [1, kMaxBudgetBytes]; `what` names the option.
+void validate_budget(std::int64_t bytes, const std::string& what);
 
 /// Timings and counts of one frame (the frames.json record, less pass).
 struct FrameReport {

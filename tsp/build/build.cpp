@@ -218,9 +218,10 @@ void combine_octree(const TspTree& tree, std::vector<NodeAccum>& acc) {
 
 ValueRange checked_range(const std::optional<ValueRange>& r, ValueRange data) {
   if (!r) return data;
-  if (!std::isfinite(r->lo) || !std::isfinite(r->hi) || !(r->lo < r->hi))
+  if (!std::isfinite(r->lo) || !std::isfinite(r->hi) || !(r->lo < r->hi) ||
+      !std::isfinite(r->width()))
     throw UsageError("--range " + std::to_string(r->lo) + ":" + std::to_string(r->hi) +
-                     ": expected finite LO < HI");
+                     ": expected finite LO < HI whose width HI - LO is finite");
   return *r;
 }
 

@@ -9,6 +9,9 @@
 #include <sstream>
 
 #include "tsp/core/error.h"
+#include "tsp/core/file_check.h"
+#include "tsp/core/temp_output.h"
+#include "tsp/core/json_text.h"
 
 namespace tsp {
 
@@ -27,15 +30,15 @@ constexpr const char* kPresetPrefix = "preset:";
 }
 
 double number(const json& v, const std::string& origin, const std::string& key) {
-  if (!v.is_number()) fail(origin, key, "expected a number, found " + v.dump());
+  if (!v.is_number()) fail(origin, key, "expected a number, found " + json_text(v));
   const double d = v.get<double>();
-  if (!std::isfinite(d)) fail(origin, key, "expected a finite number, found " + v.dump());
+  if (!std::isfinite(d)) fail(origin, key, "expected a finite number, found " + json_text(v));
   return d;
 }
 
 float unit(const json& v, const std::string& origin, const std::string& key) {
   const double d = number(v, origin, key);
-  if (d < 0 || d > 1) fail(origin, key, "expected a value in [0, 1], found " + v.dump());
+  if (d < 0 || d > 1) fail(origin, key, "expected a value in [0, 1], found " + json_text(v));
   return float(d);
 }
 
@@ -48,10 +51,10 @@ const json& require(const json& obj, const char* key, const std::string& origin)
 TransferFunction parse_ours(const json& doc, const std::string& origin, int entries) {
   const json& range = require(doc, "range", origin);
   if (!range.is_array() || range.size() != 2)
-    fail(origin, "range", "expected [lo, hi], found " + range.dump());
+    fail(origin, "range", "expected [lo, hi], found " + json_text(range));
   const ValueRange domain{number(range[0], origin, "range[0]"),
                           number(range[1], origin, "range[1]")};
-  if (!(domain.lo < domain.hi)) fail(origin, "range", "expected lo < hi, found " + range.dump());
+  if (!(domain.lo < domain.hi)) fail(origin, "range", "expected lo < hi, found " + json_text(range));
   const json& pts = require(doc, "points", origin);
   if (!pts.is_array() || pts.empty())
     fail(origin, "points", "expected a non-empty list of [x, r, g, b, a]");
@@ -60,7 +63,7 @@ TransferFunction parse_ours(const json& doc, const std::string& origin, int entr
     const std::string key = "points[" + std::to_string(i) + "]";
     const json& p = pts[i];
     if (!p.is_array() || p.size() != 5)
-      fail(origin, key, "expected [x, r, g, b, a], found " + p.dump());
+      fail(origin, key, "expected [x, r, g, b, a], found " + json_text(p));
     points.push_back({number(p[0], origin, key + "[0]"),
                       {unit(p[1], origin, key + "[1]"), unit(p[2], origin, key + "[2]"),
                        unit(p[3], origin, key + "[3]"), unit(p[4], origin, key + "[4]")}});
@@ -132,9 +135,7 @@ TransferFunction parse_paraview(const json& preset, const std::string& origin, i
 }
 
 std::string slurp(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw IoError(path + ": transfer function file does not exist or is not a regular file");
+  require_regular_file(path, "transfer function file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw IoError(path + ": cannot open transfer function file");
   std::stringstream ss;
@@ -174,14 +175,32 @@ const std::vector<std::pair<std::string, std::vector<PresetKnot>>>& presets() {
 
 }  // namespace
 
+namespace {
+TransferFunction parse_document(const json& doc, const std::string& origin, int entries);
+}  // namespace
+
 TransferFunction parse_transfer_function(const std::string& text, const std::string& origin,
                                          int entries) {
   json doc;
   try {
     doc = json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // syntax, and numbers beyond the double range
     throw FormatError(origin + ": not valid JSON: " + e.what());
   }
+  try {
+    return parse_document(doc, origin, entries);
+  } catch (const json::exception& e) {
+    throw FormatError(origin + ": unexpected transfer function contents: " + e.what());
+  }
+}
+
+TransferFunction load_transfer_function(const std::string& path, int entries) {
+  return parse_transfer_function(slurp(path), path, entries);
+}
+
+namespace {
+
+TransferFunction parse_document(const json& doc, const std::string& origin, int entries) {
   if (doc.is_object() && doc.contains("points")) return parse_ours(doc, origin, entries);
   if (doc.is_object() && doc.contains("RGBPoints")) return parse_paraview(doc, origin, entries);
   if (doc.is_array()) {
@@ -195,9 +214,7 @@ TransferFunction parse_transfer_function(const std::string& text, const std::str
                     "preset (key \"RGBPoints\")");
 }
 
-TransferFunction load_transfer_function(const std::string& path, int entries) {
-  return parse_transfer_function(slurp(path), path, entries);
-}
+}  // namespace
 
 void save_transfer_function(const TransferFunction& tf, const std::string& path) {
   json doc;
@@ -208,23 +225,7 @@ void save_transfer_function(const TransferFunction& tf, const std::string& path)
     pts.push_back({tf.entry_value(j), c.r, c.g, c.b, c.a});
   }
   doc["points"] = std::move(pts);
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw IoError(path + ": cannot write transfer function (temporary " + tmp + ")");
-    out << doc.dump(1) << "\n";
-    out.close();
-    if (!out) {
-      std::remove(tmp.c_str());
-      throw IoError(path + ": write failed (disk full?)");
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::remove(tmp.c_str());
-    throw IoError(path + ": cannot rename temporary file: " + ec.message());
-  }
+  write_file_atomically(path, json_text(doc, 1) + "\n");
 }
 
 std::vector<std::string> preset_names() {
@@ -245,11 +246,19 @@ TransferFunction preset_transfer_function(const std::string& name, ValueRange do
   throw UsageError("unknown transfer function preset \"" + name + "\" (known: " + known + ")");
 }
 
+ValueRange preset_domain(ValueRange r) {
+  if (!std::isfinite(r.lo) || !std::isfinite(r.hi) || !std::isfinite(r.width())) return {0, 1};
+  if (r.lo < r.hi) return r;
+  const double c = 0.5 * (r.lo + r.hi), half = 0.5 * std::max(1.0, std::fabs(c) * 1e-3);
+  return {c - half, c + half};
+}
+
 TransferFunction transfer_function_from_arg(const std::string& arg, ValueRange default_domain,
                                             int entries) {
   const std::string prefix = kPresetPrefix;
   if (arg.rfind(prefix, 0) == 0)
-    return preset_transfer_function(arg.substr(prefix.size()), default_domain, entries);
+    return preset_transfer_function(arg.substr(prefix.size()), preset_domain(default_domain),
+                                    entries);
   return load_transfer_function(arg, entries);
 }
 

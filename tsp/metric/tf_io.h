@@ -30,8 +30,14 @@ std::vector<std::string> preset_names();
 TransferFunction preset_transfer_function(const std::string& name, ValueRange domain,
                                           int entries = kDefaultTfEntries);
 
-/// Resolves a --tf argument: "preset:NAME" gives that preset over default_domain, anything else
-/// is a file path. Throws like load_transfer_function / preset_transfer_function.
+/// The domain a preset is stretched over for data whose values span r: r itself when it is a
+/// finite interval with lo < hi; for a constant field (lo = hi) the interval of width
+/// max(1, |lo|·1e-3) centred on it, so the constant sits mid-map and still renders; [0, 1]
+/// when r is not finite. Never throws.
+ValueRange preset_domain(ValueRange r);
+
+/// Resolves a --tf argument: "preset:NAME" gives that preset over preset_domain(default_domain),
+/// anything else is a file path. Throws like load_transfer_function / preset_transfer_function.
 TransferFunction transfer_function_from_arg(const std::string& arg, ValueRange default_domain,
                                             int entries = kDefaultTfEntries);
 

@@ -14,6 +14,9 @@ namespace tsp {
 
 namespace {
 
+// Steps (chunks) written by one H5Dwrite of a brick series.
+constexpr hsize_t kWriteBatchSteps = 256;
+
 using h5::Handle;
 
 // Throws IoError naming the file and the object when an HDF5 call failed.
@@ -120,17 +123,20 @@ void TspWriter::write_brick_series(int brick, std::span<const std::uint16_t> cod
   Impl& w = *impl_;
   const hsize_t per_step = hsize_t(w.shape[0]) * w.shape[1] * w.shape[2];
   assert(codes.size() == per_step * w.steps);
-  (void)per_step;
   std::lock_guard lock(hdf5_mutex());
-  hsize_t start[5] = {hsize_t(brick), 0, 0, 0, 0};
-  hsize_t count[5] = {1, hsize_t(w.steps), hsize_t(w.shape[2]), hsize_t(w.shape[1]),
-                      hsize_t(w.shape[0])};
   Handle fspace(H5Dget_space(w.data.get()));
-  H5Sselect_hyperslab(fspace.get(), H5S_SELECT_SET, start, nullptr, count, nullptr);
-  Handle mspace(H5Screate_simple(5, count, nullptr));
-  check_status(H5Dwrite(w.data.get(), H5T_NATIVE_UINT16, mspace.get(), fspace.get(), H5P_DEFAULT,
-                        codes.data()),
-               w.path, "brick " + std::to_string(brick));
+  // In batches of steps: HDF5 keeps per-chunk bookkeeping for every chunk of one write (and
+  // holds on to it in its free lists), so one write of a long series would cost memory per step.
+  for (hsize_t t0 = 0; t0 < hsize_t(w.steps); t0 += kWriteBatchSteps) {
+    const hsize_t n = std::min<hsize_t>(kWriteBatchSteps, hsize_t(w.steps) - t0);
+    hsize_t start[5] = {hsize_t(brick), t0, 0, 0, 0};
+    hsize_t count[5] = {1, n, hsize_t(w.shape[2]), hsize_t(w.shape[1]), hsize_t(w.shape[0])};
+    H5Sselect_hyperslab(fspace.get(), H5S_SELECT_SET, start, nullptr, count, nullptr);
+    Handle mspace(H5Screate_simple(5, count, nullptr));
+    check_status(H5Dwrite(w.data.get(), H5T_NATIVE_UINT16, mspace.get(), fspace.get(),
+                          H5P_DEFAULT, codes.data() + t0 * per_step),
+                 w.path, "brick " + std::to_string(brick));
+  }
 }
 
 void TspWriter::finish(const TspTree& tree, const TspMetadata& meta) {

@@ -1,0 +1,36 @@
+#include "render/frame_report.h"
+
+#include <cmath>
+
+#include "tsp/core/error.h"
+
+namespace tspgl {
+
+namespace {
+std::string num(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+}  // namespace
+
+void validate(const RenderSettings& s) {
+  if (!(s.spacing >= kMinSliceSpacing && s.spacing <= kMaxSliceSpacing))
+    throw tsp::UsageError("--spacing " + num(s.spacing) + ": expected a slice spacing in [" +
+                          num(kMinSliceSpacing) + ", " + num(kMaxSliceSpacing) + "] voxels");
+  for (auto [name, v] : {std::pair{"--spatial-tol", s.tol.spatial},
+                         std::pair{"--temporal-tol", s.tol.temporal}})
+    if (!(v >= 0) || !std::isfinite(v))
+      throw tsp::UsageError(std::string(name) + " " + num(v) + ": expected a finite tolerance >= 0");
+  if (s.upload_budget < 0 || s.upload_budget > kMaxBudgetBytes)
+    throw tsp::UsageError("upload budget " + std::to_string(s.upload_budget) +
+                          " bytes: expected 0 (no limit) to " + std::to_string(kMaxBudgetBytes));
+}
+
+void validate_budget(std::int64_t bytes, const std::string& what) {
+  if (bytes < 1 || bytes > kMaxBudgetBytes)
+    throw tsp::UsageError(what + " " + std::to_string(bytes) + " bytes: expected 1 to " +
+                          std::to_string(kMaxBudgetBytes) + " bytes (1 TiB)");
+}
+
+}  // namespace tspgl
