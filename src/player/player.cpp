@@ -83,8 +83,11 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
     throw tsp::UsageError("--step " + std::to_string(options.step) + ": " + options.tsp_path +
                           " has steps 0.." + std::to_string(tree.time().steps() - 1));
   step = options.step;
-  if (!(options.upload_budget_mb >= 0))
-    throw tsp::UsageError("--upload-budget must not be negative (MiB per frame, 0: no limit)");
+  if (!(options.upload_budget_mb >= 0) ||
+      !(options.upload_budget_mb <= double(tspgl::kMaxBudgetBytes >> 20)))
+    throw tsp::UsageError("--upload-budget " + std::to_string(options.upload_budget_mb) +
+                          ": expected 0 (no limit) to " +
+                          std::to_string(tspgl::kMaxBudgetBytes >> 20) + " MiB per frame");
   upload_budget_mb = options.upload_budget_mb;
   if (!options.script.empty()) script_ = load_script(options.script);
   if (!options.screenshot.empty()) {

@@ -1,6 +1,7 @@
 #include "player/script.h"
 
 #include <charconv>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -11,6 +12,9 @@ namespace tspplayer {
 namespace {
 
 using Kind = ScriptAction::Kind;
+
+// Largest upload budget a script may set (1 TiB, as the renderer accepts).
+constexpr double kMaxUploadBudgetMib = 1 << 20;
 
 struct LineParser {
   const std::string& origin;
@@ -64,7 +68,7 @@ ScriptAction parse_line(const LineParser& p) {
     p.expect_args(1, "speed STEPS_PER_SECOND");
     a.kind = Kind::speed;
     a.value = p.number(1, "speed STEPS_PER_SECOND");
-    if (!(a.value > 0)) p.fail("speed must be positive");
+    if (!(a.value > 0) || !std::isfinite(a.value)) p.fail("speed must be positive and finite");
   } else if (cmd == "loop") {
     p.expect_args(1, "loop on|off");
     a.kind = Kind::loop;
@@ -78,7 +82,8 @@ ScriptAction parse_line(const LineParser& p) {
     a.kind = Kind::tolerance;
     a.value = p.number(1, "tolerance SPATIAL TEMPORAL");
     a.value2 = p.number(2, "tolerance SPATIAL TEMPORAL");
-    if (a.value < 0 || a.value2 < 0) p.fail("tolerances must not be negative");
+    if (!(a.value >= 0) || !(a.value2 >= 0) || !std::isfinite(a.value) || !std::isfinite(a.value2))
+      p.fail("tolerances must be finite and not negative");
   } else if (cmd == "metric") {
     p.expect_args(1, "metric scalar|reference|approximate|perceptual");
     a.kind = Kind::metric;
@@ -99,18 +104,21 @@ ScriptAction parse_line(const LineParser& p) {
     p.expect_args(1, "upload-budget MIB");
     a.kind = Kind::upload_budget;
     a.value = p.number(1, "upload-budget MIB");
-    if (a.value < 0) p.fail("upload-budget must not be negative (0: no limit)");
+    if (!(a.value >= 0) || a.value > kMaxUploadBudgetMib)
+      p.fail("upload-budget must be 0 (no limit) to " + std::to_string(int(kMaxUploadBudgetMib)) +
+             " MiB");
   } else if (cmd == "view") {
     p.expect_args(2, "view AZIMUTH ELEVATION");
     a.kind = Kind::view;
     a.value = p.number(1, "view AZIMUTH ELEVATION");
     a.value2 = p.number(2, "view AZIMUTH ELEVATION");
+    if (!std::isfinite(a.value)) p.fail("azimuth must be finite");
     if (!(a.value2 > -90 && a.value2 < 90)) p.fail("elevation must be in (-90, 90) degrees");
   } else if (cmd == "zoom") {
     p.expect_args(1, "zoom FACTOR");
     a.kind = Kind::zoom;
     a.value = p.number(1, "zoom FACTOR");
-    if (!(a.value > 0)) p.fail("zoom must be positive");
+    if (!(a.value > 0) || !std::isfinite(a.value)) p.fail("zoom must be positive and finite");
   } else if (cmd == "projection") {
     p.expect_args(1, "projection ortho|persp");
     a.kind = Kind::projection;

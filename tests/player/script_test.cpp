@@ -75,10 +75,10 @@ TEST(PlayerScript, ErrorsNameTheLineAndWhatWasExpected) {
   EXPECT_NE(error_of("metric fancy").find("unknown metric 'fancy'"), std::string::npos);
   EXPECT_NE(error_of("speed 0").find("speed must be positive"), std::string::npos);
   EXPECT_NE(error_of("speed nan").find("speed must be positive"), std::string::npos);
-  EXPECT_NE(error_of("tolerance -1 0").find("must not be negative"), std::string::npos);
+  EXPECT_NE(error_of("tolerance -1 0").find("finite and not negative"), std::string::npos);
   EXPECT_NE(error_of("view 0 90").find("elevation must be in (-90, 90)"), std::string::npos);
   EXPECT_NE(error_of("zoom -2").find("zoom must be positive"), std::string::npos);
-  EXPECT_NE(error_of("upload-budget -1").find("must not be negative"), std::string::npos);
+  EXPECT_NE(error_of("upload-budget -1").find("0 (no limit) to"), std::string::npos);
   EXPECT_NE(error_of("wait-frames -1").find("not an integer >= 0"), std::string::npos);
   EXPECT_NE(error_of("projection iso").find("expected persp or ortho"), std::string::npos);
   EXPECT_NE(error_of("speed 1e999").find("s.txt:1"), std::string::npos);

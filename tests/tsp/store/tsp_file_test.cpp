@@ -348,5 +348,91 @@ TEST(TspFile, ProgressCallbackCanCancelInEitherPass) {
   }
 }
 
+// Hostile files: sizes beyond the limits, impossible statistics and counts are refused on open
+// (before anything is allocated for them), and a corrupted brick is reported by its index and
+// step through the chunks' Fletcher-32 checksums.
+TEST(TspFile, HugeDimsOrStepsAreRefusedBeforeAllocating) {
+  for (auto [attr, values] : {std::pair{"dims", std::vector<int>{2000000000, 2000000000, 9}},
+                              std::pair{"steps", std::vector<int>{2000000000}}}) {
+    auto path = built_file();
+    edit_file(path, [&, attr = attr, values = values](hid_t f) {
+      hid_t a = H5Aopen(f, attr, H5P_DEFAULT);
+      H5Awrite(a, H5T_NATIVE_INT, values.data());
+      H5Aclose(a);
+    });
+    expect_format_error(path, "expected");
+  }
+}
+
+TEST(TspFile, ImpossibleStatisticsAndCountsAreRefused) {
+  struct Damage {
+    const char* dataset;
+    double value;
+    const char* needle;
+  };
+  for (const Damage& d : {Damage{"/stats/mean", NAN, "statistics of TSP node 3"},
+                          Damage{"/stats/std", -1.0, "statistics of TSP node 3"},
+                          Damage{"/stats/min", 1e9, "statistics of TSP node 3"},
+                          Damage{"/stats/spatial_error", -0.5, "statistics of TSP node 3"}}) {
+    auto path = built_file();
+    edit_file(path, [&](hid_t f) {
+      hid_t ds = H5Dopen2(f, d.dataset, H5P_DEFAULT);
+      ASSERT_GE(ds, 0) << d.dataset;
+      hid_t space = H5Dget_space(ds);
+      hsize_t start = 3, count = 1;
+      H5Sselect_hyperslab(space, H5S_SELECT_SET, &start, nullptr, &count, nullptr);
+      hid_t mem = H5Screate_simple(1, &count, nullptr);
+      H5Dwrite(ds, H5T_NATIVE_DOUBLE, mem, space, H5P_DEFAULT, &d.value);
+      H5Sclose(mem);
+      H5Sclose(space);
+      H5Dclose(ds);
+    });
+    expect_format_error(path, d.needle);
+  }
+  auto path = built_file();
+  edit_file(path, [](hid_t f) {
+    hid_t a = H5Aopen(f, "nonfinite_count", H5P_DEFAULT);
+    const std::int64_t v = -4;
+    H5Awrite(a, H5T_NATIVE_INT64, &v);
+    H5Aclose(a);
+  });
+  expect_format_error(path, "nonfinite_count");
+}
+
+TEST(TspFile, CorruptedBrickIsReportedByIndexAndStep) {
+  auto path = built_file({21, 14, 9}, 5, 8);
+  // Flip one byte in the middle of the chunk of brick 2 at step 3.
+  haddr_t addr = 0;
+  hsize_t size = 0;
+  edit_file(path, [&](hid_t f) {
+    hid_t ds = H5Dopen2(f, "/bricks/data", H5P_DEFAULT);
+    hsize_t offset[5] = {2, 3, 0, 0, 0};
+    unsigned mask = 0;
+    ASSERT_GE(H5Dget_chunk_info_by_coord(ds, offset, &mask, &addr, &size), 0);
+    H5Dclose(ds);
+  });
+  ASSERT_GT(size, 8u);
+  {
+    std::fstream io(path, std::ios::in | std::ios::out | std::ios::binary);
+    io.seekg(std::streamoff(addr + size / 2));
+    char c = 0;
+    io.read(&c, 1);
+    c = char(c ^ 0x5a);
+    io.seekp(std::streamoff(addr + size / 2));
+    io.write(&c, 1);
+  }
+  auto f = TspFile::open(path);  // metadata is intact
+  std::vector<std::uint16_t> codes(std::size_t(f->tree().octree().brick_samples(2).count()));
+  EXPECT_NO_THROW(f->read_brick(2, 2, codes));
+  try {
+    f->read_brick(2, 3, codes);
+    FAIL() << "a corrupted brick was read";
+  } catch (const FormatError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("brick 2 at step 3"), std::string::npos) << m;
+    EXPECT_NE(m.find("checksum"), std::string::npos) << m;
+  }
+}
+
 }  // namespace
 }  // namespace tsp
