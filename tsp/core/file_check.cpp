@@ -10,6 +10,8 @@
 namespace tsp {
 
 void require_regular_file(const std::string& path, const std::string& what) {
+  if (path.find('\0') != std::string::npos)
+    throw IoError("a " + what + " name holds a NUL byte, which no file name can hold");
   struct stat st {};
   if (::stat(path.c_str(), &st) != 0) {
     if (errno == ENOENT || errno == ENOTDIR)

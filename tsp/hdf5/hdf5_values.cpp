@@ -16,13 +16,7 @@ constexpr const char* kUnreadable =
 // Values per read batch: bounds the temporary double buffer (32 MiB) whatever the volume size.
 constexpr hsize_t kBatchValues = hsize_t(1) << 22;
 
-bool is_supported_numeric(hid_t type) {
-  H5T_class_t cls = H5Tget_class(type);
-  std::size_t size = H5Tget_size(type);
-  if (cls == H5T_INTEGER) return size == 1 || size == 2 || size == 4 || size == 8;
-  if (cls == H5T_FLOAT) return size == 4 || size == 8;
-  return false;
-}
+bool is_supported_numeric(hid_t type) { return is_standard_numeric_type(type); }
 
 // Strips the padding HDF5 fixed-length strings may carry.
 std::string trim_padding(std::string s) {
@@ -33,6 +27,20 @@ std::string trim_padding(std::string s) {
 }
 
 }  // namespace
+
+bool is_standard_numeric_type(hid_t type) {
+  // HDF5's own conversions trust a type's bit layout (precision, offset, exponent and mantissa
+  // fields), and a crafted layout makes them read out of bounds: only the standard layouts are
+  // converted.
+  const hid_t standard[] = {H5T_STD_I8LE,  H5T_STD_I8BE,  H5T_STD_U8LE,    H5T_STD_U8BE,
+                            H5T_STD_I16LE, H5T_STD_I16BE, H5T_STD_U16LE,   H5T_STD_U16BE,
+                            H5T_STD_I32LE, H5T_STD_I32BE, H5T_STD_U32LE,   H5T_STD_U32BE,
+                            H5T_STD_I64LE, H5T_STD_I64BE, H5T_STD_U64LE,   H5T_STD_U64BE,
+                            H5T_IEEE_F32LE, H5T_IEEE_F32BE, H5T_IEEE_F64LE, H5T_IEEE_F64BE};
+  for (hid_t t : standard)
+    if (H5Tequal(type, t) > 0) return true;
+  return false;
+}
 
 std::string describe_h5_type(hid_t type) {
   std::string bits = std::to_string(H5Tget_size(type) * 8) + "-bit ";

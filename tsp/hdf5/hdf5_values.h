@@ -38,6 +38,11 @@ struct VolumeSlab {
   int trailing = 0;
 };
 
+/// True when type is one of HDF5's standard integer (8–64 bit, signed or not) or IEEE float
+/// (32/64 bit) layouts, in either byte order: the only numeric types converted (a crafted bit
+/// layout crashes HDF5's conversion). Never throws.
+bool is_standard_numeric_type(hid_t type);
+
 /// True when every value of dataset's element type is a float32 exactly (float32, ints of ≤ 16 bits).
 bool converts_exactly_to_float(hid_t dataset);
 

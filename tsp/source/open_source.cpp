@@ -39,6 +39,8 @@ bool has_hdf5_signature(const std::string& path) {
 
 std::unique_ptr<VolumeSource> open_source(const std::string& input, const SourceOptions& options) {
   if (input.empty()) throw UsageError("no input given");
+  if (input.find('\0') != std::string::npos)
+    throw UsageError("the input name holds a NUL byte, which no file name can hold");
   std::error_code ec;
   const bool exists = std::filesystem::exists(input, ec);
   // A pattern names many files; an existing file whose name merely contains '%' or '*' is

@@ -183,11 +183,17 @@ bool is_file_pattern(const std::string& input) {
 }
 
 std::vector<std::string> expand_file_pattern(const std::string& pattern) {
+  if (pattern.find('\0') != std::string::npos)
+    throw UsageError("a file pattern holds a NUL byte, which no file name can hold");
   std::vector<std::string> files;
   if (auto ip = parse_index_pattern(pattern)) {
     int first = file_exists(ip->format(0)) ? 0 : 1;
-    for (int i = first; i < INT32_MAX && file_exists(ip->format(i)); ++i)
+    for (int i = first; i < INT32_MAX && file_exists(ip->format(i)); ++i) {
+      if (int(files.size()) >= kMaxSteps)
+        throw FormatError(pattern + ": matches more than " + std::to_string(kMaxSteps) +
+                          " files, the most time steps a series may have");
       files.push_back(ip->format(i));
+    }
     if (files.empty())
       throw IoError(pattern + ": no file matches (tried " + ip->format(0) + " and " +
                     ip->format(1) + ")");
@@ -199,6 +205,10 @@ std::vector<std::string> expand_file_pattern(const std::string& pattern) {
     for (std::size_t i = 0; rc == 0 && i < g.gl_pathc; ++i)
       if (file_exists(g.gl_pathv[i])) files.push_back(g.gl_pathv[i]);
     globfree(&g);
+    if (files.size() > std::size_t(kMaxSteps))
+      throw FormatError(pattern + ": matches " + std::to_string(files.size()) +
+                        " files, more than the " + std::to_string(kMaxSteps) +
+                        " time steps a series may have");
     if (files.empty()) throw IoError(pattern + ": no file matches the pattern");
     natural_sort(files);
     return files;

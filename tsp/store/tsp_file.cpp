@@ -9,6 +9,7 @@
 #include "tsp/core/error.h"
 #include "tsp/hdf5/hdf5_handle.h"
 #include "tsp/hdf5/hdf5_lock.h"
+#include "tsp/hdf5/hdf5_values.h"
 #include "tsp/store/tsp_layout.h"
 
 namespace tsp {
@@ -74,9 +75,8 @@ class Reader {
   std::vector<T> attr_numbers(const char* name, hid_t mem_type, hssize_t count) const {
     Handle a = open_attr(name);
     Handle type(H5Aget_type(a.get()));
-    H5T_class_t c = H5Tget_class(type.get());
-    if (c != H5T_INTEGER && c != H5T_FLOAT)
-      fail(std::string("attribute ") + name, "expected numbers");
+    if (!io::is_standard_numeric_type(type.get()))
+      fail(std::string("attribute ") + name, "expected numbers of a standard integer or float type");
     Handle space(H5Aget_space(a.get()));
     hssize_t n = H5Sget_simple_extent_npoints(space.get());
     if (n != count)
@@ -97,9 +97,10 @@ class Reader {
       fail(std::string("dataset ") + name,
            "expected shape " + shape_text(shape) + ", found " + shape_text(found));
     Handle type(H5Dget_type(ds.get()));
-    if (H5Tget_class(type.get()) != cls)
+    if (H5Tget_class(type.get()) != cls || !io::is_standard_numeric_type(type.get()))
       fail(std::string("dataset ") + name,
-           cls == H5T_FLOAT ? "expected floating-point values" : "expected integers");
+           cls == H5T_FLOAT ? "expected floating-point values of a standard type"
+                            : "expected integers of a standard type");
     return ds;
   }
 

@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# Builds everything with AddressSanitizer + UndefinedBehaviorSanitizer (gcc, -DTSP_SANITIZE=ON)
+# into build-asan/ and runs the whole suite there. Any sanitizer report fails the test it
+# happens in. Leak reports are suppressed only for third-party libraries (Mesa, X, HDF5): see
+# scripts/sanitizers/lsan.supp, one comment per entry.
+#   bash scripts/test-sanitizers.sh [ctest args, e.g. -R HostileInput]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install-deps.sh
+cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTSP_SANITIZE=ON \
+  -DTSP_BUILD_BENCH=OFF >/dev/null
+cmake --build build-asan -j"$(nproc)"
+export ASAN_OPTIONS="abort_on_error=1:detect_stack_use_after_return=1:strict_string_checks=1"
+export LSAN_OPTIONS="suppressions=$PWD/scripts/sanitizers/lsan.supp:print_suppressions=0"
+export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+cd build-asan
+if [ -z "${DISPLAY:-}" ] && [ -z "${WAYLAND_DISPLAY:-}" ] && command -v xvfb-run >/dev/null; then
+  exec xvfb-run -a -s "-screen 0 1280x1024x24" ctest --output-on-failure -j"$(nproc)" --timeout 1200 "$@"
+fi
+ctest --output-on-failure -j"$(nproc)" --timeout 1200 "$@"
