@@ -11,6 +11,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "gl/gl_error.h"
+#include "player/imgui_gl_load.h"
 #include "player/player_app.h"
 #include "tsp/core/error.h"
 #include "tsp/core/stopwatch.h"
@@ -110,6 +112,9 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
   ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini in the user's directory
   ImGui::StyleColorsDark();
   ImGui_ImplGlfw_InitForOpenGL(static_cast<GLFWwindow*>(ctx->native_window()), true);
+  if (const char* missing = tsp_imgui_gl_load(ctx->proc_address_function()))
+    throw tsp::GlError(std::string("the GL entry point ") + missing +
+                       " needed by the UI is missing");
   ImGui_ImplOpenGL3_Init("#version 330 core");
   imgui_ = true;
   update_tol_max();
