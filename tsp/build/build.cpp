@@ -76,10 +76,10 @@ InputScan scatter_steps(VolumeSource& source, const Octree& octree, ScratchFile&
   };
   for (int t = 0; t < source.steps(); ++t) {
     const std::vector<float>& vol = prefetch.next();
-    // Each worker takes one contiguous half of the step's bricks.
-    parallel_for(n, (n + kScatterWorkers - 1) / kScatterWorkers, kScatterWorkers,
-                 [&](int w, std::int64_t first, std::int64_t last) {
-                   for (auto b = first; b < last; ++b)
+    // Worker k takes bricks k, k + kScatterWorkers, …: both write side by side.
+    parallel_for(kScatterWorkers, 1, kScatterWorkers,
+                 [&](int w, std::int64_t first, std::int64_t) {
+                   for (auto b = first; b < n; b += kScatterWorkers)
                      scatter(vol, t, int(b), bricks[std::size_t(w)]);
                  });
     prefetch.release();
