@@ -121,6 +121,16 @@ TEST_P(BuildStats, StructuredFieldMatchesBruteForce) {
 
 INSTANTIATE_TEST_SUITE_P(BrickSizes, BuildStats, ::testing::Values(4, 8, 32));
 
+// A series long enough (1100 steps: 2199 time nodes) for the depth-first statistics pass that
+// bounds memory: every node still matches brute force.
+TEST(Build, LongSeriesDepthFirstPassMatchesBruteForce) {
+  MemorySource src = random_source({7, 5, 4}, 1100, -2.0f, 5.0f, 11);
+  BuildOptions opt;
+  opt.brick_size = 4;
+  auto f = build(src, opt);
+  check_all_nodes(src, f->tree(), 5.0);
+}
+
 TEST(Build, LargeOffsetKeepsTheVariance) {
   // Σv² − (Σv)²/N in float would lose every digit of this variance.
   MemorySource src = random_source({20, 20, 20}, 4, 1e6f, 1e6f + 8.f, 3);
