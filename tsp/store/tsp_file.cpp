@@ -45,30 +45,10 @@ class Reader {
     return a;
   }
 
+  // The one string-attribute reader (hdf5/hdf5_values); a missing one is an error here.
   std::string attr_string(const char* name) const {
-    Handle a = open_attr(name);
-    Handle type(H5Aget_type(a.get()));
-    if (H5Tget_class(type.get()) != H5T_STRING)
-      fail(std::string("attribute ") + name, "expected a string");
-    Handle space(H5Aget_space(a.get()));
-    if (H5Sget_simple_extent_npoints(space.get()) != 1)
-      fail(std::string("attribute ") + name, "expected one string");
-    if (H5Tis_variable_str(type.get()) > 0) {
-      Handle mem(H5Tcopy(H5T_C_S1));
-      H5Tset_size(mem.get(), H5T_VARIABLE);
-      H5Tset_cset(mem.get(), H5Tget_cset(type.get()));
-      char* p = nullptr;
-      if (H5Aread(a.get(), mem.get(), &p) < 0) fail(std::string("attribute ") + name, "unreadable");
-      std::string s = p ? p : "";
-      H5free_memory(p);
-      return s;
-    }
-    std::size_t n = H5Tget_size(type.get());
-    std::string s(n, '\0');
-    if (H5Aread(a.get(), type.get(), s.data()) < 0)
-      fail(std::string("attribute ") + name, "unreadable");
-    s.resize(s.find('\0') == std::string::npos ? n : s.find('\0'));
-    return s;
+    if (!has_attr(name)) fail(std::string("attribute ") + name, "missing");
+    return *io::string_attribute(file_, name, path_);
   }
 
   template <class T>
