@@ -26,20 +26,6 @@ inline double cov_rule(double sigma, double mean, double width) {
   return zero ? 0.0 : r;
 }
 
-// Per-voxel temporal mean and M2 of one chunk, one pair of buffers per time-tree level and side:
-// the time tree is walked depth first, so only the path being combined is held (O(depth · K)
-// memory, not O(T · K)).
-struct ChunkWork {
-  std::vector<std::array<std::vector<double>, 2>> mean, m2;  // [level][side][voxel]
-  std::vector<double> cov;                                   // one node's per-voxel COV terms
-  explicit ChunkWork(int depth)
-      : mean(std::size_t(depth) + 1), m2(std::size_t(depth) + 1), cov(kChunkVoxels) {
-    for (auto* buffers : {&mean, &m2})
-      for (auto& level : *buffers)
-        for (auto& side : level) side.assign(kChunkVoxels, 0.0);
-  }
-};
-
 // Σ v[0..n) in a fixed order with independent lanes: fast, and the same on every run.
 double lane_sum(const double* v, int n) {
   constexpr int kLanes = 4;
@@ -51,144 +37,131 @@ double lane_sum(const double* v, int n) {
   return (acc[0] + acc[1]) + (acc[2] + acc[3]);
 }
 
-struct ChunkPass {
+// One chunk at one time step: the voxels' values into mean (m2 = 0), and the chunk's moments by
+// the two-pass formula.
+inline Moments leaf_moments(const float* step, const std::vector<std::int64_t>& idx, int count,
+                            double* __restrict mean, double* __restrict m2) {
+  double sum = 0;
+  float lo = step[idx[0]], hi = lo;
+  for (int c = 0; c < count; ++c) {
+    const float v = step[idx[c]];
+    mean[c] = v;
+    m2[c] = 0;
+    sum += v;
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+  }
+  const double cm = sum / count;
+  double dev = 0;
+  for (int c = 0; c < count; ++c) dev += (mean[c] - cm) * (mean[c] - cm);
+  return Moments{double(count), cm, dev, lo, hi};
+}
+
+// (The buffers never overlap: __restrict lets the loops vectorize without alias checks.)
+// An internal time node from its children's per-voxel moments (spans of nl and nr steps): its
+// per-voxel mean and M2 by Chan's formula, and the sum of its voxels' COV terms for e_st.
+// Element-wise, so the vectorizer can run it (the sum over voxels follows separately).
+inline double combine_voxels(const double* __restrict ml, const double* __restrict m2l,
+                             const double* __restrict mr, const double* __restrict m2r, double nl,
+                             double nr, int count, double width, double* __restrict mean,
+                             double* __restrict m2, double* __restrict cov) {
+  const double m = nl + nr, wr = nr / m, k = nl * nr / m;
+  for (int c = 0; c < count; ++c) {
+    const double d = mr[c] - ml[c];
+    mean[c] = ml[c] + d * wr;
+    m2[c] = m2l[c] + m2r[c] + d * d * k;
+    cov[c] = cov_rule(std::sqrt(m2[c] / m), mean[c], width);
+  }
+  return lane_sum(cov, count);
+}
+
+// What both passes read: the brick's series, the chunk's voxels, the output accumulators.
+struct Chunk {
   const TimeTree& time;
   std::span<const float> series;
   std::int64_t step_stride;
   const std::vector<std::int64_t>& idx;
   int count;
   double width;
-  ChunkWork& w;
   std::span<NodeAccum> out;
 
-  // Time node id into w's buffers of (level, side); returns the chunk's moments over its span
-  // and adds them (and, for internal nodes, the per-voxel COV sum for e_st) to out[id].
-  Moments visit(int id, int level, int side) {
-    double* mean = w.mean[std::size_t(level)][std::size_t(side)].data();
-    double* m2 = w.m2[std::size_t(level)][std::size_t(side)].data();
-    Moments node;
-    if (time.is_leaf(id)) {
-      // One step: per-voxel values, and the chunk's moments by the two-pass formula.
-      const float* step = series.data() + std::size_t(time.span(id).t0) * step_stride;
-      double sum = 0;
-      float lo = step[idx[0]], hi = lo;
-      for (int c = 0; c < count; ++c) {
-        const float v = step[idx[c]];
-        mean[c] = v;
-        m2[c] = 0;
-        sum += v;
-        lo = std::min(lo, v);
-        hi = std::max(hi, v);
-      }
-      const double cm = sum / count;
-      double dev = 0;
-      for (int c = 0; c < count; ++c) dev += (mean[c] - cm) * (mean[c] - cm);
-      node = Moments{double(count), cm, dev, lo, hi};
-    } else {
-      // Per-voxel temporal moments by Chan's formula from the two children, their COV sum for
-      // e_st, and the chunk's moments merged from the children (the same pairwise identity).
-      const int l = time.left(id), r = time.right(id);
-      const Moments left = visit(l, level + 1, 0), right = visit(r, level + 1, 1);
-      const double nl = time.span(l).length(), nr = time.span(r).length(), m = nl + nr;
-      const double wr = nr / m, k = nl * nr / m;
-      const double* ml = w.mean[std::size_t(level) + 1][0].data();
-      const double* m2l = w.m2[std::size_t(level) + 1][0].data();
-      const double* mr = w.mean[std::size_t(level) + 1][1].data();
-      const double* m2r = w.m2[std::size_t(level) + 1][1].data();
-      double* cov = w.cov.data();
-      // Element-wise, so the vectorizer can run it (the sum over voxels follows separately).
-      for (int c = 0; c < count; ++c) {
-        const double d = mr[c] - ml[c];
-        mean[c] = ml[c] + d * wr;
-        m2[c] = m2l[c] + m2r[c] + d * d * k;
-        cov[c] = cov_rule(std::sqrt(m2[c] / m), mean[c], width);
-      }
-      node = left;
-      node.merge(right);
-      out[std::size_t(id)].cov_sum += lane_sum(cov, count);
-    }
-    out[std::size_t(id)].moments.merge(node);
-    out[std::size_t(id)].voxels += count;
-    return node;
-  }
+  const float* step(int t) const { return series.data() + std::size_t(t) * step_stride; }
+  double length(int id) const { return time.span(id).length(); }
 };
 
-// The same statistics with every time node's per-voxel buffers held at once, bottom-up in id
-// order: faster (contiguous passes the vectorizer runs well) while those buffers stay small.
-// Per-voxel temporal mean and M2 of one chunk for every time node: [node][voxel].
-struct FlatWork {
-  std::vector<double> mean, m2;
-  std::vector<double> cov;    // one time node's per-voxel COV terms
+// Flat pass: every time node's per-voxel buffers held at once ([node][voxel]), leaves first, then
+// internal nodes bottom-up in id order (breadth-first ids put children after their parent).
+// Faster (contiguous passes), while the buffers stay small.
+struct FlatPass {
+  std::vector<double> mean, m2, cov;
   std::vector<Moments> node;  // the chunk's moments per time node
-  explicit FlatWork(int node_count)
+  explicit FlatPass(int node_count)
       : mean(std::size_t(node_count) * kChunkVoxels),
         m2(mean.size()),
         cov(kChunkVoxels),
-        node(node_count) {}
+        node(std::size_t(node_count)) {}
+
+  void run(const Chunk& ch) {
+    auto at = [](std::vector<double>& v, int id) {
+      return v.data() + std::size_t(id) * kChunkVoxels;
+    };
+    for (int t = 0; t < ch.time.steps(); ++t) {
+      const int leaf = ch.time.leaf_of(t);
+      node[std::size_t(leaf)] =
+          leaf_moments(ch.step(t), ch.idx, ch.count, at(mean, leaf), at(m2, leaf));
+    }
+    for (int id = ch.time.size() - 1; id >= 0; --id) {
+      if (ch.time.is_leaf(id)) continue;
+      const int l = ch.time.left(id), r = ch.time.right(id);
+      ch.out[std::size_t(id)].cov_sum +=
+          combine_voxels(at(mean, l), at(m2, l), at(mean, r), at(m2, r), ch.length(l), ch.length(r),
+                         ch.count, ch.width, at(mean, id), at(m2, id), cov.data());
+      node[std::size_t(id)] = node[std::size_t(l)];
+      node[std::size_t(id)].merge(node[std::size_t(r)]);
+    }
+    for (int id = 0; id < ch.time.size(); ++id) {
+      ch.out[std::size_t(id)].moments.merge(node[std::size_t(id)]);
+      ch.out[std::size_t(id)].voxels += ch.count;
+    }
+  }
 };
 
-void process_chunk_flat(const TimeTree& time, std::span<const float> series, std::int64_t step_stride,
-                   const std::vector<std::int64_t>& idx, int count, double width, FlatWork& w,
-                   std::span<NodeAccum> out) {
-  const int K = kChunkVoxels;
-  // Leaves, one step each: per-voxel values, and the chunk's moments by the two-pass formula.
-  for (int t = 0; t < time.steps(); ++t) {
-    const int leaf = time.leaf_of(t);
-    double* mean = w.mean.data() + std::size_t(leaf) * K;
-    double* m2 = w.m2.data() + std::size_t(leaf) * K;
-    const float* step = series.data() + std::size_t(t) * step_stride;
-    double sum = 0;
-    float lo = step[idx[0]], hi = lo;
-    for (int c = 0; c < count; ++c) {
-      const float v = step[idx[c]];
-      mean[c] = v;
-      m2[c] = 0;
-      sum += v;
-      lo = std::min(lo, v);
-      hi = std::max(hi, v);
-    }
-    const double cm = sum / count;
-    double dev = 0;
-    for (int c = 0; c < count; ++c) dev += (mean[c] - cm) * (mean[c] - cm);
-    w.node[leaf] = Moments{double(count), cm, dev, lo, hi};
+// Depth-first pass: one pair of buffers per time-tree level and side, so only the path being
+// combined is held (O(depth · K) memory, not O(T · K)), for long series.
+struct DepthFirstPass {
+  std::vector<std::array<std::vector<double>, 2>> mean, m2;  // [level][side][voxel]
+  std::vector<double> cov;
+  explicit DepthFirstPass(int depth)
+      : mean(std::size_t(depth) + 1), m2(std::size_t(depth) + 1), cov(kChunkVoxels) {
+    for (auto* buffers : {&mean, &m2})
+      for (auto& level : *buffers)
+        for (auto& side : level) side.assign(kChunkVoxels, 0.0);
   }
-  // Internal time nodes bottom-up (breadth-first ids put children after their parent): per-voxel
-  // temporal moments by Chan's formula, their COV sum for e_st, and the chunk's moments merged
-  // from the two children (the same pairwise identity, exact for pooled groups).
-  for (int id = time.size() - 1; id >= 0; --id) {
-    if (time.is_leaf(id)) continue;
-    const int l = time.left(id), r = time.right(id);
-    const double nl = time.span(l).length(), nr = time.span(r).length(), m = nl + nr;
-    const double wr = nr / m, k = nl * nr / m;
-    double* mean = w.mean.data() + std::size_t(id) * K;
-    double* m2 = w.m2.data() + std::size_t(id) * K;
-    const double* ml = w.mean.data() + std::size_t(l) * K;
-    const double* m2l = w.m2.data() + std::size_t(l) * K;
-    const double* mr = w.mean.data() + std::size_t(r) * K;
-    const double* m2r = w.m2.data() + std::size_t(r) * K;
-    double* cov = w.cov.data();
-    // Element-wise, so the vectorizer can run it (the sum over voxels follows separately).
-    for (int c = 0; c < count; ++c) {
-      const double d = mr[c] - ml[c];
-      mean[c] = ml[c] + d * wr;
-      m2[c] = m2l[c] + m2r[c] + d * d * k;
-      cov[c] = cov_rule(std::sqrt(m2[c] / m), mean[c], width);
-    }
-    w.node[id] = w.node[l];
-    w.node[id].merge(w.node[r]);
-    out[id].cov_sum += lane_sum(cov, count);
-  }
-  for (int id = 0; id < time.size(); ++id) {
-    out[id].moments.merge(w.node[id]);
-    out[id].voxels += count;
-  }
-}
 
-void process_chunk(const TimeTree& time, std::span<const float> series, std::int64_t step_stride,
-                   const std::vector<std::int64_t>& idx, int count, double width, ChunkWork& w,
-                   std::span<NodeAccum> out) {
-  ChunkPass{time, series, step_stride, idx, count, width, w, out}.visit(0, 0, 0);
-}
+  void run(const Chunk& ch) { visit(ch, 0, 0, 0); }
+
+  // Time node id into the buffers of (level, side); returns the chunk's moments over its span
+  // and adds them (and, for internal nodes, the COV sum for e_st) to out[id].
+  Moments visit(const Chunk& ch, int id, int level, int side) {
+    const auto lv = std::size_t(level), sd = std::size_t(side);
+    Moments node;
+    if (ch.time.is_leaf(id)) {
+      node = leaf_moments(ch.step(ch.time.span(id).t0), ch.idx, ch.count, mean[lv][sd].data(),
+                          m2[lv][sd].data());
+    } else {
+      const int l = ch.time.left(id), r = ch.time.right(id);
+      node = visit(ch, l, level + 1, 0);
+      node.merge(visit(ch, r, level + 1, 1));
+      ch.out[std::size_t(id)].cov_sum +=
+          combine_voxels(mean[lv + 1][0].data(), m2[lv + 1][0].data(), mean[lv + 1][1].data(),
+                         m2[lv + 1][1].data(), ch.length(l), ch.length(r), ch.count, ch.width,
+                         mean[lv][sd].data(), m2[lv][sd].data(), cov.data());
+    }
+    ch.out[std::size_t(id)].moments.merge(node);
+    ch.out[std::size_t(id)].voxels += ch.count;
+    return node;
+  }
+};
 
 }  // namespace
 
@@ -202,15 +175,23 @@ void brick_time_stats(const TimeTree& time, const Box& samples, const Box& own,
 
   // Below kFlatBufferBytes of per-node buffers the flat pass is faster; above it (long series)
   // the depth-first pass keeps memory at O(depth) per worker. Both give the same bits.
-  const bool flat = std::size_t(time.size()) * kChunkVoxels * 2 * sizeof(double) <= kFlatBufferBytes;
-  std::optional<FlatWork> flat_work;
-  std::optional<ChunkWork> work;
+  const bool flat =
+      std::size_t(time.size()) * kChunkVoxels * 2 * sizeof(double) <= kFlatBufferBytes;
+  std::optional<FlatPass> flat_pass;
+  std::optional<DepthFirstPass> deep_pass;
   if (flat)
-    flat_work.emplace(time.size());
+    flat_pass.emplace(time.size());
   else
-    work.emplace(time.depth());
+    deep_pass.emplace(time.depth());
   std::vector<std::int64_t> idx(kChunkVoxels);
   int count = 0;
+  auto run_chunk = [&] {
+    const Chunk ch{time, series, stride, idx, count, range_width, out};
+    if (flat)
+      flat_pass->run(ch);
+    else
+      deep_pass->run(ch);
+  };
   const int sx = samples.size(0), sy = samples.size(1);
   for (int z = own.lo[2]; z < own.hi[2]; ++z)
     for (int y = own.lo[1]; y < own.hi[1]; ++y) {
@@ -219,20 +200,12 @@ void brick_time_stats(const TimeTree& time, const Box& samples, const Box& own,
       for (int x = own.lo[0]; x < own.hi[0]; ++x) {
         idx[count++] = row + (x - samples.lo[0]);
         if (count == kChunkVoxels) {
-          if (flat)
-            process_chunk_flat(time, series, stride, idx, count, range_width, *flat_work, out);
-          else
-            process_chunk(time, series, stride, idx, count, range_width, *work, out);
+          run_chunk();
           count = 0;
         }
       }
     }
-  if (count > 0) {
-    if (flat)
-      process_chunk_flat(time, series, stride, idx, count, range_width, *flat_work, out);
-    else
-      process_chunk(time, series, stride, idx, count, range_width, *work, out);
-  }
+  if (count > 0) run_chunk();
 }
 
 }  // namespace tsp
