@@ -1,6 +1,7 @@
 #include "render/frame_report.h"
 
 #include <cmath>
+#include <cstdio>
 
 #include "tsp/core/error.h"
 

@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "support/paths.h"
+#include "support/reader_formula.h"
 #include "tsp/core/error.h"
 
 namespace {
@@ -16,12 +17,7 @@ using tspplayer::parse_script;
 using Kind = tspplayer::ScriptAction::Kind;
 
 std::string error_of(const std::string& text) {
-  try {
-    parse_script(text, "s.txt");
-  } catch (const tsp::FormatError& e) {
-    return e.what();
-  }
-  return "";
+  return tsptest::error_of<tsp::FormatError>([&] { parse_script(text, "s.txt"); });
 }
 
 TEST(PlayerScript, ParsesEveryAction) {

@@ -10,13 +10,13 @@ std::string to_string(const Dims& d) {
 
 void check_grid(std::int64_t x, std::int64_t y, std::int64_t z, std::int64_t steps,
                 const std::string& where) {
-  const std::string grid = std::to_string(x) + "x" + std::to_string(y) + "x" + std::to_string(z);
+  auto grid = [&] { return std::to_string(x) + "x" + std::to_string(y) + "x" + std::to_string(z); };
   for (std::int64_t e : {x, y, z})
     if (e < 1 || e > kMaxGridEdge)
-      throw FormatError(where + ": grid " + grid + ", expected every edge in [1, " +
+      throw FormatError(where + ": grid " + grid() + ", expected every edge in [1, " +
                         std::to_string(kMaxGridEdge) + "] samples");
   if (x * y * z > kMaxStepSamples)  // each ≤ 2^16: no overflow
-    throw FormatError(where + ": grid " + grid + " holds " + std::to_string(x * y * z) +
+    throw FormatError(where + ": grid " + grid() + " holds " + std::to_string(x * y * z) +
                       " samples per step, expected at most " + std::to_string(kMaxStepSamples));
   if (steps < 1 || steps > kMaxSteps)
     throw FormatError(where + ": " + std::to_string(steps) + " time steps, expected 1 to " +

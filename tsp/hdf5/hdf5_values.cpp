@@ -16,8 +16,6 @@ constexpr const char* kUnreadable =
 // Values per read batch: bounds the temporary double buffer (32 MiB) whatever the volume size.
 constexpr hsize_t kBatchValues = hsize_t(1) << 22;
 
-bool is_supported_numeric(hid_t type) { return is_standard_numeric_type(type); }
-
 // Strips the padding HDF5 fixed-length strings may carry.
 std::string trim_padding(std::string s) {
   std::size_t nul = s.find('\0');
@@ -75,7 +73,7 @@ std::string describe_h5_type(hid_t type) {
 void require_numeric_dataset(hid_t dataset, const std::string& where) {
   h5::Handle type(H5Dget_type(dataset));
   if (!type) throw FormatError(where + ": cannot read the element type");
-  if (!is_supported_numeric(type.get()))
+  if (!is_standard_numeric_type(type.get()))
     throw FormatError(where + ": element type is " + describe_h5_type(type.get()) +
                       ", expected an 8/16/32/64-bit integer or a 32/64-bit float");
 }
@@ -87,7 +85,7 @@ std::optional<std::vector<double>> numeric_attribute(hid_t obj, const std::strin
   h5::Handle type(attr ? H5Aget_type(attr.get()) : H5I_INVALID_HID);
   h5::Handle space(attr ? H5Aget_space(attr.get()) : H5I_INVALID_HID);
   if (!attr || !type || !space) throw FormatError(where + ": attribute " + name + " is unreadable");
-  if (!is_supported_numeric(type.get()))
+  if (!is_standard_numeric_type(type.get()))
     throw FormatError(where + ": attribute " + name + " is " + describe_h5_type(type.get()) +
                       ", expected a number");
   hssize_t n = H5Sget_simple_extent_npoints(space.get());

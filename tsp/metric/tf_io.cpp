@@ -173,10 +173,20 @@ const std::vector<std::pair<std::string, std::vector<PresetKnot>>>& presets() {
   return p;
 }
 
-}  // namespace
+TransferFunction parse_document(const json& doc, const std::string& origin, int entries) {
+  if (doc.is_object() && doc.contains("points")) return parse_ours(doc, origin, entries);
+  if (doc.is_object() && doc.contains("RGBPoints")) return parse_paraview(doc, origin, entries);
+  if (doc.is_array()) {
+    // A ParaView preset file is a list of presets; we take the first colour map in it.
+    for (const json& p : doc)
+      if (p.is_object() && p.contains("RGBPoints")) return parse_paraview(p, origin, entries);
+    throw FormatError(origin + ": a list without any ParaView preset holding \"RGBPoints\"");
+  }
+  throw FormatError(origin +
+                    ": neither our transfer function (keys \"range\", \"points\") nor a ParaView "
+                    "preset (key \"RGBPoints\")");
+}
 
-namespace {
-TransferFunction parse_document(const json& doc, const std::string& origin, int entries);
 }  // namespace
 
 TransferFunction parse_transfer_function(const std::string& text, const std::string& origin,
@@ -197,24 +207,6 @@ TransferFunction parse_transfer_function(const std::string& text, const std::str
 TransferFunction load_transfer_function(const std::string& path, int entries) {
   return parse_transfer_function(slurp(path), path, entries);
 }
-
-namespace {
-
-TransferFunction parse_document(const json& doc, const std::string& origin, int entries) {
-  if (doc.is_object() && doc.contains("points")) return parse_ours(doc, origin, entries);
-  if (doc.is_object() && doc.contains("RGBPoints")) return parse_paraview(doc, origin, entries);
-  if (doc.is_array()) {
-    // A ParaView preset file is a list of presets; we take the first colour map in it.
-    for (const json& p : doc)
-      if (p.is_object() && p.contains("RGBPoints")) return parse_paraview(p, origin, entries);
-    throw FormatError(origin + ": a list without any ParaView preset holding \"RGBPoints\"");
-  }
-  throw FormatError(origin +
-                    ": neither our transfer function (keys \"range\", \"points\") nor a ParaView "
-                    "preset (key \"RGBPoints\")");
-}
-
-}  // namespace
 
 void save_transfer_function(const TransferFunction& tf, const std::string& path) {
   json doc;

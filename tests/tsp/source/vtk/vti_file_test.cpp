@@ -16,21 +16,12 @@
 namespace {
 
 using tsp::io::VtiFile;
+using tsptest::error_of;
 using tsptest::kFixtureCellDims;
 using tsptest::kFixtureDims;
 
 std::string fixture(const std::string& name) {
   return (tsptest::test_data_dir() / "vti" / name).string();
-}
-
-template <class E>
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const E& e) {
-    return e.what();
-  }
-  return "";
 }
 
 TEST(VtiFile, EveryEncodingDecodesToTheFormula) {
