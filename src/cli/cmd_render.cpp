@@ -15,7 +15,8 @@ namespace {
 
 struct RenderArgs {
   std::string file, tf = "preset:sparse", out, steps, size = "640x480", view = "30,20";
-  std::string metric = "approximate", cache = "on";
+  std::string metric = "approximate", cache = "on", compositing = "rays", flat = "exact",
+              span_step = "middle", preintegrated = "off";
   double spatial = 0, temporal = 0, spacing = tspgl::kDefaultSliceSpacing;
   int passes = 1;
   double texture_budget_mb = double(tspgl::kDefaultTextureBudget) / (1 << 20);
@@ -39,6 +40,10 @@ void run(const RenderArgs& a) {
   o.camera.projection = a.perspective ? tsp::Projection::perspective : tsp::Projection::orthographic;
   o.passes = a.passes;
   o.spacing = a.spacing;
+  o.compositing = tspgl::parse_compositing(a.compositing, "--compositing");
+  o.exact_flat = a.flat == "exact";
+  o.span_step = tsp::parse_span_step(a.span_step, "--span-step");
+  o.preintegrated = a.preintegrated == "on";
   if (a.out.empty()) throw tsp::UsageError("-o: the output directory must not be empty");
   if (!(a.texture_budget_mb > 0) || !(a.texture_budget_mb <= double(tspgl::kMaxBudgetBytes >> 20)))
     throw tsp::UsageError("--texture-budget " + std::to_string(a.texture_budget_mb) +
@@ -92,6 +97,18 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
   c->add_flag("--perspective", a->perspective, "Perspective projection (default orthographic)");
   c->add_option("--passes", a->passes, "Play the steps this many times (default 1)");
   c->add_option("--spacing", a->spacing, "Slice spacing in voxels (default 0.5)");
+  c->add_option("--compositing", a->compositing,
+                 "Textured boxes as rays (ray cast, one fragment per pixel) or slices (default rays)")
+      ->check(CLI::IsMember({"rays", "boxes", "slices"}));
+  c->add_option("--flat", a->flat,
+                "Coherent nodes: exact (one box, exact exponential) or slices (default exact)")
+      ->check(CLI::IsMember({"exact", "slices"}));
+  c->add_option("--preintegrated", a->preintegrated,
+                "Pre-integrated TF lookup over sample pairs: on|off (default off)")
+      ->check(CLI::IsMember({"on", "off"}));
+  c->add_option("--span-step", a->span_step,
+                "Step whose bricks texture a span: middle or first (the paper's; default middle)")
+      ->check(CLI::IsMember({"first", "middle"}));
   c->add_option("--texture-budget", a->texture_budget_mb, "Texture cache budget in MiB (default 512)");
   c->callback([a] { run(*a); });
 });

@@ -25,6 +25,7 @@ namespace tspgl {
   X(PFNGLREADBUFFERPROC, ReadBuffer)                             \
   X(PFNGLREADPIXELSPROC, ReadPixels)                             \
   X(PFNGLDEPTHMASKPROC, DepthMask)                               \
+  X(PFNGLCULLFACEPROC, CullFace)                                 \
   X(PFNGLCOLORMASKPROC, ColorMask)                               \
   /* blending */                                                 \
   X(PFNGLBLENDFUNCPROC, BlendFunc)                               \
@@ -70,6 +71,7 @@ namespace tspgl {
   X(PFNGLUNIFORM1FPROC, Uniform1f)                               \
   X(PFNGLUNIFORM2FPROC, Uniform2f)                               \
   X(PFNGLUNIFORM3FPROC, Uniform3f)                               \
+  X(PFNGLUNIFORM3IPROC, Uniform3i)                               \
   X(PFNGLUNIFORM4FPROC, Uniform4f)                               \
   X(PFNGLUNIFORM3FVPROC, Uniform3fv)                             \
   X(PFNGLUNIFORM4FVPROC, Uniform4fv)                             \

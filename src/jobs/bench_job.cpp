@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 
 #include "jobs/bench_report.h"
 #include "jobs/image_probe.h"
@@ -66,23 +67,58 @@ void check_options(const BenchOptions& o) {
   if (o.search_steps < 1) throw tsp::UsageError("--search-steps must be at least 1");
   if (o.search_iterations < 0) throw tsp::UsageError("--search-iterations must not be negative");
   if (o.passes < 1) throw tsp::UsageError("--passes must be at least 1");
+  if (o.head_to_head_rounds < 1) throw tsp::UsageError("--rounds must be at least 1");
+  for (const KnobGrid* g : {&o.baseline_grid, &o.tsp_grid}) {
+    if (g->compositings.empty() || g->spacings.empty())
+      throw tsp::UsageError("bench: the knob search needs at least one compositing and spacing");
+    for (double sp : g->spacings) {
+      RenderSettings s;
+      s.spacing = sp;
+      validate(s);
+    }
+  }
+  RenderSettings s;
+  s.spacing = o.reference_spacing;
+  validate(s);
+  s.spacing = o.table3.spacing;
+  validate(s);
 }
 
-// One transfer function's share of the bench: searches, then Table 3, then Table 4, then plots.
+// The timed run of knobs k (metric for the TSP renderer) under job's other options.
+RenderJobOptions with_knobs(RenderJobOptions job, const Knobs& k, tsp::Metric metric) {
+  job.baseline = k.baseline;
+  job.compositing = k.compositing;
+  job.spacing = k.spacing;
+  job.tol = {k.tol, k.tol};
+  job.preintegrated = k.preintegrated;
+  job.metric = metric;
+  job.cache = tsp::CachePolicy::on;
+  return job;
+}
+
+// One transfer function's share of the bench: reference pictures, Table 3, the knob searches
+// and Table 4, then plots.
 class TfBench {
  public:
   TfBench(const BenchOptions& o, const tsp::TspFile& file, const tsp::TransferFunction& tf,
           const std::string& tf_arg, RenderJobOptions job, const std::vector<int>& sample,
           BenchReport& report, const std::function<void(const std::string&)>& tick)
       : o_(o), file_(file), tf_(tf), tf_arg_(tf_arg), tag_(tf_tag(tf_arg)), job_(std::move(job)),
-        sample_(sample), report_(report), tick_(tick) {
+        sample_(sample), report_(report), tick_(tick), probe_(file, tf, o.camera, sample) {
     job_.tf = tf_arg;
   }
 
   void run(const fs::path& dir) {
-    search();
+    tick_(tag_ + ": reference pictures and metrics");
+    Knobs ref;
+    ref.baseline = true;
+    ref.compositing = Compositing::slices;
+    ref.spacing = o_.reference_spacing;
+    reference_ = probe_.render(ref, nullptr).images;
+    for (tsp::Metric m : o_.metrics)
+      metrics_.push_back(tsp::compute_errors(m, file_.tree(), tf_, &file_, 0));
     zero_tolerance();
-    targets();
+    targets(ref);
     plots(dir);
   }
 
@@ -96,58 +132,53 @@ class TfBench {
   const std::vector<int>& sample_;
   BenchReport& report_;
   const std::function<void(const std::string&)>& tick_;
-  // Per metric: the tolerances found, the zero-tolerance picture's ΔE, its cache-on frame time.
-  std::vector<std::vector<FoundTolerance>> found_;
+  ImageProbe probe_;
+  std::vector<tsp::Image> reference_;
+  std::vector<tsp::MetricResult> metrics_;
   std::vector<double> zero_de_, zero_ms_cache_on_;
-  Timing baseline_;
   std::vector<tsp::PlotSeries> frame_series_, error_series_;
 
-  // The tolerance searches, on their own context (run_render_job makes its own current).
-  void search() {
-    const std::size_t n = o_.metrics.size();
-    found_.assign(n, {});
-    zero_de_.assign(n, 0);
-    ImageProbe probe(file_, tf_, o_.camera, sample_);
-    const std::vector<tsp::Image> baseline = probe.render_baseline();
-    for (std::size_t m = 0; m < n; ++m) {
-      const std::string name = tsp::to_string(o_.metrics[m]);
-      tick_(tag_ + ": search " + name);
-      const tsp::MetricResult metric =
-          tsp::compute_errors(o_.metrics[m], file_.tree(), tf_, &file_, 0);
-      json evals = json::array();
-      auto error_at = [&](double tol) {
-        const double de = mean_delta_e(probe.render(metric, tol), baseline);
-        evals.push_back({{"tolerance", tol}, {"mean_delta_e", de}});
-        if (tol == 0) zero_de_[m] = de;
-        return de;
-      };
-      const ErrorSpan span = error_span(metric);
-      found_[m] = search_tolerances(error_at, span, o_.targets, o_.search_iterations);
-      report_.add_search(tf_arg_, name, span, evals);
-    }
+  ProbeResult probe(const Knobs& k, const tsp::MetricResult* metric, json* log) {
+    const ProbeFrames f = probe_.render(k, metric);
+    const ProbeResult r{mean_delta_e(f.images, reference_), f.median_ms};
+    if (log)
+      log->push_back({{"render_options", render_options(k, tsp::Metric::approximate)},
+                      {"compositing", to_string(k.compositing)},
+                      {"spacing", k.spacing},
+                      {"tolerance", k.tol},
+                      {"preintegrated", k.preintegrated},
+                      {"mean_delta_e", r.mean_de},
+                      {"probe_ms", r.ms}});
+    return r;
   }
 
-  // Table 3: the baseline and every metric at zero tolerance, cache off and on.
+  // Table 3: the baseline and every metric at zero tolerance, cache off and on, at the table3
+  // knobs; ΔE of the zero-tolerance pictures against the baseline's at the same knobs.
   void zero_tolerance() {
     tick_(tag_ + ": baseline");
-    job_.baseline = true;
-    baseline_ = time_run(job_);
-    report_.add_baseline(tf_arg_, baseline_);
-    job_.baseline = false;
+    Knobs k = o_.table3;
+    k.baseline = true;
+    k.tol = 0;
+    const std::vector<tsp::Image> base = probe_.render(k, nullptr).images;
+    const Timing baseline = time_run(with_knobs(job_, k, tsp::Metric::approximate));
+    report_.add_baseline(tf_arg_, baseline);
     frame_series_.push_back(
-        {"baseline", {baseline_.steps.begin(), baseline_.steps.end()}, baseline_.step_ms});
+        {"baseline", {baseline.steps.begin(), baseline.steps.end()}, baseline.step_ms});
+    k.baseline = false;
     zero_ms_cache_on_.assign(o_.metrics.size(), 0);
+    zero_de_.assign(o_.metrics.size(), 0);
     for (std::size_t m = 0; m < o_.metrics.size(); ++m) {
       const std::string name = tsp::to_string(o_.metrics[m]);
-      job_.metric = o_.metrics[m];
+      const std::vector<tsp::Image> zero = probe_.render(k, &metrics_[m]).images;
+      const double de = mean_delta_e(zero, base);
+      zero_de_[m] = mean_delta_e(zero, reference_);
       for (tsp::CachePolicy c : {tsp::CachePolicy::off, tsp::CachePolicy::on}) {
         tick_(tag_ + ": zero tolerance, " + name + ", cache " + cache_name(c));
-        job_.cache = c;
-        job_.tol = {0, 0};
-        const Timing t = time_run(job_);
+        RenderJobOptions job = with_knobs(job_, k, o_.metrics[m]);
+        job.cache = c;
+        const Timing t = time_run(job);
         if (c == tsp::CachePolicy::on) zero_ms_cache_on_[m] = t.median_ms;
-        report_.add_zero_tolerance(tf_arg_, name, cache_name(c), t, baseline_.median_ms,
-                                   zero_de_[m]);
+        report_.add_zero_tolerance(tf_arg_, name, cache_name(c), t, baseline.median_ms, de);
         frame_series_.push_back({"tsp " + name + ", cache " + cache_name(c),
                                  {t.steps.begin(), t.steps.end()},
                                  t.step_ms});
@@ -155,28 +186,95 @@ class TfBench {
     }
   }
 
-  // Table 4: the found tolerances, timed cache off and on.
-  void targets() {
-    error_series_.push_back({"baseline", {0.0}, {baseline_.median_ms}, false, true});
-    for (std::size_t m = 0; m < o_.metrics.size(); ++m) {
-      const std::string name = tsp::to_string(o_.metrics[m]);
-      job_.metric = o_.metrics[m];
-      // The zero-tolerance point starts each curve.
-      tsp::PlotSeries pts{name + " (cache on)", {zero_de_[m]}, {zero_ms_cache_on_[m]}, true, true};
-      for (const FoundTolerance& f : found_[m]) {
-        job_.tol = {f.tol, f.tol};
-        std::array<Timing, 2> t;
-        for (tsp::CachePolicy c : {tsp::CachePolicy::off, tsp::CachePolicy::on}) {
-          tick_(tag_ + ": target dE " + fmt(f.target) + ", " + name + ", cache " + cache_name(c));
-          job_.cache = c;
-          t[c == tsp::CachePolicy::on] = time_run(job_);
-        }
-        report_.add_target(tf_arg_, name, f, t[0], t[1], baseline_.median_ms);
-        pts.x.push_back(f.mean_de);
-        pts.y.push_back(t[1].median_ms);
-      }
-      error_series_.push_back(pts);
+  // The fastest of the first timed_candidates candidates, timed for real (cache on).
+  std::optional<std::pair<KnobCandidate, Timing>> fastest(const std::vector<KnobCandidate>& c,
+                                                          tsp::Metric metric,
+                                                          const std::string& label) {
+    std::optional<std::pair<KnobCandidate, Timing>> best;
+    const std::size_t n = std::min(c.size(), std::size_t(std::max(1, o_.timed_candidates)));
+    for (std::size_t i = 0; i < n; ++i) {
+      tick_(tag_ + ": " + label + " candidate " + std::to_string(i + 1) + ": " +
+            render_options(c[i].knobs, metric));
+      const Timing t = time_run(with_knobs(job_, c[i].knobs, metric));
+      if (!best || t.median_ms < best->second.median_ms) best = {{c[i], t}};
     }
+    return best;
+  }
+
+  // Table 4: per target, the fastest non-TSP configuration and per metric the fastest TSP one
+  // within the target against the full-quality pictures.
+  void targets(const Knobs& ref) {
+    const std::size_t nt = o_.targets.size(), nm = o_.metrics.size();
+    tick_(tag_ + ": baseline knob search");
+    json log = json::array();
+    const auto base = search_baseline_knobs(
+        [&](const Knobs& k) { return probe(k, nullptr, &log); }, o_.baseline_grid, o_.targets);
+    report_.add_search(tf_arg_, "baseline", ErrorSpan{}, log);
+    // Winners: [target][0] the baseline, [target][1 + m] metric m.
+    using Winner = std::optional<std::pair<KnobCandidate, Timing>>;
+    std::vector<std::vector<Winner>> win(nt, std::vector<Winner>(1 + nm));
+    for (std::size_t i = 0; i < nt; ++i)
+      win[i][0] = fastest(base[i], tsp::Metric::approximate,
+                          "baseline, target dE " + fmt(o_.targets[i]));
+    for (std::size_t m = 0; m < nm; ++m) {
+      const std::string name = tsp::to_string(o_.metrics[m]);
+      tick_(tag_ + ": knob search " + name);
+      json evals = json::array();
+      const ErrorSpan span = error_span(metrics_[m]);
+      const auto found = search_tsp_knobs(
+          [&](const Knobs& k) { return probe(k, &metrics_[m], &evals); }, o_.tsp_grid, span,
+          o_.targets, o_.search_iterations);
+      report_.add_search(tf_arg_, name, span, evals);
+      for (std::size_t i = 0; i < nt; ++i)
+        win[i][1 + m] = fastest(found[i], o_.metrics[m], name + ", target dE " + fmt(o_.targets[i]));
+    }
+    // Head to head: the reference and every winner timed again in turn, round after round, so
+    // that a machine slowing down or speeding up during the bench moves all of them alike; the
+    // reported times are the median over rounds of each run's median.
+    std::vector<std::vector<std::vector<double>>> rounds(nt, std::vector<std::vector<double>>(1 + nm));
+    std::vector<double> ref_rounds;
+    auto metric_of = [&](std::size_t w) { return w == 0 ? tsp::Metric::approximate : o_.metrics[w - 1]; };
+    for (int r = 0; r < o_.head_to_head_rounds; ++r) {
+      tick_(tag_ + ": head to head, round " + std::to_string(r + 1));
+      ref_rounds.push_back(time_run(with_knobs(job_, ref, tsp::Metric::approximate)).median_ms);
+      for (std::size_t i = 0; i < nt; ++i)
+        for (std::size_t w = 0; w < 1 + nm; ++w)
+          if (win[i][w]) {
+            const Timing t = time_run(with_knobs(job_, win[i][w]->first.knobs, metric_of(w)));
+            rounds[i][w].push_back(t.median_ms);
+            if (r == 0) win[i][w]->second = t;  // per-step times and class shares of one round
+          }
+    }
+    const double ref_ms = median(ref_rounds);
+    tsp::PlotSeries base_pts{"best non-TSP", {}, {}, true, true};
+    std::vector<tsp::PlotSeries> pts;
+    for (std::size_t m = 0; m < nm; ++m)
+      pts.push_back({std::string(tsp::to_string(o_.metrics[m])) + " (cache on)", {zero_de_[m]},
+                     {zero_ms_cache_on_[m]}, true, true});
+    for (std::size_t i = 0; i < nt; ++i) {
+      for (std::size_t w = 0; w < 1 + nm; ++w)
+        if (win[i][w] && !rounds[i][w].empty()) win[i][w]->second.median_ms = median(rounds[i][w]);
+      const double base_ms = win[i][0] ? win[i][0]->second.median_ms : ref_ms;
+      for (std::size_t w = 0; w < 1 + nm; ++w) {
+        const Winner& b = win[i][w];
+        report_.add_best(tf_arg_, w == 0 ? "baseline" : "tsp",
+                         w == 0 ? "" : tsp::to_string(o_.metrics[w - 1]), o_.targets[i],
+                         b ? &b->first : nullptr, b ? &b->second : nullptr, metric_of(w), base_ms,
+                         ref_ms);
+        if (!b) continue;
+        tsp::PlotSeries& p = w == 0 ? base_pts : pts[w - 1];
+        p.x.push_back(b->first.probe.mean_de);
+        p.y.push_back(b->second.median_ms);
+      }
+    }
+    error_series_.push_back(base_pts);
+    for (auto& p : pts) error_series_.push_back(p);
+  }
+
+  static double median(std::vector<double> v) {
+    if (v.empty()) return 0;
+    std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(v.size() / 2), v.end());
+    return v[v.size() / 2];
   }
 
   void plots(const fs::path& dir) {
@@ -187,9 +285,9 @@ class TfBench {
     tsp::write_svg_plot({"Frame time per step, zero tolerance (" + tf_arg_ + ", " + size + ")",
                          "time step", "frame time (ms)", frame_series_},
                         (dir / frame_svg).string());
-    tsp::write_svg_plot({"Frame time vs image error (" + tf_arg_ + ", " + size + ")",
-                         "mean dE against the baseline", "median frame time (ms), cache on",
-                         error_series_},
+    tsp::write_svg_plot({"Fastest frame within a mean dE (" + tf_arg_ + ", " + size + ")",
+                         "mean dE against the full-quality picture",
+                         "median frame time (ms), cache on", error_series_},
                         (dir / error_svg).string());
     report_.add_plot(frame_svg);
     report_.add_plot(error_svg);
@@ -213,10 +311,12 @@ json run_bench(const BenchOptions& o, const BenchProgress& progress) {
   if (ec) throw tsp::IoError(o.out_dir + ": cannot create the report directory: " + ec.message());
 
   const std::vector<int> sample = search_step_sample(o.first_step, last, o.search_steps);
-  // Runs per TF: one search per metric, the baseline, 2 zero-tolerance runs and 2 per target
-  // per metric.
+  // Phases per TF: reference, Table 3 (baseline, 2 per metric), reference timing, baseline
+  // search, one search per metric, and up to timed_candidates timed runs per target for the
+  // baseline and each metric (fewer when fewer candidates meet a target).
   const int m_count = int(o.metrics.size()), t_count = int(o.targets.size());
-  const int total = int(tfs.size()) * (1 + 2 * m_count + m_count + 2 * m_count * t_count);
+  const int total = int(tfs.size()) * (3 + 3 * m_count + o.head_to_head_rounds +
+                                       t_count * (1 + m_count) * std::max(1, o.timed_candidates));
   int done = -1;
   const std::function<void(const std::string&)> tick = [&](const std::string& phase) {
     ++done;
@@ -242,11 +342,27 @@ json run_bench(const BenchOptions& o, const BenchProgress& progress) {
   header["search_steps"] = sample;
   header["search_iterations"] = o.search_iterations;
   header["tolerance_rule"] = "spatial = temporal = tolerance";
+  header["table3_knobs"] = {{"compositing", to_string(o.table3.compositing)},
+                            {"spacing", o.table3.spacing}};
+  header["reference"] = {{"renderer", "baseline"},
+                         {"compositing", "slices"},
+                         {"spacing", o.reference_spacing}};
+  auto grid_json = [](const KnobGrid& g) {
+    json c = json::array();
+    for (Compositing m : g.compositings) c.push_back(to_string(m));
+    json pre = json::array();
+    for (bool p : g.preintegration) pre.push_back(p);
+    return json{{"compositings", c}, {"spacings", g.spacings}, {"preintegration", pre}};
+  };
+  header["baseline_grid"] = grid_json(o.baseline_grid);
+  header["tsp_grid"] = grid_json(o.tsp_grid);
+  header["timed_candidates"] = o.timed_candidates;
+  header["head_to_head_rounds"] = o.head_to_head_rounds;
   BenchReport report(std::move(header));
 
   for (std::size_t k = 0; k < tfs.size(); ++k)
     TfBench(o, *file, tfs[k], o.tfs[k], base, sample, report, tick).run(dir);
-  tick("done");
+  if (progress) progress("done", total, total);
   return report.write(dir.string());
 }
 

@@ -1,6 +1,7 @@
 // `tspplay bench` as a library call: the paper's Table 3 (zero tolerance: baseline against the
-// TSP renderer per metric, texture cache off and on), Table 4 (per target image error and
-// metric, the tolerance that reaches it, timed) and Table 5 (class shares) on any .tsp file.
+// TSP renderer per metric, texture cache off and on), Table 4 (per target image error against
+// the full-quality picture: the fastest non-TSP configuration and, per metric, the fastest TSP
+// configuration over every quality knob, timed) and Table 5 (class shares) on any .tsp file.
 // Writes table3.csv, table4.csv, table5.csv, report.json and SVG plots. See docs/bench.md.
 #pragma once
 #include <functional>
@@ -8,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "jobs/knob_search.h"
 #include "jobs/tolerance_search.h"
 #include "tsp/frame/camera.h"
 #include "tsp/metric/metric.h"
@@ -27,6 +29,15 @@ struct BenchOptions {
   int search_steps = 8;  ///< at most this many evenly spread steps are rendered per search probe
   int search_iterations = 10;  ///< bisection steps on the log-tolerance scale
   int passes = 2;             ///< timed runs play the steps this many times; the last pass counts
+  Knobs table3;               ///< Table 3's compositing and spacing (tol and baseline unused)
+  /// The full-quality picture every Table-4 error is measured against: the baseline, sliced.
+  double reference_spacing = 0.25;
+  KnobGrid baseline_grid{{Compositing::slices, Compositing::boxes, Compositing::rays},
+                         {0.25, 0.5, 0.75, 1, 1.5, 2, 3, 4, 6, 8}};  ///< non-TSP search
+  KnobGrid tsp_grid{{Compositing::slices, Compositing::boxes, Compositing::rays},
+                    {0.5, 1, 1.5, 2, 3, 4, 6, 8}};  ///< TSP search (tolerance per cell)
+  int timed_candidates = 3;   ///< fastest probes per target and renderer timed for real
+  int head_to_head_rounds = 3;  ///< rounds timing the reference and every winner in turn
 };
 
 /// Progress: a line of text describing the phase, runs done and runs total.

@@ -41,8 +41,8 @@ BenchReport::BenchReport(json header) : report_(std::move(header)) {
     report_[k] = json::array();
   t3_ << "tf,renderer,metric,cache,median_ms,first_pass_median_ms,speedup,metric_ms,"
          "mean_delta_e\n";
-  t4_ << "tf,metric,target_delta_e,tolerance,mean_delta_e,target_met,median_ms_cache_off,"
-         "median_ms_cache_on,speedup_cache_off,speedup_cache_on\n";
+  t4_ << "tf,renderer,metric,target_delta_e,render_options,compositing,spacing,tolerance,"
+         "mean_delta_e,target_met,median_ms,speedup_vs_best_baseline,speedup_vs_reference\n";
   t5_ << "tf,metric,cache,tolerance,target_delta_e,not_rendered,untextured,reused_texture,"
          "new_texture\n";
 }
@@ -83,23 +83,35 @@ void BenchReport::add_zero_tolerance(const std::string& tf, const std::string& m
   add_classes(tf, metric, cache, 0, 0, t);
 }
 
-void BenchReport::add_target(const std::string& tf, const std::string& metric,
-                             const FoundTolerance& f, const Timing& off, const Timing& on,
-                             double baseline_ms) {
-  add_classes(tf, metric, "off", f.tol, f.target, off);
-  add_classes(tf, metric, "on", f.tol, f.target, on);
-  t4_ << csv(tf) << ',' << metric << ',' << fmt(f.target) << ',' << fmt(f.tol) << ','
-      << fmt(f.mean_de) << ',' << (f.met ? 1 : 0) << ',' << fmt(off.median_ms) << ','
-      << fmt(on.median_ms) << ',' << fmt(baseline_ms / off.median_ms) << ','
-      << fmt(baseline_ms / on.median_ms) << '\n';
-  report_["table4"].push_back({{"tf", tf},
-                               {"metric", metric},
-                               {"target_delta_e", f.target},
-                               {"tolerance", f.tol},
-                               {"mean_delta_e", f.mean_de},
-                               {"target_met", f.met},
-                               {"cache_off", timing_json(off)},
-                               {"cache_on", timing_json(on)}});
+void BenchReport::add_best(const std::string& tf, const std::string& renderer,
+                           const std::string& metric, double target, const KnobCandidate* best,
+                           const Timing* t, tsp::Metric options_metric, double best_baseline_ms,
+                           double reference_ms) {
+  json r{{"tf", tf}, {"renderer", renderer}, {"metric", metric}, {"target_delta_e", target},
+         {"target_met", best != nullptr}};
+  t4_ << csv(tf) << ',' << renderer << ',' << metric << ',' << fmt(target) << ',';
+  if (!best || !t) {
+    t4_ << ",,,,,0,,,\n";
+    report_["table4"].push_back(r);
+    return;
+  }
+  const Knobs& k = best->knobs;
+  const std::string options = render_options(k, options_metric);
+  t4_ << csv(options) << ',' << to_string(k.compositing) << ',' << fmt(k.spacing) << ','
+      << fmt(k.tol) << ',' << fmt(best->probe.mean_de) << ",1," << fmt(t->median_ms) << ','
+      << fmt(best_baseline_ms / t->median_ms) << ',' << fmt(reference_ms / t->median_ms) << '\n';
+  r["render_options"] = options;
+  r["compositing"] = to_string(k.compositing);
+  r["spacing"] = k.spacing;
+  r["tolerance"] = k.tol;
+  r["mean_delta_e"] = best->probe.mean_de;
+  r["probe_ms"] = best->probe.ms;
+  r["timing"] = timing_json(*t);
+  r["median_ms"] = t->median_ms;
+  r["speedup_vs_best_baseline"] = best_baseline_ms / t->median_ms;
+  r["speedup_vs_reference"] = reference_ms / t->median_ms;
+  report_["table4"].push_back(r);
+  if (renderer == "tsp") add_classes(tf, metric, "on", k.tol, target, *t);
 }
 
 void BenchReport::add_classes(const std::string& tf, const std::string& metric, const char* cache,

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "jobs/knob_search.h"
 #include "jobs/tolerance_search.h"
 
 namespace tspgl {
@@ -37,9 +38,13 @@ class BenchReport {
   /// Table 3's zero-tolerance TSP row (and its Table-5 row).
   void add_zero_tolerance(const std::string& tf, const std::string& metric, const char* cache,
                           const Timing& t, double baseline_ms, double mean_de);
-  /// Table 4's row for one found tolerance, timed cache off and on (and their Table-5 rows).
-  void add_target(const std::string& tf, const std::string& metric, const FoundTolerance& f,
-                  const Timing& off, const Timing& on, double baseline_ms);
+  /// Table 4's row: the fastest configuration of `renderer` ("baseline" or "tsp", metric empty
+  /// for the baseline) within target, timed with the cache on (its Table-5 row too); best null
+  /// when no configuration met the target. best_baseline_ms: the fastest non-TSP time at this
+  /// target; reference_ms: the full-quality picture's.
+  void add_best(const std::string& tf, const std::string& renderer, const std::string& metric,
+                double target, const KnobCandidate* best, const Timing* t, tsp::Metric options_metric,
+                double best_baseline_ms, double reference_ms);
   /// Names a plot file written beside the report.
   void add_plot(const std::string& file);
   /// Writes table3.csv, table4.csv, table5.csv and report.json into dir, each atomically, and

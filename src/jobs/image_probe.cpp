@@ -1,5 +1,8 @@
 #include "jobs/image_probe.h"
 
+#include <algorithm>
+#include <cassert>
+
 #include "tsp/report/image_diff.h"
 
 namespace tspgl {
@@ -15,23 +18,26 @@ ImageProbe::ImageProbe(const tsp::BrickStore& bricks, const tsp::TransferFunctio
   baseline_.set_transfer_function(tf);
 }
 
-std::vector<tsp::Image> ImageProbe::render(const tsp::MetricResult& metric, double tol) {
+ProbeFrames ImageProbe::render(const Knobs& k, const tsp::MetricResult* metric) {
+  assert(k.baseline || metric);
   RenderSettings s;
-  s.tol = {tol, tol};
-  tsp::WholeTreeMetric nodes(metric);
-  std::vector<tsp::Image> out;
+  s.tol = {k.tol, k.tol};
+  s.spacing = k.spacing;
+  s.compositing = k.compositing;
+  s.preintegrated = k.preintegrated;
+  std::unique_ptr<tsp::WholeTreeMetric> nodes;
+  if (!k.baseline) nodes = std::make_unique<tsp::WholeTreeMetric>(*metric);
+  ProbeFrames out;
+  std::vector<double> ms;
   for (int t : steps_) {
-    renderer_.render(t, camera_, s, nodes);
-    out.push_back(ctx_->read_pixels());
+    const FrameReport r = k.baseline ? baseline_.render(t, camera_, s)
+                                     : renderer_.render(t, camera_, s, *nodes);
+    ms.push_back(r.ms);
+    out.images.push_back(ctx_->read_pixels());
   }
-  return out;
-}
-
-std::vector<tsp::Image> ImageProbe::render_baseline() {
-  std::vector<tsp::Image> out;
-  for (int t : steps_) {
-    baseline_.render(t, camera_, RenderSettings{});
-    out.push_back(ctx_->read_pixels());
+  if (!ms.empty()) {
+    std::nth_element(ms.begin(), ms.begin() + std::ptrdiff_t(ms.size() / 2), ms.end());
+    out.median_ms = ms[ms.size() / 2];
   }
   return out;
 }

@@ -1,10 +1,11 @@
-// The pictures a tolerance search compares: the search's sample steps rendered into images on
-// one offscreen context, by the TSP renderer at a tolerance or by the non-TSP baseline.
+// The pictures a knob search compares: the search's sample steps rendered into images on one
+// offscreen context, by the TSP renderer or the non-TSP baseline under any knobs.
 #pragma once
 #include <memory>
 #include <vector>
 
 #include "gl/context.h"
+#include "jobs/knob_search.h"
 #include "render/baseline_renderer.h"
 #include "render/volume_renderer.h"
 #include "tsp/frame/camera.h"
@@ -14,6 +15,12 @@
 
 namespace tspgl {
 
+/// A probe's pictures and its median frame time.
+struct ProbeFrames {
+  std::vector<tsp::Image> images;
+  double median_ms = 0;
+};
+
 /// Renders fixed steps of one store under one TF (cache off: the pictures do not depend on the
 /// cache, and nothing stale survives a tolerance change). Use from one thread.
 class ImageProbe {
@@ -21,10 +28,9 @@ class ImageProbe {
   /// An offscreen context of params' size. Throws tsp::GlError, tsp::UsageError (size).
   ImageProbe(const tsp::BrickStore& bricks, const tsp::TransferFunction& tf,
              const tsp::CameraParams& params, std::vector<int> steps);
-  /// The steps under metric at tolerance tol (spatial = temporal). Throws like render().
-  std::vector<tsp::Image> render(const tsp::MetricResult& metric, double tol);
-  /// The steps drawn by the non-TSP baseline. Throws like render().
-  std::vector<tsp::Image> render_baseline();
+  /// The steps under knobs k: the baseline when k.baseline, else the TSP renderer under metric
+  /// (which must then be non-null). Throws like the renderers' render().
+  ProbeFrames render(const Knobs& k, const tsp::MetricResult* metric);
 
  private:
   std::unique_ptr<GlContext> ctx_;

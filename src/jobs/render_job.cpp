@@ -41,7 +41,8 @@ json frame_json(const FrameRecord& f) {
           {"bytes_uploaded", r.bytes_uploaded},
           {"textures_resident", r.textures_resident},
           {"texture_bytes", r.texture_bytes},
-          {"polygons", r.polygons}};
+          {"polygons", r.polygons},
+          {"boxes", r.boxes}};
 }
 
 std::string step_png(const fs::path& dir, int step) {
@@ -78,6 +79,10 @@ RenderJobResult run_render_job(const RenderJobOptions& o, const RenderProgress& 
   RenderSettings settings;
   settings.tol = o.tol;
   settings.spacing = o.spacing;
+  settings.compositing = o.compositing;
+  settings.exact_flat = o.exact_flat;
+  settings.span_step = o.span_step;
+  settings.preintegrated = o.preintegrated;
   validate(settings);
   validate_budget(o.texture_budget, "--texture-budget");
   auto file = tsp::TspFile::open(o.tsp_path);
@@ -144,6 +149,10 @@ RenderJobResult run_render_job(const RenderJobOptions& o, const RenderProgress& 
     j["projection"] = o.camera.projection == tsp::Projection::perspective ? "perspective"
                                                                           : "orthographic";
     j["spacing"] = o.spacing;
+    j["compositing"] = to_string(o.compositing);
+    j["flat"] = o.exact_flat ? "exact" : "slices";
+    j["span_step"] = tsp::to_string(o.span_step);
+    j["preintegrated"] = o.preintegrated;
     j["median_ms"] = median_frame_ms(result, o.passes);
     tsp::write_file_atomically((dir / "frames.json").string(), tsp::json_text(j, 2) + "\n");
   }

@@ -27,6 +27,10 @@ struct RenderJobOptions {
   tsp::CameraParams camera;                   ///< size, view, projection
   int passes = 1;                             ///< times the step range is played
   double spacing = kDefaultSliceSpacing;      ///< slice spacing in voxels
+  Compositing compositing = Compositing::rays;  ///< --compositing: how textured boxes are drawn
+  bool exact_flat = true;                     ///< --flat exact|slices: coherent nodes as one box
+  tsp::SpanStep span_step = tsp::SpanStep::middle;  ///< --span-step first|middle
+  bool preintegrated = false;                 ///< --preintegrated on|off
   std::int64_t texture_budget = kDefaultTextureBudget;
   bool write_images = true;                   ///< PNGs (frames.json is written when out_dir is set)
 };

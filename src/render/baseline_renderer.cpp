@@ -1,5 +1,6 @@
 #include "render/baseline_renderer.h"
 
+#include <algorithm>
 #include <cstring>
 
 #include "render/brick_textures.h"
@@ -50,18 +51,34 @@ FrameReport BaselineRenderer::render(int step, const tsp::Camera& camera,
   r.textures_resident = 1;
   r.texture_bytes = r.bytes_uploaded;
 
-  const tsp::IncrementalSlicer slicer(tsp::SlicePlanes::toward(camera.direction(), settings.spacing));
   soup_.clear();
-  DrawItem item;
-  item.samples = tsp::Box{{0, 0, 0}, {d.x, d.y, d.z}};
-  slicer.slice(tsp::geometric_box(item.samples, d), soup_);
-  item.polygon_count = int(soup_.size());
-  item.texture = texture_;
-  compositor_.upload(soup_);
-  r.slicing_ms = phase.lap_ms();
-  r.polygons = std::int64_t(soup_.size());
-
-  compositor_.draw({item});
+  const tsp::Box all{{0, 0, 0}, {d.x, d.y, d.z}};
+  const BrickSlot slot{texture_, {0.5f, 0.5f, 0.5f}, {d.x, d.y, d.z}};
+  if (settings.compositing == Compositing::rays) {
+    // One "brick", the whole volume, for the same one-pass ray caster the TSP renderer uses.
+    pages_.reset({1, 1, 1}, {std::max(d.x - 1, 1), std::max(d.y - 1, 1), std::max(d.z - 1, 1)});
+    pages_.set_textured(0, slot);
+    pages_.finish();
+    r.slicing_ms = phase.lap_ms();
+    compositor_.draw_rays(pages_, d);
+    r.boxes = 1;
+  } else {
+    DrawItem item;
+    item.bounds = tsp::geometric_box(all, d);
+    item.slot = slot;
+    item.as_box = settings.compositing == Compositing::boxes;
+    if (!item.as_box) {
+      const tsp::IncrementalSlicer slicer(
+          tsp::SlicePlanes::toward(camera.direction(), settings.spacing));
+      slicer.slice(item.bounds, soup_);
+      item.polygon_count = int(soup_.size());
+      compositor_.upload(soup_);
+    }
+    r.slicing_ms = phase.lap_ms();
+    r.polygons = std::int64_t(soup_.size());
+    r.boxes = item.as_box;
+    compositor_.draw({item});
+  }
   compositor_.end_frame();
   r.draw_ms = phase.lap_ms();
   r.ms = frame.ms();

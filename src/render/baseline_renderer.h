@@ -27,7 +27,8 @@ class BaselineRenderer {
 
   /// Uses tf from the next frame on.
   void set_transfer_function(const tsp::TransferFunction& tf);
-  /// Draws step: the whole volume uploaded as one texture and sliced as one box. Class shares
+  /// Draws step: the whole volume uploaded as one texture and drawn as one box (sliced, ray cast
+  /// per box, or by the one-pass ray caster as a single brick: settings.compositing). Class shares
   /// report everything as new texture; tolerances and the upload budget are ignored. Throws
   /// tsp::Error on brick read failures, tsp::GlError on GL failures.
   FrameReport render(int step, const tsp::Camera& camera, const RenderSettings& settings);
@@ -39,6 +40,7 @@ class BaselineRenderer {
   GLuint texture_ = 0;
   std::vector<std::uint16_t> volume_;  ///< the whole step
   tsp::PolygonSoup soup_;
+  BrickPages pages_;
 };
 
 }  // namespace tspgl

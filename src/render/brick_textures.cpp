@@ -1,6 +1,11 @@
 #include "render/brick_textures.h"
 
+#include <algorithm>
 #include <cassert>
+#include <cmath>
+#include <string>
+
+#include "gl/gl_error.h"
 
 namespace tspgl {
 
@@ -18,31 +23,95 @@ GLuint create_scalar_texture(const GlApi& gl, int w, int h, int d, const std::ui
   return id;
 }
 
-GLuint BrickTextures::upload(const tsp::TextureKey& key) {
-  erase(key);
-  tsp::BrickSamples samples = bricks_.get(key.brick, key.t0);
-  const tsp::Box s = bricks_.store().tree().octree().brick_samples(key.brick);
-  const GLuint id = create_scalar_texture(gl_, s.size(0), s.size(1), s.size(2), samples->data());
-  ids_[key] = id;
-  return id;
+BrickTextures::BrickTextures(const GlApi& gl, tsp::BrickCache& bricks) : gl_(gl), bricks_(bricks) {
+  slot_ = bricks_.store().tree().octree().max_brick_samples();
 }
 
-GLuint BrickTextures::at(const tsp::TextureKey& key) const {
-  auto it = ids_.find(key);
-  assert(it != ids_.end() && "brick texture not resident");
-  return it->second;
+BrickTextures::~BrickTextures() {
+  if (atlas_) gl_.DeleteTextures(1, &atlas_);
+}
+
+std::array<int, 3> BrickTextures::slot_origin(int slot) const {
+  return {slot % grid_[0] * slot_[0], slot / grid_[0] % grid_[1] * slot_[1],
+          slot / (grid_[0] * grid_[1]) * slot_[2]};
+}
+
+void BrickTextures::write(const tsp::TextureKey& key, int slot) {
+  tsp::BrickSamples samples = bricks_.get(key.brick, key.t0);
+  const tsp::Box s = bricks_.store().tree().octree().brick_samples(key.brick);
+  const auto o = slot_origin(slot);
+  gl_.BindTexture(GL_TEXTURE_3D, atlas_);
+  gl_.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  gl_.TexSubImage3D(GL_TEXTURE_3D, 0, o[0], o[1], o[2], s.size(0), s.size(1), s.size(2), GL_RED,
+                    GL_UNSIGNED_SHORT, samples->data());
+  slots_[key] = slot;
+}
+
+void BrickTextures::grow(int min_capacity) {
+  GLint max_size = 0;
+  gl_.GetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &max_size);
+  // Near-cubic slot grids: n³ slots with n the smallest edge that holds min_capacity.
+  const int n = std::max(1, int(std::ceil(std::cbrt(double(min_capacity)) - 1e-9)));
+  std::array<int, 3> grid{n, n, n};
+  while ((grid[0] * grid[1] * (grid[2] - 1)) >= min_capacity) --grid[2];
+  for (int a = 0; a < 3; ++a)
+    if (std::int64_t(grid[a]) * slot_[a] > max_size)
+      throw tsp::GlError("brick atlas: " + std::to_string(min_capacity) + " bricks of " +
+                    std::to_string(slot_[0]) + "x" + std::to_string(slot_[1]) + "x" +
+                    std::to_string(slot_[2]) + " samples need a 3-D texture beyond " +
+                    "GL_MAX_3D_TEXTURE_SIZE " + std::to_string(max_size) +
+                    "; lower --texture-budget");
+  std::vector<tsp::TextureKey> resident;
+  resident.reserve(slots_.size());
+  for (const auto& [key, slot] : slots_) resident.push_back(key);
+  if (atlas_) gl_.DeleteTextures(1, &atlas_);
+  grid_ = grid;
+  atlas_ = create_scalar_texture(gl_, grid[0] * slot_[0], grid[1] * slot_[1], grid[2] * slot_[2],
+                                 nullptr);
+  check_gl(gl_, "allocating the brick atlas");
+  slots_.clear();
+  free_.clear();
+  for (int s = capacity() - 1; s >= int(resident.size()); --s) free_.push_back(s);
+  for (std::size_t i = 0; i < resident.size(); ++i) write(resident[i], int(i));
+}
+
+void BrickTextures::upload(const tsp::TextureKey& key) {
+  auto it = slots_.find(key);
+  if (it != slots_.end()) {
+    write(key, it->second);
+    return;
+  }
+  if (free_.empty())
+    grow(std::max(2 * capacity(), bricks_.store().tree().octree().brick_count()));
+  const int slot = free_.back();
+  free_.pop_back();
+  write(key, slot);
+}
+
+BrickSlot BrickTextures::at(const tsp::TextureKey& key) const {
+  auto it = slots_.find(key);
+  assert(it != slots_.end() && "brick texture not resident");
+  const tsp::Box s = bricks_.store().tree().octree().brick_samples(key.brick);
+  const auto o = slot_origin(it->second);
+  BrickSlot b;
+  b.texture = atlas_;
+  for (int a = 0; a < 3; ++a) {
+    b.offset[a] = float(o[a] - s.lo[a]) + 0.5f;
+    b.atlas_size[a] = grid_[a] * slot_[a];
+  }
+  return b;
 }
 
 void BrickTextures::erase(const tsp::TextureKey& key) {
-  auto it = ids_.find(key);
-  if (it == ids_.end()) return;
-  gl_.DeleteTextures(1, &it->second);
-  ids_.erase(it);
+  auto it = slots_.find(key);
+  if (it == slots_.end()) return;
+  free_.push_back(it->second);
+  slots_.erase(it);
 }
 
 void BrickTextures::clear() {
-  for (auto& [key, id] : ids_) gl_.DeleteTextures(1, &id);
-  ids_.clear();
+  for (const auto& [key, slot] : slots_) free_.push_back(slot);
+  slots_.clear();
 }
 
 }  // namespace tspgl

@@ -1,9 +1,12 @@
-// GL textures of quantized scalars: the one creator of 16-bit scalar textures (bricks and the
-// baseline's whole volume), and the GL side of the TextureCache policy — one texture object per
-// resident TextureKey, filled from the RAM brick cache.
+// GL textures of quantized scalars: the one creator of 16-bit scalar textures (the brick atlas
+// and the baseline's whole volume), and the GL side of the TextureCache policy — every resident
+// TextureKey owns one slot of a single 3-D atlas texture, filled from the RAM brick cache. One
+// atlas lets a ray caster walk from brick to brick in one pass; slicing samples the same slots.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <unordered_map>
+#include <vector>
 
 #include "gl/gl_api.h"
 #include "tsp/frame/texture_cache.h"
@@ -11,38 +14,58 @@
 
 namespace tspgl {
 
-/// A new trilinear, edge-clamped R16 3-D texture of w × h × d samples (x fastest), bound to
-/// GL_TEXTURE_3D of the active unit. The caller owns it.
+/// A new trilinear, edge-clamped R16 3-D texture of w × h × d samples (x fastest; data may be
+/// null: contents undefined), bound to GL_TEXTURE_3D of the active unit. The caller owns it.
 GLuint create_scalar_texture(const GlApi& gl, int w, int h, int d, const std::uint16_t* data);
 
-/// Brick textures by key. Use from the context's thread with it current; not copyable.
+/// Where a resident brick's samples are: sample coordinate p of the volume reads atlas texel
+/// coordinate p + offset (texel centres at +½), i.e. texture coordinate (p + offset) / size.
+struct BrickSlot {
+  GLuint texture = 0;                ///< the atlas
+  std::array<float, 3> offset{};     ///< atlas texel coordinate − sample coordinate
+  std::array<int, 3> atlas_size{};   ///< atlas extent in texels
+};
+
+/// Brick textures by key, as slots of one atlas that grows (doubling, re-uploading the residents
+/// from the brick cache) when full. Use from the context's thread with it current; not copyable.
 class BrickTextures {
  public:
-  /// Textures of the bricks in bricks (which must outlive this object).
-  BrickTextures(const GlApi& gl, tsp::BrickCache& bricks) : gl_(gl), bricks_(bricks) {}
-  /// Deletes every texture.
-  ~BrickTextures() { clear(); }
+  /// Slots for the bricks in bricks (which must outlive this object); no atlas until the first
+  /// upload.
+  BrickTextures(const GlApi& gl, tsp::BrickCache& bricks);
+  /// Deletes the atlas.
+  ~BrickTextures();
   BrickTextures(const BrickTextures&) = delete;
   BrickTextures& operator=(const BrickTextures&) = delete;
 
-  /// Reads key's brick at key.t0 through the brick cache and (re)creates its texture. Throws
-  /// what the brick store throws.
-  GLuint upload(const tsp::TextureKey& key);
-  /// The texture of a resident key (asserts it is resident).
-  GLuint at(const tsp::TextureKey& key) const;
-  /// True when key has a texture.
-  bool contains(const tsp::TextureKey& key) const { return ids_.contains(key); }
-  /// Deletes key's texture, if any.
+  /// Reads key's brick at key.t0 through the brick cache into a slot (its own if resident).
+  /// Growing the atlas moves every slot: call at() only after the frame's uploads. Throws what
+  /// the brick store throws, tsp::GlError when the atlas would exceed GL_MAX_3D_TEXTURE_SIZE.
+  void upload(const tsp::TextureKey& key);
+  /// The slot of a resident key (asserts it is resident).
+  BrickSlot at(const tsp::TextureKey& key) const;
+  /// True when key has a slot.
+  bool contains(const tsp::TextureKey& key) const { return slots_.contains(key); }
+  /// Frees key's slot, if any.
   void erase(const tsp::TextureKey& key);
-  /// Deletes every texture.
+  /// Frees every slot (keeps the atlas).
   void clear();
-  /// Number of textures alive.
-  int size() const { return int(ids_.size()); }
+  /// Number of resident keys.
+  int size() const { return int(slots_.size()); }
+  /// Slots the atlas holds now.
+  int capacity() const { return grid_[0] * grid_[1] * grid_[2]; }
 
  private:
   const GlApi& gl_;
   tsp::BrickCache& bricks_;
-  std::unordered_map<tsp::TextureKey, GLuint, tsp::TextureKeyHash> ids_;
+  std::array<int, 3> slot_{};  ///< texels per slot (the largest brick)
+  std::array<int, 3> grid_{};  ///< slots per axis
+  GLuint atlas_ = 0;
+  std::vector<int> free_;      ///< free slot indices (popped from the back)
+  std::unordered_map<tsp::TextureKey, int, tsp::TextureKeyHash> slots_;
+  void grow(int min_capacity);
+  void write(const tsp::TextureKey& key, int slot);
+  std::array<int, 3> slot_origin(int slot) const;
 };
 
 }  // namespace tspgl

@@ -15,6 +15,17 @@ std::string num(double v) {
 }
 }  // namespace
 
+const char* to_string(Compositing c) {
+  return c == Compositing::rays ? "rays" : c == Compositing::boxes ? "boxes" : "slices";
+}
+
+Compositing parse_compositing(const std::string& text, const std::string& option) {
+  if (text == "rays") return Compositing::rays;
+  if (text == "slices") return Compositing::slices;
+  if (text == "boxes") return Compositing::boxes;
+  throw tsp::UsageError(option + " " + text + ": expected slices, boxes or rays");
+}
+
 void validate(const RenderSettings& s) {
   if (!(s.spacing >= kMinSliceSpacing && s.spacing <= kMaxSliceSpacing))
     throw tsp::UsageError("--spacing " + num(s.spacing) + ": expected a slice spacing in [" +

@@ -22,6 +22,18 @@ inline constexpr double kMinSliceSpacing = 1.0 / 64, kMaxSliceSpacing = 64;
 /// Largest texture, brick or upload budget accepted (1 TiB).
 inline constexpr std::int64_t kMaxBudgetBytes = std::int64_t(1) << 40;
 
+/// How a renderer draws textured boxes (bricks, or the baseline's whole volume).
+enum class Compositing {
+  slices,  ///< view-aligned slice polygons, one blended fragment per slice (paper §4.2)
+  boxes,   ///< each brick's box ray cast on its own, one fragment per pixel per brick
+  rays,    ///< the whole volume ray cast in one pass over the brick grid, same slice planes
+};
+
+/// "slices", "boxes" or "rays".
+const char* to_string(Compositing c);
+/// Parses "slices", "boxes" or "rays"; throws tsp::UsageError naming `option` and the text.
+Compositing parse_compositing(const std::string& text, const std::string& option);
+
 /// What a frame is drawn with, besides the camera and the metric.
 struct RenderSettings {
   tsp::Tolerances tol;                       ///< spatial and temporal tolerances
@@ -31,6 +43,15 @@ struct RenderSettings {
   /// frame; the bricks over the budget are drawn flat in their node's mean colour and uploaded
   /// by later frames (FrameReport::deferred_textures > 0 until the frame is complete).
   std::int64_t upload_budget = 0;
+  Compositing compositing = Compositing::rays;  ///< how textured boxes are drawn
+  /// Coherent (flat) nodes drawn as one box composited exactly over each ray's depth through it
+  /// (true), or as flat slices every `spacing` (false: the paper's rule).
+  bool exact_flat = true;
+  /// Textured samples read a pre-integrated TF table over each pair of neighbouring samples
+  /// (tsp::preintegrate) instead of the point lookup.
+  bool preintegrated = false;
+  /// Which step's bricks texture a span longer than one step.
+  tsp::SpanStep span_step = tsp::SpanStep::middle;
 };
 
 /// Throws tsp::UsageError naming the setting, its value and the accepted range unless spacing is
@@ -54,6 +75,7 @@ struct FrameReport {
   std::int64_t textures_resident = 0;
   std::int64_t texture_bytes = 0;
   std::int64_t polygons = 0;           ///< slice polygons drawn
+  std::int64_t boxes = 0;              ///< boxes drawn whole (ray cast or exact flat)
   std::int64_t deferred_textures = 0;  ///< textures left for later frames (upload_budget)
   /// True when every texture the frame needs was drawn (nothing deferred).
   bool complete() const { return deferred_textures == 0; }

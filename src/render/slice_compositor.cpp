@@ -1,6 +1,9 @@
 #include "render/slice_compositor.h"
 
+#include <algorithm>
+#include <cmath>
 #include <glm/gtc/type_ptr.hpp>
+#include <string>
 
 #include "gl/gl_error.h"
 
@@ -9,7 +12,88 @@ namespace tspgl {
 namespace {
 constexpr int kVolumeUnit = 0;  // texture unit of the brick (or whole-volume) texture
 constexpr int kTfUnit = 1;      // texture unit of the transfer-function lookup
+constexpr int kPagesUnit = 2;   // texture unit of the ray caster's brick pages
+constexpr int kPreintegratedUnit = 3;  // texture unit of the pre-integrated TF table
+// Largest opacity per voxel a flat box is given, so that ln(1 − α) stays finite.
+constexpr float kMaxFlatAlpha = 1.f - 1e-6f;
+
+// A box program: box.vert, and the fragment shader with box_ray.glsl inserted after its
+// #version line.
+Program load_box_program(const GlApi& gl, const std::string& fragment_name) {
+  std::string frag = shader_source(fragment_name);
+  const std::size_t eol = frag.find('\n');
+  frag.insert(eol == std::string::npos ? frag.size() : eol + 1, shader_source("box_ray.glsl"));
+  return build_program(gl, "box.vert + " + fragment_name, shader_source("box.vert"), frag);
+}
+
+// The unit cube's 12 triangles, counter-clockwise seen from outside.
+std::vector<float> cube_triangles() {
+  static constexpr int kFaces[6][4] = {{0, 2, 6, 4}, {1, 5, 7, 3}, {0, 4, 5, 1},
+                                       {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 6, 7, 5}};
+  std::vector<float> v;
+  auto corner = [&](int c) { v.insert(v.end(), {float(c & 1), float(c >> 1 & 1), float(c >> 2 & 1)}); };
+  for (const auto& f : kFaces)
+    for (int i : {0, 2, 1, 0, 3, 2}) corner(f[i]);  // the faces above run clockwise
+  return v;
+}
+constexpr GLsizei kCubeVertices = 36;
 }  // namespace
+
+void BrickPages::reset(std::array<int, 3> grid, std::array<int, 3> cell) {
+  grid_ = grid;
+  cell_ = cell;
+  const std::size_t n = std::size_t(grid[0]) * grid[1] * grid[2];
+  texels_.assign(4 * n, 0.f);
+  atlas_ = {};
+}
+
+void BrickPages::set_flat(int b, const tsp::Rgba& c) {
+  const float a = std::clamp(c.a, 0.f, kMaxFlatAlpha);
+  if (a < kMinFlatAlpha) return;
+  float* f = &texels_[4 * std::size_t(b)];
+  f[0] = c.r;
+  f[1] = c.g;
+  f[2] = c.b;
+  f[3] = std::log1p(-a);
+}
+
+void BrickPages::set_textured(int b, const BrickSlot& slot) {
+  atlas_ = slot;
+  float* w = &texels_[4 * std::size_t(b)];
+  w[0] = slot.offset[0];
+  w[1] = slot.offset[1];
+  w[2] = slot.offset[2];
+  w[3] = 1.f;
+}
+
+void BrickPages::finish() {
+  // Chebyshev distance to the nearest non-empty brick, capped, by separable passes: the L∞
+  // distance is a min over axes of nested maxima, d(p) = min_z max(|Δz|, min_y max(|Δy|,
+  // min_x |Δx|)), and the cap bounds each pass's window.
+  constexpr int kCap = kMaxLeapRadius + 1;
+  const int nx = grid_[0], ny = grid_[1], nz = grid_[2];
+  const auto at = [&](int x, int y, int z) { return std::size_t(x) + nx * (y + std::size_t(ny) * z); };
+  std::vector<int> d(std::size_t(nx) * ny * nz), e(d.size());
+  for (std::size_t i = 0; i < d.size(); ++i) d[i] = texels_[4 * i + 3] != 0.f ? 0 : kCap;
+  const std::array<int, 3> stride{1, nx, nx * ny};
+  for (int a = 0; a < 3; ++a) {
+    for (int z = 0; z < nz; ++z)
+      for (int y = 0; y < ny; ++y)
+        for (int x = 0; x < nx; ++x) {
+          const int p = a == 0 ? x : a == 1 ? y : z, n = grid_[a];
+          const std::size_t i = at(x, y, z);
+          int best = d[i];
+          for (int k = 1; k < best && k < kCap; ++k) {
+            if (p - k >= 0) best = std::min(best, std::max(k, d[i - k * std::size_t(stride[a])]));
+            if (p + k < n) best = std::min(best, std::max(k, d[i + k * std::size_t(stride[a])]));
+          }
+          e[i] = best;
+        }
+    d.swap(e);
+  }
+  for (std::size_t i = 0; i < d.size(); ++i)
+    if (texels_[4 * i + 3] == 0.f) texels_[4 * i] = float(std::max(0, d[i] - 1));
+}
 
 std::array<float, 4> flat_colour(const tsp::Rgba& c, double spacing) {
   const float a = corrected_alpha(c.a, spacing);
@@ -21,23 +105,46 @@ SliceCompositor::SliceCompositor(GlContext& ctx)
       gl_(ctx.gl()),
       textured_(load_program(ctx.gl(), "slice.vert", "slice_textured.frag")),
       flat_(load_program(ctx.gl(), "slice.vert", "slice_flat.frag")),
+      box_textured_(load_box_program(ctx.gl(), "box_textured.frag")),
+      box_flat_(load_box_program(ctx.gl(), "box_flat.frag")),
+      rays_(load_box_program(ctx.gl(), "volume_ray.frag")),
       tf_(ctx.gl()),
       target_(ctx) {
+  const std::vector<float> cube = cube_triangles();
+  gl_.GenVertexArrays(1, &cube_vao_);
+  gl_.BindVertexArray(cube_vao_);
+  gl_.GenBuffers(1, &cube_vbo_);
+  gl_.BindBuffer(GL_ARRAY_BUFFER, cube_vbo_);
+  gl_.BufferData(GL_ARRAY_BUFFER, GLsizeiptr(cube.size() * sizeof(float)), cube.data(),
+                 GL_STATIC_DRAW);
+  gl_.EnableVertexAttribArray(0);
+  gl_.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
   gl_.GenVertexArrays(1, &vao_);
   gl_.BindVertexArray(vao_);
   gl_.GenBuffers(1, &vbo_);
   gl_.BindBuffer(GL_ARRAY_BUFFER, vbo_);
   gl_.EnableVertexAttribArray(0);
   gl_.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
-  textured_.use();
-  gl_.Uniform1i(textured_.uniform("volume"), kVolumeUnit);
-  gl_.Uniform1i(textured_.uniform("transfer_function"), kTfUnit);
+  for (const Program* p : {&textured_, &box_textured_, &rays_}) {
+    p->use();
+    gl_.Uniform1i(p->uniform("volume"), kVolumeUnit);
+    gl_.Uniform1i(p->uniform("transfer_function"), kTfUnit);
+    gl_.Uniform1i(p->uniform("preintegrated"), kPreintegratedUnit);
+  }
+  gl_.Uniform1i(rays_.uniform("pages"), kPagesUnit);
+  gl_.GenTextures(1, &pages_);
+  gl_.BindTexture(GL_TEXTURE_3D, pages_);
+  gl_.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  gl_.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   check_gl(gl_, "setting up the slice compositor");
 }
 
 SliceCompositor::~SliceCompositor() {
   gl_.DeleteBuffers(1, &vbo_);
   gl_.DeleteVertexArrays(1, &vao_);
+  gl_.DeleteBuffers(1, &cube_vbo_);
+  gl_.DeleteTextures(1, &pages_);
+  gl_.DeleteVertexArrays(1, &cube_vao_);
 }
 
 void SliceCompositor::set_transfer_function(const tsp::TransferFunction& tf,
@@ -57,12 +164,33 @@ void SliceCompositor::begin_frame(const tsp::Camera& camera, const RenderSetting
   gl_.BlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
   gl_.BindVertexArray(vao_);
   const glm::mat4 vp(camera.view_projection());
-  for (const Program* p : {&textured_, &flat_}) {
+  const auto dir = camera.direction(), eye = camera.eye();
+  for (const Program* p : {&textured_, &flat_, &box_textured_, &box_flat_, &rays_}) {
     p->use();
     gl_.UniformMatrix4fv(p->uniform("view_projection"), 1, GL_FALSE, glm::value_ptr(vp));
   }
-  textured_.use();
-  gl_.Uniform2f(textured_.uniform("tf_map"), tf_.scale(), tf_.offset());
+  for (const Program* p : {&box_textured_, &box_flat_, &rays_}) {
+    p->use();
+    gl_.Uniform3f(p->uniform("view_dir"), float(dir[0]), float(dir[1]), float(dir[2]));
+    gl_.Uniform3f(p->uniform("eye"), float(eye[0]), float(eye[1]), float(eye[2]));
+    gl_.Uniform1i(p->uniform("perspective"), camera.perspective() ? 1 : 0);
+  }
+  for (const Program* p : {&textured_, &box_textured_, &rays_}) {
+    p->use();
+    gl_.Uniform2f(p->uniform("tf_map"), tf_.scale(), tf_.offset());
+  }
+  for (const Program* p : {&box_textured_, &rays_}) {
+    p->use();
+    gl_.Uniform1f(p->uniform("spacing"), float(settings.spacing));
+  }
+  for (const Program* p : {&textured_, &box_textured_, &rays_}) {
+    p->use();
+    gl_.Uniform1i(p->uniform("use_preintegrated"), settings.preintegrated ? 1 : 0);
+  }
+  textured_.use();  // the back sample of a slice lies one spacing farther along the view
+  gl_.Uniform3f(textured_.uniform("back_step"), float(dir[0] * settings.spacing),
+                float(dir[1] * settings.spacing), float(dir[2] * settings.spacing));
+  if (settings.preintegrated) tf_.bind_preintegrated(kPreintegratedUnit, settings.spacing);
   tf_.bind(kTfUnit, settings.spacing);
   gl_.ActiveTexture(GL_TEXTURE0 + kVolumeUnit);
 }
@@ -84,26 +212,94 @@ void SliceCompositor::upload(const tsp::PolygonSoup& soup) {
 
 void SliceCompositor::draw(const std::vector<DrawItem>& items) {
   const Program* current = nullptr;
-  for (const DrawItem& it : items) {
-    if (it.polygon_count == 0) continue;
-    const Program* want = it.texture ? &textured_ : &flat_;
-    if (want != current) {
-      want->use();
-      current = want;
+  bool boxes = false;  // cube vertex array bound, front faces culled
+  auto use = [&](const Program& p, bool box) {
+    if (&p != current) {
+      p.use();
+      current = &p;
     }
-    if (it.texture) {
-      const tsp::Box& s = it.samples;
-      gl_.BindTexture(GL_TEXTURE_3D, it.texture);
-      gl_.Uniform3f(textured_.uniform("tex_origin"), float(s.lo[0]) - 0.5f,
-                    float(s.lo[1]) - 0.5f, float(s.lo[2]) - 0.5f);
-      gl_.Uniform3f(textured_.uniform("tex_scale"), 1.f / float(s.size(0)),
-                    1.f / float(s.size(1)), 1.f / float(s.size(2)));
+    if (box == boxes) return;
+    boxes = box;
+    gl_.BindVertexArray(box ? cube_vao_ : vao_);
+    if (box) {
+      gl_.Enable(GL_CULL_FACE);
+      gl_.CullFace(GL_FRONT);  // back faces only: one fragment per pixel, eye inside or not
     } else {
-      gl_.Uniform4fv(flat_.uniform("flat_colour"), 1, it.colour.data());
+      gl_.Disable(GL_CULL_FACE);
     }
+  };
+  auto texture_uniforms = [&](const Program& p, const DrawItem& it) {
+    const BrickSlot& s = it.slot;
+    gl_.BindTexture(GL_TEXTURE_3D, s.texture);
+    gl_.Uniform3f(p.uniform("tex_origin"), -s.offset[0], -s.offset[1], -s.offset[2]);
+    gl_.Uniform3f(p.uniform("tex_scale"), 1.f / float(s.atlas_size[0]),
+                  1.f / float(s.atlas_size[1]), 1.f / float(s.atlas_size[2]));
+    float lo[3], hi[3];
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = (float(it.bounds.lo[a]) + s.offset[a]) / float(s.atlas_size[a]);
+      hi[a] = (float(it.bounds.hi[a]) + s.offset[a]) / float(s.atlas_size[a]);
+    }
+    gl_.Uniform3f(p.uniform("tex_lo"), lo[0], lo[1], lo[2]);
+    gl_.Uniform3f(p.uniform("tex_hi"), hi[0], hi[1], hi[2]);
+  };
+  for (const DrawItem& it : items) {
+    if (it.as_box) {
+      const Program& p = it.slot.texture ? box_textured_ : box_flat_;
+      use(p, true);
+      const auto& b = it.bounds;
+      gl_.Uniform3f(p.uniform("box_lo"), float(b.lo[0]), float(b.lo[1]), float(b.lo[2]));
+      gl_.Uniform3f(p.uniform("box_hi"), float(b.hi[0]), float(b.hi[1]), float(b.hi[2]));
+      if (it.slot.texture) {
+        texture_uniforms(p, it);
+      } else {
+        const float a = std::clamp(it.flat.a, 0.f, kMaxFlatAlpha);
+        gl_.Uniform3f(p.uniform("flat_rgb"), it.flat.r, it.flat.g, it.flat.b);
+        gl_.Uniform1f(p.uniform("log_transmittance"), std::log1p(-a));
+      }
+      gl_.DrawArrays(GL_TRIANGLES, 0, kCubeVertices);
+      continue;
+    }
+    if (it.polygon_count == 0) continue;
+    const Program& p = it.slot.texture ? textured_ : flat_;
+    use(p, false);
+    if (it.slot.texture)
+      texture_uniforms(p, it);
+    else
+      gl_.Uniform4fv(flat_.uniform("flat_colour"), 1, it.colour.data());
     gl_.MultiDrawArrays(GL_TRIANGLE_FAN, firsts_.data() + it.first_polygon,
                         counts_.data() + it.first_polygon, it.polygon_count);
   }
+  if (boxes) {
+    gl_.Disable(GL_CULL_FACE);
+    gl_.BindVertexArray(vao_);
+  }
+}
+
+void SliceCompositor::draw_rays(const BrickPages& pages, tsp::Dims dims) {
+  const auto& g = pages.grid();
+  gl_.ActiveTexture(GL_TEXTURE0 + kPagesUnit);
+  gl_.BindTexture(GL_TEXTURE_3D, pages_);
+  gl_.TexImage3D(GL_TEXTURE_3D, 0, GL_RGBA32F, g[0], g[1], g[2], 0, GL_RGBA, GL_FLOAT,
+                 pages.texels().data());
+  gl_.ActiveTexture(GL_TEXTURE0 + kVolumeUnit);
+  const BrickSlot& atlas = pages.atlas();
+  gl_.BindTexture(GL_TEXTURE_3D, atlas.texture);
+  rays_.use();
+  gl_.Uniform3f(rays_.uniform("atlas_scale"), atlas.texture ? 1.f / float(atlas.atlas_size[0]) : 0.f,
+                atlas.texture ? 1.f / float(atlas.atlas_size[1]) : 0.f,
+                atlas.texture ? 1.f / float(atlas.atlas_size[2]) : 0.f);
+  const auto& c = pages.cell();
+  gl_.Uniform3f(rays_.uniform("cell"), float(c[0]), float(c[1]), float(c[2]));
+  gl_.Uniform3i(rays_.uniform("grid"), g[0], g[1], g[2]);
+  gl_.Uniform3f(rays_.uniform("box_lo"), 0.f, 0.f, 0.f);
+  gl_.Uniform3f(rays_.uniform("box_hi"), float(std::max(dims.x - 1, 1)),
+                float(std::max(dims.y - 1, 1)), float(std::max(dims.z - 1, 1)));
+  gl_.BindVertexArray(cube_vao_);
+  gl_.Enable(GL_CULL_FACE);
+  gl_.CullFace(GL_FRONT);
+  gl_.DrawArrays(GL_TRIANGLES, 0, kCubeVertices);
+  gl_.Disable(GL_CULL_FACE);
+  gl_.BindVertexArray(vao_);
 }
 
 void SliceCompositor::end_frame() {

@@ -1,12 +1,15 @@
-// Compositing view-aligned slice polygons back to front (spec §7, §9): the two slice programs
-// (textured: scalar → TF lookup; flat: one premultiplied colour), the polygon vertex buffer, the
-// TF lookup texture and the 16-bit render target. Both renderers draw through it.
+// Compositing boxes back to front (spec §7, §9): as view-aligned slice polygons (textured: scalar
+// → TF lookup; flat: one premultiplied colour) or as one box each (textured: a ray cast over the
+// same slice planes; flat: the exact exponential over the ray's depth through the box), with the
+// polygon and cube vertex buffers, the TF lookup texture and the 16-bit render target. Both
+// renderers draw through it.
 #pragma once
 #include <array>
 #include <vector>
 
 #include "gl/context.h"
 #include "gl/shader.h"
+#include "render/brick_textures.h"
 #include "render/frame_report.h"
 #include "render/render_target.h"
 #include "render/tf_texture.h"
@@ -16,12 +19,50 @@
 
 namespace tspgl {
 
-/// A run of consecutive polygons of the frame's soup drawn one way.
+/// One box of a frame, drawn as a run of consecutive polygons of the frame's soup (slices) or as
+/// the box itself (`as_box`).
 struct DrawItem {
-  int first_polygon = 0, polygon_count = 0;
-  GLuint texture = 0;   ///< 3-D scalar texture, or 0 for a flat item
-  tsp::Box samples;     ///< the samples the texture holds (textured items)
-  std::array<float, 4> colour{};  ///< premultiplied colour (flat items)
+  int first_polygon = 0, polygon_count = 0;  ///< slices
+  BrickSlot slot;       ///< where the samples are (slot.texture 0: a flat item)
+  std::array<float, 4> colour{};  ///< premultiplied colour per slice (flat slice items)
+  bool as_box = false;  ///< drawn once as a box: ray cast (textured) or exact (flat)
+  tsp::Aabb bounds;     ///< the box (box items)
+  tsp::Rgba flat;       ///< colour and opacity per voxel of depth (flat box items)
+};
+
+/// What the one-pass ray caster finds in each brick of the grid it walks (the TSP renderer's
+/// frame plan, or the baseline's single "brick", the whole volume).
+class BrickPages {
+ public:
+  /// Opacity per voxel below which a flat brick is drawn as empty (invisible at any depth the
+  /// limits allow: 1 − (1 − 1e-7)^65536 < 0.01).
+  static constexpr float kMinFlatAlpha = 1e-7f;
+  /// Largest leap radius, in bricks.
+  static constexpr int kMaxLeapRadius = 8;
+  /// Every brick empty: a grid of bricks covering `cell` sample spacings each, per axis.
+  void reset(std::array<int, 3> grid, std::array<int, 3> cell);
+  /// Brick b drawn flat in c (opacity per voxel of depth; below kMinFlatAlpha it stays empty).
+  void set_flat(int b, const tsp::Rgba& c);
+  /// Brick b sampled from slot.
+  void set_textured(int b, const BrickSlot& slot);
+  /// After the last set_*: gives every empty brick the radius of the cube of empty bricks centred
+  /// on it (Chebyshev distance to the nearest non-empty brick − 1, at most kMaxLeapRadius), which
+  /// the ray caster leaps over.
+  void finish();
+  /// Bricks per axis.
+  const std::array<int, 3>& grid() const { return grid_; }
+  /// Sample spacings one brick covers per axis.
+  const std::array<int, 3>& cell() const { return cell_; }
+  /// Per brick, four floats: textured (atlas offset xyz, 1), flat (rgb, ln(1 − α) < 0) or empty
+  /// (leap radius, 0, 0, 0).
+  const std::vector<float>& texels() const { return texels_; }
+  /// The atlas the textured bricks read (0: none).
+  const BrickSlot& atlas() const { return atlas_; }
+
+ private:
+  std::array<int, 3> grid_{}, cell_{};
+  std::vector<float> texels_;
+  BrickSlot atlas_;
 };
 
 /// The premultiplied colour of a flat slice of c for slice spacing `spacing`. Never throws.
@@ -45,8 +86,11 @@ class SliceCompositor {
   void begin_frame(const tsp::Camera& camera, const RenderSettings& settings);
   /// Uploads the frame's polygons (float vertices) to the vertex buffer.
   void upload(const tsp::PolygonSoup& soup);
-  /// Draws items in order (polygons of the last upload()).
+  /// Draws items in order (polygons of the last upload(); boxes need no upload).
   void draw(const std::vector<DrawItem>& items);
+  /// Draws the volume box of `dims` once, ray casting pages (rays compositing); the frame's
+  /// only draw call.
+  void draw_rays(const BrickPages& pages, tsp::Dims dims);
   /// Copies the target to the default framebuffer and waits for GL. Throws tsp::GlError.
   void end_frame();
   /// The context.
@@ -55,8 +99,9 @@ class SliceCompositor {
  private:
   GlContext& ctx_;
   const GlApi& gl_;
-  Program textured_, flat_;
-  GLuint vao_ = 0, vbo_ = 0;
+  Program textured_, flat_, box_textured_, box_flat_, rays_;
+  GLuint pages_ = 0;
+  GLuint vao_ = 0, vbo_ = 0, cube_vao_ = 0, cube_vbo_ = 0;
   TfTexture tf_;
   RenderTarget target_;
   std::vector<float> vertices_;

@@ -3,19 +3,29 @@
 #include <algorithm>
 #include <cmath>
 
+#include "tsp/metric/preintegration.h"
+
 namespace tspgl {
 
 float corrected_alpha(float alpha, double spacing) {
   return float(1.0 - std::pow(1.0 - std::clamp(double(alpha), 0.0, 1.0), spacing));
 }
 
-TfTexture::TfTexture(const GlApi& gl) : gl_(gl) { gl_.GenTextures(1, &id_); }
+TfTexture::TfTexture(const GlApi& gl) : gl_(gl) {
+  gl_.GenTextures(1, &id_);
+  gl_.GenTextures(1, &table_id_);
+}
 
-TfTexture::~TfTexture() { gl_.DeleteTextures(1, &id_); }
+TfTexture::~TfTexture() {
+  gl_.DeleteTextures(1, &id_);
+  gl_.DeleteTextures(1, &table_id_);
+}
 
 void TfTexture::set(const tsp::TransferFunction& tf, tsp::ValueRange quantized) {
   entries_.assign(tf.entries().begin(), tf.entries().end());
+  tf_ = tf;
   spacing_ = -1;  // re-uploaded, corrected for the spacing, by the next bind
+  table_spacing_ = -1;
   // A normalised code s means v = q.lo + s·q.width; its TF coordinate is (v − tf.lo)/tf.width.
   const tsp::ValueRange d = tf.domain();
   scale_ = quantized.width() / d.width();
@@ -39,6 +49,28 @@ void TfTexture::bind(int unit, double spacing) {
                  rgba.data());
   check_gl(gl_, "uploading the transfer function");
   spacing_ = spacing;
+}
+
+}  // namespace tspgl
+
+namespace tspgl {
+
+void TfTexture::bind_preintegrated(int unit, double spacing) {
+  gl_.ActiveTexture(GLenum(GL_TEXTURE0 + unit));
+  gl_.BindTexture(GL_TEXTURE_2D, table_id_);
+  if (spacing == table_spacing_) return;
+  const std::vector<tsp::Rgba> table = tsp::preintegrate(tf_, spacing);
+  const int k = tf_.size();
+  // Nearest, like the 1-D table: a segment within one entry gets exactly that entry's colour, so
+  // the picture converges to the metrics' K-entry table as the spacing shrinks (linear filtering
+  // would blend neighbouring entries: a smoother TF than the one the reference draws).
+  gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, k, k, 0, GL_RGBA, GL_FLOAT, table.data());
+  check_gl(gl_, "uploading the pre-integrated transfer function");
+  table_spacing_ = spacing;
 }
 
 }  // namespace tspgl

@@ -29,6 +29,10 @@ class TfTexture {
   /// Binds it to texture unit `unit`, re-uploading first when the TF or spacing changed.
   /// Throws tsp::GlError.
   void bind(int unit, double spacing);
+  /// Binds the pre-integrated K × K table for segments of `spacing` voxels (tsp::preintegrate)
+  /// to texture unit `unit`, recomputing it first when the TF or spacing changed (O(K³) on the
+  /// CPU: tens of ms for K = 256). Throws tsp::GlError.
+  void bind_preintegrated(int unit, double spacing);
   /// TF coordinate = normalised code · scale + offset (the shader's tf_map).
   float scale() const { return float(scale_); }
   /// See scale().
@@ -36,10 +40,12 @@ class TfTexture {
 
  private:
   const GlApi& gl_;
-  GLuint id_ = 0;
+  GLuint id_ = 0, table_id_ = 0;
   double scale_ = 1, offset_ = 0;
   std::vector<tsp::Rgba> entries_;  ///< the TF as given (uncorrected, not premultiplied)
   double spacing_ = -1;             ///< spacing the texture was corrected for (−1: stale)
+  double table_spacing_ = -1;       ///< spacing the pre-integrated table was made for
+  tsp::TransferFunction tf_;        ///< the TF as given, for pre-integration
 };
 
 }  // namespace tspgl

@@ -36,8 +36,10 @@ void VolumeRenderer::clear_textures() {
   cache_.clear();
 }
 
-int VolumeRenderer::drop_unreachable(tsp::FrameMetric& metric, const tsp::Tolerances& tol) {
-  const auto dropped = cache_.drop_unreachable(tsp::reachable_textures(tree_, metric, tol));
+int VolumeRenderer::drop_unreachable(tsp::FrameMetric& metric, const tsp::Tolerances& tol,
+                                     tsp::SpanStep span_step) {
+  const auto dropped =
+      cache_.drop_unreachable(tsp::reachable_textures(tree_, metric, tol, span_step));
   for (const tsp::TextureKey& k : dropped) textures_.erase(k);
   return int(dropped.size());
 }
@@ -52,10 +54,81 @@ std::vector<tsp::BrickKey> VolumeRenderer::bricks_to_upload(int step, const tsp:
     const int id = tree_.id(e.octree_id, e.time_id);
     if (tsp::shading_of(metric.class_info(id), settings.tol) != tsp::Shading::textured) continue;
     for (int brick : tsp::leaf_bricks(tree_.octree(), e.octree_id, order))
-      if (!textures_.contains(tsp::TextureKey{brick, e.span.t0, 0}))
-        keys.push_back({brick, e.span.t0});
+      if (const int t = tsp::representative_step(e.span, settings.span_step);
+          !textures_.contains(tsp::TextureKey{brick, t, 0}))
+        keys.push_back({brick, t});
   }
   return keys;
+}
+
+void VolumeRenderer::fill_items(const tsp::FramePlan& plan, tsp::FrameMetric& metric,
+                                const tsp::Camera& camera, const RenderSettings& settings) {
+  const tsp::Octree& octree = tree_.octree();
+  const tsp::IncrementalSlicer slicer(tsp::SlicePlanes::toward(camera.direction(), settings.spacing));
+  soup_.clear();
+  items_.clear();
+  auto add = [&](const tsp::Aabb& box, bool as_box) -> DrawItem& {
+    DrawItem& it = items_.emplace_back();
+    it.as_box = as_box;
+    it.bounds = box;
+    if (as_box) return it;
+    it.first_polygon = int(soup_.size());
+    slicer.slice(box, soup_);
+    it.polygon_count = int(soup_.size()) - it.first_polygon;
+    return it;
+  };
+  auto add_flat = [&](const tsp::Aabb& box, int tsp_id) {
+    const tsp::Rgba c = metric.mean_colour(tsp_id);
+    DrawItem& it = add(box, settings.exact_flat);
+    it.flat = c;
+    it.colour = flat_colour(c, settings.spacing);
+  };
+  for (const tsp::PlannedNode& n : plan.nodes) {
+    if (n.cls == tsp::DrawClass::not_rendered) continue;
+    const int tsp_id = tree_.id(n.node.octree_id, n.node.time_id);
+    if (n.cls == tsp::DrawClass::untextured) {
+      add_flat(tsp::geometric_box(octree.node(n.node.octree_id).box, octree.dims()), tsp_id);
+      continue;
+    }
+    for (int i = n.first_texture; i < n.first_texture + n.texture_count; ++i) {
+      const tsp::PlannedTexture& pt = plan.textures[std::size_t(i)];
+      const tsp::Aabb box = tsp::geometric_box(octree.brick_box(pt.key.brick), octree.dims());
+      if (pt.deferred) {  // not uploaded yet: the node's mean colour meanwhile
+        add_flat(box, tsp_id);
+        continue;
+      }
+      add(box, settings.compositing == Compositing::boxes).slot = textures_.at(pt.key);
+    }
+  }
+  compositor_.upload(soup_);
+}
+
+void VolumeRenderer::fill_pages(const tsp::FramePlan& plan, tsp::FrameMetric& metric) {
+  const tsp::Octree& octree = tree_.octree();
+  const auto g = octree.brick_grid();
+  pages_.reset(g, {octree.brick_cells(0), octree.brick_cells(1), octree.brick_cells(2)});
+  soup_.clear();
+  for (const tsp::PlannedNode& n : plan.nodes) {
+    if (n.cls == tsp::DrawClass::not_rendered) continue;
+    const int tsp_id = tree_.id(n.node.octree_id, n.node.time_id);
+    if (n.cls == tsp::DrawClass::untextured) {
+      const tsp::Rgba c = metric.mean_colour(tsp_id);
+      const tsp::OctreeNode& node = octree.node(n.node.octree_id);
+      for (int z = node.brick_lo[2]; z < node.brick_hi[2]; ++z)
+        for (int y = node.brick_lo[1]; y < node.brick_hi[1]; ++y)
+          for (int x = node.brick_lo[0]; x < node.brick_hi[0]; ++x)
+            pages_.set_flat(x + g[0] * (y + g[1] * z), c);
+      continue;
+    }
+    for (int i = n.first_texture; i < n.first_texture + n.texture_count; ++i) {
+      const tsp::PlannedTexture& pt = plan.textures[std::size_t(i)];
+      if (pt.deferred)  // not uploaded yet: the node's mean colour meanwhile
+        pages_.set_flat(pt.key.brick, metric.mean_colour(tsp_id));
+      else
+        pages_.set_textured(pt.key.brick, textures_.at(pt.key));
+    }
+  }
+  pages_.finish();
 }
 
 FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
@@ -73,55 +146,30 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
   const tsp::NodeErrors& errors = metric.errors_for_step(step);
   const std::vector<tsp::Emitted> emitted = tsp::traverse(tree_, step, settings.tol, errors, order);
   const tsp::FramePlan plan = tsp::plan_frame(tree_, step, emitted, tsp::node_info(metric),
-                                              settings.tol, order, cache_, settings.upload_budget);
+                                              settings.tol, order, cache_, settings.upload_budget,
+                                              settings.span_step);
   r.traversal_ms = phase.lap_ms();
 
-  const tsp::IncrementalSlicer slicer(tsp::SlicePlanes::toward(camera.direction(), settings.spacing));
-  soup_.clear();
-  std::vector<DrawItem> items;
-  std::vector<std::size_t> textured_items;  // item index per planned texture drawn textured
-  textured_items.reserve(plan.textures.size());
-  auto add = [&](const tsp::Aabb& box) -> DrawItem& {
-    DrawItem& it = items.emplace_back();
-    it.first_polygon = int(soup_.size());
-    slicer.slice(box, soup_);
-    it.polygon_count = int(soup_.size()) - it.first_polygon;
-    return it;
-  };
-  for (const tsp::PlannedNode& n : plan.nodes) {
-    if (n.cls == tsp::DrawClass::not_rendered) continue;
-    const int tsp_id = tree_.id(n.node.octree_id, n.node.time_id);
-    if (n.cls == tsp::DrawClass::untextured) {
-      add(tsp::geometric_box(octree.node(n.node.octree_id).box, octree.dims())).colour =
-          flat_colour(metric.mean_colour(tsp_id), settings.spacing);
-      continue;
-    }
-    for (int i = n.first_texture; i < n.first_texture + n.texture_count; ++i) {
-      const tsp::PlannedTexture& pt = plan.textures[std::size_t(i)];
-      const int brick = pt.key.brick;
-      DrawItem& it = add(tsp::geometric_box(octree.brick_box(brick), octree.dims()));
-      if (pt.deferred) {  // not uploaded yet: the node's mean colour meanwhile
-        it.colour = flat_colour(metric.mean_colour(tsp_id), settings.spacing);
-        continue;
-      }
-      it.samples = octree.brick_samples(brick);
-      textured_items.push_back(items.size() - 1);
-    }
-  }
-  compositor_.upload(soup_);
+  // Uploads first (growing the atlas moves every slot), then the draw list or the brick pages.
+  for (const tsp::TextureKey& k : plan.evict_before) textures_.erase(k);
+  for (const tsp::PlannedTexture& pt : plan.textures)
+    if (!pt.deferred && pt.upload) textures_.upload(pt.key);
+  r.upload_ms = phase.lap_ms();
+
+  if (settings.compositing == Compositing::rays)
+    fill_pages(plan, metric);
+  else
+    fill_items(plan, metric, camera, settings);
   r.slicing_ms = phase.lap_ms();
   r.polygons = std::int64_t(soup_.size());
 
-  for (const tsp::TextureKey& k : plan.evict_before) textures_.erase(k);
-  std::size_t next_item = 0;
-  for (const tsp::PlannedTexture& pt : plan.textures) {
-    if (pt.deferred) continue;
-    items[textured_items[next_item++]].texture =
-        pt.upload ? textures_.upload(pt.key) : textures_.at(pt.key);
+  if (settings.compositing == Compositing::rays) {
+    compositor_.draw_rays(pages_, octree.dims());
+    r.boxes = 1;
+  } else {
+    compositor_.draw(items_);
+    for (const DrawItem& it : items_) r.boxes += it.as_box;
   }
-  r.upload_ms = phase.lap_ms();
-
-  compositor_.draw(items);
   for (const tsp::TextureKey& k : plan.release_after) textures_.erase(k);
   compositor_.end_frame();
   r.draw_ms = phase.lap_ms();

@@ -11,6 +11,7 @@
 #include "render/frame_report.h"
 #include "render/slice_compositor.h"
 #include "tsp/frame/camera.h"
+#include "tsp/frame/frame_plan.h"
 #include "tsp/frame/texture_cache.h"
 #include "tsp/metric/frame_metric.h"
 #include "tsp/metric/transfer_function.h"
@@ -48,7 +49,8 @@ class VolumeRenderer {
                                               tsp::FrameMetric& metric) const;
   /// After a tolerance (or metric) change: deletes the textures no frame can draw any more under
   /// metric and tol (one traversal per step) and returns how many. TF edits need no call.
-  int drop_unreachable(tsp::FrameMetric& metric, const tsp::Tolerances& tol);
+  int drop_unreachable(tsp::FrameMetric& metric, const tsp::Tolerances& tol,
+                       tsp::SpanStep span_step = tsp::SpanStep::middle);
   /// Deletes every cached texture.
   void clear_textures();
 
@@ -66,6 +68,11 @@ class VolumeRenderer {
   SliceCompositor compositor_;
   BrickTextures textures_;
   tsp::PolygonSoup soup_;
+  std::vector<DrawItem> items_;  // slices and boxes compositing
+  BrickPages pages_;             // rays compositing
+  void fill_items(const tsp::FramePlan& plan, tsp::FrameMetric& metric, const tsp::Camera& camera,
+                  const RenderSettings& settings);
+  void fill_pages(const tsp::FramePlan& plan, tsp::FrameMetric& metric);
 };
 
 }  // namespace tspgl

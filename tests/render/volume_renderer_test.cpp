@@ -19,6 +19,7 @@
 #include "tsp/core/error.h"
 #include "tsp/metric/compute_errors.h"
 #include "tsp/metric/lazy_errors.h"
+#include "tsp/metric/preintegration.h"
 #include "tsp/metric/tf_io.h"
 #include "tsp/report/image.h"
 #include "tsp/report/image_diff.h"
@@ -134,6 +135,135 @@ TEST(VolumeRenderer, ConstantCubeMatchesFrontToBackCompositing) {
   }
 }
 
+// A coherent node drawn as one box composites exactly: α = 1 − (1 − α₁)^L over the ray's depth
+// L through the box. Seen obliquely, the centre ray of a 32³ cube runs L = 2·min_a 16/|d_a|;
+// flat slices converge to the same picture as the spacing goes to zero.
+TEST(VolumeRenderer, FlatNodeDrawnOnceIsTheExactExponential) {
+  auto src = tsptest::MemorySource::from_function({33, 33, 33}, 2,
+                                                  [](int, int, int, int) { return 0.5f; });
+  const std::string path = build(src, "flat_cube", tsp::ValueRange{0, 1});
+  const tsp::Rgba c{0.9f, 0.5f, 0.2f, 0.03f};
+  Scene scene(path, flat_tf(c), tsp::CachePolicy::on);
+  const tsp::Camera cam = scene.camera(30, 20);
+  const auto d = cam.direction();
+  double len = 1e300;
+  for (double v : d) len = std::min(len, 16.0 / std::max(std::abs(v), 1e-12));
+  len *= 2;
+  const double opacity = 1 - std::pow(1 - double(c.a), len);
+  const std::uint8_t want[3] = {std::uint8_t(std::lround(255 * c.r * opacity)),
+                                std::uint8_t(std::lround(255 * c.g * opacity)),
+                                std::uint8_t(std::lround(255 * c.b * opacity))};
+  auto frame = [&](Compositing comp, bool exact, double spacing) {
+    RenderSettings s;
+    s.compositing = comp;
+    s.exact_flat = exact;
+    s.spacing = spacing;
+    const FrameReport r = scene.renderer->render(0, cam, s, scene.nodes);
+    EXPECT_DOUBLE_EQ(r.class_percent[std::size_t(tsp::DrawClass::untextured)], 100.0);
+    return scene.ctx->read_pixels();
+  };
+  const tsp::Image exact_rays = frame(Compositing::rays, true, 0.5);
+  const tsp::Image exact_box = frame(Compositing::slices, true, 0.5);
+  const tsp::Image fine_slices = frame(Compositing::slices, false, 1.0 / 16);
+  for (const tsp::Image* img : {&exact_rays, &exact_box}) {
+    const std::uint8_t* px = img->at(img->width / 2, img->height / 2);
+    EXPECT_LT(tsp::delta_e_luv(tsp::srgb8_to_luv(px[0], px[1], px[2]),
+                               tsp::srgb8_to_luv(want[0], want[1], want[2])),
+              0.5)
+        << "got " << int(px[0]) << "," << int(px[1]) << "," << int(px[2]) << " want "
+        << int(want[0]) << "," << int(want[1]) << "," << int(want[2]);
+  }
+  expect_close("flat_rays_vs_box", exact_rays, exact_box, 0.05, 0.5);
+  expect_close("flat_exact_vs_fine_slices", exact_rays, fine_slices, 0.5, 3.0);
+}
+
+// Pre-integration: along the centre ray the value ramps linearly so that the half-way points
+// between samples (spacing 4) fall on entry centres of an 8-entry TF; each sample's segment is
+// then exactly one table entry, and the pixel is the front-to-back composite of
+// integrate_segment over those segments — for every compositing, TSP and baseline.
+TEST(VolumeRenderer, PreintegratedRampMatchesTheSegmentFormula) {
+  constexpr double kSpacing = 4;
+  auto src = tsptest::MemorySource::from_function(
+      {17, 37, 17}, 2, [](int, int y, int, int) { return float(y / 32.0 + 1.0 / 16); });
+  const std::string path = build(src, "ramp", tsp::ValueRange{0, 1});
+  tsp::TransferFunction tf({0, 1}, 8);
+  for (int j = 0; j < 8; ++j) tf.set_entry(j, {j / 7.f, 1 - j / 7.f, 0.5f, 0.03f + 0.02f * j});
+  Scene scene(path, tf, tsp::CachePolicy::on);
+  const tsp::Camera cam = scene.camera(0, 0);  // along +y: y = 0 in front
+  double r = 0, g = 0, b = 0, t = 1;
+  // Segments [4j, 4j + 4] centred on the planes y = 4j + 2; the last two lie beyond u = 1,
+  // clamped into entry 7.
+  for (int j = 0; j < 9; ++j) {
+    const tsp::Rgba c = tsp::integrate_segment(tf, (j + 0.5) / 8, (j + 1.5) / 8, kSpacing);
+    r += t * c.r;
+    g += t * c.g;
+    b += t * c.b;
+    t *= 1 - c.a;
+  }
+  const tsp::Luv want = tsp::srgb8_to_luv(std::uint8_t(std::lround(255 * r)),
+                                          std::uint8_t(std::lround(255 * g)),
+                                          std::uint8_t(std::lround(255 * b)));
+  for (Compositing comp : {Compositing::slices, Compositing::boxes, Compositing::rays}) {
+    for (bool baseline : {false, true}) {
+      RenderSettings s;
+      s.compositing = comp;
+      s.spacing = kSpacing;
+      s.preintegrated = true;
+      if (baseline)
+        scene.baseline->render(0, cam, s);
+      else
+        scene.renderer->render(0, cam, s, scene.nodes);
+      const tsp::Image img = scene.ctx->read_pixels();
+      // A few pixels off the centre, whose ray would run exactly along brick faces (x = z = 8).
+      const std::uint8_t* px = img.at(img.width / 2 + 5, img.height / 2 + 3);
+      // Bricks meet at y = 12 and 24, on half-way points and off the sample planes: drawn brick
+      // by brick (slices, boxes) no half-way point needs the neighbour brick's samples.
+      EXPECT_LT(tsp::delta_e_luv(tsp::srgb8_to_luv(px[0], px[1], px[2]), want), 1.0)
+          << to_string(comp) << (baseline ? " baseline" : " tsp") << ": got " << int(px[0])
+          << "," << int(px[1]) << "," << int(px[2]) << " want " << 255 * r << "," << 255 * g
+          << "," << 255 * b;
+    }
+  }
+}
+
+// The three ways of compositing textured boxes take the same samples: per-brick rays and the
+// one-pass ray caster agree with slices, for the TSP renderer and the baseline, on real CFD data.
+TEST(VolumeRenderer, CompositingMethodsAgreeOnRealCfd) {
+  const fs::path h5 = tsptest::datasets_dir() / "samples" / "hotPlume_32.h5";
+  tsp::SourceOptions so;
+  so.field = "T";
+  auto src = tsp::open_source(h5.string(), so);
+  const std::string path = build(*src, "plume_methods", {}, 8);
+  auto file = tsp::TspFile::open(path);
+  for (const char* preset : {"sparse", "filled"}) {
+    Scene scene(path, tsp::preset_transfer_function(preset, file->tree().value_range()),
+                tsp::CachePolicy::on);
+    for (bool perspective : {false, true}) {
+      const tsp::Camera cam = scene.camera(35, 15, perspective);
+      auto frame = [&](Compositing comp, bool baseline) {
+        RenderSettings s;
+        s.compositing = comp;
+        s.spacing = 0.7;
+        if (baseline)
+          scene.baseline->render(30, cam, s);
+        else
+          scene.renderer->render(30, cam, s, scene.nodes);
+        return scene.ctx->read_pixels();
+      };
+      const tsp::Image tsp_ref = frame(Compositing::slices, false);
+      const tsp::Image base_ref = frame(Compositing::slices, true);
+      const std::string name = std::string("methods_") + preset + (perspective ? "_persp" : "");
+      // Only silhouette pixels may differ (the volume's edge rasterised as slice polygons or as
+      // box faces).
+      for (Compositing comp : {Compositing::boxes, Compositing::rays}) {
+        expect_close(name + "_tsp_" + to_string(comp), frame(comp, false), tsp_ref, 0.1, 1.0);
+        expect_close(name + "_baseline_" + to_string(comp), frame(comp, true), base_ref, 0.1,
+                     1.0);
+      }
+    }
+  }
+}
+
 TEST(VolumeRenderer, ZeroToleranceMatchesBaselineOnGeneratedData) {
   auto src = tsp::make_generated_source("shock", {tsp::Dims{40, 36, 30}, 6});
   const std::string path = build(*src, "shock");
@@ -189,7 +319,7 @@ TEST(VolumeRenderer, ZeroToleranceMatchesBaselineOnRealCfd) {
   }
 }
 
-TEST(VolumeRenderer, CacheOnAndOffGiveIdenticalImages) {
+TEST(VolumeRenderer, CacheOnAndOffGiveTheSamePicture) {
   auto src = tsp::make_generated_source("shock", {tsp::Dims{33, 30, 28}, 8});
   const std::string path = build(*src, "shock", {}, 8);
   auto file = tsp::TspFile::open(path);
@@ -199,9 +329,12 @@ TEST(VolumeRenderer, CacheOnAndOffGiveIdenticalImages) {
   // A temporal tolerance makes spans longer than one step, so textures are reused (RT).
   for (tsp::Tolerances tol : {tsp::Tolerances{0, 0}, tsp::Tolerances{0, 0.05}}) {
     for (int step : {0, 1, 2, 3, 7, 6, 0, 4}) {
+      // The same bricks, sampled from different atlas slots: equal up to texel-weight rounding.
       tsp::Image a = on.tsp_frame(step, cam, tol), b = off.tsp_frame(step, cam, tol);
-      EXPECT_EQ(a.rgba, b.rgba) << "step " << step << " temporal tol " << tol.temporal
-                                << (a.rgba == b.rgba ? "" : keep_failure("cache_" + std::to_string(step), a, b));
+      const tsp::DiffStats d = tsp::diff_images(a, b);
+      EXPECT_TRUE(d.mean < 0.01 && d.max < 1.0)
+          << "step " << step << " temporal tol " << tol.temporal << ": mean " << d.mean << " max "
+          << d.max << " " << (d.max < 1.0 ? "" : keep_failure("cache_" + std::to_string(step), a, b));
     }
   }
 }
@@ -359,7 +492,7 @@ TEST(VolumeRenderer, RendersFromAnInMemoryBrickStore) {
   const tsp::Camera cam(store.tree().octree().dims(), p);
   for (int step = 0; step < 4; ++step) {
     const FrameReport r = renderer.render(step, cam, RenderSettings{}, nodes);
-    EXPECT_GT(r.polygons, 0);
+    EXPECT_EQ(r.boxes, 1);  // the one-pass ray caster
     const tsp::Image a = ctx->read_pixels();
     baseline.render(step, cam, RenderSettings{});
     expect_close("memory_store_" + std::to_string(step), a, ctx->read_pixels(), 0.5, 3.0);

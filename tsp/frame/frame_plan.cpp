@@ -1,5 +1,7 @@
 #include "tsp/frame/frame_plan.h"
 
+#include "tsp/core/error.h"
+
 #include <cassert>
 #include <cmath>
 
@@ -59,6 +61,14 @@ std::vector<int> leaf_bricks(const Octree& octree, int id, const ViewOrder& view
   return out;
 }
 
+const char* to_string(SpanStep s) { return s == SpanStep::middle ? "middle" : "first"; }
+
+SpanStep parse_span_step(const std::string& text, const std::string& option) {
+  if (text == "first") return SpanStep::first;
+  if (text == "middle") return SpanStep::middle;
+  throw UsageError(option + " " + text + ": expected first or middle");
+}
+
 double FramePlan::percent(DrawClass c) const {
   if (total_voxels == 0) return 0;
   return 100.0 * double(class_voxels[int(c)]) / double(total_voxels);
@@ -66,7 +76,7 @@ double FramePlan::percent(DrawClass c) const {
 
 FramePlan plan_frame(const TspTree& tree, int step, std::span<const Emitted> emitted,
                      const NodeInfoFn& info, const Tolerances& tol, const ViewOrder& view,
-                     TextureCache& cache, std::int64_t upload_budget) {
+                     TextureCache& cache, std::int64_t upload_budget, SpanStep span_step) {
   const Octree& octree = tree.octree();
   FramePlan plan;
   plan.step = step;
@@ -86,7 +96,7 @@ FramePlan plan_frame(const TspTree& tree, int step, std::span<const Emitted> emi
       p.first_texture = int(plan.textures.size());
       bool uploaded = false;
       for (int brick : leaf_bricks(octree, e.octree_id, view)) {
-        const TextureKey key{brick, e.span.t0, 0};
+        const TextureKey key{brick, representative_step(e.span, span_step), 0};
         const std::int64_t bytes = texture_bytes(octree, key);
         if (upload_budget > 0 && plan.uploads > 0 && !cache.contains(key) &&
             plan.bytes_uploaded + bytes > upload_budget) {
@@ -120,26 +130,28 @@ FramePlan plan_frame(const TspTree& tree, int step, std::span<const Emitted> emi
 }
 
 TextureKeySet reachable_textures(const TspTree& tree, const NodeErrors& errors,
-                                 const NodeInfoFn& info, const Tolerances& tol) {
+                                 const NodeInfoFn& info, const Tolerances& tol,
+                                 SpanStep span_step) {
   TextureKeySet keys;
   for (int t = 0; t < tree.time().steps(); ++t) {
     for (const Emitted& e : traverse(tree, t, tol, errors, kAnyView)) {
       if (shading_of(info(tree.id(e.octree_id, e.time_id)), tol) != Shading::textured) continue;
       for (int brick : leaf_bricks(tree.octree(), e.octree_id, kAnyView))
-        keys.insert(TextureKey{brick, e.span.t0, 0});
+        keys.insert(TextureKey{brick, representative_step(e.span, span_step), 0});
     }
   }
   return keys;
 }
 
 TextureKeySet reachable_textures(const TspTree& tree, const MetricResult& m,
-                                 const Tolerances& tol) {
-  return reachable_textures(tree, m.errors, node_info(m), tol);
+                                 const Tolerances& tol, SpanStep span_step) {
+  return reachable_textures(tree, m.errors, node_info(m), tol, span_step);
 }
 
-TextureKeySet reachable_textures(const TspTree& tree, FrameMetric& m, const Tolerances& tol) {
+TextureKeySet reachable_textures(const TspTree& tree, FrameMetric& m, const Tolerances& tol,
+                                 SpanStep span_step) {
   const NodeErrors& errors = m.all_errors();
-  return reachable_textures(tree, errors, node_info(m), tol);
+  return reachable_textures(tree, errors, node_info(m), tol, span_step);
 }
 
 }  // namespace tsp

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <functional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "tsp/frame/texture_cache.h"
@@ -25,6 +26,20 @@ enum class DrawClass : std::uint8_t { not_rendered, untextured, reused_texture, 
 inline constexpr int kDrawClassCount = 4;
 /// "not_rendered", "untextured", "reused_texture" or "new_texture" (the frames.json names).
 const char* to_string(DrawClass c);
+
+/// Which step's data textures a span (spec §5; the paper uses the first).
+enum class SpanStep {
+  first,   ///< t0, the paper's rule
+  middle,  ///< ⌊(t0 + t1)/2⌋: at most half the span away from any step it stands for
+};
+/// "first" or "middle".
+const char* to_string(SpanStep s);
+/// Parses "first" or "middle"; throws UsageError naming `option` and the text.
+SpanStep parse_span_step(const std::string& text, const std::string& option);
+/// The step whose bricks texture span s under rule r.
+inline int representative_step(const Span& s, SpanStep r) {
+  return r == SpanStep::middle ? s.t0 + (s.t1 - s.t0) / 2 : s.t0;
+}
 
 /// How a node is shaded, before the cache decides between RT and NT.
 enum class Shading { none, flat, textured };
@@ -86,7 +101,8 @@ struct FramePlan {
 /// Plans the frame of `step` from the traversal's output `emitted` (every span must hold
 /// step): classifies each node, requests the textures of RT/NT nodes from cache inside one
 /// begin_frame()/end_frame(), and counts voxels per class. A node that is textured is drawn by
-/// the textures (brick, span.t0, level 0) of all its leaf bricks, ordered back-to-front by view;
+/// the textures (brick, representative_step(span, span_step), level 0) of all its leaf bricks
+/// (equal keys hold equal data, whichever span made them), ordered back-to-front by view;
 /// it is NT when any of them is uploaded now (or deferred), RT otherwise. With upload_budget > 0,
 /// a texture not resident whose upload would take the frame's uploads over upload_budget bytes
 /// is deferred — not requested from the cache, so it stays absent until a later frame uploads it
@@ -95,15 +111,19 @@ struct FramePlan {
 /// cache has no open frame.
 FramePlan plan_frame(const TspTree& tree, int step, std::span<const Emitted> emitted,
                      const NodeInfoFn& info, const Tolerances& tol, const ViewOrder& view,
-                     TextureCache& cache, std::int64_t upload_budget = 0);
+                     TextureCache& cache, std::int64_t upload_budget = 0,
+                     SpanStep span_step = SpanStep::middle);
 
 /// Every texture key some step's frame could draw under errors, info and tol — the set to keep
 /// with TextureCache::drop_unreachable after a tolerance change. Costs one traversal per step.
 TextureKeySet reachable_textures(const TspTree& tree, const NodeErrors& errors,
-                                 const NodeInfoFn& info, const Tolerances& tol);
+                                 const NodeInfoFn& info, const Tolerances& tol,
+                                 SpanStep span_step = SpanStep::middle);
 /// Same, with the errors and classes of m.
-TextureKeySet reachable_textures(const TspTree& tree, const MetricResult& m, const Tolerances& tol);
+TextureKeySet reachable_textures(const TspTree& tree, const MetricResult& m, const Tolerances& tol,
+                                 SpanStep span_step = SpanStep::middle);
 /// Same, with every node of m made current (FrameMetric::all_errors). Throws what m throws.
-TextureKeySet reachable_textures(const TspTree& tree, FrameMetric& m, const Tolerances& tol);
+TextureKeySet reachable_textures(const TspTree& tree, FrameMetric& m, const Tolerances& tol,
+                                 SpanStep span_step = SpanStep::middle);
 
 }  // namespace tsp

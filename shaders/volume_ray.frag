@@ -1,0 +1,113 @@
+#version 330 core
+// The whole volume ray cast in one pass (one fragment per pixel, on the volume box's exit face):
+// the ray walks the brick grid front to back and does, per brick, what the page says —
+//   empty:    nothing (transparent or not drawn); the ray leaps over the largest cube of empty
+//             bricks centred there (empty-space skipping by a Chebyshev distance map);
+//   flat:     one colour with opacity per voxel of depth, composited exactly over the ray's depth
+//             through the brick, α = 1 − (1 − α₁)^L (a coherent node, class UP);
+//   textured: samples on the slice planes dot(p, view_dir) = (k + ½)·spacing inside the brick,
+//             read from the brick's atlas slot through the spacing-corrected premultiplied TF —
+//             the samples slicing would take; with use_preintegrated, each sample reads the
+//             pre-integrated segment between the half-way points to its neighbours.
+// It stops once the ray is opaque (early ray termination). (box_ray.glsl is prepended.)
+uniform float spacing;
+uniform sampler3D volume;            // the brick atlas (or the baseline's whole volume)
+uniform sampler1D transfer_function;
+uniform vec2 tf_map;                 // tf coordinate = normalised scalar · tf_map.x + tf_map.y
+uniform sampler2D preintegrated;     // segment colour over (front, back) tf coordinates
+uniform int use_preintegrated;
+uniform vec3 atlas_scale;            // 1 / atlas size in texels
+uniform sampler3D pages;             // per brick: textured (xyz atlas offset, w = 1), flat (rgb,
+                                     // w = ln(1 − α₁) < 0) or empty (x = radius of the cube of
+                                     // empty bricks around it, w = 0)
+uniform vec3 cell;                   // sample spacings one brick covers, per axis
+uniform ivec3 grid;                  // bricks per axis
+const float kOpaque = 0.999;
+const float kNudge = 1e-3;           // voxels into the volume, to pick the first brick
+out vec4 colour;
+
+void main() {
+  RaySpan r = ray_span();
+  float len = (r.depth_exit - r.depth_entry) / r.cos_theta;
+  if (len <= 0.0) discard;
+  vec3 entry = exit_point - r.ray * len;
+  // 3-D DDA over the brick grid (Amanatides & Woo): t_max is where the ray leaves the current
+  // brick through each axis' face, t_delta a whole brick's worth of t along each axis. Empty
+  // bricks carry the Chebyshev radius of the empty cube around them: the ray leaps out of it.
+  vec3 inv = 1.0 / max(abs(r.ray), vec3(1e-12));
+  ivec3 dir = ivec3(sign(r.ray + vec3(1e-30)));
+  vec3 far_side = step(0.0, r.ray);  // 1 where the ray leaves a brick through its hi face
+  vec3 t_delta = cell * inv;
+  float t = 0.0;
+  ivec3 c = clamp(ivec3(floor((entry + r.ray * kNudge) / cell)), ivec3(0), grid - 1);
+  vec3 t_max = abs((vec3(c) + far_side) * cell - entry) * inv;
+  float dt = spacing / r.cos_theta;
+  // t of the next slice plane k: ((k + ½)·spacing − depth_entry) / cos θ.
+  float t_next = ((ceil(r.depth_entry / spacing - 0.5) + 0.5) * spacing - r.depth_entry) /
+                 r.cos_theta;
+  vec3 dtc = r.ray * dt * atlas_scale;
+  vec4 acc = vec4(0.0);
+  float u_prev = -1.0;  // tf coordinate half a spacing behind the previous sample (−1: none)
+  int max_steps = grid.x + grid.y + grid.z + 2;
+  for (int i = 0; i < max_steps; ++i) {
+    vec4 page = texelFetch(pages, c, 0);
+    if (page.w == 0.0) {
+      // Leap to where the ray leaves the empty cube c ± radius, and find the brick there.
+      vec3 face = (vec3(c) + far_side + (2.0 * far_side - 1.0) * page.x) * cell;
+      vec3 tf = abs(face - entry) * inv;
+      t = min(min(tf.x, tf.y), tf.z);
+      if (t >= len) break;
+      c = clamp(ivec3(floor((entry + r.ray * (t + kNudge)) / cell)), ivec3(0), grid - 1);
+      t_max = abs((vec3(c) + far_side) * cell - entry) * inv;
+      if (t_next < t) t_next += ceil((t - t_next) / dt) * dt;
+      u_prev = -1.0;
+      continue;
+    }
+    float t_out = min(min(min(t_max.x, t_max.y), t_max.z), len);
+    if (page.w > 0.5) {
+      // Clamped to the brick's own box: its atlas neighbours never bleed in, whatever the slot.
+      vec3 lo = vec3(c) * cell;
+      vec3 tc_lo = (lo + page.xyz) * atlas_scale;
+      vec3 tc_hi = (min(lo + cell, box_hi) + page.xyz) * atlas_scale;
+      vec3 tc = (entry + r.ray * t_next + page.xyz) * atlas_scale;
+      for (; t_next < t_out; t_next += dt) {
+        vec4 c;
+        if (use_preintegrated != 0) {
+          // The segment centred on this sample, between the half-way points to its neighbours
+          // (the front one carried over from the previous sample of the run).
+          if (u_prev < 0.0)
+            u_prev = texture(volume, clamp(tc - 0.5 * dtc, tc_lo, tc_hi)).r * tf_map.x + tf_map.y;
+          float u_back = texture(volume, clamp(tc + 0.5 * dtc, tc_lo, tc_hi)).r * tf_map.x + tf_map.y;
+          c = texture(preintegrated, vec2(u_prev, u_back));
+          u_prev = u_back;
+        } else {
+          c = texture(transfer_function, texture(volume, clamp(tc, tc_lo, tc_hi)).r * tf_map.x + tf_map.y);
+        }
+        acc += (1.0 - acc.a) * c;
+        if (acc.a >= kOpaque) break;
+        tc += dtc;
+      }
+    } else {
+      float a = 1.0 - exp(page.w * (t_out - t) * r.cos_theta);
+      acc += (1.0 - acc.a) * vec4(page.rgb * a, a);
+      u_prev = -1.0;
+      if (t_next < t_out) t_next += ceil((t_out - t_next) / dt) * dt;
+    }
+    if (acc.a >= kOpaque || t_out >= len) break;
+    t = t_out;
+    // Step into the neighbour across the nearest face.
+    if (t_max.x <= t_max.y && t_max.x <= t_max.z) {
+      c.x += dir.x;
+      t_max.x += t_delta.x;
+    } else if (t_max.y <= t_max.z) {
+      c.y += dir.y;
+      t_max.y += t_delta.y;
+    } else {
+      c.z += dir.z;
+      t_max.z += t_delta.z;
+    }
+    if (any(lessThan(c, ivec3(0))) || any(greaterThanEqual(c, grid))) break;
+  }
+  if (acc.a <= 0.0) discard;
+  colour = acc;
+}

@@ -1,0 +1,91 @@
+#include "jobs/knob_search.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <map>
+
+namespace tspgl {
+
+namespace {
+
+std::string exact(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+void sort_fastest_first(std::vector<KnobCandidate>& v) {
+  std::stable_sort(v.begin(), v.end(), [](const KnobCandidate& a, const KnobCandidate& b) {
+    return a.probe.ms < b.probe.ms;
+  });
+}
+
+}  // namespace
+
+std::string render_options(const Knobs& k, tsp::Metric metric) {
+  std::string s = k.baseline ? "--baseline " : "";
+  s += "--compositing " + std::string(to_string(k.compositing)) + " --spacing " + exact(k.spacing);
+  if (k.preintegrated) s += " --preintegrated on";
+  if (!k.baseline)
+    s += std::string(" --metric ") + tsp::to_string(metric) + " --spatial-tol " + exact(k.tol) +
+         " --temporal-tol " + exact(k.tol);
+  return s;
+}
+
+std::vector<std::vector<KnobCandidate>> search_baseline_knobs(const ProbeKnobs& probe,
+                                                              const KnobGrid& grid,
+                                                              const std::vector<double>& targets) {
+  std::vector<KnobCandidate> all;
+  for (bool pre : grid.preintegration)
+    for (Compositing c : grid.compositings)
+      for (double s : grid.spacings) {
+        Knobs k;
+        k.baseline = true;
+        k.compositing = c;
+        k.spacing = s;
+        k.preintegrated = pre;
+        all.push_back({k, probe(k)});
+      }
+  std::vector<std::vector<KnobCandidate>> out;
+  for (double target : targets) {
+    std::vector<KnobCandidate>& v = out.emplace_back();
+    for (const KnobCandidate& c : all)
+      if (c.probe.mean_de <= target) v.push_back(c);
+    sort_fastest_first(v);
+  }
+  return out;
+}
+
+std::vector<std::vector<KnobCandidate>> search_tsp_knobs(const ProbeKnobs& probe,
+                                                         const KnobGrid& grid,
+                                                         const ErrorSpan& span,
+                                                         const std::vector<double>& targets,
+                                                         int iterations) {
+  std::vector<std::vector<KnobCandidate>> out(targets.size());
+  for (bool pre : grid.preintegration)
+    for (Compositing c : grid.compositings)
+      for (double s : grid.spacings) {
+        Knobs k;
+        k.compositing = c;
+        k.spacing = s;
+        k.preintegrated = pre;
+        std::map<double, ProbeResult> seen;  // tolerance → probe, for the found tolerances' times
+        auto error_at = [&](double tol) {
+          k.tol = tol;
+          const ProbeResult r = probe(k);
+          seen[tol] = r;
+          return r.mean_de;
+        };
+        const std::vector<FoundTolerance> found =
+            search_tolerances(error_at, span, targets, iterations);
+        for (std::size_t i = 0; i < found.size(); ++i) {
+          if (!found[i].met) continue;
+          k.tol = found[i].tol;
+          out[i].push_back({k, seen.at(found[i].tol)});
+        }
+      }
+  for (auto& v : out) sort_fastest_first(v);
+  return out;
+}
+
+}  // namespace tspgl

@@ -1,0 +1,70 @@
+// Table 4's search over every quality knob (docs/bench.md): for each target mean ΔE against the
+// full-quality picture, the configurations that stay within it — the non-TSP baseline over
+// compositing × slice spacing, the TSP renderer over compositing × spacing × tolerance (the
+// largest tolerance per spacing, by the bisection of tolerance_search.h) — fastest first by the
+// probe's own frame time. Pure logic over a probe callback, so it is tested without GL.
+#pragma once
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "jobs/tolerance_search.h"
+#include "render/frame_report.h"
+#include "tsp/metric/metric.h"
+
+namespace tspgl {
+
+/// One configuration of the quality knobs.
+struct Knobs {
+  bool baseline = false;                        ///< the non-TSP renderer (tol unused)
+  Compositing compositing = Compositing::rays;  ///< how textured boxes are drawn
+  double spacing = kDefaultSliceSpacing;        ///< slice spacing in voxels
+  double tol = 0;                               ///< spatial = temporal tolerance (TSP)
+  bool preintegrated = false;                   ///< pre-integrated TF lookup
+};
+
+/// The exact `tspplay render` options that draw k (with --metric for the TSP renderer), e.g.
+/// "--compositing rays --spacing 2 --metric approximate --spatial-tol 0.01 --temporal-tol 0.01"
+/// (and "--preintegrated on" when set).
+/// Numbers are written with 17 significant digits, so they parse back to the same doubles.
+std::string render_options(const Knobs& k, tsp::Metric metric);
+
+/// What one probe of a configuration measured.
+struct ProbeResult {
+  double mean_de = 0;  ///< mean ΔE against the full-quality pictures
+  double ms = 0;       ///< the probe's median frame time (for ranking only)
+};
+
+/// Renders the probe steps under k and compares them (may throw; the search passes it on).
+using ProbeKnobs = std::function<ProbeResult(const Knobs& k)>;
+
+/// A configuration and what its probe measured.
+struct KnobCandidate {
+  Knobs knobs;
+  ProbeResult probe;
+};
+
+/// The knob values tried.
+struct KnobGrid {
+  std::vector<Compositing> compositings{Compositing::slices, Compositing::boxes,
+                                        Compositing::rays};
+  std::vector<double> spacings{0.5, 1, 1.5, 2, 3, 4};
+  std::vector<bool> preintegration{false};  ///< TF lookups tried (point, pre-integrated)
+};
+
+/// For each target: the baseline configurations of grid (every compositing × spacing, each
+/// probed once) whose mean ΔE is ≤ the target, fastest probe first. Throws what probe throws.
+std::vector<std::vector<KnobCandidate>> search_baseline_knobs(const ProbeKnobs& probe,
+                                                              const KnobGrid& grid,
+                                                              const std::vector<double>& targets);
+
+/// For each target: per compositing × spacing of grid, the TSP configuration at the tolerance
+/// search_tolerances finds (span, iterations), kept when its mean ΔE is ≤ the target; fastest
+/// probe first. Throws what probe throws.
+std::vector<std::vector<KnobCandidate>> search_tsp_knobs(const ProbeKnobs& probe,
+                                                         const KnobGrid& grid,
+                                                         const ErrorSpan& span,
+                                                         const std::vector<double>& targets,
+                                                         int iterations);
+
+}  // namespace tspgl

@@ -1,0 +1,81 @@
+// The knob search on analytic probes (no GL): the error and the time of a configuration are
+// formulas, so the right answer is known exactly.
+#include "jobs/knob_search.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+
+namespace tspgl {
+namespace {
+
+// Error grows with spacing and tolerance; time falls with both; rays are 2× faster than slices.
+ProbeResult analytic(const Knobs& k) {
+  const double de = 0.4 * k.spacing + (k.baseline ? 0 : 100 * k.tol);
+  const double ms = (k.compositing == Compositing::rays ? 10 : 20) / k.spacing / (1 + 10 * k.tol);
+  return {de, ms};
+}
+
+TEST(KnobSearch, BaselineKeepsEveryConfigurationWithinTheTargetFastestFirst) {
+  KnobGrid g{{Compositing::slices, Compositing::rays}, {0.5, 1, 2, 4}};
+  int calls = 0;
+  const auto found = search_baseline_knobs(
+      [&](const Knobs& k) {
+        ++calls;
+        EXPECT_TRUE(k.baseline);
+        return analytic(k);
+      },
+      g, {1.0, 3.0});
+  EXPECT_EQ(calls, 8);  // each configuration once, shared by the targets
+  ASSERT_EQ(found.size(), 2u);
+  // ΔE ≤ 1: spacings 0.5, 1 (0.2, 0.4); 2 gives 0.8 too; 4 gives 1.6.
+  ASSERT_EQ(found[0].size(), 6u);
+  EXPECT_EQ(found[0][0].knobs.compositing, Compositing::rays);
+  EXPECT_EQ(found[0][0].knobs.spacing, 2);
+  for (std::size_t i = 1; i < found[0].size(); ++i)
+    EXPECT_LE(found[0][i - 1].probe.ms, found[0][i].probe.ms);
+  ASSERT_EQ(found[1].size(), 8u);
+  EXPECT_EQ(found[1][0].knobs.spacing, 4);
+}
+
+TEST(KnobSearch, TspFindsTheLargestTolerancePerSpacing) {
+  KnobGrid g{{Compositing::rays}, {1, 2}};
+  const ErrorSpan span{1e-6, 1.0};
+  const auto found = search_tsp_knobs(analytic, g, span, {1.0}, 30);
+  ASSERT_EQ(found.size(), 1u);
+  ASSERT_EQ(found[0].size(), 2u);
+  for (const KnobCandidate& c : found[0]) {
+    EXPECT_FALSE(c.knobs.baseline);
+    // 0.4·s + 100·tol = 1 at the boundary: tol = (1 − 0.4 s)/100, approached from below.
+    const double want = (1 - 0.4 * c.knobs.spacing) / 100;
+    EXPECT_LE(c.knobs.tol, want);
+    EXPECT_NEAR(c.knobs.tol, want, want * 1e-3);
+    EXPECT_LE(c.probe.mean_de, 1.0);
+    EXPECT_DOUBLE_EQ(c.probe.mean_de, analytic(c.knobs).mean_de);  // the probe of that tolerance
+  }
+  EXPECT_LE(found[0][0].probe.ms, found[0][1].probe.ms);
+}
+
+TEST(KnobSearch, ConfigurationsThatMissEveryTargetAreLeftOut) {
+  KnobGrid g{{Compositing::slices}, {4}};  // ΔE 1.6 even at zero tolerance
+  EXPECT_TRUE(search_tsp_knobs(analytic, g, ErrorSpan{1e-6, 1.0}, {1.0}, 10)[0].empty());
+  EXPECT_TRUE(search_baseline_knobs(analytic, g, {1.0})[0].empty());
+}
+
+TEST(KnobSearch, RenderOptionsNameEveryKnobExactly) {
+  Knobs k;
+  k.compositing = Compositing::boxes;
+  k.spacing = 1.5;
+  k.tol = 0.1;
+  const std::string s = render_options(k, tsp::Metric::perceptual);
+  EXPECT_EQ(s,
+            "--compositing boxes --spacing 1.5 --metric perceptual --spatial-tol "
+            "0.10000000000000001 --temporal-tol 0.10000000000000001");
+  EXPECT_EQ(std::strtod("0.10000000000000001", nullptr), 0.1);
+  k.baseline = true;
+  EXPECT_EQ(render_options(k, tsp::Metric::perceptual), "--baseline --compositing boxes --spacing 1.5");
+}
+
+}  // namespace
+}  // namespace tspgl
