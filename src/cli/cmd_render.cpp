@@ -3,6 +3,7 @@
 #include <memory>
 #include <string>
 #include <tuple>
+#include <vector>
 
 #include "cli/args.h"
 #include "cli/commands.h"
@@ -21,6 +22,9 @@ struct RenderArgs {
   int passes = 1;
   double texture_budget_mb = double(tspgl::kDefaultTextureBudget) / (1 << 20);
   bool baseline = false, perspective = false;
+  double quality = 0;
+  std::string calibration_dir;
+  std::vector<std::string> explicit_knobs;  ///< knob options given with --quality (an error)
 };
 
 void run(const RenderArgs& a) {
@@ -44,6 +48,13 @@ void run(const RenderArgs& a) {
   o.exact_flat = a.flat == "exact";
   o.span_step = tsp::parse_span_step(a.span_step, "--span-step");
   o.preintegrated = a.preintegrated == "on";
+  if (a.quality != 0 && !a.explicit_knobs.empty())
+    throw tsp::UsageError("--quality picks compositing, spacing, tolerances and pre-integration "
+                          "itself: drop " + a.explicit_knobs.front());
+  if (a.quality != 0 && a.baseline)
+    throw tsp::UsageError("--quality is for the TSP renderer: drop --baseline");
+  o.quality = a.quality;
+  o.calibration_dir = a.calibration_dir;
   if (a.out.empty()) throw tsp::UsageError("-o: the output directory must not be empty");
   if (!(a.texture_budget_mb > 0) || !(a.texture_budget_mb <= double(tspgl::kMaxBudgetBytes >> 20)))
     throw tsp::UsageError("--texture-budget " + std::to_string(a.texture_budget_mb) +
@@ -52,10 +63,14 @@ void run(const RenderArgs& a) {
   o.texture_budget = std::max<std::int64_t>(1, std::int64_t(a.texture_budget_mb * (1 << 20)));
 
   ProgressBar bar;
-  auto result = tspgl::run_render_job(o, [&bar](int done, int total) {
-    bar.update("render", done, total);
-  });
+  auto result = tspgl::run_render_job(
+      o, [&bar](int done, int total) { bar.update("render", done, total); },
+      [&bar](const std::string&, int done, int total) { bar.update("calibrate", done, total); });
   bar.finish();
+  if (o.quality > 0)
+    std::printf("quality mean dE <= %g: %s (calibration: every step within %.3g; %s)\n", o.quality,
+                result.quality_options.c_str(), result.quality_calibrated_de,
+                result.calibration_file.empty() ? "not cached" : result.calibration_file.c_str());
   const int last_pass = o.passes;
   double nr = 0, up = 0, rt = 0, nt = 0;
   int n = 0;
@@ -110,7 +125,18 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
                 "Step whose bricks texture a span: middle or first (the paper's; default middle)")
       ->check(CLI::IsMember({"first", "middle"}));
   c->add_option("--texture-budget", a->texture_budget_mb, "Texture cache budget in MiB (default 512)");
-  c->callback([a] { run(*a); });
+  c->add_option("--quality", a->quality,
+                "Mean dE target against the full-quality picture: picks the fastest calibrated "
+                "compositing, spacing, tolerances and pre-integration (calibrates once, cached)");
+  c->add_option("--calibration-dir", a->calibration_dir,
+                "Where --quality caches calibrations (default $TSPPLAY_CACHE_DIR, "
+                "$XDG_CACHE_HOME/tspplay or ~/.cache/tspplay; - for none)");
+  c->callback([a, c] {
+    for (const char* k : {"--spatial-tol", "--temporal-tol", "--spacing", "--compositing",
+                          "--preintegrated"})
+      if (c->count(k) > 0) a->explicit_knobs.push_back(k);
+    run(*a);
+  });
 });
 
 }  // namespace

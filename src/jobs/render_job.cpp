@@ -7,6 +7,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "jobs/calibration.h"
 #include "render/baseline_renderer.h"
 #include "render/volume_renderer.h"
 #include "tsp/core/error.h"
@@ -42,7 +43,8 @@ json frame_json(const FrameRecord& f) {
           {"textures_resident", r.textures_resident},
           {"texture_bytes", r.texture_bytes},
           {"polygons", r.polygons},
-          {"boxes", r.boxes}};
+          {"boxes", r.boxes},
+          {"fragments", r.fragments}};
 }
 
 std::string step_png(const fs::path& dir, int step) {
@@ -71,7 +73,51 @@ double median_frame_ms(const RenderJobResult& result, int pass) {
   return ms[ms.size() / 2];
 }
 
-RenderJobResult run_render_job(const RenderJobOptions& o, const RenderProgress& progress) {
+namespace {
+
+// o with the knobs --quality picks; fills the result's quality fields.
+RenderJobOptions with_quality(RenderJobOptions o, RenderJobResult& result,
+                              const CalibrationProgress& progress) {
+  if (!(o.quality > 0) || !(o.quality <= kMaxQualityDe))
+    throw tsp::UsageError("--quality " + std::to_string(o.quality) +
+                          ": expected a mean dE in (0, " + std::to_string(int(kMaxQualityDe)) + "]");
+  CalibrationRequest r;
+  r.tsp_path = o.tsp_path;
+  r.tf = o.tf;
+  r.metric = o.metric;
+  r.camera = o.camera;
+  r.cache_dir = o.calibration_dir;
+  const Calibration c = calibrate(r, &result.calibration_file, progress);
+  const auto best = pick_configuration(c, o.quality);
+  if (!best) {
+    double lowest = 1e300;
+    for (const CalibrationPoint& p : c.points) lowest = std::min(lowest, p.max_step_de);
+    char buf[220];
+    std::snprintf(buf, sizeof buf,
+                  "--quality %g: no configuration stays within mean dE %g (with a %g margin) on "
+                  "every calibration step; the closest reaches %.3g, so --quality %.3g is the "
+                  "least that works (or use --spacing and tolerances directly)",
+                  o.quality, o.quality * kQualityMargin, kQualityMargin, lowest,
+                  lowest / kQualityMargin);
+    throw tsp::UsageError(o.tsp_path + ": " + buf);
+  }
+  o.compositing = best->knobs.compositing;
+  o.spacing = best->knobs.spacing;
+  o.tol = {best->knobs.tol, best->knobs.tol};
+  o.preintegrated = best->knobs.preintegrated;
+  o.baseline = false;
+  result.quality_options = render_options(best->knobs, o.metric);
+  result.quality_calibrated_de = best->max_step_de;
+  return o;
+}
+
+}  // namespace
+
+RenderJobResult run_render_job(const RenderJobOptions& options, const RenderProgress& progress,
+                               const CalibrationProgress& calibration_progress) {
+  RenderJobResult result;
+  const RenderJobOptions o =
+      options.quality != 0 ? with_quality(options, result, calibration_progress) : options;
   // Options first: nothing is opened or rendered with a bad one.
   if (o.passes < 1 || o.passes > kMaxPasses)
     throw tsp::UsageError("--passes " + std::to_string(o.passes) + ": expected 1 to " +
@@ -98,7 +144,6 @@ RenderJobResult run_render_job(const RenderJobOptions& o, const RenderProgress& 
     if (ec) throw tsp::IoError(o.out_dir + ": cannot create the output directory: " + ec.message());
   }
 
-  RenderJobResult result;
   tsp::MetricResult metric;
   if (!o.baseline) {
     const tsp::Stopwatch watch;
@@ -153,6 +198,11 @@ RenderJobResult run_render_job(const RenderJobOptions& o, const RenderProgress& 
     j["flat"] = o.exact_flat ? "exact" : "slices";
     j["span_step"] = tsp::to_string(o.span_step);
     j["preintegrated"] = o.preintegrated;
+    if (o.quality > 0)
+      j["quality"] = {{"target_delta_e", o.quality},
+                      {"render_options", result.quality_options},
+                      {"calibrated_max_step_delta_e", result.quality_calibrated_de},
+                      {"calibration_file", result.calibration_file}};
     j["median_ms"] = median_frame_ms(result, o.passes);
     tsp::write_file_atomically((dir / "frames.json").string(), tsp::json_text(j, 2) + "\n");
   }

@@ -33,6 +33,10 @@ struct RenderJobOptions {
   bool preintegrated = false;                 ///< --preintegrated on|off
   std::int64_t texture_budget = kDefaultTextureBudget;
   bool write_images = true;                   ///< PNGs (frames.json is written when out_dir is set)
+  /// --quality DE (> 0): compositing, spacing, tolerances and pre-integration are picked from the
+  /// calibration (calibration.h) instead of the fields above; 0: off.
+  double quality = 0;
+  std::string calibration_dir;                ///< --calibration-dir ("": the default; "-": none)
 };
 
 /// Most passes a job plays.
@@ -49,14 +53,20 @@ struct RenderJobResult {
   std::vector<FrameRecord> frames;
   double metric_ms = 0;   ///< whole-tree metric computation before the first frame
   std::string renderer;   ///< the GL renderer string
+  std::string quality_options;   ///< with --quality: the render options it picked
+  double quality_calibrated_de = 0;  ///< their largest per-step mean ΔE on the calibration steps
+  std::string calibration_file;  ///< the cache file read or written ("" without a cache)
 };
 
 /// Progress callback: frames done, frames total.
 using RenderProgress = std::function<void(int done, int total)>;
 
-/// Runs the job on an offscreen OSMesa context. Throws tsp::UsageError (bad steps, sizes),
+/// Runs the job on an offscreen OSMesa context (calibrating first for --quality, reporting to
+/// calibration_progress). Throws tsp::UsageError (bad steps, sizes, a quality nothing reaches),
 /// tsp::IoError / tsp::FormatError (files), tsp::GlError.
-RenderJobResult run_render_job(const RenderJobOptions& options, const RenderProgress& progress = {});
+RenderJobResult run_render_job(
+    const RenderJobOptions& options, const RenderProgress& progress = {},
+    const std::function<void(const std::string&, int, int)>& calibration_progress = {});
 
 /// The inclusive step range [first, last] of path's tree (last −1: the final step), validated;
 /// returns last. Throws tsp::UsageError naming the file and its steps.

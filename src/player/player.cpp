@@ -12,6 +12,7 @@
 #include <cstdio>
 
 #include "gl/gl_error.h"
+#include "jobs/calibration.h"
 #include "player/imgui_gl_load.h"
 #include "player/player_app.h"
 #include "tsp/core/error.h"
@@ -203,6 +204,26 @@ void PlayerApp::set_tolerances(tsp::Tolerances t) {
   renderer->drop_unreachable(frame_metric(), tol);
 }
 
+void PlayerApp::apply_quality(double de) {
+  tspgl::CalibrationRequest r;
+  r.tsp_path = options_.tsp_path;
+  r.tf_table = &tf;
+  r.metric = metric;
+  r.camera = camera;
+  std::string cache;
+  const tspgl::Calibration c = tspgl::calibrate(r, &cache);
+  const auto best = tspgl::pick_configuration(c, de);
+  if (!best) {
+    quality_note = "nothing calibrated stays within dE " + std::to_string(de);
+    return;
+  }
+  compositing = best->knobs.compositing;
+  spacing = best->knobs.spacing;
+  preintegrated = best->knobs.preintegrated;
+  set_tolerances({best->knobs.tol, best->knobs.tol});
+  quality_note = tspgl::render_options(best->knobs, metric) + (cache.empty() ? "" : " (" + cache + ")");
+}
+
 void PlayerApp::set_cache(bool on, double budget_mb) {
   cache_on = on;
   texture_budget_mb = std::max(1.0, budget_mb);
@@ -255,6 +276,9 @@ void PlayerApp::render_volume() {
   tspgl::RenderSettings settings;
   settings.tol = tol;
   settings.upload_budget = std::int64_t(std::max(0.0, upload_budget_mb) * (1 << 20));
+  settings.compositing = compositing;
+  settings.spacing = spacing;
+  settings.preintegrated = preintegrated;
   if (metric != tsp::Metric::reference) {
     // Evaluate this step's nodes here so the HUD can show the recompute cost; render() then
     // only reads memoised results.

@@ -57,6 +57,11 @@ class PlayerApp {
   tsp::Metric metric = tsp::Metric::approximate;
   tsp::CameraParams camera;
   tsp::Tolerances tol;
+  tspgl::Compositing compositing = tspgl::Compositing::rays;
+  double spacing = tspgl::kDefaultSliceSpacing;
+  bool preintegrated = false;
+  float quality = 0;          ///< the quality slider (mean ΔE; 0: the raw knobs)
+  std::string quality_note;   ///< what the last quality pick chose
   float tol_max = 1;  ///< upper end of the tolerance sliders (largest error of a step)
   bool cache_on = true;
   double upload_budget_mb = 16;  ///< texture MiB one frame may upload (0: no limit)
@@ -81,6 +86,10 @@ class PlayerApp {
   void set_metric(tsp::Metric m);
   /// Changes tolerances and drops textures no frame can use any more.
   void set_tolerances(tsp::Tolerances t);
+  /// Picks the fastest calibrated knobs within mean ΔE de for the current TF, metric and view
+  /// (calibrating first, blocking, when the cache has none) and applies them; reports in
+  /// quality_note. Errors go to status.
+  void apply_quality(double de);
   /// Recreates the renderer for a cache policy or budget change.
   void set_cache(bool on, double budget_mb);
   /// Goes to step t (clamped), pausing playback.

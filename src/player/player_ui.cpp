@@ -22,6 +22,8 @@ constexpr float kHudPlotHeight = 60.f;
 constexpr float kHandleRadius = 5.f;  // TF control point handles, pixels
 constexpr double kBytesPerMiB = 1 << 20;
 constexpr const char* kMetricNames[] = {"scalar", "reference", "approximate", "perceptual"};
+// In tspgl::Compositing order.
+constexpr const char* kCompositingNames[] = {"slices", "boxes", "rays"};
 constexpr const char* kClassNames[] = {"not rendered", "untextured", "reused texture",
                                        "new texture"};
 
@@ -88,6 +90,22 @@ void settings(PlayerApp& app) {
   if (changed) app.tol = {double(s), double(t)};
   if (done) app.set_tolerances(app.tol);
 
+  int comp = int(app.compositing);
+  if (ImGui::Combo("compositing", &comp, kCompositingNames, IM_ARRAYSIZE(kCompositingNames)))
+    app.compositing = tspgl::Compositing(comp);
+  float sp = float(app.spacing);
+  if (ImGui::SliderFloat("spacing (voxels)", &sp, 0.25f, 8.f, "%.2f", ImGuiSliderFlags_Logarithmic))
+    app.spacing = std::clamp(double(sp), tspgl::kMinSliceSpacing, tspgl::kMaxSliceSpacing);
+  ImGui::Checkbox("pre-integrated TF", &app.preintegrated);
+  // The quality target sets all of the knobs above from a calibration (made once, cached).
+  ImGui::SliderFloat("quality (dE)", &app.quality, 0.f, 10.f, app.quality > 0 ? "%.2f" : "off");
+  if (ImGui::IsItemDeactivatedAfterEdit() && app.quality > 0) {
+    app.status = "calibrating (once per tree, TF, metric and view) ...";
+    app.apply_quality(app.quality);
+    app.status.clear();
+  }
+  if (!app.quality_note.empty()) ImGui::TextWrapped("quality: %s", app.quality_note.c_str());
+
   bool cache = app.cache_on;
   if (ImGui::Checkbox("texture cache", &cache)) app.set_cache(cache, app.texture_budget_mb);
   ImGui::SameLine();
@@ -139,6 +157,9 @@ void hud(PlayerApp& app) {
   const tspgl::FrameReport& r = app.last;
   ImGui::Text("render %.1f ms: traversal %.1f, slicing %.1f,\n  upload %.1f, draw %.1f", r.ms,
               r.traversal_ms, r.slicing_ms, r.upload_ms, r.draw_ms);
+  ImGui::Text("fragments %.2f M (%.2f per pixel), %s, spacing %.2g", double(r.fragments) / 1e6,
+              double(r.fragments) / std::max(1.0, double(app.ctx->width()) * app.ctx->height()),
+              tspgl::to_string(app.compositing), app.spacing);
   for (int c = 0; c < tsp::kDrawClassCount; ++c)
     ImGui::Text("%-15s %5.1f %%", kClassNames[c], r.class_percent[std::size_t(c)]);
   ImGui::Text("textures %lld resident, %.1f MiB", static_cast<long long>(r.textures_resident),

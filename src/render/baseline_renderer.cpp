@@ -79,7 +79,7 @@ FrameReport BaselineRenderer::render(int step, const tsp::Camera& camera,
     r.boxes = item.as_box;
     compositor_.draw({item});
   }
-  compositor_.end_frame();
+  r.fragments = compositor_.end_frame();
   r.draw_ms = phase.lap_ms();
   r.ms = frame.ms();
   r.class_percent[std::size_t(tsp::DrawClass::new_texture)] = 100.0;

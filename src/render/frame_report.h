@@ -76,6 +76,7 @@ struct FrameReport {
   std::int64_t texture_bytes = 0;
   std::int64_t polygons = 0;           ///< slice polygons drawn
   std::int64_t boxes = 0;              ///< boxes drawn whole (ray cast or exact flat)
+  std::int64_t fragments = 0;          ///< fragments drawn, not discarded (GL_SAMPLES_PASSED)
   std::int64_t deferred_textures = 0;  ///< textures left for later frames (upload_budget)
   /// True when every texture the frame needs was drawn (nothing deferred).
   bool complete() const { return deferred_textures == 0; }

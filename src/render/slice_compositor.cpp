@@ -132,6 +132,7 @@ SliceCompositor::SliceCompositor(GlContext& ctx)
     gl_.Uniform1i(p->uniform("preintegrated"), kPreintegratedUnit);
   }
   gl_.Uniform1i(rays_.uniform("pages"), kPagesUnit);
+  gl_.GenQueries(1, &fragments_query_);
   gl_.GenTextures(1, &pages_);
   gl_.BindTexture(GL_TEXTURE_3D, pages_);
   gl_.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
@@ -144,6 +145,7 @@ SliceCompositor::~SliceCompositor() {
   gl_.DeleteVertexArrays(1, &vao_);
   gl_.DeleteBuffers(1, &cube_vbo_);
   gl_.DeleteTextures(1, &pages_);
+  gl_.DeleteQueries(1, &fragments_query_);
   gl_.DeleteVertexArrays(1, &cube_vao_);
 }
 
@@ -193,6 +195,7 @@ void SliceCompositor::begin_frame(const tsp::Camera& camera, const RenderSetting
   if (settings.preintegrated) tf_.bind_preintegrated(kPreintegratedUnit, settings.spacing);
   tf_.bind(kTfUnit, settings.spacing);
   gl_.ActiveTexture(GL_TEXTURE0 + kVolumeUnit);
+  gl_.BeginQuery(GL_SAMPLES_PASSED, fragments_query_);
 }
 
 void SliceCompositor::upload(const tsp::PolygonSoup& soup) {
@@ -302,9 +305,13 @@ void SliceCompositor::draw_rays(const BrickPages& pages, tsp::Dims dims) {
   gl_.BindVertexArray(vao_);
 }
 
-void SliceCompositor::end_frame() {
+std::int64_t SliceCompositor::end_frame() {
+  gl_.EndQuery(GL_SAMPLES_PASSED);
   target_.resolve();
   ctx_.finish();
+  GLuint64 fragments = 0;
+  gl_.GetQueryObjectui64v(fragments_query_, GL_QUERY_RESULT, &fragments);
+  return std::int64_t(fragments);
 }
 
 }  // namespace tspgl

@@ -5,6 +5,7 @@
 // renderers draw through it.
 #pragma once
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "gl/context.h"
@@ -91,8 +92,10 @@ class SliceCompositor {
   /// Draws the volume box of `dims` once, ray casting pages (rays compositing); the frame's
   /// only draw call.
   void draw_rays(const BrickPages& pages, tsp::Dims dims);
-  /// Copies the target to the default framebuffer and waits for GL. Throws tsp::GlError.
-  void end_frame();
+  /// Copies the target to the default framebuffer and waits for GL; returns the fragments the
+  /// frame's draws produced that were not discarded (GL_SAMPLES_PASSED: one per blended slice
+  /// fragment, one per pixel and box drawn whole). Throws tsp::GlError.
+  std::int64_t end_frame();
   /// The context.
   GlContext& context() { return ctx_; }
 
@@ -100,7 +103,7 @@ class SliceCompositor {
   GlContext& ctx_;
   const GlApi& gl_;
   Program textured_, flat_, box_textured_, box_flat_, rays_;
-  GLuint pages_ = 0;
+  GLuint pages_ = 0, fragments_query_ = 0;
   GLuint vao_ = 0, vbo_ = 0, cube_vao_ = 0, cube_vbo_ = 0;
   TfTexture tf_;
   RenderTarget target_;

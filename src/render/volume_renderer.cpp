@@ -171,7 +171,7 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
     for (const DrawItem& it : items_) r.boxes += it.as_box;
   }
   for (const tsp::TextureKey& k : plan.release_after) textures_.erase(k);
-  compositor_.end_frame();
+  r.fragments = compositor_.end_frame();
   r.draw_ms = phase.lap_ms();
   r.ms = frame.ms();
 

@@ -1,0 +1,225 @@
+#include "jobs/calibration.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "jobs/image_probe.h"
+#include "jobs/render_job.h"
+#include "tsp/core/error.h"
+#include "tsp/core/json_text.h"
+#include "tsp/core/temp_output.h"
+#include "tsp/metric/compute_errors.h"
+#include "tsp/metric/tf_io.h"
+#include "tsp/report/image_diff.h"
+#include "tsp/store/tsp_file.h"
+
+namespace tspgl {
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// Bumped whenever what a calibration measures changes, so old cache files are recomputed.
+constexpr int kCalibrationVersion = 1;
+
+std::uint64_t fnv1a(const std::string& s) {
+  std::uint64_t h = 1469598103934665603ull;
+  for (unsigned char c : s) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+std::string hex(std::uint64_t v) {
+  char buf[20];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
+  return buf;
+}
+
+json knobs_json(const Knobs& k) {
+  return {{"compositing", to_string(k.compositing)},
+          {"spacing", k.spacing},
+          {"tolerance", k.tol},
+          {"preintegrated", k.preintegrated}};
+}
+
+json key_of(const CalibrationRequest& r, const tsp::TransferFunction& tf,
+            const std::vector<int>& steps) {
+  std::error_code ec;
+  const fs::path canon = fs::weakly_canonical(r.tsp_path, ec);
+  const auto bytes = fs::file_size(r.tsp_path, ec);
+  const auto mtime = fs::last_write_time(r.tsp_path, ec).time_since_epoch().count();
+  std::ostringstream tf_text;
+  tf_text.precision(9);
+  tf_text << tf.domain().lo << ' ' << tf.domain().hi;
+  for (const tsp::Rgba& e : tf.entries()) tf_text << ' ' << e.r << ' ' << e.g << ' ' << e.b << ' ' << e.a;
+  json comps = json::array();
+  for (Compositing c : r.grid.compositings) comps.push_back(to_string(c));
+  json pre = json::array();
+  for (bool p : r.grid.preintegration) pre.push_back(p);
+  const tsp::CameraParams& c = r.camera;
+  return {{"version", kCalibrationVersion},
+          {"file", canon.string()},
+          {"file_bytes", std::int64_t(bytes)},
+          {"file_mtime", std::int64_t(mtime)},
+          {"tf", hex(fnv1a(tf_text.str()))},
+          {"metric", tsp::to_string(r.metric)},
+          {"size", {c.width, c.height}},
+          {"view", {c.azimuth_deg, c.elevation_deg}},
+          {"zoom", c.zoom},
+          {"pan", {c.pan[0], c.pan[1]}},
+          {"projection", c.projection == tsp::Projection::perspective ? "perspective" : "orthographic"},
+          {"fov", c.fov_deg},
+          {"steps", steps},
+          {"sweep", r.sweep},
+          {"sweep_decades", kSweepDecades},
+          {"compositings", comps},
+          {"spacings", r.grid.spacings},
+          {"preintegration", pre},
+          {"reference_spacing", r.reference_spacing}};
+}
+
+std::optional<Calibration> read_cache(const fs::path& file, const json& key) {
+  std::ifstream in(file);
+  if (!in) return std::nullopt;
+  try {
+    Calibration c = calibration_from_json(json::parse(in), file.string());
+    if (c.key != key) return std::nullopt;
+    return c;
+  } catch (const std::exception&) {
+    return std::nullopt;  // corrupt or foreign: recompute
+  }
+}
+
+}  // namespace
+
+std::string default_calibration_dir() {
+  if (const char* d = std::getenv("TSPPLAY_CACHE_DIR"); d && *d) return d;
+  if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return (fs::path(x) / "tspplay").string();
+  if (const char* h = std::getenv("HOME"); h && *h)
+    return (fs::path(h) / ".cache" / "tspplay").string();
+  return "";
+}
+
+json to_json(const Calibration& c) {
+  json pts = json::array();
+  for (const CalibrationPoint& p : c.points) {
+    json j = knobs_json(p.knobs);
+    j["mean_delta_e"] = p.mean_de;
+    j["max_step_delta_e"] = p.max_step_de;
+    j["probe_ms"] = p.ms;
+    pts.push_back(j);
+  }
+  return {{"key", c.key}, {"points", pts}};
+}
+
+Calibration calibration_from_json(const json& j, const std::string& what) {
+  try {
+    Calibration c;
+    c.key = j.at("key");
+    for (const json& p : j.at("points")) {
+      CalibrationPoint pt;
+      pt.knobs.compositing = parse_compositing(p.at("compositing").get<std::string>(), what);
+      pt.knobs.spacing = p.at("spacing").get<double>();
+      pt.knobs.tol = p.at("tolerance").get<double>();
+      pt.knobs.preintegrated = p.at("preintegrated").get<bool>();
+      pt.mean_de = p.at("mean_delta_e").get<double>();
+      pt.max_step_de = p.at("max_step_delta_e").get<double>();
+      pt.ms = p.at("probe_ms").get<double>();
+      c.points.push_back(pt);
+    }
+    return c;
+  } catch (const json::exception& e) {
+    throw tsp::FormatError(what + ": not a tspplay calibration: " + e.what());
+  } catch (const tsp::UsageError& e) {
+    throw tsp::FormatError(what + ": not a tspplay calibration: " + e.what());
+  }
+}
+
+std::optional<CalibrationPoint> pick_configuration(const Calibration& c, double de) {
+  std::optional<CalibrationPoint> best;
+  for (const CalibrationPoint& p : c.points)
+    if (p.max_step_de <= kQualityMargin * de && (!best || p.ms < best->ms)) best = p;
+  return best;
+}
+
+Calibration calibrate(const CalibrationRequest& r, std::string* cache_file,
+                      const CalibrationProgress& progress) {
+  auto file = tsp::TspFile::open(r.tsp_path);
+  const tsp::TspTree& tree = file->tree();
+  const tsp::TransferFunction tf =
+      r.tf_table ? *r.tf_table : tsp::transfer_function_from_arg(r.tf, tree.value_range());
+  const std::vector<int> steps =
+      search_step_sample(0, tree.time().steps() - 1, std::max(1, r.steps));
+  Calibration c;
+  c.key = key_of(r, tf, steps);
+
+  fs::path path;
+  const std::string dir = r.cache_dir.empty() ? default_calibration_dir() : r.cache_dir;
+  if (dir != "-" && !dir.empty())
+    path = fs::path(dir) / ("calibration-" + hex(fnv1a(tsp::json_text(c.key))) + ".json");
+  if (cache_file) *cache_file = path.string();
+  if (!path.empty())
+    if (auto cached = read_cache(path, c.key)) return *cached;
+
+  ImageProbe probe(*file, tf, r.camera, steps);
+  Knobs ref;
+  ref.baseline = true;
+  ref.compositing = Compositing::slices;
+  ref.spacing = r.reference_spacing;
+  const std::vector<tsp::Image> reference = probe.render(ref, nullptr).images;
+  const tsp::MetricResult metric = tsp::compute_errors(r.metric, tree, tf, file.get(), 0);
+  // Tolerances: 0 and `sweep` log-spaced values up to the largest node error.
+  const ErrorSpan span = error_span(metric);
+  std::vector<double> tols{0};
+  if (span.largest > 0 && r.sweep > 0) {
+    const double lo = std::max(span.smallest_positive, span.largest * std::pow(10.0, -kSweepDecades));
+    for (int i = 0; i < r.sweep; ++i)
+      tols.push_back(r.sweep == 1 ? span.largest
+                                  : lo * std::pow(span.largest / lo, double(i) / (r.sweep - 1)));
+  }
+  const int total = int(r.grid.compositings.size() * r.grid.spacings.size() *
+                        r.grid.preintegration.size() * tols.size());
+  int done = 0;
+  for (bool pre : r.grid.preintegration)
+    for (Compositing comp : r.grid.compositings)
+      for (double spacing : r.grid.spacings)
+        for (double tol : tols) {
+          Knobs k;
+          k.compositing = comp;
+          k.spacing = spacing;
+          k.tol = tol;
+          k.preintegrated = pre;
+          const ProbeFrames f = probe.render(k, &metric);
+          CalibrationPoint p;
+          p.knobs = k;
+          p.ms = f.median_ms;
+          for (std::size_t i = 0; i < f.images.size(); ++i) {
+            const double de = tsp::diff_images(f.images[i], reference[i]).mean;
+            p.mean_de += de / double(f.images.size());
+            p.max_step_de = std::max(p.max_step_de, de);
+          }
+          c.points.push_back(p);
+          if (progress) progress("calibrating " + render_options(k, r.metric), ++done, total);
+        }
+
+  if (!path.empty()) {
+    std::error_code ec;
+    fs::create_directories(path.parent_path(), ec);
+    if (ec)
+      throw tsp::IoError(path.parent_path().string() +
+                         ": cannot create the calibration cache directory: " + ec.message());
+    tsp::write_file_atomically(path.string(), tsp::json_text(to_json(c), 1) + "\n");
+  }
+  return c;
+}
+
+}  // namespace tspgl

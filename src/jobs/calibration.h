@@ -1,0 +1,78 @@
+// `tspplay render --quality DE`: the fastest configuration of the quality knobs whose pictures
+// stay within a mean ΔE of the full-quality picture (the baseline sliced at 0.25 voxels), picked
+// from a calibration — every compositing × spacing × a log sweep of tolerances, probed on a
+// sample of steps — made once per tree, TF, metric and view and cached as JSON
+// (docs/rendering.md, "Quality target").
+#pragma once
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "jobs/knob_search.h"
+#include "tsp/frame/camera.h"
+#include "tsp/metric/metric.h"
+
+namespace tspgl {
+
+/// One probed configuration: the mean over the calibration steps of each picture's mean ΔE, the
+/// largest of those per-step means, and the probe's median frame time.
+struct CalibrationPoint {
+  Knobs knobs;
+  double mean_de = 0, max_step_de = 0, ms = 0;
+};
+
+/// What a calibration was made for, and every configuration it probed.
+struct Calibration {
+  nlohmann::json key;                   ///< file identity, TF, metric, camera, steps
+  std::vector<CalibrationPoint> points;
+};
+
+/// What to calibrate.
+struct CalibrationRequest {
+  std::string tsp_path;
+  std::string tf = "preset:sparse";  ///< a file or preset:NAME (unless tf_table is set)
+  const tsp::TransferFunction* tf_table = nullptr;  ///< a TF in memory (the player's editor)
+  tsp::Metric metric = tsp::Metric::approximate;
+  tsp::CameraParams camera;
+  int steps = 6;                 ///< calibration steps, spread evenly over the file's steps
+  int sweep = 11;                ///< positive tolerances per compositing × spacing (log-spaced)
+  KnobGrid grid{{Compositing::slices, Compositing::boxes, Compositing::rays},
+                {0.5, 1, 1.5, 2, 3, 4, 6, 8}};
+  double reference_spacing = 0.25;
+  std::string cache_dir;         ///< "" : default_calibration_dir(); "-": no cache
+};
+
+/// Largest quality target accepted by --quality (ΔE; beyond it pictures are unrecognisable).
+inline constexpr double kMaxQualityDe = 50;
+/// Share of the target a configuration's worst calibration step may use: steps the calibration
+/// did not see differ from those it saw (about 15 % on the generated shock series).
+inline constexpr double kQualityMargin = 0.75;
+/// The sweep's smallest positive tolerance, relative to the largest node error.
+inline constexpr double kSweepDecades = 5;
+
+/// The cache directory: $TSPPLAY_CACHE_DIR, else $XDG_CACHE_HOME/tspplay, else
+/// $HOME/.cache/tspplay, else "" (no cache). Never throws.
+std::string default_calibration_dir();
+
+/// Progress: a phase text, probes done, probes planned (an upper bound).
+using CalibrationProgress = std::function<void(const std::string& phase, int done, int total)>;
+
+/// The calibration for r: read from the cache when one with the same key is there, else made
+/// (rendering on an offscreen context) and written atomically to the cache. `cache_file` is set
+/// to the file used ("" without a cache). Throws tsp::UsageError, tsp::IoError,
+/// tsp::FormatError, tsp::GlError; a corrupt cache file is recomputed, never an error.
+Calibration calibrate(const CalibrationRequest& r, std::string* cache_file = nullptr,
+                      const CalibrationProgress& progress = {});
+
+/// The fastest point whose every calibration step stayed within kQualityMargin·de, or none.
+std::optional<CalibrationPoint> pick_configuration(const Calibration& c, double de);
+
+/// The JSON form of c (what the cache holds), and back. from_json throws tsp::FormatError
+/// naming `what` on a malformed document.
+nlohmann::json to_json(const Calibration& c);
+/// See to_json.
+Calibration calibration_from_json(const nlohmann::json& j, const std::string& what);
+
+}  // namespace tspgl
