@@ -17,7 +17,7 @@ namespace {
 
 struct BuildArgs {
   std::string input, output, field, range, raw_dims, raw_type = "f32";
-  int brick = tsp::kDefaultBrickSize;
+  int brick = 0;  // 0: tsp::default_brick_size of the grid
   int threads = 0;
   bool big_endian = false;
 };
@@ -37,6 +37,7 @@ void run_build(const BuildArgs& a) {
   bo.field_name = a.field;
   if (!a.range.empty()) bo.range = parse_range(a.range, "--range");
   auto source = tsp::open_source(a.input, so);
+  if (bo.brick_size == 0) bo.brick_size = tsp::default_brick_size(source->dims());
   tsp::BuildReport r = build_with_progress(*source, a.output, bo);
   print_build_summary(a.output, r);
 }
@@ -48,7 +49,8 @@ const CommandRegistrar reg(10, [](CLI::App& app) {
       ->required();
   c->add_option("-o,--output", a->output, "The .tsp file to write")->required();
   c->add_option("--field", a->field, "Field (dataset/variable/array) to read");
-  c->add_option("--brick", a->brick, "Brick edge in samples, a power of two (default 32)");
+  c->add_option("--brick", a->brick, "Brick edge in samples, a power of two 8..64 (default: the one nearest a quarter of "
+                "the longest grid edge, in [8, 64]: 16 for 64^3, 32 for 128^3)");
   c->add_option("--range", a->range, "Quantization range LO:HI (default: the data's range)");
   c->add_option("--raw-dims", a->raw_dims, "Raw input: grid size X,Y,Z");
   c->add_option("--raw-type", a->raw_type, "Raw input: element type u8|u16|f32")

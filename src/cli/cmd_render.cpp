@@ -23,7 +23,7 @@ struct RenderArgs {
   double texture_budget_mb = double(tspgl::kDefaultTextureBudget) / (1 << 20);
   bool baseline = false, perspective = false;
   double quality = 0;
-  std::string calibration_dir;
+  std::string calibration_dir, save_tf;
   std::vector<std::string> explicit_knobs;  ///< knob options given with --quality (an error)
 };
 
@@ -55,6 +55,7 @@ void run(const RenderArgs& a) {
     throw tsp::UsageError("--quality is for the TSP renderer: drop --baseline");
   o.quality = a.quality;
   o.calibration_dir = a.calibration_dir;
+  o.save_tf = a.save_tf;
   if (a.out.empty()) throw tsp::UsageError("-o: the output directory must not be empty");
   if (!(a.texture_budget_mb > 0) || !(a.texture_budget_mb <= double(tspgl::kMaxBudgetBytes >> 20)))
     throw tsp::UsageError("--texture-budget " + std::to_string(a.texture_budget_mb) +
@@ -128,6 +129,9 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
   c->add_option("--quality", a->quality,
                 "Mean dE target against the full-quality picture: picks the fastest calibrated "
                 "compositing, spacing, tolerances and pre-integration (calibrates once, cached)");
+  c->add_option("--save-tf", a->save_tf,
+                "Also write the transfer function used (a preset resolved over the data's range) "
+                "as JSON, e.g. for bench/vtk_reference.py");
   c->add_option("--calibration-dir", a->calibration_dir,
                 "Where --quality caches calibrations (default $TSPPLAY_CACHE_DIR, "
                 "$XDG_CACHE_HOME/tspplay or ~/.cache/tspplay; - for none)");

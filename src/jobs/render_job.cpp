@@ -11,6 +11,7 @@
 #include "render/baseline_renderer.h"
 #include "render/volume_renderer.h"
 #include "tsp/core/error.h"
+#include "tsp/core/file_check.h"
 #include "tsp/core/json_text.h"
 #include "tsp/core/stopwatch.h"
 #include "tsp/core/temp_output.h"
@@ -135,6 +136,10 @@ RenderJobResult run_render_job(const RenderJobOptions& options, const RenderProg
   const tsp::TspTree& tree = file->tree();
   const int last = checked_last_step(tree, o.first_step, o.last_step, o.tsp_path);
   const tsp::TransferFunction tf = tsp::transfer_function_from_arg(o.tf, tree.value_range());
+  if (!o.save_tf.empty()) {
+    tsp::require_not_an_input(o.save_tf, {o.tsp_path, o.tf});
+    tsp::save_transfer_function(tf, o.save_tf);
+  }
 
   fs::path dir;
   if (!o.out_dir.empty()) {

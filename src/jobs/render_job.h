@@ -37,6 +37,7 @@ struct RenderJobOptions {
   /// calibration (calibration.h) instead of the fields above; 0: off.
   double quality = 0;
   std::string calibration_dir;                ///< --calibration-dir ("": the default; "-": none)
+  std::string save_tf;                        ///< --save-tf: write the TF used here (JSON)
 };
 
 /// Most passes a job plays.

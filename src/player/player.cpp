@@ -13,6 +13,8 @@
 
 #include "gl/gl_error.h"
 #include "jobs/calibration.h"
+#include "tsp/core/json_text.h"
+#include "tsp/core/temp_output.h"
 #include "player/imgui_gl_load.h"
 #include "player/player_app.h"
 #include "tsp/core/error.h"
@@ -224,6 +226,32 @@ void PlayerApp::apply_quality(double de) {
   quality_note = tspgl::render_options(best->knobs, metric) + (cache.empty() ? "" : " (" + cache + ")");
 }
 
+void PlayerApp::write_stats(const std::string& path) const {
+  nlohmann::json j;
+  std::vector<double> ms;
+  for (const FrameSample& f : history) ms.push_back(f.ms);
+  double sum = 0;
+  for (double v : ms) sum += v;
+  const double mean = ms.empty() ? 0 : sum / double(ms.size());
+  j["window"] = {ctx->width(), ctx->height()};
+  j["frames"] = ms.size();
+  j["frame_ms"] = ms;
+  j["mean_frame_ms"] = mean;
+  j["fps"] = mean > 0 ? 1000.0 / mean : 0.0;
+  j["render_ms"] = last.ms;
+  j["fragments"] = last.fragments;
+  j["compositing"] = tspgl::to_string(compositing);
+  j["spacing"] = spacing;
+  j["preintegrated"] = preintegrated;
+  j["tolerance"] = {tol.spatial, tol.temporal};
+  j["quality"] = quality_note;
+  j["classes"] = {{"not_rendered", last.class_percent[0]},
+                  {"untextured", last.class_percent[1]},
+                  {"reused_texture", last.class_percent[2]},
+                  {"new_texture", last.class_percent[3]}};
+  tsp::write_file_atomically(path, tsp::json_text(j, 2) + "\n");
+}
+
 void PlayerApp::set_cache(bool on, double budget_mb) {
   cache_on = on;
   texture_budget_mb = std::max(1.0, budget_mb);
@@ -401,6 +429,22 @@ void PlayerApp::apply(const ScriptAction& a) {
       break;
     case Kind::wait_frames:
       wait_frames_ = a.number;
+      break;
+    case Kind::compositing:
+      compositing = tspgl::parse_compositing(a.text, "compositing");
+      break;
+    case Kind::spacing:
+      spacing = a.value;
+      break;
+    case Kind::preintegrated:
+      preintegrated = a.flag;
+      break;
+    case Kind::quality:
+      quality = float(a.value);
+      apply_quality(a.value);
+      break;
+    case Kind::stats:
+      write_stats(a.text);
       break;
     case Kind::quit:
       quit_ = true;

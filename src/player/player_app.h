@@ -90,6 +90,8 @@ class PlayerApp {
   /// (calibrating first, blocking, when the cache has none) and applies them; reports in
   /// quality_note. Errors go to status.
   void apply_quality(double de);
+  /// Writes the HUD's statistics as JSON to path (atomically). Throws tsp::IoError.
+  void write_stats(const std::string& path) const;
   /// Recreates the renderer for a cache policy or budget change.
   void set_cache(bool on, double budget_mb);
   /// Goes to step t (clamped), pausing playback.

@@ -15,6 +15,8 @@ using Kind = ScriptAction::Kind;
 
 // Largest upload budget a script may set (1 TiB, as the renderer accepts).
 constexpr double kMaxUploadBudgetMib = 1 << 20;
+// Spacing and quality limits, as `tspplay render` accepts them (tspscript links no renderer).
+constexpr double kMinSpacing = 1.0 / 64, kMaxSpacing = 64, kMaxQuality = 50;
 
 struct LineParser {
   const std::string& origin;
@@ -114,6 +116,31 @@ ScriptAction parse_line(const LineParser& p) {
     a.value2 = p.number(2, "view AZIMUTH ELEVATION");
     if (!std::isfinite(a.value)) p.fail("azimuth must be finite");
     if (!(a.value2 > -90 && a.value2 < 90)) p.fail("elevation must be in (-90, 90) degrees");
+  } else if (cmd == "compositing") {
+    p.expect_args(1, "compositing slices|boxes|rays");
+    a.kind = Kind::compositing;
+    a.text = p.words[1];
+    if (a.text != "slices" && a.text != "boxes" && a.text != "rays")
+      p.fail("unknown compositing '" + a.text + "': expected slices, boxes or rays");
+  } else if (cmd == "spacing") {
+    p.expect_args(1, "spacing VOXELS");
+    a.kind = Kind::spacing;
+    a.value = p.number(1, "spacing VOXELS");
+    if (!(a.value >= kMinSpacing && a.value <= kMaxSpacing))
+      p.fail("spacing must be in [1/64, 64] voxels");
+  } else if (cmd == "preintegrated") {
+    p.expect_args(1, "preintegrated on|off");
+    a.kind = Kind::preintegrated;
+    a.flag = p.choice(1, "on", "off");
+  } else if (cmd == "quality") {
+    p.expect_args(1, "quality DE");
+    a.kind = Kind::quality;
+    a.value = p.number(1, "quality DE");
+    if (!(a.value > 0) || a.value > kMaxQuality) p.fail("quality must be a mean dE in (0, 50]");
+  } else if (cmd == "stats") {
+    p.expect_args(1, "stats FILE.json");
+    a.kind = Kind::stats;
+    a.text = p.words[1];
   } else if (cmd == "zoom") {
     p.expect_args(1, "zoom FACTOR");
     a.kind = Kind::zoom;

@@ -26,6 +26,11 @@ struct ScriptAction {
     screenshot,     ///< save the next complete frame (volume only) to `text`
     screenshot_ui,  ///< save the next complete frame with the UI panels to `text`
     wait_frames,    ///< let `number` frames pass
+    compositing,    ///< slices, boxes or rays (`text`)
+    spacing,        ///< slice spacing `value` voxels
+    preintegrated,  ///< pre-integrated TF on (`flag`) or off
+    quality,        ///< quality target mean ΔE `value` (calibrates once; blocks)
+    stats,          ///< write the HUD statistics (frame times, fps, last frame) to `text` (JSON)
     quit            ///< close the player
   };
   Kind kind = Kind::quit;

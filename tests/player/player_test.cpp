@@ -101,6 +101,33 @@ TEST(Player, ScriptedScrubShowsEachStepAndATfEditChangesThePicture) {
   EXPECT_LT(tsp::diff_images(c, render_step(tsp, 3, "preset:filled")).mean, kSameFrameDeltaE);
 }
 
+// The quality knobs from a script: the player's frame with compositing, spacing and
+// pre-integration set matches `tspplay render` with the same options, and `stats` reports them
+// with frame times and fragments.
+TEST(Player, ScriptedKnobsMatchRenderAndStatsReportThem) {
+  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
+  fs::path shot = dir / "k.png", stats = dir / "stats.json";
+  fs::path script = write_script("step 1\ncompositing slices\nspacing 2\npreintegrated on\n"
+                                 "wait-frames 3\nscreenshot " + shot.string() + "\nstats " +
+                                 stats.string() + "\nquit\n");
+  auto r = run_tspplay("play " + q(tsp) + " --size " + kSize + " --script " + q(script));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  fs::path out = dir / "frames";
+  auto rr = run_tspplay("render " + q(tsp) + " --steps 1 --size " + kSize +
+                        " --compositing slices --spacing 2 --preintegrated on -o " + q(out));
+  ASSERT_EQ(rr.exit_code, 0) << rr.err;
+  EXPECT_LT(tsp::diff_images(tsp::read_png(shot.string()),
+                             tsp::read_png((out / "step_0001.png").string()))
+                .mean,
+            kSameFrameDeltaE);
+  std::ifstream in(stats);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (const char* k : {"\"fps\"", "\"fragments\"", "\"compositing\": \"slices\"",
+                        "\"spacing\": 2.0", "\"preintegrated\": true", "\"frame_ms\""})
+    EXPECT_NE(text.find(k), std::string::npos) << k << " in " << text;
+}
+
 // Errors are found before any window opens, so these run without a display too.
 TEST(Player, BadScriptLineIsAnErrorNamingFileAndLine) {
   fs::path tsp = make_tsp();

@@ -60,6 +60,19 @@ TEST(PlayerScript, ParsesEveryAction) {
   EXPECT_EQ(a[17].kind, Kind::quit);
   EXPECT_EQ(a[17].line, 20);
   EXPECT_TRUE(parse_script("", "empty").empty());
+  const auto k = parse_script(
+      "compositing boxes\nspacing 2.5\npreintegrated on\nquality 1.5\nstats s.json\n", "k.txt");
+  ASSERT_EQ(k.size(), 5u);
+  EXPECT_EQ(k[0].kind, Kind::compositing);
+  EXPECT_EQ(k[0].text, "boxes");
+  EXPECT_EQ(k[1].kind, Kind::spacing);
+  EXPECT_DOUBLE_EQ(k[1].value, 2.5);
+  EXPECT_EQ(k[2].kind, Kind::preintegrated);
+  EXPECT_TRUE(k[2].flag);
+  EXPECT_EQ(k[3].kind, Kind::quality);
+  EXPECT_DOUBLE_EQ(k[3].value, 1.5);
+  EXPECT_EQ(k[4].kind, Kind::stats);
+  EXPECT_EQ(k[4].text, "s.json");
 }
 
 TEST(PlayerScript, ErrorsNameTheLineAndWhatWasExpected) {
@@ -78,6 +91,10 @@ TEST(PlayerScript, ErrorsNameTheLineAndWhatWasExpected) {
   EXPECT_NE(error_of("wait-frames -1").find("not an integer >= 0"), std::string::npos);
   EXPECT_NE(error_of("projection iso").find("expected persp or ortho"), std::string::npos);
   EXPECT_NE(error_of("speed 1e999").find("s.txt:1"), std::string::npos);
+  EXPECT_NE(error_of("compositing voxels").find("expected slices, boxes or rays"),
+            std::string::npos);
+  EXPECT_NE(error_of("spacing 0").find("spacing must be in"), std::string::npos);
+  EXPECT_NE(error_of("quality 0").find("quality must be"), std::string::npos);
 }
 
 TEST(PlayerScript, LoadsAFileAndNamesAMissingOne) {

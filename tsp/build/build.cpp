@@ -275,4 +275,14 @@ BuildReport build_tsp_file(VolumeSource& source, const std::string& out_path,
   return report;
 }
 
+int default_brick_size(Dims dims) {
+  constexpr int kMin = 8, kMax = 64;
+  const double quarter = std::max({dims.x, dims.y, dims.z}) / 4.0;
+  int b = kMin;
+  while (b < kMax && std::abs(std::log2(double(2 * b)) - std::log2(quarter)) <
+                         std::abs(std::log2(double(b)) - std::log2(quarter)))
+    b *= 2;
+  return b;
+}
+
 }  // namespace tsp

@@ -17,6 +17,12 @@ namespace tsp {
 using ProgressFn =
     std::function<void(const std::string& phase, std::int64_t done, std::int64_t total)>;
 
+/// The brick size `tspplay build` uses unless told: the power of two nearest a quarter of the
+/// grid's longest edge, in [8, 64] — about four bricks per axis, so transparent and coherent
+/// regions split off while the one-pass ray caster crosses few bricks per ray (64³ → 16,
+/// 128³ → 32, 256³ and beyond → 64; measured in docs/results.md). Never throws.
+int default_brick_size(Dims dims);
+
 /// Options of `tspplay build`.
 struct BuildOptions {
   int brick_size = kDefaultBrickSize;  ///< B, a power of two

@@ -338,3 +338,19 @@ TEST(Build, HundredThousandTinyStepsBuildInBoundedMemory) {
 
 }  // namespace
 }  // namespace tsp
+
+namespace tsp {
+namespace {
+
+TEST(DefaultBrickSize, IsThePowerOfTwoNearestAQuarterOfTheLongestEdgeIn8To64) {
+  EXPECT_EQ(default_brick_size({64, 64, 64}), 16);
+  EXPECT_EQ(default_brick_size({128, 40, 20}), 32);
+  EXPECT_EQ(default_brick_size({48, 48, 14}), 16);  // a quarter is 12: 16 is nearer than 8 on a log scale
+  EXPECT_EQ(default_brick_size({256, 256, 256}), 64);
+  EXPECT_EQ(default_brick_size({2048, 16, 16}), 64);
+  EXPECT_EQ(default_brick_size({20, 20, 20}), 8);
+  EXPECT_EQ(default_brick_size({2, 2, 2}), 8);
+}
+
+}  // namespace
+}  // namespace tsp
