@@ -17,7 +17,8 @@ namespace {
 struct RenderArgs {
   std::string file, tf = "preset:sparse", out, steps, size = "640x480", view = "30,20";
   std::string metric = "approximate", cache = "on", compositing = "rays", flat = "exact",
-              span_step = "middle", preintegrated = "off";
+              span_step = "middle", preintegrated = "off",
+              reuse = "on";
   double spatial = 0, temporal = 0, spacing = tspgl::kDefaultSliceSpacing;
   int passes = 1;
   double texture_budget_mb = double(tspgl::kDefaultTextureBudget) / (1 << 20);
@@ -48,6 +49,7 @@ void run(const RenderArgs& a) {
   o.exact_flat = a.flat == "exact";
   o.span_step = tsp::parse_span_step(a.span_step, "--span-step");
   o.preintegrated = a.preintegrated == "on";
+  o.reuse_image = a.reuse == "on";
   if (a.quality != 0 && !a.explicit_knobs.empty())
     throw tsp::UsageError("--quality picks compositing, spacing, tolerances and pre-integration "
                           "itself: drop " + a.explicit_knobs.front());
@@ -121,6 +123,10 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
       ->check(CLI::IsMember({"exact", "slices"}));
   c->add_option("--preintegrated", a->preintegrated,
                 "Pre-integrated TF lookup over sample pairs: on|off (default off)")
+      ->check(CLI::IsMember({"on", "off"}));
+  c->add_option("--reuse", a->reuse,
+                "Partial-image reuse: redraw only where bricks changed since the last frame "
+                "(same view, TF, knobs): on|off (default on)")
       ->check(CLI::IsMember({"on", "off"}));
   c->add_option("--span-step", a->span_step,
                 "Step whose bricks texture a span: middle or first (the paper's; default middle)")

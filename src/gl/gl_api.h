@@ -26,6 +26,7 @@ namespace tspgl {
   X(PFNGLREADPIXELSPROC, ReadPixels)                             \
   X(PFNGLDEPTHMASKPROC, DepthMask)                               \
   X(PFNGLCULLFACEPROC, CullFace)                                 \
+  X(PFNGLSCISSORPROC, Scissor)                                   \
   X(PFNGLCOLORMASKPROC, ColorMask)                               \
   /* blending */                                                 \
   X(PFNGLBLENDFUNCPROC, BlendFunc)                               \

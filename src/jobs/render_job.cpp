@@ -45,7 +45,8 @@ json frame_json(const FrameRecord& f) {
           {"texture_bytes", r.texture_bytes},
           {"polygons", r.polygons},
           {"boxes", r.boxes},
-          {"fragments", r.fragments}};
+          {"fragments", r.fragments},
+          {"redrawn_percent", r.redrawn_percent}};
 }
 
 std::string step_png(const fs::path& dir, int step) {
@@ -130,6 +131,7 @@ RenderJobResult run_render_job(const RenderJobOptions& options, const RenderProg
   settings.exact_flat = o.exact_flat;
   settings.span_step = o.span_step;
   settings.preintegrated = o.preintegrated;
+  settings.reuse_image = o.reuse_image;
   validate(settings);
   validate_budget(o.texture_budget, "--texture-budget");
   auto file = tsp::TspFile::open(o.tsp_path);
@@ -203,6 +205,7 @@ RenderJobResult run_render_job(const RenderJobOptions& options, const RenderProg
     j["flat"] = o.exact_flat ? "exact" : "slices";
     j["span_step"] = tsp::to_string(o.span_step);
     j["preintegrated"] = o.preintegrated;
+    j["reuse"] = o.reuse_image;
     if (o.quality > 0)
       j["quality"] = {{"target_delta_e", o.quality},
                       {"render_options", result.quality_options},

@@ -31,6 +31,7 @@ struct RenderJobOptions {
   bool exact_flat = true;                     ///< --flat exact|slices: coherent nodes as one box
   tsp::SpanStep span_step = tsp::SpanStep::middle;  ///< --span-step first|middle
   bool preintegrated = false;                 ///< --preintegrated on|off
+  bool reuse_image = true;                    ///< --reuse on|off: partial-image reuse
   std::int64_t texture_budget = kDefaultTextureBudget;
   bool write_images = true;                   ///< PNGs (frames.json is written when out_dir is set)
   /// --quality DE (> 0): compositing, spacing, tolerances and pre-integration are picked from the

@@ -50,6 +50,9 @@ struct RenderSettings {
   /// Textured samples read a pre-integrated TF table over each pair of neighbouring samples
   /// (tsp::preintegrate) instead of the point lookup.
   bool preintegrated = false;
+  /// Keep the last frame's pixels whose rays meet only bricks drawn as before (same view, TF and
+  /// knobs), drawing only the rectangles of the bricks that changed (image_reuse.h). Exact.
+  bool reuse_image = true;
   /// Which step's bricks texture a span longer than one step.
   tsp::SpanStep span_step = tsp::SpanStep::middle;
 };
@@ -77,6 +80,7 @@ struct FrameReport {
   std::int64_t polygons = 0;           ///< slice polygons drawn
   std::int64_t boxes = 0;              ///< boxes drawn whole (ray cast or exact flat)
   std::int64_t fragments = 0;          ///< fragments drawn, not discarded (GL_SAMPLES_PASSED)
+  double redrawn_percent = 100;        ///< share of the image drawn again (partial-image reuse)
   std::int64_t deferred_textures = 0;  ///< textures left for later frames (upload_budget)
   /// True when every texture the frame needs was drawn (nothing deferred).
   bool complete() const { return deferred_textures == 0; }

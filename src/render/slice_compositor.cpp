@@ -154,11 +154,26 @@ void SliceCompositor::set_transfer_function(const tsp::TransferFunction& tf,
   tf_.set(tf, quantized);
 }
 
-void SliceCompositor::begin_frame(const tsp::Camera& camera, const RenderSettings& settings) {
-  ctx_.make_current();
-  target_.bind();
+void SliceCompositor::set_region(const PixelRect& r, const RenderSettings& settings) {
+  if (r.x1 <= r.x0 || r.y1 <= r.y0) {
+    gl_.Disable(GL_SCISSOR_TEST);
+    return;
+  }
+  gl_.Enable(GL_SCISSOR_TEST);
+  gl_.Scissor(r.x0, r.y0, r.x1 - r.x0, r.y1 - r.y0);
   gl_.ClearColor(settings.background[0], settings.background[1], settings.background[2], 1.f);
   gl_.Clear(GL_COLOR_BUFFER_BIT);
+}
+
+void SliceCompositor::begin_frame(const tsp::Camera& camera, const RenderSettings& settings,
+                                  bool keep) {
+  ctx_.make_current();
+  target_.bind();
+  gl_.Disable(GL_SCISSOR_TEST);
+  if (!keep) {
+    gl_.ClearColor(settings.background[0], settings.background[1], settings.background[2], 1.f);
+    gl_.Clear(GL_COLOR_BUFFER_BIT);
+  }
   gl_.Disable(GL_DEPTH_TEST);
   gl_.Disable(GL_CULL_FACE);
   gl_.Enable(GL_BLEND);
@@ -307,6 +322,7 @@ void SliceCompositor::draw_rays(const BrickPages& pages, tsp::Dims dims) {
 
 std::int64_t SliceCompositor::end_frame() {
   gl_.EndQuery(GL_SAMPLES_PASSED);
+  gl_.Disable(GL_SCISSOR_TEST);
   target_.resolve();
   ctx_.finish();
   GLuint64 fragments = 0;

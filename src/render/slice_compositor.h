@@ -12,6 +12,7 @@
 #include "gl/shader.h"
 #include "render/brick_textures.h"
 #include "render/frame_report.h"
+#include "render/image_reuse.h"
 #include "render/render_target.h"
 #include "render/tf_texture.h"
 #include "tsp/core/types.h"
@@ -82,9 +83,13 @@ class SliceCompositor {
 
   /// Uses tf for bricks quantized over `quantized` from the next frame on.
   void set_transfer_function(const tsp::TransferFunction& tf, tsp::ValueRange quantized);
-  /// Makes the context current, binds and clears the 16-bit target, sets blending and the
-  /// camera. Throws tsp::GlError.
-  void begin_frame(const tsp::Camera& camera, const RenderSettings& settings);
+  /// Makes the context current, binds the 16-bit target (cleared unless `keep`: then the last
+  /// frame's pixels stay, for partial-image reuse), sets blending and the camera. Throws
+  /// tsp::GlError.
+  void begin_frame(const tsp::Camera& camera, const RenderSettings& settings, bool keep = false);
+  /// Restricts the following draws to rect and clears it to the background (x1 ≤ x0: no
+  /// restriction again).
+  void set_region(const PixelRect& rect, const RenderSettings& settings);
   /// Uploads the frame's polygons (float vertices) to the vertex buffer.
   void upload(const tsp::PolygonSoup& soup);
   /// Draws items in order (polygons of the last upload(); boxes need no upload).

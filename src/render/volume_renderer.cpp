@@ -29,9 +29,26 @@ VolumeRenderer::~VolumeRenderer() = default;
 
 void VolumeRenderer::set_transfer_function(const tsp::TransferFunction& tf) {
   compositor_.set_transfer_function(tf, tree_.value_range());
+  ++tf_serial_;
+}
+
+VolumeRenderer::ReuseKey VolumeRenderer::reuse_key(const tsp::Camera& camera,
+                                                   const RenderSettings& s) const {
+  ReuseKey k;
+  k.view_projection = camera.view_projection();
+  k.width = camera.params().width;
+  k.height = camera.params().height;
+  k.spacing = s.spacing;
+  k.compositing = s.compositing;
+  k.exact_flat = s.exact_flat;
+  k.preintegrated = s.preintegrated;
+  k.background = s.background;
+  k.tf_serial = tf_serial_;
+  return k;
 }
 
 void VolumeRenderer::clear_textures() {
+  previous_.reset();
   textures_.clear();
   cache_.clear();
 }
@@ -137,7 +154,6 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
   const tsp::Octree& octree = tree_.octree();
   FrameReport r;
   r.step = step;
-  compositor_.begin_frame(camera, settings);
 
   tsp::Stopwatch phase;
   const tsp::ViewOrder order = view_order(camera);
@@ -148,7 +164,17 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
   const tsp::FramePlan plan = tsp::plan_frame(tree_, step, emitted, tsp::node_info(metric),
                                               settings.tol, order, cache_, settings.upload_budget,
                                               settings.span_step);
+  // Partial-image reuse: with the same view, TF and knobs as the last frame, only the screen
+  // rectangles of the bricks drawn differently are drawn again.
+  BrickIdentities ids =
+      brick_identities(tree_, plan, [&](int id) { return metric.mean_colour(id); });
+  const ReuseKey key = reuse_key(camera, settings);
+  const bool reuse = settings.reuse_image && previous_ && previous_->key == key;
+  std::vector<PixelRect> rects;
+  if (reuse) rects = dirty_rects(tree_, camera, previous_->ids, ids);
+  previous_.reset();  // valid again only once this frame is complete
   r.traversal_ms = phase.lap_ms();
+  compositor_.begin_frame(camera, settings, reuse);
 
   // Uploads first (growing the atlas moves every slot), then the draw list or the brick pages.
   for (const tsp::TextureKey& k : plan.evict_before) textures_.erase(k);
@@ -163,15 +189,32 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
   r.slicing_ms = phase.lap_ms();
   r.polygons = std::int64_t(soup_.size());
 
-  if (settings.compositing == Compositing::rays) {
-    compositor_.draw_rays(pages_, octree.dims());
-    r.boxes = 1;
+  auto draw_all = [&] {
+    if (settings.compositing == Compositing::rays)
+      compositor_.draw_rays(pages_, octree.dims());
+    else
+      compositor_.draw(items_);
+  };
+  if (!reuse) {
+    draw_all();
   } else {
-    compositor_.draw(items_);
-    for (const DrawItem& it : items_) r.boxes += it.as_box;
+    std::int64_t area = 0;
+    for (const PixelRect& rect : rects) {
+      compositor_.set_region(rect, settings);
+      draw_all();
+      area += rect.area();
+    }
+    compositor_.set_region(PixelRect{}, settings);
+    r.redrawn_percent = 100.0 * double(area) /
+                        double(std::max(1, camera.params().width * camera.params().height));
   }
+  if (settings.compositing == Compositing::rays)
+    r.boxes = 1;
+  else
+    for (const DrawItem& it : items_) r.boxes += it.as_box;
   for (const tsp::TextureKey& k : plan.release_after) textures_.erase(k);
   r.fragments = compositor_.end_frame();
+  previous_ = Previous{key, std::move(ids)};
   r.draw_ms = phase.lap_ms();
   r.ms = frame.ms();
 

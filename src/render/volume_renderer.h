@@ -3,12 +3,15 @@
 // flat or textured slice polygons, back to front, composited by a SliceCompositor. The non-TSP
 // baseline is baseline_renderer.h.
 #pragma once
+#include <array>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "gl/context.h"
 #include "render/brick_textures.h"
 #include "render/frame_report.h"
+#include "render/image_reuse.h"
 #include "render/slice_compositor.h"
 #include "tsp/frame/camera.h"
 #include "tsp/frame/frame_plan.h"
@@ -69,6 +72,24 @@ class VolumeRenderer {
   BrickTextures textures_;
   tsp::PolygonSoup soup_;
   std::vector<DrawItem> items_;  // slices and boxes compositing
+  // What the last complete frame was drawn with, for partial-image reuse.
+  struct ReuseKey {
+    glm::dmat4 view_projection{1.0};
+    int width = 0, height = 0;
+    double spacing = 0;
+    Compositing compositing = Compositing::rays;
+    bool exact_flat = true, preintegrated = false;
+    std::array<float, 3> background{};
+    std::uint64_t tf_serial = 0;
+    bool operator==(const ReuseKey&) const = default;
+  };
+  struct Previous {
+    ReuseKey key;
+    BrickIdentities ids;
+  };
+  std::optional<Previous> previous_;
+  std::uint64_t tf_serial_ = 0;  // set_transfer_function calls
+  ReuseKey reuse_key(const tsp::Camera& camera, const RenderSettings& s) const;
   BrickPages pages_;             // rays compositing
   void fill_items(const tsp::FramePlan& plan, tsp::FrameMetric& metric, const tsp::Camera& camera,
                   const RenderSettings& settings);

@@ -226,6 +226,44 @@ TEST(VolumeRenderer, PreintegratedRampMatchesTheSegmentFormula) {
   }
 }
 
+// Partial-image reuse is exact: playing a series with a temporal tolerance (long spans, so most
+// bricks are drawn as in the previous frame) gives the same pixels as redrawing everything, for
+// every compositing, while redrawing only part of the image; a view change redraws it all.
+TEST(VolumeRenderer, PartialImageReuseGivesTheSamePixelsAsRedrawing) {
+  const fs::path h5 = tsptest::datasets_dir() / "samples" / "hotPlume_32.h5";
+  tsp::SourceOptions so;
+  so.field = "T";
+  auto src = tsp::open_source(h5.string(), so);
+  const std::string path = build(*src, "plume_reuse", {}, 8);
+  auto file = tsp::TspFile::open(path);
+  const auto tf = tsp::preset_transfer_function("filled", file->tree().value_range());
+  Scene with(path, tf, tsp::CachePolicy::on), without(path, tf, tsp::CachePolicy::on);
+  for (Compositing comp : {Compositing::slices, Compositing::boxes, Compositing::rays}) {
+    double redrawn = 0;
+    int frames = 0;
+    for (int pass = 0; pass < 2; ++pass) {
+      const tsp::Camera cam = with.camera(35 + 40 * pass, 15);
+      for (int step = 20; step <= 30; ++step) {
+        RenderSettings s;
+        s.compositing = comp;
+        s.tol = {0, 0.01};
+        s.reuse_image = true;
+        const FrameReport r = with.renderer->render(step, cam, s, with.nodes);
+        const tsp::Image a = with.ctx->read_pixels();
+        s.reuse_image = false;
+        without.renderer->render(step, cam, s, without.nodes);
+        const tsp::Image b = without.ctx->read_pixels();
+        ASSERT_EQ(a.rgba, b.rgba) << to_string(comp) << " step " << step << " pass " << pass
+                                  << (a.rgba == b.rgba ? "" : keep_failure("reuse", a, b));
+        if (step == 20) EXPECT_DOUBLE_EQ(r.redrawn_percent, 100.0) << "a new view redraws all";
+        redrawn += r.redrawn_percent;
+        ++frames;
+      }
+    }
+    EXPECT_LT(redrawn / frames, 60.0) << to_string(comp) << ": reuse kept most of the image";
+  }
+}
+
 // The three ways of compositing textured boxes take the same samples: per-brick rays and the
 // one-pass ray caster agree with slices, for the TSP renderer and the baseline, on real CFD data.
 TEST(VolumeRenderer, CompositingMethodsAgreeOnRealCfd) {
