@@ -242,48 +242,9 @@ def main():
         return 0
     results = {}
     for kind in (["cpu", "gpu"] if a.mapper == "both" else [a.mapper]):
-        win = vtk.vtkRenderWindow()
-        win.SetOffScreenRendering(1)
-        win.SetSize(width, height)
-        ren = vtk.vtkRenderer()
-        ren.SetBackground(0, 0, 0)
-        win.AddRenderer(ren)
-        prop = vtk.vtkVolumeProperty()
-        prop.SetColor(colour)
-        prop.SetScalarOpacity(opacity)
-        prop.SetScalarOpacityUnitDistance(1.0)
-        prop.SetInterpolationTypeToLinear()
-        prop.ShadeOff()
-        mapper = (vtk.vtkFixedPointVolumeRayCastMapper() if kind == "cpu"
-                  else vtk.vtkOpenGLGPUVolumeRayCastMapper())
-        mapper.SetAutoAdjustSampleDistances(0)
-        mapper.SetSampleDistance(a.spacing)
-        volume = vtk.vtkVolume()
-        volume.SetMapper(mapper)
-        volume.SetProperty(prop)
-        ren.AddVolume(volume)
-        camera_setup(ren, (nx, ny, nz), az, el, width, height)
-        times = []
-        for i, data in enumerate(series):
-            img = vtk.vtkImageData()  # a new dataset per step: nothing cached between steps
-            img.SetDimensions(nx, ny, nz)
-            arr = numpy_support.numpy_to_vtk(data.ravel(), deep=1)
-            arr.SetName(a.field)
-            img.GetPointData().SetScalars(arr)
-            mapper.SetInputData(img)
-            t0 = time.perf_counter()
-            win.Render()
-            win.WaitForCompletion()
-            times.append((time.perf_counter() - t0) * 1e3)
-            grab = vtk.vtkWindowToImageFilter()
-            grab.SetInput(win)
-            grab.ReadFrontBufferOff()
-            grab.Update()
-            writer = vtk.vtkPNGWriter()
-            writer.SetFileName(os.path.join(a.out, kind, "step_%04d.png" % (first + i)))
-            os.makedirs(os.path.join(a.out, kind), exist_ok=True)
-            writer.SetInputConnection(grab.GetOutputPort())
-            writer.Write()
+        win, mapper = make_pipeline(kind, colour, opacity, (nx, ny, nz), az, el, width, height)
+        times = render_series(win, mapper, series, a.field, (nx, ny, nz), a.spacing,
+                              os.path.join(a.out, kind), first)
         steady = times[1:] if len(times) > 1 else times
         results[kind] = {"median_ms": statistics.median(steady), "first_ms": times[0],
                          "frames": len(times), "renderer": win.ReportCapabilities().splitlines()[0]
