@@ -94,7 +94,7 @@ RenderJobOptions with_quality(RenderJobOptions o, RenderJobResult& result,
   if (!best) {
     double lowest = 1e300;
     for (const CalibrationPoint& p : c.points) lowest = std::min(lowest, p.max_step_de);
-    char buf[220];
+    char buf[512];
     std::snprintf(buf, sizeof buf,
                   "--quality %g: no configuration stays within mean dE %g (with a %g margin) on "
                   "every calibration step; the closest reaches %.3g, so --quality %.3g is the "
