@@ -255,7 +255,9 @@ TEST(VolumeRenderer, PartialImageReuseGivesTheSamePixelsAsRedrawing) {
         const tsp::Image b = without.ctx->read_pixels();
         ASSERT_EQ(a.rgba, b.rgba) << to_string(comp) << " step " << step << " pass " << pass
                                   << (a.rgba == b.rgba ? "" : keep_failure("reuse", a, b));
-        if (step == 20) EXPECT_DOUBLE_EQ(r.redrawn_percent, 100.0) << "a new view redraws all";
+        if (step == 20) {
+          EXPECT_DOUBLE_EQ(r.redrawn_percent, 100.0) << "a new view redraws all";
+        }
         redrawn += r.redrawn_percent;
         ++frames;
       }

@@ -74,7 +74,9 @@ TEST(ParallelFor, PerWorkerStateNeedsNoLock) {
   for (auto s : sums) total += s;
   EXPECT_EQ(total, n * (n - 1) / 2);
   // Worker 0 is the calling thread (when it got a chunk at all).
-  if (owner[0] != std::thread::id()) EXPECT_EQ(owner[0], std::this_thread::get_id());
+  if (owner[0] != std::thread::id()) {
+    EXPECT_EQ(owner[0], std::this_thread::get_id());
+  }
 }
 
 TEST(ParallelFor, FirstErrorIsRethrownAndLaterChunksDoNotStart) {
