@@ -10,7 +10,7 @@ cd "$(dirname "$0")/.."
 SECONDS_EACH=${1:-60}
 shift || true
 TARGETS=("$@")
-[ ${#TARGETS[@]} -eq 0 ] && TARGETS=(vti series tf raw hdf5 tsp)
+[ ${#TARGETS[@]} -eq 0 ] && TARGETS=(vti series tf raw hdf5 tsp calibration)
 bash scripts/install-deps.sh
 missing=()
 for p in clang libclang-rt-14-dev; do

@@ -134,6 +134,14 @@ Calibration calibration_from_json(const json& j, const std::string& what) {
       pt.mean_de = p.at("mean_delta_e").get<double>();
       pt.max_step_de = p.at("max_step_delta_e").get<double>();
       pt.ms = p.at("probe_ms").get<double>();
+      RenderSettings check;
+      check.spacing = pt.knobs.spacing;
+      check.tol = {pt.knobs.tol, pt.knobs.tol};
+      validate(check);  // a bad spacing or tolerance: UsageError, reported as FormatError below
+      for (double v : {pt.mean_de, pt.max_step_de, pt.ms})
+        if (!(v >= 0) || !std::isfinite(v))
+          throw tsp::FormatError(what + ": not a tspplay calibration: a point's dE or time is " +
+                                 std::to_string(v));
       c.points.push_back(pt);
     }
     return c;

@@ -70,7 +70,8 @@ Calibration calibrate(const CalibrationRequest& r, std::string* cache_file = nul
 std::optional<CalibrationPoint> pick_configuration(const Calibration& c, double de);
 
 /// The JSON form of c (what the cache holds), and back. from_json throws tsp::FormatError
-/// naming `what` on a malformed document.
+/// naming `what` on a malformed document (missing or mistyped keys, a spacing or tolerance
+/// render would refuse, a negative or non-finite dE or time).
 nlohmann::json to_json(const Calibration& c);
 /// See to_json.
 Calibration calibration_from_json(const nlohmann::json& j, const std::string& what);
