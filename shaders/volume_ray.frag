@@ -9,13 +9,9 @@
 //             read from the brick's atlas slot through the spacing-corrected premultiplied TF —
 //             the samples slicing would take; with use_preintegrated, each sample reads the
 //             pre-integrated segment between the half-way points to its neighbours.
-// It stops once the ray is opaque (early ray termination). (box_ray.glsl is prepended.)
+// It stops once the ray is opaque (early ray termination). (box_ray.glsl and sample_tf.glsl are
+// prepended.)
 uniform float spacing;
-uniform sampler3D volume;            // the brick atlas (or the baseline's whole volume)
-uniform sampler1D transfer_function;
-uniform vec2 tf_map;                 // tf coordinate = normalised scalar · tf_map.x + tf_map.y
-uniform sampler2D preintegrated;     // segment colour over (front, back) tf coordinates
-uniform int use_preintegrated;
 uniform vec3 atlas_scale;            // 1 / atlas size in texels
 uniform sampler3D pages;             // per brick: textured (xyz atlas offset, w = 1), flat (rgb,
                                      // w = ln(1 − α₁) < 0) or empty (x = radius of the cube of
@@ -71,19 +67,7 @@ void main() {
       vec3 tc_hi = (min(lo + cell, box_hi) + page.xyz) * atlas_scale;
       vec3 tc = (entry + r.ray * t_next + page.xyz) * atlas_scale;
       for (; t_next < t_out; t_next += dt) {
-        vec4 c;
-        if (use_preintegrated != 0) {
-          // The segment centred on this sample, between the half-way points to its neighbours
-          // (the front one carried over from the previous sample of the run).
-          if (u_prev < 0.0)
-            u_prev = texture(volume, clamp(tc - 0.5 * dtc, tc_lo, tc_hi)).r * tf_map.x + tf_map.y;
-          float u_back = texture(volume, clamp(tc + 0.5 * dtc, tc_lo, tc_hi)).r * tf_map.x + tf_map.y;
-          c = texture(preintegrated, vec2(u_prev, u_back));
-          u_prev = u_back;
-        } else {
-          c = texture(transfer_function, texture(volume, clamp(tc, tc_lo, tc_hi)).r * tf_map.x + tf_map.y);
-        }
-        acc += (1.0 - acc.a) * c;
+        acc += (1.0 - acc.a) * sample_colour(tc, 0.5 * dtc, tc_lo, tc_hi, u_prev);
         if (acc.a >= kOpaque) break;
         tc += dtc;
       }

@@ -60,7 +60,8 @@ FrameReport BaselineRenderer::render(int step, const tsp::Camera& camera,
     pages_.set_textured(0, slot);
     pages_.finish();
     r.slicing_ms = phase.lap_ms();
-    compositor_.draw_rays(pages_, d);
+    compositor_.set_pages(pages_, d);
+    compositor_.draw_rays();
     r.boxes = 1;
   } else {
     DrawItem item;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <glm/gtc/type_ptr.hpp>
 #include <string>
 
@@ -17,13 +18,25 @@ constexpr int kPreintegratedUnit = 3;  // texture unit of the pre-integrated TF 
 // Largest opacity per voxel a flat box is given, so that ln(1 − α) stays finite.
 constexpr float kMaxFlatAlpha = 1.f - 1e-6f;
 
-// A box program: box.vert, and the fragment shader with box_ray.glsl inserted after its
-// #version line.
-Program load_box_program(const GlApi& gl, const std::string& fragment_name) {
-  std::string frag = shader_source(fragment_name);
+// ln(1 − α) of a flat colour's opacity per voxel, what the flat shaders exponentiate.
+float log_transmittance(float alpha) { return std::log1p(-std::clamp(alpha, 0.f, kMaxFlatAlpha)); }
+
+// Clears the bound target (or the scissored part of it) to the opaque background.
+void clear(const GlApi& gl, const RenderSettings& settings) {
+  gl.ClearColor(settings.background[0], settings.background[1], settings.background[2], 1.f);
+  gl.Clear(GL_COLOR_BUFFER_BIT);
+}
+
+// A program of vertex_name and fragment_name with the GLSL files `includes` inserted, in order,
+// after the fragment shader's #version line.
+Program load_program_with(const GlApi& gl, const std::string& vertex_name,
+                          const std::string& fragment_name,
+                          std::initializer_list<const char*> includes) {
+  std::string frag = shader_source(fragment_name), inserted;
+  for (const char* name : includes) inserted += shader_source(name);
   const std::size_t eol = frag.find('\n');
-  frag.insert(eol == std::string::npos ? frag.size() : eol + 1, shader_source("box_ray.glsl"));
-  return build_program(gl, "box.vert + " + fragment_name, shader_source("box.vert"), frag);
+  frag.insert(eol == std::string::npos ? frag.size() : eol + 1, inserted);
+  return build_program(gl, vertex_name + " + " + fragment_name, shader_source(vertex_name), frag);
 }
 
 // The unit cube's 12 triangles, counter-clockwise seen from outside.
@@ -48,13 +61,12 @@ void BrickPages::reset(std::array<int, 3> grid, std::array<int, 3> cell) {
 }
 
 void BrickPages::set_flat(int b, const tsp::Rgba& c) {
-  const float a = std::clamp(c.a, 0.f, kMaxFlatAlpha);
-  if (a < kMinFlatAlpha) return;
+  if (!(c.a >= kMinFlatAlpha)) return;
   float* f = &texels_[4 * std::size_t(b)];
   f[0] = c.r;
   f[1] = c.g;
   f[2] = c.b;
-  f[3] = std::log1p(-a);
+  f[3] = log_transmittance(c.a);
 }
 
 void BrickPages::set_textured(int b, const BrickSlot& slot) {
@@ -103,11 +115,13 @@ std::array<float, 4> flat_colour(const tsp::Rgba& c, double spacing) {
 SliceCompositor::SliceCompositor(GlContext& ctx)
     : ctx_(ctx),
       gl_(ctx.gl()),
-      textured_(load_program(ctx.gl(), "slice.vert", "slice_textured.frag")),
+      textured_(load_program_with(ctx.gl(), "slice.vert", "slice_textured.frag", {"sample_tf.glsl"})),
       flat_(load_program(ctx.gl(), "slice.vert", "slice_flat.frag")),
-      box_textured_(load_box_program(ctx.gl(), "box_textured.frag")),
-      box_flat_(load_box_program(ctx.gl(), "box_flat.frag")),
-      rays_(load_box_program(ctx.gl(), "volume_ray.frag")),
+      box_textured_(load_program_with(ctx.gl(), "box.vert", "box_textured.frag",
+                                      {"box_ray.glsl", "sample_tf.glsl"})),
+      box_flat_(load_program_with(ctx.gl(), "box.vert", "box_flat.frag", {"box_ray.glsl"})),
+      rays_(load_program_with(ctx.gl(), "box.vert", "volume_ray.frag",
+                              {"box_ray.glsl", "sample_tf.glsl"})),
       tf_(ctx.gl()),
       target_(ctx) {
   const std::vector<float> cube = cube_triangles();
@@ -161,8 +175,7 @@ void SliceCompositor::set_region(const PixelRect& r, const RenderSettings& setti
   }
   gl_.Enable(GL_SCISSOR_TEST);
   gl_.Scissor(r.x0, r.y0, r.x1 - r.x0, r.y1 - r.y0);
-  gl_.ClearColor(settings.background[0], settings.background[1], settings.background[2], 1.f);
-  gl_.Clear(GL_COLOR_BUFFER_BIT);
+  clear(gl_, settings);
 }
 
 void SliceCompositor::begin_frame(const tsp::Camera& camera, const RenderSettings& settings,
@@ -170,10 +183,7 @@ void SliceCompositor::begin_frame(const tsp::Camera& camera, const RenderSetting
   ctx_.make_current();
   target_.bind();
   gl_.Disable(GL_SCISSOR_TEST);
-  if (!keep) {
-    gl_.ClearColor(settings.background[0], settings.background[1], settings.background[2], 1.f);
-    gl_.Clear(GL_COLOR_BUFFER_BIT);
-  }
+  if (!keep) clear(gl_, settings);
   gl_.Disable(GL_DEPTH_TEST);
   gl_.Disable(GL_CULL_FACE);
   gl_.Enable(GL_BLEND);
@@ -270,9 +280,8 @@ void SliceCompositor::draw(const std::vector<DrawItem>& items) {
       if (it.slot.texture) {
         texture_uniforms(p, it);
       } else {
-        const float a = std::clamp(it.flat.a, 0.f, kMaxFlatAlpha);
         gl_.Uniform3f(p.uniform("flat_rgb"), it.flat.r, it.flat.g, it.flat.b);
-        gl_.Uniform1f(p.uniform("log_transmittance"), std::log1p(-a));
+        gl_.Uniform1f(p.uniform("log_transmittance"), log_transmittance(it.flat.a));
       }
       gl_.DrawArrays(GL_TRIANGLES, 0, kCubeVertices);
       continue;
@@ -293,7 +302,7 @@ void SliceCompositor::draw(const std::vector<DrawItem>& items) {
   }
 }
 
-void SliceCompositor::draw_rays(const BrickPages& pages, tsp::Dims dims) {
+void SliceCompositor::set_pages(const BrickPages& pages, tsp::Dims dims) {
   const auto& g = pages.grid();
   gl_.ActiveTexture(GL_TEXTURE0 + kPagesUnit);
   gl_.BindTexture(GL_TEXTURE_3D, pages_);
@@ -301,7 +310,7 @@ void SliceCompositor::draw_rays(const BrickPages& pages, tsp::Dims dims) {
                  pages.texels().data());
   gl_.ActiveTexture(GL_TEXTURE0 + kVolumeUnit);
   const BrickSlot& atlas = pages.atlas();
-  gl_.BindTexture(GL_TEXTURE_3D, atlas.texture);
+  rays_atlas_ = atlas.texture;
   rays_.use();
   gl_.Uniform3f(rays_.uniform("atlas_scale"), atlas.texture ? 1.f / float(atlas.atlas_size[0]) : 0.f,
                 atlas.texture ? 1.f / float(atlas.atlas_size[1]) : 0.f,
@@ -312,6 +321,11 @@ void SliceCompositor::draw_rays(const BrickPages& pages, tsp::Dims dims) {
   gl_.Uniform3f(rays_.uniform("box_lo"), 0.f, 0.f, 0.f);
   gl_.Uniform3f(rays_.uniform("box_hi"), float(std::max(dims.x - 1, 1)),
                 float(std::max(dims.y - 1, 1)), float(std::max(dims.z - 1, 1)));
+}
+
+void SliceCompositor::draw_rays() {
+  gl_.BindTexture(GL_TEXTURE_3D, rays_atlas_);
+  rays_.use();
   gl_.BindVertexArray(cube_vao_);
   gl_.Enable(GL_CULL_FACE);
   gl_.CullFace(GL_FRONT);

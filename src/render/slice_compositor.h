@@ -94,9 +94,12 @@ class SliceCompositor {
   void upload(const tsp::PolygonSoup& soup);
   /// Draws items in order (polygons of the last upload(); boxes need no upload).
   void draw(const std::vector<DrawItem>& items);
-  /// Draws the volume box of `dims` once, ray casting pages (rays compositing); the frame's
-  /// only draw call.
-  void draw_rays(const BrickPages& pages, tsp::Dims dims);
+  /// Uploads pages, the brick grid the one-pass ray caster walks, for a volume of dims (rays
+  /// compositing; once per frame, before draw_rays).
+  void set_pages(const BrickPages& pages, tsp::Dims dims);
+  /// Draws the volume box once, ray casting the pages of the last set_pages (once per frame, or
+  /// once per set_region with partial-image reuse).
+  void draw_rays();
   /// Copies the target to the default framebuffer and waits for GL; returns the fragments the
   /// frame's draws produced that were not discarded (GL_SAMPLES_PASSED: one per blended slice
   /// fragment, one per pixel and box drawn whole). Throws tsp::GlError.
@@ -109,6 +112,7 @@ class SliceCompositor {
   const GlApi& gl_;
   Program textured_, flat_, box_textured_, box_flat_, rays_;
   GLuint pages_ = 0, fragments_query_ = 0;
+  GLuint rays_atlas_ = 0;  ///< the atlas the last set_pages' textured bricks read
   GLuint vao_ = 0, vbo_ = 0, cube_vao_ = 0, cube_vbo_ = 0;
   TfTexture tf_;
   RenderTarget target_;

@@ -182,16 +182,18 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
     if (!pt.deferred && pt.upload) textures_.upload(pt.key);
   r.upload_ms = phase.lap_ms();
 
-  if (settings.compositing == Compositing::rays)
+  if (settings.compositing == Compositing::rays) {
     fill_pages(plan, metric);
-  else
+    compositor_.set_pages(pages_, octree.dims());
+  } else {
     fill_items(plan, metric, camera, settings);
+  }
   r.slicing_ms = phase.lap_ms();
   r.polygons = std::int64_t(soup_.size());
 
   auto draw_all = [&] {
     if (settings.compositing == Compositing::rays)
-      compositor_.draw_rays(pages_, octree.dims());
+      compositor_.draw_rays();
     else
       compositor_.draw(items_);
   };
