@@ -67,7 +67,7 @@ int main(int argc, char** argv) {
       std::sscanf(v.c_str(), "%d:%d", &base.first_step, &base.last_step);
     } else if (a == "--tol") {
       std::string v = next();
-      std::sscanf(v.c_str(), "%lf,%lf", &base.tol.spatial, &base.tol.temporal);
+      std::sscanf(v.c_str(), "%lf,%lf", &base.settings.tol.spatial, &base.settings.tol.temporal);
     } else if (a == "--metrics") {
       metrics.clear();
       std::string v = next();
@@ -93,8 +93,8 @@ int main(int argc, char** argv) {
     const auto& tree = f->tree();
     std::printf("\n%s: %s x %d steps, brick %d; %dx%d, view 30,20, spacing 0.5, tol %g/%g\n",
                 file.c_str(), tsp::to_string(tree.octree().dims()).c_str(), tree.time().steps(),
-                tree.octree().brick_size(), base.camera.width, base.camera.height, base.tol.spatial,
-                base.tol.temporal);
+                tree.octree().brick_size(), base.camera.width, base.camera.height, base.settings.tol.spatial,
+                base.settings.tol.temporal);
     std::printf("%-8s %-26s %10s %8s %7s %7s %7s %7s %9s\n", "tf", "renderer", "median ms", "speedup",
                 "NR %", "UP %", "RT %", "NT %", "non-draw");
     for (const char* tf : {"sparse", "filled"}) {

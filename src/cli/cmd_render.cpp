@@ -34,7 +34,7 @@ void run(const RenderArgs& a) {
   o.tf = a.tf;
   o.out_dir = a.out;
   std::tie(o.first_step, o.last_step) = parse_steps(a.steps);
-  o.tol = {a.spatial, a.temporal};
+  o.settings.tol = {a.spatial, a.temporal};
   o.metric = tsp::parse_metric(a.metric);
   o.cache = a.cache == "off" ? tsp::CachePolicy::off : tsp::CachePolicy::on;
   o.baseline = a.baseline;
@@ -44,12 +44,12 @@ void run(const RenderArgs& a) {
   o.camera.elevation_deg = view[1];
   o.camera.projection = a.perspective ? tsp::Projection::perspective : tsp::Projection::orthographic;
   o.passes = a.passes;
-  o.spacing = a.spacing;
-  o.compositing = tspgl::parse_compositing(a.compositing, "--compositing");
-  o.exact_flat = a.flat == "exact";
-  o.span_step = tsp::parse_span_step(a.span_step, "--span-step");
-  o.preintegrated = a.preintegrated == "on";
-  o.reuse_image = a.reuse == "on";
+  o.settings.spacing = a.spacing;
+  o.settings.compositing = tspgl::parse_compositing(a.compositing, "--compositing");
+  o.settings.exact_flat = a.flat == "exact";
+  o.settings.span_step = tsp::parse_span_step(a.span_step, "--span-step");
+  o.settings.preintegrated = a.preintegrated == "on";
+  o.settings.reuse_image = a.reuse == "on";
   if (a.quality != 0 && !a.explicit_knobs.empty())
     throw tsp::UsageError("--quality picks compositing, spacing, tolerances and pre-integration "
                           "itself: drop " + a.explicit_knobs.front());

@@ -87,10 +87,7 @@ void check_options(const BenchOptions& o) {
 // The timed run of knobs k (metric for the TSP renderer) under job's other options.
 RenderJobOptions with_knobs(RenderJobOptions job, const Knobs& k, tsp::Metric metric) {
   job.baseline = k.baseline;
-  job.compositing = k.compositing;
-  job.spacing = k.spacing;
-  job.tol = {k.tol, k.tol};
-  job.preintegrated = k.preintegrated;
+  apply(k, job.settings);
   job.metric = metric;
   job.cache = tsp::CachePolicy::on;
   return job;
@@ -138,17 +135,17 @@ class TfBench {
   std::vector<double> zero_de_, zero_ms_cache_on_;
   std::vector<tsp::PlotSeries> frame_series_, error_series_;
 
-  ProbeResult probe(const Knobs& k, const tsp::MetricResult* metric, json* log) {
+  // Probes k (under metric m, its result `metric`; null for the baseline) and logs it.
+  ProbeResult probe(const Knobs& k, const tsp::MetricResult* metric, tsp::Metric m, json& log) {
     const ProbeFrames f = probe_.render(k, metric);
     const ProbeResult r{mean_delta_e(f.images, reference_), f.median_ms};
-    if (log)
-      log->push_back({{"render_options", render_options(k, tsp::Metric::approximate)},
-                      {"compositing", to_string(k.compositing)},
-                      {"spacing", k.spacing},
-                      {"tolerance", k.tol},
-                      {"preintegrated", k.preintegrated},
-                      {"mean_delta_e", r.mean_de},
-                      {"probe_ms", r.ms}});
+    log.push_back({{"render_options", render_options(k, tsp::Metric::approximate)},
+                   {"compositing", to_string(k.compositing)},
+                   {"spacing", k.spacing},
+                   {"tolerance", k.tol},
+                   {"preintegrated", k.preintegrated},
+                   {"mean_delta_e", r.mean_de},
+                   {"probe_ms", r.ms}});
     return r;
   }
 
@@ -208,7 +205,7 @@ class TfBench {
     tick_(tag_ + ": baseline knob search");
     json log = json::array();
     const auto base = search_baseline_knobs(
-        [&](const Knobs& k) { return probe(k, nullptr, &log); }, o_.baseline_grid, o_.targets);
+        [&](const Knobs& k) { return probe(k, nullptr, tsp::Metric::approximate, log); }, o_.baseline_grid, o_.targets);
     report_.add_search(tf_arg_, "baseline", ErrorSpan{}, log);
     // Winners: [target][0] the baseline, [target][1 + m] metric m.
     using Winner = std::optional<std::pair<KnobCandidate, Timing>>;
@@ -222,7 +219,7 @@ class TfBench {
       json evals = json::array();
       const ErrorSpan span = error_span(metrics_[m]);
       const auto found = search_tsp_knobs(
-          [&](const Knobs& k) { return probe(k, &metrics_[m], &evals); }, o_.tsp_grid, span,
+          [&](const Knobs& k) { return probe(k, &metrics_[m], o_.metrics[m], evals); }, o_.tsp_grid, span,
           o_.targets, o_.search_iterations);
       report_.add_search(tf_arg_, name, span, evals);
       for (std::size_t i = 0; i < nt; ++i)
@@ -269,12 +266,6 @@ class TfBench {
     }
     error_series_.push_back(base_pts);
     for (auto& p : pts) error_series_.push_back(p);
-  }
-
-  static double median(std::vector<double> v) {
-    if (v.empty()) return 0;
-    std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(v.size() / 2), v.end());
-    return v[v.size() / 2];
   }
 
   void plots(const fs::path& dir) {

@@ -10,14 +10,11 @@
 #include <sstream>
 
 #include "jobs/image_probe.h"
-#include "jobs/render_job.h"
 #include "tsp/core/error.h"
 #include "tsp/core/json_text.h"
 #include "tsp/core/temp_output.h"
 #include "tsp/metric/compute_errors.h"
-#include "tsp/metric/tf_io.h"
 #include "tsp/report/image_diff.h"
-#include "tsp/store/tsp_file.h"
 
 namespace tspgl {
 
@@ -159,12 +156,10 @@ std::optional<CalibrationPoint> pick_configuration(const Calibration& c, double 
   return best;
 }
 
-Calibration calibrate(const CalibrationRequest& r, std::string* cache_file,
+Calibration calibrate(const CalibrationRequest& r, const tsp::BrickStore& bricks,
+                      const tsp::TransferFunction& tf, std::string* cache_file,
                       const CalibrationProgress& progress) {
-  auto file = tsp::TspFile::open(r.tsp_path);
-  const tsp::TspTree& tree = file->tree();
-  const tsp::TransferFunction tf =
-      r.tf_table ? *r.tf_table : tsp::transfer_function_from_arg(r.tf, tree.value_range());
+  const tsp::TspTree& tree = bricks.tree();
   const std::vector<int> steps =
       search_step_sample(0, tree.time().steps() - 1, std::max(1, r.steps));
   Calibration c;
@@ -178,13 +173,13 @@ Calibration calibrate(const CalibrationRequest& r, std::string* cache_file,
   if (!path.empty())
     if (auto cached = read_cache(path, c.key)) return *cached;
 
-  ImageProbe probe(*file, tf, r.camera, steps);
+  ImageProbe probe(bricks, tf, r.camera, steps);
   Knobs ref;
   ref.baseline = true;
   ref.compositing = Compositing::slices;
   ref.spacing = r.reference_spacing;
   const std::vector<tsp::Image> reference = probe.render(ref, nullptr).images;
-  const tsp::MetricResult metric = tsp::compute_errors(r.metric, tree, tf, file.get(), 0);
+  const tsp::MetricResult metric = tsp::compute_errors(r.metric, tree, tf, &bricks, 0);
   // Tolerances: 0 and `sweep` log-spaced values up to the largest node error.
   const ErrorSpan span = error_span(metric);
   std::vector<double> tols{0};
@@ -194,30 +189,25 @@ Calibration calibrate(const CalibrationRequest& r, std::string* cache_file,
       tols.push_back(r.sweep == 1 ? span.largest
                                   : lo * std::pow(span.largest / lo, double(i) / (r.sweep - 1)));
   }
-  const int total = int(r.grid.compositings.size() * r.grid.spacings.size() *
-                        r.grid.preintegration.size() * tols.size());
+  const std::vector<Knobs> cells = grid_cells(r.grid, false);
+  const int total = int(cells.size() * tols.size());
   int done = 0;
-  for (bool pre : r.grid.preintegration)
-    for (Compositing comp : r.grid.compositings)
-      for (double spacing : r.grid.spacings)
-        for (double tol : tols) {
-          Knobs k;
-          k.compositing = comp;
-          k.spacing = spacing;
-          k.tol = tol;
-          k.preintegrated = pre;
-          const ProbeFrames f = probe.render(k, &metric);
-          CalibrationPoint p;
-          p.knobs = k;
-          p.ms = f.median_ms;
-          for (std::size_t i = 0; i < f.images.size(); ++i) {
-            const double de = tsp::diff_images(f.images[i], reference[i]).mean;
-            p.mean_de += de / double(f.images.size());
-            p.max_step_de = std::max(p.max_step_de, de);
-          }
-          c.points.push_back(p);
-          if (progress) progress("calibrating " + render_options(k, r.metric), ++done, total);
-        }
+  for (const Knobs& cell : cells)
+    for (double tol : tols) {
+      Knobs k = cell;
+      k.tol = tol;
+      const ProbeFrames f = probe.render(k, &metric);
+      CalibrationPoint p;
+      p.knobs = k;
+      p.ms = f.median_ms;
+      for (std::size_t i = 0; i < f.images.size(); ++i) {
+        const double de = tsp::diff_images(f.images[i], reference[i]).mean;
+        p.mean_de += de / double(f.images.size());
+        p.max_step_de = std::max(p.max_step_de, de);
+      }
+      c.points.push_back(p);
+      if (progress) progress("calibrating " + render_options(k, r.metric), ++done, total);
+    }
 
   if (!path.empty()) {
     std::error_code ec;

@@ -13,6 +13,8 @@
 #include "jobs/knob_search.h"
 #include "tsp/frame/camera.h"
 #include "tsp/metric/metric.h"
+#include "tsp/metric/transfer_function.h"
+#include "tsp/store/brick_store.h"
 
 namespace tspgl {
 
@@ -31,9 +33,7 @@ struct Calibration {
 
 /// What to calibrate.
 struct CalibrationRequest {
-  std::string tsp_path;
-  std::string tf = "preset:sparse";  ///< a file or preset:NAME (unless tf_table is set)
-  const tsp::TransferFunction* tf_table = nullptr;  ///< a TF in memory (the player's editor)
+  std::string tsp_path;  ///< the .tsp file the bricks come from (its identity keys the cache)
   tsp::Metric metric = tsp::Metric::approximate;
   tsp::CameraParams camera;
   int steps = 6;                 ///< calibration steps, spread evenly over the file's steps
@@ -59,11 +59,13 @@ std::string default_calibration_dir();
 /// Progress: a phase text, probes done, probes planned (an upper bound).
 using CalibrationProgress = std::function<void(const std::string& phase, int done, int total)>;
 
-/// The calibration for r: read from the cache when one with the same key is there, else made
-/// (rendering on an offscreen context) and written atomically to the cache. `cache_file` is set
-/// to the file used ("" without a cache). Throws tsp::UsageError, tsp::IoError,
-/// tsp::FormatError, tsp::GlError; a corrupt cache file is recomputed, never an error.
-Calibration calibrate(const CalibrationRequest& r, std::string* cache_file = nullptr,
+/// The calibration for r over bricks (the already opened r.tsp_path) under tf: read from the
+/// cache when one with the same key is there, else made (rendering on an offscreen context) and
+/// written atomically to the cache. `cache_file` is set to the file used ("" without a cache).
+/// Throws tsp::UsageError, tsp::IoError, tsp::FormatError, tsp::GlError; a corrupt cache file
+/// is recomputed, never an error.
+Calibration calibrate(const CalibrationRequest& r, const tsp::BrickStore& bricks,
+                      const tsp::TransferFunction& tf, std::string* cache_file = nullptr,
                       const CalibrationProgress& progress = {});
 
 /// The fastest point whose every calibration step stayed within kQualityMargin·de, or none.

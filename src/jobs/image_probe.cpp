@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cassert>
 
+#include "jobs/render_job.h"
 #include "tsp/report/image_diff.h"
 
 namespace tspgl {
@@ -21,10 +22,7 @@ ImageProbe::ImageProbe(const tsp::BrickStore& bricks, const tsp::TransferFunctio
 ProbeFrames ImageProbe::render(const Knobs& k, const tsp::MetricResult* metric) {
   assert(k.baseline || metric);
   RenderSettings s;
-  s.tol = {k.tol, k.tol};
-  s.spacing = k.spacing;
-  s.compositing = k.compositing;
-  s.preintegrated = k.preintegrated;
+  apply(k, s);
   std::unique_ptr<tsp::WholeTreeMetric> nodes;
   if (!k.baseline) nodes = std::make_unique<tsp::WholeTreeMetric>(*metric);
   ProbeFrames out;
@@ -35,10 +33,7 @@ ProbeFrames ImageProbe::render(const Knobs& k, const tsp::MetricResult* metric) 
     ms.push_back(r.ms);
     out.images.push_back(ctx_->read_pixels());
   }
-  if (!ms.empty()) {
-    std::nth_element(ms.begin(), ms.begin() + std::ptrdiff_t(ms.size() / 2), ms.end());
-    out.median_ms = ms[ms.size() / 2];
-  }
+  out.median_ms = median(std::move(ms));
   return out;
 }
 

@@ -22,6 +22,27 @@ void sort_fastest_first(std::vector<KnobCandidate>& v) {
 
 }  // namespace
 
+void apply(const Knobs& k, RenderSettings& settings) {
+  settings.compositing = k.compositing;
+  settings.spacing = k.spacing;
+  settings.tol = {k.tol, k.tol};
+  settings.preintegrated = k.preintegrated;
+}
+
+std::vector<Knobs> grid_cells(const KnobGrid& grid, bool baseline) {
+  std::vector<Knobs> out;
+  for (bool pre : grid.preintegration)
+    for (Compositing c : grid.compositings)
+      for (double s : grid.spacings) {
+        Knobs& k = out.emplace_back();
+        k.baseline = baseline;
+        k.compositing = c;
+        k.spacing = s;
+        k.preintegrated = pre;
+      }
+  return out;
+}
+
 std::string render_options(const Knobs& k, tsp::Metric metric) {
   std::string s = k.baseline ? "--baseline " : "";
   s += "--compositing " + std::string(to_string(k.compositing)) + " --spacing " + exact(k.spacing);
@@ -36,16 +57,7 @@ std::vector<std::vector<KnobCandidate>> search_baseline_knobs(const ProbeKnobs& 
                                                               const KnobGrid& grid,
                                                               const std::vector<double>& targets) {
   std::vector<KnobCandidate> all;
-  for (bool pre : grid.preintegration)
-    for (Compositing c : grid.compositings)
-      for (double s : grid.spacings) {
-        Knobs k;
-        k.baseline = true;
-        k.compositing = c;
-        k.spacing = s;
-        k.preintegrated = pre;
-        all.push_back({k, probe(k)});
-      }
+  for (const Knobs& k : grid_cells(grid, true)) all.push_back({k, probe(k)});
   std::vector<std::vector<KnobCandidate>> out;
   for (double target : targets) {
     std::vector<KnobCandidate>& v = out.emplace_back();
@@ -62,28 +74,21 @@ std::vector<std::vector<KnobCandidate>> search_tsp_knobs(const ProbeKnobs& probe
                                                          const std::vector<double>& targets,
                                                          int iterations) {
   std::vector<std::vector<KnobCandidate>> out(targets.size());
-  for (bool pre : grid.preintegration)
-    for (Compositing c : grid.compositings)
-      for (double s : grid.spacings) {
-        Knobs k;
-        k.compositing = c;
-        k.spacing = s;
-        k.preintegrated = pre;
-        std::map<double, ProbeResult> seen;  // tolerance → probe, for the found tolerances' times
-        auto error_at = [&](double tol) {
-          k.tol = tol;
-          const ProbeResult r = probe(k);
-          seen[tol] = r;
-          return r.mean_de;
-        };
-        const std::vector<FoundTolerance> found =
-            search_tolerances(error_at, span, targets, iterations);
-        for (std::size_t i = 0; i < found.size(); ++i) {
-          if (!found[i].met) continue;
-          k.tol = found[i].tol;
-          out[i].push_back({k, seen.at(found[i].tol)});
-        }
-      }
+  for (Knobs k : grid_cells(grid, false)) {
+    std::map<double, ProbeResult> seen;  // tolerance → probe, for the found tolerances' times
+    auto error_at = [&](double tol) {
+      k.tol = tol;
+      const ProbeResult r = probe(k);
+      seen[tol] = r;
+      return r.mean_de;
+    };
+    const std::vector<FoundTolerance> found = search_tolerances(error_at, span, targets, iterations);
+    for (std::size_t i = 0; i < found.size(); ++i) {
+      if (!found[i].met) continue;
+      k.tol = found[i].tol;
+      out[i].push_back({k, seen.at(found[i].tol)});
+    }
+  }
   for (auto& v : out) sort_fastest_first(v);
   return out;
 }

@@ -23,6 +23,10 @@ struct Knobs {
   bool preintegrated = false;                   ///< pre-integrated TF lookup
 };
 
+/// Sets settings' compositing, spacing, tolerances (spatial = temporal = k.tol) and
+/// pre-integration from k (k.baseline is the caller's to honour). Never throws.
+void apply(const Knobs& k, RenderSettings& settings);
+
 /// The exact `tspplay render` options that draw k (with --metric for the TSP renderer), e.g.
 /// "--compositing rays --spacing 2 --metric approximate --spatial-tol 0.01 --temporal-tol 0.01"
 /// (and "--preintegrated on" when set).
@@ -51,6 +55,9 @@ struct KnobGrid {
   std::vector<double> spacings{0.5, 1, 1.5, 2, 3, 4};
   std::vector<bool> preintegration{false};  ///< TF lookups tried (point, pre-integrated)
 };
+
+/// Every cell of grid (pre-integration × compositing × spacing, tol 0), baseline as given.
+std::vector<Knobs> grid_cells(const KnobGrid& grid, bool baseline);
 
 /// For each target: the baseline configurations of grid (every compositing × spacing, each
 /// probed once) whose mean ΔE is ≤ the target, fastest probe first. Throws what probe throws.

@@ -66,30 +66,31 @@ int checked_last_step(const tsp::TspTree& tree, int first, int last, const std::
   return last;
 }
 
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(v.size() / 2), v.end());
+  return v[v.size() / 2];
+}
+
 double median_frame_ms(const RenderJobResult& result, int pass) {
   std::vector<double> ms;
   for (const FrameRecord& f : result.frames)
     if (pass == 0 || f.pass == pass) ms.push_back(f.report.ms);
-  if (ms.empty()) return 0;
-  std::nth_element(ms.begin(), ms.begin() + std::ptrdiff_t(ms.size() / 2), ms.end());
-  return ms[ms.size() / 2];
+  return median(std::move(ms));
 }
 
 namespace {
 
-// o with the knobs --quality picks; fills the result's quality fields.
-RenderJobOptions with_quality(RenderJobOptions o, RenderJobResult& result,
+// o with the knobs --quality picks for file under tf; fills the result's quality fields.
+RenderJobOptions with_quality(RenderJobOptions o, const tsp::TspFile& file,
+                              const tsp::TransferFunction& tf, RenderJobResult& result,
                               const CalibrationProgress& progress) {
-  if (!(o.quality > 0) || !(o.quality <= kMaxQualityDe))
-    throw tsp::UsageError("--quality " + std::to_string(o.quality) +
-                          ": expected a mean dE in (0, " + std::to_string(int(kMaxQualityDe)) + "]");
   CalibrationRequest r;
   r.tsp_path = o.tsp_path;
-  r.tf = o.tf;
   r.metric = o.metric;
   r.camera = o.camera;
   r.cache_dir = o.calibration_dir;
-  const Calibration c = calibrate(r, &result.calibration_file, progress);
+  const Calibration c = calibrate(r, file, tf, &result.calibration_file, progress);
   const auto best = pick_configuration(c, o.quality);
   if (!best) {
     double lowest = 1e300;
@@ -103,10 +104,7 @@ RenderJobOptions with_quality(RenderJobOptions o, RenderJobResult& result,
                   lowest / kQualityMargin);
     throw tsp::UsageError(o.tsp_path + ": " + buf);
   }
-  o.compositing = best->knobs.compositing;
-  o.spacing = best->knobs.spacing;
-  o.tol = {best->knobs.tol, best->knobs.tol};
-  o.preintegrated = best->knobs.preintegrated;
+  apply(best->knobs, o.settings);
   o.baseline = false;
   result.quality_options = render_options(best->knobs, o.metric);
   result.quality_calibrated_de = best->max_step_de;
@@ -117,31 +115,28 @@ RenderJobOptions with_quality(RenderJobOptions o, RenderJobResult& result,
 
 RenderJobResult run_render_job(const RenderJobOptions& options, const RenderProgress& progress,
                                const CalibrationProgress& calibration_progress) {
+  // Options first: nothing is opened or rendered with a bad one.
+  if (options.quality != 0 && !(options.quality > 0 && options.quality <= kMaxQualityDe))
+    throw tsp::UsageError("--quality " + std::to_string(options.quality) +
+                          ": expected a mean dE in (0, " + std::to_string(int(kMaxQualityDe)) + "]");
+  if (options.passes < 1 || options.passes > kMaxPasses)
+    throw tsp::UsageError("--passes " + std::to_string(options.passes) + ": expected 1 to " +
+                          std::to_string(kMaxPasses));
+  validate(options.settings);
+  validate_budget(options.texture_budget, "--texture-budget");
+  auto file = tsp::TspFile::open(options.tsp_path);
+  const tsp::TspTree& tree = file->tree();
+  const int last = checked_last_step(tree, options.first_step, options.last_step, options.tsp_path);
+  const tsp::TransferFunction tf = tsp::transfer_function_from_arg(options.tf, tree.value_range());
+  if (!options.save_tf.empty()) {
+    tsp::require_not_an_input(options.save_tf, {options.tsp_path, options.tf});
+    tsp::save_transfer_function(tf, options.save_tf);
+  }
   RenderJobResult result;
   const RenderJobOptions o =
-      options.quality != 0 ? with_quality(options, result, calibration_progress) : options;
-  // Options first: nothing is opened or rendered with a bad one.
-  if (o.passes < 1 || o.passes > kMaxPasses)
-    throw tsp::UsageError("--passes " + std::to_string(o.passes) + ": expected 1 to " +
-                          std::to_string(kMaxPasses));
-  RenderSettings settings;
-  settings.tol = o.tol;
-  settings.spacing = o.spacing;
-  settings.compositing = o.compositing;
-  settings.exact_flat = o.exact_flat;
-  settings.span_step = o.span_step;
-  settings.preintegrated = o.preintegrated;
-  settings.reuse_image = o.reuse_image;
-  validate(settings);
-  validate_budget(o.texture_budget, "--texture-budget");
-  auto file = tsp::TspFile::open(o.tsp_path);
-  const tsp::TspTree& tree = file->tree();
-  const int last = checked_last_step(tree, o.first_step, o.last_step, o.tsp_path);
-  const tsp::TransferFunction tf = tsp::transfer_function_from_arg(o.tf, tree.value_range());
-  if (!o.save_tf.empty()) {
-    tsp::require_not_an_input(o.save_tf, {o.tsp_path, o.tf});
-    tsp::save_transfer_function(tf, o.save_tf);
-  }
+      options.quality != 0 ? with_quality(options, *file, tf, result, calibration_progress)
+                           : options;
+  const RenderSettings& settings = o.settings;
 
   fs::path dir;
   if (!o.out_dir.empty()) {
@@ -194,18 +189,18 @@ RenderJobResult run_render_job(const RenderJobOptions& options, const RenderProg
     j["metric"] = o.baseline ? "none" : tsp::to_string(o.metric);
     j["metric_ms"] = result.metric_ms;
     j["cache"] = o.cache == tsp::CachePolicy::on ? "on" : "off";
-    j["spatial_tol"] = o.tol.spatial;
-    j["temporal_tol"] = o.tol.temporal;
+    j["spatial_tol"] = settings.tol.spatial;
+    j["temporal_tol"] = settings.tol.temporal;
     j["size"] = {o.camera.width, o.camera.height};
     j["view"] = {o.camera.azimuth_deg, o.camera.elevation_deg};
     j["projection"] = o.camera.projection == tsp::Projection::perspective ? "perspective"
                                                                           : "orthographic";
-    j["spacing"] = o.spacing;
-    j["compositing"] = to_string(o.compositing);
-    j["flat"] = o.exact_flat ? "exact" : "slices";
-    j["span_step"] = tsp::to_string(o.span_step);
-    j["preintegrated"] = o.preintegrated;
-    j["reuse"] = o.reuse_image;
+    j["spacing"] = settings.spacing;
+    j["compositing"] = to_string(settings.compositing);
+    j["flat"] = settings.exact_flat ? "exact" : "slices";
+    j["span_step"] = tsp::to_string(settings.span_step);
+    j["preintegrated"] = settings.preintegrated;
+    j["reuse"] = settings.reuse_image;
     if (o.quality > 0)
       j["quality"] = {{"target_delta_e", o.quality},
                       {"render_options", result.quality_options},

@@ -20,22 +20,18 @@ struct RenderJobOptions {
   std::string tf = "preset:sparse";           ///< --tf: a file or preset:NAME
   std::string out_dir;                        ///< frames/ (created); empty: no files written
   int first_step = 0, last_step = -1;         ///< inclusive; −1: the last step
-  tsp::Tolerances tol;                        ///< --spatial-tol, --temporal-tol
   tsp::Metric metric = tsp::Metric::approximate;
   tsp::CachePolicy cache = tsp::CachePolicy::on;
   bool baseline = false;                      ///< render without the TSP tree
   tsp::CameraParams camera;                   ///< size, view, projection
   int passes = 1;                             ///< times the step range is played
-  double spacing = kDefaultSliceSpacing;      ///< slice spacing in voxels
-  Compositing compositing = Compositing::rays;  ///< --compositing: how textured boxes are drawn
-  bool exact_flat = true;                     ///< --flat exact|slices: coherent nodes as one box
-  tsp::SpanStep span_step = tsp::SpanStep::middle;  ///< --span-step first|middle
-  bool preintegrated = false;                 ///< --preintegrated on|off
-  bool reuse_image = true;                    ///< --reuse on|off: partial-image reuse
+  /// The frame knobs: --spatial-tol/--temporal-tol, --spacing, --compositing, --flat,
+  /// --span-step, --preintegrated, --reuse (upload_budget: unused, a job uploads every frame).
+  RenderSettings settings;
   std::int64_t texture_budget = kDefaultTextureBudget;
   bool write_images = true;                   ///< PNGs (frames.json is written when out_dir is set)
   /// --quality DE (> 0): compositing, spacing, tolerances and pre-integration are picked from the
-  /// calibration (calibration.h) instead of the fields above; 0: off.
+  /// calibration (calibration.h) instead of those in settings; 0: off.
   double quality = 0;
   std::string calibration_dir;                ///< --calibration-dir ("": the default; "-": none)
   std::string save_tf;                        ///< --save-tf: write the TF used here (JSON)
@@ -73,6 +69,10 @@ RenderJobResult run_render_job(
 /// The inclusive step range [first, last] of path's tree (last −1: the final step), validated;
 /// returns last. Throws tsp::UsageError naming the file and its steps.
 int checked_last_step(const tsp::TspTree& tree, int first, int last, const std::string& path);
+
+/// The upper median of v (the element at index size/2 once sorted; 0 for none), as every
+/// frame-time summary of the jobs reports it. Never throws.
+double median(std::vector<double> v);
 
 /// Median of the frames' `ms` in pass `pass` (0: all passes).
 double median_frame_ms(const RenderJobResult& result, int pass = 0);

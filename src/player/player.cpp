@@ -209,11 +209,10 @@ void PlayerApp::set_tolerances(tsp::Tolerances t) {
 void PlayerApp::apply_quality(double de) {
   tspgl::CalibrationRequest r;
   r.tsp_path = options_.tsp_path;
-  r.tf_table = &tf;
   r.metric = metric;
   r.camera = camera;
   std::string cache;
-  const tspgl::Calibration c = tspgl::calibrate(r, &cache);
+  const tspgl::Calibration c = tspgl::calibrate(r, *file, tf, &cache);
   const auto best = tspgl::pick_configuration(c, de);
   if (!best) {
     quality_note = "nothing calibrated stays within dE " + std::to_string(de);
