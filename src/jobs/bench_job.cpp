@@ -139,7 +139,7 @@ class TfBench {
   ProbeResult probe(const Knobs& k, const tsp::MetricResult* metric, tsp::Metric m, json& log) {
     const ProbeFrames f = probe_.render(k, metric);
     const ProbeResult r{mean_delta_e(f.images, reference_), f.median_ms};
-    log.push_back({{"render_options", render_options(k, tsp::Metric::approximate)},
+    log.push_back({{"render_options", render_options(k, m)},
                    {"compositing", to_string(k.compositing)},
                    {"spacing", k.spacing},
                    {"tolerance", k.tol},
