@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages tspplay needs. Idempotent and quiet when all are present.
+#   install-deps.sh [--movie]   --movie: also ffmpeg, which `tspplay demo` encodes its movie with
+#                               (scripts/demo.sh passes it; the test suite does not need it)
 set -euo pipefail
 PKGS=(
   cmake ninja-build g++ pkg-config
@@ -9,6 +11,7 @@ PKGS=(
   libgl-dev  # <GL/glcorearb.h>: the GL 3.3 core types and enums of our loader (src/gl/gl_api.h)
   xvfb xauth  # xvfb-run: a virtual X display for the GLFW (window) tests when DISPLAY is unset
 )
+[ "${1:-}" = "--movie" ] && PKGS+=(ffmpeg)
 missing=()
 for p in "${PKGS[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
