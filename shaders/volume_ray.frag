@@ -8,12 +8,16 @@
 //   textured: samples on the slice planes dot(p, view_dir) = (k + ½)·spacing inside the brick,
 //             read from the brick's atlas slot through the spacing-corrected premultiplied TF —
 //             the samples slicing would take; with use_preintegrated, each sample reads the
-//             pre-integrated segment between the half-way points to its neighbours.
+//             pre-integrated segment between the half-way points to its neighbours. A page of
+//             an LOD level brick (factor f = 2^l per axis, l packed in w) maps voxels to texels
+//             at 1/f and samples every m·spacing, m = the largest f, on planes (k + ½)·m·spacing,
+//             with the opacity corrected to the longer step: α_m = 1 − (1 − α)^m (spec §9, §14).
 // It stops once the ray is opaque (early ray termination). (box_ray.glsl and sample_tf.glsl are
 // prepended.)
 uniform float spacing;
 uniform vec3 atlas_scale;            // 1 / atlas size in texels
-uniform sampler3D pages;             // per brick: textured (xyz atlas offset, w = 1), flat (rgb,
+uniform sampler3D pages;             // per brick: textured (xyz atlas offset, w = 1 + lx + 8·ly +
+                                     // 64·lz, l = log2 LOD factor), flat (rgb,
                                      // w = ln(1 − α₁) < 0) or empty (x = radius of the cube of
                                      // empty bricks around it, w = 0)
 uniform vec3 cell;                   // sample spacings one brick covers, per axis
@@ -41,7 +45,7 @@ void main() {
   // t of the next slice plane k: ((k + ½)·spacing − depth_entry) / cos θ.
   float t_next = ((ceil(r.depth_entry / spacing - 0.5) + 0.5) * spacing - r.depth_entry) /
                  r.cos_theta;
-  vec3 dtc = r.ray * dt * atlas_scale;
+  float m_cur = 1.0;  // the sample step multiplier t_next is aligned to
   vec4 acc = vec4(0.0);
   float u_prev = -1.0;  // tf coordinate half a spacing behind the previous sample (−1: none)
   int max_steps = grid.x + grid.y + grid.z + 2;
@@ -55,19 +59,37 @@ void main() {
       if (t >= len) break;
       c = clamp(ivec3(floor((entry + r.ray * (t + kNudge)) / cell)), ivec3(0), grid - 1);
       t_max = abs((vec3(c) + far_side) * cell - entry) * inv;
-      if (t_next < t) t_next += ceil((t - t_next) / dt) * dt;
+      if (t_next < t) t_next += ceil((t - t_next) / (dt * m_cur)) * dt * m_cur;
       u_prev = -1.0;
       continue;
     }
     float t_out = min(min(min(t_max.x, t_max.y), t_max.z), len);
     if (page.w > 0.5) {
+      int code = int(page.w + 0.5) - 1;
+      ivec3 lv = ivec3(code & 7, (code >> 3) & 7, (code >> 6) & 7);
+      vec3 scale = 1.0 / vec3(ivec3(1) << lv);
+      float m = float(1 << max(lv.x, max(lv.y, lv.z)));
+      if (m != m_cur) {  // onto this level's planes (k + ½)·m·spacing, from where the ray is
+        float sp = spacing * m;
+        float d = r.depth_entry + t * r.cos_theta;
+        t_next = ((ceil(d / sp - 0.5) + 0.5) * sp - r.depth_entry) / r.cos_theta;
+        m_cur = m;
+        u_prev = -1.0;
+      }
+      float dtm = dt * m;
       // Clamped to the brick's own box: its atlas neighbours never bleed in, whatever the slot.
       vec3 lo = vec3(c) * cell;
-      vec3 tc_lo = (lo + page.xyz) * atlas_scale;
-      vec3 tc_hi = (min(lo + cell, box_hi) + page.xyz) * atlas_scale;
-      vec3 tc = (entry + r.ray * t_next + page.xyz) * atlas_scale;
-      for (; t_next < t_out; t_next += dt) {
-        acc += (1.0 - acc.a) * sample_colour(tc, 0.5 * dtc, tc_lo, tc_hi, u_prev);
+      vec3 tc_lo = (lo * scale + page.xyz) * atlas_scale;
+      vec3 tc_hi = (min(lo + cell, box_hi) * scale + page.xyz) * atlas_scale;
+      vec3 tc = ((entry + r.ray * t_next) * scale + page.xyz) * atlas_scale;
+      vec3 dtc = r.ray * dtm * scale * atlas_scale;
+      for (; t_next < t_out; t_next += dtm) {
+        vec4 s = sample_colour(tc, 0.5 * dtc, tc_lo, tc_hi, u_prev);
+        if (m > 1.0 && s.a > 0.0) {
+          float a = 1.0 - pow(max(1.0 - s.a, 0.0), m);
+          s = vec4(s.rgb * (a / s.a), a);
+        }
+        acc += (1.0 - acc.a) * s;
         if (acc.a >= kOpaque) break;
         tc += dtc;
       }
@@ -75,7 +97,7 @@ void main() {
       float a = 1.0 - exp(page.w * (t_out - t) * r.cos_theta);
       acc += (1.0 - acc.a) * vec4(page.rgb * a, a);
       u_prev = -1.0;
-      if (t_next < t_out) t_next += ceil((t_out - t_next) / dt) * dt;
+      if (t_next < t_out) t_next += ceil((t_out - t_next) / (dt * m_cur)) * dt * m_cur;
     }
     if (acc.a >= kOpaque || t_out >= len) break;
     t = t_out;

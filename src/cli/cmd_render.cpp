@@ -1,4 +1,5 @@
 // tspplay render run.tsp --tf tf.json [...] -o frames/: headless frames and frames.json.
+#include <array>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -25,6 +26,10 @@ struct RenderArgs {
   bool baseline = false, perspective = false;
   double quality = 0;
   std::string calibration_dir, save_tf;
+  std::string lod;       ///< off|auto|K ("": off, or auto with --target-ms)
+  double target_ms = 0, orbit = 0;
+  int split_limit = tsp::LodOptions{}.split_limit;
+  std::string focus;
   std::vector<std::string> explicit_knobs;  ///< knob options given with --quality (an error)
 };
 
@@ -58,6 +63,32 @@ void run(const RenderArgs& a) {
   o.quality = a.quality;
   o.calibration_dir = a.calibration_dir;
   o.save_tf = a.save_tf;
+  const std::string lod = a.lod.empty() ? (a.target_ms > 0 ? "auto" : "off") : a.lod;
+  if (lod == "off") {
+    o.lod = tspgl::LodMode::off;
+  } else if (lod == "auto") {
+    o.lod = tspgl::LodMode::adaptive;
+  } else {
+    o.lod = tspgl::LodMode::fixed;
+    o.lod_level = int(parse_integer(lod, "--lod", 0, 30, "off, auto or a level 0 to 30"));
+  }
+  o.target_ms = a.target_ms;
+  o.orbit_deg = a.orbit;
+  if (a.split_limit < 1) throw tsp::UsageError("--split-limit " + std::to_string(a.split_limit) +
+                                               ": expected at least 1 split per frame");
+  o.lod_options.split_limit = a.split_limit;
+  if (!a.focus.empty()) {
+    std::array<double, 3> v{};
+    std::size_t start = 0;
+    for (int k = 0; k < 3; ++k) {
+      const std::size_t comma = a.focus.find(',', start);
+      if ((k < 2) != (comma != std::string::npos))
+        throw tsp::UsageError("--focus '" + a.focus + "': expected X,Y,Z in voxels");
+      v[std::size_t(k)] = parse_number(a.focus.substr(start, comma - start), "--focus");
+      start = comma + 1;
+    }
+    o.lod_options.focus = v;
+  }
   if (a.out.empty()) throw tsp::UsageError("-o: the output directory must not be empty");
   if (!(a.texture_budget_mb > 0) || !(a.texture_budget_mb <= double(tspgl::kMaxBudgetBytes >> 20)))
     throw tsp::UsageError("--texture-budget " + std::to_string(a.texture_budget_mb) +
@@ -138,6 +169,16 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
   c->add_option("--save-tf", a->save_tf,
                 "Also write the transfer function used (a preset resolved over the data's range) "
                 "as JSON, e.g. for bench/vtk_reference.py");
+  c->add_option("--lod", a->lod,
+                "Spatial level of detail: off (full resolution), K (level K everywhere; 0 = full) "
+                "or auto (the adaptive cut; default with --target-ms)");
+  c->add_option("--target-ms", a->target_ms,
+                "Frame-time target in ms that --lod auto holds by adapting the cut");
+  c->add_option("--orbit", a->orbit, "Advance the azimuth this many degrees every frame");
+  c->add_option("--split-limit", a->split_limit,
+                "--lod auto: most node splits per frame (default 8)");
+  c->add_option("--focus", a->focus,
+                "--lod auto: centre of attention X,Y,Z in voxels (default the volume centre)");
   c->add_option("--calibration-dir", a->calibration_dir,
                 "Where --quality caches calibrations (default $TSPPLAY_CACHE_DIR, "
                 "$XDG_CACHE_HOME/tspplay or ~/.cache/tspplay; - for none)");

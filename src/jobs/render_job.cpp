@@ -1,6 +1,7 @@
 #include "jobs/render_job.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -27,6 +28,15 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
+json lod_json(const LodRecord& l) {
+  const tsp::LodFrameStats& s = l.stats;
+  return {{"target_ms", l.target_ms},        {"cut_size", s.cut_size},
+          {"nodes_per_level", s.nodes_per_level}, {"splits", s.splits},
+          {"merges", s.merges},              {"texture_bytes", s.texture_bytes},
+          {"cost", s.cost},                  {"predicted_ms", s.predicted_ms},
+          {"max_error", s.max_error},     {"render_scale", s.render_scale}};
+}
+
 json frame_json(const FrameRecord& f) {
   const FrameReport& r = f.report;
   return {{"pass", f.pass},
@@ -46,7 +56,9 @@ json frame_json(const FrameRecord& f) {
           {"polygons", r.polygons},
           {"boxes", r.boxes},
           {"fragments", r.fragments},
-          {"redrawn_percent", r.redrawn_percent}};
+          {"redrawn_percent", r.redrawn_percent},
+          {"azimuth_deg", f.azimuth_deg},
+          {"lod", f.lod ? lod_json(*f.lod) : json(nullptr)}};
 }
 
 std::string step_png(const fs::path& dir, int step) {
@@ -124,6 +136,20 @@ RenderJobResult run_render_job(const RenderJobOptions& options, const RenderProg
                           std::to_string(kMaxPasses));
   validate(options.settings);
   validate_budget(options.texture_budget, "--texture-budget");
+  if (!(options.target_ms >= 0) || options.target_ms > kMaxTargetMs)
+    throw tsp::UsageError("--target-ms " + std::to_string(options.target_ms) +
+                          ": expected a frame time in (0, " + std::to_string(int(kMaxTargetMs)) +
+                          "] ms");
+  if (options.target_ms > 0 && options.lod != LodMode::adaptive)
+    throw tsp::UsageError("--target-ms needs --lod auto (the adaptive cut holds the target)");
+  if (options.lod != LodMode::off && options.baseline)
+    throw tsp::UsageError("--lod is for the TSP renderer: drop --baseline");
+  if (options.lod == LodMode::fixed && options.lod_level < 0)
+    throw tsp::UsageError("--lod " + std::to_string(options.lod_level) +
+                          ": expected off, auto or a level >= 0");
+  if (!std::isfinite(options.orbit_deg) || std::fabs(options.orbit_deg) > 360)
+    throw tsp::UsageError("--orbit " + std::to_string(options.orbit_deg) +
+                          ": expected degrees per frame in [-360, 360]");
   auto file = tsp::TspFile::open(options.tsp_path);
   const tsp::TspTree& tree = file->tree();
   const int last = checked_last_step(tree, options.first_step, options.last_step, options.tsp_path);
@@ -163,14 +189,51 @@ RenderJobResult run_render_job(const RenderJobOptions& options, const RenderProg
   if (baseline) baseline->set_transfer_function(tf);
   if (renderer) renderer->set_transfer_function(tf);
   tsp::WholeTreeMetric nodes(metric);
-  const tsp::Camera camera(tree.octree().dims(), o.camera);
   const int total = o.passes * (last - o.first_step + 1);
+  // The LOD cut: one level everywhere, or the controller's.
+  std::optional<tsp::LodCut> fixed_cut;
+  std::optional<tsp::LodController> controller;
+  if (o.lod == LodMode::fixed)
+    fixed_cut = tsp::LodCut::at_level(tree.octree(), std::min(o.lod_level, tree.octree().max_lod_level()));
+  if (o.lod == LodMode::adaptive) {
+    tsp::LodOptions lo = o.lod_options;
+    lo.target_ms = o.target_ms;
+    if (lo.texture_budget == 0) lo.texture_budget = o.texture_budget;
+    controller.emplace(tree, lo);
+  }
+  int frame_index = 0;
   for (int pass = 1; pass <= o.passes; ++pass) {
-    for (int t = o.first_step; t <= last; ++t) {
+    for (int t = o.first_step; t <= last; ++t, ++frame_index) {
       FrameRecord rec;
       rec.pass = pass;
-      rec.report = baseline ? baseline->render(t, camera, settings)
-                            : renderer->render(t, camera, settings, nodes);
+      tsp::CameraParams params = o.camera;
+      params.azimuth_deg += o.orbit_deg * frame_index;
+      rec.azimuth_deg = params.azimuth_deg;
+      const tsp::Camera camera(tree.octree().dims(), params);
+      tsp::LodStops stops;
+      if (fixed_cut) {
+        stops = fixed_cut->stops();
+        rec.lod = LodRecord{0, {}};
+        rec.lod->stats.cut_size = fixed_cut->size();
+        rec.lod->stats.nodes_per_level = fixed_cut->nodes_per_level();
+        rec.lod->stats.texture_bytes = std::int64_t(fixed_cut->size()) *
+                                       tsp::texture_bytes(tree.octree(), {0, 0, 0});
+      } else if (controller) {
+        // Untimed: refine until nothing is left to split (a converged cut every frame).
+        tsp::LodFrameStats st = controller->update(camera, t, tf, settings.spacing);
+        while (o.target_ms <= 0 && st.splits > 0) {
+          const int splits = st.splits;
+          st = controller->update(camera, t, tf, settings.spacing);
+          st.splits += splits;
+        }
+        stops = controller->cut().stops();
+        rec.lod = LodRecord{o.target_ms, st};
+      }
+      RenderSettings frame_settings = settings;
+      if (controller) frame_settings.render_scale = controller->render_scale();
+      rec.report = baseline ? baseline->render(t, camera, frame_settings)
+                            : renderer->render(t, camera, frame_settings, nodes, stops);
+      if (controller) controller->measured(rec.report.ms - rec.report.upload_ms);
       result.frames.push_back(rec);
       // The last pass's images win; earlier passes only measure.
       if (!dir.empty() && o.write_images && pass == o.passes)
@@ -201,6 +264,12 @@ RenderJobResult run_render_job(const RenderJobOptions& options, const RenderProg
     j["span_step"] = tsp::to_string(settings.span_step);
     j["preintegrated"] = settings.preintegrated;
     j["reuse"] = settings.reuse_image;
+    j["lod"] = o.lod == LodMode::off ? json("off")
+               : o.lod == LodMode::fixed ? json(std::min(o.lod_level, tree.octree().max_lod_level()))
+                                         : json("auto");
+    j["target_ms"] = o.target_ms;
+    j["orbit_deg"] = o.orbit_deg;
+    j["lod_levels"] = tree.octree().max_lod_level() + 1;
     if (o.quality > 0)
       j["quality"] = {{"target_delta_e", o.quality},
                       {"render_options", result.quality_options},

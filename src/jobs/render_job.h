@@ -3,16 +3,21 @@
 // step_NNNN.png and frames.json, and return the per-frame reports.
 #pragma once
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "render/frame_report.h"
 #include "tsp/frame/camera.h"
 #include "tsp/frame/texture_cache.h"
+#include "tsp/lod/lod_controller.h"
 #include "tsp/metric/metric.h"
 #include "tsp/tree/tsp_tree.h"
 
 namespace tspgl {
+
+/// --lod: full resolution, one level everywhere, or the controller's adaptive cut.
+enum class LodMode { off, fixed, adaptive };
 
 /// Everything `tspplay render` takes.
 struct RenderJobOptions {
@@ -35,8 +40,23 @@ struct RenderJobOptions {
   double quality = 0;
   std::string calibration_dir;                ///< --calibration-dir ("": the default; "-": none)
   std::string save_tf;                        ///< --save-tf: write the TF used here (JSON)
+  LodMode lod = LodMode::off;                 ///< --lod off|K|auto
+  int lod_level = 0;                          ///< --lod K
+  /// --target-ms (> 0, with --lod auto): the controller holds this frame time; 0 with --lod auto:
+  /// every frame refined until no node's error is above lod_options.min_error.
+  double target_ms = 0;
+  tsp::LodOptions lod_options;                ///< split/merge limits, min error, focus
+  double orbit_deg = 0;                       ///< --orbit: azimuth advance per frame
 };
 
+/// What the LOD cut did in one frame (frames.json's "lod").
+struct LodRecord {
+  double target_ms = 0;
+  tsp::LodFrameStats stats;
+};
+
+/// Largest --target-ms.
+inline constexpr double kMaxTargetMs = 60000;
 /// Most passes a job plays.
 inline constexpr int kMaxPasses = 1000;
 
@@ -44,6 +64,8 @@ inline constexpr int kMaxPasses = 1000;
 struct FrameRecord {
   int pass = 1;
   FrameReport report;
+  double azimuth_deg = 0;          ///< the camera's azimuth (it moves with --orbit)
+  std::optional<LodRecord> lod;    ///< with --lod
 };
 
 /// What a job did.

@@ -38,12 +38,12 @@ std::array<int, 3> BrickTextures::slot_origin(int slot) const {
 
 void BrickTextures::write(const tsp::TextureKey& key, int slot) {
   tsp::BrickSamples samples = bricks_.get(key.brick, key.t0);
-  const tsp::Box s = bricks_.store().tree().octree().brick_samples(key.brick);
+  const tsp::BrickLattice s = bricks_.store().tree().octree().lattice(key.brick);
   const auto o = slot_origin(slot);
   gl_.BindTexture(GL_TEXTURE_3D, atlas_);
   gl_.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  gl_.TexSubImage3D(GL_TEXTURE_3D, 0, o[0], o[1], o[2], s.size(0), s.size(1), s.size(2), GL_RED,
-                    GL_UNSIGNED_SHORT, samples->data());
+  gl_.TexSubImage3D(GL_TEXTURE_3D, 0, o[0], o[1], o[2], s.samples[0], s.samples[1], s.samples[2],
+                    GL_RED, GL_UNSIGNED_SHORT, samples->data());
   slots_[key] = slot;
 }
 
@@ -91,12 +91,14 @@ void BrickTextures::upload(const tsp::TextureKey& key) {
 BrickSlot BrickTextures::at(const tsp::TextureKey& key) const {
   auto it = slots_.find(key);
   assert(it != slots_.end() && "brick texture not resident");
-  const tsp::Box s = bricks_.store().tree().octree().brick_samples(key.brick);
+  const tsp::BrickLattice s = bricks_.store().tree().octree().lattice(key.brick);
   const auto o = slot_origin(it->second);
   BrickSlot b;
   b.texture = atlas_;
   for (int a = 0; a < 3; ++a) {
-    b.offset[a] = float(o[a] - s.lo[a]) + 0.5f;
+    // texel = (p − origin)/factor + slot origin + ½ (texel centres).
+    b.scale[a] = 1.f / float(s.factor[a]);
+    b.offset[a] = float(o[a]) + 0.5f - float(s.origin[a]) * b.scale[a];
     b.atlas_size[a] = grid_[a] * slot_[a];
   }
   return b;

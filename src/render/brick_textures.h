@@ -22,8 +22,9 @@ GLuint create_scalar_texture(const GlApi& gl, int w, int h, int d, const std::ui
 /// coordinate p + offset (texel centres at +½), i.e. texture coordinate (p + offset) / size.
 struct BrickSlot {
   GLuint texture = 0;                ///< the atlas
-  std::array<float, 3> offset{};     ///< atlas texel coordinate − sample coordinate
+  std::array<float, 3> offset{};     ///< atlas texel coordinate − sample coordinate · scale
   std::array<int, 3> atlas_size{};   ///< atlas extent in texels
+  std::array<float, 3> scale{1, 1, 1};  ///< texels per voxel: 1 / the brick's LOD factor
 };
 
 /// Brick textures by key, as slots of one atlas that grows (doubling, re-uploading the residents

@@ -34,6 +34,9 @@ void validate(const RenderSettings& s) {
                          std::pair{"--temporal-tol", s.tol.temporal}})
     if (!(v >= 0) || !std::isfinite(v))
       throw tsp::UsageError(std::string(name) + " " + num(v) + ": expected a finite tolerance >= 0");
+  if (!(s.render_scale >= kMinRenderScale && s.render_scale <= 1))
+    throw tsp::UsageError("render scale " + num(s.render_scale) + ": expected a share in [" +
+                          num(kMinRenderScale) + ", 1]");
   if (s.upload_budget < 0 || s.upload_budget > kMaxBudgetBytes)
     throw tsp::UsageError("upload budget " + std::to_string(s.upload_budget) +
                           " bytes: expected 0 (no limit) to " + std::to_string(kMaxBudgetBytes));

@@ -55,7 +55,14 @@ struct RenderSettings {
   bool reuse_image = true;
   /// Which step's bricks texture a span longer than one step.
   tsp::SpanStep span_step = tsp::SpanStep::middle;
+  /// Render-target size as a share of the window's per axis, in [kMinRenderScale, 1]: below 1
+  /// the frame is drawn smaller and magnified (the LOD controller's last resort when even the
+  /// coarsest cut misses the target). Partial-image reuse is off below 1.
+  double render_scale = 1;
 };
+
+/// Smallest RenderSettings::render_scale.
+inline constexpr double kMinRenderScale = 0.25;
 
 /// Throws tsp::UsageError naming the setting, its value and the accepted range unless spacing is
 /// in [kMinSliceSpacing, kMaxSliceSpacing], both tolerances are finite and ≥ 0 and the upload

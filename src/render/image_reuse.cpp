@@ -50,10 +50,17 @@ BrickIdentities brick_identities(const tsp::TspTree& tree, const tsp::FramePlan&
     }
     for (int i = n.first_texture; i < n.first_texture + n.texture_count; ++i) {
       const tsp::PlannedTexture& pt = plan.textures[std::size_t(i)];
-      id[std::size_t(pt.key.brick)] =
+      // A level brick stands for every leaf brick below its node; the stored brick index tells
+      // a level's picture from the leaves'.
+      const std::array<std::int64_t, 2> v =
           pt.deferred ? std::array<std::int64_t, 2>{pack(kDeferredFlat, node),
                                                     colour_bits(colour_of(tsp_id))}
-                      : std::array<std::int64_t, 2>{pack(kTextured, pt.key.t0), 0};
+                      : std::array<std::int64_t, 2>{pack(kTextured, pt.key.t0), pt.key.brick};
+      const tsp::OctreeNode& o = octree.node(octree.stored_brick_node(pt.key.brick));
+      for (int z = o.brick_lo[2]; z < o.brick_hi[2]; ++z)
+        for (int y = o.brick_lo[1]; y < o.brick_hi[1]; ++y)
+          for (int x = o.brick_lo[0]; x < o.brick_hi[0]; ++x)
+            id[std::size_t(x + g[0] * (y + g[1] * z))] = v;
     }
   }
   return id;

@@ -17,10 +17,12 @@ class RenderTarget {
   RenderTarget(const RenderTarget&) = delete;
   RenderTarget& operator=(const RenderTarget&) = delete;
 
-  /// (Re)allocates it at the context's current size when needed, binds it and sets the
-  /// viewport. Throws tsp::GlError when RGBA16 framebuffers are not supported.
-  void bind();
-  /// Copies it into the context's default framebuffer and binds that.
+  /// (Re)allocates it at the context's current size times scale (in (0, 1]; at least 1 pixel)
+  /// when needed, binds it and sets the viewport. Throws tsp::GlError when RGBA16 framebuffers
+  /// are not supported.
+  void bind(double scale = 1);
+  /// Copies it into the context's default framebuffer (magnified with linear filtering when
+  /// smaller) and binds that.
   void resolve();
 
  private:

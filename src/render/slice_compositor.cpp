@@ -75,7 +75,14 @@ void BrickPages::set_textured(int b, const BrickSlot& slot) {
   w[0] = slot.offset[0];
   w[1] = slot.offset[1];
   w[2] = slot.offset[2];
-  w[3] = 1.f;
+  // w = 1 + lx + 8·ly + 64·lz with l = log2 of the LOD factor per axis (volume_ray.frag).
+  int code = 0;
+  for (int a = 2; a >= 0; --a) {
+    const int l = std::clamp(int(std::lround(-std::log2(double(slot.scale[a])))), 0,
+                             kMaxPageLevel);
+    code = code * (kMaxPageLevel + 1) + l;
+  }
+  w[3] = 1.f + float(code);
 }
 
 void BrickPages::finish() {
@@ -181,7 +188,7 @@ void SliceCompositor::set_region(const PixelRect& r, const RenderSettings& setti
 void SliceCompositor::begin_frame(const tsp::Camera& camera, const RenderSettings& settings,
                                   bool keep) {
   ctx_.make_current();
-  target_.bind();
+  target_.bind(settings.render_scale);
   gl_.Disable(GL_SCISSOR_TEST);
   if (!keep) clear(gl_, settings);
   gl_.Disable(GL_DEPTH_TEST);
@@ -259,13 +266,15 @@ void SliceCompositor::draw(const std::vector<DrawItem>& items) {
   auto texture_uniforms = [&](const Program& p, const DrawItem& it) {
     const BrickSlot& s = it.slot;
     gl_.BindTexture(GL_TEXTURE_3D, s.texture);
-    gl_.Uniform3f(p.uniform("tex_origin"), -s.offset[0], -s.offset[1], -s.offset[2]);
-    gl_.Uniform3f(p.uniform("tex_scale"), 1.f / float(s.atlas_size[0]),
-                  1.f / float(s.atlas_size[1]), 1.f / float(s.atlas_size[2]));
+    // texture coordinate = (p·scale + offset)/atlas = (p − tex_origin)·tex_scale.
+    gl_.Uniform3f(p.uniform("tex_origin"), -s.offset[0] / s.scale[0], -s.offset[1] / s.scale[1],
+                  -s.offset[2] / s.scale[2]);
+    gl_.Uniform3f(p.uniform("tex_scale"), s.scale[0] / float(s.atlas_size[0]),
+                  s.scale[1] / float(s.atlas_size[1]), s.scale[2] / float(s.atlas_size[2]));
     float lo[3], hi[3];
     for (int a = 0; a < 3; ++a) {
-      lo[a] = (float(it.bounds.lo[a]) + s.offset[a]) / float(s.atlas_size[a]);
-      hi[a] = (float(it.bounds.hi[a]) + s.offset[a]) / float(s.atlas_size[a]);
+      lo[a] = (float(it.bounds.lo[a]) * s.scale[a] + s.offset[a]) / float(s.atlas_size[a]);
+      hi[a] = (float(it.bounds.hi[a]) * s.scale[a] + s.offset[a]) / float(s.atlas_size[a]);
     }
     gl_.Uniform3f(p.uniform("tex_lo"), lo[0], lo[1], lo[2]);
     gl_.Uniform3f(p.uniform("tex_hi"), hi[0], hi[1], hi[2]);

@@ -39,13 +39,15 @@ class BrickPages {
   /// Opacity per voxel below which a flat brick is drawn as empty (invisible at any depth the
   /// limits allow: 1 − (1 − 1e-7)^65536 < 0.01).
   static constexpr float kMinFlatAlpha = 1e-7f;
+  /// Largest log2 LOD factor per axis a textured page encodes (factor 128).
+  static constexpr int kMaxPageLevel = 7;
   /// Largest leap radius, in bricks.
   static constexpr int kMaxLeapRadius = 8;
   /// Every brick empty: a grid of bricks covering `cell` sample spacings each, per axis.
   void reset(std::array<int, 3> grid, std::array<int, 3> cell);
   /// Brick b drawn flat in c (opacity per voxel of depth; below kMinFlatAlpha it stays empty).
   void set_flat(int b, const tsp::Rgba& c);
-  /// Brick b sampled from slot.
+  /// Brick b sampled from slot (a leaf's, or a level brick's covering b: slot.scale < 1).
   void set_textured(int b, const BrickSlot& slot);
   /// After the last set_*: gives every empty brick the radius of the cube of empty bricks centred
   /// on it (Chebyshev distance to the nearest non-empty brick − 1, at most kMaxLeapRadius), which
@@ -55,7 +57,7 @@ class BrickPages {
   const std::array<int, 3>& grid() const { return grid_; }
   /// Sample spacings one brick covers per axis.
   const std::array<int, 3>& cell() const { return cell_; }
-  /// Per brick, four floats: textured (atlas offset xyz, 1), flat (rgb, ln(1 − α) < 0) or empty
+  /// Per brick, four floats: textured (atlas offset xyz, 1 + LOD code), flat (rgb, ln(1 − α) < 0) or empty
   /// (leap radius, 0, 0, 0).
   const std::vector<float>& texels() const { return texels_; }
   /// The atlas the textured bricks read (0: none).

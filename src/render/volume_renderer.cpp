@@ -44,6 +44,7 @@ VolumeRenderer::ReuseKey VolumeRenderer::reuse_key(const tsp::Camera& camera,
   k.preintegrated = s.preintegrated;
   k.background = s.background;
   k.tf_serial = tf_serial_;
+  k.render_scale = s.render_scale;
   return k;
 }
 
@@ -54,25 +55,26 @@ void VolumeRenderer::clear_textures() {
 }
 
 int VolumeRenderer::drop_unreachable(tsp::FrameMetric& metric, const tsp::Tolerances& tol,
-                                     tsp::SpanStep span_step) {
+                                     tsp::SpanStep span_step, tsp::LodStops stops) {
   const auto dropped =
-      cache_.drop_unreachable(tsp::reachable_textures(tree_, metric, tol, span_step));
+      cache_.drop_unreachable(tsp::reachable_textures(tree_, metric, tol, span_step, stops));
   for (const tsp::TextureKey& k : dropped) textures_.erase(k);
   return int(dropped.size());
 }
 
 std::vector<tsp::BrickKey> VolumeRenderer::bricks_to_upload(int step, const tsp::Camera& camera,
                                                             const RenderSettings& settings,
-                                                            tsp::FrameMetric& metric) const {
+                                                            tsp::FrameMetric& metric,
+                                                            tsp::LodStops stops) const {
   const tsp::ViewOrder order = view_order(camera);
   const tsp::NodeErrors& errors = metric.errors_for_step(step);
   std::vector<tsp::BrickKey> keys;
-  for (const tsp::Emitted& e : tsp::traverse(tree_, step, settings.tol, errors, order)) {
+  for (const tsp::Emitted& e : tsp::traverse(tree_, step, settings.tol, errors, order, stops)) {
     const int id = tree_.id(e.octree_id, e.time_id);
     if (tsp::shading_of(metric.class_info(id), settings.tol) != tsp::Shading::textured) continue;
-    for (int brick : tsp::leaf_bricks(tree_.octree(), e.octree_id, order))
+    for (int brick : tsp::node_bricks(tree_.octree(), e.octree_id, order, stops))
       if (const int t = tsp::representative_step(e.span, settings.span_step);
-          !textures_.contains(tsp::TextureKey{brick, t, 0}))
+          !textures_.contains(tsp::texture_key(tree_.octree(), brick, t)))
         keys.push_back({brick, t});
   }
   return keys;
@@ -109,7 +111,8 @@ void VolumeRenderer::fill_items(const tsp::FramePlan& plan, tsp::FrameMetric& me
     }
     for (int i = n.first_texture; i < n.first_texture + n.texture_count; ++i) {
       const tsp::PlannedTexture& pt = plan.textures[std::size_t(i)];
-      const tsp::Aabb box = tsp::geometric_box(octree.brick_box(pt.key.brick), octree.dims());
+      const tsp::Aabb box =
+          tsp::geometric_box(octree.stored_brick_box(pt.key.brick), octree.dims());
       if (pt.deferred) {  // not uploaded yet: the node's mean colour meanwhile
         add_flat(box, tsp_id);
         continue;
@@ -125,31 +128,50 @@ void VolumeRenderer::fill_pages(const tsp::FramePlan& plan, tsp::FrameMetric& me
   const auto g = octree.brick_grid();
   pages_.reset(g, {octree.brick_cells(0), octree.brick_cells(1), octree.brick_cells(2)});
   soup_.clear();
+  // Every leaf brick of octree node o.
+  auto each_leaf = [&](int o, auto&& f) {
+    const tsp::OctreeNode& node = octree.node(o);
+    for (int z = node.brick_lo[2]; z < node.brick_hi[2]; ++z)
+      for (int y = node.brick_lo[1]; y < node.brick_hi[1]; ++y)
+        for (int x = node.brick_lo[0]; x < node.brick_hi[0]; ++x) f(x + g[0] * (y + g[1] * z));
+  };
   for (const tsp::PlannedNode& n : plan.nodes) {
     if (n.cls == tsp::DrawClass::not_rendered) continue;
     const int tsp_id = tree_.id(n.node.octree_id, n.node.time_id);
     if (n.cls == tsp::DrawClass::untextured) {
       const tsp::Rgba c = metric.mean_colour(tsp_id);
-      const tsp::OctreeNode& node = octree.node(n.node.octree_id);
-      for (int z = node.brick_lo[2]; z < node.brick_hi[2]; ++z)
-        for (int y = node.brick_lo[1]; y < node.brick_hi[1]; ++y)
-          for (int x = node.brick_lo[0]; x < node.brick_hi[0]; ++x)
-            pages_.set_flat(x + g[0] * (y + g[1] * z), c);
+      each_leaf(n.node.octree_id, [&](int b) { pages_.set_flat(b, c); });
       continue;
     }
     for (int i = n.first_texture; i < n.first_texture + n.texture_count; ++i) {
       const tsp::PlannedTexture& pt = plan.textures[std::size_t(i)];
-      if (pt.deferred)  // not uploaded yet: the node's mean colour meanwhile
-        pages_.set_flat(pt.key.brick, metric.mean_colour(tsp_id));
-      else
+      // A level brick's slot serves every leaf page below its node.
+      const int o = octree.stored_brick_node(pt.key.brick);
+      if (pt.deferred) {  // not uploaded yet: the node's mean colour meanwhile
+        const tsp::Rgba c = metric.mean_colour(tsp_id);
+        each_leaf(o, [&](int b) { pages_.set_flat(b, c); });
+      } else if (pt.key.level == 0) {
         pages_.set_textured(pt.key.brick, textures_.at(pt.key));
+      } else {
+        // A level brick: the full-resolution traversal still decides, leaf page by leaf page,
+        // what is skipped (transparent) or drawn flat (coherent); the rest samples the level.
+        const BrickSlot slot = textures_.at(pt.key);
+        each_leaf(o, [&](int b) {
+          const LeafShading& ls = leaf_shading_[std::size_t(b)];
+          if (ls.shading == tsp::Shading::textured)
+            pages_.set_textured(b, slot);
+          else if (ls.shading == tsp::Shading::flat)
+            pages_.set_flat(b, metric.mean_colour(ls.tsp_id));
+        });
+      }
     }
   }
   pages_.finish();
 }
 
 FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
-                                   const RenderSettings& settings, tsp::FrameMetric& metric) {
+                                   const RenderSettings& settings, tsp::FrameMetric& metric,
+                                   tsp::LodStops stops) {
   const tsp::Stopwatch frame;
   const tsp::Octree& octree = tree_.octree();
   FrameReport r;
@@ -160,16 +182,18 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
   // errors_for_step makes every node this step's traversal can reach current, so class_info and
   // mean_colour below only read memoised results.
   const tsp::NodeErrors& errors = metric.errors_for_step(step);
-  const std::vector<tsp::Emitted> emitted = tsp::traverse(tree_, step, settings.tol, errors, order);
+  const std::vector<tsp::Emitted> emitted =
+      tsp::traverse(tree_, step, settings.tol, errors, order, stops);
   const tsp::FramePlan plan = tsp::plan_frame(tree_, step, emitted, tsp::node_info(metric),
                                               settings.tol, order, cache_, settings.upload_budget,
-                                              settings.span_step);
+                                              settings.span_step, stops);
   // Partial-image reuse: with the same view, TF and knobs as the last frame, only the screen
   // rectangles of the bricks drawn differently are drawn again.
   BrickIdentities ids =
       brick_identities(tree_, plan, [&](int id) { return metric.mean_colour(id); });
   const ReuseKey key = reuse_key(camera, settings);
-  const bool reuse = settings.reuse_image && previous_ && previous_->key == key;
+  const bool reuse =
+      settings.reuse_image && settings.render_scale == 1 && previous_ && previous_->key == key;
   std::vector<PixelRect> rects;
   if (reuse) rects = dirty_rects(tree_, camera, previous_->ids, ids);
   previous_.reset();  // valid again only once this frame is complete
@@ -183,6 +207,19 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
   r.upload_ms = phase.lap_ms();
 
   if (settings.compositing == Compositing::rays) {
+    if (!stops.empty()) {  // how the full-resolution traversal would shade each leaf brick
+      leaf_shading_.assign(std::size_t(octree.brick_count()), {});
+      for (const tsp::Emitted& e : tsp::traverse(tree_, step, settings.tol, errors, order)) {
+        const int id = tree_.id(e.octree_id, e.time_id);
+        const LeafShading ls{tsp::shading_of(metric.class_info(id), settings.tol), id};
+        const tsp::OctreeNode& n = octree.node(e.octree_id);
+        const auto g = octree.brick_grid();
+        for (int z = n.brick_lo[2]; z < n.brick_hi[2]; ++z)
+          for (int y = n.brick_lo[1]; y < n.brick_hi[1]; ++y)
+            for (int x = n.brick_lo[0]; x < n.brick_hi[0]; ++x)
+              leaf_shading_[std::size_t(x + g[0] * (y + g[1] * z))] = ls;
+      }
+    }
     fill_pages(plan, metric);
     compositor_.set_pages(pages_, octree.dims());
   } else {

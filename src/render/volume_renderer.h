@@ -42,18 +42,21 @@ class VolumeRenderer {
   void set_transfer_function(const tsp::TransferFunction& tf);
   /// Draws step with the TSP tree: metric gives every node's errors, mean colour and
   /// transparency (a live metric evaluates only what step's traversal can visit, spec §4).
-  /// Throws tsp::Error on brick read failures, tsp::GlError on GL failures.
+  /// With stops (an LOD cut, tsp/lod), the descent ends at the marked nodes, which draw their
+  /// level bricks. Throws tsp::Error on brick read failures, tsp::GlError on GL failures.
   FrameReport render(int step, const tsp::Camera& camera, const RenderSettings& settings,
-                     tsp::FrameMetric& metric);
+                     tsp::FrameMetric& metric, tsp::LodStops stops = {});
   /// The bricks (brick, span start) step's frame would read and upload under metric: leaf
   /// bricks of textured nodes whose texture is not resident. For background prefetching.
   std::vector<tsp::BrickKey> bricks_to_upload(int step, const tsp::Camera& camera,
                                               const RenderSettings& settings,
-                                              tsp::FrameMetric& metric) const;
+                                              tsp::FrameMetric& metric,
+                                              tsp::LodStops stops = {}) const;
   /// After a tolerance (or metric) change: deletes the textures no frame can draw any more under
   /// metric and tol (one traversal per step) and returns how many. TF edits need no call.
   int drop_unreachable(tsp::FrameMetric& metric, const tsp::Tolerances& tol,
-                       tsp::SpanStep span_step = tsp::SpanStep::middle);
+                       tsp::SpanStep span_step = tsp::SpanStep::middle,
+                       tsp::LodStops stops = {});
   /// Deletes every cached texture.
   void clear_textures();
 
@@ -81,6 +84,7 @@ class VolumeRenderer {
     bool exact_flat = true, preintegrated = false;
     std::array<float, 3> background{};
     std::uint64_t tf_serial = 0;
+    double render_scale = 1;
     bool operator==(const ReuseKey&) const = default;
   };
   struct Previous {
@@ -91,6 +95,11 @@ class VolumeRenderer {
   std::uint64_t tf_serial_ = 0;  // set_transfer_function calls
   ReuseKey reuse_key(const tsp::Camera& camera, const RenderSettings& s) const;
   BrickPages pages_;             // rays compositing
+  struct LeafShading {
+    tsp::Shading shading = tsp::Shading::none;
+    int tsp_id = -1;
+  };
+  std::vector<LeafShading> leaf_shading_;  // per leaf brick, full resolution (LOD frames)
   void fill_items(const tsp::FramePlan& plan, tsp::FrameMetric& metric, const tsp::Camera& camera,
                   const RenderSettings& settings);
   void fill_pages(const tsp::FramePlan& plan, tsp::FrameMetric& metric);

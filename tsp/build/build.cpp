@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "tsp/build/brick_stats.h"
+#include "tsp/build/level_filter.h"
 #include "tsp/build/scratch_file.h"
 #include "tsp/build/step_prefetcher.h"
 #include "tsp/core/error.h"
@@ -51,8 +52,12 @@ struct InputScan {
 };
 
 // Pass 1: every step once, in order; each brick's samples go to its place in the scratch file.
+// Each step's level bricks (filtered from the whole step, which only this pass holds) go to
+// levels, and their residuals to level_errors ([level brick][step]).
 InputScan scatter_steps(VolumeSource& source, const Octree& octree, ScratchFile& scratch,
-                        const ProgressFn& progress, std::int64_t total_bytes) {
+                        ScratchFile& levels, std::span<float> level_errors,
+                        const std::optional<ValueRange>& clamp, const ProgressFn& progress,
+                        std::int64_t total_bytes) {
   const Dims d = octree.dims();
   const std::int64_t step_bytes = d.count() * std::int64_t(sizeof(float));
   InputScan scan;
@@ -74,13 +79,27 @@ InputScan scatter_steps(VolumeSource& source, const Octree& octree, ScratchFile&
                     row * sizeof(float));
     scratch.write(b, t, brick);
   };
+  const int nl = octree.level_brick_count();
+  std::vector<LevelFilterScratch> filter(kScatterWorkers);
+  auto level = [&](const std::vector<float>& vol, int t, int j, int w) {
+    const int i = octree.brick_count() + j;
+    const BrickLattice l = octree.lattice(i);
+    filter_level(vol, d, l, clamp, filter[std::size_t(w)], bricks[std::size_t(w)]);
+    level_errors[std::size_t(j) * source.steps() + t] =
+        float(level_residual(vol, d, l, octree.node(octree.stored_brick_node(i)).box,
+                             bricks[std::size_t(w)], clamp));
+    levels.write(j, t, bricks[std::size_t(w)]);
+  };
   for (int t = 0; t < source.steps(); ++t) {
     const std::vector<float>& vol = prefetch.next();
-    // Worker k takes bricks k, k + kScatterWorkers, …: both write side by side.
+    // Worker k takes bricks k, k + kScatterWorkers, … (then level bricks): both write side by
+    // side.
     parallel_for(kScatterWorkers, 1, kScatterWorkers,
                  [&](int w, std::int64_t first, std::int64_t) {
                    for (auto b = first; b < n; b += kScatterWorkers)
                      scatter(vol, t, int(b), bricks[std::size_t(w)]);
+                   for (auto j = first; j < nl; j += kScatterWorkers)
+                     level(vol, t, int(j), w);
                  });
     prefetch.release();
     if (progress) progress(kPhaseRead, (t + 1) * step_bytes, total_bytes);
@@ -114,13 +133,14 @@ struct FastQuantizer {
 
 // Quantizes a brick's series [T][samples] into the padded stored layout [T][Bz][By][Bx],
 // repeating the last sample along each axis into the padding.
-void quantize_padded(std::span<const float> series, const Box& s, std::array<int, 3> shape,
-                     int steps, const FastQuantizer& q, std::vector<std::uint16_t>& out) {
-  const int sx = s.size(0), sy = s.size(1), sz = s.size(2);
+void quantize_padded(std::span<const float> series, const BrickLattice& s,
+                     std::array<int, 3> shape, int steps, const FastQuantizer& q,
+                     std::vector<std::uint16_t>& out) {
+  const int sx = s.samples[0], sy = s.samples[1], sz = s.samples[2];
   out.resize(std::size_t(steps) * shape[0] * shape[1] * shape[2]);
   std::uint16_t* o = out.data();
   for (int t = 0; t < steps; ++t) {
-    const float* step = series.data() + std::size_t(t) * s.count();
+    const float* step = series.data() + std::size_t(t) * std::size_t(s.count());
     for (int z = 0; z < shape[2]; ++z)
       for (int y = 0; y < shape[1]; ++y) {
         const float* row =
@@ -153,10 +173,12 @@ void add_histogram(std::span<const float> series, const Box& s, const Box& own, 
 
 // Pass 2: brick-major over the scratch file, on `threads` workers.
 struct BrickPass {
-  BrickPass(const TspTree& t, ScratchFile& s, TspWriter& w, ValueRange r, std::vector<NodeAccum>& a)
-      : tree(t), scratch(s), writer(w), range(r), acc(a) {}
+  BrickPass(const TspTree& t, ScratchFile& s, ScratchFile& l, TspWriter& w, ValueRange r,
+            std::vector<NodeAccum>& a)
+      : tree(t), scratch(s), levels(l), writer(w), range(r), acc(a) {}
   const TspTree& tree;
   ScratchFile& scratch;
+  ScratchFile& levels;
   TspWriter& writer;
   ValueRange range;
   std::vector<NodeAccum>& acc;  // by TSP node id; each worker fills its leaves' slices
@@ -181,22 +203,46 @@ struct BrickPass {
     scratch.read_series(b, w.series);
     scratch.discard(b);
     sanitize(w.series, range);
-    quantize_padded(w.series, s, stored_brick_shape(o), steps, FastQuantizer(range), w.codes);
+    quantize_padded(w.series, o.lattice(b), stored_brick_shape(o), steps, FastQuantizer(range),
+                    w.codes);
     writer.write_brick_series(b, w.codes);
     add_histogram(w.series, s, own, steps, range, w.hist);
     std::span<NodeAccum> leaf(acc.data() + tree.id(o.brick_node(b), 0), time.size());
     brick_time_stats(time, s, own, w.series, range.width(), leaf);
+    report(progress, total_bytes);
+  }
+
+  // A level brick: quantized like a leaf (its statistics are the node's, merged from its leaves).
+  void level(int j, Scratch& w, const ProgressFn& progress, std::int64_t total_bytes) {
+    const Octree& o = tree.octree();
+    const int steps = tree.time().steps();
+    const BrickLattice l = o.lattice(o.brick_count() + j);
+    w.series.resize(std::size_t(l.count()) * steps);
+    levels.read_series(j, w.series);
+    levels.discard(j);
+    sanitize(w.series, range);
+    quantize_padded(w.series, l, stored_brick_shape(o), steps, FastQuantizer(range), w.codes);
+    writer.write_brick_series(o.brick_count() + j, w.codes);
+    report(progress, total_bytes);
+  }
+
+  void report(const ProgressFn& progress, std::int64_t total_bytes) {
     std::lock_guard lock(mutex);
     ++done;
-    if (progress) progress(kPhaseBricks, total_bytes * done / o.brick_count(), total_bytes);
+    if (progress)
+      progress(kPhaseBricks, total_bytes * done / tree.octree().stored_brick_count(), total_bytes);
   }
 
   void run(int threads, const ProgressFn& progress, std::int64_t total_bytes) {
     const int bricks = tree.octree().brick_count();
-    std::vector<Scratch> workers(std::size_t(parallel_workers(bricks, 1, threads)));
-    parallel_for(bricks, 1, threads, [&](int w, std::int64_t first, std::int64_t last) {
+    const int stored = tree.octree().stored_brick_count();
+    std::vector<Scratch> workers(std::size_t(parallel_workers(stored, 1, threads)));
+    parallel_for(stored, 1, threads, [&](int w, std::int64_t first, std::int64_t last) {
       for (auto b = first; b < last; ++b)
-        brick(int(b), workers[std::size_t(w)], progress, total_bytes);
+        if (b < bricks)
+          brick(int(b), workers[std::size_t(w)], progress, total_bytes);
+        else
+          level(int(b - bricks), workers[std::size_t(w)], progress, total_bytes);
     });
     for (const Scratch& w : workers)
       for (int i = 0; i < kHistogramBins; ++i) histogram[i] += w.hist[i];
@@ -248,7 +294,12 @@ BuildReport build_tsp_file(VolumeSource& source, const std::string& out_path,
   std::vector<std::int64_t> samples(o.brick_count());
   for (int b = 0; b < o.brick_count(); ++b) samples[b] = o.brick_samples(b).count();
   ScratchFile scratch(out.dir(), samples, steps);
-  InputScan scan = scatter_steps(source, o, scratch, options.progress, report.source_bytes);
+  std::vector<std::int64_t> level_samples(o.level_brick_count());
+  for (int j = 0; j < o.level_brick_count(); ++j)
+    level_samples[j] = o.lattice(o.brick_count() + j).count();
+  ScratchFile levels(out.dir(), level_samples, steps);
+  InputScan scan = scatter_steps(source, o, scratch, levels, tree.level_errors(), options.range,
+                                 options.progress, report.source_bytes);
   report.data_range = scan.range();
   report.nonfinite_count = scan.nonfinite;
   report.value_range = checked_range(options.range, report.data_range);
@@ -258,7 +309,7 @@ BuildReport build_tsp_file(VolumeSource& source, const std::string& out_path,
   TspMetadata meta;
   {
     TspWriter writer(out.tmp(), tree);
-    BrickPass pass(tree, scratch, writer, report.value_range, acc);
+    BrickPass pass(tree, scratch, levels, writer, report.value_range, acc);
     pass.run(resolve_threads(options.threads), options.progress, report.source_bytes);
     combine_octree(tree, acc);
     for (int i = 0; i < tree.size(); ++i) tree.stats(i) = acc[i].finish(report.value_range.width());

@@ -51,14 +51,24 @@ Shading shading_of(const NodeClassInfo& info, const Tolerances& tol) {
 }
 
 std::int64_t texture_bytes(const Octree& octree, const TextureKey& key) {
-  assert(key.level == 0 && "only full-resolution textures exist so far");
-  return octree.brick_samples(key.brick).count() * std::int64_t(sizeof(std::uint16_t));
+  return octree.lattice(key.brick).count() * std::int64_t(sizeof(std::uint16_t));
 }
 
 std::vector<int> leaf_bricks(const Octree& octree, int id, const ViewOrder& view) {
   std::vector<int> out;
   collect_leaves(octree, id, view, out);
   return out;
+}
+
+std::vector<int> node_bricks(const Octree& octree, int id, const ViewOrder& view, LodStops stops) {
+  if (!octree.node(id).is_leaf() && !stops.empty() && stops[std::size_t(id)])
+    return {octree.node_brick(id)};
+  return leaf_bricks(octree, id, view);
+}
+
+TextureKey texture_key(const Octree& octree, int brick, int t0) {
+  return TextureKey{brick, t0,
+                    brick < octree.brick_count() ? 0 : octree.lod_level(octree.stored_brick_node(brick))};
 }
 
 const char* to_string(SpanStep s) { return s == SpanStep::middle ? "middle" : "first"; }
@@ -76,7 +86,8 @@ double FramePlan::percent(DrawClass c) const {
 
 FramePlan plan_frame(const TspTree& tree, int step, std::span<const Emitted> emitted,
                      const NodeInfoFn& info, const Tolerances& tol, const ViewOrder& view,
-                     TextureCache& cache, std::int64_t upload_budget, SpanStep span_step) {
+                     TextureCache& cache, std::int64_t upload_budget, SpanStep span_step,
+                     LodStops stops) {
   const Octree& octree = tree.octree();
   FramePlan plan;
   plan.step = step;
@@ -95,8 +106,8 @@ FramePlan plan_frame(const TspTree& tree, int step, std::span<const Emitted> emi
     } else {
       p.first_texture = int(plan.textures.size());
       bool uploaded = false;
-      for (int brick : leaf_bricks(octree, e.octree_id, view)) {
-        const TextureKey key{brick, representative_step(e.span, span_step), 0};
+      for (int brick : node_bricks(octree, e.octree_id, view, stops)) {
+        const TextureKey key = texture_key(octree, brick, representative_step(e.span, span_step));
         const std::int64_t bytes = texture_bytes(octree, key);
         if (upload_budget > 0 && plan.uploads > 0 && !cache.contains(key) &&
             plan.bytes_uploaded + bytes > upload_budget) {
@@ -131,27 +142,27 @@ FramePlan plan_frame(const TspTree& tree, int step, std::span<const Emitted> emi
 
 TextureKeySet reachable_textures(const TspTree& tree, const NodeErrors& errors,
                                  const NodeInfoFn& info, const Tolerances& tol,
-                                 SpanStep span_step) {
+                                 SpanStep span_step, LodStops stops) {
   TextureKeySet keys;
   for (int t = 0; t < tree.time().steps(); ++t) {
-    for (const Emitted& e : traverse(tree, t, tol, errors, kAnyView)) {
+    for (const Emitted& e : traverse(tree, t, tol, errors, kAnyView, stops)) {
       if (shading_of(info(tree.id(e.octree_id, e.time_id)), tol) != Shading::textured) continue;
-      for (int brick : leaf_bricks(tree.octree(), e.octree_id, kAnyView))
-        keys.insert(TextureKey{brick, representative_step(e.span, span_step), 0});
+      for (int brick : node_bricks(tree.octree(), e.octree_id, kAnyView, stops))
+        keys.insert(texture_key(tree.octree(), brick, representative_step(e.span, span_step)));
     }
   }
   return keys;
 }
 
 TextureKeySet reachable_textures(const TspTree& tree, const MetricResult& m,
-                                 const Tolerances& tol, SpanStep span_step) {
-  return reachable_textures(tree, m.errors, node_info(m), tol, span_step);
+                                 const Tolerances& tol, SpanStep span_step, LodStops stops) {
+  return reachable_textures(tree, m.errors, node_info(m), tol, span_step, stops);
 }
 
 TextureKeySet reachable_textures(const TspTree& tree, FrameMetric& m, const Tolerances& tol,
-                                 SpanStep span_step) {
+                                 SpanStep span_step, LodStops stops) {
   const NodeErrors& errors = m.all_errors();
-  return reachable_textures(tree, errors, node_info(m), tol, span_step);
+  return reachable_textures(tree, errors, node_info(m), tol, span_step, stops);
 }
 
 }  // namespace tsp

@@ -54,12 +54,18 @@ NodeInfoFn node_info(const FrameMetric& m);
 /// none for a transparent node, flat when e_s ≤ tol.spatial, textured otherwise (also for NaN).
 Shading shading_of(const NodeClassInfo& info, const Tolerances& tol);
 
-/// Bytes of a brick texture: 2 per stored sample (16-bit scalars, R16), LOD level 0 only
-/// (asserts level 0).
+/// Bytes of a brick texture: 2 per stored sample (16-bit scalars, R16); key.brick is a stored
+/// brick (leaf or level).
 std::int64_t texture_bytes(const Octree& octree, const TextureKey& key);
 
 /// Leaf bricks below octree node id (the node's own brick for a leaf) in back-to-front order.
 std::vector<int> leaf_bricks(const Octree& octree, int id, const ViewOrder& view);
+
+/// The stored bricks that texture emitted node id: its level brick when it is an internal node
+/// marked in stops (an LOD cut node), otherwise its leaf bricks back-to-front.
+std::vector<int> node_bricks(const Octree& octree, int id, const ViewOrder& view, LodStops stops);
+/// The texture key of stored brick `brick` at step t0 (level: the brick's LOD level).
+TextureKey texture_key(const Octree& octree, int brick, int t0);
 
 /// One emitted node and how to draw it.
 struct PlannedNode {
@@ -101,7 +107,7 @@ struct FramePlan {
 /// Plans the frame of `step` from the traversal's output `emitted` (every span must hold
 /// step): classifies each node, requests the textures of RT/NT nodes from cache inside one
 /// begin_frame()/end_frame(), and counts voxels per class. A node that is textured is drawn by
-/// the textures (brick, representative_step(span, span_step), level 0) of all its leaf bricks
+/// the textures (brick, representative_step(span, span_step), level) of node_bricks(…, stops)
 /// (equal keys hold equal data, whichever span made them), ordered back-to-front by view;
 /// it is NT when any of them is uploaded now (or deferred), RT otherwise. With upload_budget > 0,
 /// a texture not resident whose upload would take the frame's uploads over upload_budget bytes
@@ -112,18 +118,19 @@ struct FramePlan {
 FramePlan plan_frame(const TspTree& tree, int step, std::span<const Emitted> emitted,
                      const NodeInfoFn& info, const Tolerances& tol, const ViewOrder& view,
                      TextureCache& cache, std::int64_t upload_budget = 0,
-                     SpanStep span_step = SpanStep::middle);
+                     SpanStep span_step = SpanStep::middle, LodStops stops = {});
 
 /// Every texture key some step's frame could draw under errors, info and tol — the set to keep
-/// with TextureCache::drop_unreachable after a tolerance change. Costs one traversal per step.
+/// with TextureCache::drop_unreachable after a tolerance change (stops: the LOD cut in use).
+/// Costs one traversal per step.
 TextureKeySet reachable_textures(const TspTree& tree, const NodeErrors& errors,
                                  const NodeInfoFn& info, const Tolerances& tol,
-                                 SpanStep span_step = SpanStep::middle);
+                                 SpanStep span_step = SpanStep::middle, LodStops stops = {});
 /// Same, with the errors and classes of m.
 TextureKeySet reachable_textures(const TspTree& tree, const MetricResult& m, const Tolerances& tol,
-                                 SpanStep span_step = SpanStep::middle);
+                                 SpanStep span_step = SpanStep::middle, LodStops stops = {});
 /// Same, with every node of m made current (FrameMetric::all_errors). Throws what m throws.
 TextureKeySet reachable_textures(const TspTree& tree, FrameMetric& m, const Tolerances& tol,
-                                 SpanStep span_step = SpanStep::middle);
+                                 SpanStep span_step = SpanStep::middle, LodStops stops = {});
 
 }  // namespace tsp

@@ -23,11 +23,11 @@ BrickCache::BrickCache(const BrickStore& store, std::int64_t budget_bytes)
 }
 
 std::int64_t BrickCache::entry_bytes(int brick) const {
-  return store_.tree().octree().brick_samples(brick).count() * std::int64_t(sizeof(std::uint16_t));
+  return store_.tree().octree().lattice(brick).count() * std::int64_t(sizeof(std::uint16_t));
 }
 
 void BrickCache::check_key(const BrickKey& key) const {
-  assert(key.brick >= 0 && key.brick < store_.tree().octree().brick_count());
+  assert(key.brick >= 0 && key.brick < store_.tree().octree().stored_brick_count());
   assert(key.step >= 0 && key.step < store_.tree().time().steps());
   (void)key;
 }

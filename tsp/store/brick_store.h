@@ -9,14 +9,15 @@
 
 namespace tsp {
 
-/// Source of quantized leaf-brick samples. Implemented by the .tsp file reader and by
+/// Source of quantized brick samples: the leaf bricks and the LOD level bricks (stored brick
+/// index, Octree::stored_brick_count()). Implemented by the .tsp file reader and by
 /// in-memory stores in tests.
 class BrickStore {
  public:
   virtual ~BrickStore() = default;
   /// The tree the bricks belong to.
   virtual const TspTree& tree() const = 0;
-  /// Reads brick b at step t into out: tree().octree().brick_samples(b).count() codes,
+  /// Reads stored brick b at step t into out: tree().octree().lattice(b).count() codes,
   /// x fastest. Throws IoError/FormatError.
   virtual void read_brick(int brick, int step, std::span<std::uint16_t> out) const = 0;
 };

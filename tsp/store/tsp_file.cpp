@@ -186,7 +186,8 @@ std::unique_ptr<TspFile> TspFile::open(const std::string& path) {
 
   // The stored shape must be the one these dims and brick size produce.
   const Octree& o = tree.octree();
-  const hsize_t nb = hsize_t(o.brick_count()), no = hsize_t(o.size());
+  const hsize_t nb = hsize_t(o.brick_count()), no = hsize_t(o.size()),
+                ns = hsize_t(o.stored_brick_count());
   std::vector<int> samples, own, box, level, parent, children, leaf_brick, spans;
   for (int b = 0; b < o.brick_count(); ++b) {
     append_box(samples, o.brick_samples(b));
@@ -214,6 +215,26 @@ std::unique_ptr<TspFile> TspFile::open(const std::string& path) {
   ints(layout::kOctreeChildren, {no, 8}, children);
   ints(layout::kOctreeBrick, {no}, leaf_brick);
   ints(layout::kTimeSpan, {hsize_t(time.size()), 2}, spans);
+  const hsize_t nl = hsize_t(o.level_brick_count());
+  std::vector<int> level_node, lattice;
+  for (int j = 0; j < int(nl); ++j) {
+    const int i = o.brick_count() + j;
+    const BrickLattice l = o.lattice(i);
+    level_node.push_back(o.stored_brick_node(i));
+    lattice.insert(lattice.end(), l.origin.begin(), l.origin.end());
+    lattice.insert(lattice.end(), l.factor.begin(), l.factor.end());
+    lattice.insert(lattice.end(), l.samples.begin(), l.samples.end());
+  }
+  ints(layout::kLevelNode, {nl}, level_node);
+  ints(layout::kLevelLattice, {nl, 9}, lattice);
+  auto level_error = r.dataset<float>(layout::kLevelError, {nl, hsize_t(steps)}, H5T_NATIVE_FLOAT,
+                                      H5T_FLOAT);
+  for (std::size_t i = 0; i < level_error.size(); ++i)
+    if (!std::isfinite(level_error[i]) || level_error[i] < 0)
+      r.fail(std::string("dataset ") + layout::kLevelError,
+             "element " + std::to_string(i) + " is " + std::to_string(level_error[i]) +
+                 ", expected a finite RMS residual >= 0");
+  std::copy(level_error.begin(), level_error.end(), tree.level_errors().begin());
 
   const std::vector<hsize_t> n = {hsize_t(tree.size())};
   auto mean = r.dataset<double>(layout::kStatsMean, n, H5T_NATIVE_DOUBLE, H5T_FLOAT);
@@ -252,7 +273,7 @@ std::unique_ptr<TspFile> TspFile::open(const std::string& path) {
   auto shape = stored_brick_shape(o);
   impl->data = r.open_dataset(
       layout::kBrickData,
-      {nb, hsize_t(steps), hsize_t(shape[2]), hsize_t(shape[1]), hsize_t(shape[0])}, H5T_INTEGER);
+      {ns, hsize_t(steps), hsize_t(shape[2]), hsize_t(shape[1]), hsize_t(shape[0])}, H5T_INTEGER);
   Handle type(H5Dget_type(impl->data.get()));
   if (H5Tget_size(type.get()) != 2 || H5Tget_sign(type.get()) != H5T_SGN_NONE)
     r.fail(std::string("dataset ") + layout::kBrickData, "expected 16-bit unsigned codes");
@@ -271,12 +292,13 @@ const std::string& TspFile::path() const {
 
 void TspFile::read_brick(int brick, int step, std::span<std::uint16_t> out) const {
   const Octree& o = impl_->tree->octree();
-  assert(brick >= 0 && brick < o.brick_count() && step >= 0 && step < impl_->tree->time().steps());
-  const Box s = o.brick_samples(brick);
+  assert(brick >= 0 && brick < o.stored_brick_count() && step >= 0 &&
+         step < impl_->tree->time().steps());
+  const BrickLattice s = o.lattice(brick);
   assert(std::int64_t(out.size()) == s.count());
   std::lock_guard lock(hdf5_mutex());
   hsize_t start[5] = {hsize_t(brick), hsize_t(step), 0, 0, 0};
-  hsize_t count[5] = {1, 1, hsize_t(s.size(2)), hsize_t(s.size(1)), hsize_t(s.size(0))};
+  hsize_t count[5] = {1, 1, hsize_t(s.samples[2]), hsize_t(s.samples[1]), hsize_t(s.samples[0])};
   Handle fspace(H5Dget_space(impl_->data.get()));
   Handle mspace(H5Screate_simple(3, count + 2, nullptr));
   if (H5Sselect_hyperslab(fspace.get(), H5S_SELECT_SET, start, nullptr, count, nullptr) < 0 ||

@@ -10,8 +10,9 @@
 
 namespace tsp {
 
-/// Format version written by this build; readers accept exactly this version.
-inline constexpr int kTspFormatVersion = 1;
+/// Format version written by this build; readers accept exactly this version (2: LOD level
+/// bricks after the leaf bricks, spec §14).
+inline constexpr int kTspFormatVersion = 2;
 /// Bins of the value histogram stored in the file (over the quantization range).
 inline constexpr int kHistogramBins = 256;
 
@@ -38,7 +39,7 @@ class TspFile : public BrickStore {
   const TspMetadata& metadata() const;
   /// Path the file was opened from.
   const std::string& path() const;
-  /// Reads one brick at one step; thread-safe. Throws IoError/FormatError.
+  /// Reads one stored brick (leaf or level) at one step; thread-safe. Throws IoError/FormatError.
   void read_brick(int brick, int step, std::span<std::uint16_t> out) const override;
 
  private:

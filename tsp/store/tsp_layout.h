@@ -36,9 +36,14 @@ inline constexpr const char* kAttrNodeId = "tsp_node_id";         // text of the
 
 // Datasets.
 inline constexpr const char* kBricks = "/bricks";
-inline constexpr const char* kBrickData = "/bricks/data";               // uint16 [nb,T,Bz,By,Bx]
+// uint16 [nb+nl,T,Bz,By,Bx]: the nb leaf bricks, then the nl level bricks (format 2)
+inline constexpr const char* kBrickData = "/bricks/data";
 inline constexpr const char* kBrickSamplesBox = "/bricks/samples_box";  // int32 [nb,6]
 inline constexpr const char* kBrickOwnBox = "/bricks/own_box";          // int32 [nb,6]
+inline constexpr const char* kLevels = "/levels";
+inline constexpr const char* kLevelNode = "/levels/node";        // int32 [nl]: octree node
+inline constexpr const char* kLevelLattice = "/levels/lattice";  // int32 [nl,9]: origin, factor, samples
+inline constexpr const char* kLevelError = "/levels/error";      // float32 [nl,T]: RMS residual
 inline constexpr const char* kOctree = "/octree";
 inline constexpr const char* kOctreeBox = "/octree/box";            // int32 [no,6]
 inline constexpr const char* kOctreeLevel = "/octree/level";        // int32 [no]
@@ -60,6 +65,12 @@ inline constexpr const char* kQuantizationRule =
     "code q in [0,65535] stands for v = lo + q*(hi-lo)/65535 with [lo,hi] = value_range; "
     "q = round_half_even((clamp(v,lo,hi)-lo)/(hi-lo)*65535), 0 when hi == lo; "
     "NaN and -Inf become lo, +Inf becomes hi";
+inline constexpr const char* kLevelRule =
+    "level brick of internal node n: sample j along axis a at voxel origin[a] + j*factor[a] "
+    "(clamped to the grid), factor = power of two >= n's brick range; value = separable box "
+    "filter of width factor centred there (weights 1/2,1,...,1,1/2; window shrunk symmetrically "
+    "at the grid faces); stored in /bricks/data after the leaf bricks, padded like them";
+inline constexpr const char* kAttrLevelRule = "level_rule";
 inline constexpr const char* kNodeIdRule =
     "TSP node id = octree_id * (2*steps - 1) + time_id; octree and time nodes breadth-first";
 

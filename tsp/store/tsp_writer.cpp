@@ -93,8 +93,9 @@ TspWriter::TspWriter(const std::string& path, const TspTree& tree)
   make_group(w.file.get(), path, layout::kOctree);
   make_group(w.file.get(), path, layout::kTime);
   make_group(w.file.get(), path, layout::kStats);
+  make_group(w.file.get(), path, layout::kLevels);
 
-  const int nb = tree.octree().brick_count();
+  const int nb = tree.octree().stored_brick_count();
   std::vector<hsize_t> dims = {hsize_t(nb), hsize_t(w.steps), hsize_t(w.shape[2]),
                                hsize_t(w.shape[1]), hsize_t(w.shape[0])};
   std::vector<hsize_t> chunk = {1, 1, dims[2], dims[3], dims[4]};
@@ -176,6 +177,25 @@ void TspWriter::finish(const TspTree& tree, const TspMetadata& meta) {
   write_dataset(f, p, layout::kOctreeChildren, H5T_NATIVE_INT32, H5T_STD_I32LE, {no, 8},
                 children.data());
   write_dataset(f, p, layout::kOctreeBrick, H5T_NATIVE_INT32, H5T_STD_I32LE, {no}, brick.data());
+  const hsize_t nl = hsize_t(o.level_brick_count());
+  std::vector<int> level_node(nl);
+  std::vector<std::array<int, 9>> lattice(nl);
+  for (hsize_t j = 0; j < nl; ++j) {
+    const int i = o.brick_count() + int(j);
+    const BrickLattice l = o.lattice(i);
+    level_node[j] = o.stored_brick_node(i);
+    for (int a = 0; a < 3; ++a) {
+      lattice[j][a] = l.origin[a];
+      lattice[j][3 + a] = l.factor[a];
+      lattice[j][6 + a] = l.samples[a];
+    }
+  }
+  write_dataset(f, p, layout::kLevelNode, H5T_NATIVE_INT32, H5T_STD_I32LE, {nl}, level_node.data());
+  write_dataset(f, p, layout::kLevelLattice, H5T_NATIVE_INT32, H5T_STD_I32LE, {nl, 9},
+                lattice.data());
+  assert(tree.level_errors().size() == nl * hsize_t(tree.time().steps()));
+  write_dataset(f, p, layout::kLevelError, H5T_NATIVE_FLOAT, H5T_IEEE_F32LE,
+                {nl, hsize_t(tree.time().steps())}, tree.level_errors().data());
   const TimeTree& time = tree.time();
   std::vector<std::array<int, 2>> spans(time.size());
   for (int i = 0; i < time.size(); ++i) spans[i] = {time.span(i).t0, time.span(i).t1};
@@ -227,6 +247,7 @@ void TspWriter::finish(const TspTree& tree, const TspMetadata& meta) {
   write_attr_string(r, p, layout::kAttrCreatedBy, meta.created_by);
   write_attr_string(r, p, layout::kAttrQuantization, layout::kQuantizationRule);
   write_attr_string(r, p, layout::kAttrNodeId, layout::kNodeIdRule);
+  write_attr_string(r, p, layout::kAttrLevelRule, layout::kLevelRule);
   root.reset();
 
   w.data.reset();

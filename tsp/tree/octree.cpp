@@ -77,6 +77,57 @@ Octree::Octree(Dims dims, int brick_size) : dims_(dims), brick_size_(brick_size)
       nodes_.push_back(c);  // may reallocate: nodes_[i] is re-indexed above, never held by reference
     }
   }
+  node_level_brick_.assign(nodes_.size(), -1);
+  for (std::size_t i = 0; i < nodes_.size(); ++i)
+    if (!nodes_[i].is_leaf()) {
+      node_level_brick_[i] = brick_count() + int(level_nodes_.size());
+      level_nodes_.push_back(int(i));
+    }
+}
+
+int Octree::node_brick(int id) const {
+  const OctreeNode& n = nodes_[std::size_t(id)];
+  return n.is_leaf() ? n.brick : node_level_brick_[std::size_t(id)];
+}
+
+std::array<int, 3> Octree::lod_factor(int id) const {
+  const int f = 1 << lod_level(id);
+  // Isotropic, except along an axis the whole grid is one brick thick (thin grids such as WRF's
+  // 14 levels), which keeps its full resolution.
+  return {grid_[0] > 1 ? f : 1, grid_[1] > 1 ? f : 1, grid_[2] > 1 ? f : 1};
+}
+
+int Octree::lod_level(int id) const {
+  const OctreeNode& n = nodes_[std::size_t(id)];
+  if (n.is_leaf()) return 0;
+  const int range = std::max({n.brick_hi[0] - n.brick_lo[0], n.brick_hi[1] - n.brick_lo[1],
+                              n.brick_hi[2] - n.brick_lo[2]});
+  int k = 0;
+  while ((1 << k) < range) ++k;
+  return k;
+}
+
+BrickLattice Octree::lattice(int i) const {
+  BrickLattice l;
+  if (i < brick_count()) {
+    const Box s = brick_samples(i);
+    for (int a = 0; a < 3; ++a) {
+      l.origin[a] = s.lo[a];
+      l.samples[a] = s.size(a);
+    }
+    return l;
+  }
+  const int id = level_nodes_[std::size_t(i - brick_count())];
+  const OctreeNode& n = nodes_[std::size_t(id)];
+  l.factor = lod_factor(id);
+  for (int a = 0; a < 3; ++a) {
+    // The node's samples run from box.lo to its shared upper layer (the grid's last sample for
+    // the last node along the axis); cells/f ≤ S, so at most the leaf's S + 1 samples.
+    const int cells = std::min(n.box.hi[a], dims_[a] - 1) - n.box.lo[a];
+    l.origin[a] = n.box.lo[a];
+    l.samples[a] = (cells + l.factor[a] - 1) / l.factor[a] + 1;
+  }
+  return l;
 }
 
 int Octree::axis_lo(int a, int k) const { return k * cells_[a]; }

@@ -8,6 +8,7 @@
 // brick along an axis also owns the final layer: [k·S, D).
 #pragma once
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "tsp/core/types.h"
@@ -26,6 +27,16 @@ struct OctreeNode {
   int brick = -1;                ///< leaf brick index, −1 for internal nodes
   /// True for leaves (one brick).
   bool is_leaf() const { return brick >= 0; }
+};
+
+/// Where a stored brick's samples lie: sample j along axis a is at voxel coordinate
+/// origin[a] + j·factor[a] (clamped to the grid's last sample). Leaf bricks have factor 1.
+struct BrickLattice {
+  std::array<int, 3> origin{};   ///< voxel coordinate of sample 0
+  std::array<int, 3> factor{1, 1, 1};  ///< voxels between samples (a power of two)
+  std::array<int, 3> samples{};  ///< stored samples per axis (≤ the stored brick shape)
+  /// Number of samples.
+  std::int64_t count() const { return std::int64_t(samples[0]) * samples[1] * samples[2]; }
 };
 
 /// Complete octree over the brick grid; nodes numbered breadth-first, root = 0. A node splits
@@ -63,6 +74,34 @@ class Octree {
   /// Largest stored sample extent of any brick along each axis (brick 0's, ≤ B).
   std::array<int, 3> max_brick_samples() const;
 
+  // LOD levels (spec §14): every internal node also stores a brick of at most the leaf sample
+  // count covering its region every lod_factor() voxels. Stored bricks are numbered leaves first
+  // (0 … brick_count() − 1), then one level brick per internal node in node order.
+  /// Leaf bricks plus level bricks.
+  int stored_brick_count() const { return brick_count() + int(level_nodes_.size()); }
+  /// Number of level bricks (internal nodes).
+  int level_brick_count() const { return int(level_nodes_.size()); }
+  /// The octree node stored brick i belongs to.
+  int stored_brick_node(int i) const {
+    return i < brick_count() ? brick_node_[i] : level_nodes_[i - brick_count()];
+  }
+  /// Stored brick of node id: its leaf brick, or its level brick for an internal node.
+  int node_brick(int id) const;
+  /// Voxels between node id's samples per axis: 2^lod_level(id), except 1 along an axis the
+  /// whole grid is one brick thick (its full resolution is kept).
+  std::array<int, 3> lod_factor(int id) const;
+  /// LOD level of node id: 0 for leaves, otherwise log2 of the power of two at least its largest
+  /// brick range (so it grows strictly towards the root).
+  int lod_level(int id) const;
+  /// Largest lod_level (the root's).
+  int max_lod_level() const { return lod_level(0); }
+  /// Own voxel box of stored brick i (a leaf brick's, or its internal node's).
+  Box stored_brick_box(int i) const {
+    return i < brick_count() ? brick_box(i) : nodes_[std::size_t(stored_brick_node(i))].box;
+  }
+  /// Sample lattice of stored brick i.
+  BrickLattice lattice(int i) const;
+
  private:
   Dims dims_;
   int brick_size_;
@@ -71,6 +110,8 @@ class Octree {
   int depth_ = 0;
   std::vector<OctreeNode> nodes_;
   std::vector<int> brick_node_;
+  std::vector<int> level_nodes_;  // internal nodes in node order
+  std::vector<int> node_level_brick_;  // per node: its level brick index, −1 for leaves
   int axis_lo(int a, int k) const;
   int axis_hi(int a, int k) const;
 };

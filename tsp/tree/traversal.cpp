@@ -73,15 +73,17 @@ constexpr int kFailed = -1;
 class Walker {
  public:
   Walker(const TspTree& tree, int t, const Tolerances& tol, const NodeErrors& errors,
-         const ViewOrder& view)
-      : tree_(tree), t_(t), tol_(tol), errors_(errors), view_(view) {}
+         const ViewOrder& view, LodStops stops)
+      : tree_(tree), t_(t), tol_(tol), errors_(errors), view_(view), stops_(stops) {}
 
   void visit(int o) {
     const bool leaf = tree_.octree().node(o).is_leaf();
-    const int tau = coherent_time_node(o, leaf);
+    const bool stop = leaf || (!stops_.empty() && stops_[std::size_t(o)] != 0);
+    int tau = coherent_time_node(o, leaf);
+    if (tau == kFailed && stop && !leaf) tau = coherent_time_node(o, true);
     if (tau != kFailed) {
       emit(o, tau);
-    } else if (leaf) {
+    } else if (stop) {
       emit(o, tree_.time().leaf_of(t_));
     } else {
       ChildOrder kids = back_to_front_children(tree_.octree(), o, view_);
@@ -114,16 +116,18 @@ class Walker {
   const Tolerances& tol_;
   const NodeErrors& errors_;
   const ViewOrder& view_;
+  LodStops stops_;
   std::vector<Emitted> out_;
 };
 
 }  // namespace
 
 std::vector<Emitted> traverse(const TspTree& tree, int t, const Tolerances& tol,
-                              const NodeErrors& errors, const ViewOrder& view) {
+                              const NodeErrors& errors, const ViewOrder& view, LodStops stops) {
   assert(t >= 0 && t < tree.time().steps());
   assert(int(errors.spatial.size()) == tree.size() && int(errors.temporal.size()) == tree.size());
-  Walker walker(tree, t, tol, errors, view);
+  assert(stops.empty() || int(stops.size()) == tree.octree().size());
+  Walker walker(tree, t, tol, errors, view, stops);
   walker.visit(0);
   return walker.take();
 }

@@ -1,6 +1,7 @@
 // TSP tree traversal (spec §5, paper Fig. 2) and back-to-front child order (spec §6).
 #pragma once
 #include <array>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -62,10 +63,17 @@ struct ChildOrder {
 /// f = view.farthest_octant(octree, id), absent ones skipped. Empty for a leaf.
 ChildOrder back_to_front_children(const Octree& octree, int id, const ViewOrder& view);
 
+/// Per octree node, 1 where the spatial descent stops (the nodes of an LOD cut, tsp/lod); empty:
+/// stop at the leaves only.
+using LodStops = std::span<const std::uint8_t>;
+
 /// Traverses the tree for step t and returns the emitted nodes in back-to-front order.
-/// The emitted octree nodes tile the volume exactly once. Asserts 0 ≤ t < steps and that
-/// errors hold tree.size() entries each.
+/// The emitted octree nodes tile the volume exactly once. With stops, a node marked there is
+/// treated as a leaf: emitted with the largest temporally coherent span (or its leaf span) when
+/// no coherent span holds it whole. Asserts 0 ≤ t < steps, that errors hold tree.size() entries
+/// each, and that stops is empty or has one entry per octree node.
 std::vector<Emitted> traverse(const TspTree& tree, int t, const Tolerances& tol,
-                              const NodeErrors& errors, const ViewOrder& view);
+                              const NodeErrors& errors, const ViewOrder& view,
+                              LodStops stops = {});
 
 }  // namespace tsp

@@ -24,7 +24,8 @@ TimeTree checked_time_tree(const Octree& octree, int steps) {
 TspTree::TspTree(Dims dims, int steps, int brick_size)
     : octree_(dims, brick_size),
       time_(checked_time_tree(octree_, steps)),
-      stats_(std::size_t(octree_.size()) * time_.size()) {}
+      stats_(std::size_t(octree_.size()) * time_.size()),
+      level_error_(std::size_t(octree_.level_brick_count()) * time_.steps(), 0.f) {}
 
 double coefficient_of_variation(double sigma, double mean, double range_width) {
   if (sigma == 0) return 0;

@@ -49,11 +49,22 @@ class TspTree {
   ValueRange value_range() const { return range_; }
   /// Sets the quantization range.
   void set_value_range(ValueRange r) { range_ = r; }
+  /// Level error of octree node o at step t: the RMS difference, in data units, between the
+  /// node's voxels and their trilinear reconstruction from its level brick (0 for leaves).
+  float level_error(int o, int t) const {
+    const int i = octree_.node_brick(o) - octree_.brick_count();
+    return i < 0 ? 0.f : level_error_[std::size_t(i) * time_.steps() + t];
+  }
+  /// All level errors, [level brick][step] (level brick = stored brick − brick_count()).
+  std::span<const float> level_errors() const { return level_error_; }
+  /// Mutable level errors, for the builder and the file reader.
+  std::span<float> level_errors() { return level_error_; }
 
  private:
   Octree octree_;
   TimeTree time_;
   std::vector<NodeStats> stats_;
+  std::vector<float> level_error_;
   ValueRange range_;
 };
 

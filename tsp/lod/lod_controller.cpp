@@ -1,0 +1,188 @@
+#include "tsp/lod/lod_controller.h"
+
+#include <algorithm>
+#include <cmath>
+#include <queue>
+
+namespace tsp {
+
+namespace {
+// A transparent (or culled) node still costs its pixels a ray step or two: this share of a
+// textured node's cost.
+constexpr double kEmptyCostShare = 0.02;
+// A swap (merge one node to afford a split) happens only when the split's error is this many
+// times the merge's, so the cut does not oscillate between equals.
+constexpr double kSwapGain = 2.0;
+// The render scale drops when the coarsest cut takes longer than kScaleDownAt × target, and
+// rises when a frame takes less than kScaleUpAt × target; never below kMinScale.
+constexpr double kScaleDownAt = 1.1, kScaleUpAt = 0.8, kMinScale = 0.25;
+// Frames within this share of the target leave the cut as it is; outside, the budget moves by
+// this share of the Newton step towards it.
+constexpr double kDeadBand = 0.1, kNewtonDamping = 0.7;
+}  // namespace
+
+LodController::LodController(const TspTree& tree, LodOptions options)
+    : tree_(tree),
+      options_(std::move(options)),
+      cut_(tree.octree()),
+      error_(std::size_t(tree.octree().size()), 0),
+      cost_(std::size_t(tree.octree().size()), 0) {}
+
+void LodController::evaluate(const Camera& camera, int t, const TfColourSlopes& slopes,
+                             double spacing) {
+  const Octree& o = tree_.octree();
+  const Dims d = o.dims();
+  const std::array<double, 3> focus =
+      options_.focus.value_or(std::array<double, 3>{0.5 * (d.x - 1), 0.5 * (d.y - 1), 0.5 * (d.z - 1)});
+  const double diagonal = std::hypot(double(d.x), double(d.y), double(d.z));
+  // Full-resolution sample cost of each leaf brick, summed bottom-up (children follow their
+  // parents in node order); a node's cost is its leaves' over its sample step multiplier, since
+  // the ray caster skips its transparent leaf pages whatever the level.
+  std::vector<double> leaf_sum(std::size_t(o.size()), 0);
+  for (int id = o.size() - 1; id >= 0; --id) {
+    const OctreeNode& n = o.node(id);
+    const Aabb box = geometric_box(n.box, d);
+    const NodeProjection p = project_box(camera, box);
+    const NodeStats& s = tree_.stats(tree_.id(id, tree_.time().leaf_of(t)));
+    if (n.is_leaf()) {
+      const bool empty = p.culled || slopes.transparent(s.min, s.max);
+      leaf_sum[std::size_t(id)] =
+          p.pixel_area * p.depth_voxels / spacing * (empty ? kEmptyCostShare : 1.0);
+    } else {
+      for (int c : n.children)
+        if (c >= 0) leaf_sum[std::size_t(id)] += leaf_sum[std::size_t(c)];
+    }
+    const auto f = o.lod_factor(id);
+    cost_[std::size_t(id)] = leaf_sum[std::size_t(id)] / double(std::max({f[0], f[1], f[2]}));
+    const std::array<double, 3> c{0.5 * (box.lo[0] + box.hi[0]), 0.5 * (box.lo[1] + box.hi[1]),
+                                  0.5 * (box.lo[2] + box.hi[2])};
+    error_[std::size_t(id)] =
+        lod_error(tree_, id, t, p, slopes, focus_weight(c, focus, diagonal));
+  }
+}
+
+void LodController::adapt_scale(bool coarsest) {
+  const double target = options_.target_ms;
+  if (!(target > 0) || !(last_ms_ > 0)) {
+    scale_ = 1;
+    return;
+  }
+  // Pixels go as scale²: aim at the target with half a step (damped), in [kMinScale, 1].
+  const double want = scale_of_last_ * std::sqrt(std::sqrt(target / last_ms_));
+  if (coarsest && last_ms_ > kScaleDownAt * target)
+    scale_ = std::clamp(want, kMinScale, 1.0);
+  else if (scale_ < 1 && last_ms_ < kScaleUpAt * target)
+    scale_ = std::clamp(want, kMinScale, 1.0);
+}
+
+LodFrameStats LodController::update(const Camera& camera, int t, const TransferFunction& tf,
+                                    double spacing) {
+  const Octree& o = tree_.octree();
+  const TfColourSlopes slopes(tf);
+  evaluate(camera, t, slopes, spacing);
+  LodFrameStats st;
+  double cost = 0;
+  for (int id : cut_.nodes()) cost += cost_[std::size_t(id)];
+  const auto children_cost = [&](int id) {
+    double c = 0;
+    for (int k : o.node(id).children)
+      if (k >= 0) c += cost_[std::size_t(k)];
+    return c;
+  };
+  const auto children_count = [&](int id) {
+    int n = 0;
+    for (int k : o.node(id).children) n += k >= 0;
+    return n;
+  };
+  const std::int64_t brick_bytes =
+      std::int64_t(o.max_brick_samples()[0]) * o.max_brick_samples()[1] * o.max_brick_samples()[2] * 2;
+  const bool timed = options_.target_ms > 0;
+  // Timed, the first frame (no measurement yet) keeps the coarsest cut. Then a damped Newton step
+  // on the model, anchored at the last measured frame (its cut's cost under this view): the
+  // model's slope says how much cost the gap to the target buys, so its intercept's lag and bias
+  // do not matter; inside the dead band the cut holds.
+  double budget = 1e300;
+  if (timed) {
+    budget = cost;
+    const double gap = options_.target_ms - last_ms_;
+    if (model_.ready() && last_ms_ > 0 && std::fabs(gap) > kDeadBand * options_.target_ms)
+      budget = std::max(0.0, cost + kNewtonDamping * gap / model_.slope());
+  }
+
+  using Item = std::pair<double, int>;
+  std::priority_queue<Item> splits;                                       // largest first
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> merges;  // smallest first
+  auto push_merge = [&](int id) {
+    if (id >= 0 && cut_.can_merge(id)) merges.push({error_[std::size_t(id)], id});
+  };
+  for (int id : cut_.nodes()) {
+    if (cut_.can_split(id)) splits.push({error_[std::size_t(id)], id});
+    push_merge(o.node(id).parent);
+  }
+  auto do_merge = [&](int id) {
+    cost += cost_[std::size_t(id)] - children_cost(id);
+    cut_.merge(id);
+    ++st.merges;
+    splits.push({error_[std::size_t(id)], id});
+    push_merge(o.node(id).parent);
+  };
+  // Over budget: merge the least useful parents first.
+  while (timed && cost > budget && !merges.empty() && st.merges < options_.merge_limit) {
+    const auto [e, id] = merges.top();
+    merges.pop();
+    if (cut_.can_merge(id)) do_merge(id);
+  }
+  // At the coarsest cut and still over: a smaller render target; no split until it is back at 1.
+  adapt_scale(merges.empty() || cut_.size() == 1);
+  // Under budget: split the most useful nodes, swapping one merge for a much better split.
+  while (scale_ >= 1 && !splits.empty() && st.splits < options_.split_limit) {
+    const auto [e, id] = splits.top();
+    if (!cut_.can_split(id)) {
+      splits.pop();
+      continue;
+    }
+    if (e < options_.min_error) break;
+    const double after = cost - cost_[std::size_t(id)] + children_cost(id);
+    const bool over_textures =
+        options_.texture_budget > 0 &&
+        std::int64_t(cut_.size() - 1 + children_count(id)) * brick_bytes > options_.texture_budget;
+    if (after > budget || over_textures) {
+      while (!merges.empty() && !cut_.can_merge(merges.top().second)) merges.pop();
+      if (merges.empty() || st.merges >= options_.merge_limit ||
+          merges.top().first * kSwapGain > e)
+        break;
+      const int m = merges.top().second;
+      merges.pop();
+      if (o.node(id).parent == m || m == id) break;  // never undo the split being paid for
+      do_merge(m);
+      continue;
+    }
+    splits.pop();
+    cost = after;
+    cut_.split(id);
+    ++st.splits;
+    for (int k : o.node(id).children)
+      if (k >= 0 && cut_.can_split(k)) splits.push({error_[std::size_t(k)], k});
+    push_merge(id);
+  }
+  last_cost_ = cost;
+  st.cut_size = cut_.size();
+  st.nodes_per_level = cut_.nodes_per_level();
+  st.texture_bytes = std::int64_t(cut_.size()) * brick_bytes;
+  st.cost = cost;
+  st.predicted_ms = model_.ready() ? model_.predict(cost) : 0;
+  st.render_scale = scale_;
+  scale_of_frame_ = scale_;
+  for (int id : cut_.nodes())
+    if (cut_.can_split(id)) st.max_error = std::max(st.max_error, error_[std::size_t(id)]);
+  return st;
+}
+
+void LodController::measured(double ms) {
+  last_ms_ = ms;
+  scale_of_last_ = scale_of_frame_;
+  // The model is fitted on full-size frames only (a smaller target changes every pixel's cost).
+  if (last_cost_ >= 0 && scale_of_frame_ >= 1) model_.add(last_cost_, ms);
+}
+
+}  // namespace tsp

@@ -1,0 +1,84 @@
+// The LOD controller (paper 000 §5): keeps an active cut from frame to frame and adapts it to a
+// frame-time target with a split queue (non-leaf cut nodes, largest error first) and a merge queue
+// (parents of cut nodes, smallest error first), bounded per frame, by the texture budget and by the
+// cost model's prediction. Without a target (0) it refines every node whose error is above
+// min_error, split_limit nodes per frame: the progressive refinement to full quality when idle.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "tsp/frame/camera.h"
+#include "tsp/lod/cost_model.h"
+#include "tsp/lod/lod_cut.h"
+#include "tsp/lod/lod_error.h"
+#include "tsp/metric/transfer_function.h"
+#include "tsp/tree/tsp_tree.h"
+
+namespace tsp {
+
+/// What bounds the controller.
+struct LodOptions {
+  double target_ms = 0;          ///< frame-time target; 0: refine to min_error regardless of time
+  int split_limit = 8;           ///< splits per frame (a split costs uploads: RAM → texture)
+  int merge_limit = 16;          ///< merges per frame
+  std::int64_t texture_budget = 0;  ///< bytes the cut's bricks may hold (0: unlimited)
+  double min_error = 0.25;       ///< nodes below this error (pixels × ΔE) are not split
+  std::optional<std::array<double, 3>> focus;  ///< centre of attention; default the volume centre
+};
+
+/// What one update did, for frames.json.
+struct LodFrameStats {
+  int cut_size = 0;
+  std::vector<int> nodes_per_level;  ///< index = LOD level
+  int splits = 0, merges = 0;
+  std::int64_t texture_bytes = 0;    ///< the cut's bricks (one per node) at 2 bytes per sample
+  double cost = 0;                   ///< Σ cost over the cut
+  double predicted_ms = 0;           ///< the cost model's prediction (0 before the first frame)
+  double max_error = 0;              ///< the largest error left among splittable cut nodes
+  /// Render-target share per axis for the frame (1 unless even the root misses the target).
+  double render_scale = 1;
+};
+
+/// One active cut and its controller. Not thread-safe.
+class LodController {
+ public:
+  /// Starts from the coarsest cut (the root). tree must outlive it.
+  LodController(const TspTree& tree, LodOptions options);
+  /// Adapts the cut for the next frame of step t under camera, tf and sample spacing, and returns
+  /// what it did. Never throws.
+  LodFrameStats update(const Camera& camera, int t, const TransferFunction& tf, double spacing);
+  /// The measured time of the frame drawn with the last update's cut, without its texture
+  /// uploads (bounded separately by split_limit); fits the cost model.
+  void measured(double ms);
+  /// Changes the target (0: refine fully, as when the player is idle).
+  void set_target(double ms) { options_.target_ms = ms; }
+  /// The options in use.
+  const LodOptions& options() const { return options_; }
+  /// The cut.
+  const LodCut& cut() const { return cut_; }
+  /// The cost model.
+  const CostModel& model() const { return model_; }
+  /// The cost of node o in the last update: pixels × samples over its leaf bricks that are not
+  /// culled or transparent (a small share for those), divided by its sample step multiplier.
+  double node_cost(int o) const { return cost_[std::size_t(o)]; }
+  /// Render-target share per axis the last update chose.
+  double render_scale() const { return scale_; }
+
+ private:
+  const TspTree& tree_;
+  LodOptions options_;
+  LodCut cut_;
+  CostModel model_;
+  std::vector<double> error_, cost_;
+  double last_cost_ = -1;
+  double last_ms_ = 0;   // the last measured frame
+  double scale_ = 1;
+  double scale_of_last_ = 1;  // the scale the last measured frame was drawn at
+  double scale_of_frame_ = 1; // the scale the last update chose
+  void adapt_scale(bool coarsest);
+  void evaluate(const Camera& camera, int t, const TfColourSlopes& slopes, double spacing);
+};
+
+}  // namespace tsp

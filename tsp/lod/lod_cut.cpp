@@ -1,0 +1,78 @@
+#include "tsp/lod/lod_cut.h"
+
+#include <cassert>
+
+namespace tsp {
+
+LodCut::LodCut(const Octree& octree)
+    : octree_(&octree), in_(std::size_t(octree.size()), 0), size_(1) {
+  in_[0] = 1;
+}
+
+LodCut LodCut::at_level(const Octree& octree, int k) {
+  assert(k >= 0);
+  LodCut cut(octree);
+  // Breadth-first order: parents come before their children, so one pass splits top-down.
+  for (int id = 0; id < octree.size(); ++id)
+    if (cut.contains(id) && octree.lod_level(id) > k && cut.can_split(id)) cut.split(id);
+  return cut;
+}
+
+std::vector<int> LodCut::nodes() const {
+  std::vector<int> out;
+  out.reserve(std::size_t(size_));
+  for (int id = 0; id < int(in_.size()); ++id)
+    if (in_[std::size_t(id)]) out.push_back(id);
+  return out;
+}
+
+bool LodCut::can_split(int id) const { return contains(id) && !octree_->node(id).is_leaf(); }
+
+bool LodCut::can_merge(int id) const {
+  const OctreeNode& n = octree_->node(id);
+  if (contains(id) || n.is_leaf()) return false;
+  for (int c : n.children)
+    if (c >= 0 && !contains(c)) return false;
+  return true;
+}
+
+void LodCut::split(int id) {
+  assert(can_split(id));
+  in_[std::size_t(id)] = 0;
+  --size_;
+  for (int c : octree_->node(id).children)
+    if (c >= 0) {
+      in_[std::size_t(c)] = 1;
+      ++size_;
+    }
+}
+
+void LodCut::merge(int id) {
+  assert(can_merge(id));
+  for (int c : octree_->node(id).children)
+    if (c >= 0) {
+      in_[std::size_t(c)] = 0;
+      --size_;
+    }
+  in_[std::size_t(id)] = 1;
+  ++size_;
+}
+
+std::vector<int> LodCut::nodes_per_level() const {
+  std::vector<int> n(std::size_t(octree_->max_lod_level() + 1), 0);
+  for (int id = 0; id < int(in_.size()); ++id)
+    if (in_[std::size_t(id)]) ++n[std::size_t(octree_->lod_level(id))];
+  return n;
+}
+
+bool LodCut::covers_once() const {
+  for (int b = 0; b < octree_->brick_count(); ++b) {
+    int hits = 0;
+    for (int id = octree_->brick_node(b); id >= 0; id = octree_->node(id).parent)
+      hits += contains(id);
+    if (hits != 1) return false;
+  }
+  return true;
+}
+
+}  // namespace tsp

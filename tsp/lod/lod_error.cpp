@@ -1,0 +1,107 @@
+#include "tsp/lod/lod_error.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace tsp {
+
+TfColourSlopes::TfColourSlopes(const TransferFunction& tf) : tf_(&tf) {
+  const int k = tf.size();
+  std::vector<Luv> luv(static_cast<std::size_t>(k));
+  for (int j = 0; j < k; ++j) {
+    const Rgba& c = tf.entry(j);
+    luv[std::size_t(j)] = srgb_to_luv(c.r * c.a, c.g * c.a, c.b * c.a);
+  }
+  const double width = tf.domain().width() / k;
+  step_.resize(std::size_t(std::max(0, k - 1)));
+  for (int j = 0; j + 1 < k; ++j)
+    step_[std::size_t(j)] =
+        delta_e_luv(luv[std::size_t(j)], luv[std::size_t(j) + 1]) / std::max(width, 1e-300);
+}
+
+double TfColourSlopes::slope(double lo, double hi) const {
+  const int a = std::max(0, tf_->entry_of(lo) - 1);
+  const int b = std::min(tf_->size() - 1, tf_->entry_of(hi) + 1);
+  if (tf_->transparent(a, b)) return 0;
+  double s = 0;
+  for (int j = a; j < b; ++j) s = std::max(s, step_[std::size_t(j)]);
+  return s;
+}
+
+bool TfColourSlopes::transparent(double lo, double hi) const {
+  return tf_->transparent(tf_->entry_of(lo), tf_->entry_of(hi));
+}
+
+NodeProjection project_box(const Camera& camera, const Aabb& box) {
+  NodeProjection p;
+  const glm::dmat4 vp = camera.view_projection();
+  const double w = camera.params().width, h = camera.params().height;
+  // Frustum culling: all eight corners beyond one clip plane.
+  std::array<int, 6> outside{};
+  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+  bool behind = false;
+  for (int c = 0; c < 8; ++c) {
+    const glm::dvec4 q = vp * glm::dvec4(c & 1 ? box.hi[0] : box.lo[0],
+                                          c & 2 ? box.hi[1] : box.lo[1],
+                                          c & 4 ? box.hi[2] : box.lo[2], 1.0);
+    outside[0] += q.x < -q.w;
+    outside[1] += q.x > q.w;
+    outside[2] += q.y < -q.w;
+    outside[3] += q.y > q.w;
+    outside[4] += q.z < -q.w;
+    outside[5] += q.z > q.w;
+    if (q.w <= 1e-9) {
+      behind = true;
+      continue;
+    }
+    const double sx = (q.x / q.w * 0.5 + 0.5) * w, sy = (q.y / q.w * 0.5 + 0.5) * h;
+    x0 = std::min(x0, sx);
+    x1 = std::max(x1, sx);
+    y0 = std::min(y0, sy);
+    y1 = std::max(y1, sy);
+  }
+  p.culled = std::any_of(outside.begin(), outside.end(), [](int n) { return n == 8; });
+  if (behind) {  // the eye is near or inside: the box may cover the whole view
+    x0 = 0, y0 = 0, x1 = w, y1 = h;
+  }
+  p.pixel_area = std::max(0.0, std::min(x1, w) - std::max(x0, 0.0)) *
+                 std::max(0.0, std::min(y1, h) - std::max(y0, 0.0));
+  const auto dir = camera.direction();
+  for (int a = 0; a < 3; ++a) p.depth_voxels += std::fabs((box.hi[a] - box.lo[a]) * dir[a]);
+  // Pixels per voxel: one voxel along the camera's right vector at the point nearest the eye.
+  const glm::dmat4& view = camera.view();
+  const glm::dvec3 right(view[0][0], view[1][0], view[2][0]);
+  glm::dvec3 q;
+  const auto eye = camera.eye();
+  for (int a = 0; a < 3; ++a)
+    q[a] = camera.perspective() ? std::clamp(eye[a], box.lo[a], box.hi[a])
+                                : 0.5 * (box.lo[a] + box.hi[a]);
+  if (camera.perspective()) {  // at least a little in front of the eye
+    const glm::dvec3 d(dir[0], dir[1], dir[2]);
+    const double ahead = glm::dot(q - glm::dvec3(eye[0], eye[1], eye[2]), d);
+    if (ahead < 1.0) q += d * (1.0 - ahead);
+  }
+  const glm::dvec4 a = vp * glm::dvec4(q, 1.0), b = vp * glm::dvec4(q + right, 1.0);
+  if (a.w > 1e-9 && b.w > 1e-9)
+    p.pixels_per_voxel = std::hypot((b.x / b.w - a.x / a.w) * 0.5 * w, (b.y / b.w - a.y / a.w) * 0.5 * h);
+  return p;
+}
+
+double focus_weight(const std::array<double, 3>& c, const std::array<double, 3>& focus,
+                    double diagonal) {
+  const double d = std::hypot(c[0] - focus[0], c[1] - focus[1], c[2] - focus[2]);
+  return 1.0 / (1.0 + 2.0 * d / std::max(diagonal, 1e-9));
+}
+
+double lod_error(const TspTree& tree, int o, int t, const NodeProjection& p,
+                 const TfColourSlopes& slopes, double weight) {
+  const Octree& octree = tree.octree();
+  if (p.culled || octree.node(o).is_leaf()) return 0;
+  const NodeStats& s = tree.stats(tree.id(o, tree.time().leaf_of(t)));
+  const double colour = double(tree.level_error(o, t)) * slopes.slope(s.min, s.max);
+  const auto f = octree.lod_factor(o);
+  const double texel = double(std::max({f[0], f[1], f[2]})) * p.pixels_per_voxel;
+  return texel * colour * weight;
+}
+
+}  // namespace tsp
