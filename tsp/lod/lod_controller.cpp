@@ -16,9 +16,9 @@ constexpr double kSwapGain = 2.0;
 // The render scale drops when the coarsest cut takes longer than kScaleDownAt × target, and
 // rises when a frame takes less than kScaleUpAt × target; never below kMinScale.
 constexpr double kScaleDownAt = 1.1, kScaleUpAt = 0.8, kMinScale = 0.25;
-// Frames within this share of the target leave the cut as it is; outside, the budget moves by
-// this share of the Newton step towards it.
-constexpr double kDeadBand = 0.1, kNewtonDamping = 0.7;
+// Frames predicted within this share of the target leave the cut as it is; a merge that would
+// fall below the band waits until a frame is kFarOver × the target.
+constexpr double kDeadBand = 0.1, kFarOver = 1.25;
 }  // namespace
 
 LodController::LodController(const TspTree& tree, LodOptions options)
@@ -97,19 +97,21 @@ LodFrameStats LodController::update(const Camera& camera, int t, const TransferF
   const std::int64_t brick_bytes =
       std::int64_t(o.max_brick_samples()[0]) * o.max_brick_samples()[1] * o.max_brick_samples()[2] * 2;
   const bool timed = options_.target_ms > 0;
-  // Timed, the first frame (no measurement yet) keeps the coarsest cut. Then a damped Newton step
-  // on the model, anchored at the last measured frame (its cut's cost under this view): the
-  // model's slope says how much cost the gap to the target buys, so its intercept's lag and bias
-  // do not matter; inside the dead band the cut holds.
-  double budget = 1e300;
-  if (timed) {
-    budget = cost;
-    const double gap = options_.target_ms - last_ms_;
-    if (model_.ready() && last_ms_ > 0 && std::fabs(gap) > kDeadBand * options_.target_ms)
-      budget = std::max(0.0, cost + kNewtonDamping * gap / model_.slope());
-  }
-
-  using Item = std::pair<double, int>;
+  // Timed, the first frame (no measurement yet) keeps the coarsest cut. Then predictions are
+  // anchored at the last measured frame (its cut's cost under this view) and move by the model's
+  // slope, so its intercept's lag and bias do not matter: ms(c) = last_ms + b·(c − cost).
+  const double target = options_.target_ms;
+  const bool informed = timed && model_.ready() && last_ms_ > 0;
+  const double anchor = cost;
+  const auto predict = [&](double c) { return last_ms_ + model_.slope() * (c - anchor); };
+  const double low = (1 - kDeadBand) * target, high = (1 + kDeadBand) * target;
+  // A split fits when it stays under the target, or within the band's top when the cut is below
+  // the band (the first split from a fast coarse cut may overshoot a little).
+  const auto split_fits = [&](double after) {
+    if (!timed) return true;
+    if (!informed) return false;
+    return predict(after) <= target || (predict(cost) < low && predict(after) <= high);
+  };  using Item = std::pair<double, int>;
   std::priority_queue<Item> splits;                                       // largest first
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> merges;  // smallest first
   auto push_merge = [&](int id) {
@@ -126,14 +128,18 @@ LodFrameStats LodController::update(const Camera& camera, int t, const TransferF
     splits.push({error_[std::size_t(id)], id});
     push_merge(o.node(id).parent);
   };
-  // Over budget: merge the least useful parents first.
-  while (timed && cost > budget && !merges.empty() && st.merges < options_.merge_limit) {
+  // Over the band: merge the least useful parents first — but not below the band unless far over
+  // (one merge near the root can halve the frame).
+  while (informed && predict(cost) > high && !merges.empty() && st.merges < options_.merge_limit) {
     const auto [e, id] = merges.top();
     merges.pop();
-    if (cut_.can_merge(id)) do_merge(id);
+    if (!cut_.can_merge(id)) continue;
+    const double after = cost + cost_[std::size_t(id)] - children_cost(id);
+    if (predict(after) < low && predict(cost) < kFarOver * target) break;
+    do_merge(id);
   }
   // At the coarsest cut and still over: a smaller render target; no split until it is back at 1.
-  adapt_scale(merges.empty() || cut_.size() == 1);
+  adapt_scale(last_coarsest_);
   // Under budget: split the most useful nodes, swapping one merge for a much better split.
   while (scale_ >= 1 && !splits.empty() && st.splits < options_.split_limit) {
     const auto [e, id] = splits.top();
@@ -141,12 +147,12 @@ LodFrameStats LodController::update(const Camera& camera, int t, const TransferF
       splits.pop();
       continue;
     }
-    if (e < options_.min_error) break;
+    if (!(e > options_.min_error)) break;  // error 0 (uniform, transparent) never splits
     const double after = cost - cost_[std::size_t(id)] + children_cost(id);
     const bool over_textures =
         options_.texture_budget > 0 &&
         std::int64_t(cut_.size() - 1 + children_count(id)) * brick_bytes > options_.texture_budget;
-    if (after > budget || over_textures) {
+    if (!split_fits(after) || over_textures) {
       while (!merges.empty() && !cut_.can_merge(merges.top().second)) merges.pop();
       if (merges.empty() || st.merges >= options_.merge_limit ||
           merges.top().first * kSwapGain > e)
@@ -166,6 +172,7 @@ LodFrameStats LodController::update(const Camera& camera, int t, const TransferF
     push_merge(id);
   }
   last_cost_ = cost;
+  last_coarsest_ = cut_.size() == 1;
   st.cut_size = cut_.size();
   st.nodes_per_level = cut_.nodes_per_level();
   st.texture_bytes = std::int64_t(cut_.size()) * brick_bytes;

@@ -77,6 +77,7 @@ class LodController {
   double scale_ = 1;
   double scale_of_last_ = 1;  // the scale the last measured frame was drawn at
   double scale_of_frame_ = 1; // the scale the last update chose
+  bool last_coarsest_ = false;  // the last update left the root alone
   void adapt_scale(bool coarsest);
   void evaluate(const Camera& camera, int t, const TfColourSlopes& slopes, double spacing);
 };

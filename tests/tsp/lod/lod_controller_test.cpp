@@ -1,0 +1,166 @@
+// The LOD controller on a simulated renderer whose true frame time differs from the controller's
+// cost estimate per node: it holds a target, refines fully without one, keeps transparent data
+// coarse, respects the texture budget and falls back to a smaller render target.
+#include "tsp/lod/lod_controller.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+
+namespace tsp {
+namespace {
+
+// A tree whose every node spans values [0, 1] with a level residual growing with the level.
+TspTree make_tree(Dims d, int brick) {
+  TspTree tree(d, 2, brick);
+  for (int i = 0; i < tree.size(); ++i) {
+    tree.stats(i).min = 0;
+    tree.stats(i).max = 1;
+    tree.stats(i).mean = 0.5;
+  }
+  const Octree& o = tree.octree();
+  auto errors = tree.level_errors();
+  for (int j = 0; j < o.level_brick_count(); ++j)
+    for (int t = 0; t < 2; ++t)
+      errors[std::size_t(j) * 2 + t] =
+          0.01f * float(1 << o.lod_level(o.stored_brick_node(o.brick_count() + j)));
+  return tree;
+}
+
+TransferFunction ramp_tf(float alpha) {
+  std::vector<TfPoint> pts = {{0.0, {0.f, 0.f, 1.f, 0.f}}, {1.0, {1.f, 0.5f, 0.f, alpha}}};
+  return TransferFunction::from_points({0, 1}, pts);
+}
+
+Camera camera(Dims d, double azimuth) {
+  CameraParams p;
+  p.width = 640;
+  p.height = 480;
+  p.azimuth_deg = azimuth;
+  return Camera(d, p);
+}
+
+// The "renderer": 4 ms fixed plus the controller's node costs, each off by a fixed random factor
+// in [0.6, 1.4], plus 5 % noise per frame.
+struct SimulatedRenderer {
+  std::vector<double> skew;
+  std::mt19937 rng{7};
+  double ms_per_cost = 0;
+  SimulatedRenderer(const Octree& o, double per_cost) : skew(std::size_t(o.size())), ms_per_cost(per_cost) {
+    std::uniform_real_distribution<double> u(0.6, 1.4);
+    for (double& s : skew) s = u(rng);
+  }
+  double frame(const LodController& c) {
+    double cost = 0;
+    for (int id : c.cut().nodes()) cost += c.node_cost(id) * skew[std::size_t(id)];
+    std::normal_distribution<double> noise(1, 0.05);
+    const double scale = c.render_scale();
+    return (4 + ms_per_cost * cost) * scale * scale * noise(rng);
+  }
+};
+
+TEST(LodController, HoldsTheTargetOnASimulatedRenderer) {
+  const Dims d{257, 257, 257};
+  const TspTree tree = make_tree(d, 32);
+  const TransferFunction tf = ramp_tf(0.05f);
+  for (double target : {20.0, 40.0, 80.0}) {
+    LodOptions opt;
+    opt.target_ms = target;
+    LodController c(tree, opt);
+    // Full resolution would take about 150 ms.
+    LodController full(tree, LodOptions{});
+    for (int k = 0; k < 200 && full.update(camera(d, 30), 0, tf, 0.5).splits > 0; ++k) {
+    }
+    double full_cost = 0;
+    for (int id : full.cut().nodes()) full_cost += full.node_cost(id);
+    SimulatedRenderer r(tree.octree(), 150.0 / full_cost);
+    std::vector<double> times;
+    for (int frame = 0; frame < 120; ++frame) {
+      c.update(camera(d, 30 + 2 * frame), 0, tf, 0.5);
+      const double ms = r.frame(c);
+      c.measured(ms);
+      if (frame >= 40) times.push_back(ms);
+    }
+    std::sort(times.begin(), times.end());
+    const double median = times[times.size() / 2];
+    const double p90 = times[times.size() * 9 / 10];
+    EXPECT_NEAR(median, target, 0.2 * target) << "target " << target;
+    EXPECT_LT(p90, 1.5 * target) << "target " << target;
+    EXPECT_TRUE(c.cut().covers_once());
+  }
+}
+
+TEST(LodController, WithoutATargetRefinesUntilNoErrorIsLeft) {
+  const Dims d{129, 129, 129};
+  const TspTree tree = make_tree(d, 16);
+  const TransferFunction tf = ramp_tf(0.05f);
+  LodOptions opt;
+  opt.min_error = 0;
+  LodController c(tree, opt);
+  int frames = 0;
+  LodFrameStats st;
+  do {
+    st = c.update(camera(d, 30), 0, tf, 0.5);
+    ++frames;
+  } while (st.splits > 0 && frames < 1000);
+  EXPECT_EQ(c.cut().size(), tree.octree().brick_count());  // every node split: full resolution
+  EXPECT_EQ(st.nodes_per_level[0], tree.octree().brick_count());
+  // split_limit per frame bounds how fast it gets there.
+  EXPECT_GE(frames, (tree.octree().size() - tree.octree().brick_count()) / opt.split_limit);
+}
+
+TEST(LodController, TransparentDataStaysCoarseForFree) {
+  const Dims d{129, 129, 129};
+  const TspTree tree = make_tree(d, 16);
+  LodOptions opt;
+  opt.min_error = 0;
+  LodController c(tree, opt);
+  const TransferFunction clear = ramp_tf(0.f);  // α = 0 everywhere
+  for (int k = 0; k < 20; ++k) c.update(camera(d, 30), 0, clear, 0.5);
+  EXPECT_EQ(c.cut().size(), 1);
+}
+
+TEST(LodController, RespectsTheTextureBudget) {
+  const Dims d{129, 129, 129};
+  const TspTree tree = make_tree(d, 16);
+  const TransferFunction tf = ramp_tf(0.05f);
+  LodOptions opt;
+  opt.min_error = 0;
+  const std::int64_t brick = 16 * 16 * 16 * 2;
+  opt.texture_budget = 100 * brick;
+  LodController c(tree, opt);
+  LodFrameStats st;
+  for (int k = 0; k < 100; ++k) st = c.update(camera(d, 30), 0, tf, 0.5);
+  EXPECT_LE(st.texture_bytes, opt.texture_budget);
+  EXPECT_GT(c.cut().size(), 50);  // it got as close as whole splits allow
+  EXPECT_TRUE(c.cut().covers_once());
+}
+
+TEST(LodController, ShrinksTheRenderTargetWhenEvenTheRootIsTooSlow) {
+  const Dims d{129, 129, 129};
+  const TspTree tree = make_tree(d, 16);
+  const TransferFunction tf = ramp_tf(0.05f);
+  LodOptions opt;
+  opt.target_ms = 10;
+  LodController c(tree, opt);
+  double ms = 0;
+  for (int k = 0; k < 30; ++k) {
+    c.update(camera(d, 30), 0, tf, 0.5);
+    ms = 40 * c.render_scale() * c.render_scale();  // the root alone takes 40 ms at full size
+    c.measured(ms);
+  }
+  EXPECT_EQ(c.cut().size(), 1);
+  EXPECT_LT(c.render_scale(), 0.7);
+  EXPECT_NEAR(ms, 10, 3);
+  // Once there is time again, the scale returns to 1 before anything is split.
+  c.set_target(200);
+  for (int k = 0; k < 30; ++k) {
+    c.update(camera(d, 30), 0, tf, 0.5);
+    c.measured(40 * c.render_scale() * c.render_scale());
+  }
+  EXPECT_EQ(c.render_scale(), 1.0);
+}
+
+}  // namespace
+}  // namespace tsp
