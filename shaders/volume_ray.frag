@@ -11,7 +11,8 @@
 //             pre-integrated segment between the half-way points to its neighbours. A page of
 //             an LOD level brick (factor f = 2^l per axis, l packed in w) maps voxels to texels
 //             at 1/f and samples every m·spacing, m = the largest f, on planes (k + ½)·m·spacing,
-//             with the opacity corrected to the longer step: α_m = 1 − (1 − α)^m (spec §9, §14).
+//             each sample's opacity corrected to the length of ray it stands for inside the
+//             brick: α_L = 1 − (1 − α)^(L/spacing) (spec §9, §14).
 // It stops once the ray is opaque (early ray termination). (box_ray.glsl and sample_tf.glsl are
 // prepended.)
 uniform float spacing;
@@ -83,15 +84,35 @@ void main() {
       vec3 tc_hi = (min(lo + cell, box_hi) * scale + page.xyz) * atlas_scale;
       vec3 tc = ((entry + r.ray * t_next) * scale + page.xyz) * atlas_scale;
       vec3 dtc = r.ray * dtm * scale * atlas_scale;
-      for (; t_next < t_out; t_next += dtm) {
-        vec4 s = sample_colour(tc, 0.5 * dtc, tc_lo, tc_hi, u_prev);
-        if (m > 1.0 && s.a > 0.0) {
-          float a = 1.0 - pow(max(1.0 - s.a, 0.0), m);
-          s = vec4(s.rgb * (a / s.a), a);
+      if (m == 1.0) {
+        for (; t_next < t_out; t_next += dtm) {
+          acc += (1.0 - acc.a) * sample_colour(tc, 0.5 * dtc, tc_lo, tc_hi, u_prev);
+          if (acc.a >= kOpaque) break;
+          tc += dtc;
         }
-        acc += (1.0 - acc.a) * s;
-        if (acc.a >= kOpaque) break;
-        tc += dtc;
+      } else {
+        // Each sample stands for its slab of the ray inside this brick: the first from where the
+        // ray entered, the last to where it leaves (one sample mid-way when no plane falls
+        // inside), so the lengths add up to the brick's exactly, whatever the step — no gap or
+        // overlap where levels meet. Opacity corrected to the length: α_L = 1 − (1 − α)^(L/dt).
+        float first = t_next;
+        if (first >= t_out) {
+          first = 0.5 * (t + t_out);
+          tc = ((entry + r.ray * first) * scale + page.xyz) * atlas_scale;
+        }
+        for (float tj = first; tj < t_out; tj += dtm) {
+          float lo_j = tj == first ? t : tj - 0.5 * dtm;
+          float hi_j = tj + dtm >= t_out ? t_out : tj + 0.5 * dtm;
+          vec4 s = sample_colour(tc, 0.5 * dtc, tc_lo, tc_hi, u_prev);
+          if (s.a > 0.0) {
+            float a = 1.0 - pow(max(1.0 - s.a, 0.0), (hi_j - lo_j) / dt);
+            s = vec4(s.rgb * (a / s.a), a);
+          }
+          acc += (1.0 - acc.a) * s;
+          if (acc.a >= kOpaque) break;
+          tc += dtc;
+        }
+        if (t_next < t_out) t_next += ceil((t_out - t_next) / dtm) * dtm;
       }
     } else {
       float a = 1.0 - exp(page.w * (t_out - t) * r.cos_theta);

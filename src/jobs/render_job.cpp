@@ -235,6 +235,7 @@ RenderJobResult run_render_job(const RenderJobOptions& options, const RenderProg
                             : renderer->render(t, camera, frame_settings, nodes, stops);
       if (controller) controller->measured(rec.report.ms - rec.report.upload_ms);
       result.frames.push_back(rec);
+      if (o.on_frame) o.on_frame(rec, ctx->read_pixels());
       // The last pass's images win; earlier passes only measure.
       if (!dir.empty() && o.write_images && pass == o.passes)
         tsp::write_png(step_png(dir, t), ctx->read_pixels());

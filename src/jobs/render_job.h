@@ -12,9 +12,14 @@
 #include "tsp/frame/texture_cache.h"
 #include "tsp/lod/lod_controller.h"
 #include "tsp/metric/metric.h"
+#include "tsp/report/image.h"
 #include "tsp/tree/tsp_tree.h"
 
 namespace tspgl {
+
+struct FrameRecord;
+/// Called after every frame with its record and pixels (benchmarks comparing pictures).
+using FrameSink = std::function<void(const FrameRecord&, const tsp::Image&)>;
 
 /// --lod: full resolution, one level everywhere, or the controller's adaptive cut.
 enum class LodMode { off, fixed, adaptive };
@@ -47,6 +52,7 @@ struct RenderJobOptions {
   double target_ms = 0;
   tsp::LodOptions lod_options;                ///< split/merge limits, min error, focus
   double orbit_deg = 0;                       ///< --orbit: azimuth advance per frame
+  FrameSink on_frame;                         ///< called after every frame; may be empty
 };
 
 /// What the LOD cut did in one frame (frames.json's "lod").

@@ -28,36 +28,52 @@ LodController::LodController(const TspTree& tree, LodOptions options)
       error_(std::size_t(tree.octree().size()), 0),
       cost_(std::size_t(tree.octree().size()), 0) {}
 
-void LodController::evaluate(const Camera& camera, int t, const TfColourSlopes& slopes,
-                             double spacing) {
+void LodController::evaluate(const Camera& camera, int t, const TransferFunction& tf,
+                             const TfColourSlopes& slopes, double spacing) {
   const Octree& o = tree_.octree();
   const Dims d = o.dims();
   const std::array<double, 3> focus =
       options_.focus.value_or(std::array<double, 3>{0.5 * (d.x - 1), 0.5 * (d.y - 1), 0.5 * (d.z - 1)});
   const double diagonal = std::hypot(double(d.x), double(d.y), double(d.z));
-  // Full-resolution sample cost of each leaf brick, summed bottom-up (children follow their
-  // parents in node order); a node's cost is its leaves' over its sample step multiplier, since
-  // the ray caster skips its transparent leaf pages whatever the level.
-  std::vector<double> leaf_sum(std::size_t(o.size()), 0);
+  std::vector<NodeProjection> proj(std::size_t(o.size()));
+  std::vector<NodeProjection> leaves(std::size_t(o.brick_count()));
+  for (int id = 0; id < o.size(); ++id) {
+    proj[std::size_t(id)] = project_box(camera, geometric_box(o.node(id).box, d));
+    if (o.node(id).is_leaf()) leaves[std::size_t(o.node(id).brick)] = proj[std::size_t(id)];
+  }
+  const std::vector<double> leaf_vis = leaf_visibility(tree_, t, camera, leaves, tf);
+  // Full-resolution sample cost and visible area of each leaf brick, summed bottom-up (children
+  // follow their parents in node order); a node's cost is its leaves' over its sample step
+  // multiplier (the ray caster skips transparent leaf pages whatever the level), its visibility
+  // their area-weighted mean.
+  std::vector<double> leaf_sum(std::size_t(o.size()), 0), vis_sum(leaf_sum), area_sum(leaf_sum);
   for (int id = o.size() - 1; id >= 0; --id) {
     const OctreeNode& n = o.node(id);
-    const Aabb box = geometric_box(n.box, d);
-    const NodeProjection p = project_box(camera, box);
+    const NodeProjection& p = proj[std::size_t(id)];
     const NodeStats& s = tree_.stats(tree_.id(id, tree_.time().leaf_of(t)));
     if (n.is_leaf()) {
       const bool empty = p.culled || slopes.transparent(s.min, s.max);
       leaf_sum[std::size_t(id)] =
           p.pixel_area * p.depth_voxels / spacing * (empty ? kEmptyCostShare : 1.0);
+      area_sum[std::size_t(id)] = p.pixel_area;
+      vis_sum[std::size_t(id)] = p.pixel_area * leaf_vis[std::size_t(n.brick)];
     } else {
       for (int c : n.children)
-        if (c >= 0) leaf_sum[std::size_t(id)] += leaf_sum[std::size_t(c)];
+        if (c >= 0) {
+          leaf_sum[std::size_t(id)] += leaf_sum[std::size_t(c)];
+          area_sum[std::size_t(id)] += area_sum[std::size_t(c)];
+          vis_sum[std::size_t(id)] += vis_sum[std::size_t(c)];
+        }
     }
     const auto f = o.lod_factor(id);
     cost_[std::size_t(id)] = leaf_sum[std::size_t(id)] / double(std::max({f[0], f[1], f[2]}));
+    const double visibility =
+        area_sum[std::size_t(id)] > 0 ? vis_sum[std::size_t(id)] / area_sum[std::size_t(id)] : 0;
+    const Aabb box = geometric_box(n.box, d);
     const std::array<double, 3> c{0.5 * (box.lo[0] + box.hi[0]), 0.5 * (box.lo[1] + box.hi[1]),
                                   0.5 * (box.lo[2] + box.hi[2])};
     error_[std::size_t(id)] =
-        lod_error(tree_, id, t, p, slopes, focus_weight(c, focus, diagonal));
+        lod_error(tree_, id, t, p, slopes, focus_weight(c, focus, diagonal) * visibility);
   }
 }
 
@@ -79,7 +95,7 @@ LodFrameStats LodController::update(const Camera& camera, int t, const TransferF
                                     double spacing) {
   const Octree& o = tree_.octree();
   const TfColourSlopes slopes(tf);
-  evaluate(camera, t, slopes, spacing);
+  evaluate(camera, t, tf, slopes, spacing);
   LodFrameStats st;
   double cost = 0;
   for (int id : cut_.nodes()) cost += cost_[std::size_t(id)];

@@ -79,7 +79,8 @@ class LodController {
   double scale_of_frame_ = 1; // the scale the last update chose
   bool last_coarsest_ = false;  // the last update left the root alone
   void adapt_scale(bool coarsest);
-  void evaluate(const Camera& camera, int t, const TfColourSlopes& slopes, double spacing);
+  void evaluate(const Camera& camera, int t, const TransferFunction& tf,
+                const TfColourSlopes& slopes, double spacing);
 };
 
 }  // namespace tsp

@@ -64,8 +64,9 @@ NodeProjection project_box(const Camera& camera, const Aabb& box) {
   if (behind) {  // the eye is near or inside: the box may cover the whole view
     x0 = 0, y0 = 0, x1 = w, y1 = h;
   }
-  p.pixel_area = std::max(0.0, std::min(x1, w) - std::max(x0, 0.0)) *
-                 std::max(0.0, std::min(y1, h) - std::max(y0, 0.0));
+  p.rect = {std::clamp(x0, 0.0, w), std::clamp(y0, 0.0, h), std::clamp(x1, 0.0, w),
+            std::clamp(y1, 0.0, h)};
+  p.pixel_area = std::max(0.0, p.rect[2] - p.rect[0]) * std::max(0.0, p.rect[3] - p.rect[1]);
   const auto dir = camera.direction();
   for (int a = 0; a < 3; ++a) p.depth_voxels += std::fabs((box.hi[a] - box.lo[a]) * dir[a]);
   // Pixels per voxel: one voxel along the camera's right vector at the point nearest the eye.
@@ -85,6 +86,50 @@ NodeProjection project_box(const Camera& camera, const Aabb& box) {
   if (a.w > 1e-9 && b.w > 1e-9)
     p.pixels_per_voxel = std::hypot((b.x / b.w - a.x / a.w) * 0.5 * w, (b.y / b.w - a.y / a.w) * 0.5 * h);
   return p;
+}
+
+std::vector<double> leaf_visibility(const TspTree& tree, int t, const Camera& camera,
+                                    const std::vector<NodeProjection>& leaves,
+                                    const TransferFunction& tf) {
+  constexpr int kTiles = 32;  // per axis
+  const Octree& o = tree.octree();
+  const double w = camera.params().width, h = camera.params().height;
+  const auto dir = camera.direction();
+  const auto eye = camera.eye();
+  // Leaves front to back: by depth along the view (orthographic) or distance from the eye.
+  std::vector<std::pair<double, int>> order;
+  for (int b = 0; b < o.brick_count(); ++b) {
+    const Box& box = o.brick_box(b);
+    double key = 0;
+    for (int a = 0; a < 3; ++a) {
+      const double c = 0.5 * (box.lo[a] + box.hi[a]);
+      key += camera.perspective() ? (c - eye[a]) * (c - eye[a]) : c * dir[a];
+    }
+    order.push_back({key, b});
+  }
+  std::sort(order.begin(), order.end());
+  std::vector<double> transmittance(std::size_t(kTiles) * kTiles, 1.0), vis(order.size(), 0.0);
+  for (const auto& [key, b] : order) {
+    const NodeProjection& p = leaves[std::size_t(b)];
+    if (p.culled || p.pixel_area <= 0) continue;
+    const int x0 = std::clamp(int(p.rect[0] / w * kTiles), 0, kTiles - 1);
+    const int x1 = std::clamp(int(p.rect[2] / w * kTiles), 0, kTiles - 1);
+    const int y0 = std::clamp(int(p.rect[1] / h * kTiles), 0, kTiles - 1);
+    const int y1 = std::clamp(int(p.rect[3] / h * kTiles), 0, kTiles - 1);
+    double sum = 0;
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x) sum += transmittance[std::size_t(y) * kTiles + x];
+    vis[std::size_t(b)] = sum / double((x1 - x0 + 1) * (y1 - y0 + 1));
+    // α per voxel (spec §9) at the leaf's mean value, over its mean chord: voxels / area.
+    const NodeStats& s = tree.stats(tree.id(o.brick_node(b), tree.time().leaf_of(t)));
+    const double a = std::clamp(double(tf.lookup(s.mean).a), 0.0, 1.0);
+    const double area_voxels = p.pixel_area / std::max(p.pixels_per_voxel * p.pixels_per_voxel, 1e-12);
+    const double chord = std::min(p.depth_voxels, double(o.brick_box(b).count()) / area_voxels);
+    const double keep = std::pow(1 - a, chord);
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x) transmittance[std::size_t(y) * kTiles + x] *= keep;
+  }
+  return vis;
 }
 
 double focus_weight(const std::array<double, 3>& c, const std::array<double, 3>& focus,

@@ -4,6 +4,7 @@
 // value range (ΔE*uv per data unit) — weighted by distance to the focus point (paper 002's
 // centre of attention). Uniform nodes (residual 0) and transparent ones (slope 0) cost nothing.
 #pragma once
+#include <algorithm>
 #include <array>
 #include <optional>
 #include <vector>
@@ -39,6 +40,7 @@ struct NodeProjection {
   double pixels_per_voxel = 0;   ///< at the box point nearest the eye (the centre, orthographic)
   double pixel_area = 0;         ///< its screen bounding rectangle, clipped to the viewport
   double depth_voxels = 0;       ///< its extent along the view direction
+  std::array<double, 4> rect{};  ///< screen bounding rectangle x0, y0, x1, y1 (pixels, clipped)
 };
 
 /// Projects box (sample coordinates) through camera. Never throws.
@@ -48,6 +50,15 @@ NodeProjection project_box(const Camera& camera, const Aabb& box);
 /// falloff from the centre of attention (diagonal: the volume's). Never throws.
 double focus_weight(const std::array<double, 3>& c, const std::array<double, 3>& focus,
                     double diagonal);
+
+/// How much of each leaf brick the frame shows: the transmittance in front of it (mean over its
+/// screen tiles), from every leaf's opacity under the TF (α per voxel at its mean value over its
+/// mean chord) accumulated front to back on a coarse tile grid — occlusion, so that what lies
+/// behind opaque matter stays coarse. leaves: project_box of each leaf brick. Indexed by leaf
+/// brick. Never throws.
+std::vector<double> leaf_visibility(const TspTree& tree, int t, const Camera& camera,
+                                    const std::vector<NodeProjection>& leaves,
+                                    const TransferFunction& tf);
 
 /// The LOD error of octree node o at step t (0 for a leaf or a culled node). Never throws.
 double lod_error(const TspTree& tree, int o, int t, const NodeProjection& p,

@@ -33,11 +33,12 @@ TransferFunction ramp_tf(float alpha) {
   return TransferFunction::from_points({0, 1}, pts);
 }
 
-Camera camera(Dims d, double azimuth) {
+Camera camera(Dims d, double azimuth, double elevation = 20) {
   CameraParams p;
   p.width = 640;
   p.height = 480;
   p.azimuth_deg = azimuth;
+  p.elevation_deg = elevation;
   return Camera(d, p);
 }
 
@@ -63,7 +64,7 @@ struct SimulatedRenderer {
 TEST(LodController, HoldsTheTargetOnASimulatedRenderer) {
   const Dims d{257, 257, 257};
   const TspTree tree = make_tree(d, 32);
-  const TransferFunction tf = ramp_tf(0.05f);
+  const TransferFunction tf = ramp_tf(0.005f);  // thin: every node stays visible
   for (double target : {20.0, 40.0, 80.0}) {
     LodOptions opt;
     opt.target_ms = target;
@@ -119,6 +120,24 @@ TEST(LodController, TransparentDataStaysCoarseForFree) {
   const TransferFunction clear = ramp_tf(0.f);  // α = 0 everywhere
   for (int k = 0; k < 20; ++k) c.update(camera(d, 30), 0, clear, 0.5);
   EXPECT_EQ(c.cut().size(), 1);
+}
+
+TEST(LodController, NodesHiddenBehindOpaqueMatterStayCoarse) {
+  const Dims d{129, 129, 129};
+  const TspTree tree = make_tree(d, 16);
+  LodOptions opt;
+  opt.min_error = 1e-3;
+  LodController c(tree, opt);
+  for (int k = 0; k < 500 && c.update(camera(d, 0, 0), 0, ramp_tf(0.5f), 0.5).splits > 0; ++k) {
+  }
+  // Looking level along +y into nearly opaque data: the front half is refined, the back not.
+  int front = 0, back = 0;
+  for (int id : c.cut().nodes()) {
+    if (tree.octree().lod_level(id) > 0) continue;
+    (tree.octree().node(id).box.lo[1] < 64 ? front : back)++;
+  }
+  EXPECT_GT(front, 100);
+  EXPECT_LT(back, front / 4);
 }
 
 TEST(LodController, RespectsTheTextureBudget) {
