@@ -14,6 +14,7 @@ namespace {
 struct PlayArgs {
   tspplayer::PlayerOptions options;
   std::string size = "960x720";
+  std::string lod = "on";
 };
 
 void run(PlayArgs a) {
@@ -38,7 +39,15 @@ const CommandRegistrar reg(35, [](CLI::App& app) {
   c->add_option("--upload-budget", a->options.upload_budget_mb,
                 "Texture MiB uploaded per frame; the rest follows in later frames (default 16, "
                 "0: no limit)");
-  c->callback([a] { run(*a); });
+  c->add_option("--lod", a->lod, "Level of detail: on (hold --target-fps while interacting, full "
+                                 "quality when idle) or off (default on)")
+      ->check(CLI::IsMember({"on", "off"}));
+  c->add_option("--target-fps", a->options.target_fps,
+                "Frames per second the LOD cut holds while interacting (default 30)");
+  c->callback([a] {
+    a->options.lod = a->lod == "on";
+    run(*a);
+  });
 });
 
 }  // namespace

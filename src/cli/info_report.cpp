@@ -43,6 +43,39 @@ json box_json(const tsp::Box& b) {
 
 }  // namespace
 
+namespace {
+
+// Per LOD level (0 = full resolution): bricks stored, their bytes per step, the level error.
+struct LodLevelRow {
+  int bricks = 0;
+  std::int64_t bytes_per_step = 0;
+  double error_sum = 0, error_max = 0;
+  std::int64_t error_count = 0;
+};
+
+std::vector<LodLevelRow> lod_levels(const tsp::TspTree& tree) {
+  const tsp::Octree& o = tree.octree();
+  std::vector<LodLevelRow> rows(std::size_t(o.max_lod_level() + 1));
+  const auto shape = o.max_brick_samples();
+  const std::int64_t brick_bytes = std::int64_t(shape[0]) * shape[1] * shape[2] * 2;
+  for (int i = 0; i < o.stored_brick_count(); ++i) {
+    const int node = o.stored_brick_node(i);
+    LodLevelRow& r = rows[std::size_t(o.lod_level(node))];
+    ++r.bricks;
+    r.bytes_per_step += brick_bytes;
+    if (i < o.brick_count()) continue;
+    for (int t = 0; t < tree.time().steps(); ++t) {
+      const double e = tree.level_error(node, t);
+      r.error_sum += e;
+      r.error_max = std::max(r.error_max, e);
+      ++r.error_count;
+    }
+  }
+  return rows;
+}
+
+}  // namespace
+
 json info_json(const tsp::TspFile& f, bool with_nodes) {
   const tsp::TspTree& tree = f.tree();
   const tsp::Octree& o = tree.octree();
@@ -76,6 +109,13 @@ json info_json(const tsp::TspFile& f, bool with_nodes) {
                       {"temporal_error_mean", l.tsp_nodes ? l.et_sum / l.tsp_nodes : 0.0},
                       {"temporal_error_max", l.et_max}});
   j["levels"] = levels;
+  json lod = json::array();
+  for (const LodLevelRow& r : lod_levels(tree))
+    lod.push_back({{"bricks", r.bricks},
+                   {"bytes_per_step", r.bytes_per_step},
+                   {"residual_mean", r.error_count ? r.error_sum / double(r.error_count) : 0.0},
+                   {"residual_max", r.error_max}});
+  j["lod_levels"] = lod;
   if (with_nodes) {
     json nodes = json::array();
     for (int id = 0; id < tree.size(); ++id) {
@@ -129,6 +169,18 @@ void print_info(const tsp::TspFile& f, bool with_nodes) {
                 l.tsp_nodes ? l.es_sum / l.tsp_nodes : 0.0, l.es_max,
                 l.tsp_nodes ? l.et_sum / l.tsp_nodes : 0.0, l.et_max);
   }
+  std::printf("\nLOD levels (spec §14; level 0 = the leaf bricks, level k samples every 2^k voxels)\n");
+  std::printf("  level  bricks  MiB per step   RMS residual mean   max (data units)\n");
+  std::int64_t lod_bytes = 0, leaf_bytes = 0;
+  int k = 0;
+  for (const LodLevelRow& r : lod_levels(tree)) {
+    (k == 0 ? leaf_bytes : lod_bytes) += r.bytes_per_step;
+    std::printf("  %5d  %6d  %12.3f   %17.4g   %10.4g\n", k++, r.bricks,
+                double(r.bytes_per_step) / (1 << 20),
+                r.error_count ? r.error_sum / double(r.error_count) : 0.0, r.error_max);
+  }
+  std::printf("  levels above 0 add %.1f%% to the bricks\n",
+              leaf_bytes ? 100.0 * double(lod_bytes) / double(leaf_bytes) : 0.0);
   if (!with_nodes) return;
   std::printf(
       "\n      id  octree  level  span        mean         std         min         max"

@@ -94,6 +94,11 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
                           ": expected 0 (no limit) to " +
                           std::to_string(tspgl::kMaxBudgetBytes >> 20) + " MiB per frame");
   upload_budget_mb = options.upload_budget_mb;
+  if (!(options.target_fps >= 1 && options.target_fps <= kMaxTargetFps))
+    throw tsp::UsageError("--target-fps " + std::to_string(options.target_fps) + ": expected 1 to " +
+                          std::to_string(int(kMaxTargetFps)) + " frames per second");
+  lod_on = options.lod;
+  target_fps = float(options.target_fps);
   if (!options.script.empty()) script_ = load_script(options.script);
   if (!options.screenshot.empty()) {
     ScriptAction shot;
@@ -244,6 +249,18 @@ void PlayerApp::write_stats(const std::string& path) const {
   j["preintegrated"] = preintegrated;
   j["tolerance"] = {tol.spatial, tol.temporal};
   j["quality"] = quality_note;
+  j["lod"] = {{"on", lod_on},
+              {"target_fps", target_fps},
+              {"refining", refining},
+              {"cut_size", lod_stats.cut_size},
+              {"nodes_per_level", lod_stats.nodes_per_level},
+              {"render_scale", lod_stats.render_scale},
+              {"max_error", lod_stats.max_error},
+              {"full_quality_after_s", full_quality_after_s},
+              // Full quality: no node left whose level differs from full resolution in the
+              // picture (error 0: transparent, uniform or hidden), at full render size.
+              {"full_quality", !lod_on || (refining && lod_stats.max_error == 0 &&
+                                           lod_stats.render_scale == 1)}};
   j["classes"] = {{"not_rendered", last.class_percent[0]},
                   {"untextured", last.class_percent[1]},
                   {"reused_texture", last.class_percent[2]},
@@ -259,7 +276,8 @@ void PlayerApp::set_cache(bool on, double budget_mb) {
 
 // During playback: the bricks the next kPrefetchSteps frames would upload, in playing order,
 // go to the prefetch thread once per step change (the request replaces the previous one).
-void PlayerApp::request_prefetch(const tsp::Camera& cam, const tspgl::RenderSettings& settings) {
+void PlayerApp::request_prefetch(const tsp::Camera& cam, const tspgl::RenderSettings& settings,
+                                 tsp::LodStops stops) {
   if (!playing || !prefetch_on || prefetched_for_ == step) return;
   prefetched_for_ = step;
   std::vector<tsp::BrickKey> keys;
@@ -269,7 +287,8 @@ void PlayerApp::request_prefetch(const tsp::Camera& cam, const tspgl::RenderSett
       if (!loop) break;
       t %= steps();
     }
-    std::vector<tsp::BrickKey> more = renderer->bricks_to_upload(t, cam, settings, frame_metric());
+    std::vector<tsp::BrickKey> more =
+        renderer->bricks_to_upload(t, cam, settings, frame_metric(), stops);
     keys.insert(keys.end(), more.begin(), more.end());
   }
   prefetcher->request(std::move(keys));
@@ -318,8 +337,9 @@ void PlayerApp::render_volume() {
       metric_evaluations = lazy_->evaluations() - before;
     }
   }
-  last = renderer->render(step, cam, settings, frame_metric());
-  request_prefetch(cam, settings);
+  const tsp::LodStops stops = update_lod(cam, settings, glfwGetTime());
+  last = renderer->render(step, cam, settings, frame_metric(), stops);
+  request_prefetch(cam, settings, stops);
 }
 
 void PlayerApp::advance_playback(double dt) {
@@ -356,6 +376,7 @@ void PlayerApp::handle_input() {
                                         -kMaxElevation, kMaxElevation);
     }
     if (io.MouseWheel != 0) camera.zoom *= std::pow(kZoomPerWheelStep, io.MouseWheel);
+    if (io.MouseDoubleClicked[0]) set_focus_at(io.MousePos.x, io.MousePos.y);
   }
   if (io.WantCaptureKeyboard) return;
   if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Space), false)) playing = !playing;
@@ -365,6 +386,7 @@ void PlayerApp::handle_input() {
   if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_End), false)) go_to(steps() - 1);
   // The GLFW back end of ImGui 1.86 indexes KeysDown by GLFW key codes.
   if (ImGui::IsKeyPressed(GLFW_KEY_S, false)) request_save();
+  if (ImGui::IsKeyPressed(GLFW_KEY_L, false)) show_cut = !show_cut;
   if (ImGui::IsKeyPressed(GLFW_KEY_P, false))
     camera.projection = camera.projection == tsp::Projection::orthographic
                             ? tsp::Projection::perspective
@@ -429,6 +451,9 @@ void PlayerApp::apply(const ScriptAction& a) {
     case Kind::wait_frames:
       wait_frames_ = a.number;
       break;
+    case Kind::wait_seconds:
+      wait_until_s_ = glfwGetTime() + a.value;
+      break;
     case Kind::compositing:
       compositing = tspgl::parse_compositing(a.text, "compositing");
       break;
@@ -445,6 +470,15 @@ void PlayerApp::apply(const ScriptAction& a) {
     case Kind::stats:
       write_stats(a.text);
       break;
+    case Kind::lod:
+      set_lod(a.flag);
+      break;
+    case Kind::target_fps:
+      target_fps = float(a.value);
+      break;
+    case Kind::show_cut:
+      show_cut = a.flag;
+      break;
     case Kind::quit:
       quit_ = true;
       break;
@@ -459,11 +493,12 @@ void PlayerApp::run_script() {
     --wait_frames_;
     return;
   }
+  if (glfwGetTime() < wait_until_s_) return;
   while (script_pos_ < script_.size() && !quit_) {
     const ScriptAction& a = script_[script_pos_++];
     apply(a);
     if (a.kind == ScriptAction::Kind::screenshot || a.kind == ScriptAction::Kind::screenshot_ui ||
-        a.kind == ScriptAction::Kind::wait_frames)
+        a.kind == ScriptAction::Kind::wait_frames || a.kind == ScriptAction::Kind::wait_seconds)
       break;
   }
 }
@@ -496,7 +531,9 @@ void PlayerApp::frame() {
 
   // Screenshots hold the volume only (read before the UI is drawn).
   // A screenshot waits for the first complete frame (no texture left for later frames).
-  const bool shot_now = !pending_shot_.empty() && last.complete();
+  // With the LOD cut it also waits for full quality (the idle refinement), unless playing.
+  const bool full = !lod_on || playing || full_quality_after_s >= 0;
+  const bool shot_now = !pending_shot_.empty() && last.complete() && full;
   if (shot_now && !pending_with_ui_) save_pending_shot();
   if (save_requested_) {
     save_requested_ = false;
@@ -511,6 +548,8 @@ void PlayerApp::frame() {
     std::printf("%s\n", status.c_str());
   }
 
+  if (camera.width > 0 && camera.height > 0)
+    draw_cut_overlay(tsp::Camera(file->tree().octree().dims(), camera));
   draw_ui();
   ImGui::Render();
   ctx->gl().BindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -519,6 +558,7 @@ void PlayerApp::frame() {
   if (shot_now && !pending_shot_.empty()) save_pending_shot();
   ctx->swap_buffers();
 
+  measured_lod(last.ms - last.upload_ms, t_frame.ms());
   history.push_back({now - start_s_, t_frame.ms()});
   while (!history.empty() && history.front().at_s < now - start_s_ - kFrameHistorySeconds)
     history.pop_front();

@@ -15,6 +15,8 @@ struct PlayerOptions {
   std::string script;             ///< --script: action script (run before --screenshot)
   int width = 960, height = 720;  ///< --size: window size in pixels
   double upload_budget_mb = 16;   ///< --upload-budget: texture MiB uploaded per frame (0: no limit)
+  bool lod = true;                ///< --lod on|off: the adaptive LOD cut
+  double target_fps = 30;         ///< --target-fps: held while interacting, in [1, 240]
 };
 
 /// Opens the window and runs until it is closed, the script quits or the screenshot is saved.

@@ -1,7 +1,9 @@
 // The player's state and frame loop, shared by player.cpp (loop, input, script) and
 // player_ui.cpp (the Dear ImGui panels). Internal to src/player.
 #pragma once
+#include <array>
 #include <cstdint>
+#include <optional>
 #include <deque>
 #include <memory>
 #include <string>
@@ -12,6 +14,7 @@
 #include "player/script.h"
 #include "render/volume_renderer.h"
 #include "tsp/frame/camera.h"
+#include "tsp/lod/lod_controller.h"
 #include "tsp/metric/frame_metric.h"
 #include "tsp/metric/lazy_errors.h"
 #include "tsp/metric/metric.h"
@@ -27,6 +30,16 @@ inline constexpr double kFrameHistorySeconds = 5.0;
 inline constexpr int kEditorPoints = 9;
 /// Steps ahead whose bricks are read in the background during playback.
 inline constexpr int kPrefetchSteps = 2;
+
+/// Target frames per second while interacting (the LOD cut holds it).
+inline constexpr double kDefaultTargetFps = 30;
+/// Seconds without a change (view, step, TF, playback) after which the LOD cut refines to full
+/// quality.
+inline constexpr double kIdleDelaySeconds = 0.25;
+/// Frames without a change before the cut refines (with kIdleDelaySeconds).
+inline constexpr int kIdleFrames = 2;
+/// Splits per frame while refining when idle (a whole 64³ series is full in a frame or two).
+inline constexpr int kIdleSplitsPerFrame = 64;
 
 /// One frame time sample for the HUD.
 struct FrameSample {
@@ -71,9 +84,17 @@ class PlayerApp {
   bool playing = false, loop = true;
   double speed = 5;    ///< steps per second
   std::string status;  ///< last message shown in the UI (saved files, errors)
+  bool lod_on = true;                   ///< the adaptive LOD cut (off: full resolution always)
+  float target_fps = float(kDefaultTargetFps);  ///< held while interacting
+  bool show_cut = false;                ///< outline the cut's nodes, coloured by level (key L)
+  std::optional<std::array<double, 3>> focus;  ///< LOD centre of attention (double-click)
 
   // ---- statistics for the HUD ----
   tspgl::FrameReport last;
+  tsp::LodFrameStats lod_stats;         ///< the last frame's cut
+  bool refining = false;                ///< idle: the cut refines to full quality
+  /// Seconds from the last change to the first full-quality frame (−1: not there yet).
+  double full_quality_after_s = -1;
   std::deque<FrameSample> history;
   double metric_ms = 0;                 ///< last metric (re)compute
   std::int64_t metric_evaluations = 0;  ///< node evaluations of the last recompute
@@ -100,6 +121,11 @@ class PlayerApp {
   int steps() const;
   /// Saves the current volume frame as PNG (path chosen from the step) and reports it in status.
   void request_save();
+  /// Turns the LOD cut on or off (off: every frame at full resolution).
+  void set_lod(bool on);
+  /// Sets the LOD focus from a window pixel: the point of the view ray there at the depth of the
+  /// volume's centre.
+  void set_focus_at(double x, double y);
 
  private:
   void frame();
@@ -113,9 +139,14 @@ class PlayerApp {
   void refresh_reference();
   /// The current metric as frames read it (the reference metric brought up to date first).
   tsp::FrameMetric& frame_metric();
-  void request_prefetch(const tsp::Camera& cam, const tspgl::RenderSettings& settings);
+  void request_prefetch(const tsp::Camera& cam, const tspgl::RenderSettings& settings,
+                        tsp::LodStops stops);
   void make_renderer();
   void update_tol_max();
+  // LOD (player_lod.cpp): adapts the cut before render_volume draws, feeds it the frame time.
+  tsp::LodStops update_lod(const tsp::Camera& cam, tspgl::RenderSettings& settings, double now_s);
+  void measured_lod(double render_ms, double frame_ms);
+  void draw_cut_overlay(const tsp::Camera& cam);
 
   PlayerOptions options_;
   std::unique_ptr<tsp::LazyErrors> lazy_;
@@ -125,6 +156,7 @@ class PlayerApp {
   std::vector<ScriptAction> script_;
   std::size_t script_pos_ = 0;
   int wait_frames_ = 0;
+  double wait_until_s_ = 0;  ///< wait-seconds: the script resumes at this glfwGetTime()
   std::string pending_shot_;      ///< screenshot to save after the next complete frame
   bool pending_with_ui_ = false;  ///< pending_shot_ includes the UI panels
   bool save_requested_ = false;
@@ -133,6 +165,17 @@ class PlayerApp {
   double play_accum_ = 0;
   int prefetched_for_ = -1;  ///< step whose successors were last requested
   double start_s_ = 0, last_frame_s_ = 0;
+  std::unique_ptr<tsp::LodController> lod_;
+  // What changed last (interaction), and the frame's time outside rendering, for the LOD target.
+  struct Seen {
+    tsp::CameraParams camera;
+    int step = -1;
+    std::uint64_t tf_version = ~std::uint64_t(0);
+    bool playing = false;
+  } seen_;
+  double last_change_s_ = 0;
+  int frames_since_change_ = 0;
+  double overhead_ms_ = 0;
 };
 
 }  // namespace tspplayer

@@ -105,6 +105,12 @@ void settings(PlayerApp& app) {
     app.status.clear();
   }
   if (!app.quality_note.empty()) ImGui::TextWrapped("quality: %s", app.quality_note.c_str());
+  // Level of detail: the cut holds the frame rate while anything changes, full quality when idle.
+  bool lod = app.lod_on;
+  if (ImGui::Checkbox("level of detail", &lod)) app.set_lod(lod);
+  ImGui::SameLine();
+  ImGui::Checkbox("show cut (L)", &app.show_cut);
+  ImGui::SliderFloat("target fps", &app.target_fps, 5.f, 120.f, "%.0f");
 
   bool cache = app.cache_on;
   if (ImGui::Checkbox("texture cache", &cache)) app.set_cache(cache, app.texture_budget_mb);
@@ -155,6 +161,14 @@ void hud(PlayerApp& app) {
                      *std::max_element(ms.begin(), ms.end()) * 1.1f,
                      ImVec2(ImGui::GetContentRegionAvail().x, kHudPlotHeight));
   const tspgl::FrameReport& r = app.last;
+  if (app.lod_on) {
+    std::string levels;
+    for (std::size_t k = 0; k < app.lod_stats.nodes_per_level.size(); ++k)
+      levels += (k ? " " : "") + std::to_string(app.lod_stats.nodes_per_level[k]);
+    ImGui::Text("LOD %s: cut %d nodes [by level %s], scale %.2f",
+                app.refining ? "refining to full" : "holding the target", app.lod_stats.cut_size,
+                levels.c_str(), app.lod_stats.render_scale);
+  }
   ImGui::Text("render %.1f ms: traversal %.1f, slicing %.1f,\n  upload %.1f, draw %.1f", r.ms,
               r.traversal_ms, r.slicing_ms, r.upload_ms, r.draw_ms);
   ImGui::Text("fragments %.2f M (%.2f per pixel), %s, spacing %.2g", double(r.fragments) / 1e6,

@@ -158,10 +158,32 @@ ScriptAction parse_line(const LineParser& p) {
     p.expect_args(1, "wait-frames N");
     a.kind = Kind::wait_frames;
     a.number = p.integer(1, "wait-frames N", 0);
+  } else if (cmd == "wait-seconds") {
+    p.expect_args(1, "wait-seconds S");
+    a.kind = Kind::wait_seconds;
+    a.value = p.number(1, "wait-seconds S");
+    if (!(a.value >= 0) || a.value > kMaxWaitSeconds)
+      p.fail("wait-seconds must be 0 to " + std::to_string(int(kMaxWaitSeconds)) + " seconds");
+  } else if (cmd == "lod") {
+    p.expect_args(1, "lod on|off");
+    a.kind = Kind::lod;
+    a.flag = p.choice(1, "on", "off");
+  } else if (cmd == "target-fps") {
+    p.expect_args(1, "target-fps FPS");
+    a.kind = Kind::target_fps;
+    a.value = p.number(1, "target-fps FPS");
+    if (!(a.value >= 1 && a.value <= kMaxTargetFps))
+      p.fail("target-fps must be 1 to " + std::to_string(int(kMaxTargetFps)) + " frames per second");
+  } else if (cmd == "show-cut") {
+    p.expect_args(1, "show-cut on|off");
+    a.kind = Kind::show_cut;
+    a.flag = p.choice(1, "on", "off");
   } else {
     p.fail("unknown action '" + cmd +
            "': expected step, play, pause, speed, loop, tf, tolerance, metric, cache, prefetch, "
-           "upload-budget, view, zoom, projection, screenshot, screenshot-ui, wait-frames or quit");
+           "upload-budget, view, zoom, projection, screenshot, screenshot-ui, wait-frames, "
+           "wait-seconds, compositing, spacing, preintegrated, quality, stats, lod, target-fps, "
+           "show-cut or quit");
   }
   return a;
 }

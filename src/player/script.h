@@ -6,6 +6,11 @@
 
 namespace tspplayer {
 
+/// Longest wait-seconds.
+inline constexpr double kMaxWaitSeconds = 600;
+/// Largest target-fps.
+inline constexpr double kMaxTargetFps = 240;
+
 /// One scripted action.
 struct ScriptAction {
   enum class Kind {
@@ -26,11 +31,15 @@ struct ScriptAction {
     screenshot,     ///< save the next complete frame (volume only) to `text`
     screenshot_ui,  ///< save the next complete frame with the UI panels to `text`
     wait_frames,    ///< let `number` frames pass
+    wait_seconds,   ///< let `value` seconds pass (frames keep running)
     compositing,    ///< slices, boxes or rays (`text`)
     spacing,        ///< slice spacing `value` voxels
     preintegrated,  ///< pre-integrated TF on (`flag`) or off
     quality,        ///< quality target mean ΔE `value` (calibrates once; blocks)
     stats,          ///< write the HUD statistics (frame times, fps, last frame) to `text` (JSON)
+    lod,            ///< the LOD cut on (`flag`) or off
+    target_fps,     ///< LOD target `value` frames per second while interacting
+    show_cut,       ///< outline the cut's nodes by level on (`flag`) or off
     quit            ///< close the player
   };
   Kind kind = Kind::quit;

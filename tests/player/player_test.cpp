@@ -128,6 +128,38 @@ TEST(Player, ScriptedKnobsMatchRenderAndStatsReportThem) {
     EXPECT_NE(text.find(k), std::string::npos) << k << " in " << text;
 }
 
+std::string read_text(const fs::path& p) {
+  std::ifstream in(p);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+// The LOD cut: while the view keeps changing it holds the target (a coarse cut at a target no
+// software renderer reaches), and once input stops it refines to full quality: the screenshot
+// (which waits for that) matches the player with LOD off and `tspplay render`.
+TEST(Player, LodHoldsTheTargetWhileOrbitingAndRefinesToFullQualityWhenIdle) {
+  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
+  std::string text = "tf preset:filled\ntarget-fps 240\nview 30 20\nwait-frames 2\n";
+  for (int k = 1; k <= 12; ++k) text += "view " + std::to_string(30 + 5 * k) + " 20\nwait-frames 1\n";
+  text += "stats " + (dir / "moving.json").string() + "\nview 30 20\nwait-seconds 1.5\nstats " +
+          (dir / "idle.json").string() + "\nscreenshot " + (dir / "lod.png").string() + "\nquit\n";
+  auto r = run_tspplay("play " + q(tsp) + " --size " + kSize + " --script " + q(write_script(text)));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string moving = read_text(dir / "moving.json"), idle = read_text(dir / "idle.json");
+  EXPECT_NE(moving.find("\"refining\": false"), std::string::npos) << moving;
+  EXPECT_NE(moving.find("\"full_quality\": false"), std::string::npos) << moving;
+  EXPECT_NE(idle.find("\"full_quality\": true"), std::string::npos) << idle;
+  EXPECT_NE(idle.find("\"render_scale\": 1.0"), std::string::npos) << idle;
+
+  auto off = run_tspplay("play " + q(tsp) + " --size " + kSize + " --script " +
+                         q(write_script("tf preset:filled\nlod off\nview 30 20\nscreenshot " +
+                                        (dir / "off.png").string() + "\nquit\n")));
+  ASSERT_EQ(off.exit_code, 0) << off.err;
+  const tsp::Image lod = tsp::read_png((dir / "lod.png").string());
+  EXPECT_LT(tsp::diff_images(lod, tsp::read_png((dir / "off.png").string())).mean, kSameFrameDeltaE);
+  EXPECT_LT(tsp::diff_images(lod, render_step(tsp, 0, "preset:filled")).mean, kSameFrameDeltaE);
+}
+
 // Errors are found before any window opens, so these run without a display too.
 TEST(Player, BadScriptLineIsAnErrorNamingFileAndLine) {
   fs::path tsp = make_tsp();

@@ -73,6 +73,16 @@ TEST(PlayerScript, ParsesEveryAction) {
   EXPECT_DOUBLE_EQ(k[3].value, 1.5);
   EXPECT_EQ(k[4].kind, Kind::stats);
   EXPECT_EQ(k[4].text, "s.json");
+  const auto l = parse_script("lod off\ntarget-fps 25\nshow-cut on\nwait-seconds 0.5\n", "l.txt");
+  ASSERT_EQ(l.size(), 4u);
+  EXPECT_EQ(l[0].kind, Kind::lod);
+  EXPECT_FALSE(l[0].flag);
+  EXPECT_EQ(l[1].kind, Kind::target_fps);
+  EXPECT_DOUBLE_EQ(l[1].value, 25);
+  EXPECT_EQ(l[2].kind, Kind::show_cut);
+  EXPECT_TRUE(l[2].flag);
+  EXPECT_EQ(l[3].kind, Kind::wait_seconds);
+  EXPECT_DOUBLE_EQ(l[3].value, 0.5);
 }
 
 TEST(PlayerScript, ErrorsNameTheLineAndWhatWasExpected) {
@@ -95,6 +105,9 @@ TEST(PlayerScript, ErrorsNameTheLineAndWhatWasExpected) {
             std::string::npos);
   EXPECT_NE(error_of("spacing 0").find("spacing must be in"), std::string::npos);
   EXPECT_NE(error_of("quality 0").find("quality must be"), std::string::npos);
+  EXPECT_NE(error_of("target-fps 0").find("target-fps must be 1 to"), std::string::npos);
+  EXPECT_NE(error_of("lod maybe").find("expected on or off"), std::string::npos);
+  EXPECT_NE(error_of("wait-seconds -1").find("wait-seconds must be"), std::string::npos);
 }
 
 TEST(PlayerScript, LoadsAFileAndNamesAMissingOne) {

@@ -56,6 +56,8 @@ class LodController {
   void set_target(double ms) { options_.target_ms = ms; }
   /// The options in use.
   const LodOptions& options() const { return options_; }
+  /// Replaces the options from the next update on (the cut and the cost model stay).
+  void set_options(LodOptions o) { options_ = std::move(o); }
   /// The cut.
   const LodCut& cut() const { return cut_; }
   /// The cost model.

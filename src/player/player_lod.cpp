@@ -1,0 +1,128 @@
+// The player's LOD cut (docs/player.md "Level of detail"): while the view, the step, the TF or
+// playback change, the cut holds the target frame rate (frame time minus the UI's share); once
+// nothing changed for kIdleDelaySeconds it refines every node, kIdleSplitsPerFrame a frame, at
+// full render size, so the picture returns to full quality within a few frames.
+#include "player/player_app.h"
+
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+#include <glm/glm.hpp>
+
+namespace tspplayer {
+
+namespace {
+// Smoothing of the frame's time outside rendering (UI, swap), per frame.
+constexpr double kOverheadSmoothing = 0.2;
+// The render share of the frame may not drop below this many milliseconds.
+constexpr double kMinRenderMs = 2;
+// Colours of the cut overlay by LOD level (level 0 first), RGBA.
+constexpr ImU32 kLevelColours[] = {IM_COL32(80, 220, 80, 200), IM_COL32(240, 220, 60, 200),
+                                   IM_COL32(250, 140, 40, 200), IM_COL32(240, 60, 60, 200),
+                                   IM_COL32(200, 60, 240, 200), IM_COL32(80, 120, 255, 200)};
+}  // namespace
+
+void PlayerApp::set_lod(bool on) {
+  lod_on = on;
+  lod_.reset();
+}
+
+tsp::LodStops PlayerApp::update_lod(const tsp::Camera& cam, tspgl::RenderSettings& settings,
+                                    double now_s) {
+  // Any change of what is shown counts as interaction.
+  const bool changed = seen_.step != step || seen_.tf_version != tf.version() || playing ||
+                       seen_.camera.azimuth_deg != camera.azimuth_deg ||
+                       seen_.camera.elevation_deg != camera.elevation_deg ||
+                       seen_.camera.zoom != camera.zoom || seen_.camera.pan != camera.pan ||
+                       seen_.camera.projection != camera.projection ||
+                       seen_.camera.width != camera.width || seen_.camera.height != camera.height;
+  if (changed) {
+    last_change_s_ = now_s;
+    frames_since_change_ = 0;
+  } else {
+    ++frames_since_change_;
+  }
+  seen_ = {camera, step, tf.version(), playing};
+  if (!lod_on) {
+    lod_.reset();
+    lod_stats = {};
+    refining = false;
+    return {};
+  }
+  if (!lod_) lod_ = std::make_unique<tsp::LodController>(file->tree(), tsp::LodOptions{});
+  // Idle: nothing changed for a while, and for more than one frame (a slow frame alone is not).
+  refining = now_s - last_change_s_ >= kIdleDelaySeconds && frames_since_change_ >= kIdleFrames;
+  tsp::LodOptions o = lod_->options();
+  o.focus = focus;
+  if (refining) {  // full quality: every node with any error, many per frame, no time limit
+    o.target_ms = 0;
+    o.min_error = 0;
+    o.split_limit = kIdleSplitsPerFrame;
+  } else {
+    o.target_ms = std::max(kMinRenderMs, 1000.0 / std::max(1.f, target_fps) - overhead_ms_);
+    o.min_error = tsp::LodOptions{}.min_error;
+    o.split_limit = tsp::LodOptions{}.split_limit;
+  }
+  o.texture_budget = std::int64_t(texture_budget_mb * (1 << 20));
+  lod_->set_options(o);
+  lod_stats = lod_->update(cam, step, tf, settings.spacing);
+  // When the picture got back to full quality after the last change.
+  if (refining && lod_stats.max_error == 0 && lod_->render_scale() == 1) {
+    if (full_quality_after_s < 0) full_quality_after_s = now_s - last_change_s_;
+  } else {
+    full_quality_after_s = -1;
+  }
+  settings.render_scale = lod_->render_scale();
+  return lod_->cut().stops();
+}
+
+void PlayerApp::measured_lod(double render_ms, double frame_ms) {
+  overhead_ms_ += kOverheadSmoothing * (std::max(0.0, frame_ms - render_ms) - overhead_ms_);
+  if (lod_) lod_->measured(render_ms);
+}
+
+void PlayerApp::set_focus_at(double x, double y) {
+  const tsp::Camera cam(file->tree().octree().dims(), camera);
+  const glm::dmat4 inv = glm::inverse(cam.view_projection());
+  const double nx = 2 * x / std::max(1, camera.width) - 1, ny = 1 - 2 * y / std::max(1, camera.height);
+  const glm::dvec4 a = inv * glm::dvec4(nx, ny, -1, 1), b = inv * glm::dvec4(nx, ny, 1, 1);
+  const glm::dvec3 p0 = glm::dvec3(a) / a.w, p1 = glm::dvec3(b) / b.w;
+  const tsp::Dims d = file->tree().octree().dims();
+  const glm::dvec3 centre(0.5 * (d.x - 1), 0.5 * (d.y - 1), 0.5 * (d.z - 1));
+  const auto dir = cam.direction();
+  const glm::dvec3 v(dir[0], dir[1], dir[2]);
+  const double denom = glm::dot(p1 - p0, v);
+  const double s = std::abs(denom) > 1e-12 ? glm::dot(centre - p0, v) / denom : 0.5;
+  const glm::dvec3 f = p0 + (p1 - p0) * std::clamp(s, 0.0, 1.0);
+  focus = std::array<double, 3>{f.x, f.y, f.z};
+  last_change_s_ = glfwGetTime();
+}
+
+void PlayerApp::draw_cut_overlay(const tsp::Camera& cam) {
+  if (!show_cut || !lod_) return;
+  ImDrawList* dl = ImGui::GetBackgroundDrawList();
+  const glm::dmat4 vp = cam.view_projection();
+  const double w = ctx->width(), h = ctx->height();
+  const tsp::Octree& o = file->tree().octree();
+  for (int id : lod_->cut().nodes()) {
+    const tsp::Aabb box = tsp::geometric_box(o.node(id).box, o.dims());
+    ImVec2 p[8];
+    bool ok = true;
+    for (int c = 0; c < 8; ++c) {
+      const glm::dvec4 q = vp * glm::dvec4(c & 1 ? box.hi[0] : box.lo[0], c & 2 ? box.hi[1] : box.lo[1],
+                                            c & 4 ? box.hi[2] : box.lo[2], 1.0);
+      if (q.w <= 1e-9) ok = false;
+      p[c] = ImVec2(float((q.x / q.w * 0.5 + 0.5) * w), float((0.5 - q.y / q.w * 0.5) * h));
+    }
+    if (!ok) continue;
+    const ImU32 col = kLevelColours[std::min<std::size_t>(std::size_t(o.lod_level(id)),
+                                                          std::size(kLevelColours) - 1)];
+    for (int c = 0; c < 8; ++c)
+      for (int a = 0; a < 3; ++a)
+        if (!(c & (1 << a))) dl->AddLine(p[c], p[c | (1 << a)], col);
+  }
+}
+
+}  // namespace tspplayer
