@@ -1,15 +1,16 @@
 // The LOD cut's targets (issue "LOD cut", docs/results.md): an orbiting camera over a series at
 // 640×480, the adaptive cut at each frame-time target against the full-resolution renderer and
-// every fixed level, all in one run. Per run: median frame time (after the first `--warmup`
+// every fixed level, all in one run, in --rounds rounds (each configuration once per round). Per run: median frame time (after the first `--warmup`
 // frames), the share of frames under 1.5× the target, and the mean ΔE (CIE L*u*v*) of each frame
 // against the full-resolution frame of the same view and step. For each target the best fixed
 // level of the same speed (median within 10 % of the adaptive run's, or faster) is named with its
 // ΔE. Writes a plot of ΔE against the target.
 //
 //   lod_bench FILE.tsp [--tf preset:filled] [--targets 20,40,80] [--orbit 3] [--passes 10]
-//             [--texture-budget MiB] [--size WxH] [--warmup 10] [--plot lod.svg]
+//             [--texture-budget MiB] [--size WxH] [--warmup 10] [--rounds 2] [--plot lod.svg]
 #include <algorithm>
 #include <cstdio>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -77,6 +78,7 @@ int main(int argc, char** argv) {
   base.texture_budget = std::int64_t(24) << 20;
   std::vector<double> targets = {20, 40, 80};
   int warmup = 10;
+  int rounds = 2;
   std::string plot = "lod.svg";
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -89,6 +91,7 @@ int main(int argc, char** argv) {
     else if (a == "--size") std::sscanf(next().c_str(), "%dx%d", &base.camera.width, &base.camera.height);
     else if (a == "--warmup") warmup = std::stoi(next());
     else if (a == "--plot") plot = next();
+    else if (a == "--rounds") rounds = std::max(1, std::stoi(next()));
     else base.tsp_path = a;
   }
   if (base.tsp_path.empty()) {
@@ -103,29 +106,50 @@ int main(int argc, char** argv) {
               o.brick_size(), o.max_lod_level() + 1, base.camera.width, base.camera.height,
               base.tf.c_str(), base.orbit_deg, base.passes, double(base.texture_budget) / (1 << 20),
               double(o.dims().count()) * 2 / (1 << 20));
-  // All the runs, interleaved so that a drifting machine moves them alike: the reference first.
-  std::vector<Run> runs;
+  // Every configuration once per round, the rounds one after the other, so that a machine whose
+  // speed drifts (this one does, by up to 2×) moves them alike; frame times and ΔE pool over
+  // the rounds. The reference's pictures are the first round's (it is deterministic).
+  std::vector<tspgl::RenderJobOptions> configs;
+  std::vector<std::string> labels;
   tspgl::RenderJobOptions full = base;
   full.lod = tspgl::LodMode::off;
-  const Run reference = play("full resolution", full, warmup);
+  configs.push_back(full);
+  labels.push_back("full resolution");
   for (int k = 1; k <= o.max_lod_level(); ++k) {
     tspgl::RenderJobOptions f = base;
     f.lod = tspgl::LodMode::fixed;
     f.lod_level = k;
-    runs.push_back(play("level " + std::to_string(k), f, warmup));
+    configs.push_back(f);
+    labels.push_back("level " + std::to_string(k));
   }
-  const std::size_t fixed_count = runs.size();
   for (double t : targets) {
     tspgl::RenderJobOptions a = base;
     a.lod = tspgl::LodMode::adaptive;
     a.target_ms = t;
     char label[64];
     std::snprintf(label, sizeof label, "auto, target %g ms", t);
-    runs.push_back(play(label, a, warmup));
+    configs.push_back(a);
+    labels.push_back(label);
   }
-  for (Run& r : runs)
-    for (std::size_t i = 0; i < r.images.size() && i < reference.images.size(); ++i)
-      r.de.push_back(tsp::diff_images(r.images[i], reference.images[i]).mean);
+  std::vector<Run> all(configs.size());
+  for (int round = 0; round < rounds; ++round)
+    for (std::size_t c = 0; c < configs.size(); ++c) {
+      Run r = play(labels[c], configs[c], warmup);
+      all[c].label = r.label;
+      all[c].target = r.target;
+      all[c].ms.insert(all[c].ms.end(), r.ms.begin(), r.ms.end());
+      if (c == 0 && round > 0) continue;  // the reference's pictures: the first round's
+      for (tsp::Image& img : r.images) all[c].images.push_back(std::move(img));
+    }
+  const Run reference = std::move(all[0]);
+  std::vector<Run> runs(std::make_move_iterator(all.begin() + 1), std::make_move_iterator(all.end()));
+  const std::size_t fixed_count = std::size_t(o.max_lod_level());
+  const std::size_t per_round = reference.images.size();
+  for (Run& r : runs) {
+    for (std::size_t i = 0; i < r.images.size(); ++i)
+      r.de.push_back(tsp::diff_images(r.images[i], reference.images[i % per_round]).mean);
+    r.images.clear();
+  }
 
   std::printf("\n%-22s %10s %8s %8s %12s %9s\n", "run", "median ms", "p90 ms", "speed-up",
               "< 1.5 target", "mean dE");

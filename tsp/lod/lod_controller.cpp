@@ -7,8 +7,8 @@
 namespace tsp {
 
 namespace {
-// A transparent (or culled) node still costs its pixels a ray step or two: this share of a
-// textured node's cost.
+// A transparent, uniform or culled leaf still costs its pixels a ray step or two: this share of
+// a textured leaf's cost.
 constexpr double kEmptyCostShare = 0.02;
 // A swap (merge one node to afford a split) happens only when the split's error is this many
 // times the merge's, so the cut does not oscillate between equals.
@@ -19,6 +19,9 @@ constexpr double kScaleDownAt = 1.1, kScaleUpAt = 0.8, kMinScale = 0.25;
 // Frames predicted within this share of the target leave the cut as it is; a merge that would
 // fall below the band waits until a frame is kFarOver × the target.
 constexpr double kDeadBand = 0.1, kFarOver = 1.25;
+// Predictions blend the last frame moved by the slope (this share) with the fitted model (the
+// rest): the last frame alone follows every spike, the model alone lags a view change.
+constexpr double kAnchorShare = 0.5;
 }  // namespace
 
 LodController::LodController(const TspTree& tree, LodOptions options)
@@ -52,7 +55,8 @@ void LodController::evaluate(const Camera& camera, int t, const TransferFunction
     const NodeProjection& p = proj[std::size_t(id)];
     const NodeStats& s = tree_.stats(tree_.id(id, tree_.time().leaf_of(t)));
     if (n.is_leaf()) {
-      const bool empty = p.culled || slopes.transparent(s.min, s.max);
+      // Culled, transparent or uniform at this step (drawn flat or skipped at any level).
+      const bool empty = p.culled || slopes.transparent(s.min, s.max) || s.min == s.max;
       leaf_sum[std::size_t(id)] =
           p.pixel_area * p.depth_voxels / spacing * (empty ? kEmptyCostShare : 1.0);
       area_sum[std::size_t(id)] = p.pixel_area;
@@ -114,12 +118,16 @@ LodFrameStats LodController::update(const Camera& camera, int t, const TransferF
       std::int64_t(o.max_brick_samples()[0]) * o.max_brick_samples()[1] * o.max_brick_samples()[2] * 2;
   const bool timed = options_.target_ms > 0;
   // Timed, the first frame (no measurement yet) keeps the coarsest cut. Then predictions are
-  // anchored at the last measured frame (its cut's cost under this view) and move by the model's
-  // slope, so its intercept's lag and bias do not matter: ms(c) = last_ms + b·(c − cost).
+  // anchored at the last measured frame — its cost then (its view and step) and its time — and
+  // move by the model's slope, so the intercept's lag and bias do not matter, and a change of
+  // view or step (this frame's costs) is predicted: ms(c) = last_ms + b·(c − last_cost).
   const double target = options_.target_ms;
-  const bool informed = timed && model_.ready() && last_ms_ > 0;
-  const double anchor = cost;
-  const auto predict = [&](double c) { return last_ms_ + model_.slope() * (c - anchor); };
+  const bool informed = timed && model_.ready() && last_ms_ > 0 && last_cost_ >= 0;
+  const double anchor = last_cost_;
+  const auto predict = [&](double c) {
+    const double anchored = last_ms_ + model_.slope() * (c - anchor);
+    return kAnchorShare * anchored + (1 - kAnchorShare) * model_.predict(c);
+  };
   const double low = (1 - kDeadBand) * target, high = (1 + kDeadBand) * target;
   // A split fits when it stays under the target, or within the band's top when the cut is below
   // the band (the first split from a fast coarse cut may overshoot a little).
@@ -163,7 +171,8 @@ LodFrameStats LodController::update(const Camera& camera, int t, const TransferF
       splits.pop();
       continue;
     }
-    if (!(e > options_.min_error)) break;  // error 0 (uniform, transparent) never splits
+    // Error 0 (uniform, transparent, hidden) never splits; below min_error only with time left.
+    if (!(e > 0) || (e <= options_.min_error && !(informed && predict(cost) < low))) break;
     const double after = cost - cost_[std::size_t(id)] + children_cost(id);
     const bool over_textures =
         options_.texture_budget > 0 &&

@@ -24,7 +24,9 @@ struct LodOptions {
   int split_limit = 8;           ///< splits per frame (a split costs uploads: RAM → texture)
   int merge_limit = 16;          ///< merges per frame
   std::int64_t texture_budget = 0;  ///< bytes the cut's bricks may hold (0: unlimited)
-  double min_error = 0.25;       ///< nodes below this error (pixels × ΔE) are not split
+  /// Nodes below this error (pixels × ΔE) are not split, unless timed with the frame under the
+  /// target's band (time left over refines them too).
+  double min_error = 0.25;
   std::optional<std::array<double, 3>> focus;  ///< centre of attention; default the volume centre
 };
 

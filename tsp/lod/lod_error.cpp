@@ -120,9 +120,13 @@ std::vector<double> leaf_visibility(const TspTree& tree, int t, const Camera& ca
     for (int y = y0; y <= y1; ++y)
       for (int x = x0; x <= x1; ++x) sum += transmittance[std::size_t(y) * kTiles + x];
     vis[std::size_t(b)] = sum / double((x1 - x0 + 1) * (y1 - y0 + 1));
-    // α per voxel (spec §9) at the leaf's mean value, over its mean chord: voxels / area.
+    // α per voxel (spec §9) over the leaf's mean chord: voxels / area.
     const NodeStats& s = tree.stats(tree.id(o.brick_node(b), tree.time().leaf_of(t)));
-    const double a = std::clamp(double(tf.lookup(s.mean).a), 0.0, 1.0);
+    // The TF's mean α over the leaf's typical values, mean ± one standard deviation.
+    const int j0 = tf.entry_of(s.mean - s.std), j1 = tf.entry_of(s.mean + s.std);
+    double a = 0;
+    for (int j = j0; j <= j1; ++j) a += tf.entry(j).a;
+    a = std::clamp(a / double(j1 - j0 + 1), 0.0, 1.0);
     const double area_voxels = p.pixel_area / std::max(p.pixels_per_voxel * p.pixels_per_voxel, 1e-12);
     const double chord = std::min(p.depth_voxels, double(o.brick_box(b).count()) / area_voxels);
     const double keep = std::pow(1 - a, chord);

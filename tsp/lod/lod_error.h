@@ -52,8 +52,8 @@ double focus_weight(const std::array<double, 3>& c, const std::array<double, 3>&
                     double diagonal);
 
 /// How much of each leaf brick the frame shows: the transmittance in front of it (mean over its
-/// screen tiles), from every leaf's opacity under the TF (α per voxel at its mean value over its
-/// mean chord) accumulated front to back on a coarse tile grid — occlusion, so that what lies
+/// screen tiles), from every leaf's opacity under the TF (the mean α per voxel over its values'
+/// mean ± σ, over its mean chord) accumulated front to back on a coarse tile grid — occlusion, so that what lies
 /// behind opaque matter stays coarse. leaves: project_box of each leaf brick. Indexed by leaf
 /// brick. Never throws.
 std::vector<double> leaf_visibility(const TspTree& tree, int t, const Camera& camera,
