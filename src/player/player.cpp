@@ -149,6 +149,7 @@ void PlayerApp::make_renderer() {
   renderer->set_transfer_function(tf);
   prefetcher = std::make_unique<tsp::BrickPrefetcher>(renderer->brick_cache());
   prefetched_for_ = -1;
+  prefetched_cut_ = -1;
 }
 
 int PlayerApp::steps() const {
@@ -278,7 +279,18 @@ void PlayerApp::set_cache(bool on, double budget_mb) {
 // go to the prefetch thread once per step change (the request replaces the previous one).
 void PlayerApp::request_prefetch(const tsp::Camera& cam, const tspgl::RenderSettings& settings,
                                  tsp::LodStops stops) {
-  if (!playing || !prefetch_on || prefetched_for_ == step) return;
+  if (!prefetch_on) return;
+  // Holding still or turning: the bricks the cut's next splits will want, at this step, once per
+  // cut change (the RAM cache then serves the split's uploads).
+  if (!playing) {
+    if (!lod_ || lod_stats.cut_size == prefetched_cut_) return;
+    prefetched_cut_ = lod_stats.cut_size;
+    std::vector<tsp::BrickKey> keys;
+    for (int b : lod_->likely_split_bricks(kPrefetchSplits)) keys.push_back({b, step});
+    prefetcher->request(std::move(keys));
+    return;
+  }
+  if (prefetched_for_ == step) return;
   prefetched_for_ = step;
   std::vector<tsp::BrickKey> keys;
   for (int k = 1; k <= kPrefetchSteps; ++k) {
@@ -290,6 +302,8 @@ void PlayerApp::request_prefetch(const tsp::Camera& cam, const tspgl::RenderSett
     std::vector<tsp::BrickKey> more =
         renderer->bricks_to_upload(t, cam, settings, frame_metric(), stops);
     keys.insert(keys.end(), more.begin(), more.end());
+    if (lod_)  // and the cut's likely next splits at that step, after what it will draw
+      for (int b : lod_->likely_split_bricks(kPrefetchSplits)) keys.push_back({b, t});
   }
   prefetcher->request(std::move(keys));
 }

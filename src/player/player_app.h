@@ -30,6 +30,8 @@ inline constexpr double kFrameHistorySeconds = 5.0;
 inline constexpr int kEditorPoints = 9;
 /// Steps ahead whose bricks are read in the background during playback.
 inline constexpr int kPrefetchSteps = 2;
+/// Split candidates of the LOD cut whose children's bricks are prefetched.
+inline constexpr int kPrefetchSplits = 4;
 
 /// Target frames per second while interacting (the LOD cut holds it).
 inline constexpr double kDefaultTargetFps = 30;
@@ -164,6 +166,7 @@ class PlayerApp {
   bool imgui_ = false;
   double play_accum_ = 0;
   int prefetched_for_ = -1;  ///< step whose successors were last requested
+  int prefetched_cut_ = -1;  ///< cut size whose likely splits were last requested
   double start_s_ = 0, last_frame_s_ = 0;
   std::unique_ptr<tsp::LodController> lod_;
   // What changed last (interaction), and the frame's time outside rendering, for the LOD target.

@@ -210,6 +210,20 @@ LodFrameStats LodController::update(const Camera& camera, int t, const TransferF
   return st;
 }
 
+std::vector<int> LodController::likely_split_bricks(int n) const {
+  const Octree& o = tree_.octree();
+  std::vector<std::pair<double, int>> candidates;
+  for (int id : cut_.nodes())
+    if (cut_.can_split(id) && error_[std::size_t(id)] > 0)
+      candidates.push_back({error_[std::size_t(id)], id});
+  std::sort(candidates.begin(), candidates.end(), std::greater<>());
+  std::vector<int> bricks;
+  for (std::size_t i = 0; i < candidates.size() && int(i) < n; ++i)
+    for (int c : o.node(candidates[i].second).children)
+      if (c >= 0) bricks.push_back(o.node_brick(c));
+  return bricks;
+}
+
 void LodController::measured(double ms) {
   last_ms_ = ms;
   scale_of_last_ = scale_of_frame_;

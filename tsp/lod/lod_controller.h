@@ -67,6 +67,9 @@ class LodController {
   /// The cost of node o in the last update: pixels × samples over its leaf bricks that are not
   /// culled or transparent (a small share for those), divided by its sample step multiplier.
   double node_cost(int o) const { return cost_[std::size_t(o)]; }
+  /// The stored bricks the next splits are likely to need: the children of the n splittable cut
+  /// nodes with the largest errors in the last update, most likely first (for prefetching).
+  std::vector<int> likely_split_bricks(int n) const;
   /// Render-target share per axis the last update chose.
   double render_scale() const { return scale_; }
 

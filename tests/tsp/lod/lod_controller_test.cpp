@@ -140,6 +140,23 @@ TEST(LodController, NodesHiddenBehindOpaqueMatterStayCoarse) {
   EXPECT_LT(back, front / 4);
 }
 
+TEST(LodController, LikelySplitsAreChildrenOfTheWorstCutNodes) {
+  const Dims d{129, 129, 129};
+  const TspTree tree = make_tree(d, 16);
+  LodOptions opt;
+  opt.split_limit = 2;
+  LodController c(tree, opt);
+  for (int k = 0; k < 3; ++k) c.update(camera(d, 30), 0, ramp_tf(0.05f), 0.5);
+  const std::vector<int> bricks = c.likely_split_bricks(3);
+  ASSERT_FALSE(bricks.empty());
+  const Octree& o = tree.octree();
+  for (int b : bricks) {
+    const int parent = o.node(o.stored_brick_node(b)).parent;
+    EXPECT_TRUE(c.cut().contains(parent)) << "brick " << b;
+    EXPECT_TRUE(c.cut().can_split(parent));
+  }
+}
+
 TEST(LodController, RespectsTheTextureBudget) {
   const Dims d{129, 129, 129};
   const TspTree tree = make_tree(d, 16);
