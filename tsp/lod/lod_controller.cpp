@@ -77,7 +77,8 @@ void LodController::evaluate(const Camera& camera, int t, const TransferFunction
     const std::array<double, 3> c{0.5 * (box.lo[0] + box.hi[0]), 0.5 * (box.lo[1] + box.hi[1]),
                                   0.5 * (box.lo[2] + box.hi[2])};
     error_[std::size_t(id)] =
-        lod_error(tree_, id, t, p, slopes, focus_weight(c, focus, diagonal) * visibility);
+        lod_error(tree_, id, t, p, slopes,
+                  focus_weight(c, focus, diagonal) * view_weight(p, camera) * visibility);
   }
 }
 

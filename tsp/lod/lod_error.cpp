@@ -136,6 +136,12 @@ std::vector<double> leaf_visibility(const TspTree& tree, int t, const Camera& ca
   return vis;
 }
 
+double view_weight(const NodeProjection& p, const Camera& camera) {
+  const double w = camera.params().width, h = camera.params().height;
+  const double cx = 0.5 * (p.rect[0] + p.rect[2]) - 0.5 * w, cy = 0.5 * (p.rect[1] + p.rect[3]) - 0.5 * h;
+  return 1.0 / (1.0 + std::hypot(cx, cy) / std::max(0.5 * std::hypot(w, h), 1e-9));
+}
+
 double focus_weight(const std::array<double, 3>& c, const std::array<double, 3>& focus,
                     double diagonal) {
   const double d = std::hypot(c[0] - focus[0], c[1] - focus[1], c[2] - focus[2]);

@@ -60,6 +60,11 @@ std::vector<double> leaf_visibility(const TspTree& tree, int t, const Camera& ca
                                     const std::vector<NodeProjection>& leaves,
                                     const TransferFunction& tf);
 
+/// Field-of-view weight of a node (paper 002): 1 / (1 + r), r = the distance of its screen
+/// rectangle's centre from the image centre over half the image diagonal — the periphery of the
+/// view matters less than its middle. Never throws.
+double view_weight(const NodeProjection& p, const Camera& camera);
+
 /// The LOD error of octree node o at step t (0 for a leaf or a culled node). Never throws.
 double lod_error(const TspTree& tree, int o, int t, const NodeProjection& p,
                  const TfColourSlopes& slopes, double weight);
