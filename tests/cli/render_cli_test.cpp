@@ -74,6 +74,38 @@ TEST(RenderCli, ZeroToleranceMatchesBaselineThroughDiff) {
   EXPECT_EQ(read_json(b / "frames.json")["mode"], "baseline");
 }
 
+// LOD from the CLI: --lod K records its cut in every frame, --orbit turns the camera by DEG a
+// frame, --target-ms (which implies --lod auto) records the target and the controller's cut.
+TEST(RenderCli, LodOptionsRecordTheCutPerFrame) {
+  fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
+  auto fixed = run_tspplay("render " + q(tsp) + " --tf preset:filled --steps 1:2 --size 96x64 "
+                           "--lod 1 --orbit 10 -o " + q(dir / "fixed"));
+  ASSERT_EQ(fixed.exit_code, 0) << fixed.err;
+  json j = read_json(dir / "fixed" / "frames.json");
+  EXPECT_EQ(j["lod"], 1);
+  EXPECT_EQ(j["orbit_deg"], 10.0);
+  ASSERT_EQ(j["frames"].size(), 2u);
+  EXPECT_DOUBLE_EQ(j["frames"][1]["azimuth_deg"].get<double>() -
+                       j["frames"][0]["azimuth_deg"].get<double>(), 10.0);
+  for (const json& f : j["frames"]) {
+    const json& l = f["lod"];
+    ASSERT_TRUE(l.is_object());
+    EXPECT_EQ(l["nodes_per_level"][0], 0);  // level 1 everywhere: no leaf in the cut
+    EXPECT_GT(l["nodes_per_level"][1].get<int>(), 0);
+    EXPECT_GT(l["texture_bytes"].get<std::int64_t>(), 0);
+  }
+  auto timed = run_tspplay("render " + q(tsp) + " --tf preset:filled --steps 0:3 --size 96x64 "
+                           "--passes 3 --target-ms 30 -o " + q(dir / "timed"));
+  ASSERT_EQ(timed.exit_code, 0) << timed.err;
+  j = read_json(dir / "timed" / "frames.json");
+  EXPECT_EQ(j["lod"], "auto");
+  for (const char* k : {"target_ms", "cut_size", "nodes_per_level", "splits", "merges",
+                        "texture_bytes", "predicted_ms", "render_scale"})
+    EXPECT_TRUE(j["frames"][5]["lod"].contains(k)) << k;
+  EXPECT_EQ(j["frames"][5]["lod"]["target_ms"], 30.0);
+  EXPECT_EQ(j["frames"][0]["lod"]["cut_size"], 1);  // the first frame: the coarsest cut
+}
+
 TEST(RenderCli, BadInputIsAClearErrorAndWritesNothing) {
   fs::path tsp = make_tsp(), out = tsptest::temp_dir() / "none";
   struct Case {
@@ -88,6 +120,12 @@ TEST(RenderCli, BadInputIsAClearErrorAndWritesNothing) {
       {"render " + q(tsp) + " --tf /nonexistent/tf.json -o " + q(out), 1, "/nonexistent/tf.json"},
       {"render " + q(tsptest::temp_dir() / "missing.tsp") + " -o " + q(out), 1, "missing.tsp"},
       {"render " + q(tsp) + " --metric nope -o " + q(out), 2, "metric"},
+      {"render " + q(tsp) + " --lod 1 --target-ms 20 -o " + q(out), 2, "--target-ms needs --lod auto"},
+      {"render " + q(tsp) + " --lod fine -o " + q(out), 2, "--lod"},
+      {"render " + q(tsp) + " --target-ms -5 -o " + q(out), 2, "--target-ms"},
+      {"render " + q(tsp) + " --lod 1 --baseline -o " + q(out), 2, "--lod is for the TSP renderer"},
+      {"render " + q(tsp) + " --orbit 400 -o " + q(out), 2, "--orbit"},
+      {"render " + q(tsp) + " --focus 1,2 --lod auto -o " + q(out), 2, "--focus"},
   };
   for (const Case& c : cases) {
     auto r = run_tspplay(c.args);

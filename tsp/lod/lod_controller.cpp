@@ -76,9 +76,12 @@ void LodController::evaluate(const Camera& camera, int t, const TransferFunction
     const Aabb box = geometric_box(n.box, d);
     const std::array<double, 3> c{0.5 * (box.lo[0] + box.hi[0]), 0.5 * (box.lo[1] + box.hi[1]),
                                   0.5 * (box.lo[2] + box.hi[2])};
-    error_[std::size_t(id)] =
-        lod_error(tree_, id, t, p, slopes,
-                  focus_weight(c, focus, diagonal) * view_weight(p, camera) * visibility);
+    // The centre of attention weighs by distance and field of view only when one is given: the
+    // image's mean ΔE counts every pixel alike, and weighting by the volume centre raised it at
+    // equal frame time (docs/results.md).
+    const double attention =
+        options_.focus ? focus_weight(c, focus, diagonal) * view_weight(p, camera) : 1.0;
+    error_[std::size_t(id)] = lod_error(tree_, id, t, p, slopes, attention * visibility);
   }
 }
 

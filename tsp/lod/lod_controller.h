@@ -27,7 +27,9 @@ struct LodOptions {
   /// Nodes below this error (pixels × ΔE) are not split, unless timed with the frame under the
   /// target's band (time left over refines them too).
   double min_error = 0.25;
-  std::optional<std::array<double, 3>> focus;  ///< centre of attention; default the volume centre
+  /// Centre of attention (voxels): when set, errors are weighted by distance from it and by
+  /// distance from the image centre (paper 002); unset, every pixel counts alike.
+  std::optional<std::array<double, 3>> focus;
 };
 
 /// What one update did, for frames.json.
