@@ -13,6 +13,7 @@
 #include "support/memory_source.h"
 #include "support/paths.h"
 #include "tsp/build/build.h"
+#include "tsp/build/level_filter.h"
 #include "tsp/core/error.h"
 #include "tsp/store/tsp_layout.h"
 #include "tsp/store/tsp_writer.h"
@@ -248,6 +249,70 @@ TEST(TspFile, RejectsOtherVersions) {
     H5Aclose(a);
   });
   expect_format_error(path, "version " + std::to_string(kTspFormatVersion + 1));
+}
+
+TEST(TspFile, AVersionOneFileSaysToRebuild) {
+  auto path = built_file();
+  edit_file(path, [](hid_t f) {
+    hid_t a = H5Aopen(f, "version", H5P_DEFAULT);
+    int v = 1;
+    H5Awrite(a, H5T_NATIVE_INT, &v);
+    H5Aclose(a);
+  });
+  expect_format_error(path, "format version 1, this tspplay reads version 2 only; rebuild");
+}
+
+// Level bricks read back as the level filter of the source (quantized), and their residuals as
+// stored; a bad level dataset is refused naming it.
+TEST(TspFile, LevelBricksAreTheFilteredSourceAndBadLevelDataIsRefused) {
+  const Dims d{21, 14, 9};
+  MemorySource src = wavy_source(d, 5);
+  auto path = (tsptest::temp_dir() / "levels.tsp").string();
+  BuildOptions opt;
+  opt.brick_size = 8;
+  build_tsp_file(src, path, opt);
+  {
+    auto f = TspFile::open(path);
+    const Octree& o = f->tree().octree();
+    ASSERT_GT(o.level_brick_count(), 0);
+    const Quantizer q{f->tree().value_range()};
+    LevelFilterScratch scratch;
+    std::vector<float> want;
+    for (int i = o.brick_count(); i < o.stored_brick_count(); ++i)
+      for (int t : {0, 4}) {
+        const BrickLattice l = o.lattice(i);
+        std::vector<std::uint16_t> got(std::size_t(l.count()));
+        f->read_brick(i, t, got);
+        std::vector<float> step(std::size_t(d.count()));
+        src.read_step(t, step);
+        filter_level(step, d, l, std::nullopt, scratch, want);
+        for (std::size_t k = 0; k < got.size(); ++k)
+          ASSERT_EQ(got[k], q.encode(want[k])) << "level brick " << i << " step " << t;
+        EXPECT_GT(f->tree().level_error(o.stored_brick_node(i), t), 0.f);
+      }
+  }
+  const auto copy = [&](const std::string& name) {
+    const auto p = (tsptest::temp_dir() / name).string();
+    fs::copy_file(path, p, fs::copy_options::overwrite_existing);
+    return p;
+  };
+  auto bad_error = copy("bad_error.tsp");
+  edit_file(bad_error, [](hid_t f) {
+    hid_t ds = H5Dopen2(f, "/levels/error", H5P_DEFAULT);
+    float v = -1;
+    hid_t space = H5Dget_space(ds);
+    hsize_t start[2] = {0, 0}, count[2] = {1, 1};
+    H5Sselect_hyperslab(space, H5S_SELECT_SET, start, nullptr, count, nullptr);
+    hid_t mem = H5Screate_simple(2, count, nullptr);
+    H5Dwrite(ds, H5T_NATIVE_FLOAT, mem, space, H5P_DEFAULT, &v);
+    H5Sclose(mem);
+    H5Sclose(space);
+    H5Dclose(ds);
+  });
+  expect_format_error(bad_error, "/levels/error");
+  auto no_lattice = copy("no_lattice.tsp");
+  edit_file(no_lattice, [](hid_t f) { H5Ldelete(f, "/levels/lattice", H5P_DEFAULT); });
+  expect_format_error(no_lattice, "/levels/lattice");
 }
 
 TEST(TspFile, RejectsAnotherFormatTag) {
