@@ -22,6 +22,8 @@ constexpr double kDeadBand = 0.1, kFarOver = 1.25;
 // Predictions blend the last frame moved by the slope (this share) with the fitted model (the
 // rest): the last frame alone follows every spike, the model alone lags a view change.
 constexpr double kAnchorShare = 0.5;
+// The most one frame's splits may add to the cost, as a share of the drawn frame's.
+constexpr double kMaxGrowth = 0.25;
 }  // namespace
 
 LodController::LodController(const TspTree& tree, LodOptions options)
@@ -135,9 +137,13 @@ LodFrameStats LodController::update(const Camera& camera, int t, const TransferF
   const double low = (1 - kDeadBand) * target, high = (1 + kDeadBand) * target;
   // A split fits when it stays under the target, or within the band's top when the cut is below
   // the band (the first split from a fast coarse cut may overshoot a little).
+  // Timed, one frame's splits after the first add at most kMaxGrowth of the drawn frame's cost: a
+  // refinement takes a few frames, and a model that underestimates a big change cannot overshoot
+  // by much.
   const auto split_fits = [&](double after) {
     if (!timed) return true;
     if (!informed) return false;
+    if (st.splits > 0 && after > (1 + kMaxGrowth) * std::max(anchor, cost)) return false;
     return predict(after) <= target || (predict(cost) < low && predict(after) <= high);
   };  using Item = std::pair<double, int>;
   std::priority_queue<Item> splits;                                       // largest first
