@@ -63,6 +63,14 @@ void check_info(const json& j, const Series& s, int brick) {
   EXPECT_EQ(j["leaf_bricks"], o.brick_count());
   EXPECT_EQ(j["octree_nodes"], o.size());
   EXPECT_EQ(j["tsp_nodes"], shape.size());
+  // LOD levels: one row per level, the leaves at level 0, every internal node at its level.
+  ASSERT_EQ(j["format_version"], 2);
+  const json& lod = j["lod_levels"];
+  ASSERT_EQ(int(lod.size()), o.max_lod_level() + 1);
+  EXPECT_EQ(lod[0]["bricks"], o.brick_count());
+  int level_bricks = 0;
+  for (std::size_t k = 1; k < lod.size(); ++k) level_bricks += lod[k]["bricks"].get<int>();
+  EXPECT_EQ(level_bricks, o.level_brick_count());
   float lo = INFINITY, hi = -INFINITY;
   for (const auto& step : s.steps)
     for (float v : step) lo = std::min(lo, v), hi = std::max(hi, v);
