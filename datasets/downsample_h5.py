@@ -12,10 +12,12 @@ Usage: downsample_h5.py IN.h5 --field T -o OUT.h5 [--factor 2] [--stride 4] [--g
 import argparse
 import os
 import sys
-import tempfile
 
 import h5py
 import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from h5_series import write_series  # noqa: E402
 
 
 def main(argv=None):
@@ -58,23 +60,7 @@ def main(argv=None):
     attrs["source"] = (str(attrs.get("source", "")) +
                        f"; downsampled by downsample_h5.py: mean of {r}^3 cells, every "
                        f"{a.stride} step(s) from {os.path.basename(a.input)}")
-    out_dir = os.path.dirname(os.path.abspath(a.output))
-    fd, tmp = tempfile.mkstemp(prefix="." + os.path.basename(a.output) + ".", suffix=".tmp",
-                               dir=out_dir)
-    os.close(fd)
-    try:
-        with h5py.File(tmp, "w") as f:
-            kw = dict(compression="gzip", compression_opts=a.gzip, shuffle=True) if a.gzip else {}
-            ds = f.create_dataset(a.field, data=out, chunks=(1,) + out.shape[1:], **kw)
-            for k, v in attrs.items():
-                ds.attrs[k] = v
-        mask = os.umask(0)
-        os.umask(mask)
-        os.chmod(tmp, 0o666 & ~mask)  # mkstemp's 0600 would hide the sample from others
-        os.replace(tmp, a.output)
-    except BaseException:
-        os.unlink(tmp)
-        raise
+    write_series(a.output, a.field, out, attrs, gzip=a.gzip)
     print(f"downsample_h5: wrote {a.output}: {out.shape}, {os.path.getsize(a.output)} bytes",
           file=sys.stderr)
     return 0

@@ -14,10 +14,12 @@ Usage: upsample_h5.py IN.h5 --field p -o OUT.h5 [--size 256] [--stride 8]
 import argparse
 import os
 import sys
-import tempfile
 
 import h5py
 import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from h5_series import write_series  # noqa: E402
 
 
 def resample_axis(v, axis, n):
@@ -79,22 +81,7 @@ def main(argv=None):
     attrs["source"] = (str(attrs.get("source", "")) +
                        f"; upsampled by upsample_h5.py: trilinear onto {n}^3, every "
                        f"{a.stride} step(s) from {os.path.basename(a.input)}")
-    out_dir = os.path.dirname(os.path.abspath(a.output))
-    fd, tmp = tempfile.mkstemp(prefix="." + os.path.basename(a.output) + ".", suffix=".tmp",
-                               dir=out_dir)
-    os.close(fd)
-    try:
-        with h5py.File(tmp, "w") as f:
-            ds = f.create_dataset(a.field, data=out, chunks=(1,) + out.shape[1:])
-            for k, v in attrs.items():
-                ds.attrs[k] = v
-        mask = os.umask(0)
-        os.umask(mask)
-        os.chmod(tmp, 0o666 & ~mask)
-        os.replace(tmp, a.output)
-    except BaseException:
-        os.unlink(tmp)
-        raise
+    write_series(a.output, a.field, out, attrs, gzip=0)
     print(f"upsample_h5: wrote {a.output}: {out.shape}", file=sys.stderr)
     return 0
 

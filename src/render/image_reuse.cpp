@@ -73,32 +73,11 @@ std::vector<PixelRect> dirty_rects(const tsp::TspTree& tree, const tsp::Camera& 
   const int w = camera.params().width, h = camera.params().height;
   const int tx = (w + kReuseTile - 1) / kReuseTile, ty = (h + kReuseTile - 1) / kReuseTile;
   std::vector<std::uint8_t> tiles(std::size_t(tx) * ty, 0);
-  const glm::dmat4 vp = camera.view_projection();
   bool any = false;
   for (int b = 0; b < octree.brick_count(); ++b) {
     if (before[std::size_t(b)] == now[std::size_t(b)]) continue;
     const tsp::Aabb box = tsp::geometric_box(octree.brick_box(b), octree.dims());
-    double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
-    bool behind = false;
-    for (int c = 0; c < 8; ++c) {
-      const glm::dvec4 p = vp * glm::dvec4(c & 1 ? box.hi[0] : box.lo[0],
-                                           c & 2 ? box.hi[1] : box.lo[1],
-                                           c & 4 ? box.hi[2] : box.lo[2], 1.0);
-      if (p.w <= 1e-9) {
-        behind = true;  // a corner behind the eye: the box may cover anything
-        break;
-      }
-      const double sx = (p.x / p.w * 0.5 + 0.5) * w, sy = (p.y / p.w * 0.5 + 0.5) * h;
-      x0 = std::min(x0, sx);
-      x1 = std::max(x1, sx);
-      y0 = std::min(y0, sy);
-      y1 = std::max(y1, sy);
-    }
-    if (behind) {
-      x0 = y0 = 0;
-      x1 = w;
-      y1 = h;
-    }
+    const auto [x0, y0, x1, y1] = tsp::screen_footprint(camera, box).rect;
     // One pixel of margin for rasterisation at the edges.
     const int i0 = std::clamp(int(std::floor(x0 - 1)) / kReuseTile, 0, tx - 1);
     const int i1 = std::clamp(int(std::floor(x1 + 1)) / kReuseTile, 0, tx - 1);

@@ -1,5 +1,6 @@
 #include "tsp/frame/camera.h"
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <cstdlib>
@@ -64,6 +65,37 @@ std::array<double, 2> parse_view_angles(const std::string& text) {
   if (el <= -90 || el >= 90)
     throw UsageError("--view '" + text + "': elevation must lie strictly between -90 and 90");
   return {az, el};
+}
+
+ScreenFootprint screen_footprint(const Camera& camera, const Aabb& box) {
+  ScreenFootprint f;
+  const glm::dmat4 vp = camera.view_projection();
+  const double w = camera.params().width, h = camera.params().height;
+  std::array<int, 6> outside{};  // corners beyond each clip plane
+  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+  for (int c = 0; c < 8; ++c) {
+    const glm::dvec4 q = vp * glm::dvec4(c & 1 ? box.hi[0] : box.lo[0],
+                                          c & 2 ? box.hi[1] : box.lo[1],
+                                          c & 4 ? box.hi[2] : box.lo[2], 1.0);
+    outside[0] += q.x < -q.w;
+    outside[1] += q.x > q.w;
+    outside[2] += q.y < -q.w;
+    outside[3] += q.y > q.w;
+    outside[4] += q.z < -q.w;
+    outside[5] += q.z > q.w;
+    if (q.w <= 1e-9) {
+      f.behind = true;
+      continue;
+    }
+    const double sx = (q.x / q.w * 0.5 + 0.5) * w, sy = (q.y / q.w * 0.5 + 0.5) * h;
+    x0 = std::min(x0, sx);
+    x1 = std::max(x1, sx);
+    y0 = std::min(y0, sy);
+    y1 = std::max(y1, sy);
+  }
+  for (int n : outside) f.culled |= n == 8;
+  f.rect = f.behind ? std::array<double, 4>{0, 0, w, h} : std::array<double, 4>{x0, y0, x1, y1};
+  return f;
 }
 
 }  // namespace tsp

@@ -4,6 +4,7 @@
 #include <array>
 #include <glm/glm.hpp>
 
+#include "tsp/core/geometry.h"
 #include "tsp/core/types.h"
 
 namespace tsp {
@@ -47,6 +48,17 @@ class Camera {
   glm::dmat4 view_{1.0}, projection_{1.0};
   glm::dvec3 eye_{0.0}, dir_{0.0, 1.0, 0.0};
 };
+
+/// Where a box lands on the image.
+struct ScreenFootprint {
+  std::array<double, 4> rect{};  ///< x0, y0, x1, y1 in pixels, unclipped (y up, as GL's window)
+  bool behind = false;           ///< a corner lies behind the eye: rect is the whole image
+  bool culled = false;           ///< all eight corners beyond one clip plane (outside the frustum)
+};
+
+/// The bounding rectangle of box's projected corners (sample coordinates) through camera, and
+/// whether the box lies wholly outside the view frustum. Never throws.
+ScreenFootprint screen_footprint(const Camera& camera, const Aabb& box);
 
 /// Parses "AZ,EL" in degrees; throws UsageError naming the option text.
 std::array<double, 2> parse_view_angles(const std::string& text);

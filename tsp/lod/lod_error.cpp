@@ -36,34 +36,9 @@ NodeProjection project_box(const Camera& camera, const Aabb& box) {
   NodeProjection p;
   const glm::dmat4 vp = camera.view_projection();
   const double w = camera.params().width, h = camera.params().height;
-  // Frustum culling: all eight corners beyond one clip plane.
-  std::array<int, 6> outside{};
-  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
-  bool behind = false;
-  for (int c = 0; c < 8; ++c) {
-    const glm::dvec4 q = vp * glm::dvec4(c & 1 ? box.hi[0] : box.lo[0],
-                                          c & 2 ? box.hi[1] : box.lo[1],
-                                          c & 4 ? box.hi[2] : box.lo[2], 1.0);
-    outside[0] += q.x < -q.w;
-    outside[1] += q.x > q.w;
-    outside[2] += q.y < -q.w;
-    outside[3] += q.y > q.w;
-    outside[4] += q.z < -q.w;
-    outside[5] += q.z > q.w;
-    if (q.w <= 1e-9) {
-      behind = true;
-      continue;
-    }
-    const double sx = (q.x / q.w * 0.5 + 0.5) * w, sy = (q.y / q.w * 0.5 + 0.5) * h;
-    x0 = std::min(x0, sx);
-    x1 = std::max(x1, sx);
-    y0 = std::min(y0, sy);
-    y1 = std::max(y1, sy);
-  }
-  p.culled = std::any_of(outside.begin(), outside.end(), [](int n) { return n == 8; });
-  if (behind) {  // the eye is near or inside: the box may cover the whole view
-    x0 = 0, y0 = 0, x1 = w, y1 = h;
-  }
+  const ScreenFootprint fp = screen_footprint(camera, box);
+  p.culled = fp.culled;
+  const auto [x0, y0, x1, y1] = fp.rect;
   p.rect = {std::clamp(x0, 0.0, w), std::clamp(y0, 0.0, h), std::clamp(x1, 0.0, w),
             std::clamp(y1, 0.0, h)};
   p.pixel_area = std::max(0.0, p.rect[2] - p.rect[0]) * std::max(0.0, p.rect[3] - p.rect[1]);

@@ -77,6 +77,38 @@ TEST(Camera, ZoomScalesTheImageAboutTheCentre) {
   EXPECT_NEAR(project(b, q).y, 2 * project(a, q).y, 1e-9);
 }
 
+TEST(Camera, ScreenFootprintBoundsTheProjectedCornersAndCullsWhatIsOutside) {
+  const Dims d{33, 33, 33};
+  CameraParams p;
+  p.width = 200;
+  p.height = 100;
+  const Camera cam(d, p);
+  const Aabb all{{0, 0, 0}, {32, 32, 32}};
+  const ScreenFootprint f = screen_footprint(cam, all);
+  EXPECT_FALSE(f.culled);
+  EXPECT_FALSE(f.behind);
+  for (const glm::dvec3& c : corners(d)) {  // every corner inside the rectangle, some on its edges
+    const glm::dvec3 n = project(cam, c);
+    const double x = (n.x * 0.5 + 0.5) * 200, y = (n.y * 0.5 + 0.5) * 100;
+    EXPECT_GE(x, f.rect[0] - 1e-9);
+    EXPECT_LE(x, f.rect[2] + 1e-9);
+    EXPECT_GE(y, f.rect[1] - 1e-9);
+    EXPECT_LE(y, f.rect[3] + 1e-9);
+  }
+  EXPECT_GT(f.rect[2] - f.rect[0], 50);  // the fitted view shows the volume large
+  // A box far to the side is outside the frustum.
+  EXPECT_TRUE(screen_footprint(cam, Aabb{{1000, 0, 0}, {1010, 10, 10}}).culled);
+  // Perspective, a box around the eye: corners behind it, so the whole image.
+  CameraParams q = p;
+  q.projection = Projection::perspective;
+  const Camera persp(d, q);
+  const auto e = persp.eye();
+  const ScreenFootprint g =
+      screen_footprint(persp, Aabb{{e[0] - 5, e[1] - 5, e[2] - 5}, {e[0] + 5, e[1] + 5, e[2] + 5}});
+  EXPECT_TRUE(g.behind);
+  EXPECT_EQ(g.rect, (std::array<double, 4>{0, 0, 200, 100}));
+}
+
 TEST(Camera, ParsesViewAnglesAndRejectsBadText) {
   auto v = parse_view_angles("30,-20.5");
   EXPECT_EQ(v[0], 30);
