@@ -136,16 +136,17 @@ LodFrameStats LodController::update(const Camera& camera, int t, const TransferF
   };
   const double low = (1 - kDeadBand) * target, high = (1 + kDeadBand) * target;
   // A split fits when it stays under the target, or within the band's top when the cut is below
-  // the band (the first split from a fast coarse cut may overshoot a little).
-  // Timed, one frame's splits after the first add at most kMaxGrowth of the drawn frame's cost: a
-  // refinement takes a few frames, and a model that underestimates a big change cannot overshoot
-  // by much.
+  // the band (the first split from a fast coarse cut may overshoot a little). After the first of
+  // a frame, splits add at most kMaxGrowth of the drawn frame's cost: a refinement takes a few
+  // frames, and a model that underestimates a big change cannot overshoot by much.
   const auto split_fits = [&](double after) {
     if (!timed) return true;
     if (!informed) return false;
     if (st.splits > 0 && after > (1 + kMaxGrowth) * std::max(anchor, cost)) return false;
     return predict(after) <= target || (predict(cost) < low && predict(after) <= high);
-  };  using Item = std::pair<double, int>;
+  };
+
+  using Item = std::pair<double, int>;
   std::priority_queue<Item> splits;                                       // largest first
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> merges;  // smallest first
   auto push_merge = [&](int id) {
