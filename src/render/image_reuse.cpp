@@ -28,12 +28,16 @@ std::int64_t colour_bits(const tsp::Rgba& c) {
   return std::int64_t(h);
 }
 
+// Page tags are scaled past every stored brick index (leaves and levels: < 2·kMaxBricks) so that
+// (brick, tag) stays one number.
+constexpr std::int64_t kPageTagStride = 2 * tsp::kMaxBricks;
+
 }  // namespace
 
 BrickIdentities brick_identities(const tsp::TspTree& tree, const tsp::FramePlan& plan,
-                                 const std::function<tsp::Rgba(int)>& colour_of) {
+                                 const std::function<tsp::Rgba(int)>& colour_of,
+                                 std::span<const std::int64_t> level_pages) {
   const tsp::Octree& octree = tree.octree();
-  const auto g = octree.brick_grid();
   BrickIdentities id(std::size_t(octree.brick_count()), {0, 0});
   for (const tsp::PlannedNode& n : plan.nodes) {
     if (n.cls == tsp::DrawClass::not_rendered) continue;
@@ -41,26 +45,23 @@ BrickIdentities brick_identities(const tsp::TspTree& tree, const tsp::FramePlan&
     const std::int64_t node = tsp_id;
     if (n.cls == tsp::DrawClass::untextured) {
       const std::array<std::int64_t, 2> flat{pack(kFlat, node), colour_bits(colour_of(tsp_id))};
-      const tsp::OctreeNode& o = octree.node(n.node.octree_id);
-      for (int z = o.brick_lo[2]; z < o.brick_hi[2]; ++z)
-        for (int y = o.brick_lo[1]; y < o.brick_hi[1]; ++y)
-          for (int x = o.brick_lo[0]; x < o.brick_hi[0]; ++x)
-            id[std::size_t(x + g[0] * (y + g[1] * z))] = flat;
+      octree.for_each_brick(n.node.octree_id, [&](int b) { id[std::size_t(b)] = flat; });
       continue;
     }
     for (int i = n.first_texture; i < n.first_texture + n.texture_count; ++i) {
       const tsp::PlannedTexture& pt = plan.textures[std::size_t(i)];
       // A level brick stands for every leaf brick below its node; the stored brick index tells
-      // a level's picture from the leaves'.
-      const std::array<std::int64_t, 2> v =
-          pt.deferred ? std::array<std::int64_t, 2>{pack(kDeferredFlat, node),
-                                                    colour_bits(colour_of(tsp_id))}
-                      : std::array<std::int64_t, 2>{pack(kTextured, pt.key.t0), pt.key.brick};
-      const tsp::OctreeNode& o = octree.node(octree.stored_brick_node(pt.key.brick));
-      for (int z = o.brick_lo[2]; z < o.brick_hi[2]; ++z)
-        for (int y = o.brick_lo[1]; y < o.brick_hi[1]; ++y)
-          for (int x = o.brick_lo[0]; x < o.brick_hi[0]; ++x)
-            id[std::size_t(x + g[0] * (y + g[1] * z))] = v;
+      // a level's picture from the leaves', and the page tag how each leaf's page draws it.
+      const bool level = pt.key.level > 0 && !pt.deferred;
+      octree.for_each_brick(octree.stored_brick_node(pt.key.brick), [&](int b) {
+        const std::int64_t page =
+            level && !level_pages.empty() ? level_pages[std::size_t(b)] : 0;
+        id[std::size_t(b)] =
+            pt.deferred ? std::array<std::int64_t, 2>{pack(kDeferredFlat, node),
+                                                      colour_bits(colour_of(tsp_id))}
+                        : std::array<std::int64_t, 2>{pack(kTextured, pt.key.t0),
+                                                      pt.key.brick + page * kPageTagStride};
+      });
     }
   }
   return id;

@@ -8,6 +8,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <span>
 #include <vector>
 
 #include "tsp/frame/camera.h"
@@ -28,9 +29,13 @@ struct PixelRect {
 /// texture; {kind and node, the colour's bits} flat.
 using BrickIdentities = std::vector<std::array<std::int64_t, 2>>;
 
-/// How plan draws each leaf brick of tree, flat nodes in colour_of(TSP node id). Never throws.
+/// How plan draws each leaf brick of tree, flat nodes in colour_of(TSP node id). level_pages,
+/// when not empty, holds per leaf brick a tag of how a level brick covering it draws that page
+/// (the renderer's full-resolution shading of the leaf); it becomes part of those leaves'
+/// identity. Never throws.
 BrickIdentities brick_identities(const tsp::TspTree& tree, const tsp::FramePlan& plan,
-                                 const std::function<tsp::Rgba(int)>& colour_of);
+                                 const std::function<tsp::Rgba(int)>& colour_of,
+                                 std::span<const std::int64_t> level_pages = {});
 
 /// Edge in pixels of the tiles dirty regions are rounded out to.
 inline constexpr int kReuseTile = 16;

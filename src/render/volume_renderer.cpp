@@ -1,5 +1,7 @@
 #include "render/volume_renderer.h"
 
+#include <algorithm>
+
 #include "tsp/core/stopwatch.h"
 #include "tsp/frame/frame_plan.h"
 #include "tsp/frame/slicer.h"
@@ -8,6 +10,9 @@
 namespace tspgl {
 
 namespace {
+
+// Values of tsp::Shading, for page tags.
+constexpr int kShadingCount = 3;
 
 tsp::ViewOrder view_order(const tsp::Camera& camera) {
   return camera.perspective() ? tsp::ViewOrder::perspective(camera.eye())
@@ -128,19 +133,12 @@ void VolumeRenderer::fill_pages(const tsp::FramePlan& plan, tsp::FrameMetric& me
   const auto g = octree.brick_grid();
   pages_.reset(g, {octree.brick_cells(0), octree.brick_cells(1), octree.brick_cells(2)});
   soup_.clear();
-  // Every leaf brick of octree node o.
-  auto each_leaf = [&](int o, auto&& f) {
-    const tsp::OctreeNode& node = octree.node(o);
-    for (int z = node.brick_lo[2]; z < node.brick_hi[2]; ++z)
-      for (int y = node.brick_lo[1]; y < node.brick_hi[1]; ++y)
-        for (int x = node.brick_lo[0]; x < node.brick_hi[0]; ++x) f(x + g[0] * (y + g[1] * z));
-  };
   for (const tsp::PlannedNode& n : plan.nodes) {
     if (n.cls == tsp::DrawClass::not_rendered) continue;
     const int tsp_id = tree_.id(n.node.octree_id, n.node.time_id);
     if (n.cls == tsp::DrawClass::untextured) {
       const tsp::Rgba c = metric.mean_colour(tsp_id);
-      each_leaf(n.node.octree_id, [&](int b) { pages_.set_flat(b, c); });
+      octree.for_each_brick(n.node.octree_id, [&](int b) { pages_.set_flat(b, c); });
       continue;
     }
     for (int i = n.first_texture; i < n.first_texture + n.texture_count; ++i) {
@@ -149,14 +147,14 @@ void VolumeRenderer::fill_pages(const tsp::FramePlan& plan, tsp::FrameMetric& me
       const int o = octree.stored_brick_node(pt.key.brick);
       if (pt.deferred) {  // not uploaded yet: the node's mean colour meanwhile
         const tsp::Rgba c = metric.mean_colour(tsp_id);
-        each_leaf(o, [&](int b) { pages_.set_flat(b, c); });
+        octree.for_each_brick(o, [&](int b) { pages_.set_flat(b, c); });
       } else if (pt.key.level == 0) {
         pages_.set_textured(pt.key.brick, textures_.at(pt.key));
       } else {
         // A level brick: the full-resolution traversal still decides, leaf page by leaf page,
         // what is skipped (transparent) or drawn flat (coherent); the rest samples the level.
         const BrickSlot slot = textures_.at(pt.key);
-        each_leaf(o, [&](int b) {
+        octree.for_each_brick(o, [&](int b) {
           const LeafShading& ls = leaf_shading_[std::size_t(b)];
           if (ls.shading == tsp::Shading::textured)
             pages_.set_textured(b, slot);
@@ -187,10 +185,26 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
   const tsp::FramePlan plan = tsp::plan_frame(tree_, step, emitted, tsp::node_info(metric),
                                               settings.tol, order, cache_, settings.upload_budget,
                                               settings.span_step, stops);
+  // Ray casting a level brick, each leaf page below it keeps the full-resolution traversal's
+  // shading: skipped when transparent, flat when coherent (fill_pages).
+  level_pages_.clear();
+  const bool level_textures =
+      std::any_of(plan.textures.begin(), plan.textures.end(),
+                  [](const tsp::PlannedTexture& pt) { return pt.key.level > 0; });
+  if (settings.compositing == Compositing::rays && level_textures) {
+    leaf_shading_.assign(std::size_t(octree.brick_count()), {});
+    for (const tsp::Emitted& e : tsp::traverse(tree_, step, settings.tol, errors, order)) {
+      const int id = tree_.id(e.octree_id, e.time_id);
+      const LeafShading ls{tsp::shading_of(metric.class_info(id), settings.tol), id};
+      octree.for_each_brick(e.octree_id, [&](int b) { leaf_shading_[std::size_t(b)] = ls; });
+    }
+    for (const LeafShading& ls : leaf_shading_)
+      level_pages_.push_back(std::int64_t(ls.tsp_id + 1) * kShadingCount + int(ls.shading));
+  }
   // Partial-image reuse: with the same view, TF and knobs as the last frame, only the screen
   // rectangles of the bricks drawn differently are drawn again.
-  BrickIdentities ids =
-      brick_identities(tree_, plan, [&](int id) { return metric.mean_colour(id); });
+  BrickIdentities ids = brick_identities(
+      tree_, plan, [&](int id) { return metric.mean_colour(id); }, level_pages_);
   const ReuseKey key = reuse_key(camera, settings);
   const bool reuse =
       settings.reuse_image && settings.render_scale == 1 && previous_ && previous_->key == key;
@@ -207,19 +221,6 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
   r.upload_ms = phase.lap_ms();
 
   if (settings.compositing == Compositing::rays) {
-    if (!stops.empty()) {  // how the full-resolution traversal would shade each leaf brick
-      leaf_shading_.assign(std::size_t(octree.brick_count()), {});
-      for (const tsp::Emitted& e : tsp::traverse(tree_, step, settings.tol, errors, order)) {
-        const int id = tree_.id(e.octree_id, e.time_id);
-        const LeafShading ls{tsp::shading_of(metric.class_info(id), settings.tol), id};
-        const tsp::OctreeNode& n = octree.node(e.octree_id);
-        const auto g = octree.brick_grid();
-        for (int z = n.brick_lo[2]; z < n.brick_hi[2]; ++z)
-          for (int y = n.brick_lo[1]; y < n.brick_hi[1]; ++y)
-            for (int x = n.brick_lo[0]; x < n.brick_hi[0]; ++x)
-              leaf_shading_[std::size_t(x + g[0] * (y + g[1] * z))] = ls;
-      }
-    }
     fill_pages(plan, metric);
     compositor_.set_pages(pages_, octree.dims());
   } else {

@@ -100,6 +100,7 @@ class VolumeRenderer {
     int tsp_id = -1;
   };
   std::vector<LeafShading> leaf_shading_;  // per leaf brick, full resolution (LOD frames)
+  std::vector<std::int64_t> level_pages_;  // leaf_shading_ as identity tags (image reuse)
   void fill_items(const tsp::FramePlan& plan, tsp::FrameMetric& metric, const tsp::Camera& camera,
                   const RenderSettings& settings);
   void fill_pages(const tsp::FramePlan& plan, tsp::FrameMetric& metric);

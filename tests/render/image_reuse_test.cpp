@@ -8,6 +8,7 @@
 #include <glm/glm.hpp>
 
 #include "tsp/core/geometry.h"
+#include "tsp/frame/frame_plan.h"
 
 namespace tspgl {
 namespace {
@@ -53,6 +54,30 @@ TEST(ImageReuse, DirtyRectanglesCoverExactlyTheChangedBricks) {
   const glm::dvec2 centre = project(cam, 19.5, 19.5, 19.5);
   EXPECT_TRUE(covered(all, centre.x, centre.y));
   EXPECT_LE(int(all.size()), kMaxDirtyRects);
+}
+
+// A level brick's identity holds, per leaf below it, how the page draws that leaf: a change of
+// one leaf's page tag (a leaf turning flat inside a reused span) marks that leaf alone.
+TEST(ImageReuse, LevelBrickIdentitiesFollowTheirLeafPages) {
+  const tsp::TspTree tree({40, 40, 40}, 4, 8);
+  const tsp::Octree& o = tree.octree();
+  tsp::FramePlan plan;
+  tsp::PlannedNode node;
+  node.node = {0, 0, tree.time().span(0)};
+  node.cls = tsp::DrawClass::reused_texture;
+  node.texture_count = 1;
+  plan.nodes.push_back(node);
+  plan.textures.push_back({tsp::texture_key(o, o.node_brick(0), 0), 0, false});
+  const auto colour = [](int) { return tsp::Rgba{}; };
+  std::vector<std::int64_t> pages(std::size_t(o.brick_count()), 5);
+  const BrickIdentities a = brick_identities(tree, plan, colour, pages);
+  pages[7] = 6;
+  const BrickIdentities b = brick_identities(tree, plan, colour, pages);
+  for (int k = 0; k < o.brick_count(); ++k)
+    EXPECT_EQ(a[std::size_t(k)] == b[std::size_t(k)], k != 7) << "brick " << k;
+  // Without page tags every leaf below the root has the root's level identity.
+  const BrickIdentities c = brick_identities(tree, plan, colour);
+  for (int k = 1; k < o.brick_count(); ++k) EXPECT_EQ(c[std::size_t(k)], c[0]);
 }
 
 }  // namespace

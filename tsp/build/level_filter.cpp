@@ -83,7 +83,7 @@ void filter_level(std::span<const float> vol, Dims d, const BrickLattice& l,
       float* dst = s.a.data() + (std::size_t(z) * len[1] + y) * len[0];
       for (int x = 0; x < len[0]; ++x) dst[x] = clamp_value(src[x], clamp);
     }
-  const int mx = l.samples[0], my = l.samples[1], mz = l.samples[2];
+  const int mx = l.samples[0], my = l.samples[1];
   s.b.resize(std::size_t(len[2]) * len[1] * mx);
   pass(s.a.data(), len[2] * len[1], len[0], 1, lo[0], taps[0], s.b.data());  // x
   s.a.resize(std::size_t(len[2]) * my * mx);

@@ -73,6 +73,15 @@ class Octree {
   int brick_cells(int a) const { return cells_[a]; }
   /// Largest stored sample extent of any brick along each axis (brick 0's, ≤ B).
   std::array<int, 3> max_brick_samples() const;
+  /// Calls f(b) for every leaf brick b below node id (its own brick for a leaf), in brick index
+  /// order.
+  template <class F>
+  void for_each_brick(int id, F&& f) const {
+    const OctreeNode& n = nodes_[std::size_t(id)];
+    for (int z = n.brick_lo[2]; z < n.brick_hi[2]; ++z)
+      for (int y = n.brick_lo[1]; y < n.brick_hi[1]; ++y)
+        for (int x = n.brick_lo[0]; x < n.brick_hi[0]; ++x) f(x + grid_[0] * (y + grid_[1] * z));
+  }
 
   // LOD levels (spec §14): every internal node also stores a brick of at most the leaf sample
   // count covering its region every lod_factor() voxels. Stored bricks are numbered leaves first

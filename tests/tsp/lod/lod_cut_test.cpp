@@ -45,13 +45,17 @@ TEST(LodCut, FixedLevelsHoldOnlyNodesAtOrBelowTheirLevel) {
     int total = 0;
     for (int level = 0; level < int(per_level.size()); ++level) {
       total += per_level[std::size_t(level)];
-      if (level > k) EXPECT_EQ(per_level[std::size_t(level)], 0) << "cut at level " << k;
+      if (level > k) {
+        EXPECT_EQ(per_level[std::size_t(level)], 0) << "cut at level " << k;
+      }
     }
     EXPECT_EQ(total, cut.size());
     for (int id : cut.nodes()) {
       EXPECT_LE(o.lod_level(id), k);
       const int p = o.node(id).parent;
-      if (p >= 0) EXPECT_GT(o.lod_level(p), k);  // the coarsest such nodes
+      if (p >= 0) {
+        EXPECT_GT(o.lod_level(p), k);  // the coarsest such nodes
+      }
     }
   }
   EXPECT_EQ(LodCut::at_level(o, 0).size(), o.brick_count());
