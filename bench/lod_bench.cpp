@@ -27,11 +27,7 @@ struct Run {
   std::vector<double> ms;
   std::vector<tsp::Image> images;
   std::vector<double> de;  // per frame against the reference
-  double median() const {
-    std::vector<double> v = ms;
-    std::sort(v.begin(), v.end());
-    return v.empty() ? 0 : v[v.size() / 2];
-  }
+  double median() const { return tspgl::median(ms); }
   double p90() const {
     std::vector<double> v = ms;
     std::sort(v.begin(), v.end());

@@ -213,11 +213,7 @@ RenderJobResult run_render_job(const RenderJobOptions& options, const RenderProg
       tsp::LodStops stops;
       if (fixed_cut) {
         stops = fixed_cut->stops();
-        rec.lod = LodRecord{0, {}};
-        rec.lod->stats.cut_size = fixed_cut->size();
-        rec.lod->stats.nodes_per_level = fixed_cut->nodes_per_level();
-        rec.lod->stats.texture_bytes = std::int64_t(fixed_cut->size()) *
-                                       tsp::texture_bytes(tree.octree(), {0, 0, 0});
+        rec.lod = LodRecord{0, tsp::cut_stats(*fixed_cut)};
       } else if (controller) {
         // Untimed: refine until nothing is left to split (a converged cut every frame).
         tsp::LodFrameStats st = controller->update(camera, t, tf, settings.spacing);

@@ -260,8 +260,7 @@ void PlayerApp::write_stats(const std::string& path) const {
               {"full_quality_after_s", full_quality_after_s},
               // Full quality: no node left whose level differs from full resolution in the
               // picture (error 0: transparent, uniform or hidden), at full render size.
-              {"full_quality", !lod_on || (refining && lod_stats.max_error == 0 &&
-                                           lod_stats.render_scale == 1)}};
+              {"full_quality", full_quality()}};
   j["classes"] = {{"not_rendered", last.class_percent[0]},
                   {"untextured", last.class_percent[1]},
                   {"reused_texture", last.class_percent[2]},
@@ -546,7 +545,7 @@ void PlayerApp::frame() {
   // Screenshots hold the volume only (read before the UI is drawn).
   // A screenshot waits for the first complete frame (no texture left for later frames).
   // With the LOD cut it also waits for full quality (the idle refinement), unless playing.
-  const bool full = !lod_on || playing || full_quality_after_s >= 0;
+  const bool full = playing || full_quality();
   const bool shot_now = !pending_shot_.empty() && last.complete() && full;
   if (shot_now && !pending_with_ui_) save_pending_shot();
   if (save_requested_) {

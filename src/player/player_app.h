@@ -123,6 +123,9 @@ class PlayerApp {
   int steps() const;
   /// Saves the current volume frame as PNG (path chosen from the step) and reports it in status.
   void request_save();
+  /// True when the last frame is at full quality: LOD off, or the idle refinement left no node
+  /// with any error and the render target at full size.
+  bool full_quality() const;
   /// Turns the LOD cut on or off (off: every frame at full resolution).
   void set_lod(bool on);
   /// Sets the LOD focus from a window pixel: the point of the view ray there at the depth of the
@@ -175,6 +178,7 @@ class PlayerApp {
     int step = -1;
     std::uint64_t tf_version = ~std::uint64_t(0);
     bool playing = false;
+    bool operator==(const Seen&) const = default;
   } seen_;
   double last_change_s_ = 0;
   int frames_since_change_ = 0;

@@ -32,19 +32,15 @@ void PlayerApp::set_lod(bool on) {
 tsp::LodStops PlayerApp::update_lod(const tsp::Camera& cam, tspgl::RenderSettings& settings,
                                     double now_s) {
   // Any change of what is shown counts as interaction.
-  const bool changed = seen_.step != step || seen_.tf_version != tf.version() || playing ||
-                       seen_.camera.azimuth_deg != camera.azimuth_deg ||
-                       seen_.camera.elevation_deg != camera.elevation_deg ||
-                       seen_.camera.zoom != camera.zoom || seen_.camera.pan != camera.pan ||
-                       seen_.camera.projection != camera.projection ||
-                       seen_.camera.width != camera.width || seen_.camera.height != camera.height;
+  const Seen now{camera, step, tf.version(), playing};
+  const bool changed = playing || !(now == seen_);
   if (changed) {
     last_change_s_ = now_s;
     frames_since_change_ = 0;
   } else {
     ++frames_since_change_;
   }
-  seen_ = {camera, step, tf.version(), playing};
+  seen_ = now;
   if (!lod_on) {
     lod_.reset();
     lod_stats = {};
@@ -69,13 +65,17 @@ tsp::LodStops PlayerApp::update_lod(const tsp::Camera& cam, tspgl::RenderSetting
   lod_->set_options(o);
   lod_stats = lod_->update(cam, step, tf, settings.spacing);
   // When the picture got back to full quality after the last change.
-  if (refining && lod_stats.max_error == 0 && lod_->render_scale() == 1) {
+  if (full_quality()) {
     if (full_quality_after_s < 0) full_quality_after_s = now_s - last_change_s_;
   } else {
     full_quality_after_s = -1;
   }
   settings.render_scale = lod_->render_scale();
   return lod_->cut().stops();
+}
+
+bool PlayerApp::full_quality() const {
+  return !lod_on || (refining && lod_stats.max_error == 0 && lod_stats.render_scale == 1);
 }
 
 void PlayerApp::measured_lod(double render_ms, double frame_ms) {

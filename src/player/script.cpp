@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <utility>
 
 #include "tsp/core/error.h"
 
@@ -55,10 +56,22 @@ struct LineParser {
   }
 };
 
+// The actions that take on|off.
+constexpr std::pair<const char*, Kind> kSwitches[] = {
+    {"loop", Kind::loop},           {"cache", Kind::cache}, {"prefetch", Kind::prefetch},
+    {"preintegrated", Kind::preintegrated}, {"lod", Kind::lod},     {"show-cut", Kind::show_cut}};
+
 ScriptAction parse_line(const LineParser& p) {
   ScriptAction a;
   a.line = p.line;
   const std::string& cmd = p.words[0];
+  for (const auto& [name, kind] : kSwitches)
+    if (cmd == name) {
+      p.expect_args(1, (cmd + " on|off").c_str());
+      a.kind = kind;
+      a.flag = p.choice(1, "on", "off");
+      return a;
+    }
   if (cmd == "step") {
     p.expect_args(1, "step K");
     a.kind = Kind::step;
@@ -71,10 +84,6 @@ ScriptAction parse_line(const LineParser& p) {
     a.kind = Kind::speed;
     a.value = p.number(1, "speed STEPS_PER_SECOND");
     if (!(a.value > 0) || !std::isfinite(a.value)) p.fail("speed must be positive and finite");
-  } else if (cmd == "loop") {
-    p.expect_args(1, "loop on|off");
-    a.kind = Kind::loop;
-    a.flag = p.choice(1, "on", "off");
   } else if (cmd == "tf") {
     p.expect_args(1, "tf FILE|preset:NAME");
     a.kind = Kind::tf;
@@ -94,14 +103,6 @@ ScriptAction parse_line(const LineParser& p) {
         a.text != "perceptual")
       p.fail("unknown metric '" + a.text +
              "': expected scalar, reference, approximate or perceptual");
-  } else if (cmd == "cache") {
-    p.expect_args(1, "cache on|off");
-    a.kind = Kind::cache;
-    a.flag = p.choice(1, "on", "off");
-  } else if (cmd == "prefetch") {
-    p.expect_args(1, "prefetch on|off");
-    a.kind = Kind::prefetch;
-    a.flag = p.choice(1, "on", "off");
   } else if (cmd == "upload-budget") {
     p.expect_args(1, "upload-budget MIB");
     a.kind = Kind::upload_budget;
@@ -128,10 +129,6 @@ ScriptAction parse_line(const LineParser& p) {
     a.value = p.number(1, "spacing VOXELS");
     if (!(a.value >= kMinSpacing && a.value <= kMaxSpacing))
       p.fail("spacing must be in [1/64, 64] voxels");
-  } else if (cmd == "preintegrated") {
-    p.expect_args(1, "preintegrated on|off");
-    a.kind = Kind::preintegrated;
-    a.flag = p.choice(1, "on", "off");
   } else if (cmd == "quality") {
     p.expect_args(1, "quality DE");
     a.kind = Kind::quality;
@@ -164,20 +161,12 @@ ScriptAction parse_line(const LineParser& p) {
     a.value = p.number(1, "wait-seconds S");
     if (!(a.value >= 0) || a.value > kMaxWaitSeconds)
       p.fail("wait-seconds must be 0 to " + std::to_string(int(kMaxWaitSeconds)) + " seconds");
-  } else if (cmd == "lod") {
-    p.expect_args(1, "lod on|off");
-    a.kind = Kind::lod;
-    a.flag = p.choice(1, "on", "off");
   } else if (cmd == "target-fps") {
     p.expect_args(1, "target-fps FPS");
     a.kind = Kind::target_fps;
     a.value = p.number(1, "target-fps FPS");
     if (!(a.value >= 1 && a.value <= kMaxTargetFps))
       p.fail("target-fps must be 1 to " + std::to_string(int(kMaxTargetFps)) + " frames per second");
-  } else if (cmd == "show-cut") {
-    p.expect_args(1, "show-cut on|off");
-    a.kind = Kind::show_cut;
-    a.flag = p.choice(1, "on", "off");
   } else {
     p.fail("unknown action '" + cmd +
            "': expected step, play, pause, speed, loop, tf, tolerance, metric, cache, prefetch, "

@@ -21,6 +21,7 @@ struct CameraParams {
   double fov_deg = 30;        ///< vertical field of view for perspective
   std::array<double, 2> pan{0, 0};  ///< shift of the look-at point, in units of the bounding radius
   int width = 640, height = 480;
+  bool operator==(const CameraParams&) const = default;
 };
 
 /// A camera fitted to a volume's geometry [0, D−1]³ in sample coordinates.

@@ -106,7 +106,7 @@ LodFrameStats LodController::update(const Camera& camera, int t, const TransferF
   const Octree& o = tree_.octree();
   const TfColourSlopes slopes(tf);
   evaluate(camera, t, tf, slopes, spacing);
-  LodFrameStats st;
+  int splits_done = 0, merges_done = 0;
   double cost = 0;
   for (int id : cut_.nodes()) cost += cost_[std::size_t(id)];
   const auto children_cost = [&](int id) {
@@ -120,8 +120,7 @@ LodFrameStats LodController::update(const Camera& camera, int t, const TransferF
     for (int k : o.node(id).children) n += k >= 0;
     return n;
   };
-  const std::int64_t brick_bytes =
-      std::int64_t(o.max_brick_samples()[0]) * o.max_brick_samples()[1] * o.max_brick_samples()[2] * 2;
+  const std::int64_t brick_bytes = brick_slot_bytes(o);
   const bool timed = options_.target_ms > 0;
   // Timed, the first frame (no measurement yet) keeps the coarsest cut. Then predictions are
   // anchored at the last measured frame — its cost then (its view and step) and its time — and
@@ -142,7 +141,7 @@ LodFrameStats LodController::update(const Camera& camera, int t, const TransferF
   const auto split_fits = [&](double after) {
     if (!timed) return true;
     if (!informed) return false;
-    if (st.splits > 0 && after > (1 + kMaxGrowth) * std::max(anchor, cost)) return false;
+    if (splits_done > 0 && after > (1 + kMaxGrowth) * std::max(anchor, cost)) return false;
     return predict(after) <= target || (predict(cost) < low && predict(after) <= high);
   };
 
@@ -159,13 +158,14 @@ LodFrameStats LodController::update(const Camera& camera, int t, const TransferF
   auto do_merge = [&](int id) {
     cost += cost_[std::size_t(id)] - children_cost(id);
     cut_.merge(id);
-    ++st.merges;
+    ++merges_done;
     splits.push({error_[std::size_t(id)], id});
     push_merge(o.node(id).parent);
   };
   // Over the band: merge the least useful parents first — but not below the band unless far over
   // (one merge near the root can halve the frame).
-  while (informed && predict(cost) > high && !merges.empty() && st.merges < options_.merge_limit) {
+  while (informed && predict(cost) > high && !merges.empty() &&
+         merges_done < options_.merge_limit) {
     const auto [e, id] = merges.top();
     merges.pop();
     if (!cut_.can_merge(id)) continue;
@@ -176,7 +176,7 @@ LodFrameStats LodController::update(const Camera& camera, int t, const TransferF
   // At the coarsest cut and still over: a smaller render target; no split until it is back at 1.
   adapt_scale(last_coarsest_);
   // Under budget: split the most useful nodes, swapping one merge for a much better split.
-  while (scale_ >= 1 && !splits.empty() && st.splits < options_.split_limit) {
+  while (scale_ >= 1 && !splits.empty() && splits_done < options_.split_limit) {
     const auto [e, id] = splits.top();
     if (!cut_.can_split(id)) {
       splits.pop();
@@ -190,7 +190,7 @@ LodFrameStats LodController::update(const Camera& camera, int t, const TransferF
         std::int64_t(cut_.size() - 1 + children_count(id)) * brick_bytes > options_.texture_budget;
     if (!split_fits(after) || over_textures) {
       while (!merges.empty() && !cut_.can_merge(merges.top().second)) merges.pop();
-      if (merges.empty() || st.merges >= options_.merge_limit ||
+      if (merges.empty() || merges_done >= options_.merge_limit ||
           merges.top().first * kSwapGain > e)
         break;
       const int m = merges.top().second;
@@ -202,22 +202,30 @@ LodFrameStats LodController::update(const Camera& camera, int t, const TransferF
     splits.pop();
     cost = after;
     cut_.split(id);
-    ++st.splits;
+    ++splits_done;
     for (int k : o.node(id).children)
       if (k >= 0 && cut_.can_split(k)) splits.push({error_[std::size_t(k)], k});
     push_merge(id);
   }
   last_cost_ = cost;
   last_coarsest_ = cut_.size() == 1;
-  st.cut_size = cut_.size();
-  st.nodes_per_level = cut_.nodes_per_level();
-  st.texture_bytes = std::int64_t(cut_.size()) * brick_bytes;
+  LodFrameStats st = cut_stats(cut_);
+  st.splits = splits_done;
+  st.merges = merges_done;
   st.cost = cost;
   st.predicted_ms = model_.ready() ? model_.predict(cost) : 0;
   st.render_scale = scale_;
   scale_of_frame_ = scale_;
   for (int id : cut_.nodes())
     if (cut_.can_split(id)) st.max_error = std::max(st.max_error, error_[std::size_t(id)]);
+  return st;
+}
+
+LodFrameStats cut_stats(const LodCut& cut) {
+  LodFrameStats st;
+  st.cut_size = cut.size();
+  st.nodes_per_level = cut.nodes_per_level();
+  st.texture_bytes = cut.texture_bytes();
   return st;
 }
 

@@ -45,6 +45,10 @@ struct LodFrameStats {
   double render_scale = 1;
 };
 
+/// A cut's size, nodes per level and texture bytes (the rest zero: no update made it). Never
+/// throws.
+LodFrameStats cut_stats(const LodCut& cut);
+
 /// One active cut and its controller. Not thread-safe.
 class LodController {
  public:

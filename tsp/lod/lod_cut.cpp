@@ -4,6 +4,11 @@
 
 namespace tsp {
 
+std::int64_t brick_slot_bytes(const Octree& octree) {
+  const auto shape = octree.max_brick_samples();
+  return std::int64_t(shape[0]) * shape[1] * shape[2] * std::int64_t(sizeof(std::uint16_t));
+}
+
 LodCut::LodCut(const Octree& octree)
     : octree_(&octree), in_(std::size_t(octree.size()), 0), size_(1) {
   in_[0] = 1;

@@ -13,6 +13,10 @@
 
 namespace tsp {
 
+/// Bytes of one brick texture as the cut counts them: the padded stored brick (the atlas slot),
+/// 2 bytes per sample. Never throws.
+std::int64_t brick_slot_bytes(const Octree& octree);
+
 /// A cut through an octree. Not thread-safe; copyable.
 class LodCut {
  public:
@@ -37,6 +41,8 @@ class LodCut {
   void split(int id);
   /// Replaces id's children by id; asserts can_merge(id).
   void merge(int id);
+  /// The cut's bricks' bytes: one brick slot per node.
+  std::int64_t texture_bytes() const { return std::int64_t(size_) * brick_slot_bytes(*octree_); }
   /// Cut nodes per LOD level, index = level (max_lod_level() + 1 entries).
   std::vector<int> nodes_per_level() const;
   /// True when every leaf brick has exactly one cut node among itself and its ancestors (the cut
