@@ -193,8 +193,8 @@ RenderJobResult run_render_job(const RenderJobOptions& options, const RenderProg
   // The LOD cut: one level everywhere, or the controller's.
   std::optional<tsp::LodCut> fixed_cut;
   std::optional<tsp::LodController> controller;
-  if (o.lod == LodMode::fixed)
-    fixed_cut = tsp::LodCut::at_level(tree.octree(), std::min(o.lod_level, tree.octree().max_lod_level()));
+  const int lod_level = std::min(o.lod_level, tree.octree().max_lod_level());  // --lod K, clamped
+  if (o.lod == LodMode::fixed) fixed_cut = tsp::LodCut::at_level(tree.octree(), lod_level);
   if (o.lod == LodMode::adaptive) {
     tsp::LodOptions lo = o.lod_options;
     lo.target_ms = o.target_ms;
@@ -231,10 +231,13 @@ RenderJobResult run_render_job(const RenderJobOptions& options, const RenderProg
                             : renderer->render(t, camera, frame_settings, nodes, stops);
       if (controller) controller->measured(rec.report.ms - rec.report.upload_ms);
       result.frames.push_back(rec);
-      if (o.on_frame) o.on_frame(rec, ctx->read_pixels());
       // The last pass's images win; earlier passes only measure.
-      if (!dir.empty() && o.write_images && pass == o.passes)
-        tsp::write_png(step_png(dir, t), ctx->read_pixels());
+      const bool png = !dir.empty() && o.write_images && pass == o.passes;
+      if (png || o.on_frame) {
+        const tsp::Image pixels = ctx->read_pixels();
+        if (o.on_frame) o.on_frame(rec, pixels);
+        if (png) tsp::write_png(step_png(dir, t), pixels);
+      }
       if (progress) progress(int(result.frames.size()), total);
     }
   }
@@ -262,7 +265,7 @@ RenderJobResult run_render_job(const RenderJobOptions& options, const RenderProg
     j["preintegrated"] = settings.preintegrated;
     j["reuse"] = settings.reuse_image;
     j["lod"] = o.lod == LodMode::off ? json("off")
-               : o.lod == LodMode::fixed ? json(std::min(o.lod_level, tree.octree().max_lod_level()))
+               : o.lod == LodMode::fixed ? json(lod_level)
                                          : json("auto");
     j["target_ms"] = o.target_ms;
     j["orbit_deg"] = o.orbit_deg;

@@ -22,7 +22,6 @@ TfTexture::~TfTexture() {
 }
 
 void TfTexture::set(const tsp::TransferFunction& tf, tsp::ValueRange quantized) {
-  entries_.assign(tf.entries().begin(), tf.entries().end());
   tf_ = tf;
   spacing_ = -1;  // re-uploaded, corrected for the spacing, by the next bind
   table_spacing_ = -1;
@@ -37,23 +36,19 @@ void TfTexture::bind(int unit, double spacing) {
   gl_.BindTexture(GL_TEXTURE_1D, id_);
   if (spacing == spacing_) return;
   std::vector<float> rgba;
-  rgba.reserve(entries_.size() * 4);
-  for (const tsp::Rgba& e : entries_) {
+  rgba.reserve(std::size_t(tf_.size()) * 4);
+  for (const tsp::Rgba& e : tf_.entries()) {
     const float a = corrected_alpha(e.a, spacing);
     rgba.insert(rgba.end(), {e.r * a, e.g * a, e.b * a, a});
   }
   gl_.TexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   gl_.TexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   gl_.TexParameteri(GL_TEXTURE_1D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  gl_.TexImage1D(GL_TEXTURE_1D, 0, GL_RGBA32F, GLsizei(entries_.size()), 0, GL_RGBA, GL_FLOAT,
+  gl_.TexImage1D(GL_TEXTURE_1D, 0, GL_RGBA32F, GLsizei(tf_.size()), 0, GL_RGBA, GL_FLOAT,
                  rgba.data());
   check_gl(gl_, "uploading the transfer function");
   spacing_ = spacing;
 }
-
-}  // namespace tspgl
-
-namespace tspgl {
 
 void TfTexture::bind_preintegrated(int unit, double spacing) {
   gl_.ActiveTexture(GLenum(GL_TEXTURE0 + unit));

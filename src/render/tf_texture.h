@@ -42,10 +42,9 @@ class TfTexture {
   const GlApi& gl_;
   GLuint id_ = 0, table_id_ = 0;
   double scale_ = 1, offset_ = 0;
-  std::vector<tsp::Rgba> entries_;  ///< the TF as given (uncorrected, not premultiplied)
   double spacing_ = -1;             ///< spacing the texture was corrected for (−1: stale)
   double table_spacing_ = -1;       ///< spacing the pre-integrated table was made for
-  tsp::TransferFunction tf_;        ///< the TF as given, for pre-integration
+  tsp::TransferFunction tf_;        ///< the TF as given (uncorrected, not premultiplied)
 };
 
 }  // namespace tspgl
