@@ -10,7 +10,6 @@ namespace {
 constexpr double kMinRelativeSpread = 0.1;
 // Before that: this share of the first frame is taken as fixed cost.
 constexpr double kPriorFixedShare = 0.5;
-constexpr double kHuge = 1e300;
 }  // namespace
 
 void CostModel::Sums::add(double lambda, double cx, double cy) {
@@ -42,11 +41,6 @@ void CostModel::add(double cost, double ms) {
   if (!identified_ && short_.x > 0) slope_ = (1 - kPriorFixedShare) * short_.y / short_.x;
   // Given the slope, the intercept that fits the recent frames best (never negative).
   intercept_ = std::max(0.0, (short_.y - slope_ * short_.x) / short_.w);
-}
-
-double CostModel::budget(double ms) const {
-  if (!ready()) return kHuge;
-  return std::max(0.0, (ms - intercept_) / slope_);
 }
 
 }  // namespace tsp

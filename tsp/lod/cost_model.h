@@ -20,9 +20,6 @@ class CostModel {
   bool ready() const { return slope_ > 0; }
   /// Predicted milliseconds for a cut of this cost (0 before the first frame).
   double predict(double cost) const { return ready() ? intercept_ + slope_ * cost : 0; }
-  /// The largest cost predicted to take at most ms (0 when even cost 0 would not; a huge number
-  /// before the first frame).
-  double budget(double ms) const;
   /// Fitted intercept a (ms).
   double intercept() const { return intercept_; }
   /// Fitted slope b (ms per cost unit; 0 before the first frame).

@@ -68,8 +68,6 @@ class LodController {
   void set_options(LodOptions o) { options_ = std::move(o); }
   /// The cut.
   const LodCut& cut() const { return cut_; }
-  /// The cost model.
-  const CostModel& model() const { return model_; }
   /// The cost of node o in the last update: pixels × samples over its leaf bricks that are not
   /// culled or transparent (a small share for those), divided by its sample step multiplier.
   double node_cost(int o) const { return cost_[std::size_t(o)]; }
