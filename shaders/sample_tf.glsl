@@ -2,12 +2,15 @@
 // at texture coordinate tc, clamped to the brick's own box [lo, hi] so atlas neighbours never
 // bleed in, through the premultiplied, spacing-corrected TF (nearest: the metrics' exact table);
 // with use_preintegrated, the pre-integrated segment between the half-way points to the
-// neighbouring samples instead.
+// neighbouring samples instead. With use_stencil the texture's second channel holds the
+// stencil (1 inside the data): a sample where its trilinear blend is below ½ lies outside the
+// mesh and is never drawn.
 uniform sampler3D volume;            // the brick atlas (or the baseline's whole volume)
 uniform sampler1D transfer_function;
 uniform sampler2D preintegrated;     // segment colour over (front, back) tf coordinates
 uniform vec2 tf_map;                 // tf coordinate = normalised scalar · tf_map.x + tf_map.y
 uniform int use_preintegrated;
+uniform int use_stencil;
 
 float tf_coord(vec3 tc, vec3 lo, vec3 hi) {
   return texture(volume, clamp(tc, lo, hi)).r * tf_map.x + tf_map.y;
@@ -16,6 +19,10 @@ float tf_coord(vec3 tc, vec3 lo, vec3 hi) {
 // half_step: half a spacing along the ray, in texture coordinates. u_front carries the front
 // half-way point's tf coordinate from one sample of a run to the next (< 0: none yet).
 vec4 sample_colour(vec3 tc, vec3 half_step, vec3 lo, vec3 hi, inout float u_front) {
+  if (use_stencil != 0 && texture(volume, clamp(tc, lo, hi)).g < 0.5) {
+    u_front = -1.0;
+    return vec4(0.0);
+  }
   if (use_preintegrated == 0) return texture(transfer_function, tf_coord(tc, lo, hi));
   if (u_front < 0.0) u_front = tf_coord(tc - half_step, lo, hi);
   float u_back = tf_coord(tc + half_step, lo, hi);

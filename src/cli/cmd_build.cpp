@@ -9,7 +9,7 @@
 #include "cli/commands.h"
 #include "tsp/build/build.h"
 #include "tsp/core/error.h"
-#include "tsp/source/open_source.h"
+#include "tsp/voxelize/open_input.h"
 #include "tsp/store/tsp_file.h"
 
 namespace tspcli {
@@ -20,6 +20,9 @@ struct BuildArgs {
   int brick = 0;  // 0: tsp::default_brick_size of the grid
   int threads = 0;
   bool big_endian = false;
+  int resolution = 0;
+  double voxel_size = 0;
+  std::string cell_data = "constant";
 };
 
 void run_build(const BuildArgs& a) {
@@ -36,7 +39,12 @@ void run_build(const BuildArgs& a) {
   bo.threads = a.threads;
   bo.field_name = a.field;
   if (!a.range.empty()) bo.range = parse_range(a.range, "--range");
-  auto source = tsp::open_source(a.input, so);
+  tsp::VoxelizeOptions vo;
+  vo.resolution = a.resolution;
+  vo.voxel_size = a.voxel_size;
+  vo.cell_data = a.cell_data == "points" ? tsp::CellDataMode::points : tsp::CellDataMode::constant;
+  vo.threads = a.threads;
+  auto source = tsp::open_input(a.input, so, vo);
   if (bo.brick_size == 0) bo.brick_size = tsp::default_brick_size(source->dims());
   tsp::BuildReport r = build_with_progress(*source, a.output, bo);
   print_build_summary(a.output, r);
@@ -45,10 +53,19 @@ void run_build(const BuildArgs& a) {
 const CommandRegistrar reg(10, [](CLI::App& app) {
   auto* c = app.add_subcommand("build", "Build a .tsp file (bricks + TSP tree with statistics)");
   auto a = std::make_shared<BuildArgs>();
-  c->add_option("input", a->input, "Time series: .h5/.nc/.hdf, .pvd/.vti.series/.vti, raw pattern")
+  c->add_option("input", a->input,
+                "Time series: .h5/.nc/.hdf, .pvd/.vti.series/.vti, raw pattern; unstructured: "
+                ".vtu/.vtm/.pvd/.vtm.series, VTKHDF UnstructuredGrid (one, transient, or 'can_%d.hdf')")
       ->required();
   c->add_option("-o,--output", a->output, "The .tsp file to write")->required();
-  c->add_option("--field", a->field, "Field (dataset/variable/array) to read");
+  c->add_option("--field", a->field,
+                "Field (dataset/variable/array) to read; meshes: NAME, NAME:mag or NAME:x|y|z");
+  c->add_option("--resolution", a->resolution,
+                "Meshes: samples on the longest edge (default: from the median cell size, 16..256)");
+  c->add_option("--voxel-size", a->voxel_size, "Meshes: voxel edge in the mesh's units");
+  c->add_option("--cell-data", a->cell_data,
+                "Meshes, cell data: constant per cell, or averaged to the points then interpolated")
+      ->check(CLI::IsMember({"constant", "points"}));
   c->add_option("--brick", a->brick, "Brick edge in samples, a power of two 8..64 (default: the one nearest a quarter of "
                 "the longest grid edge, in [8, 64]: 16 for 64^3, 32 for 128^3)");
   c->add_option("--range", a->range, "Quantization range LO:HI (default: the data's range)");

@@ -12,7 +12,9 @@ namespace tspgl {
 
 BaselineRenderer::BaselineRenderer(GlContext& ctx, const tsp::BrickStore& bricks,
                                    std::int64_t brick_budget)
-    : tree_(bricks.tree()), bricks_(bricks, brick_budget), compositor_(ctx) {}
+    : tree_(bricks.tree()), bricks_(bricks, brick_budget), compositor_(ctx) {
+  compositor_.set_stencil(tree_.has_stencil());
+}
 
 BaselineRenderer::~BaselineRenderer() {
   if (texture_) compositor_.context().gl().DeleteTextures(1, &texture_);
@@ -34,18 +36,30 @@ FrameReport BaselineRenderer::render(int step, const tsp::Camera& camera,
 
   // The whole step, assembled from the bricks and uploaded as one texture, every frame.
   tsp::Stopwatch phase;
-  volume_.resize(std::size_t(d.count()));
+  // With a stencil the bricks carry their flags after the codes: the volume interleaves both.
+  const int channels = tree_.has_stencil() ? 2 : 1;
+  volume_.resize(std::size_t(d.count()) * std::size_t(channels));
   for (int b = 0; b < octree.brick_count(); ++b) {
     tsp::BrickSamples samples = bricks_.get(b, step);
     const tsp::Box s = octree.brick_samples(b);
-    const std::uint16_t* src = samples->data();
+    const std::size_t n = std::size_t(s.count());
+    std::size_t i = 0;
     for (int z = s.lo[2]; z < s.hi[2]; ++z)
-      for (int y = s.lo[1]; y < s.hi[1]; ++y, src += s.size(0))
-        std::memcpy(volume_.data() + s.lo[0] + std::size_t(d.x) * (y + std::size_t(d.y) * z), src,
-                    std::size_t(s.size(0)) * sizeof(std::uint16_t));
+      for (int y = s.lo[1]; y < s.hi[1]; ++y, i += std::size_t(s.size(0))) {
+        const std::size_t dst = s.lo[0] + std::size_t(d.x) * (y + std::size_t(d.y) * z);
+        if (channels == 1) {
+          std::memcpy(volume_.data() + dst, samples->data() + i,
+                      std::size_t(s.size(0)) * sizeof(std::uint16_t));
+          continue;
+        }
+        for (int x = 0; x < s.size(0); ++x) {
+          volume_[2 * (dst + std::size_t(x))] = (*samples)[i + std::size_t(x)];
+          volume_[2 * (dst + std::size_t(x)) + 1] = (*samples)[n + i + std::size_t(x)] ? 65535 : 0;
+        }
+      }
   }
   if (texture_) gl.DeleteTextures(1, &texture_);
-  texture_ = create_scalar_texture(gl, d.x, d.y, d.z, volume_.data());
+  texture_ = create_scalar_texture(gl, d.x, d.y, d.z, volume_.data(), channels);
   r.upload_ms = phase.lap_ms();
   r.bytes_uploaded = d.count() * std::int64_t(sizeof(std::uint16_t));
   r.textures_resident = 1;

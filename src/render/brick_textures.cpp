@@ -9,7 +9,17 @@
 
 namespace tspgl {
 
-GLuint create_scalar_texture(const GlApi& gl, int w, int h, int d, const std::uint16_t* data) {
+void interleave_stencil(const std::uint16_t* samples, std::size_t count,
+                        std::vector<std::uint16_t>& out) {
+  out.resize(2 * count);
+  for (std::size_t i = 0; i < count; ++i) {
+    out[2 * i] = samples[i];
+    out[2 * i + 1] = samples[count + i] ? 65535 : 0;
+  }
+}
+
+GLuint create_scalar_texture(const GlApi& gl, int w, int h, int d, const std::uint16_t* data,
+                             int channels) {
   GLuint id = 0;
   gl.GenTextures(1, &id);
   gl.BindTexture(GL_TEXTURE_3D, id);
@@ -19,12 +29,16 @@ GLuint create_scalar_texture(const GlApi& gl, int w, int h, int d, const std::ui
     gl.TexParameteri(GL_TEXTURE_3D, wrap, GL_CLAMP_TO_EDGE);
   // 16-bit rows of odd width are not 4-byte aligned.
   gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  gl.TexImage3D(GL_TEXTURE_3D, 0, GL_R16, w, h, d, 0, GL_RED, GL_UNSIGNED_SHORT, data);
+  if (channels == 2)
+    gl.TexImage3D(GL_TEXTURE_3D, 0, GL_RG16, w, h, d, 0, GL_RG, GL_UNSIGNED_SHORT, data);
+  else
+    gl.TexImage3D(GL_TEXTURE_3D, 0, GL_R16, w, h, d, 0, GL_RED, GL_UNSIGNED_SHORT, data);
   return id;
 }
 
 BrickTextures::BrickTextures(const GlApi& gl, tsp::BrickCache& bricks) : gl_(gl), bricks_(bricks) {
   slot_ = bricks_.store().tree().octree().max_brick_samples();
+  channels_ = bricks_.store().tree().has_stencil() ? 2 : 1;
 }
 
 BrickTextures::~BrickTextures() {
@@ -42,8 +56,14 @@ void BrickTextures::write(const tsp::TextureKey& key, int slot) {
   const auto o = slot_origin(slot);
   gl_.BindTexture(GL_TEXTURE_3D, atlas_);
   gl_.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  gl_.TexSubImage3D(GL_TEXTURE_3D, 0, o[0], o[1], o[2], s.samples[0], s.samples[1], s.samples[2],
-                    GL_RED, GL_UNSIGNED_SHORT, samples->data());
+  if (channels_ == 2) {
+    interleave_stencil(samples->data(), std::size_t(s.count()), texels_);
+    gl_.TexSubImage3D(GL_TEXTURE_3D, 0, o[0], o[1], o[2], s.samples[0], s.samples[1],
+                      s.samples[2], GL_RG, GL_UNSIGNED_SHORT, texels_.data());
+  } else {
+    gl_.TexSubImage3D(GL_TEXTURE_3D, 0, o[0], o[1], o[2], s.samples[0], s.samples[1],
+                      s.samples[2], GL_RED, GL_UNSIGNED_SHORT, samples->data());
+  }
   slots_[key] = slot;
 }
 
@@ -67,7 +87,7 @@ void BrickTextures::grow(int min_capacity) {
   if (atlas_) gl_.DeleteTextures(1, &atlas_);
   grid_ = grid;
   atlas_ = create_scalar_texture(gl_, grid[0] * slot_[0], grid[1] * slot_[1], grid[2] * slot_[2],
-                                 nullptr);
+                                 nullptr, channels_);
   check_gl(gl_, "allocating the brick atlas");
   slots_.clear();
   free_.clear();

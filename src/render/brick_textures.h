@@ -15,8 +15,14 @@
 namespace tspgl {
 
 /// A new trilinear, edge-clamped R16 3-D texture of w × h × d samples (x fastest; data may be
-/// null: contents undefined), bound to GL_TEXTURE_3D of the active unit. The caller owns it.
-GLuint create_scalar_texture(const GlApi& gl, int w, int h, int d, const std::uint16_t* data);
+/// null: contents undefined), bound to GL_TEXTURE_3D of the active unit; with channels 2 an
+/// RG16 texture (data interleaved: code, stencil 0 or 65535). The caller owns it.
+GLuint create_scalar_texture(const GlApi& gl, int w, int h, int d, const std::uint16_t* data,
+                             int channels = 1);
+/// Interleaves a stencilled BrickSamples (count codes, then count flags) into RG16 texels
+/// (code, flag · 65535) in out. Never throws.
+void interleave_stencil(const std::uint16_t* samples, std::size_t count,
+                        std::vector<std::uint16_t>& out);
 
 /// Where a resident brick's samples are: sample coordinate p of the volume reads atlas texel
 /// coordinate p + offset (texel centres at +½), i.e. texture coordinate (p + offset) / size.
@@ -60,6 +66,8 @@ class BrickTextures {
   const GlApi& gl_;
   tsp::BrickCache& bricks_;
   std::array<int, 3> slot_{};  ///< texels per slot (the largest brick)
+  int channels_ = 1;           ///< 2 when the bricks carry a stencil (RG16 atlas)
+  std::vector<std::uint16_t> texels_;  ///< interleaving buffer for stencilled uploads
   std::array<int, 3> grid_{};  ///< slots per axis
   GLuint atlas_ = 0;
   std::vector<int> free_;      ///< free slot indices (popped from the back)

@@ -220,6 +220,7 @@ void SliceCompositor::begin_frame(const tsp::Camera& camera, const RenderSetting
   for (const Program* p : {&textured_, &box_textured_, &rays_}) {
     p->use();
     gl_.Uniform1i(p->uniform("use_preintegrated"), settings.preintegrated ? 1 : 0);
+    gl_.Uniform1i(p->uniform("use_stencil"), stencil_ ? 1 : 0);
   }
   textured_.use();  // the back sample of a slice lies one spacing farther along the view
   gl_.Uniform3f(textured_.uniform("back_step"), float(dir[0] * settings.spacing),

@@ -85,6 +85,8 @@ class SliceCompositor {
 
   /// Uses tf for bricks quantized over `quantized` from the next frame on.
   void set_transfer_function(const tsp::TransferFunction& tf, tsp::ValueRange quantized);
+  /// Textures carry a stencil in their second channel (RG16): outside samples are not drawn.
+  void set_stencil(bool on) { stencil_ = on; }
   /// Makes the context current, binds the 16-bit target (cleared unless `keep`: then the last
   /// frame's pixels stay, for partial-image reuse), sets blending and the camera. Throws
   /// tsp::GlError.
@@ -113,6 +115,7 @@ class SliceCompositor {
   GlContext& ctx_;
   const GlApi& gl_;
   Program textured_, flat_, box_textured_, box_flat_, rays_;
+  bool stencil_ = false;
   GLuint pages_ = 0, fragments_query_ = 0;
   GLuint rays_atlas_ = 0;  ///< the atlas the last set_pages' textured bricks read
   GLuint vao_ = 0, vbo_ = 0, cube_vao_ = 0, cube_vbo_ = 0;

@@ -28,7 +28,9 @@ VolumeRenderer::VolumeRenderer(GlContext& ctx, const tsp::BrickStore& bricks,
       cache_(texture_budget, cache),
       bricks_(bricks, brick_budget),
       compositor_(ctx),
-      textures_(ctx.gl(), bricks_) {}
+      textures_(ctx.gl(), bricks_) {
+  compositor_.set_stencil(tree_.has_stencil());
+}
 
 VolumeRenderer::~VolumeRenderer() = default;
 
@@ -76,7 +78,7 @@ std::vector<tsp::BrickKey> VolumeRenderer::bricks_to_upload(int step, const tsp:
   std::vector<tsp::BrickKey> keys;
   for (const tsp::Emitted& e : tsp::traverse(tree_, step, settings.tol, errors, order, stops)) {
     const int id = tree_.id(e.octree_id, e.time_id);
-    if (tsp::shading_of(metric.class_info(id), settings.tol) != tsp::Shading::textured) continue;
+    if (tsp::node_shading(tree_, id, metric.class_info(id), settings.tol) != tsp::Shading::textured) continue;
     for (int brick : tsp::node_bricks(tree_.octree(), e.octree_id, order, stops))
       if (const int t = tsp::representative_step(e.span, settings.span_step);
           !textures_.contains(tsp::texture_key(tree_.octree(), brick, t)))
@@ -195,7 +197,7 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
     leaf_shading_.assign(std::size_t(octree.brick_count()), {});
     for (const tsp::Emitted& e : tsp::traverse(tree_, step, settings.tol, errors, order)) {
       const int id = tree_.id(e.octree_id, e.time_id);
-      const LeafShading ls{tsp::shading_of(metric.class_info(id), settings.tol), id};
+      const LeafShading ls{tsp::node_shading(tree_, id, metric.class_info(id), settings.tol), id};
       octree.for_each_brick(e.octree_id, [&](int b) { leaf_shading_[std::size_t(b)] = ls; });
     }
     for (const LeafShading& ls : leaf_shading_)

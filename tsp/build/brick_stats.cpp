@@ -166,7 +166,8 @@ struct DepthFirstPass {
 }  // namespace
 
 void brick_time_stats(const TimeTree& time, const Box& samples, const Box& own,
-                      std::span<const float> series, double range_width, std::span<NodeAccum> out) {
+                      std::span<const float> series, double range_width, std::span<NodeAccum> out,
+                      std::span<const std::uint8_t> use) {
   assert(int(out.size()) == time.size());
   const std::int64_t stride = samples.count();
   assert(std::int64_t(series.size()) == stride * time.steps());
@@ -198,7 +199,9 @@ void brick_time_stats(const TimeTree& time, const Box& samples, const Box& own,
       const std::int64_t row =
           std::int64_t(sx) * ((y - samples.lo[1]) + std::int64_t(sy) * (z - samples.lo[2]));
       for (int x = own.lo[0]; x < own.hi[0]; ++x) {
-        idx[count++] = row + (x - samples.lo[0]);
+        const std::int64_t i = row + (x - samples.lo[0]);
+        if (!use.empty() && !use[std::size_t(i)]) continue;
+        idx[count++] = i;
         if (count == kChunkVoxels) {
           run_chunk();
           count = 0;

@@ -33,10 +33,13 @@ struct InputScan {
   float lo = std::numeric_limits<float>::infinity();
   float hi = -std::numeric_limits<float>::infinity();
   std::int64_t nonfinite = 0;
-  void add(const std::vector<float>& v) {
+  // Only inside voxels count when the step has a stencil.
+  void add(const std::vector<float>& v, const std::vector<std::uint8_t>& inside) {
     float l = lo, h = hi;
     std::int64_t bad = 0;
-    for (float x : v) {
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      const float x = v[i];
+      if (!inside.empty() && !inside[i]) continue;
       if (std::isfinite(x)) {
         l = std::min(l, x);
         h = std::max(h, x);
@@ -51,24 +54,36 @@ struct InputScan {
   ValueRange range() const { return lo <= hi ? ValueRange{lo, hi} : ValueRange{0, 0}; }
 };
 
+// The stencil's scratch files (sources with a stencil only): the leaf and level bricks' inside
+// flags as floats (a level brick's flag is the level filter of the flags, inside when ≥ ½).
+struct StencilScratch {
+  ScratchFile* leaves = nullptr;
+  ScratchFile* levels = nullptr;
+};
+
 // Pass 1: every step once, in order; each brick's samples go to its place in the scratch file.
 // Each step's level bricks (filtered from the whole step, which only this pass holds) go to
 // levels, and their residuals to level_errors ([level brick][step]).
 InputScan scatter_steps(VolumeSource& source, const Octree& octree, ScratchFile& scratch,
-                        ScratchFile& levels, std::span<float> level_errors,
+                        ScratchFile& levels, StencilScratch stencil, std::span<float> level_errors,
                         const std::optional<ValueRange>& clamp, const ProgressFn& progress,
                         std::int64_t total_bytes) {
   const Dims d = octree.dims();
   const std::int64_t step_bytes = d.count() * std::int64_t(sizeof(float));
   InputScan scan;
   // The reader thread also scans each step, which balances the threads of this pass.
-  StepPrefetcher prefetch(source, [&scan](int, const std::vector<float>& v) { scan.add(v); });
+  StepPrefetcher prefetch(source, [&scan](int, const std::vector<float>& v,
+                                          const std::vector<std::uint8_t>& inside) {
+    scan.add(v, inside);
+  });
+  std::vector<float> mask;  // the step's stencil as floats, for scattering and filtering
   // Copying into the page cache is kernel time that parallelises: two scatter workers split
   // each step's bricks (pwrite at fixed offsets needs no ordering).
   constexpr int kScatterWorkers = 2;
   std::vector<std::vector<float>> bricks(kScatterWorkers);
   const int n = octree.brick_count();
-  auto scatter = [&](const std::vector<float>& vol, int t, int b, std::vector<float>& brick) {
+  auto scatter = [&](const std::vector<float>& vol, int t, int b, std::vector<float>& brick,
+                     ScratchFile& into) {
     const Box s = octree.brick_samples(b);
     brick.resize(std::size_t(s.count()));
     float* out = brick.data();
@@ -77,7 +92,7 @@ InputScan scatter_steps(VolumeSource& source, const Octree& octree, ScratchFile&
       for (int y = s.lo[1]; y < s.hi[1]; ++y, out += row)
         std::memcpy(out, vol.data() + s.lo[0] + std::int64_t(d.x) * (y + std::int64_t(d.y) * z),
                     row * sizeof(float));
-    scratch.write(b, t, brick);
+    into.write(b, t, brick);
   };
   const int nl = octree.level_brick_count();
   std::vector<LevelFilterScratch> filter(kScatterWorkers);
@@ -89,15 +104,27 @@ InputScan scatter_steps(VolumeSource& source, const Octree& octree, ScratchFile&
         float(level_residual(vol, d, l, octree.node(octree.stored_brick_node(i)).box,
                              bricks[std::size_t(w)], clamp));
     levels.write(j, t, bricks[std::size_t(w)]);
+    if (stencil.levels) {
+      filter_level(mask, d, l, std::nullopt, filter[std::size_t(w)], bricks[std::size_t(w)]);
+      stencil.levels->write(j, t, bricks[std::size_t(w)]);
+    }
   };
   for (int t = 0; t < source.steps(); ++t) {
     const std::vector<float>& vol = prefetch.next();
+    if (stencil.leaves) {
+      const std::vector<std::uint8_t>& inside = prefetch.inside();
+      mask.resize(inside.size());
+      for (std::size_t i = 0; i < inside.size(); ++i) mask[i] = inside[i] ? 1.f : 0.f;
+    }
     // Worker k takes bricks k, k + kScatterWorkers, … (then level bricks): both write side by
     // side.
     parallel_for(kScatterWorkers, 1, kScatterWorkers,
                  [&](int w, std::int64_t first, std::int64_t) {
-                   for (auto b = first; b < n; b += kScatterWorkers)
-                     scatter(vol, t, int(b), bricks[std::size_t(w)]);
+                   for (auto b = first; b < n; b += kScatterWorkers) {
+                     scatter(vol, t, int(b), bricks[std::size_t(w)], scratch);
+                     if (stencil.leaves)
+                       scatter(mask, t, int(b), bricks[std::size_t(w)], *stencil.leaves);
+                   }
                    for (auto j = first; j < nl; j += kScatterWorkers)
                      level(vol, t, int(j), w);
                  });
@@ -131,14 +158,15 @@ struct FastQuantizer {
   }
 };
 
-// Quantizes a brick's series [T][samples] into the padded stored layout [T][Bz][By][Bx],
-// repeating the last sample along each axis into the padding.
+// Encodes a brick's series [T][samples] into the padded stored layout [T][Bz][By][Bx] (codes
+// by q, stencil flags by a threshold), repeating the last sample along each axis into the
+// padding.
+template <typename T, typename Encode>
 void quantize_padded(std::span<const float> series, const BrickLattice& s,
-                     std::array<int, 3> shape, int steps, const FastQuantizer& q,
-                     std::vector<std::uint16_t>& out) {
+                     std::array<int, 3> shape, int steps, const Encode& q, std::vector<T>& out) {
   const int sx = s.samples[0], sy = s.samples[1], sz = s.samples[2];
   out.resize(std::size_t(steps) * shape[0] * shape[1] * shape[2]);
-  std::uint16_t* o = out.data();
+  T* o = out.data();
   for (int t = 0; t < steps; ++t) {
     const float* step = series.data() + std::size_t(t) * std::size_t(s.count());
     for (int z = 0; z < shape[2]; ++z)
@@ -152,10 +180,16 @@ void quantize_padded(std::span<const float> series, const BrickLattice& s,
   }
 }
 
+// A stencil flag from its (filtered) float: inside when at least half.
+struct InsideFlag {
+  std::uint8_t operator()(float v) const { return v >= 0.5f ? 1 : 0; }
+};
+
 // Histogram of the brick's own voxels over all steps: bin floor((v − lo)·bins/(hi − lo)),
-// clamped to the last bin; everything in bin 0 for a zero-width range.
-void add_histogram(std::span<const float> series, const Box& s, const Box& own, int steps,
-                   ValueRange r, std::vector<std::uint64_t>& hist) {
+// clamped to the last bin; everything in bin 0 for a zero-width range. With a stencil (mask:
+// the series' flags) only inside voxels count.
+void add_histogram(std::span<const float> series, std::span<const float> mask, const Box& s,
+                   const Box& own, int steps, ValueRange r, std::vector<std::uint64_t>& hist) {
   const double scale = r.width() > 0 ? kHistogramBins / r.width() : 0;
   for (int t = 0; t < steps; ++t) {
     const float* step = series.data() + std::size_t(t) * s.count();
@@ -164,6 +198,8 @@ void add_histogram(std::span<const float> series, const Box& s, const Box& own, 
         const float* row = step + std::size_t(s.size(0)) *
                                       ((y - s.lo[1]) + std::size_t(s.size(1)) * (z - s.lo[2]));
         for (int x = own.lo[0]; x < own.hi[0]; ++x) {
+          if (!mask.empty() && mask[std::size_t(row - series.data()) + std::size_t(x - s.lo[0])] < 0.5f)
+            continue;
           int bin = int((double(row[x - s.lo[0]]) - r.lo) * scale);
           hist[std::clamp(bin, 0, kHistogramBins - 1)]++;
         }
@@ -173,16 +209,19 @@ void add_histogram(std::span<const float> series, const Box& s, const Box& own, 
 
 // Pass 2: brick-major over the scratch file, on `threads` workers.
 struct BrickPass {
-  BrickPass(const TspTree& t, ScratchFile& s, ScratchFile& l, TspWriter& w, ValueRange r,
-            std::vector<NodeAccum>& a)
-      : tree(t), scratch(s), levels(l), writer(w), range(r), acc(a) {}
+  BrickPass(const TspTree& t, ScratchFile& s, ScratchFile& l, StencilScratch st, TspWriter& w,
+            ValueRange r, std::vector<NodeAccum>& a)
+      : tree(t), scratch(s), levels(l), stencil(st), writer(w), range(r), acc(a),
+        inside_voxels(std::size_t(t.octree().brick_count()), 0) {}
   const TspTree& tree;
   ScratchFile& scratch;
   ScratchFile& levels;
+  StencilScratch stencil;
   TspWriter& writer;
   ValueRange range;
   std::vector<NodeAccum>& acc;  // by TSP node id; each worker fills its leaves' slices
   std::vector<std::uint64_t> histogram = std::vector<std::uint64_t>(kHistogramBins, 0);
+  std::vector<std::int64_t> inside_voxels;  // per leaf brick: own voxels inside at some step
 
   std::mutex mutex;  // guards progress calls
   int done = 0;
@@ -191,6 +230,8 @@ struct BrickPass {
   struct Scratch {
     std::vector<float> series;
     std::vector<std::uint16_t> codes;
+    std::vector<float> mask;          // the stencil's series, as floats
+    std::vector<std::uint8_t> flags;  // padded stencil codes, or the union over steps
     std::vector<std::uint64_t> hist = std::vector<std::uint64_t>(kHistogramBins, 0);
   };
 
@@ -206,9 +247,32 @@ struct BrickPass {
     quantize_padded(w.series, o.lattice(b), stored_brick_shape(o), steps, FastQuantizer(range),
                     w.codes);
     writer.write_brick_series(b, w.codes);
-    add_histogram(w.series, s, own, steps, range, w.hist);
+    std::span<const std::uint8_t> use;
+    if (stencil.leaves) {
+      w.mask.resize(w.series.size());
+      stencil.leaves->read_series(b, w.mask);
+      stencil.leaves->discard(b);
+      quantize_padded(w.mask, o.lattice(b), stored_brick_shape(o), steps, InsideFlag{}, w.flags);
+      writer.write_inside_series(b, w.flags);
+      // A voxel counts in the statistics when it is inside at some step (moving meshes).
+      const std::size_t per = std::size_t(s.count());
+      w.flags.assign(per, 0);
+      for (int t = 0; t < steps; ++t)
+        for (std::size_t i = 0; i < per; ++i)
+          w.flags[i] |= w.mask[std::size_t(t) * per + i] >= 0.5f ? 1 : 0;
+      use = w.flags;
+      std::int64_t in = 0;
+      for (int z = own.lo[2]; z < own.hi[2]; ++z)
+        for (int y = own.lo[1]; y < own.hi[1]; ++y)
+          for (int x = own.lo[0]; x < own.hi[0]; ++x)
+            in += w.flags[std::size_t((x - s.lo[0]) +
+                                      s.size(0) * ((y - s.lo[1]) + s.size(1) * (z - s.lo[2])))];
+      inside_voxels[std::size_t(b)] = in;
+    }
+    add_histogram(w.series, stencil.leaves ? std::span<const float>(w.mask) : std::span<const float>(),
+                  s, own, steps, range, w.hist);
     std::span<NodeAccum> leaf(acc.data() + tree.id(o.brick_node(b), 0), time.size());
-    brick_time_stats(time, s, own, w.series, range.width(), leaf);
+    brick_time_stats(time, s, own, w.series, range.width(), leaf, use);
     report(progress, total_bytes);
   }
 
@@ -223,6 +287,13 @@ struct BrickPass {
     sanitize(w.series, range);
     quantize_padded(w.series, l, stored_brick_shape(o), steps, FastQuantizer(range), w.codes);
     writer.write_brick_series(o.brick_count() + j, w.codes);
+    if (stencil.levels) {
+      w.mask.resize(w.series.size());
+      stencil.levels->read_series(j, w.mask);
+      stencil.levels->discard(j);
+      quantize_padded(w.mask, l, stored_brick_shape(o), steps, InsideFlag{}, w.flags);
+      writer.write_inside_series(o.brick_count() + j, w.flags);
+    }
     report(progress, total_bytes);
   }
 
@@ -262,6 +333,28 @@ void combine_octree(const TspTree& tree, std::vector<NodeAccum>& acc) {
   }
 }
 
+// Per octree node, the fraction of its own voxels inside the data, from the leaves' counts.
+std::vector<float> inside_fractions(const Octree& o, const std::vector<std::int64_t>& leaf_inside) {
+  std::vector<std::int64_t> in(std::size_t(o.size()), 0), all(std::size_t(o.size()), 0);
+  for (int i = o.size() - 1; i >= 0; --i) {
+    const OctreeNode& n = o.node(i);
+    if (n.is_leaf()) {
+      in[std::size_t(i)] = leaf_inside[std::size_t(n.brick)];
+      all[std::size_t(i)] = o.brick_box(n.brick).count();
+      continue;
+    }
+    for (int c : n.children) {
+      if (c < 0) continue;
+      in[std::size_t(i)] += in[std::size_t(c)];
+      all[std::size_t(i)] += all[std::size_t(c)];
+    }
+  }
+  std::vector<float> f(in.size());
+  for (std::size_t i = 0; i < f.size(); ++i)
+    f[i] = all[i] > 0 ? float(double(in[i]) / double(all[i])) : 0.f;
+  return f;
+}
+
 ValueRange checked_range(const std::optional<ValueRange>& r, ValueRange data) {
   if (!r) return data;
   if (!std::isfinite(r->lo) || !std::isfinite(r->hi) || !(r->lo < r->hi) ||
@@ -298,8 +391,16 @@ BuildReport build_tsp_file(VolumeSource& source, const std::string& out_path,
   for (int j = 0; j < o.level_brick_count(); ++j)
     level_samples[j] = o.lattice(o.brick_count() + j).count();
   ScratchFile levels(out.dir(), level_samples, steps);
-  InputScan scan = scatter_steps(source, o, scratch, levels, tree.level_errors(), options.range,
-                                 options.progress, report.source_bytes);
+  std::optional<ScratchFile> leaf_masks, level_masks;
+  StencilScratch stencil;
+  if (source.has_stencil()) {
+    leaf_masks.emplace(out.dir(), samples, steps);
+    level_masks.emplace(out.dir(), level_samples, steps);
+    stencil = {&*leaf_masks, &*level_masks};
+    tree.set_inside_fractions(std::vector<float>(std::size_t(o.size()), 1.f));  // filled below
+  }
+  InputScan scan = scatter_steps(source, o, scratch, levels, stencil, tree.level_errors(),
+                                 options.range, options.progress, report.source_bytes);
   report.data_range = scan.range();
   report.nonfinite_count = scan.nonfinite;
   report.value_range = checked_range(options.range, report.data_range);
@@ -309,9 +410,10 @@ BuildReport build_tsp_file(VolumeSource& source, const std::string& out_path,
   TspMetadata meta;
   {
     TspWriter writer(out.tmp(), tree);
-    BrickPass pass(tree, scratch, levels, writer, report.value_range, acc);
+    BrickPass pass(tree, scratch, levels, stencil, writer, report.value_range, acc);
     pass.run(resolve_threads(options.threads), options.progress, report.source_bytes);
     combine_octree(tree, acc);
+    if (stencil.leaves) tree.set_inside_fractions(inside_fractions(o, pass.inside_voxels));
     for (int i = 0; i < tree.size(); ++i) tree.stats(i) = acc[i].finish(report.value_range.width());
     meta.source = source.describe();
     meta.field = options.field_name;
@@ -319,6 +421,8 @@ BuildReport build_tsp_file(VolumeSource& source, const std::string& out_path,
     meta.nonfinite_count = report.nonfinite_count;
     meta.histogram = pass.histogram;
     meta.created_by = "tspplay " TSPPLAY_VERSION;
+    meta.origin = source.origin();
+    meta.spacing = source.spacing();
     writer.finish(tree, meta);
   }
   out.commit();

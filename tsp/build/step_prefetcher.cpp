@@ -31,8 +31,13 @@ void StepPrefetcher::run() {
     }
     try {
       buffers_[b].resize(voxels);
-      source_.read_step(t, buffers_[b]);
-      if (on_read_) on_read_(t, buffers_[b]);
+      if (source_.has_stencil()) {
+        masks_[b].resize(voxels);
+        source_.read_step_inside(t, buffers_[b], masks_[b]);
+      } else {
+        source_.read_step(t, buffers_[b]);
+      }
+      if (on_read_) on_read_(t, buffers_[b], masks_[b]);
     } catch (...) {
       std::lock_guard lock(mutex_);
       error_ = std::current_exception();

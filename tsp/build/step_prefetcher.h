@@ -17,8 +17,10 @@ namespace tsp {
 /// most two steps are in memory. read_step is only ever called from the prefetch thread.
 class StepPrefetcher {
  public:
-  /// Called on the prefetch thread with each step right after it was read (in step order).
-  using StepHook = std::function<void(int step, const std::vector<float>& samples)>;
+  /// Called on the prefetch thread with each step right after it was read (in step order);
+  /// inside is the step's stencil, empty when the source has none.
+  using StepHook = std::function<void(int step, const std::vector<float>& samples,
+                                      const std::vector<std::uint8_t>& inside)>;
   /// Starts reading steps 0, 1, … of source on a new thread, running on_read (may be empty) on
   /// each; errors of either are rethrown by next().
   explicit StepPrefetcher(VolumeSource& source, StepHook on_read = {});
@@ -29,6 +31,9 @@ class StepPrefetcher {
   /// Waits for the next step in order and returns its samples; rethrows the source's exception.
   /// The buffer stays valid until release().
   const std::vector<float>& next();
+  /// The stencil of the step the last next() returned (empty when the source has none); valid
+  /// until release().
+  const std::vector<std::uint8_t>& inside() const { return masks_[current_]; }
   /// Gives the buffer returned by the last next() back for reading further steps.
   void release();
 
@@ -37,6 +42,7 @@ class StepPrefetcher {
   VolumeSource& source_;
   StepHook on_read_;
   std::vector<float> buffers_[2];
+  std::vector<std::uint8_t> masks_[2];
   std::mutex mutex_;
   std::condition_variable cv_;
   std::deque<int> free_{0, 1};

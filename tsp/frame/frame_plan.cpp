@@ -50,6 +50,12 @@ Shading shading_of(const NodeClassInfo& info, const Tolerances& tol) {
   return Shading::textured;
 }
 
+Shading node_shading(const TspTree& tree, int id, const NodeClassInfo& info, const Tolerances& tol) {
+  const Shading s = shading_of(info, tol);
+  if (s == Shading::flat && tree.inside_fraction(tree.octree_of(id)) < 1.f) return Shading::textured;
+  return s;
+}
+
 std::int64_t texture_bytes(const Octree& octree, const TextureKey& key) {
   return octree.lattice(key.brick).count() * std::int64_t(sizeof(std::uint16_t));
 }
@@ -98,7 +104,7 @@ FramePlan plan_frame(const TspTree& tree, int step, std::span<const Emitted> emi
     PlannedNode p;
     p.node = e;
     p.voxels = octree.node(e.octree_id).box.count();
-    const Shading shading = shading_of(info(tree.id(e.octree_id, e.time_id)), tol);
+    const Shading shading = node_shading(tree, tree.id(e.octree_id, e.time_id), info(tree.id(e.octree_id, e.time_id)), tol);
     if (shading == Shading::none) {
       p.cls = DrawClass::not_rendered;
     } else if (shading == Shading::flat) {
@@ -146,7 +152,7 @@ TextureKeySet reachable_textures(const TspTree& tree, const NodeErrors& errors,
   TextureKeySet keys;
   for (int t = 0; t < tree.time().steps(); ++t) {
     for (const Emitted& e : traverse(tree, t, tol, errors, kAnyView, stops)) {
-      if (shading_of(info(tree.id(e.octree_id, e.time_id)), tol) != Shading::textured) continue;
+      if (node_shading(tree, tree.id(e.octree_id, e.time_id), info(tree.id(e.octree_id, e.time_id)), tol) != Shading::textured) continue;
       for (int brick : node_bricks(tree.octree(), e.octree_id, kAnyView, stops))
         keys.insert(texture_key(tree.octree(), brick, representative_step(e.span, span_step)));
     }

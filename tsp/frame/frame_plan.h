@@ -53,6 +53,9 @@ NodeInfoFn node_info(const FrameMetric& m);
 
 /// none for a transparent node, flat when e_s ≤ tol.spatial, textured otherwise (also for NaN).
 Shading shading_of(const NodeClassInfo& info, const Tolerances& tol);
+/// shading_of for TSP node id of tree, except that a node partly outside a stencil is never
+/// drawn flat (its box would cover the outside): textured instead. Never throws.
+Shading node_shading(const TspTree& tree, int id, const NodeClassInfo& info, const Tolerances& tol);
 
 /// Bytes of a brick texture: 2 per stored sample (16-bit scalars, R16); key.brick is a stored
 /// brick (leaf or level).

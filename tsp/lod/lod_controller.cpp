@@ -58,7 +58,7 @@ void LodController::evaluate(const Camera& camera, int t, const TransferFunction
     const NodeStats& s = tree_.stats(tree_.id(id, tree_.time().leaf_of(t)));
     if (n.is_leaf()) {
       // Culled, transparent or uniform at this step (drawn flat or skipped at any level).
-      const bool empty = p.culled || slopes.transparent(s.min, s.max) || s.min == s.max;
+      const bool empty = p.culled || s.empty() || slopes.transparent(s.min, s.max) || s.min == s.max;
       leaf_sum[std::size_t(id)] =
           p.pixel_area * p.depth_voxels / spacing * (empty ? kEmptyCostShare : 1.0);
       area_sum[std::size_t(id)] = p.pixel_area;

@@ -128,6 +128,7 @@ double lod_error(const TspTree& tree, int o, int t, const NodeProjection& p,
   const Octree& octree = tree.octree();
   if (p.culled || octree.node(o).is_leaf()) return 0;
   const NodeStats& s = tree.stats(tree.id(o, tree.time().leaf_of(t)));
+  if (s.empty()) return 0;
   const double colour = double(tree.level_error(o, t)) * slopes.slope(s.min, s.max);
   const auto f = octree.lod_factor(o);
   const double texel = double(std::max({f[0], f[1], f[2]})) * p.pixels_per_voxel;

@@ -66,6 +66,10 @@ EntryRange ApproximateMetric::entry_range(const NodeStats& stats) const {
 
 NodeResult ApproximateMetric::evaluate(const NodeStats& stats) const {
   NodeResult out;
+  if (stats.empty()) {  // wholly outside a stencil
+    out.transparent = true;
+    return out;
+  }
   const EntryRange r = entry_range(stats);
   const int lo = r.lo, hi = std::max(r.lo, r.hi);
   if (opaque_prefix_[hi + 1] == opaque_prefix_[lo]) {

@@ -37,6 +37,7 @@ std::int64_t MetricResult::transparent_count() const {
 }
 
 EntryRange entry_range(const TransferFunction& tf, const NodeStats& stats) {
+  if (stats.empty()) return {0, -1};  // no voxel inside a stencil: nothing to draw
   return {tf.entry_of(stats.min), tf.entry_of(stats.max)};
 }
 

@@ -3,8 +3,11 @@
 // The one interface every reader feeds: a scalar field on a regular grid over T time steps.
 // Later importers (unstructured-grid voxelizer, multiresolution levels) plug in here too.
 #pragma once
+#include <array>
+#include <cstdint>
 #include <memory>
 #include <optional>
+#include <algorithm>
 #include <span>
 #include <string>
 #include <vector>
@@ -30,6 +33,21 @@ class VolumeSource {
   /// Non-finite values are passed through; the builder applies the NaN/Inf rule.
   /// Throws IoError or FormatError naming the file and field.
   virtual void read_step(int t, std::span<float> out) = 0;
+  /// True when some voxels may lie outside the data (a voxelized unstructured mesh): then
+  /// read_step_inside says which, and a builder stores the stencil. Never throws.
+  virtual bool has_stencil() const { return false; }
+  /// Reads step t like read_step and its stencil into inside (dims().count() bytes, 1 = inside
+  /// the data, 0 = outside; outside samples hold padding). The default reads read_step and
+  /// marks every voxel inside. Throws like read_step.
+  virtual void read_step_inside(int t, std::span<float> out, std::span<std::uint8_t> inside) {
+    read_step(t, out);
+    std::fill(inside.begin(), inside.end(), std::uint8_t(1));
+  }
+  /// Physical position of voxel (0, 0, 0); (0, 0, 0) when the input does not say. Never throws.
+  virtual std::array<double, 3> origin() const { return {0, 0, 0}; }
+  /// Physical distance between neighbouring voxels per axis; (1, 1, 1) when the input does not
+  /// say. Never throws.
+  virtual std::array<double, 3> spacing() const { return {1, 1, 1}; }
 };
 
 /// Element types of raw input files.

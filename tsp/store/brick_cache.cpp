@@ -23,7 +23,9 @@ BrickCache::BrickCache(const BrickStore& store, std::int64_t budget_bytes)
 }
 
 std::int64_t BrickCache::entry_bytes(int brick) const {
-  return store_.tree().octree().lattice(brick).count() * std::int64_t(sizeof(std::uint16_t));
+  const int channels = store_.tree().has_stencil() ? 2 : 1;
+  return store_.tree().octree().lattice(brick).count() * channels *
+         std::int64_t(sizeof(std::uint16_t));
 }
 
 void BrickCache::check_key(const BrickKey& key) const {
@@ -96,7 +98,13 @@ BrickSamples BrickCache::load(const BrickKey& key, std::unique_lock<std::mutex>&
   try {
     auto buf = std::make_shared<std::vector<std::uint16_t>>(
         std::size_t(bytes / std::int64_t(sizeof(std::uint16_t))));
-    store_.read_brick(key.brick, key.step, *buf);
+    const std::size_t n = std::size_t(store_.tree().octree().lattice(key.brick).count());
+    store_.read_brick(key.brick, key.step, std::span<std::uint16_t>(buf->data(), n));
+    if (store_.tree().has_stencil()) {
+      std::vector<std::uint8_t> inside(n);
+      store_.read_inside(key.brick, key.step, inside);
+      std::copy(inside.begin(), inside.end(), buf->begin() + std::ptrdiff_t(n));
+    }
     samples = std::move(buf);
   } catch (...) {
     lock.lock();

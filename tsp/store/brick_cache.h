@@ -22,7 +22,8 @@ struct BrickKey {
   bool operator==(const BrickKey&) const = default;
 };
 
-/// Immutable samples of one brick at one step (brick_samples(b).count() codes, x fastest).
+/// Immutable samples of one brick at one step (lattice(b).count() codes, x fastest; then, when
+/// the tree has a stencil, as many inside flags, 0 or 1).
 /// Holders keep them alive after the cache has evicted them.
 using BrickSamples = std::shared_ptr<const std::vector<std::uint16_t>>;
 

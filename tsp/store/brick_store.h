@@ -2,6 +2,7 @@
 // prefetcher; may include core/, hdf5/ and tree/.
 // Read access to quantized brick samples, one (brick, step) at a time.
 #pragma once
+#include <algorithm>
 #include <cstdint>
 #include <span>
 
@@ -20,6 +21,13 @@ class BrickStore {
   /// Reads stored brick b at step t into out: tree().octree().lattice(b).count() codes,
   /// x fastest. Throws IoError/FormatError.
   virtual void read_brick(int brick, int step, std::span<std::uint16_t> out) const = 0;
+  /// Reads stored brick b's stencil at step t into out (lattice(b).count() bytes, 1 = inside
+  /// the data); only called when tree().has_stencil(). Throws IoError/FormatError.
+  virtual void read_inside(int brick, int step, std::span<std::uint8_t> out) const {
+    (void)brick;
+    (void)step;
+    std::fill(out.begin(), out.end(), std::uint8_t(1));
+  }
 };
 
 }  // namespace tsp

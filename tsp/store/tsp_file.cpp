@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <limits>
 #include <mutex>
 #include <sstream>
 
@@ -122,6 +123,7 @@ struct TspFile::Impl {
   std::string path;
   Handle file;
   Handle data;
+  Handle inside;
   std::unique_ptr<TspTree> tree;
   TspMetadata meta;
 };
@@ -131,6 +133,7 @@ TspFile::TspFile(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 TspFile::~TspFile() {
   std::lock_guard lock(hdf5_mutex());
   impl_->data.reset();
+  impl_->inside.reset();
   impl_->file.reset();
 }
 
@@ -236,6 +239,27 @@ std::unique_ptr<TspFile> TspFile::open(const std::string& path) {
                  ", expected a finite RMS residual >= 0");
   std::copy(level_error.begin(), level_error.end(), tree.level_errors().begin());
 
+  const bool stencil = H5Lexists(impl->file.get(), layout::kOctreeInside, H5P_DEFAULT) > 0;
+  if (stencil) {
+    auto inside = r.dataset<float>(layout::kOctreeInside, {no}, H5T_NATIVE_FLOAT, H5T_FLOAT);
+    for (std::size_t i = 0; i < inside.size(); ++i)
+      if (!(inside[i] >= 0 && inside[i] <= 1))
+        r.fail(std::string("dataset ") + layout::kOctreeInside,
+               "element " + std::to_string(i) + " is " + std::to_string(inside[i]) +
+                   ", expected a fraction in [0, 1]");
+    tree.set_inside_fractions(std::move(inside));
+  }
+  if (r.has_attr(layout::kAttrOrigin) || r.has_attr(layout::kAttrSpacing)) {
+    auto org = r.attr_numbers<double>(layout::kAttrOrigin, H5T_NATIVE_DOUBLE, 3);
+    auto sp = r.attr_numbers<double>(layout::kAttrSpacing, H5T_NATIVE_DOUBLE, 3);
+    for (int a = 0; a < 3; ++a) {
+      if (!std::isfinite(org[a]) || !std::isfinite(sp[a]) || !(sp[a] > 0))
+        r.fail("attributes origin/spacing", "expected finite values and spacings > 0");
+      m.origin[a] = org[a];
+      m.spacing[a] = sp[a];
+    }
+  }
+
   const std::vector<hsize_t> n = {hsize_t(tree.size())};
   auto mean = r.dataset<double>(layout::kStatsMean, n, H5T_NATIVE_DOUBLE, H5T_FLOAT);
   auto sd = r.dataset<double>(layout::kStatsStd, n, H5T_NATIVE_DOUBLE, H5T_FLOAT);
@@ -246,6 +270,10 @@ std::unique_ptr<TspFile> TspFile::open(const std::string& path) {
   // Statistics the builder can write: finite, σ ≥ 0, min ≤ max, errors ≥ 0, the mean inside
   // [min, max] (up to rounding).
   for (int i = 0; i < tree.size(); ++i) {
+    // With a stencil, a node wholly outside the data carries the empty marker.
+    if (stencil && mn[i] == std::numeric_limits<float>::infinity() &&
+        mx[i] == -std::numeric_limits<float>::infinity() && mean[i] == 0 && sd[i] == 0)
+      continue;
     const double tol = 1e-6 * std::max({1.0, std::fabs(double(mn[i])), std::fabs(double(mx[i]))});
     const bool ok = std::isfinite(mean[i]) && std::isfinite(sd[i]) && sd[i] >= 0 &&
                     std::isfinite(mn[i]) && std::isfinite(mx[i]) && mn[i] <= mx[i] &&
@@ -277,6 +305,15 @@ std::unique_ptr<TspFile> TspFile::open(const std::string& path) {
   Handle type(H5Dget_type(impl->data.get()));
   if (H5Tget_size(type.get()) != 2 || H5Tget_sign(type.get()) != H5T_SGN_NONE)
     r.fail(std::string("dataset ") + layout::kBrickData, "expected 16-bit unsigned codes");
+  if (stencil) {
+    impl->inside = r.open_dataset(
+        layout::kBrickInside,
+        {ns, hsize_t(steps), hsize_t(shape[2]), hsize_t(shape[1]), hsize_t(shape[0])},
+        H5T_INTEGER);
+    Handle itype(H5Dget_type(impl->inside.get()));
+    if (H5Tget_size(itype.get()) != 1)
+      r.fail(std::string("dataset ") + layout::kBrickInside, "expected 8-bit flags");
+  }
   return std::unique_ptr<TspFile>(new TspFile(std::move(impl)));
 }
 
@@ -307,6 +344,25 @@ void TspFile::read_brick(int brick, int step, std::span<std::uint16_t> out) cons
     throw FormatError(impl_->path + ": dataset " + layout::kBrickData + ": cannot read brick " +
                       std::to_string(brick) + " at step " + std::to_string(step) +
                       " (checksum mismatch: the brick is corrupted, or the file is truncated)");
+}
+
+void TspFile::read_inside(int brick, int step, std::span<std::uint8_t> out) const {
+  const Octree& o = impl_->tree->octree();
+  assert(impl_->inside && brick >= 0 && brick < o.stored_brick_count() && step >= 0 &&
+         step < impl_->tree->time().steps());
+  const BrickLattice s = o.lattice(brick);
+  assert(std::int64_t(out.size()) == s.count());
+  std::lock_guard lock(hdf5_mutex());
+  hsize_t start[5] = {hsize_t(brick), hsize_t(step), 0, 0, 0};
+  hsize_t count[5] = {1, 1, hsize_t(s.samples[2]), hsize_t(s.samples[1]), hsize_t(s.samples[0])};
+  Handle fspace(H5Dget_space(impl_->inside.get()));
+  Handle mspace(H5Screate_simple(3, count + 2, nullptr));
+  if (H5Sselect_hyperslab(fspace.get(), H5S_SELECT_SET, start, nullptr, count, nullptr) < 0 ||
+      H5Dread(impl_->inside.get(), H5T_NATIVE_UINT8, mspace.get(), fspace.get(), H5P_DEFAULT,
+              out.data()) < 0)
+    throw FormatError(impl_->path + ": dataset " + layout::kBrickInside +
+                      ": cannot read the stencil of brick " + std::to_string(brick) +
+                      " at step " + std::to_string(step) + " (corrupted or truncated)");
 }
 
 }  // namespace tsp

@@ -1,6 +1,7 @@
 // The .tsp file: an HDF5 file holding quantized leaf bricks and the TSP tree with statistics.
 // Layout and versioning: docs/formats.md.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -24,6 +25,8 @@ struct TspMetadata {
   std::int64_t nonfinite_count = 0;    ///< NaN/Inf samples replaced by the NaN/Inf rule
   std::vector<std::uint64_t> histogram;  ///< kHistogramBins counts over value_range()
   std::string created_by;              ///< "tspplay VERSION"
+  std::array<double, 3> origin{0, 0, 0};   ///< physical position of voxel (0, 0, 0)
+  std::array<double, 3> spacing{1, 1, 1};  ///< physical voxel spacing per axis
 };
 
 /// An open .tsp file: tree, metadata, and brick reads (one HDF5 chunk per brick and step).
@@ -41,6 +44,9 @@ class TspFile : public BrickStore {
   const std::string& path() const;
   /// Reads one stored brick (leaf or level) at one step; thread-safe. Throws IoError/FormatError.
   void read_brick(int brick, int step, std::span<std::uint16_t> out) const override;
+  /// Reads one stored brick's stencil at one step (files with a stencil); thread-safe. Throws
+  /// IoError/FormatError.
+  void read_inside(int brick, int step, std::span<std::uint8_t> out) const override;
 
  private:
   struct Impl;

@@ -33,11 +33,15 @@ inline constexpr const char* kAttrCreatedBy = "created_by";
 inline constexpr const char* kAttrNonfinite = "nonfinite_count";  // int64
 inline constexpr const char* kAttrQuantization = "quantization";  // text of the rule
 inline constexpr const char* kAttrNodeId = "tsp_node_id";         // text of the id rule
+inline constexpr const char* kAttrOrigin = "origin";    // float64[3]: voxel (0,0,0) in space
+inline constexpr const char* kAttrSpacing = "spacing";  // float64[3]: voxel spacing per axis
 
 // Datasets.
 inline constexpr const char* kBricks = "/bricks";
 // uint16 [nb+nl,T,Bz,By,Bx]: the nb leaf bricks, then the nl level bricks (format 2)
 inline constexpr const char* kBrickData = "/bricks/data";
+// uint8, the shape of /bricks/data, only for inputs with a stencil: 1 = inside the data
+inline constexpr const char* kBrickInside = "/bricks/inside";
 inline constexpr const char* kBrickSamplesBox = "/bricks/samples_box";  // int32 [nb,6]
 inline constexpr const char* kBrickOwnBox = "/bricks/own_box";          // int32 [nb,6]
 inline constexpr const char* kLevels = "/levels";
@@ -50,6 +54,7 @@ inline constexpr const char* kOctreeLevel = "/octree/level";        // int32 [no
 inline constexpr const char* kOctreeParent = "/octree/parent";      // int32 [no]
 inline constexpr const char* kOctreeChildren = "/octree/children";  // int32 [no,8]
 inline constexpr const char* kOctreeBrick = "/octree/brick";        // int32 [no]
+inline constexpr const char* kOctreeInside = "/octree/inside";      // float32 [no], with a stencil
 inline constexpr const char* kTime = "/time";
 inline constexpr const char* kTimeSpan = "/time/span";  // int32 [2T-1,2]
 inline constexpr const char* kStats = "/stats";

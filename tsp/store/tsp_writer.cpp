@@ -72,6 +72,7 @@ struct TspWriter::Impl {
   std::string path;
   Handle file;
   Handle data;
+  Handle inside;
   int steps = 0;
   std::array<int, 3> shape{};  // x, y, z
 };
@@ -112,12 +113,42 @@ TspWriter::TspWriter(const std::string& path, const TspTree& tree)
   w.data = Handle(check_id(H5Dcreate2(w.file.get(), layout::kBrickData, H5T_STD_U16LE, space.get(),
                                       H5P_DEFAULT, dcpl.get(), dapl.get()),
                            path, layout::kBrickData));
+  if (tree.has_stencil()) {
+    // The stencil compresses to almost nothing: all-inside and all-outside chunks are runs.
+    Handle icpl(H5Pcreate(H5P_DATASET_CREATE));
+    H5Pset_chunk(icpl.get(), 5, chunk.data());
+    H5Pset_fill_time(icpl.get(), H5D_FILL_TIME_NEVER);
+    H5Pset_deflate(icpl.get(), 1);
+    H5Pset_fletcher32(icpl.get());
+    w.inside = Handle(check_id(H5Dcreate2(w.file.get(), layout::kBrickInside, H5T_STD_U8LE,
+                                          space.get(), H5P_DEFAULT, icpl.get(), H5P_DEFAULT),
+                               path, layout::kBrickInside));
+  }
 }
 
 TspWriter::~TspWriter() {
   std::lock_guard lock(hdf5_mutex());
   impl_->data.reset();
+  impl_->inside.reset();
   impl_->file.reset();
+}
+
+void TspWriter::write_inside_series(int brick, std::span<const std::uint8_t> inside) {
+  Impl& w = *impl_;
+  const hsize_t per_step = hsize_t(w.shape[0]) * w.shape[1] * w.shape[2];
+  assert(w.inside && inside.size() == per_step * w.steps);
+  std::lock_guard lock(hdf5_mutex());
+  Handle fspace(H5Dget_space(w.inside.get()));
+  for (hsize_t t0 = 0; t0 < hsize_t(w.steps); t0 += kWriteBatchSteps) {
+    const hsize_t n = std::min<hsize_t>(kWriteBatchSteps, hsize_t(w.steps) - t0);
+    hsize_t start[5] = {hsize_t(brick), t0, 0, 0, 0};
+    hsize_t count[5] = {1, n, hsize_t(w.shape[2]), hsize_t(w.shape[1]), hsize_t(w.shape[0])};
+    H5Sselect_hyperslab(fspace.get(), H5S_SELECT_SET, start, nullptr, count, nullptr);
+    Handle mspace(H5Screate_simple(5, count, nullptr));
+    check_status(H5Dwrite(w.inside.get(), H5T_NATIVE_UINT8, mspace.get(), fspace.get(),
+                          H5P_DEFAULT, inside.data() + t0 * per_step),
+                 w.path, "stencil of brick " + std::to_string(brick));
+  }
 }
 
 void TspWriter::write_brick_series(int brick, std::span<const std::uint16_t> codes) {
@@ -177,6 +208,9 @@ void TspWriter::finish(const TspTree& tree, const TspMetadata& meta) {
   write_dataset(f, p, layout::kOctreeChildren, H5T_NATIVE_INT32, H5T_STD_I32LE, {no, 8},
                 children.data());
   write_dataset(f, p, layout::kOctreeBrick, H5T_NATIVE_INT32, H5T_STD_I32LE, {no}, brick.data());
+  if (tree.has_stencil())
+    write_dataset(f, p, layout::kOctreeInside, H5T_NATIVE_FLOAT, H5T_IEEE_F32LE, {no},
+                  tree.inside_fractions().data());
   const hsize_t nl = hsize_t(o.level_brick_count());
   std::vector<int> level_node(nl);
   std::vector<std::array<int, 9>> lattice(nl);
@@ -242,6 +276,9 @@ void TspWriter::finish(const TspTree& tree, const TspMetadata& meta) {
   write_attr(r, p, layout::kAttrValueRange, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, {2}, value_range);
   write_attr(r, p, layout::kAttrDataRange, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, {2}, data_range);
   write_attr(r, p, layout::kAttrNonfinite, H5T_NATIVE_INT64, H5T_STD_I64LE, {}, &nonfinite);
+  write_attr(r, p, layout::kAttrOrigin, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, {3}, meta.origin.data());
+  write_attr(r, p, layout::kAttrSpacing, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, {3},
+             meta.spacing.data());
   write_attr_string(r, p, layout::kAttrSource, meta.source);
   write_attr_string(r, p, layout::kAttrField, meta.field);
   write_attr_string(r, p, layout::kAttrCreatedBy, meta.created_by);
@@ -251,6 +288,7 @@ void TspWriter::finish(const TspTree& tree, const TspMetadata& meta) {
   root.reset();
 
   w.data.reset();
+  w.inside.reset();
   if (H5Fflush(f, H5F_SCOPE_GLOBAL) < 0) throw IoError(p + ": cannot flush the output file");
   w.file.reset();
 }

@@ -24,6 +24,9 @@ class TspWriter {
   /// Writes brick b at every step: codes is [T][Bz][By][Bx] (stored_brick_shape, padded).
   /// Throws IoError.
   void write_brick_series(int brick, std::span<const std::uint16_t> codes);
+  /// Writes brick b's stencil at every step (trees with a stencil only), laid out like codes.
+  /// Throws IoError.
+  void write_inside_series(int brick, std::span<const std::uint8_t> inside);
   /// Writes the tree (shape and statistics), the ranges and the metadata, then closes the file.
   /// Throws IoError.
   void finish(const TspTree& tree, const TspMetadata& metadata);

@@ -63,8 +63,9 @@ struct NodeAccum {
     NodeStats s;
     s.mean = moments.mean;
     s.std = moments.std_dev();
-    s.min = moments.n > 0 ? moments.min : 0.f;
-    s.max = moments.n > 0 ? moments.max : 0.f;
+    // No voxel (all outside a stencil): the empty marker min > max.
+    s.min = moments.n > 0 ? moments.min : std::numeric_limits<float>::infinity();
+    s.max = moments.n > 0 ? moments.max : -std::numeric_limits<float>::infinity();
     s.spatial_error = float(coefficient_of_variation(s.std, s.mean, range_width));
     s.temporal_error = voxels > 0 ? float(cov_sum / double(voxels)) : 0.f;
     return s;

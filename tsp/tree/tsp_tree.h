@@ -19,6 +19,9 @@ struct NodeStats {
   float min = 0, max = 0;     ///< extreme sample values
   float spatial_error = 0;    ///< e_ss = σ / |v̄| with the spec's COV rule
   float temporal_error = 0;   ///< e_st = (1/n) Σᵢ σᵢ / |v̄ᵢ| with the same rule per voxel
+  /// True when no voxel of the node lies inside the data (a stencil's outside; min > max then):
+  /// such a node is never drawn.
+  bool empty() const { return min > max; }
 };
 
 /// The whole tree: shape plus statistics for every (octree node, time node) pair.
@@ -55,6 +58,15 @@ class TspTree {
     const int i = octree_.node_brick(o) - octree_.brick_count();
     return i < 0 ? 0.f : level_error_[std::size_t(i) * time_.steps() + t];
   }
+  /// True when the tree's volume has a stencil (voxels outside the data).
+  bool has_stencil() const { return !inside_.empty(); }
+  /// Fraction of octree node o's own voxels inside the data, over the whole series (1 without
+  /// a stencil). A node with a fraction below 1 is never drawn flat.
+  float inside_fraction(int o) const { return inside_.empty() ? 1.f : inside_[std::size_t(o)]; }
+  /// Sets the inside fractions, one per octree node (empty: no stencil).
+  void set_inside_fractions(std::vector<float> f) { inside_ = std::move(f); }
+  /// The inside fractions by octree node (empty without a stencil).
+  std::span<const float> inside_fractions() const { return inside_; }
   /// All level errors, [level brick][step] (level brick = stored brick − brick_count()).
   std::span<const float> level_errors() const { return level_error_; }
   /// Mutable level errors, for the builder and the file reader.
@@ -65,6 +77,7 @@ class TspTree {
   TimeTree time_;
   std::vector<NodeStats> stats_;
   std::vector<float> level_error_;
+  std::vector<float> inside_;
   ValueRange range_;
 };
 

@@ -25,7 +25,7 @@ TEST(StepPrefetcher, DeliversEveryStepInOrderAndHooksOnTheReaderThread) {
   std::thread::id hook_thread;
   const std::thread::id me = std::this_thread::get_id();
   {
-    tsp::StepPrefetcher p(src, [&](int t, const std::vector<float>& v) {
+    tsp::StepPrefetcher p(src, [&](int t, const std::vector<float>& v, const std::vector<std::uint8_t>&) {
       hooked.push_back(t);
       hook_thread = std::this_thread::get_id();
       EXPECT_EQ(v[0], float(1000 * t));
@@ -53,7 +53,7 @@ TEST(StepPrefetcher, SourceAndHookErrorsComeBackFromNext) {
   EXPECT_THROW(p.next(), tsp::IoError);
 
   tsptest::MemorySource ok = series(3);
-  tsp::StepPrefetcher q(ok, [](int t, const std::vector<float>&) {
+  tsp::StepPrefetcher q(ok, [](int t, const std::vector<float>&, const std::vector<std::uint8_t>&) {
     if (t == 1) throw tsp::FormatError("hook failed at step 1");
   });
   q.next();

@@ -1,15 +1,13 @@
 // One parsed VTK XML ImageData (.vti) file: its grid, its arrays, and decoding of one scalar
 // array into a whole-extent volume. Used by the .vti / .pvd / .vti.series readers.
 #pragma once
-#include <memory>
 #include <pugixml.hpp>
-#include <set>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "tsp/core/types.h"
-#include "tsp/source/vtk/vtk_xml.h"
+#include "tsp/source/vtk/vtk_document.h"
 
 namespace tsp::io {
 
@@ -28,7 +26,7 @@ class VtiFile {
   VtiFile(const std::string& path, bool header_only);
 
   /// The file's path.
-  const std::string& path() const { return path_; }
+  const std::string& path() const { return doc_.path(); }
 
   /// Resolves the requested field (empty: the only array, else PointData's Scalars array).
   /// Throws FormatError listing the available arrays when it is missing or ambiguous, and
@@ -44,19 +42,9 @@ class VtiFile {
   void read(const VtiField& f, std::span<float> out) const;
 
  private:
-  void decode(const pugi::xml_node& array, std::span<float> out) const;
-
-  std::string path_;
-  std::string content_;  // file bytes (up to the appended block when header-only)
-  std::unique_ptr<pugi::xml_document> doc_;
+  VtkDocument doc_;
   pugi::xml_node image_;
-  vtkxml::BinaryLayout layout_;
   long long whole_[6] = {0, 0, 0, 0, 0, 0};
-  bool header_only_ = false;
-  std::size_t appended_ = std::string::npos;      // first appended byte in content_
-  std::size_t appended_end_ = std::string::npos;  // end of the appended block
-  bool appended_base64_ = false;
-  std::set<unsigned long long> appended_offsets_;  // every array's offset, to bound base64 runs
 };
 
 }  // namespace tsp::io

@@ -8,6 +8,7 @@
 #include <charconv>
 #include <cstring>
 #include <limits>
+#include <type_traits>
 
 #include "tsp/core/error.h"
 
@@ -38,6 +39,28 @@ float saturate(double v) {
   if (v > kMax) return std::numeric_limits<float>::infinity();
   if (v < -kMax) return -std::numeric_limits<float>::infinity();
   return static_cast<float>(v);
+}
+
+// Deflate cannot expand data by more than about 1032:1; a header claiming more lies.
+constexpr std::uint64_t kMaxInflateRatio = 1032;
+
+template <typename T>
+void convert_int(std::span<const unsigned char> bytes, bool swap, std::span<std::int64_t> out,
+                 const std::string& where) {
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    unsigned char tmp[sizeof(T)];
+    std::memcpy(tmp, bytes.data() + i * sizeof(T), sizeof(T));
+    if (swap)
+      for (std::size_t k = 0; k < sizeof(T) / 2; ++k) std::swap(tmp[k], tmp[sizeof(T) - 1 - k]);
+    T v;
+    std::memcpy(&v, tmp, sizeof(T));
+    if constexpr (std::is_same_v<T, std::uint64_t>) {
+      if (v > std::uint64_t(std::numeric_limits<std::int64_t>::max()))
+        throw FormatError(where + ": value " + std::to_string(v) + " at index " +
+                          std::to_string(i) + " exceeds the 64-bit signed range");
+    }
+    out[i] = static_cast<std::int64_t>(v);
+  }
 }
 
 template <typename T>
@@ -153,6 +176,7 @@ std::vector<unsigned char> unpack_binary(std::span<const unsigned char> bytes,
          !__builtin_mul_overflow(blocks - 1, block_size, &total) &&
          !__builtin_add_overflow(total, last, &total);
   }
+  if (ok && total > kMaxInflateRatio * std::uint64_t(bytes.size()) + kMaxInflateRatio) ok = false;
   if (!ok || total != expected_bytes)
     throw FormatError(where + ": zlib header describes " + std::to_string(blocks) + " blocks of " +
                       std::to_string(block_size) + " bytes (last " + std::to_string(last) +
@@ -219,6 +243,33 @@ void convert_to_float(std::span<const unsigned char> bytes, ElemType t, bool big
       convert_typed<double>(bytes, swap, out);
       break;
   }
+}
+
+void convert_to_int64(std::span<const unsigned char> bytes, ElemType t, bool big_endian,
+                      std::span<std::int64_t> out, const std::string& where) {
+  const bool swap = big_endian != (std::endian::native == std::endian::big);
+  switch (t) {
+    case ElemType::i8:
+      return convert_int<std::int8_t>(bytes, swap, out, where);
+    case ElemType::u8:
+      return convert_int<std::uint8_t>(bytes, swap, out, where);
+    case ElemType::i16:
+      return convert_int<std::int16_t>(bytes, swap, out, where);
+    case ElemType::u16:
+      return convert_int<std::uint16_t>(bytes, swap, out, where);
+    case ElemType::i32:
+      return convert_int<std::int32_t>(bytes, swap, out, where);
+    case ElemType::u32:
+      return convert_int<std::uint32_t>(bytes, swap, out, where);
+    case ElemType::i64:
+      return convert_int<std::int64_t>(bytes, swap, out, where);
+    case ElemType::u64:
+      return convert_int<std::uint64_t>(bytes, swap, out, where);
+    case ElemType::f32:
+    case ElemType::f64:
+      break;
+  }
+  throw FormatError(where + ": floating-point data where integers are expected");
 }
 
 void parse_ascii(std::string_view text, std::span<float> out, const std::string& where) {

@@ -45,6 +45,11 @@ std::vector<unsigned char> unpack_binary(std::span<const unsigned char> bytes,
 void convert_to_float(std::span<const unsigned char> bytes, ElemType t, bool big_endian,
                       std::span<float> out);
 
+/// Converts out.size() integer elements of type t (not f32/f64) to int64 exactly. Throws
+/// FormatError naming `where` when a UInt64 value exceeds the int64 range.
+void convert_to_int64(std::span<const unsigned char> bytes, ElemType t, bool big_endian,
+                      std::span<std::int64_t> out, const std::string& where);
+
 /// Parses whitespace-separated numbers (ascii format) into out; throws FormatError naming
 /// `where` when a token is not a number or the count differs from out.size().
 void parse_ascii(std::string_view text, std::span<float> out, const std::string& where);

@@ -1,0 +1,161 @@
+#!/usr/bin/python3
+"""Unstructured-grid reader fixtures (tests/data/vtu/), written by VTK's own writers (python3-vtk9)
+and, for VTKHDF, by h5py following VTK's "VTKHDF File Format" specification.
+
+One mesh of six disjoint cells, one of each type the voxelizer reads (tetra, voxel, hexahedron,
+wedge, pyramid, polyhedron), steps t = 0, 1, 2. Point field f = x + 10·y + 100·z + 1000·t
+(Float32), point vector v = (x, 2y, 3z) (Float64, 3 components), cell field c = 7·cell + t
+(Float32). Point coordinates are small multiples of 1/4, so f is exact in float. Run:
+    /usr/bin/python3 tests/data/make_mesh_fixtures.py
+"""
+import json
+import os
+
+import h5py
+import numpy as np
+import vtk
+
+OUT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "vtu")
+STEPS = [0, 1, 2]
+TIMES = [0.5, 0.0, 0.25]  # listed in this order; readers sort by time (step t has TIMES[t])
+
+
+def cells():
+    """(type, points) for the six cells, each placed in its own unit box along x."""
+    tet = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)]
+    vox = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (1, 1, 0), (0, 0, 1), (1, 0, 1), (0, 1, 1), (1, 1, 1)]
+    hexa = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]
+    wedge = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (0, 1, 1)]
+    pyr = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0.5, 0.5, 1)]
+    return [(vtk.VTK_TETRA, tet), (vtk.VTK_VOXEL, vox), (vtk.VTK_HEXAHEDRON, hexa),
+            (vtk.VTK_WEDGE, wedge), (vtk.VTK_PYRAMID, pyr), (vtk.VTK_POLYHEDRON, hexa)]
+
+
+def make_grid(t):
+    ug = vtk.vtkUnstructuredGrid()
+    pts = vtk.vtkPoints()
+    pts.SetDataTypeToFloat()
+    coords = []
+    for k, (ctype, local) in enumerate(cells()):
+        ids = []
+        for (x, y, z) in local:
+            ids.append(pts.InsertNextPoint(x + 2 * k, y, z))
+            coords.append((x + 2 * k, y, z))
+        if ctype == vtk.VTK_POLYHEDRON:
+            faces = [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7]]
+            stream = [len(faces)]
+            for fc in faces:
+                stream += [len(fc)] + [ids[i] for i in fc]
+            idl = vtk.vtkIdList()
+            for v in stream:
+                idl.InsertNextId(v)
+            ug.InsertNextCell(ctype, idl)
+        else:
+            ug.InsertNextCell(ctype, len(ids), ids)
+    ug.SetPoints(pts)
+    xyz = np.array(coords, dtype=np.float64)
+    f = vtk.vtkFloatArray()
+    f.SetName("f")
+    for x, y, z in xyz:
+        f.InsertNextValue(x + 10 * y + 100 * z + 1000 * t)
+    v = vtk.vtkDoubleArray()
+    v.SetName("v")
+    v.SetNumberOfComponents(3)
+    for x, y, z in xyz:
+        v.InsertNextTuple3(x, 2 * y, 3 * z)
+    c = vtk.vtkFloatArray()
+    c.SetName("c")
+    for k in range(ug.GetNumberOfCells()):
+        c.InsertNextValue(7 * k + t)
+    ug.GetPointData().AddArray(f)
+    ug.GetPointData().AddArray(v)
+    ug.GetPointData().SetActiveScalars("f")
+    ug.GetCellData().AddArray(c)
+    return ug
+
+
+VARIANTS = {
+    "ascii": dict(mode="ascii"),
+    "binary": dict(mode="binary"),
+    "appended": dict(mode="appended"),
+    "base64": dict(mode="appended", encode=True),
+    "zlib64": dict(mode="appended", zlib=True, header64=True),
+    "zlib_binary": dict(mode="binary", zlib=True),
+}
+
+
+def write_vtu(path, ug, mode, encode=False, zlib=False, header64=False):
+    w = vtk.vtkXMLUnstructuredGridWriter()
+    w.SetFileName(path)
+    w.SetInputData(ug)
+    {"ascii": w.SetDataModeToAscii, "binary": w.SetDataModeToBinary,
+     "appended": w.SetDataModeToAppended}[mode]()
+    w.SetEncodeAppendedData(1 if encode else 0)
+    w.SetHeaderTypeToUInt64() if header64 else w.SetHeaderTypeToUInt32()
+    w.SetCompressorTypeToZLib() if zlib else w.SetCompressorTypeToNone()
+    assert w.Write() == 1, path
+
+
+def write_vtkhdf(path, ug, t):
+    """A static VTKHDF UnstructuredGrid (version 2.0), one partition."""
+    from vtk.util import numpy_support as ns
+    with h5py.File(path, "w") as h:
+        g = h.create_group("VTKHDF")
+        g.attrs["Version"] = np.array([2, 0], dtype=np.int64)
+        s = "UnstructuredGrid".encode("ascii")
+        g.attrs.create("Type", s, dtype=h5py.string_dtype("ascii", len(s)))
+        nonpoly = [k for k in range(ug.GetNumberOfCells()) if ug.GetCellType(k) != vtk.VTK_POLYHEDRON]
+        pts = ns.vtk_to_numpy(ug.GetPoints().GetData()).astype(np.float64)
+        conn, offs, types = [], [0], []
+        for k in nonpoly:
+            ids = ug.GetCell(k).GetPointIds()
+            conn += [ids.GetId(i) for i in range(ids.GetNumberOfIds())]
+            offs.append(len(conn))
+            types.append(ug.GetCellType(k))
+        g["NumberOfPoints"] = np.array([len(pts)], dtype=np.int64)
+        g["NumberOfCells"] = np.array([len(types)], dtype=np.int64)
+        g["NumberOfConnectivityIds"] = np.array([len(conn)], dtype=np.int64)
+        g["Points"] = pts
+        g["Connectivity"] = np.array(conn, dtype=np.int64)
+        g["Offsets"] = np.array(offs, dtype=np.int64)
+        g["Types"] = np.array(types, dtype=np.uint8)
+        pd = g.create_group("PointData")
+        pd["f"] = ns.vtk_to_numpy(ug.GetPointData().GetArray("f"))
+        pd["v"] = ns.vtk_to_numpy(ug.GetPointData().GetArray("v"))
+        cd = g.create_group("CellData")
+        cd["c"] = ns.vtk_to_numpy(ug.GetCellData().GetArray("c"))[nonpoly]
+
+
+def main():
+    os.makedirs(OUT, exist_ok=True)
+    for name, opts in VARIANTS.items():
+        for t in STEPS:
+            write_vtu(os.path.join(OUT, f"{name}_{t}.vtu"), make_grid(t), **opts)
+    # Collections over the zlib64 files, listed out of time order.
+    order = [2, 0, 1]
+    with open(os.path.join(OUT, "mixed.pvd"), "w") as p:
+        p.write('<?xml version="1.0"?>\n<VTKFile type="Collection" version="0.1">\n<Collection>\n')
+        for t in order:
+            p.write(f'  <DataSet timestep="{TIMES[t]}" part="0" file="zlib64_{t}.vtu"/>\n')
+        p.write("</Collection>\n</VTKFile>\n")
+    with open(os.path.join(OUT, "mixed.vtu.series"), "w") as s:
+        json.dump({"file-series-version": "1.0",
+                   "files": [{"name": f"binary_{t}.vtu", "time": TIMES[t]} for t in order]}, s)
+    # foamToVTK's layout: a .vtm per step whose "internal" block is the volume, boundary beside.
+    for t in STEPS:
+        with open(os.path.join(OUT, f"case_{t}.vtm"), "w") as m:
+            m.write("<?xml version='1.0'?>\n<VTKFile type='vtkMultiBlockDataSet' version='1.0'>\n"
+                    "  <vtkMultiBlockDataSet>\n"
+                    f"    <DataSet name='internal' file='appended_{t}.vtu' />\n"
+                    "    <Block name='boundary'>\n"
+                    f"      <DataSet name='wall' file='wall_{t}.vtp' />\n"
+                    "    </Block>\n  </vtkMultiBlockDataSet>\n</VTKFile>\n")
+    with open(os.path.join(OUT, "case.vtm.series"), "w") as s:
+        json.dump({"file-series-version": "1.0",
+                   "files": [{"name": f"case_{t}.vtm", "time": TIMES[t]} for t in order]}, s)
+    for t in STEPS:
+        write_vtkhdf(os.path.join(OUT, f"mesh_{t}.hdf"), make_grid(t), t)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,199 @@
+// The voxelizer against analytic answers: a linear field is reproduced at every inside voxel, a
+// box of hexahedra covers every voxel, a hole's voxels (and only they) are outside, the
+// separating-axis test agrees with clipping, padding takes the nearest inside value.
+#include "tsp/voxelize/voxelizer.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "tsp/core/error.h"
+#include "tsp/voxelize/tet_box.h"
+#include "tsp/voxelize/voxelized_source.h"
+
+namespace tsp {
+namespace {
+
+// An n³ grid of hexahedra over [0,1]³ with interior points jittered (cells stay convex), keeping
+// the cells for which keep(centre) holds; values f(point).
+template <typename Keep, typename F>
+Mesh jittered_box(int n, double jitter, Keep keep, F f) {
+  Mesh m;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-jitter, jitter);
+  auto id = [&](int x, int y, int z) { return std::int64_t(x + (n + 1) * (y + (n + 1) * z)); };
+  for (int z = 0; z <= n; ++z)
+    for (int y = 0; y <= n; ++y)
+      for (int x = 0; x <= n; ++x) {
+        const int c[3] = {x, y, z};
+        for (int a = 0; a < 3; ++a) {
+          const bool inner = c[a] > 0 && c[a] < n;
+          m.points.push_back((c[a] + (inner ? u(rng) : 0.0)) / n);
+        }
+      }
+  m.offsets.push_back(0);
+  for (int z = 0; z < n; ++z)
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) {
+        if (!keep((x + 0.5) / n, (y + 0.5) / n, (z + 0.5) / n)) continue;
+        for (auto p : {id(x, y, z), id(x + 1, y, z), id(x + 1, y + 1, z), id(x, y + 1, z),
+                       id(x, y, z + 1), id(x + 1, y, z + 1), id(x + 1, y + 1, z + 1),
+                       id(x, y + 1, z + 1)})
+          m.connectivity.push_back(p);
+        m.offsets.push_back(std::int64_t(m.connectivity.size()));
+        m.types.push_back(CellType::hexahedron);
+      }
+  for (std::int64_t p = 0; p < m.point_count(); ++p)
+    m.values.push_back(f(m.points[std::size_t(3 * p)], m.points[std::size_t(3 * p + 1)],
+                         m.points[std::size_t(3 * p + 2)]));
+  check_mesh(m, "test mesh");
+  return m;
+}
+
+VoxelGrid unit_grid(int n) {
+  VoxelGrid g;
+  g.dims = Dims{n, n, n};
+  g.spacing = {1.0 / (n - 1), 1.0 / (n - 1), 1.0 / (n - 1)};
+  return g;
+}
+
+TEST(Voxelizer, LinearFieldIsExactAtEveryVoxelAndTheBoxIsCovered) {
+  auto f = [](double x, double y, double z) { return float(1 + 2 * x - 3 * y + 0.5 * z); };
+  const Mesh m = jittered_box(6, 0.2, [](double, double, double) { return true; }, f);
+  const VoxelGrid g = unit_grid(23);
+  std::vector<float> v(std::size_t(g.dims.count()));
+  std::vector<std::uint8_t> in(v.size());
+  const VoxelizeStats st = voxelize(tetrahedralize(m), g, v, in, 2);
+  EXPECT_EQ(st.inside, g.dims.count());  // no gap anywhere, faces and boundary included
+  for (int z = 0; z < 23; ++z)
+    for (int y = 0; y < 23; ++y)
+      for (int x = 0; x < 23; ++x) {
+        const std::size_t i = std::size_t(x + 23 * (y + 23 * z));
+        ASSERT_TRUE(in[i]);
+        EXPECT_NEAR(v[i], f(x / 22.0, y / 22.0, z / 22.0), 2e-6) << x << "," << y << "," << z;
+      }
+}
+
+TEST(Voxelizer, HoleVoxelsAreOutsideAndPaddedFromTheirNeighbours) {
+  // Cells whose centre lies within 0.3 of the axis x = y = 0.5 are removed: on a grid of cell
+  // centres, exactly those voxels are outside.
+  const int n = 10;
+  auto hole = [](double x, double y, double) { return std::hypot(x - 0.5, y - 0.5) < 0.3; };
+  const Mesh m = jittered_box(n, 0.0, [&](double x, double y, double z) { return !hole(x, y, z); },
+                              [](double x, double, double) { return float(x); });
+  VoxelGrid g;
+  g.dims = Dims{n, n, n};
+  g.origin = {0.5 / n, 0.5 / n, 0.5 / n};
+  g.spacing = {1.0 / n, 1.0 / n, 1.0 / n};
+  std::vector<float> v(std::size_t(g.dims.count()));
+  std::vector<std::uint8_t> in(v.size());
+  voxelize(tetrahedralize(m), g, v, in, 1);
+  for (int z = 0; z < n; ++z)
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) {
+        const std::size_t i = std::size_t(x + n * (y + n * z));
+        const double cx = (x + 0.5) / n, cy = (y + 0.5) / n;
+        EXPECT_EQ(in[i], hole(cx, cy, 0) ? 0 : 1) << x << "," << y;
+        // Padding copies an inside value from the nearest ring, so it stays in [0, 1].
+        EXPECT_GE(v[i], 0.f);
+        EXPECT_LE(v[i], 1.f);
+      }
+}
+
+TEST(Voxelizer, PadOutsideTakesTheNearestInsideValue) {
+  const Dims d{5, 1, 1};
+  std::vector<float> v = {0, 0, 7, 0, 9};
+  const std::vector<std::uint8_t> in = {0, 0, 1, 0, 1};
+  pad_outside(v, in, d);
+  EXPECT_EQ(v, (std::vector<float>{7, 7, 7, 7, 9}));
+}
+
+// Clipping reference: the tet and the box overlap iff a tet face clipped to the box keeps area
+// or the box lies inside the tet.
+bool overlap_by_clipping(const std::array<Vec3, 4>& t, const Aabb& b) {
+  const int faces[4][3] = {{0, 1, 2}, {0, 1, 3}, {0, 2, 3}, {1, 2, 3}};
+  for (const auto& f : faces) {
+    std::vector<Vec3> poly = {t[std::size_t(f[0])], t[std::size_t(f[1])], t[std::size_t(f[2])]};
+    for (int a = 0; a < 3 && !poly.empty(); ++a)
+      for (int side = 0; side < 2 && !poly.empty(); ++side) {
+        std::vector<Vec3> out;
+        auto inside = [&](const Vec3& p) { return side ? p[a] <= b.hi[a] : p[a] >= b.lo[a]; };
+        const double plane = side ? b.hi[a] : b.lo[a];
+        for (std::size_t i = 0; i < poly.size(); ++i) {
+          const Vec3 &p = poly[i], &q = poly[(i + 1) % poly.size()];
+          if (inside(p)) out.push_back(p);
+          if (inside(p) != inside(q)) {
+            const double s = (plane - p[a]) / (q[a] - p[a]);
+            out.push_back({p[0] + s * (q[0] - p[0]), p[1] + s * (q[1] - p[1]), p[2] + s * (q[2] - p[2])});
+          }
+        }
+        poly = out;
+      }
+    if (!poly.empty()) return true;
+  }
+  // Box corner inside the tet (barycentric signs agree with the fourth vertex for each face).
+  auto side = [](const Vec3& a, const Vec3& b2, const Vec3& c, const Vec3& p) {
+    const double u[3] = {b2[0] - a[0], b2[1] - a[1], b2[2] - a[2]}, w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    const double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+    return n[0] * (p[0] - a[0]) + n[1] * (p[1] - a[1]) + n[2] * (p[2] - a[2]);
+  };
+  const Vec3 corner = {b.lo[0], b.lo[1], b.lo[2]};
+  for (const auto& f : faces) {
+    int o = 6 - f[0] - f[1] - f[2];
+    const auto& A = t[std::size_t(f[0])];
+    const auto& B = t[std::size_t(f[1])];
+    const auto& C = t[std::size_t(f[2])];
+    if (side(A, B, C, corner) * side(A, B, C, t[std::size_t(o)]) < 0) return false;
+  }
+  return true;
+}
+
+TEST(TetBox, SeparatingAxisTestAgreesWithClipping) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1), s(0.05, 0.8);
+  int overlaps = 0, disjoint = 0;
+  for (int i = 0; i < 20000; ++i) {
+    std::array<Vec3, 4> t;
+    for (auto& p : t) p = {u(rng), u(rng), u(rng)};
+    Aabb b;
+    for (int a = 0; a < 3; ++a) {
+      b.lo[a] = u(rng) * 0.8;
+      b.hi[a] = b.lo[a] + s(rng);
+    }
+    const bool want = overlap_by_clipping(t, b);
+    ASSERT_EQ(tet_box_overlap(t, b), want) << "pair " << i;
+    (want ? overlaps : disjoint)++;
+  }
+  EXPECT_GT(overlaps, 1000);
+  EXPECT_GT(disjoint, 1000);
+}
+
+TEST(VoxelGridRule, ResolutionVoxelSizeAndMedianCellSize) {
+  Aabb b;
+  b.hi = {2, 1, 0.5};
+  VoxelizeOptions o;
+  o.resolution = 41;
+  VoxelGrid g = choose_grid(b, 0, o);
+  EXPECT_EQ(g.dims, (Dims{41, 21, 11}));
+  EXPECT_DOUBLE_EQ(g.spacing[0], 0.05);
+  o = {};
+  o.voxel_size = 0.5;
+  EXPECT_EQ(choose_grid(b, 0, o).dims, (Dims{5, 3, 2}));
+  o = {};
+  EXPECT_EQ(choose_grid(b, 0.1, o).dims.x, 21);                       // one sample per cell
+  EXPECT_EQ(choose_grid(b, 1e-4, o).dims.x, kMaxDefaultResolution);   // held to the maximum
+  EXPECT_EQ(choose_grid(b, 10, o).dims.x, kMinDefaultResolution);     // and the minimum
+  o.resolution = 10;
+  o.voxel_size = 1;
+  EXPECT_THROW(choose_grid(b, 0, o), UsageError);
+  o = {};
+  o.voxel_size = 1e-6;
+  EXPECT_THROW(choose_grid(b, 0, o), UsageError);  // beyond kMaxVoxelizedSamples
+  const Mesh m = jittered_box(4, 0, [](double, double, double) { return true; },
+                              [](double, double, double) { return 0.f; });
+  EXPECT_NEAR(median_cell_size(tetrahedralize(m)), 0.25, 1e-12);
+}
+
+}  // namespace
+}  // namespace tsp

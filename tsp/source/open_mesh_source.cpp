@@ -1,0 +1,144 @@
+#include "tsp/source/open_mesh_source.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cctype>
+#include <filesystem>
+#include <pugixml.hpp>
+
+#include "tsp/core/error.h"
+#include "tsp/core/file_check.h"
+#include "tsp/source/raw_source.h"
+#include "tsp/source/series_list.h"
+#include "tsp/source/vtu_file.h"
+#include "tsp/source/vtkhdf_mesh_source.h"
+
+namespace tsp {
+namespace {
+
+bool ends_with(const std::string& s, const std::string& suffix) {
+  if (s.size() < suffix.size()) return false;
+  return std::equal(suffix.rbegin(), suffix.rend(), s.rbegin(), [](char a, char b) {
+    return std::tolower(static_cast<unsigned char>(a)) ==
+           std::tolower(static_cast<unsigned char>(b));
+  });
+}
+
+bool is_hdf5_name(const std::string& s) {
+  for (const char* ext : {".hdf", ".vtkhdf", ".h5", ".hdf5"})
+    if (ends_with(s, ext)) return true;
+  return false;
+}
+
+bool names_unstructured(const std::string& file) {
+  return ends_with(file, ".vtu") || ends_with(file, ".vtm");
+}
+
+// A series of .vtu files (a .vtm step reads its volume block).
+class VtuSeriesSource final : public MeshSource {
+ public:
+  VtuSeriesSource(std::string input, std::vector<io::StepFile> steps, io::VtuField field)
+      : input_(std::move(input)), steps_(std::move(steps)), field_(std::move(field)) {}
+
+  int steps() const override { return int(steps_.size()); }
+  std::vector<std::string> files() const override {
+    std::vector<std::string> all{input_};
+    for (const io::StepFile& s : steps_) all.push_back(s.file);
+    return all;
+  }
+  std::vector<double> times() const override {
+    std::vector<double> t;
+    for (const io::StepFile& s : steps_) t.push_back(s.time);
+    return t;
+  }
+  std::string describe() const override {
+    return input_ + ", " + (field_.cells ? "CellData " : "PointData ") + field_.spec.name +
+           (steps_.size() > 1 ? " (" + std::to_string(steps_.size()) + " .vtu steps)" : "");
+  }
+  Mesh read_step(int t) override {
+    assert(t >= 0 && t < steps());
+    io::VtuFile file(volume_file(steps_[std::size_t(t)].file));
+    io::VtuField f = file.resolve(field_.spec);
+    if (f.cells != field_.cells)
+      throw FormatError(file.path() + ": field " + f.spec.name + " is " +
+                        (f.cells ? "CellData" : "PointData") + " here but " +
+                        (field_.cells ? "CellData" : "PointData") + " in the first step");
+    return file.read(f);
+  }
+
+  // A step's .vtu: itself, or a .vtm's volume block.
+  static std::string volume_file(const std::string& file) {
+    return ends_with(file, ".vtm") ? io::vtm_volume_block(file) : file;
+  }
+
+ private:
+  std::string input_;
+  std::vector<io::StepFile> steps_;
+  io::VtuField field_;
+};
+
+std::unique_ptr<MeshSource> open_vtu_steps(const std::string& input,
+                                           std::vector<io::StepFile> steps,
+                                           const FieldSpec& spec) {
+  io::order_steps(input, steps);
+  for (const io::StepFile& s : steps) {
+    try {
+      require_regular_file(s.file, "step file");
+    } catch (const IoError& e) {
+      throw IoError(input + ": " + e.what());
+    }
+  }
+  io::VtuFile first(VtuSeriesSource::volume_file(steps[0].file));
+  io::VtuField field = first.resolve(spec);
+  return std::make_unique<VtuSeriesSource>(input, std::move(steps), field);
+}
+
+// The steps a list or pattern names.
+std::vector<io::StepFile> listed_steps(const std::string& input) {
+  std::error_code ec;
+  if (!std::filesystem::exists(input, ec) && io::is_file_pattern(input)) {
+    std::vector<io::StepFile> steps;
+    for (const std::string& f : io::expand_file_pattern(input))
+      steps.push_back({f, double(steps.size())});
+    return steps;
+  }
+  if (ends_with(input, ".pvd")) return io::read_pvd(input);
+  if (ends_with(input, ".series")) return io::read_file_series(input);
+  return {{input, 0}};
+}
+
+}  // namespace
+
+bool is_mesh_input(const std::string& input) {
+  try {
+    if (ends_with(input, ".vtu") || ends_with(input, ".vtm") || ends_with(input, ".vtu.series") ||
+        ends_with(input, ".vtm.series"))
+      return true;
+    if (ends_with(input, ".pvd")) {
+      std::vector<io::StepFile> steps = io::read_pvd(input);
+      return !steps.empty() && names_unstructured(steps[0].file);
+    }
+    if (!is_hdf5_name(input)) return false;
+    std::error_code ec;
+    if (std::filesystem::exists(input, ec)) return io::is_vtkhdf_unstructured(input);
+    if (!io::is_file_pattern(input)) return false;
+    std::vector<std::string> files = io::expand_file_pattern(input);
+    return !files.empty() && io::is_vtkhdf_unstructured(files[0]);
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+std::unique_ptr<MeshSource> open_mesh_source(const std::string& input, const std::string& field) {
+  const FieldSpec spec = FieldSpec::parse(field);
+  std::vector<io::StepFile> steps = listed_steps(input);
+  if (steps.size() == 1 && steps[0].file == input) require_regular_file(input, "input");
+  if (!steps.empty() && is_hdf5_name(steps[0].file)) {
+    std::vector<std::string> files;
+    for (const io::StepFile& s : steps) files.push_back(s.file);
+    return io::open_vtkhdf_mesh_source(input, files, spec);
+  }
+  return open_vtu_steps(input, std::move(steps), spec);
+}
+
+}  // namespace tsp

@@ -1,0 +1,14 @@
+#include "tsp/voxelize/open_input.h"
+
+#include "tsp/source/open_mesh_source.h"
+#include "tsp/source/open_source.h"
+
+namespace tsp {
+
+std::unique_ptr<VolumeSource> open_input(const std::string& input, const SourceOptions& options,
+                                         const VoxelizeOptions& voxel) {
+  if (is_mesh_input(input)) return voxelized_source(open_mesh_source(input, options.field), voxel);
+  return open_source(input, options);
+}
+
+}  // namespace tsp
