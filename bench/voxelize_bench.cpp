@@ -1,13 +1,14 @@
 // Voxelization throughput on one mesh step: tspplay's voxelizer (cells → tetrahedra → binned,
 // sampled) timed over rounds, writing the grid and stencil for bench/voxelize_vtk.py, which
 // times VTK's vtkResampleToImage on the same mesh and grid in the same run and compares values.
-//   voxelize_bench MESH FIELD RESOLUTION OUT_PREFIX [ROUNDS]
+//   voxelize_bench MESH FIELD RESOLUTION OUT_PREFIX [ROUNDS] [iso|tets]
 // prints JSON: cells, tets, voxels, inside, the grid, seconds per round (median), cells/s,
 // voxels/s; writes OUT_PREFIX.f32 (values) and OUT_PREFIX.u8 (stencil), x fastest.
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <string>
 #include <vector>
 
 #include "tsp/core/stopwatch.h"
@@ -16,11 +17,14 @@
 
 int main(int argc, char** argv) {
   if (argc < 5) {
-    std::fprintf(stderr, "usage: voxelize_bench MESH FIELD RESOLUTION OUT_PREFIX [ROUNDS]\n");
+    std::fprintf(stderr, "usage: voxelize_bench MESH FIELD RESOLUTION OUT_PREFIX [ROUNDS] [iso|tets]\n");
     return 2;
   }
   try {
     const int rounds = argc > 5 ? std::atoi(argv[5]) : 5;
+    const tsp::HexSampling hex = argc > 6 && std::string(argv[6]) == "tets"
+                                     ? tsp::HexSampling::tetrahedra
+                                     : tsp::HexSampling::isoparametric;
     auto source = tsp::open_mesh_source(argv[1], argv[2]);
     const tsp::Mesh mesh = source->read_step(0);
     tsp::VoxelizeOptions o;
@@ -30,13 +34,10 @@ int main(int argc, char** argv) {
     std::vector<std::uint8_t> inside(values.size());
     std::vector<double> seconds;
     tsp::VoxelizeStats st;
-    std::size_t tets = 0;
     for (int r = 0; r < rounds; ++r) {
       const tsp::Stopwatch w;
-      const tsp::TetMesh t = tsp::tetrahedralize(mesh);
-      st = tsp::voxelize(t, grid, values, inside);
+      st = tsp::voxelize(mesh, grid, values, inside, hex);
       seconds.push_back(w.seconds());
-      tets = t.tets.size();
     }
     std::sort(seconds.begin(), seconds.end());
     const double s = seconds[seconds.size() / 2];
@@ -45,7 +46,8 @@ int main(int argc, char** argv) {
     std::ofstream(std::string(argv[4]) + ".u8", std::ios::binary)
         .write(reinterpret_cast<const char*>(inside.data()), std::streamsize(inside.size()));
     nlohmann::json j = {{"cells", mesh.cell_count()},
-                        {"tets", tets},
+                        {"tets", st.tets},
+                        {"hexahedra_whole", st.hexahedra},
                         {"voxels", grid.dims.count()},
                         {"inside", st.inside},
                         {"dims", {grid.dims.x, grid.dims.y, grid.dims.z}},

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Voxelizer benchmark against VTK (python3-vtk9, the reference, not a dependency).
 
-    /usr/bin/python3 bench/voxelize_vtk.py MESH.vtu FIELD RESOLUTION [ROUNDS]
+    /usr/bin/python3 bench/voxelize_vtk.py MESH.vtu FIELD RESOLUTION [ROUNDS] [iso|tets]
 
 Runs build/voxelize_bench (our voxelizer) and VTK's vtkResampleToImage (probe filter: point
 location in the mesh, interpolation by the cell's own functions) on the same mesh and grid in
@@ -27,10 +27,11 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 def main():
     mesh, field, res = sys.argv[1], sys.argv[2], int(sys.argv[3])
     rounds = int(sys.argv[4]) if len(sys.argv) > 4 else 5
+    mode = sys.argv[5] if len(sys.argv) > 5 else "iso"
     exe = os.path.join(HERE, "..", "build", "voxelize_bench")
     with tempfile.TemporaryDirectory() as tmp:
         prefix = os.path.join(tmp, "ours")
-        out = subprocess.run([exe, mesh, field, str(res), prefix, str(rounds)], check=True,
+        out = subprocess.run([exe, mesh, field, str(res), prefix, str(rounds), mode], check=True,
                              capture_output=True, text=True).stdout
         ours = json.loads(out)
         dims = ours["dims"]
@@ -64,7 +65,7 @@ def main():
     diff = np.abs(values[both] - ref[both]) / spread
     vtk_s = statistics.median(seconds)
     report = {
-        "mesh": mesh, "field": field, "dims": dims, "cells": ours["cells"], "tets": ours["tets"],
+        "mesh": mesh, "field": field, "mode": mode, "dims": dims, "cells": ours["cells"], "tets": ours["tets"],
         "ours_s": ours["seconds"], "vtk_s": vtk_s, "speedup": vtk_s / ours["seconds"],
         "ours_cells_per_s": ours["cells_per_s"], "vtk_cells_per_s": ours["cells"] / vtk_s,
         "ours_voxels_per_s": ours["voxels_per_s"], "vtk_voxels_per_s": ours["voxels"] / vtk_s,

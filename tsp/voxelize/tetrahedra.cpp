@@ -17,8 +17,6 @@ constexpr Tet kFiveB[5] = {{0, 1, 3, 4}, {1, 2, 3, 6}, {1, 4, 5, 6}, {3, 4, 6, 7
 constexpr int kDiagonals[4][2] = {{0, 6}, {1, 7}, {2, 4}, {3, 5}};
 constexpr int kRings[4][6] = {
     {1, 2, 3, 7, 4, 5}, {0, 3, 2, 6, 5, 4}, {1, 0, 3, 7, 6, 5}, {0, 1, 2, 6, 7, 4}};
-// VTK voxel point order to hexahedron order.
-constexpr int kVoxelToHex[8] = {0, 1, 3, 2, 4, 5, 7, 6};
 
 struct Builder {
   const Mesh& mesh;
@@ -141,7 +139,7 @@ struct Builder {
 
 }  // namespace
 
-TetMesh tetrahedralize(const Mesh& mesh) {
+TetMesh tetrahedralize(const Mesh& mesh, bool skip_hexahedra) {
   TetMesh out;
   out.points = mesh.points;
   out.values = mesh.values;
@@ -152,6 +150,7 @@ TetMesh tetrahedralize(const Mesh& mesh) {
   for (std::int64_t c = 0; c < mesh.cell_count(); ++c) {
     const std::int64_t* g = mesh.connectivity.data() + mesh.offsets[std::size_t(c)];
     const std::int64_t n = mesh.offsets[std::size_t(c) + 1] - mesh.offsets[std::size_t(c)];
+    if (skip_hexahedra && is_hexahedral(mesh.types[std::size_t(c)])) continue;
     switch (mesh.types[std::size_t(c)]) {
       case CellType::tetra:
         b.add(c, g[0], g[1], g[2], g[3]);

@@ -27,9 +27,17 @@ struct TetMesh {
   bool cell_values = false;                      ///< values are per cell
 };
 
-/// Splits every cell of mesh (validated by check_mesh) as described above. Never throws
-/// (asserts on a mesh check_mesh would reject).
-TetMesh tetrahedralize(const Mesh& mesh);
+/// Splits every cell of mesh (validated by check_mesh) as described above; with skip_hexahedra,
+/// hexahedra and voxels give no tetrahedra (the voxelizer samples them whole). Tetrahedra come
+/// in cell order. Never throws (asserts on a mesh check_mesh would reject).
+TetMesh tetrahedralize(const Mesh& mesh, bool skip_hexahedra = false);
+
+/// True for the cell types sampled whole in isoparametric mode (hexahedron, voxel). Never throws.
+inline bool is_hexahedral(CellType t) { return t == CellType::hexahedron || t == CellType::voxel; }
+
+/// VTK voxel point order to hexahedron order (voxels are axis-aligned hexahedra numbered
+/// x fastest).
+inline constexpr int kVoxelToHex[8] = {0, 1, 3, 2, 4, 5, 7, 6};
 
 /// Per point, the mean of the values of the cells using it (for cell data read as point data);
 /// points no cell uses get 0. Never throws.

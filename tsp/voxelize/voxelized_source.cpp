@@ -46,9 +46,7 @@ class VoxelizedSource final : public VolumeSource {
       mesh.values = cell_values_to_points(mesh);
       mesh.cell_values = false;
     }
-    const TetMesh tets = tetrahedralize(mesh);
-    mesh = Mesh{};  // only the tetrahedra are needed now
-    voxelize(tets, grid_, out, inside, options_.threads);
+    voxelize(mesh, grid_, out, inside, options_.hex, options_.threads);
   }
 
  private:

@@ -14,21 +14,26 @@ namespace {
 
 // Voxels per tile edge: a tile's bins stay small and tiles spread over the workers.
 constexpr int kTile = 16;
-// Barycentric coordinates down to −kInsideTolerance count as inside: voxel centres on a face
-// shared by two tetrahedra (or on the mesh's boundary) are found despite rounding.
+// Barycentric (or parametric) coordinates down to −kInsideTolerance count as inside: voxel
+// centres on a face shared by two cells (or on the mesh's boundary) are found despite rounding.
 constexpr double kInsideTolerance = 1e-9;
 // Tetrahedra whose volume is below this fraction of their bounding box's are skipped.
 constexpr double kDegenerate = 1e-14;
+// Newton's method on a hexahedron's trilinear map: iterations, and the step in parametric
+// coordinates that counts as converged.
+constexpr int kNewtonIterations = 16;
+constexpr double kNewtonTolerance = 1e-12;
+// Binning runs over this many contiguous blocks of cells per worker (their bins are merged in
+// block order, so every bin stays in cell order).
+constexpr int kBinBlocksPerWorker = 4;
+// VTK hexahedron corners in parametric coordinates.
+constexpr int kCorner[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                               {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
 
 struct TileGrid {
   std::array<int, 3> n{};  // tiles per axis
   int count() const { return n[0] * n[1] * n[2]; }
 };
-
-Vec3 point(const TetMesh& m, std::int64_t p) {
-  const double* x = m.points.data() + 3 * p;
-  return {x[0], x[1], x[2]};
-}
 
 // Voxel index range [lo, hi] whose centres fall inside [a, b] along axis ax (clamped).
 void voxel_range(double a, double b, const VoxelGrid& g, int ax, int& lo, int& hi) {
@@ -37,41 +42,38 @@ void voxel_range(double a, double b, const VoxelGrid& g, int ax, int& lo, int& h
   hi = std::min(g.dims[ax] - 1, int(std::floor(v + 1e-9)));
 }
 
-}  // namespace
+// A bin entry: t ≥ 0 is tetrahedron t, −1 − c the whole hexahedron c.
+using Item = std::int64_t;
 
-VoxelizeStats voxelize(const TetMesh& mesh, const VoxelGrid& grid, std::span<float> values,
-                       std::span<std::uint8_t> inside, int threads) {
-  const Dims d = grid.dims;
-  assert(std::int64_t(values.size()) == d.count() && inside.size() == values.size());
-  std::fill(values.begin(), values.end(), 0.f);
-  std::fill(inside.begin(), inside.end(), std::uint8_t(0));
-  VoxelizeStats stats;
-  stats.tets = std::int64_t(mesh.tets.size());
+struct Voxelizer {
+  const Mesh& mesh;
+  const TetMesh& tets;
+  const VoxelGrid& grid;
+  std::span<float> values;
+  std::span<std::uint8_t> inside;
+  bool whole_hex;
   TileGrid tiles;
-  for (int a = 0; a < 3; ++a) tiles.n[a] = (d[a] + kTile - 1) / kTile;
 
-  // Bin: each tet into the tiles whose voxel centres its box spans and that it overlaps.
-  std::vector<std::vector<std::int64_t>> bins(std::size_t(tiles.count()));
-  for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
-    std::array<Vec3, 4> v;
-    for (int i = 0; i < 4; ++i) v[i] = point(mesh, mesh.tets[t][std::size_t(i)]);
-    int lo[3], hi[3];
-    bool empty = false;
-    for (int a = 0; a < 3; ++a) {
-      double mn = v[0][a], mx = v[0][a];
-      for (int i = 1; i < 4; ++i) {
-        mn = std::min(mn, v[i][a]);
-        mx = std::max(mx, v[i][a]);
-      }
-      voxel_range(mn, mx, grid, a, lo[a], hi[a]);
-      empty |= lo[a] > hi[a];
-    }
-    if (empty) continue;
+  Vec3 tet_point(std::int64_t p) const {
+    const double* x = tets.points.data() + 3 * p;
+    return {x[0], x[1], x[2]};
+  }
+  // Hexahedron c's 8 point indices in VTK hexahedron order.
+  void hex_points(std::int64_t c, std::int64_t out[8]) const {
+    const std::int64_t* g = mesh.connectivity.data() + mesh.offsets[std::size_t(c)];
+    const bool voxel = mesh.types[std::size_t(c)] == CellType::voxel;
+    for (int i = 0; i < 8; ++i) out[i] = g[voxel ? kVoxelToHex[i] : i];
+  }
+
+  // Adds item to the bins of the tiles its voxel box [lo, hi] spans (tetrahedra: only those the
+  // separating-axis test keeps).
+  void bin(Item item, const int lo[3], const int hi[3], const std::array<Vec3, 4>* tet,
+           std::vector<std::vector<Item>>& bins, VoxelizeStats& st) const {
     for (int tz = lo[2] / kTile; tz <= hi[2] / kTile; ++tz)
       for (int ty = lo[1] / kTile; ty <= hi[1] / kTile; ++ty)
         for (int tx = lo[0] / kTile; tx <= hi[0] / kTile; ++tx) {
           const int tl[3] = {tx, ty, tz};
-          bool whole = true;  // the tet's voxel box lies in this one tile: no test needed
+          bool whole = true;  // the voxel box lies in this one tile: no test needed
           Aabb box;
           for (int a = 0; a < 3; ++a) {
             const int v0 = std::max(lo[a], tl[a] * kTile);
@@ -80,92 +82,328 @@ VoxelizeStats voxelize(const TetMesh& mesh, const VoxelGrid& grid, std::span<flo
             box.lo[a] = grid.origin[a] + v0 * grid.spacing[a];
             box.hi[a] = grid.origin[a] + v1 * grid.spacing[a];
           }
-          if (!whole) {
-            ++stats.tile_tests;
-            if (!tet_box_overlap(v, box)) continue;
+          if (!whole && tet) {
+            ++st.tile_tests;
+            if (!tet_box_overlap(*tet, box)) continue;
           }
-          ++stats.tile_entries;
-          bins[std::size_t(tx + tiles.n[0] * (ty + tiles.n[1] * tz))].push_back(
-              std::int64_t(t));
+          ++st.tile_entries;
+          bins[std::size_t(tx + tiles.n[0] * (ty + tiles.n[1] * tz))].push_back(item);
         }
   }
 
-  // Sample: tiles in parallel; in each, tets in index order, first containing tet wins.
-  std::vector<std::int64_t> inside_count(std::size_t(tiles.count()), 0);
-  parallel_for(tiles.count(), 1, threads, [&](int, std::int64_t first, std::int64_t last) {
+  // Bins the cells [first, last) (tetrahedra [tet_first, …) belong to them in order).
+  void bin_cells(std::int64_t first, std::int64_t last, std::int64_t tet_first,
+                 std::vector<std::vector<Item>>& bins, VoxelizeStats& st) const {
+    std::int64_t t = tet_first;
+    for (std::int64_t c = first; c < last; ++c) {
+      if (whole_hex && is_hexahedral(mesh.types[std::size_t(c)])) {
+        std::int64_t g[8];
+        hex_points(c, g);
+        double mn[3], mx[3];
+        for (int a = 0; a < 3; ++a) mn[a] = mx[a] = mesh.points[std::size_t(3 * g[0] + a)];
+        for (int i = 1; i < 8; ++i)
+          for (int a = 0; a < 3; ++a) {
+            mn[a] = std::min(mn[a], mesh.points[std::size_t(3 * g[i] + a)]);
+            mx[a] = std::max(mx[a], mesh.points[std::size_t(3 * g[i] + a)]);
+          }
+        int lo[3], hi[3];
+        bool empty = false;
+        for (int a = 0; a < 3; ++a) {
+          voxel_range(mn[a], mx[a], grid, a, lo[a], hi[a]);
+          empty |= lo[a] > hi[a];
+        }
+        if (!empty) bin(-1 - c, lo, hi, nullptr, bins, st);
+        continue;
+      }
+      for (; t < std::int64_t(tets.tets.size()) && tets.cell[std::size_t(t)] == c; ++t) {
+        std::array<Vec3, 4> v;
+        for (int i = 0; i < 4; ++i) v[std::size_t(i)] = tet_point(tets.tets[std::size_t(t)][std::size_t(i)]);
+        int lo[3], hi[3];
+        bool empty = false;
+        for (int a = 0; a < 3; ++a) {
+          const double mn = std::min({v[0][a], v[1][a], v[2][a], v[3][a]});
+          const double mx = std::max({v[0][a], v[1][a], v[2][a], v[3][a]});
+          voxel_range(mn, mx, grid, a, lo[a], hi[a]);
+          empty |= lo[a] > hi[a];
+        }
+        if (!empty) bin(t, lo, hi, &v, bins, st);
+      }
+    }
+  }
+
+  // Voxel range of the box [mn, mx] clipped to tile [t0, t1]; false when empty.
+  bool clipped_range(const double mn[3], const double mx[3], const int t0[3], const int t1[3],
+                     int lo[3], int hi[3]) const {
+    for (int a = 0; a < 3; ++a) {
+      voxel_range(mn[a], mx[a], grid, a, lo[a], hi[a]);
+      lo[a] = std::max(lo[a], t0[a]);
+      hi[a] = std::min(hi[a], t1[a]);
+      if (lo[a] > hi[a]) return false;
+    }
+    return true;
+  }
+
+  double voxel_coord(int a, int i) const { return grid.origin[a] + i * grid.spacing[a]; }
+
+  std::int64_t sample_tet(std::int64_t t, const int t0[3], const int t1[3]) const {
+    const auto& q = tets.tets[std::size_t(t)];
+    const Vec3 p0 = tet_point(q[0]), p1 = tet_point(q[1]), p2 = tet_point(q[2]), p3 = tet_point(q[3]);
+    double mn[3], mx[3], ext = 1;
+    for (int a = 0; a < 3; ++a) {
+      mn[a] = std::min({p0[a], p1[a], p2[a], p3[a]});
+      mx[a] = std::max({p0[a], p1[a], p2[a], p3[a]});
+      ext *= mx[a] - mn[a];
+    }
+    int lo[3], hi[3];
+    if (!clipped_range(mn, mx, t0, t1, lo, hi)) return 0;
+    // Barycentric coordinates λ1..3 = M⁻¹ (x − p0) with M = [p1 − p0, p2 − p0, p3 − p0].
+    double m[3][3];
+    for (int a = 0; a < 3; ++a) {
+      m[a][0] = p1[a] - p0[a];
+      m[a][1] = p2[a] - p0[a];
+      m[a][2] = p3[a] - p0[a];
+    }
+    const double det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+                       m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+                       m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+    if (!(std::fabs(det) > kDegenerate * ext)) return 0;
+    const double inv = 1.0 / det;
+    double r[3][3];  // inverse of m
+    r[0][0] = (m[1][1] * m[2][2] - m[1][2] * m[2][1]) * inv;
+    r[0][1] = (m[0][2] * m[2][1] - m[0][1] * m[2][2]) * inv;
+    r[0][2] = (m[0][1] * m[1][2] - m[0][2] * m[1][1]) * inv;
+    r[1][0] = (m[1][2] * m[2][0] - m[1][0] * m[2][2]) * inv;
+    r[1][1] = (m[0][0] * m[2][2] - m[0][2] * m[2][0]) * inv;
+    r[1][2] = (m[0][2] * m[1][0] - m[0][0] * m[1][2]) * inv;
+    r[2][0] = (m[1][0] * m[2][1] - m[1][1] * m[2][0]) * inv;
+    r[2][1] = (m[0][1] * m[2][0] - m[0][0] * m[2][1]) * inv;
+    r[2][2] = (m[0][0] * m[1][1] - m[0][1] * m[1][0]) * inv;
+    const bool cells = tets.cell_values;
+    const double v0 = cells ? 0 : tets.values[std::size_t(q[0])];
+    const double v1 = cells ? 0 : tets.values[std::size_t(q[1])];
+    const double v2 = cells ? 0 : tets.values[std::size_t(q[2])];
+    const double v3 = cells ? 0 : tets.values[std::size_t(q[3])];
+    const float cell_value = cells ? tets.values[std::size_t(tets.cell[std::size_t(t)])] : 0.f;
+    const Dims d = grid.dims;
+    std::int64_t found = 0;
+    for (int z = lo[2]; z <= hi[2]; ++z)
+      for (int y = lo[1]; y <= hi[1]; ++y) {
+        const std::int64_t row = std::int64_t(d.x) * (y + std::int64_t(d.y) * z);
+        const double dy = voxel_coord(1, y) - p0[1], dz = voxel_coord(2, z) - p0[2];
+        for (int x = lo[0]; x <= hi[0]; ++x) {
+          const std::size_t i = std::size_t(row + x);
+          if (inside[i]) continue;
+          const double dx = voxel_coord(0, x) - p0[0];
+          const double l1 = r[0][0] * dx + r[0][1] * dy + r[0][2] * dz;
+          const double l2 = r[1][0] * dx + r[1][1] * dy + r[1][2] * dz;
+          const double l3 = r[2][0] * dx + r[2][1] * dy + r[2][2] * dz;
+          const double l0 = 1.0 - l1 - l2 - l3;
+          if (l0 < -kInsideTolerance || l1 < -kInsideTolerance || l2 < -kInsideTolerance ||
+              l3 < -kInsideTolerance)
+            continue;
+          values[i] = cells ? cell_value : float(l0 * v0 + l1 * v1 + l2 * v2 + l3 * v3);
+          inside[i] = 1;
+          ++found;
+        }
+      }
+    return found;
+  }
+
+  std::int64_t sample_hex(std::int64_t c, const int t0[3], const int t1[3]) const {
+    std::int64_t g[8];
+    hex_points(c, g);
+    double x[8][3], mn[3], mx[3];
+    for (int i = 0; i < 8; ++i)
+      for (int a = 0; a < 3; ++a) x[i][a] = mesh.points[std::size_t(3 * g[i] + a)];
+    for (int a = 0; a < 3; ++a) {
+      mn[a] = mx[a] = x[0][a];
+      for (int i = 1; i < 8; ++i) {
+        mn[a] = std::min(mn[a], x[i][a]);
+        mx[a] = std::max(mx[a], x[i][a]);
+      }
+    }
+    int lo[3], hi[3];
+    if (!clipped_range(mn, mx, t0, t1, lo, hi)) return 0;
+    // Most voxels of a hexahedron's box are often taken already (a grid through the mesh's
+    // points puts each voxel in up to eight boxes): skip the set-up when all are.
+    bool any_free = false;
+    for (int z = lo[2]; z <= hi[2] && !any_free; ++z)
+      for (int y = lo[1]; y <= hi[1] && !any_free; ++y)
+        for (int xv = lo[0]; xv <= hi[0] && !any_free; ++xv)
+          any_free = !inside[std::size_t(xv + std::int64_t(grid.dims.x) *
+                                                   (y + std::int64_t(grid.dims.y) * z))];
+    if (!any_free) return 0;
+    double v[8] = {};
+    if (!mesh.cell_values)
+      for (int i = 0; i < 8; ++i) v[i] = mesh.values[std::size_t(g[i])];
+    const float cell_value = mesh.cell_values ? mesh.values[std::size_t(c)] : 0.f;
+    const Dims d = grid.dims;
+    std::int64_t found = 0;
+    // An affine hexahedron (a parallelepiped, as block-structured meshes have): ξ = A⁻¹ (p − x0)
+    // exactly, no iteration.
+    double a[3][3], size = 0;
+    for (int k = 0; k < 3; ++k) {
+      const int corner = k == 0 ? 1 : k == 1 ? 3 : 4;
+      for (int r = 0; r < 3; ++r) a[r][k] = x[corner][r] - x[0][r];
+    }
+    for (int r = 0; r < 3; ++r) size = std::max(size, mx[r] - mn[r]);
+    bool affine = true;
+    for (int k = 0; k < 8 && affine; ++k)
+      for (int r = 0; r < 3; ++r) {
+        const double want = x[0][r] + a[r][0] * kCorner[k][0] + a[r][1] * kCorner[k][1] +
+                            a[r][2] * kCorner[k][2];
+        affine &= std::fabs(x[k][r] - want) <= 1e-12 * size;
+      }
+    double ai[3][3] = {};
+    if (affine) {
+      const double det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
+                         a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+                         a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+      if (!(std::fabs(det) > kDegenerate * size * size * size)) return 0;
+      const double inv = 1.0 / det;
+      ai[0][0] = (a[1][1] * a[2][2] - a[1][2] * a[2][1]) * inv;
+      ai[0][1] = (a[0][2] * a[2][1] - a[0][1] * a[2][2]) * inv;
+      ai[0][2] = (a[0][1] * a[1][2] - a[0][2] * a[1][1]) * inv;
+      ai[1][0] = (a[1][2] * a[2][0] - a[1][0] * a[2][2]) * inv;
+      ai[1][1] = (a[0][0] * a[2][2] - a[0][2] * a[2][0]) * inv;
+      ai[1][2] = (a[0][2] * a[1][0] - a[0][0] * a[1][2]) * inv;
+      ai[2][0] = (a[1][0] * a[2][1] - a[1][1] * a[2][0]) * inv;
+      ai[2][1] = (a[0][1] * a[2][0] - a[0][0] * a[2][1]) * inv;
+      ai[2][2] = (a[0][0] * a[1][1] - a[0][1] * a[1][0]) * inv;
+    }
+    double xi[3] = {0.5, 0.5, 0.5};
+    for (int z = lo[2]; z <= hi[2]; ++z)
+      for (int y = lo[1]; y <= hi[1]; ++y)
+        for (int xv = lo[0]; xv <= hi[0]; ++xv) {
+          const std::size_t i = std::size_t(xv + std::int64_t(d.x) * (y + std::int64_t(d.y) * z));
+          if (inside[i]) continue;
+          const double p[3] = {voxel_coord(0, xv), voxel_coord(1, y), voxel_coord(2, z)};
+          bool converged = affine;
+          if (affine) {
+            const double q[3] = {p[0] - x[0][0], p[1] - x[0][1], p[2] - x[0][2]};
+            for (int r = 0; r < 3; ++r) xi[r] = ai[r][0] * q[0] + ai[r][1] * q[1] + ai[r][2] * q[2];
+          } else {
+            // Start from where the point sits in the cell's box (exact for a box).
+            for (int r = 0; r < 3; ++r)
+              xi[r] = mx[r] > mn[r] ? (p[r] - mn[r]) / (mx[r] - mn[r]) : 0.5;
+          }
+          for (int it = 0; it < kNewtonIterations && !converged; ++it) {
+            // Residual x(ξ) − p and Jacobian ∂x/∂ξ of the trilinear map.
+            double r[3] = {-p[0], -p[1], -p[2]}, jm[3][3] = {};
+            for (int k = 0; k < 8; ++k) {
+              const double f[3] = {kCorner[k][0] ? xi[0] : 1 - xi[0],
+                                   kCorner[k][1] ? xi[1] : 1 - xi[1],
+                                   kCorner[k][2] ? xi[2] : 1 - xi[2]};
+              const double s[3] = {kCorner[k][0] ? 1.0 : -1.0, kCorner[k][1] ? 1.0 : -1.0,
+                                   kCorner[k][2] ? 1.0 : -1.0};
+              const double n = f[0] * f[1] * f[2];
+              const double dn[3] = {s[0] * f[1] * f[2], f[0] * s[1] * f[2], f[0] * f[1] * s[2]};
+              for (int a = 0; a < 3; ++a) {
+                r[a] += n * x[k][a];
+                for (int b = 0; b < 3; ++b) jm[a][b] += dn[b] * x[k][a];
+              }
+            }
+            const double det = jm[0][0] * (jm[1][1] * jm[2][2] - jm[1][2] * jm[2][1]) -
+                               jm[0][1] * (jm[1][0] * jm[2][2] - jm[1][2] * jm[2][0]) +
+                               jm[0][2] * (jm[1][0] * jm[2][1] - jm[1][1] * jm[2][0]);
+            if (!(std::fabs(det) > 0)) break;
+            const double inv = 1.0 / det;
+            const double dxi[3] = {
+                ((jm[1][1] * jm[2][2] - jm[1][2] * jm[2][1]) * r[0] +
+                 (jm[0][2] * jm[2][1] - jm[0][1] * jm[2][2]) * r[1] +
+                 (jm[0][1] * jm[1][2] - jm[0][2] * jm[1][1]) * r[2]) * inv,
+                ((jm[1][2] * jm[2][0] - jm[1][0] * jm[2][2]) * r[0] +
+                 (jm[0][0] * jm[2][2] - jm[0][2] * jm[2][0]) * r[1] +
+                 (jm[0][2] * jm[1][0] - jm[0][0] * jm[1][2]) * r[2]) * inv,
+                ((jm[1][0] * jm[2][1] - jm[1][1] * jm[2][0]) * r[0] +
+                 (jm[0][1] * jm[2][0] - jm[0][0] * jm[2][1]) * r[1] +
+                 (jm[0][0] * jm[1][1] - jm[0][1] * jm[1][0]) * r[2]) * inv};
+            for (int a = 0; a < 3; ++a) xi[a] -= dxi[a];
+            converged = std::fabs(dxi[0]) + std::fabs(dxi[1]) + std::fabs(dxi[2]) < kNewtonTolerance;
+          }
+          if (!converged) continue;
+          bool in = true;
+          for (int a = 0; a < 3; ++a) in &= xi[a] >= -kInsideTolerance && xi[a] <= 1 + kInsideTolerance;
+          if (!in) continue;
+          double value = cell_value;
+          if (!mesh.cell_values) {  // trilinear, as nested interpolations along ξ, η, ζ
+            const double b0 = v[0] + xi[0] * (v[1] - v[0]), b1 = v[3] + xi[0] * (v[2] - v[3]);
+            const double t0v = v[4] + xi[0] * (v[5] - v[4]), t1v = v[7] + xi[0] * (v[6] - v[7]);
+            const double b = b0 + xi[1] * (b1 - b0), t = t0v + xi[1] * (t1v - t0v);
+            value = b + xi[2] * (t - b);
+          }
+          values[i] = float(value);
+          inside[i] = 1;
+          ++found;
+        }
+    return found;
+  }
+};
+
+}  // namespace
+
+VoxelizeStats voxelize(const Mesh& mesh, const VoxelGrid& grid, std::span<float> values,
+                       std::span<std::uint8_t> inside, HexSampling hex, int threads) {
+  const Dims d = grid.dims;
+  assert(std::int64_t(values.size()) == d.count() && inside.size() == values.size());
+  std::fill(values.begin(), values.end(), 0.f);
+  std::fill(inside.begin(), inside.end(), std::uint8_t(0));
+  const bool whole_hex = hex == HexSampling::isoparametric;
+  const bool all_hex = whole_hex && std::all_of(mesh.types.begin(), mesh.types.end(), is_hexahedral);
+  const TetMesh tets = all_hex ? TetMesh{} : tetrahedralize(mesh, whole_hex);
+  Voxelizer vx{mesh, tets, grid, values, inside, whole_hex, {}};
+  for (int a = 0; a < 3; ++a) vx.tiles.n[a] = (d[a] + kTile - 1) / kTile;
+  VoxelizeStats stats;
+  stats.tets = std::int64_t(tets.tets.size());
+  for (CellType t : mesh.types) stats.hexahedra += whole_hex && is_hexahedral(t);
+
+  // Bin, in parallel over contiguous blocks of cells; merged in block order, every bin lists its
+  // cells (and a cell's tetrahedra) in index order.
+  const std::int64_t nc = mesh.cell_count();
+  const int blocks = int(std::min<std::int64_t>(
+      std::max<std::int64_t>(nc, 1), std::int64_t(resolve_threads(threads)) * kBinBlocksPerWorker));
+  std::vector<std::int64_t> tet_first(std::size_t(nc) + 1, 0);  // first tetrahedron of cell c
+  for (std::size_t t = 0; t < tets.tets.size(); ++t) ++tet_first[std::size_t(tets.cell[t]) + 1];
+  for (std::size_t c = 0; c < std::size_t(nc); ++c) tet_first[c + 1] += tet_first[c];
+  std::vector<std::vector<std::vector<Item>>> block_bins(static_cast<std::size_t>(blocks));
+  std::vector<VoxelizeStats> block_stats(static_cast<std::size_t>(blocks));
+  parallel_for(blocks, 1, threads, [&](int, std::int64_t first, std::int64_t last) {
+    for (std::int64_t b = first; b < last; ++b) {
+      const std::int64_t c0 = nc * b / blocks, c1 = nc * (b + 1) / blocks;
+      auto& bins = block_bins[std::size_t(b)];
+      bins.resize(std::size_t(vx.tiles.count()));
+      vx.bin_cells(c0, c1, tet_first[std::size_t(c0)], bins, block_stats[std::size_t(b)]);
+    }
+  });
+  std::vector<std::vector<Item>> bins(static_cast<std::size_t>(vx.tiles.count()));
+  for (std::size_t tile = 0; tile < bins.size(); ++tile) {
+    std::size_t n = 0;
+    for (const auto& bb : block_bins) n += bb[tile].size();
+    bins[tile].reserve(n);
+    for (auto& bb : block_bins) {
+      bins[tile].insert(bins[tile].end(), bb[tile].begin(), bb[tile].end());
+      std::vector<Item>().swap(bb[tile]);
+    }
+  }
+  for (const VoxelizeStats& s : block_stats) {
+    stats.tile_tests += s.tile_tests;
+    stats.tile_entries += s.tile_entries;
+  }
+
+  // Sample: tiles in parallel; in each, cells in index order, the first containing one wins.
+  std::vector<std::int64_t> inside_count(bins.size(), 0);
+  parallel_for(vx.tiles.count(), 1, threads, [&](int, std::int64_t first, std::int64_t last) {
     for (std::int64_t ti = first; ti < last; ++ti) {
-      const int tl[3] = {int(ti % tiles.n[0]), int(ti / tiles.n[0] % tiles.n[1]),
-                         int(ti / (std::int64_t(tiles.n[0]) * tiles.n[1]))};
+      const int tl[3] = {int(ti % vx.tiles.n[0]), int(ti / vx.tiles.n[0] % vx.tiles.n[1]),
+                         int(ti / (std::int64_t(vx.tiles.n[0]) * vx.tiles.n[1]))};
       int t0[3], t1[3];
       for (int a = 0; a < 3; ++a) {
         t0[a] = tl[a] * kTile;
         t1[a] = std::min(d[a] - 1, t0[a] + kTile - 1);
       }
-      for (std::int64_t t : bins[std::size_t(ti)]) {
-        const auto& q = mesh.tets[std::size_t(t)];
-        const Vec3 p0 = point(mesh, q[0]), p1 = point(mesh, q[1]), p2 = point(mesh, q[2]),
-                   p3 = point(mesh, q[3]);
-        // Barycentric coordinates λ1..3 = M⁻¹ (x − p0) with M = [p1 − p0, p2 − p0, p3 − p0].
-        double m[3][3];
-        for (int a = 0; a < 3; ++a) {
-          m[a][0] = p1[a] - p0[a];
-          m[a][1] = p2[a] - p0[a];
-          m[a][2] = p3[a] - p0[a];
-        }
-        const double det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
-                           m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
-                           m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
-        int lo[3], hi[3];
-        double ext = 1;
-        for (int a = 0; a < 3; ++a) {
-          double mn = std::min({p0[a], p1[a], p2[a], p3[a]});
-          double mx = std::max({p0[a], p1[a], p2[a], p3[a]});
-          ext *= mx - mn;
-          voxel_range(mn, mx, grid, a, lo[a], hi[a]);
-          lo[a] = std::max(lo[a], t0[a]);
-          hi[a] = std::min(hi[a], t1[a]);
-        }
-        if (!(std::fabs(det) > kDegenerate * ext)) continue;
-        const double inv = 1.0 / det;
-        double r[3][3];  // inverse of m
-        r[0][0] = (m[1][1] * m[2][2] - m[1][2] * m[2][1]) * inv;
-        r[0][1] = (m[0][2] * m[2][1] - m[0][1] * m[2][2]) * inv;
-        r[0][2] = (m[0][1] * m[1][2] - m[0][2] * m[1][1]) * inv;
-        r[1][0] = (m[1][2] * m[2][0] - m[1][0] * m[2][2]) * inv;
-        r[1][1] = (m[0][0] * m[2][2] - m[0][2] * m[2][0]) * inv;
-        r[1][2] = (m[0][2] * m[1][0] - m[0][0] * m[1][2]) * inv;
-        r[2][0] = (m[1][0] * m[2][1] - m[1][1] * m[2][0]) * inv;
-        r[2][1] = (m[0][1] * m[2][0] - m[0][0] * m[2][1]) * inv;
-        r[2][2] = (m[0][0] * m[1][1] - m[0][1] * m[1][0]) * inv;
-        const double v0 = mesh.cell_values ? 0 : mesh.values[std::size_t(q[0])];
-        const double v1 = mesh.cell_values ? 0 : mesh.values[std::size_t(q[1])];
-        const double v2 = mesh.cell_values ? 0 : mesh.values[std::size_t(q[2])];
-        const double v3 = mesh.cell_values ? 0 : mesh.values[std::size_t(q[3])];
-        const float cell_value =
-            mesh.cell_values ? mesh.values[std::size_t(mesh.cell[std::size_t(t)])] : 0.f;
-        for (int z = lo[2]; z <= hi[2]; ++z)
-          for (int y = lo[1]; y <= hi[1]; ++y) {
-            const std::int64_t row = std::int64_t(d.x) * (y + std::int64_t(d.y) * z);
-            const double dy = grid.origin[1] + y * grid.spacing[1] - p0[1];
-            const double dz = grid.origin[2] + z * grid.spacing[2] - p0[2];
-            for (int x = lo[0]; x <= hi[0]; ++x) {
-              const std::size_t i = std::size_t(row + x);
-              if (inside[i]) continue;
-              const double dx = grid.origin[0] + x * grid.spacing[0] - p0[0];
-              const double l1 = r[0][0] * dx + r[0][1] * dy + r[0][2] * dz;
-              const double l2 = r[1][0] * dx + r[1][1] * dy + r[1][2] * dz;
-              const double l3 = r[2][0] * dx + r[2][1] * dy + r[2][2] * dz;
-              const double l0 = 1.0 - l1 - l2 - l3;
-              if (l0 < -kInsideTolerance || l1 < -kInsideTolerance || l2 < -kInsideTolerance ||
-                  l3 < -kInsideTolerance)
-                continue;
-              values[i] = mesh.cell_values ? cell_value
-                                           : float(l0 * v0 + l1 * v1 + l2 * v2 + l3 * v3);
-              inside[i] = 1;
-              ++inside_count[std::size_t(ti)];
-            }
-          }
-      }
+      for (Item item : bins[std::size_t(ti)])
+        inside_count[std::size_t(ti)] +=
+            item >= 0 ? vx.sample_tet(item, t0, t1) : vx.sample_hex(-1 - item, t0, t1);
     }
   });
   for (std::int64_t c : inside_count) stats.inside += c;
@@ -175,12 +413,24 @@ VoxelizeStats voxelize(const TetMesh& mesh, const VoxelGrid& grid, std::span<flo
 
 void pad_outside(std::span<float> values, std::span<const std::uint8_t> inside, Dims d) {
   const std::size_t n = values.size();
+  const std::int64_t sx = 1, sy = d.x, sz = std::int64_t(d.x) * d.y;
+  // The breadth-first search starts from the inside voxels on the boundary (those with an
+  // outside neighbour), in index order; inside voxels deeper in are never reached from outside
+  // before them.
   std::vector<std::int64_t> queue;
   std::vector<std::uint8_t> reached(inside.begin(), inside.end());
-  for (std::size_t i = 0; i < n; ++i)
-    if (inside[i]) queue.push_back(std::int64_t(i));
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!inside[i]) continue;
+    const std::int64_t j = std::int64_t(i);
+    const int x = int(j % d.x), y = int(j / sy % d.y), z = int(j / sz);
+    const bool edge = (x > 0 && !inside[i - 1]) || (x + 1 < d.x && !inside[i + 1]) ||
+                      (y > 0 && !inside[std::size_t(j - sy)]) ||
+                      (y + 1 < d.y && !inside[std::size_t(j + sy)]) ||
+                      (z > 0 && !inside[std::size_t(j - sz)]) ||
+                      (z + 1 < d.z && !inside[std::size_t(j + sz)]);
+    if (edge) queue.push_back(j);
+  }
   if (queue.empty()) return;
-  const std::int64_t sx = 1, sy = d.x, sz = std::int64_t(d.x) * d.y;
   for (std::size_t head = 0; head < queue.size(); ++head) {
     const std::int64_t i = queue[head];
     const int x = int(i % d.x), y = int(i / sy % d.y), z = int(i / sz);

@@ -64,7 +64,8 @@ TEST(Voxelizer, LinearFieldIsExactAtEveryVoxelAndTheBoxIsCovered) {
   const VoxelGrid g = unit_grid(23);
   std::vector<float> v(std::size_t(g.dims.count()));
   std::vector<std::uint8_t> in(v.size());
-  const VoxelizeStats st = voxelize(tetrahedralize(m), g, v, in, 2);
+  for (HexSampling hex : {HexSampling::tetrahedra, HexSampling::isoparametric}) {
+  const VoxelizeStats st = voxelize(m, g, v, in, hex, 2);
   EXPECT_EQ(st.inside, g.dims.count());  // no gap anywhere, faces and boundary included
   for (int z = 0; z < 23; ++z)
     for (int y = 0; y < 23; ++y)
@@ -73,6 +74,7 @@ TEST(Voxelizer, LinearFieldIsExactAtEveryVoxelAndTheBoxIsCovered) {
         ASSERT_TRUE(in[i]);
         EXPECT_NEAR(v[i], f(x / 22.0, y / 22.0, z / 22.0), 2e-6) << x << "," << y << "," << z;
       }
+  }
 }
 
 TEST(Voxelizer, HoleVoxelsAreOutsideAndPaddedFromTheirNeighbours) {
@@ -88,7 +90,8 @@ TEST(Voxelizer, HoleVoxelsAreOutsideAndPaddedFromTheirNeighbours) {
   g.spacing = {1.0 / n, 1.0 / n, 1.0 / n};
   std::vector<float> v(std::size_t(g.dims.count()));
   std::vector<std::uint8_t> in(v.size());
-  voxelize(tetrahedralize(m), g, v, in, 1);
+  for (HexSampling hex : {HexSampling::tetrahedra, HexSampling::isoparametric}) {
+  voxelize(m, g, v, in, hex, 1);
   for (int z = 0; z < n; ++z)
     for (int y = 0; y < n; ++y)
       for (int x = 0; x < n; ++x) {
@@ -99,6 +102,7 @@ TEST(Voxelizer, HoleVoxelsAreOutsideAndPaddedFromTheirNeighbours) {
         EXPECT_GE(v[i], 0.f);
         EXPECT_LE(v[i], 1.f);
       }
+  }
 }
 
 TEST(Voxelizer, PadOutsideTakesTheNearestInsideValue) {
