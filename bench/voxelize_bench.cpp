@@ -1,7 +1,7 @@
 // Voxelization throughput on one mesh step: tspplay's voxelizer (cells → tetrahedra → binned,
 // sampled) timed over rounds, writing the grid and stencil for bench/voxelize_vtk.py, which
 // times VTK's vtkResampleToImage on the same mesh and grid in the same run and compares values.
-//   voxelize_bench MESH FIELD RESOLUTION OUT_PREFIX [ROUNDS] [iso|tets]
+//   voxelize_bench MESH FIELD RESOLUTION OUT_PREFIX [ROUNDS] [iso|tets|scanK]
 // prints JSON: cells, tets, voxels, inside, the grid, seconds per round (median), cells/s,
 // voxels/s; writes OUT_PREFIX.f32 (values) and OUT_PREFIX.u8 (stencil), x fastest.
 #include <algorithm>
@@ -17,14 +17,19 @@
 
 int main(int argc, char** argv) {
   if (argc < 5) {
-    std::fprintf(stderr, "usage: voxelize_bench MESH FIELD RESOLUTION OUT_PREFIX [ROUNDS] [iso|tets]\n");
+    std::fprintf(stderr, "usage: voxelize_bench MESH FIELD RESOLUTION OUT_PREFIX [ROUNDS] [iso|tets|scanK]\n");
     return 2;
   }
   try {
     const int rounds = argc > 5 ? std::atoi(argv[5]) : 5;
-    const tsp::HexSampling hex = argc > 6 && std::string(argv[6]) == "tets"
-                                     ? tsp::HexSampling::tetrahedra
-                                     : tsp::HexSampling::isoparametric;
+    // iso (default), tets, or scanK (voxelizer B with K× anti-aliasing).
+    const std::string mode = argc > 6 ? argv[6] : "iso";
+    tsp::SampleOptions so;
+    if (mode == "tets") so.hex = tsp::HexSampling::tetrahedra;
+    if (mode.rfind("scan", 0) == 0) {
+      so.kind = tsp::VoxelizerKind::scan;
+      so.antialias = mode.size() > 4 ? std::atoi(mode.c_str() + 4) : 1;
+    }
     auto source = tsp::open_mesh_source(argv[1], argv[2]);
     const tsp::Mesh mesh = source->read_step(0);
     tsp::VoxelizeOptions o;
@@ -36,7 +41,7 @@ int main(int argc, char** argv) {
     tsp::VoxelizeStats st;
     for (int r = 0; r < rounds; ++r) {
       const tsp::Stopwatch w;
-      st = tsp::voxelize(mesh, grid, values, inside, hex);
+      st = tsp::voxelize(mesh, grid, values, inside, so);
       seconds.push_back(w.seconds());
     }
     std::sort(seconds.begin(), seconds.end());

@@ -23,6 +23,8 @@ struct BuildArgs {
   int resolution = 0;
   double voxel_size = 0;
   std::string cell_data = "constant";
+  std::string voxelizer = "locate", hex = "isoparametric";
+  int antialias = 1;
 };
 
 void run_build(const BuildArgs& a) {
@@ -43,7 +45,13 @@ void run_build(const BuildArgs& a) {
   vo.resolution = a.resolution;
   vo.voxel_size = a.voxel_size;
   vo.cell_data = a.cell_data == "points" ? tsp::CellDataMode::points : tsp::CellDataMode::constant;
-  vo.threads = a.threads;
+  vo.sample.threads = a.threads;
+  vo.sample.kind = a.voxelizer == "scan" ? tsp::VoxelizerKind::scan : tsp::VoxelizerKind::locate;
+  vo.sample.hex = a.hex == "tetrahedra" ? tsp::HexSampling::tetrahedra : tsp::HexSampling::isoparametric;
+  vo.sample.antialias = a.antialias;
+  if (a.antialias != 1 && a.voxelizer != "scan")
+    throw tsp::UsageError("--antialias " + std::to_string(a.antialias) +
+                          " needs --voxelizer scan (the locating voxelizer samples voxel centres)");
   auto source = tsp::open_input(a.input, so, vo);
   if (bo.brick_size == 0) bo.brick_size = tsp::default_brick_size(source->dims());
   tsp::BuildReport r = build_with_progress(*source, a.output, bo);
@@ -66,6 +74,17 @@ const CommandRegistrar reg(10, [](CLI::App& app) {
   c->add_option("--cell-data", a->cell_data,
                 "Meshes, cell data: constant per cell, or averaged to the points then interpolated")
       ->check(CLI::IsMember({"constant", "points"}));
+  c->add_option("--voxelizer", a->voxelizer,
+                "Meshes: locate (voxel centres located in cells; default) or scan (tetrahedra "
+                "scan-converted, with --antialias)")
+      ->check(CLI::IsMember({"locate", "scan"}));
+  c->add_option("--antialias", a->antialias,
+                "Meshes, --voxelizer scan: K x K x K sub-samples per voxel, 1..4 (default 1)")
+      ->check(CLI::Range(1, tsp::kMaxAntialias));
+  c->add_option("--hex", a->hex,
+                "Meshes, locate: hexahedra sampled whole by their trilinear map (isoparametric, "
+                "as VTK) or through tetrahedra")
+      ->check(CLI::IsMember({"isoparametric", "tetrahedra"}));
   c->add_option("--brick", a->brick, "Brick edge in samples, a power of two 8..64 (default: the one nearest a quarter of "
                 "the longest grid edge, in [8, 64]: 16 for 64^3, 32 for 128^3)");
   c->add_option("--range", a->range, "Quantization range LO:HI (default: the data's range)");

@@ -100,6 +100,10 @@ json info_json(const tsp::TspFile& f, bool with_nodes) {
   j["value_range"] = {tree.value_range().lo, tree.value_range().hi};
   j["data_range"] = {m.data_range.lo, m.data_range.hi};
   j["nonfinite_count"] = m.nonfinite_count;
+  j["origin"] = m.origin;
+  j["spacing"] = m.spacing;
+  j["stencil"] = tree.has_stencil();
+  if (tree.has_stencil()) j["inside_fraction"] = tree.inside_fraction(0);
   j["histogram"] = m.histogram;
   json levels = json::array();
   for (const LevelErrors& l : errors_by_level(tree))
@@ -161,6 +165,11 @@ void print_info(const tsp::TspFile& f, bool with_nodes) {
   std::printf("data range    [%g, %g]\n", m.data_range.lo, m.data_range.hi);
   if (m.nonfinite_count > 0)
     std::printf("non-finite    %lld samples replaced\n", static_cast<long long>(m.nonfinite_count));
+  std::printf("geometry      voxel (i,j,k) at (%g, %g, %g) + (i,j,k)*(%g, %g, %g)\n", m.origin[0],
+              m.origin[1], m.origin[2], m.spacing[0], m.spacing[1], m.spacing[2]);
+  if (tree.has_stencil())
+    std::printf("stencil       %.1f%% of the voxels inside the mesh (the rest is never drawn)\n",
+                100.0 * tree.inside_fraction(0));
   std::printf("\nscalar errors by octree level (over all time nodes)\n");
   std::printf("  level  nodes   e_ss mean    e_ss max   e_st mean    e_st max\n");
   int level = 0;

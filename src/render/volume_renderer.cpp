@@ -25,7 +25,8 @@ VolumeRenderer::VolumeRenderer(GlContext& ctx, const tsp::BrickStore& bricks,
                                tsp::CachePolicy cache, std::int64_t texture_budget,
                                std::int64_t brick_budget)
     : tree_(bricks.tree()),
-      cache_(texture_budget, cache),
+      // The cache counts 16-bit samples; a stencilled texel holds two (RG16).
+      cache_(tree_.has_stencil() ? texture_budget / 2 : texture_budget, cache),
       bricks_(bricks, brick_budget),
       compositor_(ctx),
       textures_(ctx.gl(), bricks_) {

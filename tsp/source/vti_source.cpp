@@ -24,6 +24,9 @@ class VtiSeriesSource final : public VolumeSource {
       : input_(std::move(input)), files_(std::move(files)), field_(std::move(field)), dims_(dims) {}
 
   Dims dims() const override { return dims_; }
+  std::array<double, 3> origin() const override { return {geometry_[0], geometry_[1], geometry_[2]}; }
+  std::array<double, 3> spacing() const override { return {geometry_[3], geometry_[4], geometry_[5]}; }
+  std::array<double, 6> geometry_{0, 0, 0, 1, 1, 1};  // of the first step
   int steps() const override { return int(files_.size()); }
   std::vector<std::string> files() const override {
     std::vector<std::string> all = files_;
@@ -83,7 +86,10 @@ std::unique_ptr<VolumeSource> open_series(const std::string& input, std::vector<
   Dims dims = first.dims(field);
   for (std::size_t i = 1; i < files.size(); ++i)
     VtiSeriesSource::checked_field(VtiFile(files[i], true), field, dims, files[0]);
-  return std::make_unique<VtiSeriesSource>(input, std::move(files), field, dims);
+  const std::array<double, 6> geometry = first.geometry(field);
+  auto source = std::make_unique<VtiSeriesSource>(input, std::move(files), field, dims);
+  source->geometry_ = geometry;
+  return source;
 }
 
 void require_file(const std::string& path) { require_regular_file(path, "input"); }

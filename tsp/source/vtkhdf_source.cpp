@@ -1,7 +1,7 @@
 // Follows the VTKHDF file format specification, version 2.x (VTK documentation "VTKHDF File
 // Format", sections "Image data" and "Temporal/Transient Data"; current 2.5):
 //  - /VTKHDF has attributes Version = [major, minor], Type = "ImageData", WholeExtent (6 ints),
-//    Origin, Spacing, Direction (geometry is not needed for the regular grid we return).
+//    Origin, Spacing (recorded as the grid's geometry), Direction (ignored: axis-aligned).
 //    Version 1.x files may lack Type; like VTK we then take WholeExtent to mean ImageData.
 //  - /VTKHDF/PointData/<name> and /VTKHDF/CellData/<name> hold the arrays with dimensions
 //    ordered (z, y, x[, components]); as in VTK's reader, z is dropped when WholeExtent is flat
@@ -20,6 +20,7 @@
 
 #include "tsp/core/error.h"
 #include "tsp/hdf5/hdf5_values.h"
+#include "tsp/source/grid_geometry.h"
 
 namespace tsp::io {
 namespace {
@@ -94,6 +95,9 @@ class VtkHdfSource final : public VolumeSource {
         time_index_(std::move(time_index)) {}
 
   Dims dims() const override { return dims_; }
+  std::array<double, 3> origin() const override { return geometry_.origin; }
+  std::array<double, 3> spacing() const override { return geometry_.spacing; }
+  GridGeometry geometry_;
   int steps() const override { return transient_ ? int(time_index_.size()) : 1; }
   std::string describe() const override { return path_ + ", VTKHDF ImageData " + array_path_; }
   std::vector<std::string> files() const override { return {path_}; }
@@ -286,8 +290,14 @@ std::unique_ptr<VolumeSource> open_vtkhdf_source(const std::string& path, h5::Ha
   VolumeSlab slab;
   slab.spatial = spatial;
   slab.trailing = trailing;
-  return std::make_unique<VtkHdfSource>(path, std::move(file), array_path, Dims{int(n[0]), int(n[1]), int(n[2])},
-                                        std::move(slab), transient, std::move(time_index));
+  const GridGeometry geometry =
+      image_geometry(numeric_attribute(root.get(), "Origin", where),
+                     numeric_attribute(root.get(), "Spacing", where), cells, where);
+  auto source = std::make_unique<VtkHdfSource>(path, std::move(file), array_path,
+                                               Dims{int(n[0]), int(n[1]), int(n[2])},
+                                               std::move(slab), transient, std::move(time_index));
+  source->geometry_ = geometry;
+  return source;
 }
 
 }  // namespace tsp::io

@@ -46,7 +46,7 @@ class VoxelizedSource final : public VolumeSource {
       mesh.values = cell_values_to_points(mesh);
       mesh.cell_values = false;
     }
-    voxelize(mesh, grid_, out, inside, options_.hex, options_.threads);
+    voxelize(mesh, grid_, out, inside, options_.sample);
   }
 
  private:

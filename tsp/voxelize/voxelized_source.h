@@ -22,8 +22,7 @@ struct VoxelizeOptions {
   int resolution = 0;         ///< samples on the longest edge (0: by rule)
   double voxel_size = 0;      ///< physical voxel edge (0: by rule); exclusive with resolution
   CellDataMode cell_data = CellDataMode::constant;
-  HexSampling hex = HexSampling::isoparametric;  ///< how hexahedra are sampled
-  int threads = 0;            ///< voxelizer workers; 0 = all cores
+  SampleOptions sample;       ///< voxelizer, hexahedron sampling, antialiasing, workers
 };
 
 /// Default grid limits on the longest edge, and the largest grid any option may ask for.

@@ -1,12 +1,14 @@
 #include "tsp/voxelize/voxelizer.h"
 
 #include <algorithm>
+#include <bit>
 #include <cassert>
 #include <cmath>
 #include <limits>
 #include <vector>
 
 #include "tsp/core/parallel_for.h"
+#include "tsp/voxelize/scan_convert.h"
 #include "tsp/voxelize/tet_box.h"
 
 namespace tsp {
@@ -53,6 +55,9 @@ struct Voxelizer {
   std::span<std::uint8_t> inside;
   bool whole_hex;
   TileGrid tiles;
+  // How far a voxel's sub-samples reach from its centre (the scan voxelizer's K > 1): cells
+  // are binned to the voxels whose sub-samples, not only centres, they may hold.
+  std::array<double, 3> margin{0, 0, 0};
 
   Vec3 tet_point(std::int64_t p) const {
     const double* x = tets.points.data() + 3 * p;
@@ -79,8 +84,8 @@ struct Voxelizer {
             const int v0 = std::max(lo[a], tl[a] * kTile);
             const int v1 = std::min(hi[a], tl[a] * kTile + kTile - 1);
             whole &= v0 == lo[a] && v1 == hi[a];
-            box.lo[a] = grid.origin[a] + v0 * grid.spacing[a];
-            box.hi[a] = grid.origin[a] + v1 * grid.spacing[a];
+            box.lo[a] = grid.origin[a] + v0 * grid.spacing[a] - margin[a];
+            box.hi[a] = grid.origin[a] + v1 * grid.spacing[a] + margin[a];
           }
           if (!whole && tet) {
             ++st.tile_tests;
@@ -123,7 +128,7 @@ struct Voxelizer {
         for (int a = 0; a < 3; ++a) {
           const double mn = std::min({v[0][a], v[1][a], v[2][a], v[3][a]});
           const double mx = std::max({v[0][a], v[1][a], v[2][a], v[3][a]});
-          voxel_range(mn, mx, grid, a, lo[a], hi[a]);
+          voxel_range(mn - margin[a], mx + margin[a], grid, a, lo[a], hi[a]);
           empty |= lo[a] > hi[a];
         }
         if (!empty) bin(t, lo, hi, &v, bins, st);
@@ -343,15 +348,21 @@ struct Voxelizer {
 }  // namespace
 
 VoxelizeStats voxelize(const Mesh& mesh, const VoxelGrid& grid, std::span<float> values,
-                       std::span<std::uint8_t> inside, HexSampling hex, int threads) {
+                       std::span<std::uint8_t> inside, const SampleOptions& options) {
   const Dims d = grid.dims;
   assert(std::int64_t(values.size()) == d.count() && inside.size() == values.size());
+  assert(options.antialias >= 1 && options.antialias <= kMaxAntialias);
+  const int threads = options.threads;
+  const bool scan = options.kind == VoxelizerKind::scan;
   std::fill(values.begin(), values.end(), 0.f);
   std::fill(inside.begin(), inside.end(), std::uint8_t(0));
-  const bool whole_hex = hex == HexSampling::isoparametric;
+  const bool whole_hex = !scan && options.hex == HexSampling::isoparametric;
   const bool all_hex = whole_hex && std::all_of(mesh.types.begin(), mesh.types.end(), is_hexahedral);
   const TetMesh tets = all_hex ? TetMesh{} : tetrahedralize(mesh, whole_hex);
-  Voxelizer vx{mesh, tets, grid, values, inside, whole_hex, {}};
+  Voxelizer vx{mesh, tets, grid, values, inside, whole_hex, {}, {}};
+  if (scan)
+    for (int a = 0; a < 3; ++a)
+      vx.margin[std::size_t(a)] = (0.5 - 0.5 / options.antialias) * grid.spacing[std::size_t(a)];
   for (int a = 0; a < 3; ++a) vx.tiles.n[a] = (d[a] + kTile - 1) / kTile;
   VoxelizeStats stats;
   stats.tets = std::int64_t(tets.tets.size());
@@ -392,6 +403,12 @@ VoxelizeStats voxelize(const Mesh& mesh, const VoxelGrid& grid, std::span<float>
 
   // Sample: tiles in parallel; in each, cells in index order, the first containing one wins.
   std::vector<std::int64_t> inside_count(bins.size(), 0);
+  detail::ScanBuffers acc;
+  if (scan) {
+    acc.k = options.antialias;
+    acc.taken.assign(values.size(), 0);
+    acc.sum.assign(values.size(), 0.0);
+  }
   parallel_for(vx.tiles.count(), 1, threads, [&](int, std::int64_t first, std::int64_t last) {
     for (std::int64_t ti = first; ti < last; ++ti) {
       const int tl[3] = {int(ti % vx.tiles.n[0]), int(ti / vx.tiles.n[0] % vx.tiles.n[1]),
@@ -403,10 +420,24 @@ VoxelizeStats voxelize(const Mesh& mesh, const VoxelGrid& grid, std::span<float>
       }
       for (Item item : bins[std::size_t(ti)])
         inside_count[std::size_t(ti)] +=
-            item >= 0 ? vx.sample_tet(item, t0, t1) : vx.sample_hex(-1 - item, t0, t1);
+            scan        ? detail::scan_tet(tets, item, grid, t0, t1, acc)
+            : item >= 0 ? vx.sample_tet(item, t0, t1)
+                        : vx.sample_hex(-1 - item, t0, t1);
     }
   });
-  for (std::int64_t c : inside_count) stats.inside += c;
+  if (scan) {
+    // The accumulation buffer to voxels: inside when at least half the sub-samples are.
+    const int all = acc.k * acc.k * acc.k;
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      const int n = std::popcount(acc.taken[i]);
+      if (2 * n < all) continue;
+      values[i] = float(acc.sum[i] / n);
+      inside[i] = 1;
+      ++stats.inside;
+    }
+  } else {
+    for (std::int64_t c : inside_count) stats.inside += c;
+  }
   pad_outside(values, inside, d);
   return stats;
 }

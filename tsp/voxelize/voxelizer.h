@@ -33,6 +33,24 @@ enum class HexSampling {
   tetrahedra,     ///< through their conforming tetrahedra, linear in each (paper 000)
 };
 
+/// Which voxelizer samples the cells.
+enum class VoxelizerKind {
+  locate,  ///< A (paper 000): each voxel centre located in a cell, interpolated there
+  scan,    ///< B (paper 003): tetrahedra scan-converted onto K× sub-samples, averaged per voxel
+};
+
+/// Largest anti-aliasing factor of the scan voxelizer (K³ sub-samples fit a 64-bit mask).
+inline constexpr int kMaxAntialias = 4;
+
+/// How voxelize() samples.
+struct SampleOptions {
+  VoxelizerKind kind = VoxelizerKind::locate;
+  HexSampling hex = HexSampling::isoparametric;  ///< locate only
+  int antialias = 1;  ///< scan only: K, 1..kMaxAntialias; a voxel is inside when at least half
+                      ///< its K³ sub-samples are, and holds their mean
+  int threads = 0;    ///< workers; 0 = all cores
+};
+
 /// What a voxelization did, for reports and benchmarks.
 struct VoxelizeStats {
   std::int64_t tets = 0;          ///< tetrahedra sampled
@@ -44,11 +62,10 @@ struct VoxelizeStats {
 
 /// Samples mesh (validated by check_mesh) on grid into values (dims.count() floats, x fastest)
 /// and inside (1 = inside the mesh, 0 = outside), padding outside voxels as described above
-/// (all 0 when nothing is inside). Runs on `threads` workers (0: all cores). Never throws
-/// (asserts on sizes).
+/// (all 0 when nothing is inside). Never throws (asserts on sizes and an antialias factor
+/// outside 1..kMaxAntialias).
 VoxelizeStats voxelize(const Mesh& mesh, const VoxelGrid& grid, std::span<float> values,
-                       std::span<std::uint8_t> inside, HexSampling hex = HexSampling::isoparametric,
-                       int threads = 0);
+                       std::span<std::uint8_t> inside, const SampleOptions& options = {});
 
 /// Pads the outside voxels of values (inside[i] == 0) with the value of the nearest inside
 /// voxel by breadth-first distance over the 6-neighbourhood (ties: the first reached in x, y, z

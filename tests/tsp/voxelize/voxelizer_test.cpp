@@ -51,6 +51,15 @@ Mesh jittered_box(int n, double jitter, Keep keep, F f) {
   return m;
 }
 
+// Voxelizer A in both hexahedron modes and B without anti-aliasing: all sample voxel centres.
+std::vector<SampleOptions> all_samplers() {
+  SampleOptions iso, tets, scan;
+  tets.hex = HexSampling::tetrahedra;
+  scan.kind = VoxelizerKind::scan;
+  iso.threads = tets.threads = scan.threads = 2;
+  return {iso, tets, scan};
+}
+
 VoxelGrid unit_grid(int n) {
   VoxelGrid g;
   g.dims = Dims{n, n, n};
@@ -64,8 +73,8 @@ TEST(Voxelizer, LinearFieldIsExactAtEveryVoxelAndTheBoxIsCovered) {
   const VoxelGrid g = unit_grid(23);
   std::vector<float> v(std::size_t(g.dims.count()));
   std::vector<std::uint8_t> in(v.size());
-  for (HexSampling hex : {HexSampling::tetrahedra, HexSampling::isoparametric}) {
-  const VoxelizeStats st = voxelize(m, g, v, in, hex, 2);
+  for (const SampleOptions& so : all_samplers()) {
+  const VoxelizeStats st = voxelize(m, g, v, in, so);
   EXPECT_EQ(st.inside, g.dims.count());  // no gap anywhere, faces and boundary included
   for (int z = 0; z < 23; ++z)
     for (int y = 0; y < 23; ++y)
@@ -90,8 +99,8 @@ TEST(Voxelizer, HoleVoxelsAreOutsideAndPaddedFromTheirNeighbours) {
   g.spacing = {1.0 / n, 1.0 / n, 1.0 / n};
   std::vector<float> v(std::size_t(g.dims.count()));
   std::vector<std::uint8_t> in(v.size());
-  for (HexSampling hex : {HexSampling::tetrahedra, HexSampling::isoparametric}) {
-  voxelize(m, g, v, in, hex, 1);
+  for (const SampleOptions& so : all_samplers()) {
+  voxelize(m, g, v, in, so);
   for (int z = 0; z < n; ++z)
     for (int y = 0; y < n; ++y)
       for (int x = 0; x < n; ++x) {
@@ -102,6 +111,62 @@ TEST(Voxelizer, HoleVoxelsAreOutsideAndPaddedFromTheirNeighbours) {
         EXPECT_GE(v[i], 0.f);
         EXPECT_LE(v[i], 1.f);
       }
+  }
+}
+
+TEST(Voxelizer, ScanAntialiasingAveragesTheCoveredSubsamples) {
+  // One hexahedron [0, 0.55] x [0, 1] x [0, 1], f = x, voxel centres every 0.25 from 0. The
+  // voxel at x = 0.5 spans [0.375, 0.625]: of its 4 sub-samples per axis (x = 0.40625 …
+  // 0.59375) the mesh covers 3, so with K = 4 it is inside (48 of 64) and holds their mean x;
+  // the voxel at 0.75 is outside. Without anti-aliasing both are located at their centre.
+  Mesh m;
+  m.points = {0, 0, 0, 0.55, 0, 0, 0.55, 1, 0, 0, 1, 0, 0, 0, 1, 0.55, 0, 1, 0.55, 1, 1, 0, 1, 1};
+  m.connectivity = {0, 1, 2, 3, 4, 5, 6, 7};
+  m.offsets = {0, 8};
+  m.types = {CellType::hexahedron};
+  for (int p = 0; p < 8; ++p) m.values.push_back(float(m.points[std::size_t(3 * p)]));
+  VoxelGrid g;
+  g.dims = Dims{4, 5, 5};
+  g.spacing = {0.25, 0.25, 0.25};
+  std::vector<float> v(std::size_t(g.dims.count()));
+  std::vector<std::uint8_t> in(v.size());
+  SampleOptions so;
+  so.kind = VoxelizerKind::scan;
+  so.antialias = 4;
+  voxelize(m, g, v, in, so);
+  const std::size_t mid = std::size_t(0 + 4 * (2 + 5 * 2));  // (x, y, z) = (0, 2, 2)
+  EXPECT_TRUE(in[mid + 2]);
+  EXPECT_NEAR(v[mid + 2], (0.40625 + 0.46875 + 0.53125) / 3, 1e-6);
+  EXPECT_FALSE(in[mid + 3]);
+  EXPECT_NEAR(v[mid + 1], 0.25, 1e-6);  // a whole voxel: the mean of its sub-samples, its centre
+  so.antialias = 1;
+  voxelize(m, g, v, in, so);
+  EXPECT_NEAR(v[mid + 2], 0.5, 1e-6);
+  EXPECT_FALSE(in[mid + 3]);
+}
+
+TEST(Voxelizer, ScanSubsamplesReachCellsBetweenVoxelCentres) {
+  // Cells (1/20) much smaller than voxels (1/6): many hold sub-samples but no voxel centre. A
+  // fully covered voxel's mean over its symmetric sub-samples of a linear field is its value at
+  // the centre; every voxel off the box's edges is at least half covered.
+  auto f = [](double x, double y, double z) { return float(1 + 2 * x - 3 * y + 0.5 * z); };
+  const Mesh m = jittered_box(20, 0.2, [](double, double, double) { return true; }, f);
+  const VoxelGrid g = unit_grid(7);
+  std::vector<float> v(std::size_t(g.dims.count()));
+  std::vector<std::uint8_t> in(v.size());
+  for (int k = 2; k <= kMaxAntialias; ++k) {
+    SampleOptions so;
+    so.kind = VoxelizerKind::scan;
+    so.antialias = k;
+    voxelize(m, g, v, in, so);
+    for (int z = 0; z < 7; ++z)
+      for (int y = 0; y < 7; ++y)
+        for (int x = 0; x < 7; ++x) {
+          const int faces = (x == 0 || x == 6) + (y == 0 || y == 6) + (z == 0 || z == 6);
+          const std::size_t i = std::size_t(x + 7 * (y + 7 * z));
+          EXPECT_EQ(in[i], faces <= 1 ? 1 : 0) << k << ": " << x << "," << y << "," << z;
+          if (faces == 0) EXPECT_NEAR(v[i], f(x / 6.0, y / 6.0, z / 6.0), 1e-5) << k;
+        }
   }
 }
 

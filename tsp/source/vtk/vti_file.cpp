@@ -6,6 +6,7 @@
 #include <charconv>
 #include <climits>
 #include <cstdint>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -39,6 +40,25 @@ VtiFile::VtiFile(const std::string& path, bool header_only)
     : doc_(path, "ImageData", header_only), image_(doc_.dataset()) {
   parse_extent(image_.attribute("WholeExtent").value(), whole_, path, "WholeExtent");
   if (!image_.child("Piece")) throw FormatError(path + ": <ImageData> has no <Piece>");
+}
+
+std::array<double, 6> VtiFile::geometry(const VtiField& f) const {
+  std::array<double, 6> g{0, 0, 0, 1, 1, 1};
+  for (int which = 0; which < 2; ++which) {
+    const char* name = which ? "Spacing" : "Origin";
+    if (!image_.attribute(name)) continue;
+    std::istringstream in(image_.attribute(name).value());
+    for (int a = 0; a < 3; ++a) {
+      double v = 0;
+      if (!(in >> v) || !std::isfinite(v) || (which && !(v > 0)))
+        throw FormatError(path() + ": " + name + " \"" + image_.attribute(name).value() +
+                          "\" is not 3 finite numbers" + (which ? " > 0" : ""));
+      g[std::size_t(3 * which + a)] = v;
+    }
+  }
+  if (f.cells)
+    for (int a = 0; a < 3; ++a) g[std::size_t(a)] += 0.5 * g[std::size_t(3 + a)];
+  return g;
 }
 
 VtiField VtiFile::resolve(const std::string& requested) const {

@@ -1,6 +1,7 @@
 // One parsed VTK XML ImageData (.vti) file: its grid, its arrays, and decoding of one scalar
 // array into a whole-extent volume. Used by the .vti / .pvd / .vti.series readers.
 #pragma once
+#include <array>
 #include <pugixml.hpp>
 #include <span>
 #include <string>
@@ -36,6 +37,9 @@ class VtiFile {
   /// Grid size of a field: points of WholeExtent, or cells (a flat axis counts one cell).
   Dims dims(const VtiField& f) const;
 
+  /// Origin and Spacing of <ImageData> (cell fields: of the cell centres); 0 and 1 when absent.
+  /// Throws FormatError on values that are not 3 finite numbers or a spacing that is not > 0.
+  std::array<double, 6> geometry(const VtiField& f) const;
   /// Decodes field f of every Piece into out (dims(f).count() floats, x fastest). Throws
   /// FormatError on missing arrays in a piece, truncated/corrupt data, pieces that leave
   /// part of WholeExtent uncovered.
