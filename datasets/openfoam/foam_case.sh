@@ -1,4 +1,4 @@
-# Shared by make_hotPlume.sh and make_decayIsoTurb.sh (sourced, not run): their arguments, the
+# Shared by the make_*.sh case scripts (sourced, not run): their arguments, the
 # Python that imports the result, OpenFOAM's environment and the logged run stages.
 # Needs case_name set by the caller; sets out_dir, keep and run_dir.
 
@@ -66,4 +66,18 @@ foam_finish() {
     rm -rf "$run_dir"
   fi
   echo "wrote $out_dir/$case_name.h5" >&2
+}
+
+# foam_to_vtk FIELDS: writes the run's foamToVTK series (what our unstructured users have: a
+# .vtm.series of multiblock files whose "internal" block is a .vtu) and moves it to
+# OUTDIR/CASE/ (replacing an earlier one); removes the run directory unless --keep.
+foam_to_vtk() {
+  stage vtk foamToVTK -fields "$1" -no-boundary
+  rm -rf "${out_dir:?}/$case_name"
+  mv "$run_dir/VTK" "$out_dir/$case_name"
+  if [ "$keep" -eq 0 ]; then
+    cd "$out_dir"
+    rm -rf "$run_dir"
+  fi
+  echo "wrote $(ls "$out_dir/$case_name"/*.vtm.series)" >&2
 }

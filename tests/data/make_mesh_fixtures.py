@@ -155,6 +155,37 @@ def main():
                    "files": [{"name": f"case_{t}.vtm", "time": TIMES[t]} for t in order]}, s)
     for t in STEPS:
         write_vtkhdf(os.path.join(OUT, f"mesh_{t}.hdf"), make_grid(t), t)
+    make_hostile()
+
+
+
+def make_hostile():
+    """hostile_zlib_lie.vtu: the zlib_binary fixture whose Points header claims one block of
+    2^40 bytes (a size the data cannot inflate to); hostile_vtkhdf_*.hdf: mesh_0.hdf with a
+    connectivity entry, a cell type or an offset broken."""
+    import base64
+    import re
+    import shutil
+    import struct
+    text = open(os.path.join(OUT, "zlib_binary_0.vtu")).read()
+    m = re.search(r'(Name="Points"[^>]*>\s*)([A-Za-z0-9+/=]+)', text)
+    b64 = m.group(2)
+    # UInt32 header: [nblocks][blocksize][lastsize][csize...], base64-encoded on its own.
+    head_len = 4 * 4  # one block
+    head = base64.b64decode(b64[:((head_len + 2) // 3) * 4])
+    nblocks, bsize, last, csize = struct.unpack("<4I", head[:16])
+    lie = struct.pack("<4I", nblocks, 0xFFFFFFFF, 0xFFFFFFFF, csize)
+    lie_b64 = base64.b64encode(lie).decode()
+    new = lie_b64 + b64[len(lie_b64):]
+    open(os.path.join(OUT, "hostile_zlib_lie.vtu"), "w").write(
+        text[:m.start(2)] + new + text[m.end(2):])
+    for name, dataset, index, value in [("connectivity", "Connectivity", 0, 999),
+                                        ("type", "Types", 0, 77),
+                                        ("offsets", "Offsets", 2, 1)]:
+        path = os.path.join(OUT, f"hostile_vtkhdf_{name}.hdf")
+        shutil.copy(os.path.join(OUT, "mesh_0.hdf"), path)
+        with h5py.File(path, "r+") as h:
+            h["VTKHDF/" + dataset][index] = value
 
 
 if __name__ == "__main__":

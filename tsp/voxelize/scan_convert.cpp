@@ -20,7 +20,14 @@ struct Point2 {
 void sub_range(double a, double b, double origin, double h, int k, int lo, int hi, int& r0,
                int& r1) {
   // Sub-sample S sits at origin + ((S + ½)/k − ½)·h.
-  const double u = ((a - origin) / h + 0.5) * k - 0.5, w = ((b - origin) / h + 0.5) * k - 0.5;
+  double u = ((a - origin) / h + 0.5) * k - 0.5, w = ((b - origin) / h + 0.5) * k - 0.5;
+  if (!(u <= w)) {  // NaN from overflowing coordinates: nothing
+    r0 = 1;
+    r1 = 0;
+    return;
+  }
+  u = std::max(u, double(lo) - 1);  // clamped before the conversion to int
+  w = std::min(w, double(hi) + 1);
   r0 = std::max(lo, int(std::ceil(u - kEdgeTolerance)));
   r1 = std::min(hi, int(std::floor(w + kEdgeTolerance)));
 }

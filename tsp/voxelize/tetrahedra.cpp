@@ -29,14 +29,15 @@ struct Builder {
 
   // A new point at the mean of pts (and, for point data, the mean of their values).
   std::int64_t centroid(const std::vector<std::int64_t>& pts) {
+    // Sums of terms already divided by n: coordinates near the double range cannot overflow.
     double x[3] = {0, 0, 0}, v = 0;
-    for (std::int64_t p : pts) {
-      for (int a = 0; a < 3; ++a) x[a] += mesh.points[std::size_t(3 * p + a)];
-      if (!out.cell_values) v += mesh.values[std::size_t(p)];
-    }
     const double n = double(pts.size());
-    for (int a = 0; a < 3; ++a) out.points.push_back(x[a] / n);
-    if (!out.cell_values) out.values.push_back(float(v / n));
+    for (std::int64_t p : pts) {
+      for (int a = 0; a < 3; ++a) x[a] += mesh.points[std::size_t(3 * p + a)] / n;
+      if (!out.cell_values) v += mesh.values[std::size_t(p)] / n;
+    }
+    for (int a = 0; a < 3; ++a) out.points.push_back(x[a]);
+    if (!out.cell_values) out.values.push_back(float(v));
     return std::int64_t(out.points.size() / 3) - 1;
   }
 

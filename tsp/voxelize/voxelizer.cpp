@@ -39,7 +39,15 @@ struct TileGrid {
 
 // Voxel index range [lo, hi] whose centres fall inside [a, b] along axis ax (clamped).
 void voxel_range(double a, double b, const VoxelGrid& g, int ax, int& lo, int& hi) {
-  const double u = (a - g.origin[ax]) / g.spacing[ax], v = (b - g.origin[ax]) / g.spacing[ax];
+  double u = (a - g.origin[ax]) / g.spacing[ax], v = (b - g.origin[ax]) / g.spacing[ax];
+  if (!(u <= v)) {  // NaN from overflowing coordinates: nothing
+    lo = 1;
+    hi = 0;
+    return;
+  }
+  // Clamped before the conversion to int (a box far outside the grid stays empty).
+  u = std::max(u, -1.0);
+  v = std::min(v, double(g.dims[ax]));
   lo = std::max(0, int(std::ceil(u - 1e-9)));
   hi = std::min(g.dims[ax] - 1, int(std::floor(v + 1e-9)));
 }

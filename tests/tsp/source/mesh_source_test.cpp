@@ -143,5 +143,34 @@ TEST(MeshSource, HugeCountsAreRefusedBeforeAllocating) {
   EXPECT_NE(e.find("holds only"), std::string::npos) << e;
 }
 
+TEST(MeshSource, LyingZlibHeaderIsNamedNotAllocated) {
+  // The Points header claims blocks of 4 GiB: refused before anything that size is allocated.
+  try {
+    open_mesh_source((dir() / "hostile_zlib_lie.vtu").string(), "f")->read_step(0);
+    FAIL() << "no error";
+  } catch (const FormatError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("hostile_zlib_lie.vtu"), std::string::npos) << m;
+    EXPECT_NE(m.find("zlib"), std::string::npos) << m;
+  }
+}
+
+TEST(MeshSource, MalformedVtkhdfNamesTheFileAndTheDataset) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"hostile_vtkhdf_connectivity.hdf", "Connectivity"},
+      {"hostile_vtkhdf_type.hdf", "type 77"},
+      {"hostile_vtkhdf_offsets.hdf", "Offsets"}};
+  for (const auto& [file, what] : cases) {
+    try {
+      open_mesh_source((dir() / file).string(), "f")->read_step(0);
+      ADD_FAILURE() << file << ": no error";
+    } catch (const FormatError& e) {
+      const std::string m = e.what();
+      EXPECT_NE(m.find(file), std::string::npos) << m;
+      EXPECT_NE(m.find(what), std::string::npos) << m;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace tsp
