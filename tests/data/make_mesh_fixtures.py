@@ -155,8 +155,71 @@ def main():
                    "files": [{"name": f"case_{t}.vtm", "time": TIMES[t]} for t in order]}, s)
     for t in STEPS:
         write_vtkhdf(os.path.join(OUT, f"mesh_{t}.hdf"), make_grid(t), t)
+    write_vtkhdf_transient(os.path.join(OUT, "transient.hdf"))
     make_hostile()
 
+
+
+def write_vtkhdf_transient(path):
+    """One transient VTKHDF UnstructuredGrid file: the steps' meshes one after another (one
+    partition each, the mesh moved by +t along x at step t), with the Steps offsets tables."""
+    from vtk.util import numpy_support as ns
+    grids = []
+    for t in STEPS:
+        ug = make_grid(t)
+        pts = ug.GetPoints()
+        for i in range(pts.GetNumberOfPoints()):
+            x, y, z = pts.GetPoint(i)
+            pts.SetPoint(i, x + t, y, z)
+        f = ug.GetPointData().GetArray("f")
+        for i in range(pts.GetNumberOfPoints()):
+            x, y, z = pts.GetPoint(i)
+            f.SetValue(i, x + 10 * y + 100 * z + 1000 * t)
+        grids.append(ug)
+    with h5py.File(path, "w") as h:
+        g = h.create_group("VTKHDF")
+        g.attrs["Version"] = np.array([2, 0], dtype=np.int64)
+        s = "UnstructuredGrid".encode("ascii")
+        g.attrs.create("Type", s, dtype=h5py.string_dtype("ascii", len(s)))
+        cat = {k: [] for k in ("np", "nc", "nconn", "pts", "conn", "offs", "types", "f", "c")}
+        for ug in grids:
+            nonpoly = [k for k in range(ug.GetNumberOfCells())
+                       if ug.GetCellType(k) != vtk.VTK_POLYHEDRON]
+            conn, offs, types = [], [0], []
+            for k in nonpoly:
+                ids = ug.GetCell(k).GetPointIds()
+                conn += [ids.GetId(i) for i in range(ids.GetNumberOfIds())]
+                offs.append(len(conn))
+                types.append(ug.GetCellType(k))
+            cat["np"].append(ug.GetNumberOfPoints())
+            cat["nc"].append(len(types))
+            cat["nconn"].append(len(conn))
+            cat["pts"].append(ns.vtk_to_numpy(ug.GetPoints().GetData()).astype(np.float64))
+            cat["conn"] += conn
+            cat["offs"] += offs
+            cat["types"] += types
+            cat["f"].append(ns.vtk_to_numpy(ug.GetPointData().GetArray("f")))
+            cat["c"].append(ns.vtk_to_numpy(ug.GetCellData().GetArray("c"))[nonpoly])
+        g["NumberOfPoints"] = np.array(cat["np"], dtype=np.int64)
+        g["NumberOfCells"] = np.array(cat["nc"], dtype=np.int64)
+        g["NumberOfConnectivityIds"] = np.array(cat["nconn"], dtype=np.int64)
+        g["Points"] = np.concatenate(cat["pts"])
+        g["Connectivity"] = np.array(cat["conn"], dtype=np.int64)
+        g["Offsets"] = np.array(cat["offs"], dtype=np.int64)
+        g["Types"] = np.array(cat["types"], dtype=np.uint8)
+        g.create_group("PointData")["f"] = np.concatenate(cat["f"])
+        g.create_group("CellData")["c"] = np.concatenate(cat["c"])
+        st = g.create_group("Steps")
+        st.attrs["NSteps"] = np.int64(len(STEPS))
+        st["Values"] = np.array([TIMES[t] for t in STEPS], dtype=np.float64)
+        st["PartOffsets"] = np.arange(len(STEPS), dtype=np.int64)
+        st["NumberOfParts"] = np.ones(len(STEPS), dtype=np.int64)
+        cum = lambda v: np.concatenate([[0], np.cumsum(v)[:-1]]).astype(np.int64)
+        st["PointOffsets"] = cum(cat["np"])
+        st["CellOffsets"] = cum(cat["nc"])
+        st["ConnectivityIdOffsets"] = cum(cat["nconn"])
+        st.create_group("PointDataOffsets")["f"] = cum(cat["np"])
+        st.create_group("CellDataOffsets")["c"] = cum(cat["nc"])
 
 
 def make_hostile():

@@ -80,4 +80,16 @@ std::vector<std::string> group_members(hid_t group) {
   return names;
 }
 
+std::vector<std::string> datasets_in(hid_t loc, const std::string& group) {
+  std::vector<std::string> names;
+  if (!exists(loc, group)) return names;
+  Handle g(H5Gopen2(loc, group.c_str(), H5P_DEFAULT));
+  if (!g) return names;
+  for (const std::string& n : group_members(g.get())) {
+    Handle obj(H5Oopen(g.get(), n.c_str(), H5P_DEFAULT));
+    if (obj && H5Iget_type(obj.get()) == H5I_DATASET) names.push_back(n);
+  }
+  return names;
+}
+
 }  // namespace tsp::h5

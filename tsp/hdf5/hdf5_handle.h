@@ -41,6 +41,9 @@ class Handle {
 /// Turns off HDF5's automatic error stack printing (errors become our exceptions); idempotent.
 void silence_errors();
 
+/// Names of the datasets directly in group (empty when the group is absent). Never throws.
+std::vector<std::string> datasets_in(hid_t loc, const std::string& group);
+
 /// Opens an existing file read-only; throws IoError (missing, unreadable) or FormatError (not HDF5).
 Handle open_file_readonly(const std::string& path);
 

@@ -87,6 +87,9 @@ class MeshSource {
   virtual std::vector<double> times() const = 0;
   /// Reads step t (0 ≤ t < steps()). Throws IoError or FormatError naming the file and array.
   virtual Mesh read_step(int t) = 0;
+  /// Bounding box of step t's points (a reader may decode only the points). Throws like
+  /// read_step.
+  virtual Aabb bounds(int t) { return read_step(t).bounds(); }
 };
 
 }  // namespace tsp

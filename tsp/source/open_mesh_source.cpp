@@ -16,22 +16,15 @@
 namespace tsp {
 namespace {
 
-bool ends_with(const std::string& s, const std::string& suffix) {
-  if (s.size() < suffix.size()) return false;
-  return std::equal(suffix.rbegin(), suffix.rend(), s.rbegin(), [](char a, char b) {
-    return std::tolower(static_cast<unsigned char>(a)) ==
-           std::tolower(static_cast<unsigned char>(b));
-  });
-}
 
 bool is_hdf5_name(const std::string& s) {
   for (const char* ext : {".hdf", ".vtkhdf", ".h5", ".hdf5"})
-    if (ends_with(s, ext)) return true;
+    if (io::has_suffix(s, ext)) return true;
   return false;
 }
 
 bool names_unstructured(const std::string& file) {
-  return ends_with(file, ".vtu") || ends_with(file, ".vtm");
+  return io::has_suffix(file, ".vtu") || io::has_suffix(file, ".vtm");
 }
 
 // A series of .vtu files (a .vtm step reads its volume block).
@@ -66,9 +59,14 @@ class VtuSeriesSource final : public MeshSource {
     return file.read(f);
   }
 
+  Aabb bounds(int t) override {
+    assert(t >= 0 && t < steps());
+    return io::VtuFile(volume_file(steps_[std::size_t(t)].file)).bounds();
+  }
+
   // A step's .vtu: itself, or a .vtm's volume block.
   static std::string volume_file(const std::string& file) {
-    return ends_with(file, ".vtm") ? io::vtm_volume_block(file) : file;
+    return io::has_suffix(file, ".vtm") ? io::vtm_volume_block(file) : file;
   }
 
  private:
@@ -102,8 +100,8 @@ std::vector<io::StepFile> listed_steps(const std::string& input) {
       steps.push_back({f, double(steps.size())});
     return steps;
   }
-  if (ends_with(input, ".pvd")) return io::read_pvd(input);
-  if (ends_with(input, ".series")) return io::read_file_series(input);
+  if (io::has_suffix(input, ".pvd")) return io::read_pvd(input);
+  if (io::has_suffix(input, ".series")) return io::read_file_series(input);
   return {{input, 0}};
 }
 
@@ -111,10 +109,10 @@ std::vector<io::StepFile> listed_steps(const std::string& input) {
 
 bool is_mesh_input(const std::string& input) {
   try {
-    if (ends_with(input, ".vtu") || ends_with(input, ".vtm") || ends_with(input, ".vtu.series") ||
-        ends_with(input, ".vtm.series"))
+    if (io::has_suffix(input, ".vtu") || io::has_suffix(input, ".vtm") || io::has_suffix(input, ".vtu.series") ||
+        io::has_suffix(input, ".vtm.series"))
       return true;
-    if (ends_with(input, ".pvd")) {
+    if (io::has_suffix(input, ".pvd")) {
       std::vector<io::StepFile> steps = io::read_pvd(input);
       return !steps.empty() && names_unstructured(steps[0].file);
     }

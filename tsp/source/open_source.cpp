@@ -10,23 +10,17 @@
 #include "tsp/hdf5/hdf5_handle.h"
 #include "tsp/source/hdf5_source.h"
 #include "tsp/source/raw_source.h"
+#include "tsp/source/series_list.h"
 #include "tsp/source/volume_source.h"
 #include "tsp/source/vti_source.h"
 
 namespace tsp {
 namespace {
 
-bool ends_with(const std::string& s, const std::string& suffix) {
-  if (s.size() < suffix.size()) return false;
-  return std::equal(suffix.rbegin(), suffix.rend(), s.rbegin(), [](char a, char b) {
-    return std::tolower(static_cast<unsigned char>(a)) ==
-           std::tolower(static_cast<unsigned char>(b));
-  });
-}
 
 bool has_hdf5_extension(const std::string& s) {
   for (const char* ext : {".h5", ".hdf5", ".nc", ".hdf", ".vtkhdf", ".he5", ".nc4"})
-    if (ends_with(s, ext)) return true;
+    if (io::has_suffix(s, ext)) return true;
   return false;
 }
 
@@ -46,16 +40,16 @@ std::unique_ptr<VolumeSource> open_source(const std::string& input, const Source
   // A pattern names many files; an existing file whose name merely contains '%' or '*' is
   // read as itself.
   if (!exists && io::is_file_pattern(input)) {
-    if (ends_with(input, ".vti")) return io::open_vti_pattern_source(input, options);
+    if (io::has_suffix(input, ".vti")) return io::open_vti_pattern_source(input, options);
     if (has_hdf5_extension(input))
       throw UsageError(input +
                        ": a file pattern of HDF5 files is not supported; store the steps "
                        "in one file (a 4-D dataset or a group of 3-D datasets)");
     return io::open_raw_source(input, options);
   }
-  if (ends_with(input, ".pvd")) return io::open_pvd_source(input, options);
-  if (ends_with(input, ".vti.series")) return io::open_vti_series_source(input, options);
-  if (ends_with(input, ".vti")) return io::open_vti_source(input, options);
+  if (io::has_suffix(input, ".pvd")) return io::open_pvd_source(input, options);
+  if (io::has_suffix(input, ".vti.series")) return io::open_vti_series_source(input, options);
+  if (io::has_suffix(input, ".vti")) return io::open_vti_source(input, options);
   if (!exists) throw IoError(input + ": input does not exist");
   if (std::filesystem::is_directory(input, ec))
     throw IoError(input + ": input is a directory, expected a file or a file pattern");
@@ -63,7 +57,7 @@ std::unique_ptr<VolumeSource> open_source(const std::string& input, const Source
   require_regular_file(input, "input");
   if (has_hdf5_extension(input) || has_hdf5_signature(input))
     return io::open_hdf5_source(input, options);
-  if (ends_with(input, ".raw") || options.raw_dims) return io::open_raw_source(input, options);
+  if (io::has_suffix(input, ".raw") || options.raw_dims) return io::open_raw_source(input, options);
   throw FormatError(input +
                     ": unrecognised input; expected HDF5/NetCDF-4/VTKHDF (.h5 .hdf5 .nc .hdf), "
                     "VTK image data (.vti .pvd .vti.series) or raw data (.raw, a %d pattern or a "

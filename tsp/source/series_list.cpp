@@ -1,6 +1,7 @@
 #include "tsp/source/series_list.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -28,11 +29,15 @@ pugi::xml_node load_vtk_xml(pugi::xml_document& doc, const std::string& path,
   return root;
 }
 
-bool ends_with_vtu(const std::string& s) {
-  return s.size() >= 4 && s.compare(s.size() - 4, 4, ".vtu") == 0;
-}
-
 }  // namespace
+
+bool has_suffix(const std::string& s, const std::string& suffix) {
+  if (s.size() < suffix.size()) return false;
+  return std::equal(suffix.rbegin(), suffix.rend(), s.rbegin(), [](char a, char b) {
+    return std::tolower(static_cast<unsigned char>(a)) ==
+           std::tolower(static_cast<unsigned char>(b));
+  });
+}
 
 std::string resolve_relative(const std::string& list_file, const std::string& name) {
   fs::path p(name);
@@ -122,7 +127,7 @@ std::string vtm_volume_block(const std::string& path) {
     const std::string file = ds.attribute("file").value();
     names.push_back(name.empty() ? file : name);
     if (name == "internal" && !file.empty()) internal = file;
-    if (ends_with_vtu(file)) volumes.push_back(file);
+    if (has_suffix(file, ".vtu")) volumes.push_back(file);
   }
   if (!internal.empty()) return resolve_relative(path, internal);
   if (volumes.size() == 1) return resolve_relative(path, volumes[0]);

@@ -28,6 +28,9 @@ void order_steps(const std::string& list, std::vector<StepFile>& steps);
 /// depth), else the only .vtu DataSet. Throws FormatError naming the file and the blocks found.
 std::string vtm_volume_block(const std::string& path);
 
+/// True when s ends with suffix, ignoring ASCII case (".VTU" is ".vtu"). Never throws.
+bool has_suffix(const std::string& s, const std::string& suffix);
+
 /// name resolved against the folder of list_file (absolute names stay). Never throws.
 std::string resolve_relative(const std::string& list_file, const std::string& name);
 

@@ -89,17 +89,6 @@ std::int64_t entry(hid_t file, const std::string& name, std::int64_t index,
   return ints(file, name, index, 1, where)[0];
 }
 
-std::vector<std::string> datasets_in(hid_t file, const std::string& group) {
-  std::vector<std::string> names;
-  if (!h5::exists(file, group)) return names;
-  Handle g(H5Gopen2(file, group.c_str(), H5P_DEFAULT));
-  if (!g) return names;
-  for (const std::string& n : h5::group_members(g.get())) {
-    Handle obj(H5Oopen(g.get(), n.c_str(), H5P_DEFAULT));
-    if (obj && H5Iget_type(obj.get()) == H5I_DATASET) names.push_back(n);
-  }
-  return names;
-}
 
 // Where step t's rows start in each table (all 0 and one partition for a static file).
 struct StepRows {
@@ -231,8 +220,8 @@ class VtkhdfMeshSource final : public MeshSource {
 };
 
 void VtkhdfMeshSource::resolve(hid_t file, const std::string& path) {
-  const std::vector<std::string> points = datasets_in(file, "/VTKHDF/PointData");
-  const std::vector<std::string> cells = datasets_in(file, "/VTKHDF/CellData");
+  const std::vector<std::string> points = h5::datasets_in(file, "/VTKHDF/PointData");
+  const std::vector<std::string> cells = h5::datasets_in(file, "/VTKHDF/CellData");
   auto join = [](const std::vector<std::string>& v) {
     std::string s;
     for (std::size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + v[i];

@@ -36,17 +36,6 @@ std::string shape_text(const std::vector<hsize_t>& shape) {
   return s.empty() ? "scalar" : s;
 }
 
-std::vector<std::string> datasets_in(hid_t file, const std::string& group_path) {
-  std::vector<std::string> names;
-  if (!h5::exists(file, group_path)) return names;
-  Handle group(H5Gopen2(file, group_path.c_str(), H5P_DEFAULT));
-  if (!group) return names;
-  for (const std::string& n : h5::group_members(group.get())) {
-    Handle obj(H5Oopen(group.get(), n.c_str(), H5P_DEFAULT));
-    if (obj && H5Iget_type(obj.get()) == H5I_DATASET) names.push_back(n);
-  }
-  return names;
-}
 
 std::string join(const std::vector<std::string>& v) {
   std::string s;
@@ -178,8 +167,8 @@ std::unique_ptr<VolumeSource> open_vtkhdf_source(const std::string& path, h5::Ha
                         "], expected lo <= hi");
 
   // Pick the array.
-  const std::vector<std::string> point_arrays = datasets_in(file.get(), "/VTKHDF/PointData");
-  const std::vector<std::string> cell_arrays = datasets_in(file.get(), "/VTKHDF/CellData");
+  const std::vector<std::string> point_arrays = h5::datasets_in(file.get(), "/VTKHDF/PointData");
+  const std::vector<std::string> cell_arrays = h5::datasets_in(file.get(), "/VTKHDF/CellData");
   auto contains = [](const std::vector<std::string>& v, const std::string& n) {
     for (const auto& s : v)
       if (s == n) return true;

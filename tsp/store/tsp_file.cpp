@@ -327,6 +327,23 @@ const std::string& TspFile::path() const {
   return impl_->path;
 }
 
+namespace {
+
+// One stored brick of a [brick, step, z, y, x] dataset into out (its lattice's samples, memory
+// type mem_type); the caller holds hdf5_mutex(). Throws FormatError with `what` on failure.
+void read_chunk(hid_t dataset, hid_t mem_type, const BrickLattice& s, int brick, int step,
+                void* out, const std::string& what) {
+  hsize_t start[5] = {hsize_t(brick), hsize_t(step), 0, 0, 0};
+  hsize_t count[5] = {1, 1, hsize_t(s.samples[2]), hsize_t(s.samples[1]), hsize_t(s.samples[0])};
+  Handle fspace(H5Dget_space(dataset));
+  Handle mspace(H5Screate_simple(3, count + 2, nullptr));
+  if (H5Sselect_hyperslab(fspace.get(), H5S_SELECT_SET, start, nullptr, count, nullptr) < 0 ||
+      H5Dread(dataset, mem_type, mspace.get(), fspace.get(), H5P_DEFAULT, out) < 0)
+    throw FormatError(what);
+}
+
+}  // namespace
+
 void TspFile::read_brick(int brick, int step, std::span<std::uint16_t> out) const {
   const Octree& o = impl_->tree->octree();
   assert(brick >= 0 && brick < o.stored_brick_count() && step >= 0 &&
@@ -334,16 +351,10 @@ void TspFile::read_brick(int brick, int step, std::span<std::uint16_t> out) cons
   const BrickLattice s = o.lattice(brick);
   assert(std::int64_t(out.size()) == s.count());
   std::lock_guard lock(hdf5_mutex());
-  hsize_t start[5] = {hsize_t(brick), hsize_t(step), 0, 0, 0};
-  hsize_t count[5] = {1, 1, hsize_t(s.samples[2]), hsize_t(s.samples[1]), hsize_t(s.samples[0])};
-  Handle fspace(H5Dget_space(impl_->data.get()));
-  Handle mspace(H5Screate_simple(3, count + 2, nullptr));
-  if (H5Sselect_hyperslab(fspace.get(), H5S_SELECT_SET, start, nullptr, count, nullptr) < 0 ||
-      H5Dread(impl_->data.get(), H5T_NATIVE_UINT16, mspace.get(), fspace.get(), H5P_DEFAULT,
-              out.data()) < 0)
-    throw FormatError(impl_->path + ": dataset " + layout::kBrickData + ": cannot read brick " +
-                      std::to_string(brick) + " at step " + std::to_string(step) +
-                      " (checksum mismatch: the brick is corrupted, or the file is truncated)");
+  read_chunk(impl_->data.get(), H5T_NATIVE_UINT16, s, brick, step, out.data(),
+             impl_->path + ": dataset " + layout::kBrickData + ": cannot read brick " +
+                 std::to_string(brick) + " at step " + std::to_string(step) +
+                 " (checksum mismatch: the brick is corrupted, or the file is truncated)");
 }
 
 void TspFile::read_inside(int brick, int step, std::span<std::uint8_t> out) const {
@@ -353,16 +364,10 @@ void TspFile::read_inside(int brick, int step, std::span<std::uint8_t> out) cons
   const BrickLattice s = o.lattice(brick);
   assert(std::int64_t(out.size()) == s.count());
   std::lock_guard lock(hdf5_mutex());
-  hsize_t start[5] = {hsize_t(brick), hsize_t(step), 0, 0, 0};
-  hsize_t count[5] = {1, 1, hsize_t(s.samples[2]), hsize_t(s.samples[1]), hsize_t(s.samples[0])};
-  Handle fspace(H5Dget_space(impl_->inside.get()));
-  Handle mspace(H5Screate_simple(3, count + 2, nullptr));
-  if (H5Sselect_hyperslab(fspace.get(), H5S_SELECT_SET, start, nullptr, count, nullptr) < 0 ||
-      H5Dread(impl_->inside.get(), H5T_NATIVE_UINT8, mspace.get(), fspace.get(), H5P_DEFAULT,
-              out.data()) < 0)
-    throw FormatError(impl_->path + ": dataset " + layout::kBrickInside +
-                      ": cannot read the stencil of brick " + std::to_string(brick) +
-                      " at step " + std::to_string(step) + " (corrupted or truncated)");
+  read_chunk(impl_->inside.get(), H5T_NATIVE_UINT8, s, brick, step, out.data(),
+             impl_->path + ": dataset " + layout::kBrickInside +
+                 ": cannot read the stencil of brick " + std::to_string(brick) + " at step " +
+                 std::to_string(step) + " (corrupted or truncated)");
 }
 
 }  // namespace tsp

@@ -133,42 +133,45 @@ TspWriter::~TspWriter() {
   impl_->file.reset();
 }
 
-void TspWriter::write_inside_series(int brick, std::span<const std::uint8_t> inside) {
-  Impl& w = *impl_;
-  const hsize_t per_step = hsize_t(w.shape[0]) * w.shape[1] * w.shape[2];
-  assert(w.inside && inside.size() == per_step * w.steps);
+namespace {
+
+// Writes brick's chunks at every step of a [brick, step, z, y, x] dataset from data (memory type
+// mem_type, elem bytes per sample), in batches of steps: HDF5 keeps per-chunk bookkeeping for
+// every chunk of one write (and holds on to it in its free lists), so one write of a long series
+// would cost memory per step. Holds hdf5_mutex(). Throws IoError naming what.
+void write_series(hid_t dataset, hid_t mem_type, std::size_t elem, const std::array<int, 3>& shape,
+                  int steps, int brick, const void* data, const std::string& path,
+                  const std::string& what) {
+  const hsize_t per_step = hsize_t(shape[0]) * shape[1] * shape[2];
   std::lock_guard lock(hdf5_mutex());
-  Handle fspace(H5Dget_space(w.inside.get()));
-  for (hsize_t t0 = 0; t0 < hsize_t(w.steps); t0 += kWriteBatchSteps) {
-    const hsize_t n = std::min<hsize_t>(kWriteBatchSteps, hsize_t(w.steps) - t0);
+  Handle fspace(H5Dget_space(dataset));
+  for (hsize_t t0 = 0; t0 < hsize_t(steps); t0 += kWriteBatchSteps) {
+    const hsize_t n = std::min<hsize_t>(kWriteBatchSteps, hsize_t(steps) - t0);
     hsize_t start[5] = {hsize_t(brick), t0, 0, 0, 0};
-    hsize_t count[5] = {1, n, hsize_t(w.shape[2]), hsize_t(w.shape[1]), hsize_t(w.shape[0])};
+    hsize_t count[5] = {1, n, hsize_t(shape[2]), hsize_t(shape[1]), hsize_t(shape[0])};
     H5Sselect_hyperslab(fspace.get(), H5S_SELECT_SET, start, nullptr, count, nullptr);
     Handle mspace(H5Screate_simple(5, count, nullptr));
-    check_status(H5Dwrite(w.inside.get(), H5T_NATIVE_UINT8, mspace.get(), fspace.get(),
-                          H5P_DEFAULT, inside.data() + t0 * per_step),
-                 w.path, "stencil of brick " + std::to_string(brick));
+    check_status(H5Dwrite(dataset, mem_type, mspace.get(), fspace.get(), H5P_DEFAULT,
+                          static_cast<const unsigned char*>(data) + t0 * per_step * elem),
+                 path, what);
   }
 }
 
+}  // namespace
+
 void TspWriter::write_brick_series(int brick, std::span<const std::uint16_t> codes) {
-  Impl& w = *impl_;
-  const hsize_t per_step = hsize_t(w.shape[0]) * w.shape[1] * w.shape[2];
-  assert(codes.size() == per_step * w.steps);
-  std::lock_guard lock(hdf5_mutex());
-  Handle fspace(H5Dget_space(w.data.get()));
-  // In batches of steps: HDF5 keeps per-chunk bookkeeping for every chunk of one write (and
-  // holds on to it in its free lists), so one write of a long series would cost memory per step.
-  for (hsize_t t0 = 0; t0 < hsize_t(w.steps); t0 += kWriteBatchSteps) {
-    const hsize_t n = std::min<hsize_t>(kWriteBatchSteps, hsize_t(w.steps) - t0);
-    hsize_t start[5] = {hsize_t(brick), t0, 0, 0, 0};
-    hsize_t count[5] = {1, n, hsize_t(w.shape[2]), hsize_t(w.shape[1]), hsize_t(w.shape[0])};
-    H5Sselect_hyperslab(fspace.get(), H5S_SELECT_SET, start, nullptr, count, nullptr);
-    Handle mspace(H5Screate_simple(5, count, nullptr));
-    check_status(H5Dwrite(w.data.get(), H5T_NATIVE_UINT16, mspace.get(), fspace.get(),
-                          H5P_DEFAULT, codes.data() + t0 * per_step),
-                 w.path, "brick " + std::to_string(brick));
-  }
+  const Impl& w = *impl_;
+  assert(codes.size() == std::size_t(w.shape[0]) * w.shape[1] * w.shape[2] * std::size_t(w.steps));
+  write_series(w.data.get(), H5T_NATIVE_UINT16, sizeof(std::uint16_t), w.shape, w.steps, brick,
+               codes.data(), w.path, "brick " + std::to_string(brick));
+}
+
+void TspWriter::write_inside_series(int brick, std::span<const std::uint8_t> inside) {
+  const Impl& w = *impl_;
+  assert(w.inside &&
+         inside.size() == std::size_t(w.shape[0]) * w.shape[1] * w.shape[2] * std::size_t(w.steps));
+  write_series(w.inside.get(), H5T_NATIVE_UINT8, 1, w.shape, w.steps, brick, inside.data(),
+               w.path, "stencil of brick " + std::to_string(brick));
 }
 
 void TspWriter::finish(const TspTree& tree, const TspMetadata& meta) {

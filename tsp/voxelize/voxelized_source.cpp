@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "tsp/core/error.h"
+#include "tsp/voxelize/mat3.h"
 
 namespace tsp {
 namespace {
@@ -14,10 +15,7 @@ double tet_volume(const TetMesh& m, const std::array<std::int64_t, 4>& t) {
   double e[3][3];
   for (int i = 0; i < 3; ++i)
     for (int a = 0; a < 3; ++a) e[i][a] = m.points[std::size_t(3 * t[std::size_t(i) + 1] + a)] - p0[a];
-  const double det = e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
-                     e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
-                     e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
-  return std::fabs(det) / 6.0;
+  return std::fabs(detail::det3(e)) / 6.0;
 }
 
 class VoxelizedSource final : public VolumeSource {
@@ -120,16 +118,21 @@ std::unique_ptr<VolumeSource> voxelized_source(std::unique_ptr<MeshSource> sourc
   Aabb all;
   double cell_size = 0;
   for (int t = 0; t < source->steps(); ++t) {
-    Mesh m = source->read_step(t);
-    if (m.cell_count() == 0)
-      throw FormatError(source->describe() + ": step " + std::to_string(t) + " has no cells");
-    const Aabb b = m.bounds();
+    Aabb b;
+    if (t == 0) {  // the first step whole: its cells for the grid rule
+      Mesh m = source->read_step(0);
+      if (m.cell_count() == 0)
+        throw FormatError(source->describe() + ": step 0 has no cells");
+      if (options.resolution == 0 && options.voxel_size == 0)
+        cell_size = median_cell_size(tetrahedralize(m));
+      b = m.bounds();
+    } else {
+      b = source->bounds(t);
+    }
     for (int a = 0; a < 3; ++a) {
       all.lo[a] = t ? std::min(all.lo[a], b.lo[a]) : b.lo[a];
       all.hi[a] = t ? std::max(all.hi[a], b.hi[a]) : b.hi[a];
     }
-    if (t == 0 && options.resolution == 0 && options.voxel_size == 0)
-      cell_size = median_cell_size(tetrahedralize(m));
   }
   double longest = 0;
   for (int a = 0; a < 3; ++a) longest = std::max(longest, all.hi[a] - all.lo[a]);

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "tsp/core/parallel_for.h"
+#include "tsp/voxelize/mat3.h"
 #include "tsp/voxelize/scan_convert.h"
 #include "tsp/voxelize/tet_box.h"
 
@@ -37,9 +38,21 @@ struct TileGrid {
   int count() const { return n[0] * n[1] * n[2]; }
 };
 
+// ceil and floor of x in [−2, 2³¹): without SSE4.1 std::ceil is a library call, and this runs
+// for every cell.
+inline int ceil_int(double x) {
+  const int i = int(x);
+  return i + (x > i);
+}
+inline int floor_int(double x) {
+  const int i = int(x);
+  return i - (x < i);
+}
+
 // Voxel index range [lo, hi] whose centres fall inside [a, b] along axis ax (clamped).
-void voxel_range(double a, double b, const VoxelGrid& g, int ax, int& lo, int& hi) {
-  double u = (a - g.origin[ax]) / g.spacing[ax], v = (b - g.origin[ax]) / g.spacing[ax];
+inline void voxel_range(double a, double b, const VoxelGrid& g, int ax, int& lo, int& hi) {
+  const double inv = 1.0 / g.spacing[ax];  // hoisted by the compiler across the inlined calls
+  double u = (a - g.origin[ax]) * inv, v = (b - g.origin[ax]) * inv;
   if (!(u <= v)) {  // NaN from overflowing coordinates: nothing
     lo = 1;
     hi = 0;
@@ -48,8 +61,8 @@ void voxel_range(double a, double b, const VoxelGrid& g, int ax, int& lo, int& h
   // Clamped before the conversion to int (a box far outside the grid stays empty).
   u = std::max(u, -1.0);
   v = std::min(v, double(g.dims[ax]));
-  lo = std::max(0, int(std::ceil(u - 1e-9)));
-  hi = std::min(g.dims[ax] - 1, int(std::floor(v + 1e-9)));
+  lo = std::max(0, ceil_int(u - 1e-9));
+  hi = std::min(g.dims[ax] - 1, floor_int(v + 1e-9));
 }
 
 // A bin entry: t ≥ 0 is tetrahedron t, −1 − c the whole hexahedron c.
@@ -176,21 +189,8 @@ struct Voxelizer {
       m[a][1] = p2[a] - p0[a];
       m[a][2] = p3[a] - p0[a];
     }
-    const double det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
-                       m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
-                       m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
-    if (!(std::fabs(det) > kDegenerate * ext)) return 0;
-    const double inv = 1.0 / det;
     double r[3][3];  // inverse of m
-    r[0][0] = (m[1][1] * m[2][2] - m[1][2] * m[2][1]) * inv;
-    r[0][1] = (m[0][2] * m[2][1] - m[0][1] * m[2][2]) * inv;
-    r[0][2] = (m[0][1] * m[1][2] - m[0][2] * m[1][1]) * inv;
-    r[1][0] = (m[1][2] * m[2][0] - m[1][0] * m[2][2]) * inv;
-    r[1][1] = (m[0][0] * m[2][2] - m[0][2] * m[2][0]) * inv;
-    r[1][2] = (m[0][2] * m[1][0] - m[0][0] * m[1][2]) * inv;
-    r[2][0] = (m[1][0] * m[2][1] - m[1][1] * m[2][0]) * inv;
-    r[2][1] = (m[0][1] * m[2][0] - m[0][0] * m[2][1]) * inv;
-    r[2][2] = (m[0][0] * m[1][1] - m[0][1] * m[1][0]) * inv;
+    if (!detail::inverse3(m, r, kDegenerate * ext)) return 0;
     const bool cells = tets.cell_values;
     const double v0 = cells ? 0 : tets.values[std::size_t(q[0])];
     const double v1 = cells ? 0 : tets.values[std::size_t(q[1])];
@@ -268,22 +268,7 @@ struct Voxelizer {
         affine &= std::fabs(x[k][r] - want) <= 1e-12 * size;
       }
     double ai[3][3] = {};
-    if (affine) {
-      const double det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
-                         a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
-                         a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
-      if (!(std::fabs(det) > kDegenerate * size * size * size)) return 0;
-      const double inv = 1.0 / det;
-      ai[0][0] = (a[1][1] * a[2][2] - a[1][2] * a[2][1]) * inv;
-      ai[0][1] = (a[0][2] * a[2][1] - a[0][1] * a[2][2]) * inv;
-      ai[0][2] = (a[0][1] * a[1][2] - a[0][2] * a[1][1]) * inv;
-      ai[1][0] = (a[1][2] * a[2][0] - a[1][0] * a[2][2]) * inv;
-      ai[1][1] = (a[0][0] * a[2][2] - a[0][2] * a[2][0]) * inv;
-      ai[1][2] = (a[0][2] * a[1][0] - a[0][0] * a[1][2]) * inv;
-      ai[2][0] = (a[1][0] * a[2][1] - a[1][1] * a[2][0]) * inv;
-      ai[2][1] = (a[0][1] * a[2][0] - a[0][0] * a[2][1]) * inv;
-      ai[2][2] = (a[0][0] * a[1][1] - a[0][1] * a[1][0]) * inv;
-    }
+    if (affine && !detail::inverse3(a, ai, kDegenerate * size * size * size)) return 0;
     double xi[3] = {0.5, 0.5, 0.5};
     for (int z = lo[2]; z <= hi[2]; ++z)
       for (int y = lo[1]; y <= hi[1]; ++y)
@@ -316,21 +301,11 @@ struct Voxelizer {
                 for (int b = 0; b < 3; ++b) jm[a][b] += dn[b] * x[k][a];
               }
             }
-            const double det = jm[0][0] * (jm[1][1] * jm[2][2] - jm[1][2] * jm[2][1]) -
-                               jm[0][1] * (jm[1][0] * jm[2][2] - jm[1][2] * jm[2][0]) +
-                               jm[0][2] * (jm[1][0] * jm[2][1] - jm[1][1] * jm[2][0]);
-            if (!(std::fabs(det) > 0)) break;
-            const double inv = 1.0 / det;
-            const double dxi[3] = {
-                ((jm[1][1] * jm[2][2] - jm[1][2] * jm[2][1]) * r[0] +
-                 (jm[0][2] * jm[2][1] - jm[0][1] * jm[2][2]) * r[1] +
-                 (jm[0][1] * jm[1][2] - jm[0][2] * jm[1][1]) * r[2]) * inv,
-                ((jm[1][2] * jm[2][0] - jm[1][0] * jm[2][2]) * r[0] +
-                 (jm[0][0] * jm[2][2] - jm[0][2] * jm[2][0]) * r[1] +
-                 (jm[0][2] * jm[1][0] - jm[0][0] * jm[1][2]) * r[2]) * inv,
-                ((jm[1][0] * jm[2][1] - jm[1][1] * jm[2][0]) * r[0] +
-                 (jm[0][1] * jm[2][0] - jm[0][0] * jm[2][1]) * r[1] +
-                 (jm[0][0] * jm[1][1] - jm[0][1] * jm[1][0]) * r[2]) * inv};
+            double ji[3][3];
+            if (!detail::inverse3(jm, ji, 0)) break;
+            const double dxi[3] = {ji[0][0] * r[0] + ji[0][1] * r[1] + ji[0][2] * r[2],
+                                   ji[1][0] * r[0] + ji[1][1] * r[1] + ji[1][2] * r[2],
+                                   ji[2][0] * r[0] + ji[2][1] * r[1] + ji[2][2] * r[2]};
             for (int a = 0; a < 3; ++a) xi[a] -= dxi[a];
             converged = std::fabs(dxi[0]) + std::fabs(dxi[1]) + std::fabs(dxi[2]) < kNewtonTolerance;
           }

@@ -56,7 +56,11 @@ TEST(MeshSource, CollectionsSortByTimeAndKeepTheTimes) {
     EXPECT_EQ(s->times(), (std::vector<double>{0.0, 0.25, 0.5})) << list;
     // Time 0 is step 1 of the fixtures, 0.25 step 2, 0.5 step 0.
     const int fixture_step[3] = {1, 2, 0};
-    for (int t = 0; t < 3; ++t) expect_formula(s->read_step(t), fixture_step[t], list);
+    for (int t = 0; t < 3; ++t) {
+      const Mesh m = s->read_step(t);
+      expect_formula(m, fixture_step[t], list);
+      EXPECT_EQ(s->bounds(t), m.bounds()) << list;  // the points-only read agrees
+    }
   }
 }
 
@@ -95,6 +99,26 @@ TEST(MeshSource, VtkhdfPatternMatchesTheVtu) {
   EXPECT_TRUE(c.cell_values);
   EXPECT_TRUE(is_mesh_input((dir() / "mesh_1.hdf").string()));
   EXPECT_FALSE(is_mesh_input((tsptest::test_data_dir() / "h5" / "vtkhdf_static.hdf").string()));
+}
+
+TEST(MeshSource, TransientVtkhdfReadsEachStepsMeshAndData) {
+  // One file, a Steps group: step t's mesh is the fixture moved by +t along x, with its own
+  // rows of Points/Offsets/Connectivity/Types and point and cell data.
+  auto s = open_mesh_source((dir() / "transient.hdf").string(), "f");
+  ASSERT_EQ(s->steps(), 3);
+  EXPECT_EQ(s->times(), (std::vector<double>{0.5, 0.0, 0.25}));  // Steps/Values, in file order
+  for (int t = 0; t < 3; ++t) {
+    Mesh m = s->read_step(t);
+    ASSERT_EQ(m.cell_count(), kCells - 1);
+    EXPECT_DOUBLE_EQ(m.bounds().lo[0], t);
+    for (std::int64_t p = 0; p < m.point_count(); ++p) {
+      const double* x = m.points.data() + 3 * p;
+      EXPECT_EQ(m.values[std::size_t(p)], float(x[0] + 10 * x[1] + 100 * x[2] + 1000 * t));
+    }
+  }
+  Mesh c = open_mesh_source((dir() / "transient.hdf").string(), "c")->read_step(2);
+  ASSERT_TRUE(c.cell_values);
+  for (int k = 0; k < kCells - 1; ++k) EXPECT_EQ(c.values[std::size_t(k)], float(7 * k + 2));
 }
 
 // Hostile inputs: a copy of the ascii fixture with one thing broken.

@@ -15,10 +15,13 @@
 namespace tsp::io::vtkxml {
 namespace {
 
-// 0..63 for base64 alphabet characters, -1 otherwise.
+// 0..63 for base64 alphabet characters, kBase64Space for whitespace, -1 otherwise (a table:
+// std::isspace per character is a library call, and base64 runs to hundreds of megabytes).
+constexpr int kBase64Space = -2;
 constexpr std::array<int, 256> make_base64_table() {
   std::array<int, 256> t{};
   for (int& v : t) v = -1;
+  for (char c : {' ', '\t', '\n', '\v', '\f', '\r'}) t[static_cast<unsigned char>(c)] = kBase64Space;
   const char* alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
   for (int i = 0; i < 64; ++i) t[static_cast<unsigned char>(alphabet[i])] = i;
   return t;
@@ -76,6 +79,33 @@ void convert_typed(std::span<const unsigned char> bytes, bool swap, std::span<fl
   }
 }
 
+// Calls f.template operator()<T>() with the C++ type of t.
+template <typename F>
+void dispatch(ElemType t, F&& f) {
+  switch (t) {
+    case ElemType::i8:
+      return f.template operator()<std::int8_t>();
+    case ElemType::u8:
+      return f.template operator()<std::uint8_t>();
+    case ElemType::i16:
+      return f.template operator()<std::int16_t>();
+    case ElemType::u16:
+      return f.template operator()<std::uint16_t>();
+    case ElemType::i32:
+      return f.template operator()<std::int32_t>();
+    case ElemType::u32:
+      return f.template operator()<std::uint32_t>();
+    case ElemType::i64:
+      return f.template operator()<std::int64_t>();
+    case ElemType::u64:
+      return f.template operator()<std::uint64_t>();
+    case ElemType::f32:
+      return f.template operator()<float>();
+    case ElemType::f64:
+      return f.template operator()<double>();
+  }
+}
+
 }  // namespace
 
 ElemType parse_elem_type(const std::string& name, const std::string& where) {
@@ -122,7 +152,7 @@ std::vector<unsigned char> base64_decode(std::string_view text, const std::strin
   };
   for (std::size_t i = 0; i < text.size(); ++i) {
     unsigned char c = static_cast<unsigned char>(text[i]);
-    if (std::isspace(c)) continue;
+    if (kBase64[c] == kBase64Space) continue;
     if (c == '=') {
       if (n < 2)
         throw FormatError(where + ": malformed base64 data ('=' at character " + std::to_string(i) +
@@ -211,65 +241,17 @@ std::vector<unsigned char> unpack_binary(std::span<const unsigned char> bytes,
 void convert_to_float(std::span<const unsigned char> bytes, ElemType t, bool big_endian,
                       std::span<float> out) {
   const bool swap = big_endian != (std::endian::native == std::endian::big);
-  switch (t) {
-    case ElemType::i8:
-      convert_typed<std::int8_t>(bytes, swap, out);
-      break;
-    case ElemType::u8:
-      convert_typed<std::uint8_t>(bytes, swap, out);
-      break;
-    case ElemType::i16:
-      convert_typed<std::int16_t>(bytes, swap, out);
-      break;
-    case ElemType::u16:
-      convert_typed<std::uint16_t>(bytes, swap, out);
-      break;
-    case ElemType::i32:
-      convert_typed<std::int32_t>(bytes, swap, out);
-      break;
-    case ElemType::u32:
-      convert_typed<std::uint32_t>(bytes, swap, out);
-      break;
-    case ElemType::i64:
-      convert_typed<std::int64_t>(bytes, swap, out);
-      break;
-    case ElemType::u64:
-      convert_typed<std::uint64_t>(bytes, swap, out);
-      break;
-    case ElemType::f32:
-      convert_typed<float>(bytes, swap, out);
-      break;
-    case ElemType::f64:
-      convert_typed<double>(bytes, swap, out);
-      break;
-  }
+  dispatch(t, [&]<typename T>() { convert_typed<T>(bytes, swap, out); });
 }
 
 void convert_to_int64(std::span<const unsigned char> bytes, ElemType t, bool big_endian,
                       std::span<std::int64_t> out, const std::string& where) {
+  if (t == ElemType::f32 || t == ElemType::f64)
+    throw FormatError(where + ": floating-point data where integers are expected");
   const bool swap = big_endian != (std::endian::native == std::endian::big);
-  switch (t) {
-    case ElemType::i8:
-      return convert_int<std::int8_t>(bytes, swap, out, where);
-    case ElemType::u8:
-      return convert_int<std::uint8_t>(bytes, swap, out, where);
-    case ElemType::i16:
-      return convert_int<std::int16_t>(bytes, swap, out, where);
-    case ElemType::u16:
-      return convert_int<std::uint16_t>(bytes, swap, out, where);
-    case ElemType::i32:
-      return convert_int<std::int32_t>(bytes, swap, out, where);
-    case ElemType::u32:
-      return convert_int<std::uint32_t>(bytes, swap, out, where);
-    case ElemType::i64:
-      return convert_int<std::int64_t>(bytes, swap, out, where);
-    case ElemType::u64:
-      return convert_int<std::uint64_t>(bytes, swap, out, where);
-    case ElemType::f32:
-    case ElemType::f64:
-      break;
-  }
-  throw FormatError(where + ": floating-point data where integers are expected");
+  dispatch(t, [&]<typename T>() {
+    if constexpr (std::is_integral_v<T>) convert_int<T>(bytes, swap, out, where);
+  });
 }
 
 void parse_ascii(std::string_view text, std::span<float> out, const std::string& where) {
