@@ -216,6 +216,22 @@ def write_vtkhdf_static(path):
         pd.create_dataset("f", data=f(0).astype(np.float64))
 
 
+def make_scales(path):
+    """h5/scales.h5: f over steps as a 4-D (t, z, y, x) dataset with NetCDF-4-style dimension
+    scales attached: z = 10, 12, 14 and y = 0, 0.5, 1, 1.5 step uniformly, x (1, 1.1, 1.3, 1.4,
+    2) does not, so the reader takes origin (0, 0, 10) and spacing (1, 0.5, 2)."""
+    with h5py.File(path, "w") as h:
+        h["time"] = np.arange(3, dtype=np.float64)
+        h["z"] = np.array([10.0, 12.0, 14.0])
+        h["y"] = np.array([0.0, 0.5, 1.0, 1.5])
+        h["x"] = np.array([1.0, 1.1, 1.3, 1.4, 2.0])
+        d = h.create_dataset("f", data=np.stack([f(t) for t in range(3)]))
+        for i, name in enumerate(["time", "z", "y", "x"]):
+            h[name].make_scale(name)
+            d.dims[i].attach_scale(h[name])
+
+
 if __name__ == "__main__":
     make_vti()
     make_h5()
+    make_scales(os.path.join(HERE, "h5", "scales.h5"))

@@ -9,6 +9,7 @@
 #include "tsp/core/error.h"
 #include "tsp/hdf5/hdf5_handle.h"
 #include "tsp/hdf5/hdf5_values.h"
+#include "tsp/source/grid_geometry.h"
 #include "tsp/source/natural_order.h"
 #include "tsp/source/vtkhdf_source.h"
 
@@ -108,6 +109,50 @@ struct Packing {
   }
 };
 
+// Where the grid lies in space from the dataset's NetCDF-4 / HDF5 dimension scales (coordinate
+// variables, attached through its DIMENSION_LIST attribute): for spatial axis a (dataset
+// dimension first_spatial + 2 − a, x last) a 1-D numeric scale of the axis' length whose values
+// step uniformly upwards (within 0.1 % of a step) gives origin and spacing; any other axis
+// keeps 0 and 1. Never throws (a scale it cannot read is ignored).
+GridGeometry dimension_scales(hid_t ds, int first_spatial, Dims dims) {
+  GridGeometry g;
+  if (H5Aexists(ds, "DIMENSION_LIST") <= 0) return g;
+  Handle attr(H5Aopen(ds, "DIMENSION_LIST", H5P_DEFAULT));
+  Handle space(H5Aget_space(attr.get()));
+  if (!attr || !space || H5Sget_simple_extent_ndims(space.get()) != 1) return g;
+  hsize_t n = 0;
+  H5Sget_simple_extent_dims(space.get(), &n, nullptr);
+  if (n != hsize_t(first_spatial + 3)) return g;
+  Handle vlen(H5Tvlen_create(H5T_STD_REF_OBJ));
+  std::vector<hvl_t> lists(static_cast<std::size_t>(n));
+  if (H5Aread(attr.get(), vlen.get(), lists.data()) < 0) return g;
+  for (int a = 0; a < 3; ++a) {
+    const hvl_t& l = lists[std::size_t(first_spatial + 2 - a)];
+    if (l.len < 1 || !l.p) continue;
+    hobj_ref_t ref = static_cast<const hobj_ref_t*>(l.p)[0];
+    Handle scale(H5Rdereference2(ds, H5P_DEFAULT, H5R_OBJECT, &ref));
+    if (!scale || H5Iget_type(scale.get()) != H5I_DATASET) continue;
+    const std::vector<hsize_t> shape = h5::dataset_shape(scale.get());
+    Handle type(H5Dget_type(scale.get()));
+    const H5T_class_t cls = H5Tget_class(type.get());
+    if (shape.size() != 1 || shape[0] != hsize_t(dims[a]) || dims[a] < 2 ||
+        (cls != H5T_FLOAT && cls != H5T_INTEGER))
+      continue;
+    std::vector<double> x(static_cast<std::size_t>(shape[0]));
+    if (H5Dread(scale.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, x.data()) < 0)
+      continue;
+    const double step = (x.back() - x.front()) / double(x.size() - 1);
+    bool uniform = std::isfinite(step) && step > 0;
+    for (std::size_t i = 0; uniform && i < x.size(); ++i)
+      uniform = std::fabs(x[i] - (x.front() + double(i) * step)) <= 1e-3 * step;
+    if (!uniform) continue;
+    g.origin[std::size_t(a)] = x.front();
+    g.spacing[std::size_t(a)] = step;
+  }
+  H5Dvlen_reclaim(vlen.get(), space.get(), H5P_DEFAULT, lists.data());
+  return g;
+}
+
 // One step: a dataset and, for 4-D datasets, the index along its first dimension.
 struct StepRef {
   std::string dataset;
@@ -128,6 +173,9 @@ class Hdf5Source final : public VolumeSource {
   Dims dims() const override { return dims_; }
   int steps() const override { return int(steps_.size()); }
   std::string describe() const override { return path_ + ", " + field_text_; }
+  std::array<double, 3> origin() const override { return geometry_.origin; }
+  std::array<double, 3> spacing() const override { return geometry_.spacing; }
+  GridGeometry geometry_;
   std::vector<std::string> files() const override { return {path_}; }
 
   void read_step(int t, std::span<float> out) override {
@@ -175,8 +223,11 @@ std::unique_ptr<VolumeSource> open_dataset(const std::string& path, Handle file,
     dims = dims_from_zyx(&shape[0], 1, where);
     steps.push_back({ds_path, false, 0});
   }
-  return std::make_unique<Hdf5Source>(path, std::move(file), "dataset " + ds_path, dims,
-                                      std::move(steps));
+  const GridGeometry geometry = dimension_scales(ds.get(), shape.size() == 4 ? 1 : 0, dims);
+  auto source = std::make_unique<Hdf5Source>(path, std::move(file), "dataset " + ds_path, dims,
+                                             std::move(steps));
+  source->geometry_ = geometry;
+  return source;
 }
 
 std::unique_ptr<VolumeSource> open_group(const std::string& path, Handle file,
@@ -212,7 +263,14 @@ std::unique_ptr<VolumeSource> open_group(const std::string& path, Handle file,
   }
   Dims dims = dims_from_zyx(first_shape.data(), std::int64_t(steps.size()), where);
   std::string text = "group " + group_path + " (" + std::to_string(steps.size()) + " steps)";
-  return std::make_unique<Hdf5Source>(path, std::move(file), text, dims, std::move(steps));
+  GridGeometry geometry;
+  {
+    Handle first(H5Dopen2(file.get(), steps[0].dataset.c_str(), H5P_DEFAULT));
+    if (first) geometry = dimension_scales(first.get(), 0, dims);
+  }
+  auto source = std::make_unique<Hdf5Source>(path, std::move(file), text, dims, std::move(steps));
+  source->geometry_ = geometry;
+  return source;
 }
 
 // NetCDF classic files ("CDF\x01", "CDF\x02", "CDF\x05") share the .nc extension but are not HDF5.

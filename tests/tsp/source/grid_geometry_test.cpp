@@ -43,6 +43,18 @@ TEST(GridGeometry, VtiOriginAndSpacingReachTheSource) {
   EXPECT_THROW(open_source(vti_with("0 nan 0", "1 1 1").string(), o), FormatError);
 }
 
+TEST(GridGeometry, Hdf5DimensionScalesThatStepUniformly) {
+  SourceOptions o;
+  o.field = "f";
+  auto s = open_source((tsptest::test_data_dir() / "h5" / "scales.h5").string(), o);
+  EXPECT_EQ(s->dims(), (Dims{5, 4, 3}));
+  EXPECT_EQ(s->origin(), (std::array<double, 3>{0, 0, 10}));    // x's scale is not uniform
+  EXPECT_EQ(s->spacing(), (std::array<double, 3>{1, 0.5, 2}));
+  o.field = "";
+  auto plain = open_source((tsptest::test_data_dir() / "h5" / "grid4d.h5").string(), o);
+  EXPECT_EQ(plain->spacing(), (std::array<double, 3>{1, 1, 1}));  // no scales: 0 and 1
+}
+
 TEST(GridGeometry, VtkhdfImageAndTheRule) {
   SourceOptions o;
   auto s = open_source((tsptest::test_data_dir() / "h5" / "vtkhdf_static.hdf").string(), o);
