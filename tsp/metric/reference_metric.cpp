@@ -58,12 +58,23 @@ void ReferenceMetric::compute_brick(int brick, const std::vector<std::uint16_t>&
   const Box own = oct.brick_box(brick), samples = oct.brick_samples(brick);
   const int sx = samples.size(0), sy = samples.size(1);
   sc.codes.resize(std::size_t(samples.count()));
+  // With a stencil, as in the builder's statistics: the voxels inside at some step only.
+  std::vector<std::uint8_t> used;
+  if (tree.has_stencil()) {
+    std::vector<std::uint8_t> step(std::size_t(samples.count()));
+    used.assign(step.size(), 0);
+    for (int t = 0; t < time.steps(); ++t) {
+      bricks_.read_inside(brick, t, step);
+      for (std::size_t i = 0; i < step.size(); ++i) used[i] |= step[i];
+    }
+  }
   sc.own.clear();
   for (int z = own.lo[2]; z < own.hi[2]; ++z)
     for (int y = own.lo[1]; y < own.hi[1]; ++y)
-      for (int x = own.lo[0]; x < own.hi[0]; ++x)
-        sc.own.push_back((x - samples.lo[0]) +
-                         sx * ((y - samples.lo[1]) + sy * (z - samples.lo[2])));
+      for (int x = own.lo[0]; x < own.hi[0]; ++x) {
+        const int i = (x - samples.lo[0]) + sx * ((y - samples.lo[1]) + sy * (z - samples.lo[2]));
+        if (used.empty() || used[std::size_t(i)]) sc.own.push_back(i);
+      }
   const std::size_t n = sc.own.size();
   sc.level.resize(time.depth() + 1);
   for (auto& lv : sc.level)

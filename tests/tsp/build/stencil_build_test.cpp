@@ -19,6 +19,7 @@ namespace {
 // inside where x < 12 (12 of brick 0's columns, none of brick 1's). Outside values are 1000.
 class HalfInside final : public VolumeSource {
  public:
+  explicit HalfInside(float outside = 1000.f) : outside_(outside) {}
   Dims dims() const override { return {31, 16, 16}; }
   int steps() const override { return 2; }
   std::string describe() const override { return "half inside"; }
@@ -38,9 +39,12 @@ class HalfInside final : public VolumeSource {
         for (int x = 0; x < d.x; ++x) {
           const std::size_t i = std::size_t(x + d.x * (y + d.y * z));
           inside[i] = in(x);
-          out[i] = in(x) ? value(x, y, t) : 1000.f;
+          out[i] = in(x) ? value(x, y, t) : outside_;
         }
   }
+
+ private:
+  float outside_;
 };
 
 TEST(StencilBuild, StatisticsCountInsideVoxelsOnly) {
@@ -85,6 +89,30 @@ TEST(StencilBuild, StatisticsCountInsideVoxelsOnly) {
   ASSERT_EQ(b0->size(), 2 * n);
   EXPECT_EQ((*b0)[n + 11], 1);
   EXPECT_EQ((*b0)[n + 12], 0);
+}
+
+TEST(StencilBuild, TheReferenceMetricIgnoresWhatLiesOutside) {
+  // Two files that differ only in the padding outside the stencil: every node's reference
+  // errors agree (the metric reads the stencil and skips outside samples, as the builder does).
+  std::vector<MetricResult> results;
+  for (float outside : {1000.f, -50.f}) {
+    HalfInside src(outside);
+    const std::string path =
+        (tsptest::temp_dir() / ("ref_" + std::to_string(int(outside)) + ".tsp")).string();
+    BuildOptions o;
+    o.brick_size = 16;
+    o.range = ValueRange{-100, 1100};
+    build_tsp_file(src, path, o);
+    auto f = TspFile::open(path);
+    std::vector<TfPoint> pts = {{0.0, Rgba{0, 0, 1, 0.5f}}, {1.0, Rgba{1, 0, 0, 0.5f}}};
+    const TransferFunction tf = TransferFunction::from_points({-100, 1100}, pts);
+    results.push_back(compute_errors(Metric::reference, f->tree(), tf, f.get(), 1));
+  }
+  ASSERT_EQ(results[0].errors.spatial.size(), results[1].errors.spatial.size());
+  for (std::size_t i = 0; i < results[0].errors.spatial.size(); ++i) {
+    EXPECT_FLOAT_EQ(results[0].errors.spatial[i], results[1].errors.spatial[i]) << i;
+    EXPECT_FLOAT_EQ(results[0].errors.temporal[i], results[1].errors.temporal[i]) << i;
+  }
 }
 
 }  // namespace
