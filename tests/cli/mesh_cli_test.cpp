@@ -71,6 +71,15 @@ TEST(MeshCli, UnstructuredErrorsNameTheFileAndExitNonZero) {
   r = run_tspplay("build " + q(tsptest::test_data_dir() / "vtu" / "ascii_0.vtu") +
                   " --resolution 10 --voxel-size 1 -o " + q(dir / "x.tsp"));
   EXPECT_EQ(r.exit_code, 2) << r.err;
+  // An output naming an input (here the .vtu a .vtm step points to) is refused, the input kept.
+  fs::copy(tsptest::test_data_dir() / "vtu", dir / "vtu", fs::copy_options::recursive |
+                                                          fs::copy_options::overwrite_existing);
+  const auto before = fs::file_size(dir / "vtu" / "appended_0.vtu");
+  r = run_tspplay("build " + q(dir / "vtu" / "case.vtm.series") + " -o " +
+                  q(dir / "vtu" / "appended_0.vtu"));
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("appended_0.vtu"), std::string::npos) << r.err;
+  EXPECT_EQ(fs::file_size(dir / "vtu" / "appended_0.vtu"), before);
 }
 
 }  // namespace

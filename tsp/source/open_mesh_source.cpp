@@ -36,7 +36,15 @@ class VtuSeriesSource final : public MeshSource {
   int steps() const override { return int(steps_.size()); }
   std::vector<std::string> files() const override {
     std::vector<std::string> all{input_};
-    for (const io::StepFile& s : steps_) all.push_back(s.file);
+    for (const io::StepFile& s : steps_) {
+      all.push_back(s.file);
+      if (io::has_suffix(s.file, ".vtm")) {  // and the .vtu it names: never written over either
+        try {
+          all.push_back(io::vtm_volume_block(s.file));
+        } catch (const Error&) {
+        }
+      }
+    }
     return all;
   }
   std::vector<double> times() const override {
