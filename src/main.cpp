@@ -1,6 +1,7 @@
 // tspplay: play time-varying volume data with TSP trees. main only parses and dispatches.
 #include <cstdio>
 #include <exception>
+#include <string>
 
 #include "cli/commands.h"
 #include "tsp/core/error.h"
@@ -10,6 +11,21 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", "tspplay " TSPPLAY_VERSION);
   tspcli::add_all_commands(app);
+  // An unknown first word is a mistyped subcommand: say which exist (CLI11 alone says only that
+  // one is required).
+  if (argc > 1 && argv[1][0] != '-') {
+    std::string names;
+    bool known = false;
+    for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
+      names += (names.empty() ? "" : ", ") + sub->get_name();
+      known |= sub->get_name() == argv[1];
+    }
+    if (!known) {
+      std::fprintf(stderr, "tspplay: usage error: unknown subcommand '%s'; the subcommands are %s "
+                   "(tspplay --help)\n", argv[1], names.c_str());
+      return 2;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

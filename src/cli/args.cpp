@@ -59,14 +59,28 @@ tsp::ValueRange parse_range(const std::string& text, const std::string& option) 
           parse_number(text.substr(colon + 1), option)};
 }
 
-std::pair<int, int> parse_steps(const std::string& text) {
-  if (text.empty()) return {0, -1};
-  const std::string expected = "A:B, A: or A with step numbers from 0";
-  auto colon = text.find(':');
-  int a = int(parse_integer(text.substr(0, colon), "--steps", 0, 1 << 30, expected));
-  if (colon == std::string::npos) return {a, a};
-  std::string rest = text.substr(colon + 1);
-  return {a, rest.empty() ? -1 : int(parse_integer(rest, "--steps", 0, 1 << 30, expected))};
+StepRange parse_steps(const std::string& text) {
+  if (text.empty()) return {};
+  const std::string expected = "A:B, A:, A or A:B:S with step numbers from 0 and a stride S >= 1";
+  auto part = [&](const std::string& s, long long lo) {
+    try {
+      return int(parse_integer(s, "--steps", lo, 1 << 30, expected));
+    } catch (const tsp::UsageError&) {
+      throw tsp::UsageError("--steps '" + text + "': expected " + expected);
+    }
+  };
+  const auto c1 = text.find(':');
+  StepRange r;
+  r.first = part(text.substr(0, c1), 0);
+  if (c1 == std::string::npos) {
+    r.last = r.first;
+    return r;
+  }
+  const auto c2 = text.find(':', c1 + 1);
+  const std::string b = text.substr(c1 + 1, c2 == std::string::npos ? std::string::npos : c2 - c1 - 1);
+  r.last = b.empty() ? -1 : part(b, 0);
+  if (c2 != std::string::npos) r.stride = part(text.substr(c2 + 1), 1);
+  return r;
 }
 
 std::pair<int, int> parse_size(const std::string& text) {

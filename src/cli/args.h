@@ -22,8 +22,14 @@ tsp::Dims parse_dims(const std::string& text, const std::string& option, int max
 /// "LO:HI" in data units (a leading '-' is a sign); throws UsageError. LO < HI is checked later.
 tsp::ValueRange parse_range(const std::string& text, const std::string& option);
 
-/// --steps "A:B", "A:" or "A" (inclusive); an open end is −1 (the last step). Throws UsageError.
-std::pair<int, int> parse_steps(const std::string& text);
+/// Steps first..last (inclusive; last −1: the last step), every stride-th.
+struct StepRange {
+  int first = 0, last = -1, stride = 1;
+};
+
+/// --steps "A:B", "A:", "A" or "A:B:S" (every S-th step from A to B, S ≥ 1). Throws UsageError
+/// quoting the whole text.
+StepRange parse_steps(const std::string& text);
 
 /// --size "WxH" with both in [1, 8192]; throws UsageError.
 std::pair<int, int> parse_size(const std::string& text);

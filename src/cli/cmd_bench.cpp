@@ -56,7 +56,14 @@ void run(const BenchArgs& a) {
   o.tsp_path = a.file;
   o.out_dir = a.out;
   if (!a.tfs.empty()) o.tfs = a.tfs;
-  if (!a.steps.empty()) std::tie(o.first_step, o.last_step) = parse_steps(a.steps);
+  if (!a.steps.empty()) {
+    const StepRange steps = parse_steps(a.steps);
+    if (steps.stride != 1)
+      throw tsp::UsageError("--steps '" + a.steps +
+                            "': bench measures every step of a range; a stride is for render");
+    o.first_step = steps.first;
+    o.last_step = steps.last;
+  }
 
   std::tie(o.camera.width, o.camera.height) = parse_size(a.size);
   auto view = tsp::parse_view_angles(a.view);

@@ -38,7 +38,10 @@ void run(const RenderArgs& a) {
   o.tsp_path = a.file;
   o.tf = a.tf;
   o.out_dir = a.out;
-  std::tie(o.first_step, o.last_step) = parse_steps(a.steps);
+  const StepRange steps = parse_steps(a.steps);
+  o.first_step = steps.first;
+  o.last_step = steps.last;
+  o.step_stride = steps.stride;
   o.settings.tol = {a.spatial, a.temporal};
   o.metric = tsp::parse_metric(a.metric);
   o.cache = a.cache == "off" ? tsp::CachePolicy::off : tsp::CachePolicy::on;
@@ -133,7 +136,8 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
   c->add_option("file", a->file, "The .tsp file")->required();
   c->add_option("--tf", a->tf, "Transfer function: a JSON file or preset:NAME (default preset:sparse)");
   c->add_option("-o,--output", a->out, "Directory for step_NNNN.png and frames.json")->required();
-  c->add_option("--steps", a->steps, "Steps A:B (inclusive), A: or A (default: all)");
+  c->add_option("--steps", a->steps,
+                "Steps A:B (inclusive), A:, A, or A:B:S for every S-th step (default: all)");
   c->add_option("--spatial-tol", a->spatial, "Spatial error tolerance (default 0)");
   c->add_option("--temporal-tol", a->temporal, "Temporal error tolerance (default 0)");
   c->add_option("--metric", a->metric, "scalar|reference|approximate|perceptual (default approximate)")

@@ -296,10 +296,7 @@ json run_bench(const BenchOptions& o, const BenchProgress& progress) {
   for (const std::string& arg : o.tfs)
     tfs.push_back(tsp::transfer_function_from_arg(arg, tree.value_range()));
 
-  const fs::path dir = o.out_dir;
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec) throw tsp::IoError(o.out_dir + ": cannot create the report directory: " + ec.message());
+  const fs::path dir = make_output_dir(o.out_dir);
 
   const std::vector<int> sample = search_step_sample(o.first_step, last, o.search_steps);
   // Phases per TF: reference, Table 3 (baseline, 2 per metric), reference timing, baseline

@@ -69,6 +69,23 @@ std::string step_png(const fs::path& dir, int step) {
 
 }  // namespace
 
+fs::path make_output_dir(const std::string& out) {
+  // The folder is made, its parent must exist (as for build's -o): a mistyped path fails
+  // instead of growing a tree of folders.
+  const fs::path dir = out;
+  std::error_code ec;
+  fs::path full = fs::absolute(dir, ec).lexically_normal();
+  if (full.filename().empty()) full = full.parent_path();  // "frames/"
+  const fs::path parent = full.parent_path();
+  if (!fs::is_directory(parent, ec))
+    throw tsp::IoError(out + ": directory " + parent.string() + " does not exist");
+  fs::create_directory(dir, ec);
+  if (ec || !fs::is_directory(dir))
+    throw tsp::IoError(out + ": cannot create the output directory" +
+                       (ec ? ": " + ec.message() : std::string()));
+  return dir;
+}
+
 int checked_last_step(const tsp::TspTree& tree, int first, int last, const std::string& path) {
   const int steps = tree.time().steps();
   if (last < 0) last = steps - 1;
@@ -166,10 +183,7 @@ RenderJobResult run_render_job(const RenderJobOptions& options, const RenderProg
 
   fs::path dir;
   if (!o.out_dir.empty()) {
-    dir = o.out_dir;
-    std::error_code ec;
-    fs::create_directories(dir, ec);
-    if (ec) throw tsp::IoError(o.out_dir + ": cannot create the output directory: " + ec.message());
+    dir = make_output_dir(o.out_dir);
   }
 
   tsp::MetricResult metric;
@@ -189,7 +203,10 @@ RenderJobResult run_render_job(const RenderJobOptions& options, const RenderProg
   if (baseline) baseline->set_transfer_function(tf);
   if (renderer) renderer->set_transfer_function(tf);
   tsp::WholeTreeMetric nodes(metric);
-  const int total = o.passes * (last - o.first_step + 1);
+  if (o.step_stride < 1)
+    throw tsp::UsageError("--steps: the stride must be 1 or more, got " +
+                          std::to_string(o.step_stride));
+  const int total = o.passes * ((last - o.first_step) / o.step_stride + 1);
   // The LOD cut: one level everywhere, or the controller's.
   std::optional<tsp::LodCut> fixed_cut;
   std::optional<tsp::LodController> controller;
@@ -203,7 +220,7 @@ RenderJobResult run_render_job(const RenderJobOptions& options, const RenderProg
   }
   int frame_index = 0;
   for (int pass = 1; pass <= o.passes; ++pass) {
-    for (int t = o.first_step; t <= last; ++t, ++frame_index) {
+    for (int t = o.first_step; t <= last; t += o.step_stride, ++frame_index) {
       FrameRecord rec;
       rec.pass = pass;
       tsp::CameraParams params = o.camera;

@@ -2,6 +2,7 @@
 // `tspplay render` as a library call: render a range of steps of a .tsp file headless, write
 // step_NNNN.png and frames.json, and return the per-frame reports.
 #pragma once
+#include <filesystem>
 #include <functional>
 #include <optional>
 #include <string>
@@ -30,6 +31,7 @@ struct RenderJobOptions {
   std::string tf = "preset:sparse";           ///< --tf: a file or preset:NAME
   std::string out_dir;                        ///< frames/ (created); empty: no files written
   int first_step = 0, last_step = -1;         ///< inclusive; −1: the last step
+  int step_stride = 1;                        ///< every step_stride-th step from first_step
   tsp::Metric metric = tsp::Metric::approximate;
   tsp::CachePolicy cache = tsp::CachePolicy::on;
   bool baseline = false;                      ///< render without the TSP tree
@@ -97,6 +99,10 @@ RenderJobResult run_render_job(
 /// The inclusive step range [first, last] of path's tree (last −1: the final step), validated;
 /// returns last. Throws tsp::UsageError naming the file and its steps.
 int checked_last_step(const tsp::TspTree& tree, int first, int last, const std::string& path);
+
+/// Makes the output folder out (render -o, bench -o) if it is not there; its parent must exist.
+/// Throws tsp::IoError naming the missing parent or the folder that cannot be made.
+std::filesystem::path make_output_dir(const std::string& out);
 
 /// The upper median of v (the element at index size/2 once sorted; 0 for none), as every
 /// frame-time summary of the jobs reports it. Never throws.

@@ -136,3 +136,49 @@ TEST(RenderCli, BadInputIsAClearErrorAndWritesNothing) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(RenderCli, StepStrideAndOutputFolderRules) {
+  const fs::path tsp = make_tsp();
+  const fs::path dir = tsptest::temp_dir();
+  // A:B:S renders every S-th step.
+  const fs::path out = dir / "strided";
+  fs::remove_all(out);
+  auto r = run_tspplay("render " + q(tsp) + " --steps 0:3:2 --size 48x32 -o " + q(out));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(out / "step_0000.png"));
+  EXPECT_FALSE(fs::exists(out / "step_0001.png"));
+  EXPECT_TRUE(fs::exists(out / "step_0002.png"));
+  EXPECT_EQ(read_json(out / "frames.json")["frames"].size(), 2u);
+  // A bad range is quoted whole.
+  r = run_tspplay("render " + q(tsp) + " --steps 0:40:x -o " + q(out));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("'0:40:x'"), std::string::npos) << r.err;
+  // The output folder is made, a missing parent is an error (as build's -o), nothing is made.
+  const fs::path deep = dir / "no_such_parent" / "frames";
+  fs::remove_all(dir / "no_such_parent");
+  r = run_tspplay("render " + q(tsp) + " --steps 0 -o " + q(deep));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("no_such_parent"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "no_such_parent"));
+  // bench takes no stride.
+  r = run_tspplay("bench " + q(tsp) + " --steps 0:3:2 -o " + q(dir / "b"));
+  EXPECT_EQ(r.exit_code, 2);
+}
+
+TEST(Cli, UnknownSubcommandNamesTheKnownOnes) {
+  auto r = run_tspplay("frobnicate x");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("unknown subcommand 'frobnicate'"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("build"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("render"), std::string::npos) << r.err;
+  // The raw reader's hint names the option the CLI has.
+  const fs::path raw = tsptest::temp_dir() / "hint.raw";
+  { std::ofstream(raw) << std::string(64, '\0'); }
+  r = run_tspplay("build " + q(raw) + " -o " + q(tsptest::temp_dir() / "hint.tsp"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--raw-dims"), std::string::npos) << r.err;
+}
+
+}  // namespace

@@ -61,7 +61,7 @@ std::unique_ptr<VolumeSource> open_source(const std::string& input, const Source
   throw FormatError(input +
                     ": unrecognised input; expected HDF5/NetCDF-4/VTKHDF (.h5 .hdf5 .nc .hdf), "
                     "VTK image data (.vti .pvd .vti.series) or raw data (.raw, a %d pattern or a "
-                    "glob, with --dims)");
+                    "glob, with --raw-dims)");
 }
 
 }  // namespace tsp

@@ -219,7 +219,7 @@ std::vector<std::string> expand_file_pattern(const std::string& pattern) {
 
 std::unique_ptr<VolumeSource> open_raw_source(const std::string& input,
                                               const SourceOptions& options) {
-  if (!options.raw_dims) throw UsageError(input + ": raw input needs the grid size (--dims X,Y,Z)");
+  if (!options.raw_dims) throw UsageError(input + ": raw input needs the grid size (--raw-dims X,Y,Z)");
   const Dims d = *options.raw_dims;
   if (d.x <= 0 || d.y <= 0 || d.z <= 0)
     throw UsageError(input + ": raw grid size " + to_string(d) + " must be positive on every axis");

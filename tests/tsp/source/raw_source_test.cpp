@@ -136,7 +136,7 @@ TEST(RawSource, MissingOrBadDimsIsAUsageError) {
   write_raw<float>(dir / "d_0.raw", 0, false);
   SourceOptions o;
   std::string msg = error_of<UsageError>([&] { open_source((dir / "d_%d.raw").string(), o); });
-  EXPECT_NE(msg.find("--dims"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("--raw-dims"), std::string::npos) << msg;
   o.raw_dims = Dims{5, 0, 3};
   EXPECT_THROW(open_source((dir / "d_%d.raw").string(), o), UsageError);
 }
