@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages tspplay needs. Idempotent and quiet when all are present.
-#   install-deps.sh [--movie]   --movie: also ffmpeg, which `tspplay demo` encodes its movie with
-#                               (scripts/demo.sh passes it; the test suite does not need it)
+#   install-deps.sh             (a --movie argument from older scripts is accepted and ignored:
+#                               ffmpeg, which `render --movie` and the demo encode with, is always
+#                               installed, and the suite decodes a movie with it)
 set -euo pipefail
 PKGS=(
   cmake ninja-build g++ pkg-config
@@ -10,8 +11,8 @@ PKGS=(
   liblcms2-dev libpng-dev libglm-dev libosmesa6-dev libglfw3-dev libimgui-dev
   libgl-dev  # <GL/glcorearb.h>: the GL 3.3 core types and enums of our loader (src/gl/gl_api.h)
   xvfb xauth  # xvfb-run: a virtual X display for the GLFW (window) tests when DISPLAY is unset
+  ffmpeg      # movies: render --movie, the demo's movie, and the suite's movie test
 )
-[ "${1:-}" = "--movie" ] && PKGS+=(ffmpeg)
 missing=()
 for p in "${PKGS[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -1,6 +1,7 @@
 // tspplay demo: the README's main job. Generates the built-in dataset, builds its TSP tree,
 // summarises it, and writes a report; files already made are reused.
 #include <cstdlib>
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -118,7 +119,11 @@ json render_frames(const fs::path& tsp_path, const fs::path& tf_path, const fs::
 json make_movie(const fs::path& dir) {
   const fs::path movie = dir / "demo.mp4";
   try {
-    if (encode_movie(dir / "frames", 0, movie)) {
+    std::vector<fs::path> frames;  // the rendered steps, in step order
+    for (const auto& e : fs::directory_iterator(dir / "frames"))
+      if (e.path().extension() == ".png") frames.push_back(e.path());
+    std::sort(frames.begin(), frames.end());
+    if (encode_movie(frames, movie)) {
       std::printf("  movie: %s (%d frames a second)\n", movie.string().c_str(), kMovieFps);
       return movie.string();
     }

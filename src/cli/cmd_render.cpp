@@ -1,6 +1,7 @@
 // tspplay render run.tsp --tf tf.json [...] -o frames/: headless frames and frames.json.
 #include <array>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <tuple>
@@ -8,15 +9,20 @@
 
 #include "cli/args.h"
 #include "cli/commands.h"
+#include "cli/movie.h"
 #include "cli/progress_bar.h"
 #include "jobs/render_job.h"
 #include "tsp/core/error.h"
+#include "tsp/core/file_check.h"
 
 namespace tspcli {
 namespace {
 
+namespace fs = std::filesystem;
+
 struct RenderArgs {
-  std::string file, tf = "preset:sparse", out, steps, size = "640x480", view = "30,20";
+  std::string file, tf = "preset:sparse", out, steps, size = "640x480", view = "30,20", movie;
+  int fps = tspcli::kMovieFps;
   std::string metric = "approximate", cache = "on", compositing = "rays", flat = "exact",
               span_step = "middle", preintegrated = "off",
               reuse = "on";
@@ -99,6 +105,19 @@ void run(const RenderArgs& a) {
                           std::to_string(tspgl::kMaxBudgetBytes >> 20) + "] MiB");
   o.texture_budget = std::max<std::int64_t>(1, std::int64_t(a.texture_budget_mb * (1 << 20)));
 
+  if (!a.movie.empty()) {  // checked before rendering: a bad movie request wastes no frames
+    const std::string ext = fs::path(a.movie).extension().string();
+    if (ext != ".mp4" && ext != ".gif")
+      throw tsp::UsageError("--movie " + a.movie + ": expected a .mp4 or .gif file name");
+    if (a.fps < 1 || a.fps > 120)
+      throw tsp::UsageError("--fps " + std::to_string(a.fps) + ": expected 1..120");
+    tsp::require_not_an_input(a.movie, {a.file, a.tf});
+    if (!find_on_path("ffmpeg"))
+      throw tsp::IoError("--movie " + a.movie +
+                         ": ffmpeg is not on PATH (apt-get install ffmpeg; scripts/install-deps.sh "
+                         "installs it)");
+  }
+
   ProgressBar bar;
   auto result = tspgl::run_render_job(
       o, [&bar](int done, int total) { bar.update("render", done, total); },
@@ -128,6 +147,14 @@ void run(const RenderArgs& a) {
                 " (last pass mean); metric %.1f ms\n",
                 nr / n, up / n, rt / n, nt / n, result.metric_ms);
   if (!o.out_dir.empty()) std::printf("wrote %s/frames.json\n", o.out_dir.c_str());
+  if (!a.movie.empty()) {
+    std::vector<fs::path> frames;  // the last pass's frames, in the order rendered
+    const int last_pass = result.frames.empty() ? 0 : result.frames.back().pass;
+    for (const auto& f : result.frames)
+      if (f.pass == last_pass) frames.push_back(tspgl::step_png(a.out, f.report.step));
+    encode_movie(frames, a.movie, a.fps);
+    std::printf("wrote %s (%zu frames, %d a second)\n", a.movie.c_str(), frames.size(), a.fps);
+  }
 }
 
 const CommandRegistrar reg(30, [](CLI::App& app) {
@@ -136,6 +163,9 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
   c->add_option("file", a->file, "The .tsp file")->required();
   c->add_option("--tf", a->tf, "Transfer function: a JSON file or preset:NAME (default preset:sparse)");
   c->add_option("-o,--output", a->out, "Directory for step_NNNN.png and frames.json")->required();
+  c->add_option("--movie", a->movie,
+                "Also encode the frames into a movie: out.mp4 (H.264) or out.gif (needs ffmpeg)");
+  c->add_option("--fps", a->fps, "Movie frames a second (default 8)");
   c->add_option("--steps", a->steps,
                 "Steps A:B (inclusive), A:, A, or A:B:S for every S-th step (default: all)");
   c->add_option("--spatial-tol", a->spatial, "Spatial error tolerance (default 0)");

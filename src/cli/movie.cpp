@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdio>
 #include <cstdlib>
 #include <vector>
 
@@ -34,23 +35,36 @@ std::optional<fs::path> find_on_path(const std::string& name) {
   return std::nullopt;
 }
 
-bool encode_movie(const fs::path& frames_dir, int first_step, const fs::path& out) {
+bool encode_movie(const std::vector<fs::path>& frames, const fs::path& out, int fps) {
   const auto ffmpeg = find_on_path("ffmpeg");
   if (!ffmpeg) return false;
+  if (frames.empty()) throw tsp::IoError(out.string() + ": no frames to encode");
   const bool gif = out.extension() == ".gif";
   tsp::TempOutput tmp(out.string());
+  // The frames under consecutive names (strided steps, any file names): symbolic links in a
+  // private folder beside the movie, removed however this ends.
+  std::string pattern = (fs::path(tmp.dir()) / ".frames.XXXXXX").string();
+  if (!mkdtemp(pattern.data()))
+    throw tsp::IoError(out.string() + ": cannot make a temporary folder for the frames");
+  const fs::path links = pattern;
+  struct Cleanup {
+    fs::path p;
+    ~Cleanup() {
+      std::error_code ec;
+      fs::remove_all(p, ec);
+    }
+  } cleanup{links};
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%05zu.png", i);
+    std::error_code ec;
+    fs::create_symlink(fs::absolute(frames[i]), links / name, ec);
+    if (ec) throw tsp::IoError(out.string() + ": cannot link frame " + frames[i].string());
+  }
   // Even sizes: H.264 in yuv420p needs them; the temp name has no usable extension, hence -f.
-  std::vector<std::string> args = {ffmpeg->string(),
-                                   "-nostdin",
-                                   "-loglevel",
-                                   "error",
-                                   "-y",
-                                   "-framerate",
-                                   std::to_string(kMovieFps),
-                                   "-start_number",
-                                   std::to_string(first_step),
-                                   "-i",
-                                   (frames_dir / "step_%04d.png").string()};
+  std::vector<std::string> args = {ffmpeg->string(), "-nostdin", "-loglevel", "error", "-y",
+                                   "-framerate", std::to_string(fps), "-start_number", "0", "-i",
+                                   (links / "frame_%05d.png").string()};
   if (gif) {
     args.insert(args.end(), {"-f", "gif"});
   } else {
@@ -69,7 +83,8 @@ bool encode_movie(const fs::path& frames_dir, int first_step, const fs::path& ou
     if (errno != EINTR) throw tsp::IoError(ffmpeg->string() + ": lost the movie encoder");
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
     throw tsp::IoError(out.string() + ": ffmpeg failed to encode " +
-                       (frames_dir / "step_%04d.png").string() + " (exit status " +
+                       std::to_string(frames.size()) + " frames from " +
+                       frames.front().parent_path().string() + " (exit status " +
                        std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + ")");
   tmp.commit();
   return true;

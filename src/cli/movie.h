@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace tspcli {
 
@@ -12,11 +13,12 @@ inline constexpr int kMovieFps = 8;
 /// The first executable named `name` on $PATH, if any.
 std::optional<std::filesystem::path> find_on_path(const std::string& name);
 
-/// Encodes frames_dir/step_%04d.png (numbered from first_step) into out (.mp4: H.264 or
-/// ffmpeg's default MP4 codec; .gif: a GIF) through an ffmpeg subprocess writing a temporary
-/// name beside out, renamed when it succeeded. Returns false (out untouched) when there is no
-/// ffmpeg on $PATH. Throws tsp::IoError when ffmpeg fails.
-bool encode_movie(const std::filesystem::path& frames_dir, int first_step,
-                  const std::filesystem::path& out);
+/// Encodes the PNG frames, in order, into out (.mp4: H.264 or ffmpeg's default MP4 codec; .gif:
+/// a GIF) at fps frames a second through an ffmpeg subprocess: the frames are linked as
+/// frame_%05d.png into a temporary folder beside out, the movie written to a temporary name
+/// renamed when it succeeded. Returns false (out untouched) when there is no ffmpeg on $PATH.
+/// Throws tsp::IoError when ffmpeg fails or the folder cannot be made.
+bool encode_movie(const std::vector<std::filesystem::path>& frames,
+                  const std::filesystem::path& out, int fps = kMovieFps);
 
 }  // namespace tspcli

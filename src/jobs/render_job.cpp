@@ -61,13 +61,13 @@ json frame_json(const FrameRecord& f) {
           {"lod", f.lod ? lod_json(*f.lod) : json(nullptr)}};
 }
 
+}  // namespace
+
 std::string step_png(const fs::path& dir, int step) {
   char name[32];
   std::snprintf(name, sizeof name, "step_%04d.png", step);
   return (dir / name).string();
 }
-
-}  // namespace
 
 fs::path make_output_dir(const std::string& out) {
   // The folder is made, its parent must exist (as for build's -o): a mistyped path fails

@@ -100,6 +100,9 @@ RenderJobResult run_render_job(
 /// returns last. Throws tsp::UsageError naming the file and its steps.
 int checked_last_step(const tsp::TspTree& tree, int first, int last, const std::string& path);
 
+/// The PNG path of step under dir: dir/step_NNNN.png. Never throws.
+std::string step_png(const std::filesystem::path& dir, int step);
+
 /// Makes the output folder out (render -o, bench -o) if it is not there; its parent must exist.
 /// Throws tsp::IoError naming the missing parent or the folder that cannot be made.
 std::filesystem::path make_output_dir(const std::string& out);

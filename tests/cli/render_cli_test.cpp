@@ -182,3 +182,39 @@ TEST(Cli, UnknownSubcommandNamesTheKnownOnes) {
 }
 
 }  // namespace
+
+namespace {
+
+// ffprobe's "width,height,frames" of a movie's first video stream.
+std::string probe(const fs::path& movie) {
+  const std::string cmd = "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+                          "stream=width,height,nb_read_frames -of csv=p=0 " + q(movie);
+  std::string out;
+  if (FILE* p = popen(cmd.c_str(), "r")) {
+    char buf[256];
+    while (fgets(buf, sizeof buf, p)) out += buf;
+    pclose(p);
+  }
+  while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
+  return out;
+}
+
+TEST(RenderCli, MovieOfTheRenderedStepsDecodes) {
+  // Needs ffmpeg and ffprobe (scripts/install-deps.sh installs them).
+  const fs::path tsp = make_tsp();
+  const fs::path dir = tsptest::temp_dir();
+  auto r = run_tspplay("render " + q(tsp) + " --steps 0:3:2 --size 64x48 --movie " +
+                       q(dir / "m.mp4") + " -o " + q(dir / "mf"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(probe(dir / "m.mp4"), "64,48,2");
+  r = run_tspplay("render " + q(tsp) + " --steps 1:3 --size 65x47 --movie " + q(dir / "m.gif") +
+                  " -o " + q(dir / "mg"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(probe(dir / "m.gif"), "65,47,3");
+  // A name that is no movie is refused before anything is rendered.
+  r = run_tspplay("render " + q(tsp) + " --movie " + q(dir / "m.avi") + " -o " + q(dir / "mx"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_FALSE(fs::exists(dir / "mx"));
+}
+
+}  // namespace
