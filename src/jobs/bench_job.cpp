@@ -271,12 +271,14 @@ class TfBench {
   void plots(const fs::path& dir) {
     const std::string size =
         std::to_string(o_.camera.width) + "x" + std::to_string(o_.camera.height);
+    // The TF's file name, not its whole path (a preset stays preset:NAME).
+    const std::string tf_name = fs::path(tf_arg_).filename().string();
     const std::string frame_svg = "frame_time_" + tag_ + ".svg",
                       error_svg = "time_vs_error_" + tag_ + ".svg";
-    tsp::write_svg_plot({"Frame time per step, zero tolerance (" + tf_arg_ + ", " + size + ")",
+    tsp::write_svg_plot({"Frame time per step, zero tolerance (" + tf_name + ", " + size + ")",
                          "time step", "frame time (ms)", frame_series_},
                         (dir / frame_svg).string());
-    tsp::write_svg_plot({"Fastest frame within a mean dE (" + tf_arg_ + ", " + size + ")",
+    tsp::write_svg_plot({"Fastest frame within a mean dE (" + tf_name + ", " + size + ")",
                          "mean dE against the full-quality picture",
                          "median frame time (ms), cache on", error_series_},
                         (dir / error_svg).string());

@@ -15,6 +15,9 @@ namespace tsp {
 namespace {
 
 constexpr double kMarginLeft = 70, kMarginRight = 190, kMarginTop = 40, kMarginBottom = 55;
+// Legend layout: the gap, swatch and padding before a label, and a label character's width.
+constexpr double kLegendSwatch = 12 + 26 + 12, kCharWidth = 7.2;
+constexpr double kMinPlotWidth = 360;
 constexpr int kTargetTicks = 6;
 constexpr double kMarkerRadius = 3.5;
 // Distinguishable colours (Okabe–Ito), cycled.
@@ -96,8 +99,14 @@ std::string svg_plot(const PlotSpec& spec) {
   }
   if (!std::isfinite(xlo)) xlo = 0, xhi = 1;
   const Axis ax = fit_axis(std::min(xlo, 0.0), xhi), ay = fit_axis(0, yhi);
-  const double w = spec.width, h = spec.height;
-  const double pw = w - kMarginLeft - kMarginRight, ph = h - kMarginTop - kMarginBottom;
+  // The legend's column fits its longest label (sans-serif 12 px: about kCharWidth a
+  // character): the canvas grows instead of the labels running off it.
+  std::size_t longest = 0;
+  for (const PlotSeries& s : spec.series) longest = std::max(longest, s.label.size());
+  const double legend = std::max(kMarginRight, kLegendSwatch + kCharWidth * double(longest));
+  const double w = std::max(double(spec.width), kMarginLeft + kMinPlotWidth + legend);
+  const double h = spec.height;
+  const double pw = w - kMarginLeft - legend, ph = h - kMarginTop - kMarginBottom;
   auto px = [&](double x) { return kMarginLeft + (x - ax.lo) / (ax.hi - ax.lo) * pw; };
   auto py = [&](double y) { return kMarginTop + ph - (y - ay.lo) / (ay.hi - ay.lo) * ph; };
 

@@ -115,3 +115,23 @@ TEST(SvgPlot, WritesAFileAndRejectsAMissingDirectory) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(SvgPlot, LegendLabelsFitTheCanvas) {
+  // A long label (bench's "tsp perceptual, cache off" and longer) widens the canvas so that
+  // its estimated extent (7.2 px a character) ends inside it.
+  tsp::PlotSpec s = spec();
+  const std::string label = "tsp perceptual, cache off, spacing 0.25, preintegrated";
+  s.series.push_back({label, {1, 2}, {3, 4}});
+  pugi::xml_document doc = parse(tsp::svg_plot(s));
+  pugi::xml_node svg = doc.child("svg");
+  const double width = svg.attribute("width").as_double();
+  for (pugi::xml_node t : svg.children("text"))
+    if (std::string(t.child_value()) == label)
+      EXPECT_LE(t.attribute("x").as_double() + 7.2 * double(label.size()), width + 1e-9);
+  EXPECT_GT(width, 720);  // grew beyond the default
+  EXPECT_NE(tsp::svg_plot(spec()).find("width=\"720.00\""), std::string::npos);  // short labels: as asked
+}
+
+}  // namespace
