@@ -35,6 +35,9 @@ const CommandRegistrar reg(35, [](CLI::App& app) {
   c->add_option("--screenshot", a->options.screenshot,
                 "Save the first complete frame (volume only) as PNG and exit");
   c->add_option("--script", a->options.script, "Run a script of player actions (docs/player.md)");
+  c->add_flag("--trace", a->options.trace,
+              "Print one line per applied change (step, transfer function, tolerances, metric, "
+              "play/pause, LOD) and per saved screenshot");
   c->add_option("--size", a->size, "Window size WxH (default 960x720)");
   c->add_option("--upload-budget", a->options.upload_budget_mb,
                 "Texture MiB uploaded per frame; the rest follows in later frames (default 16, "

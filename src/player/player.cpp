@@ -510,10 +510,30 @@ void PlayerApp::run_script() {
   while (script_pos_ < script_.size() && !quit_) {
     const ScriptAction& a = script_[script_pos_++];
     apply(a);
+    if (options_.trace) trace_changes();  // each action's effect on its own line
     if (a.kind == ScriptAction::Kind::screenshot || a.kind == ScriptAction::Kind::screenshot_ui ||
         a.kind == ScriptAction::Kind::wait_frames || a.kind == ScriptAction::Kind::wait_seconds)
       break;
   }
+}
+
+void PlayerApp::trace_changes() {
+  Traced& t = traced_;
+  auto line = [](const std::string& s) {
+    std::printf("trace: %s\n", s.c_str());
+    std::fflush(stdout);
+  };
+  if (t.first || step != t.step) line("step " + std::to_string(step));
+  if (!t.first && tf.version() != t.tf_version)
+    line("transfer function edited (" + std::to_string(tf.size()) + " entries over [" +
+         std::to_string(tf.domain().lo) + ", " + std::to_string(tf.domain().hi) + "])");
+  if (!t.first && (tol.spatial != t.tol.spatial || tol.temporal != t.tol.temporal))
+    line("tolerances spatial " + std::to_string(tol.spatial) + ", temporal " +
+         std::to_string(tol.temporal));
+  if (!t.first && metric != t.metric) line(std::string("metric ") + tsp::to_string(metric));
+  if (t.first || playing != t.playing) line(playing ? "playing" : "paused");
+  if (!t.first && lod_on != t.lod_on) line(std::string("lod ") + (lod_on ? "on" : "off"));
+  t = {step, tf.version(), tol, metric, playing, lod_on, false};
 }
 
 void PlayerApp::save_pending_shot() {
@@ -540,6 +560,7 @@ void PlayerApp::frame() {
   }
   handle_input();
   advance_playback(dt);
+  if (options_.trace) trace_changes();
   render_volume();
 
   // Screenshots hold the volume only (read before the UI is drawn).

@@ -17,6 +17,7 @@ struct PlayerOptions {
   double upload_budget_mb = 16;   ///< --upload-budget: texture MiB uploaded per frame (0: no limit)
   bool lod = true;                ///< --lod on|off: the adaptive LOD cut
   double target_fps = 30;         ///< --target-fps: held while interacting, in [1, 240]
+  bool trace = false;             ///< --trace: one stdout line per applied change
 };
 
 /// Opens the window and runs until it is closed, the script quits or the screenshot is saved.

@@ -141,6 +141,7 @@ class PlayerApp {
   void draw_ui();  // player_ui.cpp
   void render_volume();
   void save_pending_shot();
+  void trace_changes();  // --trace: prints what changed since the last frame
   void refresh_reference();
   /// The current metric as frames read it (the reference metric brought up to date first).
   tsp::FrameMetric& frame_metric();
@@ -154,6 +155,15 @@ class PlayerApp {
   void draw_cut_overlay(const tsp::Camera& cam);
 
   PlayerOptions options_;
+  /// What --trace compares from frame to frame.
+  struct Traced {
+    int step = -1;
+    std::uint64_t tf_version = 0;
+    tsp::Tolerances tol{-1, -1};
+    tsp::Metric metric = tsp::Metric::approximate;
+    bool playing = false, lod_on = true;
+    bool first = true;
+  } traced_;
   std::unique_ptr<tsp::LazyErrors> lazy_;
   tsp::MetricResult reference_;
   tsp::WholeTreeMetric reference_nodes_{reference_};  ///< reference_ as a FrameMetric

@@ -101,6 +101,24 @@ TEST(Player, ScriptedScrubShowsEachStepAndATfEditChangesThePicture) {
   EXPECT_LT(tsp::diff_images(c, render_step(tsp, 3, "preset:filled")).mean, kSameFrameDeltaE);
 }
 
+TEST(Player, TracePrintsEachAppliedChange) {
+  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  fs::path tsp = make_tsp(), dir = tsptest::temp_dir(), shot = dir / "trace.png";
+  fs::path script = write_script("step 1\nstep 3\ntolerance 0.2 0.1\ntf preset:filled\n"
+                                 "metric scalar\nplay\nwait-frames 2\npause\nscreenshot " +
+                                 shot.string() + "\nquit\n");
+  auto r = run_tspplay("play " + q(tsp) + " --size " + kSize + " --trace --script " + q(script));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* line : {"trace: step 1\n", "trace: step 3\n", "trace: tolerances spatial 0.2",
+                           "trace: transfer function edited", "trace: metric scalar\n",
+                           "trace: playing\n", "trace: paused\n", "saved "})
+    EXPECT_NE(r.out.find(line), std::string::npos) << line << " in\n" << r.out;
+  EXPECT_LT(r.out.find("trace: step 1\n"), r.out.find("trace: step 3\n"));  // in order
+  // Without --trace nothing of it.
+  r = run_tspplay("play " + q(tsp) + " --size " + kSize + " --script " + q(script));
+  EXPECT_EQ(r.out.find("trace:"), std::string::npos) << r.out;
+}
+
 // The quality knobs from a script: the player's frame with compositing, spacing and
 // pre-integration set matches `tspplay render` with the same options, and `stats` reports them
 // with frame times and fragments.
