@@ -12,6 +12,7 @@ PKGS=(
   libgl-dev  # <GL/glcorearb.h>: the GL 3.3 core types and enums of our loader (src/gl/gl_api.h)
   xvfb xauth  # xvfb-run: a virtual X display for the GLFW (window) tests when DISPLAY is unset
   ffmpeg      # movies: render --movie, the demo's movie, and the suite's movie test
+  xdotool     # real X key and mouse events for the player tests under Xvfb
 )
 missing=()
 for p in "${PKGS[@]}"; do

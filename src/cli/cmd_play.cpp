@@ -35,6 +35,8 @@ const CommandRegistrar reg(35, [](CLI::App& app) {
   c->add_option("--screenshot", a->options.screenshot,
                 "Save the first complete frame (volume only) as PNG and exit");
   c->add_option("--script", a->options.script, "Run a script of player actions (docs/player.md)");
+  c->add_option("--frame-delay-ms", a->options.frame_delay_ms,
+                "Sleep this long every frame: a slow machine, for tests (default 0)");
   c->add_flag("--trace", a->options.trace,
               "Print one line per applied change (step, transfer function, tolerances, metric, "
               "play/pause, LOD) and per saved screenshot");

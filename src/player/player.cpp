@@ -8,8 +8,10 @@
 #include <imgui_impl_opengl3.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <thread>
 
 #include "gl/gl_error.h"
 #include "jobs/calibration.h"
@@ -88,6 +90,10 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
     throw tsp::UsageError("--step " + std::to_string(options.step) + ": " + options.tsp_path +
                           " has steps 0.." + std::to_string(tree.time().steps() - 1));
   step = options.step;
+  if (!(options.frame_delay_ms >= 0 && options.frame_delay_ms <= kMaxFrameDelayMs))
+    throw tsp::UsageError("--frame-delay-ms " + std::to_string(options.frame_delay_ms) +
+                          ": expected 0.." + std::to_string(int(kMaxFrameDelayMs)));
+  frame_delay_ms_ = options.frame_delay_ms;
   if (!(options.upload_budget_mb >= 0) ||
       !(options.upload_budget_mb <= double(tspgl::kMaxBudgetBytes >> 20)))
     throw tsp::UsageError("--upload-budget " + std::to_string(options.upload_budget_mb) +
@@ -119,7 +125,14 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
   ImGui::CreateContext();
   ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini in the user's directory
   ImGui::StyleColorsDark();
-  ImGui_ImplGlfw_InitForOpenGL(static_cast<GLFWwindow*>(ctx->native_window()), true);
+  // Our key callback first: ImGui's back end keeps it and calls it before its own.
+  GLFWwindow* window = static_cast<GLFWwindow*>(ctx->native_window());
+  glfwSetWindowUserPointer(window, this);
+  glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int) {
+    if (action == GLFW_PRESS || action == GLFW_REPEAT)
+      static_cast<PlayerApp*>(glfwGetWindowUserPointer(w))->key_queue_.push_back(key);
+  });
+  ImGui_ImplGlfw_InitForOpenGL(window, true);
   if (const char* missing = tsp_imgui_gl_load(ctx->proc_address_function()))
     throw tsp::GlError(std::string("the GL entry point ") + missing +
                        " needed by the UI is missing");
@@ -391,19 +404,47 @@ void PlayerApp::handle_input() {
     if (io.MouseWheel != 0) camera.zoom *= std::pow(kZoomPerWheelStep, io.MouseWheel);
     if (io.MouseDoubleClicked[0]) set_focus_at(io.MousePos.x, io.MousePos.y);
   }
+  // Every press since the last frame, in order (a text field with the focus takes them all).
+  std::vector<int> keys;
+  keys.swap(key_queue_);
   if (io.WantCaptureKeyboard) return;
-  if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Space), false)) playing = !playing;
-  if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_LeftArrow))) go_to(step - 1);
-  if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_RightArrow))) go_to(step + 1);
-  if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Home), false)) go_to(0);
-  if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_End), false)) go_to(steps() - 1);
-  // The GLFW back end of ImGui 1.86 indexes KeysDown by GLFW key codes.
-  if (ImGui::IsKeyPressed(GLFW_KEY_S, false)) request_save();
-  if (ImGui::IsKeyPressed(GLFW_KEY_L, false)) show_cut = !show_cut;
-  if (ImGui::IsKeyPressed(GLFW_KEY_P, false))
-    camera.projection = camera.projection == tsp::Projection::orthographic
-                            ? tsp::Projection::perspective
-                            : tsp::Projection::orthographic;
+  for (int key : keys) {
+    apply_key(key);
+    if (options_.trace) trace_changes();
+  }
+}
+
+void PlayerApp::apply_key(int key) {
+  switch (key) {
+    case GLFW_KEY_SPACE:
+      playing = !playing;
+      break;
+    case GLFW_KEY_LEFT:
+      go_to(step - 1);
+      break;
+    case GLFW_KEY_RIGHT:
+      go_to(step + 1);
+      break;
+    case GLFW_KEY_HOME:
+      go_to(0);
+      break;
+    case GLFW_KEY_END:
+      go_to(steps() - 1);
+      break;
+    case GLFW_KEY_S:
+      request_save();
+      break;
+    case GLFW_KEY_L:
+      show_cut = !show_cut;
+      break;
+    case GLFW_KEY_P:
+      camera.projection = camera.projection == tsp::Projection::orthographic
+                              ? tsp::Projection::perspective
+                              : tsp::Projection::orthographic;
+      break;
+    default:
+      break;
+  }
 }
 
 void PlayerApp::apply(const ScriptAction& a) {
@@ -562,6 +603,8 @@ void PlayerApp::frame() {
   advance_playback(dt);
   if (options_.trace) trace_changes();
   render_volume();
+  if (frame_delay_ms_ > 0)
+    std::this_thread::sleep_for(std::chrono::duration<double, std::milli>(frame_delay_ms_));
 
   // Screenshots hold the volume only (read before the UI is drawn).
   // A screenshot waits for the first complete frame (no texture left for later frames).

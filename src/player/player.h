@@ -18,6 +18,7 @@ struct PlayerOptions {
   bool lod = true;                ///< --lod on|off: the adaptive LOD cut
   double target_fps = 30;         ///< --target-fps: held while interacting, in [1, 240]
   bool trace = false;             ///< --trace: one stdout line per applied change
+  double frame_delay_ms = 0;      ///< --frame-delay-ms: a slow machine, for tests (0..2000)
 };
 
 /// Opens the window and runs until it is closed, the script quits or the screenshot is saved.

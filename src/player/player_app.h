@@ -35,6 +35,9 @@ inline constexpr int kPrefetchSplits = 4;
 
 /// Target frames per second while interacting (the LOD cut holds it).
 inline constexpr double kDefaultTargetFps = 30;
+/// Largest --frame-delay-ms (a test's slow machine).
+inline constexpr double kMaxFrameDelayMs = 2000;
+
 /// Seconds without a change (view, step, TF, playback) after which the LOD cut refines to full
 /// quality.
 inline constexpr double kIdleDelaySeconds = 0.25;
@@ -142,6 +145,7 @@ class PlayerApp {
   void render_volume();
   void save_pending_shot();
   void trace_changes();  // --trace: prints what changed since the last frame
+  void apply_key(int key);  // one key press (or repeat) from the queue
   void refresh_reference();
   /// The current metric as frames read it (the reference metric brought up to date first).
   tsp::FrameMetric& frame_metric();
@@ -155,6 +159,12 @@ class PlayerApp {
   void draw_cut_overlay(const tsp::Camera& cam);
 
   PlayerOptions options_;
+  /// Key presses and repeats GLFW reported since the last frame, in order (filled by the key
+  /// callback during glfwPollEvents on this thread): every tap counts however slow a frame is,
+  /// which Dear ImGui 1.86's per-frame key state cannot promise.
+  std::vector<int> key_queue_;
+  /// Frame delay for tests (--frame-delay-ms): sleeps this long every frame.
+  double frame_delay_ms_ = 0;
   /// What --trace compares from frame to frame.
   struct Traced {
     int step = -1;

@@ -3,6 +3,8 @@
 // same view and size), a TF edit changes the picture; bad scripts and steps are clear errors.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+
 #include <filesystem>
 #include <fstream>
 
@@ -99,6 +101,36 @@ TEST(Player, ScriptedScrubShowsEachStepAndATfEditChangesThePicture) {
   EXPECT_GT(tsp::diff_images(a, b).mean, kDifferentFrameDeltaE);  // step 3 is not step 0
   EXPECT_GT(tsp::diff_images(b, c).mean, kDifferentFrameDeltaE);  // the TF edit shows
   EXPECT_LT(tsp::diff_images(c, render_step(tsp, 3, "preset:filled")).mean, kSameFrameDeltaE);
+}
+
+// Real X key events (xdotool) at two frames a second: five quick taps of → move five steps and
+// a tap of Space starts playback — none is lost between frames (the GLFW key queue).
+TEST(Player, QuickKeyTapsAreNotLostWhenFramesAreSlow) {
+  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  ASSERT_EQ(std::system("command -v xdotool > /dev/null"), 0)
+      << "xdotool missing (scripts/install-deps.sh installs it)";
+  fs::path dir = tsptest::temp_dir(), out = dir / "keys.out", tsp = dir / "k.tsp";
+  ASSERT_EQ(run_tspplay("generate shock -o " + q(dir / "k.h5") + " --dims 24,20,16 --steps 8")
+                .exit_code, 0);
+  ASSERT_EQ(run_tspplay("build " + q(dir / "k.h5") + " --field shock -o " + q(tsp)).exit_code, 0);
+  fs::path script = write_script("wait-seconds 6\nquit\n");
+  const std::string cmd =
+      "(" + q(tsptest::tspplay_bin()) + " play " + q(tsp) + " --size " + kSize +
+      " --trace --frame-delay-ms 500 --script " + q(script) + " > " + q(out) + " 2>&1 &\n" +
+      "w=$(xdotool search --sync --name 'tspplay - ' | head -1)\n"
+      "sleep 1\n"
+      "xdotool key --window \"$w\" --delay 40 Right Right Right Right Right\n"
+      "sleep 1.5\n"
+      "xdotool key --window \"$w\" space\n"
+      "wait)\n";
+  const fs::path driver = dir / "keys.sh";
+  std::ofstream(driver) << cmd;
+  ASSERT_EQ(std::system(("bash " + q(driver)).c_str()), 0);
+  const std::string log = tsptest::read_file(out);
+  EXPECT_NE(log.find("trace: step 5\n"), std::string::npos) << log;
+  EXPECT_EQ(log.find("trace: playing"), log.rfind("trace: playing")) << log;  // once
+  EXPECT_NE(log.find("trace: playing"), std::string::npos) << log;
+  EXPECT_LT(log.find("trace: step 5\n"), log.find("trace: playing")) << log;
 }
 
 TEST(Player, TracePrintsEachAppliedChange) {
