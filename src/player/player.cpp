@@ -61,8 +61,20 @@ std::vector<tsp::TfPoint> editor_points(const tsp::TransferFunction& tf) {
       if (std::fabs(v) > kKnotEpsilon) return true;
     return false;
   };
-  for (int j = 0; j < n; ++j)
-    if (j == 0 || j == n - 1 || slope_changes(j)) pts.push_back({tf.entry_value(j), tf.entry(j)});
+  // A knot between two entry centres bends the table at both: each run of bending entries is
+  // one knot, placed mid-run (a 5-point file shows 5 handles, not 8).
+  for (int j = 0; j < n; ++j) {
+    if (j == 0 || j == n - 1) {
+      pts.push_back({tf.entry_value(j), tf.entry(j)});
+      continue;
+    }
+    if (!slope_changes(j)) continue;
+    int last = j;
+    while (last + 1 < n - 1 && slope_changes(last + 1)) ++last;
+    const double x = 0.5 * (tf.entry_value(j) + tf.entry_value(last));
+    pts.push_back({x, tf.lookup(x)});
+    j = last;
+  }
   if (int(pts.size()) <= kMaxEditorPoints) return pts;
   pts.clear();
   const tsp::ValueRange d = tf.domain();
@@ -131,6 +143,16 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
   glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int) {
     if (action == GLFW_PRESS || action == GLFW_REPEAT)
       static_cast<PlayerApp*>(glfwGetWindowUserPointer(w))->key_queue_.push_back(key);
+  });
+  // The cursor as motion events report it, in order (glfwGetCursorPos asks X for the pointer
+  // now, after every queued event): so a press knows where it happened.
+  glfwSetCursorPosCallback(window, [](GLFWwindow* w, double x, double y) {
+    static_cast<PlayerApp*>(glfwGetWindowUserPointer(w))->cursor_ = {float(x), float(y)};
+  });
+  glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int button, int action, int) {
+    if (button != GLFW_MOUSE_BUTTON_LEFT || action != GLFW_PRESS) return;
+    auto* app = static_cast<PlayerApp*>(glfwGetWindowUserPointer(w));
+    app->left_press_ = app->cursor_;
   });
   ImGui_ImplGlfw_InitForOpenGL(window, true);
   if (const char* missing = tsp_imgui_gl_load(ctx->proc_address_function()))
@@ -262,6 +284,9 @@ void PlayerApp::write_stats(const std::string& path) const {
   j["spacing"] = spacing;
   j["preintegrated"] = preintegrated;
   j["tolerance"] = {tol.spatial, tol.temporal};
+  nlohmann::json points = nlohmann::json::array();  // the editor's handles: value, opacity
+  for (const tsp::TfPoint& p : tf_points) points.push_back({p.x, p.c.a});
+  j["tf_points"] = points;
   j["quality"] = quality_note;
   j["lod"] = {{"on", lod_on},
               {"target_fps", target_fps},
@@ -412,6 +437,15 @@ void PlayerApp::handle_input() {
     apply_key(key);
     if (options_.trace) trace_changes();
   }
+}
+
+void PlayerApp::trace_tf_canvas(float x, float y, float w, float h) {
+  if (!options_.trace) return;
+  const std::array<float, 4> r{x, y, w, h};
+  if (r == traced_canvas_) return;
+  traced_canvas_ = r;
+  std::printf("trace: tf canvas %.0f %.0f %.0f %.0f\n", x, y, w, h);
+  std::fflush(stdout);
 }
 
 void PlayerApp::apply_key(int key) {

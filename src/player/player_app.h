@@ -120,6 +120,12 @@ class PlayerApp {
   void write_stats(const std::string& path) const;
   /// Recreates the renderer for a cache policy or budget change.
   void set_cache(bool on, double budget_mb);
+  /// --trace: reports where the TF editor's canvas is on screen when it moves (for tests that
+  /// drag its handles with real mouse events). Never throws.
+  void trace_tf_canvas(float x, float y, float w, float h);
+  /// Where the left button last went down, in window coordinates, as GLFW reported it (the
+  /// cursor at the press, not at the frame: on a slow frame the mouse has moved on since).
+  std::array<float, 2> left_press() const { return left_press_; }
   /// Goes to step t (clamped), pausing playback.
   void go_to(int t);
   /// Number of steps of the file.
@@ -146,6 +152,7 @@ class PlayerApp {
   void save_pending_shot();
   void trace_changes();  // --trace: prints what changed since the last frame
   void apply_key(int key);  // one key press (or repeat) from the queue
+
   void refresh_reference();
   /// The current metric as frames read it (the reference metric brought up to date first).
   tsp::FrameMetric& frame_metric();
@@ -163,6 +170,9 @@ class PlayerApp {
   /// callback during glfwPollEvents on this thread): every tap counts however slow a frame is,
   /// which Dear ImGui 1.86's per-frame key state cannot promise.
   std::vector<int> key_queue_;
+  std::array<float, 2> left_press_{-1, -1};
+  std::array<float, 2> cursor_{-1, -1};  ///< the last motion event's position
+  std::array<float, 4> traced_canvas_{-1, -1, -1, -1};  ///< the last traced TF canvas rect
   /// Frame delay for tests (--frame-delay-ms): sleeps this long every frame.
   double frame_delay_ms_ = 0;
   /// What --trace compares from frame to frame.

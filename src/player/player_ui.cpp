@@ -203,10 +203,29 @@ void tf_editor(PlayerApp& app) {
   for (std::uint64_t c : hist) logh.push_back(std::log1p(float(c)));
   const ImVec2 origin = ImGui::GetCursorScreenPos();
   const float width = ImGui::GetContentRegionAvail().x;
-  ImGui::PlotHistogram("##hist", logh.data(), int(logh.size()), 0, nullptr, 0.f, FLT_MAX,
-                       ImVec2(width, kHistogramHeight));
   ImDrawList* dl = ImGui::GetWindowDrawList();
   const tsp::ValueRange d = app.tf.domain();
+  // Bars drawn by hand, not ImGui::PlotHistogram: that is an item whose hover (its tooltip)
+  // would take the clicks meant for the handles below; and each bin sits at its values on the
+  // TF domain's scale (the histogram covers the quantization range), so bars and curve line up.
+  {
+    const tsp::ValueRange q = app.file->tree().value_range();
+    float top = 0;
+    for (float v : logh) top = std::max(top, v);
+    const double dspan = d.hi > d.lo ? d.hi - d.lo : 1.0;
+    const double bin = (q.hi - q.lo) / double(logh.size());
+    dl->AddRectFilled(origin, ImVec2(origin.x + width, origin.y + kHistogramHeight),
+                      ImGui::GetColorU32(ImGuiCol_FrameBg));
+    for (std::size_t i = 0; i < logh.size() && top > 0; ++i) {
+      const double v0 = q.lo + bin * double(i), v1 = v0 + bin;
+      const float x0 = std::max(origin.x, origin.x + width * float((v0 - d.lo) / dspan));
+      const float x1 = std::min(origin.x + width, origin.x + width * float((v1 - d.lo) / dspan));
+      if (x1 <= x0) continue;
+      dl->AddRectFilled(ImVec2(x0, origin.y + kHistogramHeight * (1 - logh[i] / top)),
+                        ImVec2(std::max(x1, x0 + 1), origin.y + kHistogramHeight),
+                        ImGui::GetColorU32(ImGuiCol_PlotHistogram));
+    }
+  }
   const int n = app.tf.size();
   for (int j = 1; j < n; ++j) {
     const tsp::Rgba a = app.tf.entry(j - 1), b = app.tf.entry(j);
@@ -223,6 +242,7 @@ void tf_editor(PlayerApp& app) {
   // add one, right-click a point to remove it.
   ImGui::SetCursorScreenPos(origin);
   ImGui::InvisibleButton("##canvas", ImVec2(width, kHistogramHeight));
+  app.trace_tf_canvas(origin.x, origin.y, width, kHistogramHeight);
   const double span = d.hi > d.lo ? d.hi - d.lo : 1.0;
   auto screen = [&](const tsp::TfPoint& p) {
     return ImVec2(origin.x + width * float((p.x - d.lo) / span),
@@ -231,18 +251,29 @@ void tf_editor(PlayerApp& app) {
   const ImVec2 mouse = ImGui::GetIO().MousePos;
   const double mouse_x = std::clamp(d.lo + double(mouse.x - origin.x) / width * span, d.lo, d.hi);
   const float mouse_a = std::clamp(1.f - (mouse.y - origin.y) / kHistogramHeight, 0.f, 1.f);
-  int hovered = -1;
-  float best = kHandleRadius * kHandleRadius * 4;
-  for (std::size_t i = 0; i < app.tf_points.size(); ++i) {
-    const ImVec2 h = screen(app.tf_points[i]);
-    const float dist = (h.x - mouse.x) * (h.x - mouse.x) + (h.y - mouse.y) * (h.y - mouse.y);
-    if (dist < best) {
-      best = dist;
-      hovered = int(i);
+  // The handle nearest a screen point, within reach (−1: none).
+  auto handle_at = [&](ImVec2 at) {
+    int found = -1;
+    float best = kHandleRadius * kHandleRadius * 4;
+    for (std::size_t i = 0; i < app.tf_points.size(); ++i) {
+      const ImVec2 h = screen(app.tf_points[i]);
+      const float dist = (h.x - at.x) * (h.x - at.x) + (h.y - at.y) * (h.y - at.y);
+      if (dist < best) {
+        best = dist;
+        found = int(i);
+      }
     }
-  }
+    return found;
+  };
+  const int hovered = handle_at(mouse);
   static int dragging = -1;
-  if (ImGui::IsItemActivated()) dragging = hovered;
+  // The handle under the press, not under the mouse now: on a slow frame the press and the
+  // first moves arrive together, and the mouse has already left the handle.
+  if (ImGui::IsItemActivated()) {
+    const auto press = app.left_press();
+    dragging = handle_at(ImVec2(press[0], press[1]));
+  }
+
   if (ImGui::IsItemActive() && dragging >= 0 && dragging < int(app.tf_points.size()) &&
       (ImGui::GetIO().MouseDelta.x != 0 || ImGui::GetIO().MouseDelta.y != 0)) {
     app.tf_points[std::size_t(dragging)].x = mouse_x;

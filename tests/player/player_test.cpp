@@ -7,9 +7,11 @@
 
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "gl/context.h"
 #include "support/paths.h"
+#include "tsp/store/tsp_file.h"
 #include "tsp/core/error.h"
 #include "tsp/report/image.h"
 #include "tsp/report/image_diff.h"
@@ -131,6 +133,46 @@ TEST(Player, QuickKeyTapsAreNotLostWhenFramesAreSlow) {
   EXPECT_EQ(log.find("trace: playing"), log.rfind("trace: playing")) << log;  // once
   EXPECT_NE(log.find("trace: playing"), std::string::npos) << log;
   EXPECT_LT(log.find("trace: step 5\n"), log.find("trace: playing")) << log;
+}
+
+// Real X mouse events (xdotool) at two frames a second: press on the TF editor's last handle
+// (top right of the canvas, opacity 1) and drag it at once down to mid-height and left (press
+// and first moves fall into one frame), release: the point moves with the mouse.
+TEST(Player, DraggingATransferFunctionHandleMovesIt) {
+  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  ASSERT_EQ(std::system("command -v xdotool > /dev/null"), 0)
+      << "xdotool missing (scripts/install-deps.sh installs it)";
+  fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
+  const tsp::ValueRange r = tsp::TspFile::open(tsp.string())->tree().value_range();
+  const fs::path tf = dir / "ramp.json", out = dir / "drag.out", stats = dir / "drag.json";
+  std::ofstream(tf) << "{\"range\": [" << r.lo << ", " << r.hi << "], \"points\": [[" << r.lo
+                    << ", 0, 0, 1, 0], [" << r.hi << ", 1, 0, 0, 1]]}";
+  fs::path script = write_script("wait-seconds 7\nstats " + stats.string() + "\nquit\n");
+  const std::string cmd =
+      "(" + q(tsptest::tspplay_bin()) + " play " + q(tsp) + " --size 800x600 --trace " +
+      "--frame-delay-ms 500 --tf " + q(tf) + " --script " + q(script) + " > " + q(out) +
+      " 2>&1 &\n" +
+      "for i in $(seq 50); do grep -q 'tf canvas' " + q(out) + " && break; sleep 0.1; done\n"
+      "read x y w h <<< $(grep -m1 'tf canvas' " + q(out) + " | cut -d' ' -f4-7)\n"
+      "win=$(xdotool search --sync --name 'tspplay - ' | head -1)\n"
+      "hx=$((x + w - 2)); hy=$((y + 1))\n"
+      "xdotool mousemove --window \"$win\" $hx $hy; sleep 1.2\n"
+      "xdotool mousedown 1\n"
+      "for k in 1 2 3 4 5 6 7 8; do xdotool mousemove --window \"$win\" $((hx - 5 * k)) "
+      "$((hy + h * k / 16)); sleep 0.02; done\n"
+      "sleep 1.2; xdotool mouseup 1\n"
+      "wait)\n";
+  const fs::path driver = dir / "drag.sh";
+  std::ofstream(driver) << cmd;
+  ASSERT_EQ(std::system(("bash " + q(driver)).c_str()), 0);
+  std::ifstream in(stats);
+  const nlohmann::json j = nlohmann::json::parse(in);
+  const auto& pts = j["tf_points"];
+  ASSERT_EQ(pts.size(), 2u) << tsptest::read_file(out);
+  // The last handle followed the mouse: about half opacity, and left of the domain's end.
+  EXPECT_NEAR(pts[1][1].get<double>(), 0.5, 0.1) << tsptest::read_file(out);
+  EXPECT_LT(pts[1][0].get<double>(), r.hi - 0.05 * (r.hi - r.lo));
+  EXPECT_NE(tsptest::read_file(out).find("trace: transfer function edited"), std::string::npos);
 }
 
 TEST(Player, TracePrintsEachAppliedChange) {
