@@ -175,6 +175,30 @@ TEST(Player, DraggingATransferFunctionHandleMovesIt) {
   EXPECT_NE(tsptest::read_file(out).find("trace: transfer function edited"), std::string::npos);
 }
 
+// play on an HDF5 input: built into the cache folder first (saying so), reused the second time.
+TEST(Player, PlaysARawInputThroughTheBuildCache) {
+  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  const fs::path dir = tsptest::temp_dir(), h5 = dir / "raw.h5", cache = dir / "cache";
+  ASSERT_EQ(run_tspplay("generate shock -o " + q(h5) + " --dims 20,18,16 --steps 3").exit_code, 0);
+  const std::string args = "play " + q(h5) + " --field shock --cache-dir " + q(cache) +
+                           " --size " + kSize + " --screenshot ";
+  auto r = run_tspplay(args + q(dir / "a.png"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("building it into"), std::string::npos) << r.out;
+  EXPECT_TRUE(fs::exists(dir / "a.png"));
+  int built = 0;
+  for (const auto& e : fs::directory_iterator(cache / "builds")) built += e.path().extension() == ".tsp";
+  EXPECT_EQ(built, 1);
+  r = run_tspplay(args + q(dir / "b.png"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("built from it earlier"), std::string::npos) << r.out;
+  EXPECT_LT(tsp::diff_images(tsp::read_png((dir / "a.png").string()),
+                             tsp::read_png((dir / "b.png").string())).mean, kSameFrameDeltaE);
+  // --field names a raw input's field; a .tsp already has one.
+  r = run_tspplay("play " + q(make_tsp()) + " --field shock --screenshot " + q(dir / "c.png"));
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+}
+
 TEST(Player, TracePrintsEachAppliedChange) {
   if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
   fs::path tsp = make_tsp(), dir = tsptest::temp_dir(), shot = dir / "trace.png";
