@@ -103,6 +103,7 @@ json info_json(const tsp::TspFile& f, bool with_nodes) {
   j["origin"] = m.origin;
   j["spacing"] = m.spacing;
   j["stencil"] = tree.has_stencil();
+  j["times"] = m.times;
   if (tree.has_stencil()) j["inside_fraction"] = tree.inside_fraction(0);
   j["histogram"] = m.histogram;
   json levels = json::array();
@@ -167,6 +168,9 @@ void print_info(const tsp::TspFile& f, bool with_nodes) {
     std::printf("non-finite    %lld samples replaced\n", static_cast<long long>(m.nonfinite_count));
   std::printf("geometry      voxel (i,j,k) at (%g, %g, %g) + (i,j,k)*(%g, %g, %g)\n", m.origin[0],
               m.origin[1], m.origin[2], m.spacing[0], m.spacing[1], m.spacing[2]);
+  if (!m.times.empty())
+    std::printf("times         %g .. %g (physical, from the input)\n", m.times.front(),
+                m.times.back());
   if (tree.has_stencil())
     std::printf("stencil       %.1f%% of the voxels inside the mesh (the rest is never drawn)\n",
                 100.0 * tree.inside_fraction(0));

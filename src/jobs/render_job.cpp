@@ -58,6 +58,7 @@ json frame_json(const FrameRecord& f) {
           {"fragments", r.fragments},
           {"redrawn_percent", r.redrawn_percent},
           {"azimuth_deg", f.azimuth_deg},
+          {"time", f.time ? json(*f.time) : json(nullptr)},
           {"lod", f.lod ? lod_json(*f.lod) : json(nullptr)}};
 }
 
@@ -226,6 +227,7 @@ RenderJobResult run_render_job(const RenderJobOptions& options, const RenderProg
       tsp::CameraParams params = o.camera;
       params.azimuth_deg += o.orbit_deg * frame_index;
       rec.azimuth_deg = params.azimuth_deg;
+      if (!file->metadata().times.empty()) rec.time = file->metadata().times[std::size_t(t)];
       const tsp::Camera camera(tree.octree().dims(), params);
       tsp::LodStops stops;
       if (fixed_cut) {

@@ -74,6 +74,7 @@ struct FrameRecord {
   FrameReport report;
   double azimuth_deg = 0;          ///< the camera's azimuth (it moves with --orbit)
   std::optional<LodRecord> lod;    ///< with --lod
+  std::optional<double> time;      ///< the step's physical time, when the file has times
 };
 
 /// What a job did.

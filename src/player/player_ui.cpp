@@ -53,7 +53,14 @@ void timeline(PlayerApp& app) {
   // Dragging the scrubber pauses playback; releasing it resumes if it was playing.
   static bool resume_after_scrub = false;
   const bool was_playing = app.playing;
-  if (ImGui::SliderInt("##step", &step, 0, app.steps() - 1, "step %d")) app.go_to(step);
+  // The step with its physical time when the file has times ("step 3  t = 0.15").
+  const auto& times = app.file->metadata().times;
+  char label[64];
+  if (times.empty())
+    std::snprintf(label, sizeof label, "step %%d");
+  else
+    std::snprintf(label, sizeof label, "step %%d  t = %g", times[std::size_t(app.step)]);
+  if (ImGui::SliderInt("##step", &step, 0, app.steps() - 1, label)) app.go_to(step);
   if (ImGui::IsItemActivated()) {
     resume_after_scrub = was_playing;
     app.playing = false;

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 
 #include "support/paths.h"
 #include "tsp/report/image.h"
@@ -41,6 +42,8 @@ TEST(MeshCli, BuildStoresTheStencilAndRenderLeavesTheOutsideEmpty) {
   EXPECT_EQ(f->tree().octree().dims(), (tsp::Dims{45, 5, 5}));  // [0,11]x[0,1]x[0,1] by 0.25
   EXPECT_DOUBLE_EQ(f->metadata().spacing[0], 0.25);
   EXPECT_DOUBLE_EQ(f->metadata().origin[0], 0.0);
+  // The .pvd's timesteps are the steps' physical times, in time order; render reports them.
+  EXPECT_EQ(f->metadata().times, (std::vector<double>{0.0, 0.25, 0.5}));
   // The root's inside fraction: the gaps between the cells are outside.
   const float inside = f->tree().inside_fraction(0);
   EXPECT_GT(inside, 0.3f);
@@ -56,6 +59,8 @@ TEST(MeshCli, BuildStoresTheStencilAndRenderLeavesTheOutsideEmpty) {
                          c + " --steps 1 -o " + q(out));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const tsp::Image img = tsp::read_png((out / "step_0001.png").string());
+    EXPECT_EQ(nlohmann::json::parse(tsptest::read_file(out / "frames.json"))["frames"][0]["time"],
+              0.25);
     EXPECT_EQ(lit_runs(img, img.height / 2), 6) << c;
   }
 }

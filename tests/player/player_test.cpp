@@ -119,7 +119,7 @@ TEST(Player, QuickKeyTapsAreNotLostWhenFramesAreSlow) {
   const std::string cmd =
       "(" + q(tsptest::tspplay_bin()) + " play " + q(tsp) + " --size " + kSize +
       " --trace --frame-delay-ms 500 --script " + q(script) + " > " + q(out) + " 2>&1 &\n" +
-      "w=$(xdotool search --sync --name 'tspplay - ' | head -1)\n"
+      "w=$(xdotool search --sync --name " + q("tspplay - " + tsp.string()) + " | head -1)\n"
       "sleep 1\n"
       "xdotool key --window \"$w\" --delay 40 Right Right Right Right Right\n"
       "sleep 1.5\n"
@@ -154,7 +154,7 @@ TEST(Player, DraggingATransferFunctionHandleMovesIt) {
       " 2>&1 &\n" +
       "for i in $(seq 50); do grep -q 'tf canvas' " + q(out) + " && break; sleep 0.1; done\n"
       "read x y w h <<< $(grep -m1 'tf canvas' " + q(out) + " | cut -d' ' -f4-7)\n"
-      "win=$(xdotool search --sync --name 'tspplay - ' | head -1)\n"
+      "win=$(xdotool search --sync --name " + q("tspplay - " + tsp.string()) + " | head -1)\n"
       "hx=$((x + w - 2)); hy=$((y + 1))\n"
       "xdotool mousemove --window \"$win\" $hx $hy; sleep 1.2\n"
       "xdotool mousedown 1\n"

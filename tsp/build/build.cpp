@@ -422,6 +422,8 @@ BuildReport build_tsp_file(VolumeSource& source, const std::string& out_path,
     meta.histogram = pass.histogram;
     meta.created_by = "tspplay " TSPPLAY_VERSION;
     meta.origin = source.origin();
+    meta.times = source.times();
+    if (meta.times.size() != std::size_t(steps)) meta.times.clear();  // a reader's slip: none
     meta.spacing = source.spacing();
     writer.finish(tree, meta);
   }

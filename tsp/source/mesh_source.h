@@ -83,7 +83,8 @@ class MeshSource {
   virtual std::string describe() const = 0;
   /// Every file it reads, so an output is never written over an input. Never throws.
   virtual std::vector<std::string> files() const = 0;
-  /// Physical times of the steps when the input names them (.pvd, .series), else 0, 1, 2, …
+  /// Physical times of the steps when the input names them (.pvd, .series, VTKHDF
+  /// Steps/Values), in step order; empty when it does not. Never throws.
   virtual std::vector<double> times() const = 0;
   /// Reads step t (0 ≤ t < steps()). Throws IoError or FormatError naming the file and array.
   virtual Mesh read_step(int t) = 0;

@@ -30,8 +30,12 @@ bool names_unstructured(const std::string& file) {
 // A series of .vtu files (a .vtm step reads its volume block).
 class VtuSeriesSource final : public MeshSource {
  public:
-  VtuSeriesSource(std::string input, std::vector<io::StepFile> steps, io::VtuField field)
-      : input_(std::move(input)), steps_(std::move(steps)), field_(std::move(field)) {}
+  VtuSeriesSource(std::string input, std::vector<io::StepFile> steps, io::VtuField field,
+                  bool named_times)
+      : input_(std::move(input)),
+        steps_(std::move(steps)),
+        field_(std::move(field)),
+        named_times_(named_times) {}
 
   int steps() const override { return int(steps_.size()); }
   std::vector<std::string> files() const override {
@@ -49,7 +53,8 @@ class VtuSeriesSource final : public MeshSource {
   }
   std::vector<double> times() const override {
     std::vector<double> t;
-    for (const io::StepFile& s : steps_) t.push_back(s.time);
+    if (named_times_)
+      for (const io::StepFile& s : steps_) t.push_back(s.time);
     return t;
   }
   std::string describe() const override {
@@ -81,11 +86,12 @@ class VtuSeriesSource final : public MeshSource {
   std::string input_;
   std::vector<io::StepFile> steps_;
   io::VtuField field_;
+  bool named_times_;  // the steps came from a .pvd or .series list
 };
 
 std::unique_ptr<MeshSource> open_vtu_steps(const std::string& input,
                                            std::vector<io::StepFile> steps,
-                                           const FieldSpec& spec) {
+                                           const FieldSpec& spec, bool named_times) {
   io::order_steps(input, steps);
   for (const io::StepFile& s : steps) {
     try {
@@ -96,7 +102,7 @@ std::unique_ptr<MeshSource> open_vtu_steps(const std::string& input,
   }
   io::VtuFile first(VtuSeriesSource::volume_file(steps[0].file));
   io::VtuField field = first.resolve(spec);
-  return std::make_unique<VtuSeriesSource>(input, std::move(steps), field);
+  return std::make_unique<VtuSeriesSource>(input, std::move(steps), field, named_times);
 }
 
 // The steps a list or pattern names.
@@ -144,7 +150,8 @@ std::unique_ptr<MeshSource> open_mesh_source(const std::string& input, const std
     for (const io::StepFile& s : steps) files.push_back(s.file);
     return io::open_vtkhdf_mesh_source(input, files, spec);
   }
-  return open_vtu_steps(input, std::move(steps), spec);
+  const bool named = io::has_suffix(input, ".pvd") || io::has_suffix(input, ".series");
+  return open_vtu_steps(input, std::move(steps), spec, named);
 }
 
 }  // namespace tsp

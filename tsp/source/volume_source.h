@@ -43,6 +43,9 @@ class VolumeSource {
     read_step(t, out);
     std::fill(inside.begin(), inside.end(), std::uint8_t(1));
   }
+  /// Physical time of every step when the input names them (.pvd timesteps, .series times,
+  /// VTKHDF Steps/Values, an HDF5 time dimension scale); empty when it does not. Never throws.
+  virtual std::vector<double> times() const { return {}; }
   /// Physical position of voxel (0, 0, 0); (0, 0, 0) when the input does not say. Never throws.
   virtual std::array<double, 3> origin() const { return {0, 0, 0}; }
   /// Physical distance between neighbouring voxels per axis; (1, 1, 1) when the input does not

@@ -27,6 +27,8 @@ class VtiSeriesSource final : public VolumeSource {
   std::array<double, 3> origin() const override { return {geometry_[0], geometry_[1], geometry_[2]}; }
   std::array<double, 3> spacing() const override { return {geometry_[3], geometry_[4], geometry_[5]}; }
   std::array<double, 6> geometry_{0, 0, 0, 1, 1, 1};  // of the first step
+  std::vector<double> times_;                          // from a .pvd or .series list
+  std::vector<double> times() const override { return times_; }
   int steps() const override { return int(files_.size()); }
   std::vector<std::string> files() const override {
     std::vector<std::string> all = files_;
@@ -70,7 +72,7 @@ class VtiSeriesSource final : public VolumeSource {
 // Orders steps by time and builds the source, checking every step's header up front so a
 // bad step fails at open rather than halfway through a build.
 std::unique_ptr<VolumeSource> open_series(const std::string& input, std::vector<StepFile> steps,
-                                          const SourceOptions& options) {
+                                          const SourceOptions& options, bool named_times) {
   order_steps(input, steps);
   std::vector<std::string> files;
   for (const StepFile& s : steps) {
@@ -87,8 +89,12 @@ std::unique_ptr<VolumeSource> open_series(const std::string& input, std::vector<
   for (std::size_t i = 1; i < files.size(); ++i)
     VtiSeriesSource::checked_field(VtiFile(files[i], true), field, dims, files[0]);
   const std::array<double, 6> geometry = first.geometry(field);
+  std::vector<double> times;
+  if (named_times)
+    for (const StepFile& st : steps) times.push_back(st.time);
   auto source = std::make_unique<VtiSeriesSource>(input, std::move(files), field, dims);
   source->geometry_ = geometry;
+  source->times_ = std::move(times);
   return source;
 }
 
@@ -99,19 +105,19 @@ void require_file(const std::string& path) { require_regular_file(path, "input")
 std::unique_ptr<VolumeSource> open_vti_source(const std::string& path,
                                               const SourceOptions& options) {
   require_file(path);
-  return open_series(path, {StepFile{path, 0}}, options);
+  return open_series(path, {StepFile{path, 0}}, options, false);
 }
 
 std::unique_ptr<VolumeSource> open_pvd_source(const std::string& path,
                                               const SourceOptions& options) {
   require_file(path);
-  return open_series(path, read_pvd(path), options);
+  return open_series(path, read_pvd(path), options, true);
 }
 
 std::unique_ptr<VolumeSource> open_vti_series_source(const std::string& path,
                                                      const SourceOptions& options) {
   require_file(path);
-  return open_series(path, read_file_series(path), options);
+  return open_series(path, read_file_series(path), options, true);
 }
 
 std::unique_ptr<VolumeSource> open_vti_pattern_source(const std::string& pattern,
@@ -119,7 +125,7 @@ std::unique_ptr<VolumeSource> open_vti_pattern_source(const std::string& pattern
   std::vector<StepFile> steps;
   for (const std::string& f : expand_file_pattern(pattern))
     steps.push_back({f, double(steps.size())});
-  return open_series(pattern, std::move(steps), options);
+  return open_series(pattern, std::move(steps), options, false);
 }
 
 }  // namespace tsp::io

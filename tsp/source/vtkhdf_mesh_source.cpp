@@ -117,8 +117,6 @@ class VtkhdfMeshSource final : public MeshSource {
                                    H5T_NATIVE_DOUBLE, false, files_[0]);
       }
     }
-    if (times_.empty())
-      for (int t = 0; t < steps_; ++t) times_.push_back(t);
   }
 
   int steps() const override { return steps_; }

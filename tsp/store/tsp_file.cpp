@@ -260,6 +260,14 @@ std::unique_ptr<TspFile> TspFile::open(const std::string& path) {
     }
   }
 
+  if (H5Lexists(impl->file.get(), layout::kTimeValues, H5P_DEFAULT) > 0) {
+    m.times = r.dataset<double>(layout::kTimeValues, {hsize_t(steps)}, H5T_NATIVE_DOUBLE, H5T_FLOAT);
+    for (std::size_t i = 0; i < m.times.size(); ++i)
+      if (!std::isfinite(m.times[i]))
+        r.fail(std::string("dataset ") + layout::kTimeValues,
+               "element " + std::to_string(i) + " is not a finite time");
+  }
+
   const std::vector<hsize_t> n = {hsize_t(tree.size())};
   auto mean = r.dataset<double>(layout::kStatsMean, n, H5T_NATIVE_DOUBLE, H5T_FLOAT);
   auto sd = r.dataset<double>(layout::kStatsStd, n, H5T_NATIVE_DOUBLE, H5T_FLOAT);

@@ -27,6 +27,7 @@ struct TspMetadata {
   std::string created_by;              ///< "tspplay VERSION"
   std::array<double, 3> origin{0, 0, 0};   ///< physical position of voxel (0, 0, 0)
   std::array<double, 3> spacing{1, 1, 1};  ///< physical voxel spacing per axis
+  std::vector<double> times;  ///< physical time of every step, when the input named them
 };
 
 /// An open .tsp file: tree, metadata, and brick reads (one HDF5 chunk per brick and step).

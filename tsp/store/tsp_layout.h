@@ -57,6 +57,7 @@ inline constexpr const char* kOctreeBrick = "/octree/brick";        // int32 [no
 inline constexpr const char* kOctreeInside = "/octree/inside";      // float32 [no], with a stencil
 inline constexpr const char* kTime = "/time";
 inline constexpr const char* kTimeSpan = "/time/span";  // int32 [2T-1,2]
+inline constexpr const char* kTimeValues = "/time/values";  // float64 [T], when the input names them
 inline constexpr const char* kStats = "/stats";
 inline constexpr const char* kStatsMean = "/stats/mean";                // float64 [n]
 inline constexpr const char* kStatsStd = "/stats/std";                  // float64 [n]

@@ -238,6 +238,11 @@ void TspWriter::finish(const TspTree& tree, const TspMetadata& meta) {
   for (int i = 0; i < time.size(); ++i) spans[i] = {time.span(i).t0, time.span(i).t1};
   write_dataset(f, p, layout::kTimeSpan, H5T_NATIVE_INT32, H5T_STD_I32LE, {hsize_t(time.size()), 2},
                 spans.data());
+  if (!meta.times.empty()) {
+    assert(meta.times.size() == std::size_t(time.steps()));
+    write_dataset(f, p, layout::kTimeValues, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE,
+                  {hsize_t(meta.times.size())}, meta.times.data());
+  }
 
   // Statistics by TSP node id.
   const std::size_t n = std::size_t(tree.size());

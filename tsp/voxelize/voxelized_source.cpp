@@ -30,6 +30,7 @@ class VoxelizedSource final : public VolumeSource {
   }
   std::vector<std::string> files() const override { return source_->files(); }
   bool has_stencil() const override { return true; }
+  std::vector<double> times() const override { return source_->times(); }
   std::array<double, 3> origin() const override { return grid_.origin; }
   std::array<double, 3> spacing() const override { return grid_.spacing; }
 

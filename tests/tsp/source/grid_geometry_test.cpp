@@ -55,6 +55,18 @@ TEST(GridGeometry, Hdf5DimensionScalesThatStepUniformly) {
   EXPECT_EQ(plain->spacing(), (std::array<double, 3>{1, 1, 1}));  // no scales: 0 and 1
 }
 
+TEST(GridGeometry, SeriesListsNameTheStepsTimes) {
+  SourceOptions o;
+  o.field = "f";
+  // The fixtures list steps 2, 0, 1 at times 0.5, 0.0, 0.25: sorted by time.
+  auto pvd = open_source((tsptest::test_data_dir() / "vti" / "ascii.pvd").string(), o);
+  EXPECT_EQ(pvd->times(), (std::vector<double>{0.0, 0.25, 0.5}));
+  auto series = open_source((tsptest::test_data_dir() / "vti" / "ascii.vti.series").string(), o);
+  EXPECT_EQ(series->times(), (std::vector<double>{0.0, 0.25, 0.5}));
+  auto one = open_source((tsptest::test_data_dir() / "vti" / "ascii_0.vti").string(), o);
+  EXPECT_TRUE(one->times().empty());  // a single file names no time
+}
+
 TEST(GridGeometry, VtkhdfImageAndTheRule) {
   SourceOptions o;
   auto s = open_source((tsptest::test_data_dir() / "h5" / "vtkhdf_static.hdf").string(), o);
