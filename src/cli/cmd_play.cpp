@@ -1,5 +1,6 @@
 // tspplay play run.tsp [--tf tf.json] [--step K] [--screenshot out.png] [--script FILE]
 // [--size WxH]: the window player (docs/player.md).
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -9,6 +10,7 @@
 #include "cli/build_runner.h"
 #include "cli/commands.h"
 #include "jobs/calibration.h"
+#include "player/controls.h"
 #include "player/player.h"
 #include "tsp/build/build.h"
 #include "tsp/core/error.h"
@@ -133,6 +135,12 @@ const CommandRegistrar reg(35, [](CLI::App& app) {
       ->check(CLI::IsMember({"on", "off"}));
   c->add_option("--target-fps", a->options.target_fps,
                 "Frames per second the LOD cut holds while interacting (default 30)");
+  std::string keys = "\nControls (also F1 or ? in the player):\n";
+  for (const tspplayer::Control& k : tspplayer::kControls)
+    keys += "  " + std::string(k.input) +
+            std::string(std::size_t(std::max(2, 42 - int(std::string(k.input).size()))), ' ') +
+            k.action + "\n";
+  c->footer(keys);
   c->callback([a] {
     a->options.lod = a->lod == "on";
     run(*a);

@@ -162,6 +162,7 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
   imgui_ = true;
   update_tol_max();
   start_s_ = last_frame_s_ = glfwGetTime();
+  initial_camera = camera;
 }
 
 PlayerApp::~PlayerApp() {
@@ -470,6 +471,17 @@ void PlayerApp::apply_key(int key) {
       break;
     case GLFW_KEY_L:
       show_cut = !show_cut;
+      break;
+    case GLFW_KEY_R:
+      camera = initial_camera;
+      if (options_.trace) {
+        std::printf("trace: camera reset\n");
+        std::fflush(stdout);
+      }
+      break;
+    case GLFW_KEY_F1:
+    case GLFW_KEY_SLASH:  // '?' on most layouts
+      show_help = !show_help;
       break;
     case GLFW_KEY_P:
       camera.projection = camera.projection == tsp::Projection::orthographic

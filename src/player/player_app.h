@@ -92,6 +92,8 @@ class PlayerApp {
   bool lod_on = true;                   ///< the adaptive LOD cut (off: full resolution always)
   float target_fps = float(kDefaultTargetFps);  ///< held while interacting
   bool show_cut = false;                ///< outline the cut's nodes, coloured by level (key L)
+  bool show_help = false;               ///< the controls overlay (F1 or ?)
+  tsp::CameraParams initial_camera;     ///< what R resets the camera to
   std::optional<std::array<double, 3>> focus;  ///< LOD centre of attention (double-click)
 
   // ---- statistics for the HUD ----

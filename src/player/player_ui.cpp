@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "player/controls.h"
 #include "player/player_app.h"
 #include "tsp/core/error.h"
 #include "tsp/metric/tf_io.h"
@@ -373,6 +374,27 @@ void tf_editor(PlayerApp& app) {
   ImGui::End();
 }
 
+// The controls overlay (F1 or ?): every key and mouse action, from the one table.
+void help(PlayerApp& app) {
+  if (!app.show_help) return;
+  const ImGuiIO& io = ImGui::GetIO();
+  ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, io.DisplaySize.y * 0.5f),
+                          ImGuiCond_Always, ImVec2(0.5f, 0.5f));
+  ImGui::Begin("Controls (F1 or ? to close)", &app.show_help,
+               ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse);
+  if (ImGui::BeginTable("controls", 2, ImGuiTableFlags_RowBg)) {
+    for (const Control& c : kControls) {
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(c.input);
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(c.action);
+    }
+    ImGui::EndTable();
+  }
+  ImGui::End();
+}
+
 }  // namespace
 
 void PlayerApp::draw_ui() {
@@ -380,6 +402,7 @@ void PlayerApp::draw_ui() {
   settings(*this);
   hud(*this);
   tf_editor(*this);
+  help(*this);
 }
 
 }  // namespace tspplayer

@@ -124,6 +124,8 @@ TEST(Player, QuickKeyTapsAreNotLostWhenFramesAreSlow) {
       "xdotool key --window \"$w\" --delay 40 Right Right Right Right Right\n"
       "sleep 1.5\n"
       "xdotool key --window \"$w\" space\n"
+      "sleep 1\n"
+      "xdotool key --window \"$w\" r\n"
       "wait)\n";
   const fs::path driver = dir / "keys.sh";
   std::ofstream(driver) << cmd;
@@ -133,6 +135,11 @@ TEST(Player, QuickKeyTapsAreNotLostWhenFramesAreSlow) {
   EXPECT_EQ(log.find("trace: playing"), log.rfind("trace: playing")) << log;  // once
   EXPECT_NE(log.find("trace: playing"), std::string::npos) << log;
   EXPECT_LT(log.find("trace: step 5\n"), log.find("trace: playing")) << log;
+  EXPECT_NE(log.find("trace: camera reset"), std::string::npos) << log;  // R
+  // play --help lists the controls from the same table as the F1 overlay.
+  const auto help = run_tspplay("play --help");
+  for (const char* k : {"space", "reset the camera", "F1 or ?", "TF editor: drag a handle"})
+    EXPECT_NE(help.out.find(k), std::string::npos) << k;
 }
 
 // Real X mouse events (xdotool) at two frames a second: press on the TF editor's last handle

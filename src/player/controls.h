@@ -1,0 +1,30 @@
+// The player's keys and mouse actions: one table for the F1 overlay, `play --help` and the docs.
+#pragma once
+
+namespace tspplayer {
+
+/// One input and what it does.
+struct Control {
+  const char* input;
+  const char* action;
+};
+
+/// Every key and mouse action of the player, in the order they are listed.
+inline constexpr Control kControls[] = {
+    {"space", "play / pause"},
+    {"left / right arrow", "previous / next step (pauses)"},
+    {"Home / End", "first / last step"},
+    {"left drag", "orbit (azimuth, elevation)"},
+    {"right or middle drag, shift + left drag", "pan"},
+    {"wheel", "zoom"},
+    {"R", "reset the camera (view, zoom, pan, projection)"},
+    {"P", "orthographic / perspective"},
+    {"S", "save the current frame as tspplay_step_NNNN.png"},
+    {"L", "show / hide the LOD cut (node boxes coloured by level)"},
+    {"double-click", "set the LOD centre of attention"},
+    {"F1 or ?", "show / hide this list"},
+    {"TF editor: drag a handle", "move a point (value, opacity)"},
+    {"TF editor: double-click / right-click", "add a point / remove a point"},
+};
+
+}  // namespace tspplayer
