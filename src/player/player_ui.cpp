@@ -20,7 +20,8 @@ constexpr float kMaxSpeed = 60.f;  // steps per second
 constexpr float kMinSpeed = 0.25f;
 constexpr float kHistogramHeight = 80.f;
 constexpr float kHudPlotHeight = 60.f;
-constexpr float kHandleRadius = 5.f;  // TF control point handles, pixels
+constexpr float kHandleRadius = 5.f;
+constexpr float kLabelWidth = 130.f;  // room for a settings label, pixels  // TF control point handles, pixels
 constexpr double kBytesPerMiB = 1 << 20;
 constexpr const char* kMetricNames[] = {"scalar", "reference", "approximate", "perceptual"};
 // In tspgl::Compositing order.
@@ -75,8 +76,10 @@ void timeline(PlayerApp& app) {
 
 void settings(PlayerApp& app) {
   ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(300, 260), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(340, 260), ImGuiCond_FirstUseEver);
   ImGui::Begin("Settings");
+  // Widgets end kLabelWidth short of the window's edge: their labels are never clipped.
+  ImGui::PushItemWidth(-kLabelWidth);
   int m = int(app.metric);
   if (ImGui::Combo("metric", &m, kMetricNames, IM_ARRAYSIZE(kMetricNames)))
     app.set_metric(tsp::Metric(m));
@@ -148,6 +151,7 @@ void settings(PlayerApp& app) {
     app.camera.height = h;
   }
   if (!app.status.empty()) ImGui::TextWrapped("%s", app.status.c_str());
+  ImGui::PopItemWidth();
   ImGui::End();
 }
 
