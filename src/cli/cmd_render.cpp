@@ -21,7 +21,8 @@ namespace {
 namespace fs = std::filesystem;
 
 struct RenderArgs {
-  std::string file, tf = "preset:sparse", out, steps, size = "640x480", view = "30,20", movie;
+  std::string file, tf = "preset:sparse", out, steps, size = "640x480", view = "30,20", movie,
+              tf_range;
   int fps = tspcli::kMovieFps;
   std::string metric = "approximate", cache = "on", compositing = "rays", flat = "exact",
               span_step = "middle", preintegrated = "off",
@@ -43,6 +44,7 @@ void run(const RenderArgs& a) {
   tspgl::RenderJobOptions o;
   o.tsp_path = a.file;
   o.tf = a.tf;
+  o.tf_range = tsp::parse_tf_range(a.tf_range);
   o.out_dir = a.out;
   const StepRange steps = parse_steps(a.steps);
   o.first_step = steps.first;
@@ -123,6 +125,7 @@ void run(const RenderArgs& a) {
       o, [&bar](int done, int total) { bar.update("render", done, total); },
       [&bar](const std::string&, int done, int total) { bar.update("calibrate", done, total); });
   bar.finish();
+  for (const std::string& w : result.warnings) std::fprintf(stderr, "tspplay: warning: %s\n", w.c_str());
   if (o.quality > 0)
     std::printf("quality mean dE <= %g: %s (calibration: every step within %.3g; %s)\n", o.quality,
                 result.quality_options.c_str(), result.quality_calibrated_de,
@@ -163,6 +166,9 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
   c->add_option("file", a->file, "The .tsp file")->required();
   c->add_option("--tf", a->tf, "Transfer function: a JSON file or preset:NAME (default preset:sparse)");
   c->add_option("-o,--output", a->out, "Directory for step_NNNN.png and frames.json")->required();
+  c->add_option("--tf-range", a->tf_range,
+                "Where the TF sits over the data: auto (presets and normalised [0,1] maps "
+                "stretched over the data, other files as written), data, file or LO:HI");
   c->add_option("--movie", a->movie,
                 "Also encode the frames into a movie: out.mp4 (H.264) or out.gif (needs ffmpeg)");
   c->add_option("--fps", a->fps, "Movie frames a second (default 8)");

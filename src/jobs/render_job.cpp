@@ -171,12 +171,15 @@ RenderJobResult run_render_job(const RenderJobOptions& options, const RenderProg
   auto file = tsp::TspFile::open(options.tsp_path);
   const tsp::TspTree& tree = file->tree();
   const int last = checked_last_step(tree, options.first_step, options.last_step, options.tsp_path);
-  const tsp::TransferFunction tf = tsp::transfer_function_from_arg(options.tf, tree.value_range());
+  const tsp::TransferFunction tf = tsp::transfer_function_from_arg(
+      options.tf, tree.value_range(), tsp::kDefaultTfEntries, options.tf_range);
   if (!options.save_tf.empty()) {
     tsp::require_not_an_input(options.save_tf, {options.tsp_path, options.tf});
     tsp::save_transfer_function(tf, options.save_tf);
   }
   RenderJobResult result;
+  if (std::string w = tsp::tf_range_warning(tf, file->metadata().data_range); !w.empty())
+    result.warnings.push_back(w);
   const RenderJobOptions o =
       options.quality != 0 ? with_quality(options, *file, tf, result, calibration_progress)
                            : options;

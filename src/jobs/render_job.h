@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "render/frame_report.h"
+#include "tsp/metric/tf_io.h"
 #include "tsp/frame/camera.h"
 #include "tsp/frame/texture_cache.h"
 #include "tsp/lod/lod_controller.h"
@@ -29,6 +30,7 @@ enum class LodMode { off, fixed, adaptive };
 struct RenderJobOptions {
   std::string tsp_path;                       ///< the .tsp file
   std::string tf = "preset:sparse";           ///< --tf: a file or preset:NAME
+  tsp::TfRangeChoice tf_range;                ///< --tf-range: where the TF sits over the data
   std::string out_dir;                        ///< frames/ (created); empty: no files written
   int first_step = 0, last_step = -1;         ///< inclusive; −1: the last step
   int step_stride = 1;                        ///< every step_stride-th step from first_step
@@ -85,6 +87,7 @@ struct RenderJobResult {
   std::string quality_options;   ///< with --quality: the render options it picked
   double quality_calibrated_de = 0;  ///< their largest per-step mean ΔE on the calibration steps
   std::string calibration_file;  ///< the cache file read or written ("" without a cache)
+  std::vector<std::string> warnings;  ///< for the user (a TF that misses the data, …)
 };
 
 /// Progress callback: frames done, frames total.

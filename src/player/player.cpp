@@ -125,7 +125,12 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
     script_.push_back(shot);
     script_.push_back(ScriptAction{});  // quit
   }
-  tf = tsp::transfer_function_from_arg(options.tf, tree.value_range());
+  tf = tsp::transfer_function_from_arg(options.tf, tree.value_range(), tsp::kDefaultTfEntries,
+                                       tsp::parse_tf_range(options.tf_range));
+  if (std::string w = tsp::tf_range_warning(tf, file->metadata().data_range); !w.empty()) {
+    std::fprintf(stderr, "tspplay: warning: %s\n", w.c_str());
+    status = w;
+  }
   lazy_ = std::make_unique<tsp::LazyErrors>(tree, metric, tf);
   set_tf(tf, true);
 

@@ -10,6 +10,7 @@ namespace tspplayer {
 struct PlayerOptions {
   std::string tsp_path;              ///< the .tsp file
   std::string tf = "preset:sparse";  ///< --tf: a file or preset:NAME
+  std::string tf_range;              ///< --tf-range: auto (default), data, file or LO:HI
   int step = 0;                      ///< --step: the step shown first
   std::string screenshot;         ///< --screenshot: save the first complete frame here, then exit
   std::string script;             ///< --script: action script (run before --screenshot)

@@ -356,6 +356,11 @@ void tf_editor(PlayerApp& app) {
   ImGui::SameLine();
   if (ImGui::Button("apply preset"))
     app.set_tf(tsp::preset_transfer_function(names[std::size_t(preset)], d, app.tf.size()), true);
+  ImGui::SameLine();
+  if (ImGui::Button("fit to data")) {  // the map as it is, stretched over the data's range
+    app.set_tf(tsp::rescaled(app.tf, d), true);
+    app.status = "transfer function stretched over the data range";
+  }
 
   static char path[512] = "";
   if (path[0] == 0) std::snprintf(path, sizeof path, "%s", app.tf_path.c_str());
@@ -365,7 +370,8 @@ void tf_editor(PlayerApp& app) {
   try {
     if (ImGui::Button("load")) {
       app.set_tf(tsp::transfer_function_from_arg(app.tf_path, d, app.tf.size()), true);
-      app.status = "loaded " + app.tf_path;
+      const std::string w = tsp::tf_range_warning(app.tf, app.file->metadata().data_range);
+      app.status = w.empty() ? "loaded " + app.tf_path : "loaded " + app.tf_path + "; " + w;
     }
     ImGui::SameLine();
     if (ImGui::Button("save")) {

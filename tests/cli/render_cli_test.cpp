@@ -218,3 +218,22 @@ TEST(RenderCli, MovieOfTheRenderedStepsDecodes) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(RenderCli, ATransferFunctionThatMissesTheDataIsWarnedAbout) {
+  const fs::path tsp = make_tsp(), dir = tsptest::temp_dir(), tf = dir / "miss.json";
+  std::ofstream(tf) << R"({"range": [5, 6], "points": [[5, 1, 0, 0, 1], [6, 1, 0, 0, 1]]})";
+  auto r = run_tspplay("render " + q(tsp) + " --tf " + q(tf) + " --steps 0 --size 32x24 -o " +
+                       q(dir / "a"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: the transfer function covers"), std::string::npos) << r.err;
+  r = run_tspplay("render " + q(tsp) + " --tf " + q(tf) + " --tf-range data --steps 0 " +
+                  "--size 32x24 -o " + q(dir / "b"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
+  r = run_tspplay("render " + q(tsp) + " --tf preset:viridis --tf-range 1:0 -o " + q(dir / "c"));
+  EXPECT_EQ(r.exit_code, 2);
+}
+
+}  // namespace

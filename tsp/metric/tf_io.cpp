@@ -149,6 +149,22 @@ struct PresetKnot {
   Rgba c;
 };
 
+struct Rgb {
+  float r, g, b;
+};
+
+// Colours at equal steps over [0, 1] with ParaView's default linear opacity ramp.
+std::vector<PresetKnot> ramp(std::initializer_list<Rgb> colours) {
+  std::vector<PresetKnot> k;
+  const double n = double(colours.size() - 1);
+  int i = 0;
+  for (const Rgb& c : colours) {
+    const double t = i++ / n;
+    k.push_back({t, {c.r, c.g, c.b, float(t)}});
+  }
+  return k;
+}
+
 const std::vector<std::pair<std::string, std::vector<PresetKnot>>>& presets() {
   static const std::vector<std::pair<std::string, std::vector<PresetKnot>>> p = {
       // Two narrow opaque bands, transparent elsewhere: most nodes become transparent (the
@@ -169,6 +185,35 @@ const std::vector<std::pair<std::string, std::vector<PresetKnot>>>& presets() {
         {1.0, {0.71f, 0.02f, 0.15f, 0.60f}}}},
       // Grey ramp with ParaView's default linear opacity.
       {"grey", {{0.0, {0, 0, 0, 0}}, {1.0, {1, 1, 1, 1}}}},
+      // ParaView's common colour maps, with its default linear opacity (0 at the low end, 1 at
+      // the high end). Colours at the maps' published control points: viridis and inferno as
+      // matplotlib's 8- and 10-step palettes, Cool to Warm as Moreland's three points, Jet as
+      // ParaView's seven; "rainbow-uniform" is our equal-step blue–cyan–green–yellow–red
+      // approximation of ParaView's Rainbow Uniform (not its exact table).
+      {"viridis", ramp({{0.267f, 0.005f, 0.329f}, {0.275f, 0.196f, 0.494f},
+                        {0.212f, 0.361f, 0.553f}, {0.153f, 0.498f, 0.557f},
+                        {0.122f, 0.631f, 0.529f}, {0.290f, 0.757f, 0.427f},
+                        {0.627f, 0.855f, 0.224f}, {0.992f, 0.906f, 0.145f}})},
+      {"inferno", ramp({{0.000f, 0.000f, 0.016f}, {0.106f, 0.047f, 0.255f},
+                        {0.290f, 0.047f, 0.420f}, {0.471f, 0.110f, 0.427f},
+                        {0.647f, 0.173f, 0.376f}, {0.812f, 0.267f, 0.275f},
+                        {0.929f, 0.412f, 0.145f}, {0.984f, 0.608f, 0.024f},
+                        {0.969f, 0.820f, 0.239f}, {0.988f, 1.000f, 0.643f}})},
+      {"cool-to-warm",
+       {{0.0, {0.230f, 0.299f, 0.754f, 0}},
+        {0.5, {0.865f, 0.865f, 0.865f, 0.5f}},
+        {1.0, {0.706f, 0.016f, 0.150f, 1}}}},
+      {"jet",
+       {{0.0, {0, 0, 0.5625f, 0}},
+        {0.1111, {0, 0, 1, 0.1111f}},
+        {0.3651, {0, 1, 1, 0.3651f}},
+        {0.4921, {0.5f, 1, 0.5f, 0.4921f}},
+        {0.6190, {1, 1, 0, 0.6190f}},
+        {0.8730, {1, 0, 0, 0.8730f}},
+        {1.0, {0.5f, 0, 0, 1}}}},
+      {"grayscale", {{0.0, {0, 0, 0, 0}}, {1.0, {1, 1, 1, 1}}}},
+      {"rainbow-uniform", ramp({{0.0f, 0.0f, 1.0f}, {0.0f, 1.0f, 1.0f}, {0.0f, 1.0f, 0.0f},
+                                {1.0f, 1.0f, 0.0f}, {1.0f, 0.0f, 0.0f}})},
   };
   return p;
 }
@@ -245,13 +290,83 @@ ValueRange preset_domain(ValueRange r) {
   return {c - half, c + half};
 }
 
+TfRangeChoice parse_tf_range(const std::string& text) {
+  TfRangeChoice c;
+  if (text.empty() || text == "auto") return c;
+  if (text == "data") {
+    c.mode = TfRangeChoice::Mode::data;
+    return c;
+  }
+  if (text == "file") {
+    c.mode = TfRangeChoice::Mode::file;
+    return c;
+  }
+  const auto colon = text.find(':', 1);
+  double lo = 0, hi = 0;
+  bool ok = colon != std::string::npos;
+  if (ok) {
+    try {
+      std::size_t a = 0, b = 0;
+      lo = std::stod(text.substr(0, colon), &a);
+      hi = std::stod(text.substr(colon + 1), &b);
+      ok = a == colon && b == text.size() - colon - 1;
+    } catch (const std::exception&) {
+      ok = false;
+    }
+  }
+  if (!ok || !std::isfinite(lo) || !std::isfinite(hi) || !(lo < hi))
+    throw UsageError("--tf-range '" + text + "': expected auto, data, file or LO:HI with LO < HI");
+  c.mode = TfRangeChoice::Mode::explicit_range;
+  c.range = {lo, hi};
+  return c;
+}
+
+TransferFunction rescaled(const TransferFunction& tf, ValueRange to) {
+  if (!std::isfinite(to.lo) || !std::isfinite(to.hi) || !(to.lo < to.hi))
+    throw UsageError("transfer function range [" + std::to_string(to.lo) + ", " +
+                     std::to_string(to.hi) + "]: expected finite lo < hi");
+  const ValueRange from = tf.domain();
+  std::vector<TfPoint> pts;
+  for (int j = 0; j < tf.size(); ++j) {
+    const double u = (tf.entry_value(j) - from.lo) / (from.hi - from.lo);
+    pts.push_back({to.lo + u * (to.hi - to.lo), tf.entry(j)});
+  }
+  return TransferFunction::from_points(to, pts, tf.size());
+}
+
+std::string tf_range_warning(const TransferFunction& tf, ValueRange data) {
+  const ValueRange d = tf.domain();
+  if (d.hi >= data.lo && d.lo <= data.hi) return "";
+  return "the transfer function covers [" + std::to_string(d.lo) + ", " + std::to_string(d.hi) +
+         "] but the data lie in [" + std::to_string(data.lo) + ", " + std::to_string(data.hi) +
+         "]: nothing will show; --tf-range data stretches it over the data";
+}
+
 TransferFunction transfer_function_from_arg(const std::string& arg, ValueRange default_domain,
-                                            int entries) {
+                                            int entries, const TfRangeChoice& range) {
+  using Mode = TfRangeChoice::Mode;
   const std::string prefix = kPresetPrefix;
+  const ValueRange data = preset_domain(default_domain);
   if (arg.rfind(prefix, 0) == 0)
-    return preset_transfer_function(arg.substr(prefix.size()), preset_domain(default_domain),
+    return preset_transfer_function(arg.substr(prefix.size()),
+                                    range.mode == Mode::explicit_range ? range.range : data,
                                     entries);
-  return load_transfer_function(arg, entries);
+  TransferFunction tf = load_transfer_function(arg, entries);
+  switch (range.mode) {
+    case Mode::file:
+      return tf;
+    case Mode::data:
+      return rescaled(tf, data);
+    case Mode::explicit_range:
+      return rescaled(tf, range.range);
+    case Mode::automatic: {
+      const ValueRange d = tf.domain();
+      const bool normalised = d.lo == 0 && d.hi == 1;
+      const bool data_inside = data.lo >= 0 && data.hi <= 1;
+      return normalised && !data_inside ? rescaled(tf, data) : tf;
+    }
+  }
+  return tf;
 }
 
 }  // namespace tsp

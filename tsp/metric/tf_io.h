@@ -22,7 +22,8 @@ TransferFunction parse_transfer_function(const std::string& text, const std::str
 /// the end). Throws IoError when the file cannot be written.
 void save_transfer_function(const TransferFunction& tf, const std::string& path);
 
-/// Names of the built-in presets ("sparse", "filled", "grey").
+/// Names of the built-in presets ("sparse", "filled", "grey", and ParaView's common maps:
+/// "viridis", "inferno", "cool-to-warm", "jet", "grayscale", "rainbow-uniform").
 std::vector<std::string> preset_names();
 
 /// A built-in preset stretched over domain. Throws UsageError for an unknown name (listing the
@@ -36,9 +37,34 @@ TransferFunction preset_transfer_function(const std::string& name, ValueRange do
 /// when r is not finite. Never throws.
 ValueRange preset_domain(ValueRange r);
 
-/// Resolves a --tf argument: "preset:NAME" gives that preset over preset_domain(default_domain),
-/// anything else is a file path. Throws like load_transfer_function / preset_transfer_function.
+/// How --tf-range places a transfer function over the data.
+struct TfRangeChoice {
+  enum class Mode {
+    automatic,  ///< presets over the data; a file's own range, except a normalised [0, 1] map
+                ///< (ParaView presets) for data outside [0, 1], which is stretched over the data
+    data,       ///< every TF stretched over the data's range
+    file,       ///< a file's own range, whatever it is
+    explicit_range  ///< stretched over `range`
+  };
+  Mode mode = Mode::automatic;
+  ValueRange range;  ///< explicit_range only
+};
+
+/// Parses --tf-range "auto", "data", "file" or "LO:HI" (finite, LO < HI). Throws UsageError.
+TfRangeChoice parse_tf_range(const std::string& text);
+
+/// tf with its domain moved to `to`: every entry keeps its colour, its position mapped linearly.
+/// Throws UsageError on an invalid `to`.
+TransferFunction rescaled(const TransferFunction& tf, ValueRange to);
+
+/// A warning when tf's domain misses the data's range (no overlap), else empty. Never throws.
+std::string tf_range_warning(const TransferFunction& tf, ValueRange data);
+
+/// Resolves a --tf argument: "preset:NAME" gives that preset, anything else is a file path;
+/// placed over the data (default_domain) as `range` says. Throws like load_transfer_function /
+/// preset_transfer_function.
 TransferFunction transfer_function_from_arg(const std::string& arg, ValueRange default_domain,
-                                            int entries = kDefaultTfEntries);
+                                            int entries = kDefaultTfEntries,
+                                            const TfRangeChoice& range = {});
 
 }  // namespace tsp

@@ -113,7 +113,7 @@ TEST(TfIo, MissingFileIsAnIoError) {
 
 TEST(TfIo, PresetsSparseIsMostlyTransparentFilledIsNot) {
   auto names = preset_names();
-  EXPECT_EQ(names.size(), 3u);
+  EXPECT_EQ(names.size(), 9u);  // ours three and ParaView's six common maps
   TransferFunction sparse = preset_transfer_function("sparse", {0, 1000});
   TransferFunction filled = preset_transfer_function("filled", {0, 1000});
   int sparse_clear = 0, filled_clear = 0;
@@ -126,6 +126,68 @@ TEST(TfIo, PresetsSparseIsMostlyTransparentFilledIsNot) {
   EXPECT_THROW(preset_transfer_function("nope", {0, 1}), UsageError);
   TransferFunction viaarg = transfer_function_from_arg("preset:filled", {0, 1000});
   EXPECT_EQ(viaarg.entry(100), filled.entry(100));
+}
+
+TEST(TfIo, ParaViewCommonMapsAreBuiltIn) {
+  // Each map's published end colours, with ParaView's linear opacity (0 low, 1 high).
+  struct End {
+    const char* name;
+    float lo[3], hi[3];
+  };
+  const End ends[] = {{"viridis", {0.267f, 0.005f, 0.329f}, {0.992f, 0.906f, 0.145f}},
+                      {"inferno", {0.0f, 0.0f, 0.016f}, {0.988f, 1.0f, 0.643f}},
+                      {"cool-to-warm", {0.230f, 0.299f, 0.754f}, {0.706f, 0.016f, 0.150f}},
+                      {"jet", {0, 0, 0.5625f}, {0.5f, 0, 0}},
+                      {"grayscale", {0, 0, 0}, {1, 1, 1}},
+                      {"rainbow-uniform", {0, 0, 1}, {1, 0, 0}}};
+  const std::vector<std::string> names = preset_names();
+  for (const End& e : ends) {
+    SCOPED_TRACE(e.name);
+    EXPECT_NE(std::find(names.begin(), names.end(), e.name), names.end());
+    const TransferFunction tf = preset_transfer_function(e.name, {10, 20}, 1024);
+    const Rgba lo = tf.lookup(10), hi = tf.lookup(20);
+    EXPECT_NEAR(lo.r, e.lo[0], 2e-3);
+    EXPECT_NEAR(lo.g, e.lo[1], 2e-3);
+    EXPECT_NEAR(lo.b, e.lo[2], 2e-3);
+    EXPECT_NEAR(hi.r, e.hi[0], 2e-3);
+    EXPECT_NEAR(hi.b, e.hi[2], 2e-3);
+    EXPECT_NEAR(lo.a, 0, 2e-3);
+    EXPECT_NEAR(hi.a, 1, 2e-3);
+    EXPECT_NEAR(tf.lookup(15).a, 0.5, 0.01);  // the linear ramp
+  }
+}
+
+TEST(TfIo, TfRangeChoicesAndRescaling) {
+  EXPECT_EQ(parse_tf_range("").mode, TfRangeChoice::Mode::automatic);
+  EXPECT_EQ(parse_tf_range("data").mode, TfRangeChoice::Mode::data);
+  EXPECT_EQ(parse_tf_range("file").mode, TfRangeChoice::Mode::file);
+  const TfRangeChoice r = parse_tf_range("-5:40");
+  EXPECT_EQ(r.mode, TfRangeChoice::Mode::explicit_range);
+  EXPECT_EQ(r.range.lo, -5);
+  EXPECT_EQ(r.range.hi, 40);
+  for (const char* bad : {"1:1", "x:2", "5", "nan:3"}) EXPECT_THROW(parse_tf_range(bad), UsageError);
+  // A normalised [0, 1] map (a ParaView preset) over data in [100, 300]: stretched by default,
+  // kept with --tf-range file (and then it misses the data: a warning says so).
+  const std::filesystem::path f = tsptest::temp_dir() / "unit.json";
+  std::ofstream(f) << R"({"range": [0, 1], "points": [[0, 0, 0, 1, 0], [1, 1, 0, 0, 1]]})";
+  const ValueRange data{100, 300};
+  const TransferFunction a = transfer_function_from_arg(f.string(), data);
+  EXPECT_EQ(a.domain().lo, 100);
+  EXPECT_EQ(a.domain().hi, 300);
+  EXPECT_NEAR(a.lookup(200).a, 0.5, 0.01);
+  EXPECT_TRUE(tf_range_warning(a, data).empty());
+  const TransferFunction b = transfer_function_from_arg(f.string(), data, kDefaultTfEntries,
+                                                        parse_tf_range("file"));
+  EXPECT_EQ(b.domain().hi, 1);
+  EXPECT_NE(tf_range_warning(b, data).find("--tf-range data"), std::string::npos);
+  // Data inside [0, 1]: the file's range stays.
+  EXPECT_EQ(transfer_function_from_arg(f.string(), {0.2, 0.7}).domain().hi, 1);
+  // Explicit range; rescaled() keeps every entry's colour at the mapped position.
+  const TransferFunction c = transfer_function_from_arg(f.string(), data, kDefaultTfEntries,
+                                                        parse_tf_range("-1:1"));
+  EXPECT_NEAR(c.lookup(0).a, 0.5, 0.01);
+  const TransferFunction d = rescaled(c, {10, 30});
+  for (int j = 0; j < c.size(); ++j) EXPECT_EQ(d.entry(j).a, c.entry(j).a) << j;
 }
 
 }  // namespace
