@@ -24,6 +24,7 @@ struct RenderArgs {
   std::string file, tf = "preset:sparse", out, steps, size = "640x480", view = "30,20", movie,
               tf_range;
   int fps = tspcli::kMovieFps;
+  bool annotate = false;
   std::string metric = "approximate", cache = "on", compositing = "rays", flat = "exact",
               span_step = "middle", preintegrated = "off",
               reuse = "on";
@@ -45,6 +46,7 @@ void run(const RenderArgs& a) {
   o.tsp_path = a.file;
   o.tf = a.tf;
   o.tf_range = tsp::parse_tf_range(a.tf_range);
+  o.annotate = a.annotate;
   o.out_dir = a.out;
   const StepRange steps = parse_steps(a.steps);
   o.first_step = steps.first;
@@ -169,6 +171,9 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
   c->add_option("--tf-range", a->tf_range,
                 "Where the TF sits over the data: auto (presets and normalised [0,1] maps "
                 "stretched over the data, other files as written), data, file or LO:HI");
+  c->add_flag("--annotate", a->annotate,
+              "Draw the outline box, an axes triad, a colour legend with ticks and the step (and "
+              "time) into every frame (and so into --movie)");
   c->add_option("--movie", a->movie,
                 "Also encode the frames into a movie: out.mp4 (H.264) or out.gif (needs ffmpeg)");
   c->add_option("--fps", a->fps, "Movie frames a second (default 8)");

@@ -8,6 +8,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "jobs/annotate.h"
 #include "jobs/calibration.h"
 #include "render/baseline_renderer.h"
 #include "render/volume_renderer.h"
@@ -256,7 +257,8 @@ RenderJobResult run_render_job(const RenderJobOptions& options, const RenderProg
       // The last pass's images win; earlier passes only measure.
       const bool png = !dir.empty() && o.write_images && pass == o.passes;
       if (png || o.on_frame) {
-        const tsp::Image pixels = ctx->read_pixels();
+        tsp::Image pixels = ctx->read_pixels();
+        if (o.annotate) annotate_frame(pixels, camera, tree.octree().dims(), tf, t, rec.time);
         if (o.on_frame) o.on_frame(rec, pixels);
         if (png) tsp::write_png(step_png(dir, t), pixels);
       }

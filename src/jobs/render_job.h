@@ -31,6 +31,7 @@ struct RenderJobOptions {
   std::string tsp_path;                       ///< the .tsp file
   std::string tf = "preset:sparse";           ///< --tf: a file or preset:NAME
   tsp::TfRangeChoice tf_range;                ///< --tf-range: where the TF sits over the data
+  bool annotate = false;                      ///< --annotate: outline, axes, legend, step/time
   std::string out_dir;                        ///< frames/ (created); empty: no files written
   int first_step = 0, last_step = -1;         ///< inclusive; −1: the last step
   int step_stride = 1;                        ///< every step_stride-th step from first_step

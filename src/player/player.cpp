@@ -676,8 +676,11 @@ void PlayerApp::frame() {
     std::printf("%s\n", status.c_str());
   }
 
-  if (camera.width > 0 && camera.height > 0)
-    draw_cut_overlay(tsp::Camera(file->tree().octree().dims(), camera));
+  if (camera.width > 0 && camera.height > 0) {
+    const tsp::Camera cam(file->tree().octree().dims(), camera);
+    draw_cut_overlay(cam);
+    draw_annotations(cam);
+  }
   draw_ui();
   ImGui::Render();
   ctx->gl().BindFramebuffer(GL_FRAMEBUFFER, 0);

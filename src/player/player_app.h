@@ -93,6 +93,7 @@ class PlayerApp {
   float target_fps = float(kDefaultTargetFps);  ///< held while interacting
   bool show_cut = false;                ///< outline the cut's nodes, coloured by level (key L)
   bool show_help = false;               ///< the controls overlay (F1 or ?)
+  bool annotations = true;              ///< outline box, axes triad, step/time over the volume
   tsp::CameraParams initial_camera;     ///< what R resets the camera to
   std::optional<std::array<double, 3>> focus;  ///< LOD centre of attention (double-click)
 
@@ -166,6 +167,7 @@ class PlayerApp {
   tsp::LodStops update_lod(const tsp::Camera& cam, tspgl::RenderSettings& settings, double now_s);
   void measured_lod(double render_ms, double frame_ms);
   void draw_cut_overlay(const tsp::Camera& cam);
+  void draw_annotations(const tsp::Camera& cam);
 
   PlayerOptions options_;
   /// Key presses and repeats GLFW reported since the last frame, in order (filled by the key

@@ -100,6 +100,60 @@ void PlayerApp::set_focus_at(double x, double y) {
   last_change_s_ = glfwGetTime();
 }
 
+namespace {
+
+// Corner c (bit a: high along axis a) of box, projected to window pixels; false behind the eye.
+bool corner(const glm::dmat4& vp, const tsp::Aabb& box, int c, double w, double h, ImVec2& out) {
+  const glm::dvec4 q = vp * glm::dvec4(c & 1 ? box.hi[0] : box.lo[0], c & 2 ? box.hi[1] : box.lo[1],
+                                        c & 4 ? box.hi[2] : box.lo[2], 1.0);
+  if (q.w <= 1e-9) return false;
+  out = ImVec2(float((q.x / q.w * 0.5 + 0.5) * w), float((0.5 - q.y / q.w * 0.5) * h));
+  return true;
+}
+
+}  // namespace
+
+void PlayerApp::draw_annotations(const tsp::Camera& cam) {
+  if (!annotations) return;
+  ImDrawList* dl = ImGui::GetBackgroundDrawList();
+  // Crisp one-pixel lines in exactly the outline colour (as render --annotate draws them).
+  dl->Flags &= ~ImDrawListFlags_AntiAliasedLines;
+  const glm::dmat4 vp = cam.view_projection();
+  const double w = ctx->width(), h = ctx->height();
+  const tsp::Octree& o = file->tree().octree();
+  const tsp::Aabb box = tsp::geometric_box(tsp::Box{{0, 0, 0}, {o.dims().x, o.dims().y, o.dims().z}},
+                                           o.dims());
+  ImVec2 p[8];
+  bool ok = true;
+  for (int c = 0; c < 8; ++c) ok &= corner(vp, box, c, w, h, p[c]);
+  if (ok) {
+    for (int c = 0; c < 8; ++c)
+      for (int a = 0; a < 3; ++a)
+        if (!(c & (1 << a))) dl->AddLine(p[c], p[c | (1 << a)], IM_COL32(200, 200, 200, 255));
+    // Axes triad at the origin corner: x red, y green, z blue, labelled.
+    const double len = 0.25 * std::min({box.hi[0], box.hi[1], box.hi[2]}) + 1;
+    const ImU32 cols[3] = {IM_COL32(230, 60, 60, 255), IM_COL32(60, 200, 60, 255),
+                           IM_COL32(80, 120, 255, 255)};
+    const char* names[3] = {"x", "y", "z"};
+    for (int a = 0; a < 3; ++a) {
+      tsp::Aabb tip;
+      tip.hi[a] = len;
+      ImVec2 e;
+      if (!corner(vp, tip, 1 << a, w, h, e)) continue;
+      dl->AddLine(p[0], e, cols[a], 2.f);
+      dl->AddText(ImVec2(e.x + 3, e.y - 7), cols[a], names[a]);
+    }
+  }
+  // Step and physical time over the volume, top centre.
+  const auto& times = file->metadata().times;
+  char label[96];
+  if (times.empty())
+    std::snprintf(label, sizeof label, "step %d", step);
+  else
+    std::snprintf(label, sizeof label, "step %d   t = %g", step, times[std::size_t(step)]);
+  dl->AddText(ImVec2(float(w) * 0.5f - 40, 8), IM_COL32(235, 235, 235, 255), label);
+}
+
 void PlayerApp::draw_cut_overlay(const tsp::Camera& cam) {
   if (!show_cut || !lod_) return;
   ImDrawList* dl = ImGui::GetBackgroundDrawList();

@@ -80,6 +80,7 @@ void settings(PlayerApp& app) {
   ImGui::Begin("Settings");
   // Widgets end kLabelWidth short of the window's edge: their labels are never clipped.
   ImGui::PushItemWidth(-kLabelWidth);
+  ImGui::Checkbox("outline, axes, step", &app.annotations);
   int m = int(app.metric);
   if (ImGui::Combo("metric", &m, kMetricNames, IM_ARRAYSIZE(kMetricNames)))
     app.set_metric(tsp::Metric(m));

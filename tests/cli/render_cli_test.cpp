@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "support/paths.h"
+#include "tsp/report/image.h"
 
 namespace {
 
@@ -234,6 +235,45 @@ TEST(RenderCli, ATransferFunctionThatMissesTheDataIsWarnedAbout) {
   EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
   r = run_tspplay("render " + q(tsp) + " --tf preset:viridis --tf-range 1:0 -o " + q(dir / "c"));
   EXPECT_EQ(r.exit_code, 2);
+}
+
+}  // namespace
+
+namespace {
+
+// Pixels of img within [x0, x1) × [y0, y1) equal to rgb.
+int count_colour(const tsp::Image& img, int x0, int y0, int x1, int y1, const unsigned char rgb[3]) {
+  int n = 0;
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x) {
+      const std::uint8_t* p = img.at(x, y);
+      n += p[0] == rgb[0] && p[1] == rgb[1] && p[2] == rgb[2];
+    }
+  return n;
+}
+
+TEST(RenderCli, AnnotateDrawsOutlineLegendAndStep) {
+  const fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
+  const std::string common = " --tf preset:cool-to-warm --steps 1 --size 320x240 -o ";
+  ASSERT_EQ(run_tspplay("render " + q(tsp) + " --annotate" + common + q(dir / "a")).exit_code, 0);
+  ASSERT_EQ(run_tspplay("render " + q(tsp) + common + q(dir / "b")).exit_code, 0);
+  const tsp::Image a = tsp::read_png((dir / "a" / "step_0001.png").string());
+  const tsp::Image b = tsp::read_png((dir / "b" / "step_0001.png").string());
+  const unsigned char outline[3] = {200, 200, 200}, text[3] = {235, 235, 235};
+  // The outline box: many pixels of its colour, none without --annotate.
+  EXPECT_GT(count_colour(a, 0, 0, 320, 240, outline), 300);
+  EXPECT_EQ(count_colour(b, 0, 0, 320, 240, outline), 0);
+  // The legend: its top row the map's high end, its bottom row the low end (cool-to-warm).
+  const int lx = 320 - 10 - 16 - 48 + 8, top = (240 - 120) / 2, bottom = top + 119;
+  const std::uint8_t* hi = a.at(lx, top);
+  const std::uint8_t* lo = a.at(lx, bottom);
+  EXPECT_NEAR(hi[0], 180, 2);
+  EXPECT_NEAR(hi[2], 38, 2);
+  EXPECT_NEAR(lo[0], 59, 2);
+  EXPECT_NEAR(lo[2], 192, 2);
+  // "step 1" top left, in the text colour.
+  EXPECT_GT(count_colour(a, 0, 0, 120, 30, text), 40);
+  EXPECT_EQ(count_colour(b, 0, 0, 120, 30, text), 0);
 }
 
 }  // namespace

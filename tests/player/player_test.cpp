@@ -206,6 +206,24 @@ TEST(Player, PlaysARawInputThroughTheBuildCache) {
   EXPECT_EQ(r.exit_code, 2) << r.err;
 }
 
+// The outline box is drawn over the volume by default (the UI screenshot holds it): a hint of
+// where the data is even when the TF shows nothing.
+TEST(Player, OutlineShowsInTheUiScreenshot) {
+  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  fs::path tsp = make_tsp(), dir = tsptest::temp_dir(), shot = dir / "ui.png";
+  fs::path script = write_script("wait-frames 2\nscreenshot-ui " + shot.string() + "\nquit\n");
+  auto r = run_tspplay("play " + q(tsp) + " --size 640x480 --script " + q(script));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const tsp::Image img = tsp::read_png(shot.string());
+  int outline = 0;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      const std::uint8_t* p = img.at(x, y);
+      outline += p[0] == 200 && p[1] == 200 && p[2] == 200;
+    }
+  EXPECT_GT(outline, 100);
+}
+
 TEST(Player, TracePrintsEachAppliedChange) {
   if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
   fs::path tsp = make_tsp(), dir = tsptest::temp_dir(), shot = dir / "trace.png";

@@ -1,0 +1,142 @@
+#include "jobs/annotate.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+
+namespace tspgl {
+namespace {
+
+// 5 × 7 glyphs, one row per byte (bit 4 = leftmost column).
+struct Glyph {
+  char c;
+  std::array<unsigned char, 7> rows;
+};
+constexpr Glyph kFont[] = {
+    {'0', {0x0E, 0x11, 0x13, 0x15, 0x19, 0x11, 0x0E}}, {'1', {0x04, 0x0C, 0x04, 0x04, 0x04, 0x04, 0x0E}},
+    {'2', {0x0E, 0x11, 0x01, 0x02, 0x04, 0x08, 0x1F}}, {'3', {0x1F, 0x02, 0x04, 0x02, 0x01, 0x11, 0x0E}},
+    {'4', {0x02, 0x06, 0x0A, 0x12, 0x1F, 0x02, 0x02}}, {'5', {0x1F, 0x10, 0x1E, 0x01, 0x01, 0x11, 0x0E}},
+    {'6', {0x06, 0x08, 0x10, 0x1E, 0x11, 0x11, 0x0E}}, {'7', {0x1F, 0x01, 0x02, 0x04, 0x08, 0x08, 0x08}},
+    {'8', {0x0E, 0x11, 0x11, 0x0E, 0x11, 0x11, 0x0E}}, {'9', {0x0E, 0x11, 0x11, 0x0F, 0x01, 0x02, 0x0C}},
+    {'.', {0x00, 0x00, 0x00, 0x00, 0x00, 0x0C, 0x0C}}, {'-', {0x00, 0x00, 0x00, 0x1F, 0x00, 0x00, 0x00}},
+    {'+', {0x00, 0x04, 0x04, 0x1F, 0x04, 0x04, 0x00}}, {'=', {0x00, 0x00, 0x1F, 0x00, 0x1F, 0x00, 0x00}},
+    {'e', {0x00, 0x00, 0x0E, 0x11, 0x1F, 0x10, 0x0E}}, {'s', {0x00, 0x00, 0x0E, 0x10, 0x0E, 0x01, 0x1E}},
+    {'t', {0x08, 0x08, 0x1C, 0x08, 0x08, 0x09, 0x06}}, {'p', {0x00, 0x00, 0x1E, 0x11, 0x1E, 0x10, 0x10}},
+    {'x', {0x00, 0x00, 0x11, 0x0A, 0x04, 0x0A, 0x11}}, {'y', {0x00, 0x00, 0x11, 0x11, 0x0F, 0x01, 0x0E}},
+    {'z', {0x00, 0x00, 0x1F, 0x02, 0x04, 0x08, 0x1F}},
+};
+constexpr int kGlyphW = 5, kGlyphH = 7, kAdvance = 6;
+constexpr int kLegendWidth = 16, kLegendHeightShare = 2;  // 1/2 of the frame's height, at most
+constexpr int kLegendMargin = 10, kTicks = 5;
+constexpr unsigned char kText[3] = {235, 235, 235};
+constexpr unsigned char kAxis[3][3] = {{230, 60, 60}, {60, 200, 60}, {80, 120, 255}};
+
+void put(tsp::Image& img, int x, int y, const unsigned char rgb[3]) {
+  if (x < 0 || y < 0 || x >= img.width || y >= img.height) return;
+  std::uint8_t* p = img.at(x, y);
+  p[0] = rgb[0];
+  p[1] = rgb[1];
+  p[2] = rgb[2];
+  p[3] = 255;
+}
+
+void line(tsp::Image& img, double x0, double y0, double x1, double y1, const unsigned char rgb[3]) {
+  const int n = int(std::ceil(std::max(std::fabs(x1 - x0), std::fabs(y1 - y0)))) + 1;
+  if (!(n > 0) || n > 1 << 16) return;
+  for (int i = 0; i <= n; ++i) {
+    const double t = double(i) / n;
+    put(img, int(std::lround(x0 + t * (x1 - x0))), int(std::lround(y0 + t * (y1 - y0))), rgb);
+  }
+}
+
+// Pixel position of a point in sample coordinates, or false when it lies behind the eye.
+bool project(const tsp::Camera& cam, int w, int h, double x, double y, double z, double& px,
+             double& py) {
+  const glm::dvec4 c = cam.view_projection() * glm::dvec4(x, y, z, 1.0);
+  if (!(c.w > 0)) return false;
+  px = (c.x / c.w * 0.5 + 0.5) * w;
+  py = (1 - (c.y / c.w * 0.5 + 0.5)) * h;  // image rows run downwards
+  return std::isfinite(px) && std::isfinite(py);
+}
+
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", v);
+  return buf;
+}
+
+}  // namespace
+
+void draw_text(tsp::Image& img, int x, int y, const std::string& text, const unsigned char rgb[3],
+               int scale) {
+  for (char ch : text) {
+    for (const Glyph& g : kFont) {
+      if (g.c != ch) continue;
+      for (int r = 0; r < kGlyphH; ++r)
+        for (int c = 0; c < kGlyphW; ++c)
+          if (g.rows[std::size_t(r)] & (0x10 >> c))
+            for (int sy = 0; sy < scale; ++sy)
+              for (int sx = 0; sx < scale; ++sx) put(img, x + c * scale + sx, y + r * scale + sy, rgb);
+    }
+    x += kAdvance * scale;
+  }
+}
+
+void annotate_frame(tsp::Image& img, const tsp::Camera& camera, tsp::Dims d,
+                    const tsp::TransferFunction& tf, int step, std::optional<double> time) {
+  const int w = img.width, h = img.height;
+  // Outline: the 12 edges of the volume's box [0, D − 1].
+  const double hi[3] = {double(std::max(d.x - 1, 1)), double(std::max(d.y - 1, 1)),
+                        double(std::max(d.z - 1, 1))};
+  for (int e = 0; e < 12; ++e) {
+    const int axis = e / 4, a = (axis + 1) % 3, b = (axis + 2) % 3;
+    double p0[3] = {0, 0, 0}, p1[3];
+    p0[a] = (e & 1) ? hi[a] : 0;
+    p0[b] = (e & 2) ? hi[b] : 0;
+    std::copy(p0, p0 + 3, p1);
+    p1[axis] = hi[axis];
+    double x0, y0, x1, y1;
+    if (project(camera, w, h, p0[0], p0[1], p0[2], x0, y0) &&
+        project(camera, w, h, p1[0], p1[1], p1[2], x1, y1))
+      line(img, x0, y0, x1, y1, kOutlineColour);
+  }
+  // Axes triad at the origin corner, a quarter of the shortest edge long, labelled.
+  const double len = 0.25 * std::min({hi[0], hi[1], hi[2]}) + 1;
+  double ox, oy;
+  if (project(camera, w, h, 0, 0, 0, ox, oy)) {
+    const char* names[3] = {"x", "y", "z"};
+    for (int a = 0; a < 3; ++a) {
+      double p[3] = {0, 0, 0}, ex, ey;
+      p[a] = len;
+      if (!project(camera, w, h, p[0], p[1], p[2], ex, ey)) continue;
+      line(img, ox, oy, ex, ey, kAxis[a]);
+      draw_text(img, int(ex) + 2, int(ey) - 3, names[a], kAxis[a]);
+    }
+  }
+  // Colour legend on the right: the TF's colours (opaque), low at the bottom, with ticks.
+  const int lh = std::max(20, h / kLegendHeightShare), lx = w - kLegendMargin - kLegendWidth - 48,
+            ly = (h - lh) / 2;
+  const tsp::ValueRange dom = tf.domain();
+  for (int r = 0; r < lh; ++r) {
+    const double v = dom.hi - (dom.hi - dom.lo) * r / std::max(1, lh - 1);
+    const tsp::Rgba c = tf.lookup(v);
+    const unsigned char rgb[3] = {
+        static_cast<unsigned char>(std::clamp(c.r, 0.f, 1.f) * 255 + 0.5f),
+        static_cast<unsigned char>(std::clamp(c.g, 0.f, 1.f) * 255 + 0.5f),
+        static_cast<unsigned char>(std::clamp(c.b, 0.f, 1.f) * 255 + 0.5f)};
+    for (int x = 0; x < kLegendWidth; ++x) put(img, lx + x, ly + r, rgb);
+  }
+  for (int k = 0; k < kTicks; ++k) {
+    const int y = ly + (lh - 1) * k / (kTicks - 1);
+    line(img, lx + kLegendWidth, y, lx + kLegendWidth + 4, y, kText);
+    const double v = dom.hi - (dom.hi - dom.lo) * k / (kTicks - 1);
+    draw_text(img, lx + kLegendWidth + 7, y - 3, number(v), kText);
+  }
+  // Step and time, top left.
+  std::string label = "step " + std::to_string(step);
+  if (time) label += "  t = " + number(*time);
+  draw_text(img, 8, 8, label, kText, 2);
+}
+
+}  // namespace tspgl

@@ -1,0 +1,29 @@
+// Annotations drawn into a rendered frame (render --annotate): the volume's outline box, an axes
+// triad at its origin corner (x red, y green, z blue), a colour legend of the TF with value ticks,
+// and the step (and physical time) as text — on the CPU, over the read-back pixels, with a small
+// built-in bitmap font, so headless OSMesa frames carry them too.
+#pragma once
+#include <optional>
+#include <string>
+
+#include "tsp/core/types.h"
+#include "tsp/frame/camera.h"
+#include "tsp/metric/transfer_function.h"
+#include "tsp/report/image.h"
+
+namespace tspgl {
+
+/// Pixel colour of the outline box.
+inline constexpr unsigned char kOutlineColour[3] = {200, 200, 200};
+
+/// Draws the annotations into img (the frame camera drew, of a volume of dims): outline, axes,
+/// legend over the TF's domain, and "step N" (with "  t = T" when time is given). Never throws.
+void annotate_frame(tsp::Image& img, const tsp::Camera& camera, tsp::Dims dims,
+                    const tsp::TransferFunction& tf, int step, std::optional<double> time);
+
+/// Writes text at (x, y) (top-left, 1 pixel per font dot × scale) in colour rgb; characters
+/// without a glyph are skipped. Never throws.
+void draw_text(tsp::Image& img, int x, int y, const std::string& text, const unsigned char rgb[3],
+               int scale = 1);
+
+}  // namespace tspgl
