@@ -160,6 +160,18 @@ void hud(PlayerApp& app) {
   ImGui::SetNextWindowPos(ImVec2(float(app.ctx->width()) - 390, 10), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(380, 330), ImGuiCond_FirstUseEver);
   ImGui::Begin("Statistics");
+  // A temporal tolerance that merged steps says which step's bricks the picture shows.
+  const tspgl::FrameReport& lf = app.last;
+  if (lf.spans_hi > lf.spans_lo) {
+    char note[128];
+    if (lf.shown_lo == lf.shown_hi)
+      std::snprintf(note, sizeof note, "temporal tolerance: showing step %d for steps %d-%d",
+                    lf.shown_lo, lf.spans_lo, lf.spans_hi);
+    else
+      std::snprintf(note, sizeof note, "temporal tolerance: showing steps %d-%d for steps %d-%d",
+                    lf.shown_lo, lf.shown_hi, lf.spans_lo, lf.spans_hi);
+    ImGui::TextColored(ImVec4(1.f, 0.75f, 0.3f, 1.f), "%s", note);
+  }
   std::vector<float> ms;
   double sum = 0;
   for (const FrameSample& f : app.history) {

@@ -75,6 +75,11 @@ void validate_budget(std::int64_t bytes, const std::string& what);
 /// Timings and counts of one frame (the frames.json record, less pass).
 struct FrameReport {
   int step = 0;
+  /// The steps the drawn nodes stand for (the union of their time spans): wider than [step,
+  /// step] when a temporal tolerance merged steps.
+  int spans_lo = 0, spans_hi = 0;
+  /// The steps whose bricks textured them (the spans' representative steps).
+  int shown_lo = 0, shown_hi = 0;
   double ms = 0;            ///< whole frame, glFinish included
   double traversal_ms = 0;  ///< traversal and frame plan
   double slicing_ms = 0;    ///< slice polygons and their vertex buffer

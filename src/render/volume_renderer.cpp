@@ -267,6 +267,18 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
   r.textures_resident = plan.textures_resident;
   r.texture_bytes = plan.texture_bytes;
   r.deferred_textures = plan.deferred;
+  // Which steps the picture stands for, and which steps' bricks it shows.
+  r.spans_lo = r.spans_hi = r.shown_lo = r.shown_hi = step;
+  for (const tsp::PlannedNode& n : plan.nodes) {
+    if (n.cls == tsp::DrawClass::not_rendered) continue;
+    const tsp::Span sp = tree_.time().span(n.node.time_id);
+    r.spans_lo = std::min(r.spans_lo, sp.t0);
+    r.spans_hi = std::max(r.spans_hi, sp.t1);
+    for (int i = n.first_texture; i < n.first_texture + n.texture_count; ++i) {
+      r.shown_lo = std::min(r.shown_lo, plan.textures[std::size_t(i)].key.t0);
+      r.shown_hi = std::max(r.shown_hi, plan.textures[std::size_t(i)].key.t0);
+    }
+  }
   return r;
 }
 

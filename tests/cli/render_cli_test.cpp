@@ -277,3 +277,27 @@ TEST(RenderCli, AnnotateDrawsOutlineLegendAndStep) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(RenderCli, FramesSayWhichStepsATemporalToleranceMerged) {
+  const fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
+  ASSERT_EQ(run_tspplay("render " + q(tsp) + " --tf preset:filled --size 48x32 -o " +
+                        q(dir / "exact")).exit_code, 0);
+  ASSERT_EQ(run_tspplay("render " + q(tsp) + " --tf preset:filled --temporal-tol 10 --size 48x32 "
+                        "-o " + q(dir / "merged")).exit_code, 0);
+  for (const auto& f : read_json(dir / "exact" / "frames.json")["frames"]) {
+    EXPECT_EQ(f["steps_merged"][0], f["step"]);  // zero tolerance: every node is its own step
+    EXPECT_EQ(f["steps_merged"][1], f["step"]);
+    EXPECT_EQ(f["steps_shown"][0], f["step"]);
+  }
+  bool wider = false;
+  for (const auto& f : read_json(dir / "merged" / "frames.json")["frames"]) {
+    wider |= f["steps_merged"][1].get<int>() > f["steps_merged"][0].get<int>();
+    EXPECT_LE(f["steps_merged"][0].get<int>(), f["step"].get<int>());
+    EXPECT_GE(f["steps_merged"][1].get<int>(), f["step"].get<int>());
+  }
+  EXPECT_TRUE(wider);
+}
+
+}  // namespace
