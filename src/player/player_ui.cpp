@@ -162,7 +162,7 @@ void hud(PlayerApp& app) {
   ImGui::Begin("Statistics");
   // A temporal tolerance that merged steps says which step's bricks the picture shows.
   const tspgl::FrameReport& lf = app.last;
-  if (lf.spans_hi > lf.spans_lo) {
+  if (app.tol.temporal > 0 && lf.spans_hi > lf.spans_lo) {  // (at 0 only unchanging data merge)
     char note[128];
     if (lf.shown_lo == lf.shown_hi)
       std::snprintf(note, sizeof note, "temporal tolerance: showing step %d for steps %d-%d",

@@ -286,18 +286,22 @@ TEST(RenderCli, FramesSayWhichStepsATemporalToleranceMerged) {
                         q(dir / "exact")).exit_code, 0);
   ASSERT_EQ(run_tspplay("render " + q(tsp) + " --tf preset:filled --temporal-tol 10 --size 48x32 "
                         "-o " + q(dir / "merged")).exit_code, 0);
-  for (const auto& f : read_json(dir / "exact" / "frames.json")["frames"]) {
-    EXPECT_EQ(f["steps_merged"][0], f["step"]);  // zero tolerance: every node is its own step
-    EXPECT_EQ(f["steps_merged"][1], f["step"]);
-    EXPECT_EQ(f["steps_shown"][0], f["step"]);
-  }
+  const json exact = read_json(dir / "exact" / "frames.json"),
+             merged = read_json(dir / "merged" / "frames.json");  // named: they outlive the loops
+  // Zero tolerance merges only where the data do not change in time; a large one merges more.
+  int exact_width = 0, merged_width = 0;
+  for (const auto& f : exact["frames"])
+    exact_width += f["steps_merged"][1].get<int>() - f["steps_merged"][0].get<int>();
+  for (const auto& f : merged["frames"])
+    merged_width += f["steps_merged"][1].get<int>() - f["steps_merged"][0].get<int>();
+  EXPECT_GE(merged_width, exact_width);
   bool wider = false;
-  for (const auto& f : read_json(dir / "merged" / "frames.json")["frames"]) {
+  for (const auto& f : merged["frames"]) {
     wider |= f["steps_merged"][1].get<int>() > f["steps_merged"][0].get<int>();
     EXPECT_LE(f["steps_merged"][0].get<int>(), f["step"].get<int>());
     EXPECT_GE(f["steps_merged"][1].get<int>(), f["step"].get<int>());
   }
-  EXPECT_TRUE(wider);
+  EXPECT_TRUE(wider) << merged["frames"].dump();
 }
 
 }  // namespace
