@@ -56,11 +56,9 @@ std::string built_for_play(const std::string& input, const std::string& field,
   std::error_code ec;
   const fs::path abs = fs::absolute(input, ec);
   std::string key = abs.string() + "|" + field;
-  for (const std::string& f : {input}) {
-    if (fs::is_regular_file(f, ec))
-      key += "|" + std::to_string(fs::file_size(f, ec)) + "|" +
-             std::to_string(fs::last_write_time(f, ec).time_since_epoch().count());
-  }
+  if (fs::is_regular_file(input, ec))  // (a pattern names no one file: its path alone)
+    key += "|" + std::to_string(fs::file_size(input, ec)) + "|" +
+           std::to_string(fs::last_write_time(input, ec).time_since_epoch().count());
   const std::string dir = cache_dir.empty() ? tspgl::default_calibration_dir() : cache_dir;
   if (dir.empty())
     throw tsp::UsageError(input + " is not a .tsp file and there is no cache folder to build it "

@@ -37,6 +37,13 @@ bool window_possible() {
   }
 }
 
+// Writes a bash script (the player in the background, xdotool driving it) and runs it; returns
+// its exit status.
+int run_bash(const fs::path& script, const std::string& text) {
+  std::ofstream(script) << text;
+  return std::system(("bash " + q(script)).c_str());
+}
+
 fs::path make_tsp() {
   fs::path dir = tsptest::temp_dir();
   auto g = run_tspplay("generate shock -o " + q(dir / "s.h5") + " --dims 30,28,26 --steps 4");
@@ -127,9 +134,7 @@ TEST(Player, QuickKeyTapsAreNotLostWhenFramesAreSlow) {
       "sleep 1\n"
       "xdotool key --window \"$w\" r\n"
       "wait)\n";
-  const fs::path driver = dir / "keys.sh";
-  std::ofstream(driver) << cmd;
-  ASSERT_EQ(std::system(("bash " + q(driver)).c_str()), 0);
+  ASSERT_EQ(run_bash(dir / "keys.sh", cmd), 0);
   const std::string log = tsptest::read_file(out);
   EXPECT_NE(log.find("trace: step 5\n"), std::string::npos) << log;
   EXPECT_EQ(log.find("trace: playing"), log.rfind("trace: playing")) << log;  // once
@@ -169,9 +174,7 @@ TEST(Player, DraggingATransferFunctionHandleMovesIt) {
       "$((hy + h * k / 16)); sleep 0.02; done\n"
       "sleep 1.2; xdotool mouseup 1\n"
       "wait)\n";
-  const fs::path driver = dir / "drag.sh";
-  std::ofstream(driver) << cmd;
-  ASSERT_EQ(std::system(("bash " + q(driver)).c_str()), 0);
+  ASSERT_EQ(run_bash(dir / "drag.sh", cmd), 0);
   std::ifstream in(stats);
   const nlohmann::json j = nlohmann::json::parse(in);
   const auto& pts = j["tf_points"];

@@ -21,6 +21,7 @@
 #include "tsp/hdf5/hdf5_handle.h"
 #include "tsp/hdf5/hdf5_lock.h"
 #include "tsp/hdf5/hdf5_values.h"
+#include "tsp/source/vtk/vtk_document.h"
 
 namespace tsp::io {
 namespace {
@@ -220,12 +221,8 @@ class VtkhdfMeshSource final : public MeshSource {
 void VtkhdfMeshSource::resolve(hid_t file, const std::string& path) {
   const std::vector<std::string> points = h5::datasets_in(file, "/VTKHDF/PointData");
   const std::vector<std::string> cells = h5::datasets_in(file, "/VTKHDF/CellData");
-  auto join = [](const std::vector<std::string>& v) {
-    std::string s;
-    for (std::size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + v[i];
-    return v.empty() ? std::string("none") : s;
-  };
-  const std::string listing = "PointData: " + join(points) + "; CellData: " + join(cells);
+  const std::string listing =
+      "PointData: " + join_names(points) + "; CellData: " + join_names(cells);
   auto has = [](const std::vector<std::string>& v, const std::string& n) {
     return std::find(v.begin(), v.end(), n) != v.end();
   };

@@ -32,6 +32,17 @@ pugi::xml_node required(const pugi::xml_node& section, const char* name, const s
   return a;
 }
 
+// A piece's points, NumberOfPoints × 3 coordinates. Throws FormatError naming `where`.
+std::vector<float> piece_points(const VtkDocument& doc, const pugi::xml_node& piece,
+                                std::int64_t np, const std::string& where) {
+  pugi::xml_node pts = piece.child("Points").child("DataArray");
+  if (!pts) throw FormatError(where + ": no <Points> DataArray");
+  if (components_of(pts, where + ", Points") != 3)
+    throw FormatError(where + ": Points have " + pts.attribute("NumberOfComponents").value() +
+                      " components, expected 3");
+  return doc.floats(pts, std::uint64_t(np) * 3);
+}
+
 }  // namespace
 
 VtuFile::VtuFile(const std::string& path) : doc_(path, "UnstructuredGrid", false) {
@@ -81,13 +92,8 @@ Aabb VtuFile::bounds() const {
   for (pugi::xml_node piece : doc_.dataset().children("Piece")) {
     const std::string pw = path() + ", piece " + std::to_string(index++);
     const std::int64_t np = count_attribute(piece, "NumberOfPoints", pw);
-    pugi::xml_node pts = piece.child("Points").child("DataArray");
-    if (!pts) throw FormatError(pw + ": no <Points> DataArray");
-    if (components_of(pts, pw + ", Points") != 3)
-      throw FormatError(pw + ": Points have " + pts.attribute("NumberOfComponents").value() +
-                        " components, expected 3");
     Mesh m;
-    const std::vector<float> xyz = doc_.floats(pts, std::uint64_t(np) * 3);
+    const std::vector<float> xyz = piece_points(doc_, piece, np, pw);
     m.points.assign(xyz.begin(), xyz.end());
     if (m.points.empty()) continue;
     const Aabb b = m.bounds();
@@ -111,12 +117,7 @@ Mesh VtuFile::read(const VtuField& f) const {
     const std::int64_t np = count_attribute(piece, "NumberOfPoints", pw);
     const std::int64_t nc = count_attribute(piece, "NumberOfCells", pw);
     const std::int64_t base = m.point_count();
-    pugi::xml_node pts = piece.child("Points").child("DataArray");
-    if (!pts) throw FormatError(pw + ": no <Points> DataArray");
-    if (components_of(pts, pw + ", Points") != 3)
-      throw FormatError(pw + ": Points have " + pts.attribute("NumberOfComponents").value() +
-                        " components, expected 3");
-    const std::vector<float> xyz = doc_.floats(pts, std::uint64_t(np) * 3);
+    const std::vector<float> xyz = piece_points(doc_, piece, np, pw);
     m.points.insert(m.points.end(), xyz.begin(), xyz.end());
 
     pugi::xml_node cells = piece.child("Cells");
@@ -162,7 +163,7 @@ Mesh VtuFile::read(const VtuField& f) const {
       const std::vector<std::int64_t> fends = doc_.integers(fo, std::uint64_t(nc));
       std::int64_t last = 0;
       for (std::int64_t e : fends) last = std::max(last, e);
-      const std::vector<std::int64_t> faces =
+      std::vector<std::int64_t> faces =
           doc_.integers(required(cells, "faces", pw), std::uint64_t(last));
       m.face_start.resize(std::size_t(m.cell_count() - nc), -1);
       std::int64_t start = 0;
@@ -176,22 +177,16 @@ Mesh VtuFile::read(const VtuField& f) const {
           throw FormatError(pw + ", array faceoffsets: entry " + std::to_string(c) + " is " +
                             std::to_string(e) + ", below the previous " + std::to_string(start));
         m.face_start.push_back(face_base + start);
+        // The stream [start, e) names the piece's points: move them to the mesh's (the counts
+        // stay; a stream that runs short is check_mesh's to report).
+        if (base > 0)
+          for (std::int64_t pos = start + 1; pos < e;) {
+            const std::int64_t n = faces[std::size_t(pos++)];
+            for (std::int64_t k = 0; k < n && pos < e; ++k) faces[std::size_t(pos++)] += base;
+          }
         start = e;
       }
-      // Point indices in the stream are the piece's; move them to the mesh's.
-      std::vector<std::int64_t> moved = faces;
-      for (std::int64_t c = 0, pos = 0; c < nc; ++c) {
-        if (fends[std::size_t(c)] < 0) continue;
-        pos = m.face_start[std::size_t(m.cell_count() - nc + c)] - face_base;
-        if (pos >= std::int64_t(moved.size())) continue;  // check_mesh reports it
-        std::int64_t nf = moved[std::size_t(pos++)];
-        for (std::int64_t i = 0; i < nf && pos < std::int64_t(moved.size()); ++i) {
-          std::int64_t n = moved[std::size_t(pos++)];
-          for (std::int64_t k = 0; k < n && pos < std::int64_t(moved.size()); ++k, ++pos)
-            moved[std::size_t(pos)] += base;
-        }
-      }
-      m.faces.insert(m.faces.end(), moved.begin(), moved.end());
+      m.faces.insert(m.faces.end(), faces.begin(), faces.end());
       any_faces = true;
     } else if (any_faces) {
       m.face_start.resize(std::size_t(m.cell_count()), -1);

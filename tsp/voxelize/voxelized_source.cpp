@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <optional>
 
 #include "tsp/core/error.h"
 #include "tsp/voxelize/mat3.h"
@@ -20,8 +21,9 @@ double tet_volume(const TetMesh& m, const std::array<std::int64_t, 4>& t) {
 
 class VoxelizedSource final : public VolumeSource {
  public:
-  VoxelizedSource(std::unique_ptr<MeshSource> source, VoxelGrid grid, VoxelizeOptions options)
-      : source_(std::move(source)), grid_(grid), options_(options) {}
+  VoxelizedSource(std::unique_ptr<MeshSource> source, VoxelGrid grid, VoxelizeOptions options,
+                  Mesh first)
+      : source_(std::move(source)), grid_(grid), options_(options), first_(std::move(first)) {}
 
   Dims dims() const override { return grid_.dims; }
   int steps() const override { return source_->steps(); }
@@ -40,7 +42,9 @@ class VoxelizedSource final : public VolumeSource {
   }
 
   void read_step_inside(int t, std::span<float> out, std::span<std::uint8_t> inside) override {
-    Mesh mesh = source_->read_step(t);
+    // Step 0 was read at open (for the grid rule): used once, not read again.
+    Mesh mesh = t == 0 && first_ ? std::move(*first_) : source_->read_step(t);
+    if (t == 0) first_.reset();
     if (mesh.cell_values && options_.cell_data == CellDataMode::points) {
       mesh.values = cell_values_to_points(mesh);
       mesh.cell_values = false;
@@ -52,6 +56,7 @@ class VoxelizedSource final : public VolumeSource {
   std::unique_ptr<MeshSource> source_;
   VoxelGrid grid_;
   VoxelizeOptions options_;
+  std::optional<Mesh> first_;  // step 0 until the first read_step_inside(0)
 };
 
 }  // namespace
@@ -118,15 +123,16 @@ std::unique_ptr<VolumeSource> voxelized_source(std::unique_ptr<MeshSource> sourc
                                                const VoxelizeOptions& options) {
   Aabb all;
   double cell_size = 0;
+  Mesh first;
   for (int t = 0; t < source->steps(); ++t) {
     Aabb b;
     if (t == 0) {  // the first step whole: its cells for the grid rule
-      Mesh m = source->read_step(0);
-      if (m.cell_count() == 0)
+      first = source->read_step(0);
+      if (first.cell_count() == 0)
         throw FormatError(source->describe() + ": step 0 has no cells");
       if (options.resolution == 0 && options.voxel_size == 0)
-        cell_size = median_cell_size(tetrahedralize(m));
-      b = m.bounds();
+        cell_size = median_cell_size(tetrahedralize(first));
+      b = first.bounds();
     } else {
       b = source->bounds(t);
     }
@@ -140,7 +146,7 @@ std::unique_ptr<VolumeSource> voxelized_source(std::unique_ptr<MeshSource> sourc
   if (!(longest > 0))
     throw FormatError(source->describe() + ": the mesh has no extent (all points coincide)");
   const VoxelGrid grid = choose_grid(all, cell_size, options);
-  return std::make_unique<VoxelizedSource>(std::move(source), grid, options);
+  return std::make_unique<VoxelizedSource>(std::move(source), grid, options, std::move(first));
 }
 
 }  // namespace tsp

@@ -47,16 +47,23 @@ float saturate(double v) {
 // Deflate cannot expand data by more than about 1032:1; a header claiming more lies.
 constexpr std::uint64_t kMaxInflateRatio = 1032;
 
+// Element i of type T in file byte order (swap: the other order than this machine's).
+template <typename T>
+T load(std::span<const unsigned char> bytes, std::size_t i, bool swap) {
+  unsigned char tmp[sizeof(T)];
+  std::memcpy(tmp, bytes.data() + i * sizeof(T), sizeof(T));
+  if (swap)
+    for (std::size_t k = 0; k < sizeof(T) / 2; ++k) std::swap(tmp[k], tmp[sizeof(T) - 1 - k]);
+  T v;
+  std::memcpy(&v, tmp, sizeof(T));
+  return v;
+}
+
 template <typename T>
 void convert_int(std::span<const unsigned char> bytes, bool swap, std::span<std::int64_t> out,
                  const std::string& where) {
   for (std::size_t i = 0; i < out.size(); ++i) {
-    unsigned char tmp[sizeof(T)];
-    std::memcpy(tmp, bytes.data() + i * sizeof(T), sizeof(T));
-    if (swap)
-      for (std::size_t k = 0; k < sizeof(T) / 2; ++k) std::swap(tmp[k], tmp[sizeof(T) - 1 - k]);
-    T v;
-    std::memcpy(&v, tmp, sizeof(T));
+    const T v = load<T>(bytes, i, swap);
     if constexpr (std::is_same_v<T, std::uint64_t>) {
       if (v > std::uint64_t(std::numeric_limits<std::int64_t>::max()))
         throw FormatError(where + ": value " + std::to_string(v) + " at index " +
@@ -68,15 +75,8 @@ void convert_int(std::span<const unsigned char> bytes, bool swap, std::span<std:
 
 template <typename T>
 void convert_typed(std::span<const unsigned char> bytes, bool swap, std::span<float> out) {
-  for (std::size_t i = 0; i < out.size(); ++i) {
-    unsigned char tmp[sizeof(T)];
-    std::memcpy(tmp, bytes.data() + i * sizeof(T), sizeof(T));
-    if (swap)
-      for (std::size_t k = 0; k < sizeof(T) / 2; ++k) std::swap(tmp[k], tmp[sizeof(T) - 1 - k]);
-    T v;
-    std::memcpy(&v, tmp, sizeof(T));
-    out[i] = saturate(static_cast<double>(v));
-  }
+  for (std::size_t i = 0; i < out.size(); ++i)
+    out[i] = saturate(static_cast<double>(load<T>(bytes, i, swap)));
 }
 
 // Calls f.template operator()<T>() with the C++ type of t.
