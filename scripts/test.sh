@@ -6,8 +6,9 @@ bash scripts/install-deps.sh
 bash scripts/build.sh
 cd build
 # The window (GLFW) tests need an X display; without one, run the suite on a virtual one
-# (24-bit: GLX needs a TrueColor visual).
+# (24-bit: GLX needs a TrueColor visual; -noreset: by default Xvfb resets when its last client
+# disconnects, and a window test that connects during that reset fails to open the display).
 if [ -z "${DISPLAY:-}" ] && [ -z "${WAYLAND_DISPLAY:-}" ] && command -v xvfb-run >/dev/null; then
-  exec xvfb-run -a -s "-screen 0 1280x1024x24" ctest --output-on-failure -j"$(nproc)" --timeout 600
+  exec xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" ctest --output-on-failure -j"$(nproc)" --timeout 600
 fi
 ctest --output-on-failure -j"$(nproc)" --timeout 600
