@@ -14,7 +14,7 @@
 #include "cli/build_runner.h"
 #include "cli/commands.h"
 #include "cli/info_report.h"
-#include "cli/movie.h"
+#include "jobs/movie.h"
 #include "jobs/render_job.h"
 #include "player/player.h"
 #include "tsp/core/error.h"
@@ -123,8 +123,8 @@ json make_movie(const fs::path& dir) {
     for (const auto& e : fs::directory_iterator(dir / "frames"))
       if (e.path().extension() == ".png") frames.push_back(e.path());
     std::sort(frames.begin(), frames.end());
-    if (encode_movie(frames, movie)) {
-      std::printf("  movie: %s (%d frames a second)\n", movie.string().c_str(), kMovieFps);
+    if (tspgl::encode_movie(frames, movie)) {
+      std::printf("  movie: %s (%d frames a second)\n", movie.string().c_str(), tspgl::kMovieFps);
       return movie.string();
     }
     std::printf("  movie: skipped (no ffmpeg on PATH; the frames are in %s)\n",

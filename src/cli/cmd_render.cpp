@@ -9,7 +9,7 @@
 
 #include "cli/args.h"
 #include "cli/commands.h"
-#include "cli/movie.h"
+#include "jobs/movie.h"
 #include "cli/progress_bar.h"
 #include "jobs/render_job.h"
 #include "tsp/core/error.h"
@@ -23,7 +23,7 @@ namespace fs = std::filesystem;
 struct RenderArgs {
   std::string file, tf = "preset:sparse", out, steps, size = "640x480", view = "30,20", movie,
               tf_range;
-  int fps = tspcli::kMovieFps;
+  int fps = tspgl::kMovieFps;
   bool annotate = false;
   std::string metric = "approximate", cache = "on", compositing = "rays", flat = "exact",
               span_step = "middle", preintegrated = "off",
@@ -110,13 +110,11 @@ void run(const RenderArgs& a) {
   o.texture_budget = std::max<std::int64_t>(1, std::int64_t(a.texture_budget_mb * (1 << 20)));
 
   if (!a.movie.empty()) {  // checked before rendering: a bad movie request wastes no frames
-    const std::string ext = fs::path(a.movie).extension().string();
-    if (ext != ".mp4" && ext != ".gif")
-      throw tsp::UsageError("--movie " + a.movie + ": expected a .mp4 or .gif file name");
+    tspgl::check_movie_name(a.movie, "--movie");
     if (a.fps < 1 || a.fps > 120)
       throw tsp::UsageError("--fps " + std::to_string(a.fps) + ": expected 1..120");
     tsp::require_not_an_input(a.movie, {a.file, a.tf});
-    if (!find_on_path("ffmpeg"))
+    if (!tspgl::find_on_path("ffmpeg"))
       throw tsp::IoError("--movie " + a.movie +
                          ": ffmpeg is not on PATH (apt-get install ffmpeg; scripts/install-deps.sh "
                          "installs it)");
@@ -157,7 +155,7 @@ void run(const RenderArgs& a) {
     const int last_pass = result.frames.empty() ? 0 : result.frames.back().pass;
     for (const auto& f : result.frames)
       if (f.pass == last_pass) frames.push_back(tspgl::step_png(a.out, f.report.step));
-    encode_movie(frames, a.movie, a.fps);
+    tspgl::encode_movie(frames, a.movie, a.fps);
     std::printf("wrote %s (%zu frames, %d a second)\n", a.movie.c_str(), frames.size(), a.fps);
   }
 }

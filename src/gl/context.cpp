@@ -1,5 +1,6 @@
 #include "gl/context.h"
 
+#include <cassert>
 #include <cstdint>
 #include <cstring>
 #include <vector>
@@ -37,7 +38,11 @@ void GlContext::finish() {
 }
 
 tsp::Image GlContext::read_pixels() {
-  const int w = width(), h = height();
+  return read_pixels(0, 0, width(), height());
+}
+
+tsp::Image GlContext::read_pixels(int x, int y, int w, int h) {
+  assert(x >= 0 && y >= 0 && w > 0 && h > 0 && x + w <= width() && y + h <= height());
   tsp::Image img(w, h);
   GLint read_fbo = 0, pack_alignment = 0;
   gl_.GetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read_fbo);
@@ -45,7 +50,7 @@ tsp::Image GlContext::read_pixels() {
   gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
   gl_.PixelStorei(GL_PACK_ALIGNMENT, 1);
   std::vector<std::uint8_t> bottom_up(img.rgba.size());
-  gl_.ReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, bottom_up.data());
+  gl_.ReadPixels(x, y, w, h, GL_RGBA, GL_UNSIGNED_BYTE, bottom_up.data());
   gl_.PixelStorei(GL_PACK_ALIGNMENT, pack_alignment);
   gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(read_fbo));
   check_gl(gl_, "glReadPixels");

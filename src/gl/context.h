@@ -42,6 +42,9 @@ class GlContext {
   void finish();
   /// Reads the default framebuffer's colour buffer as RGBA8, top row first. Throws tsp::GlError.
   tsp::Image read_pixels();
+  /// Reads the w × h rectangle whose lower-left corner is (x, y) (GL window coordinates) of the
+  /// default framebuffer as RGBA8, top row first; asserts it lies inside. Throws tsp::GlError.
+  tsp::Image read_pixels(int x, int y, int w, int h);
   /// "RENDERER, GL VERSION" of the context, for reports.
   std::string describe() const;
 

@@ -22,6 +22,7 @@ inline constexpr Control kControls[] = {
     {"S", "save the current frame as tspplay_step_NNNN.png"},
     {"L", "show / hide the LOD cut (node boxes coloured by level)"},
     {"double-click", "set the LOD centre of attention"},
+    {"Tab", "show / hide the panels (hidden: the volume fills the window)"},
     {"F1 or ?", "show / hide this list"},
     {"TF editor: drag a handle", "move a point (value, opacity)"},
     {"TF editor: double-click / right-click", "add a point / remove a point"},

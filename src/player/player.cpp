@@ -29,9 +29,6 @@ namespace tspplayer {
 
 namespace {
 
-constexpr double kOrbitDegPerPixel = 0.4;
-constexpr double kZoomPerWheelStep = 1.1;
-constexpr double kMaxElevation = 89;
 constexpr float kMinToleranceCeiling = 1e-3f;
 constexpr float kKnotEpsilon = 1e-4f;  // slope change that marks a TF knot
 constexpr int kMaxEditorPoints = 24;
@@ -133,6 +130,7 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
   }
   lazy_ = std::make_unique<tsp::LazyErrors>(tree, metric, tf);
   set_tf(tf, true);
+  ready.assign(std::size_t(tree.time().steps()), -1.f);
 
   ctx = tspgl::create_window_context(options.width, options.height, "tspplay - " + options.tsp_path,
                                      true);
@@ -171,6 +169,17 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
 }
 
 PlayerApp::~PlayerApp() {
+  if (open_job_) {  // a File > Open build still running: stop it (it leaves no file)
+    open_job_->cancel = true;
+    open_job_->thread.join();
+  }
+  if (recorder_) {  // the window closed while recording: keep what was recorded
+    try {
+      stop_recording();
+      std::printf("%s\n", status.c_str());
+    } catch (...) {
+    }
+  }
   if (imgui_) {
     ctx->make_current();
     ImGui_ImplOpenGL3_Shutdown();
@@ -280,6 +289,13 @@ void PlayerApp::write_stats(const std::string& path) const {
   for (double v : ms) sum += v;
   const double mean = ms.empty() ? 0 : sum / double(ms.size());
   j["window"] = {ctx->width(), ctx->height()};
+  j["view"] = {layout.view.x, layout.view.y, layout.view.w, layout.view.h};
+  j["docked"] = layout.docked;
+  j["file"] = options_.tsp_path;
+  j["step"] = step;
+  j["steps_ready"] = ready;
+  j["every_step"] = every_step;
+  j["recording"] = recording();
   j["frames"] = ms.size();
   j["frame_ms"] = ms;
   j["mean_frame_ms"] = mean;
@@ -372,9 +388,10 @@ void PlayerApp::refresh_reference() {
 }
 
 void PlayerApp::render_volume() {
-  camera.width = ctx->width();
-  camera.height = ctx->height();
-  if (camera.width < 1 || camera.height < 1) return;  // minimised
+  camera.width = layout.view.w;
+  camera.height = layout.view.h;
+  if (camera.width < 1 || camera.height < 1 || ctx->width() < 1 || ctx->height() < 1)
+    return;  // minimised
   const tsp::Camera cam(file->tree().octree().dims(), camera);
   tspgl::RenderSettings settings;
   settings.tol = tol;
@@ -382,6 +399,8 @@ void PlayerApp::render_volume() {
   settings.compositing = compositing;
   settings.spacing = spacing;
   settings.preintegrated = preintegrated;
+  // GL's window coordinates start at the bottom: the view's lower-left corner.
+  settings.viewport_origin = {layout.view.x, ctx->height() - layout.view.y - layout.view.h};
   if (metric != tsp::Metric::reference) {
     // Evaluate this step's nodes here so the HUD can show the recompute cost; render() then
     // only reads memoised results.
@@ -397,6 +416,28 @@ void PlayerApp::render_volume() {
   const tsp::LodStops stops = update_lod(cam, settings, glfwGetTime());
   last = renderer->render(step, cam, settings, frame_metric(), stops);
   request_prefetch(cam, settings, stops);
+  update_ready(cam, settings, stops);
+}
+
+// A few steps a frame, round robin: how much of what each step's frame would upload is in RAM
+// already (1 when its textures are all resident).
+void PlayerApp::update_ready(const tsp::Camera& cam, const tspgl::RenderSettings& settings,
+                             tsp::LodStops stops) {
+  const int n = steps();
+  for (int k = 0; k < std::min(n, kReadyStepsPerFrame); ++k) {
+    const int t = ready_next_;
+    ready_next_ = (ready_next_ + 1) % n;
+    const std::vector<tsp::BrickKey> keys =
+        renderer->bricks_to_upload(t, cam, settings, frame_metric(), stops);
+    int in_ram = 0;
+    for (const tsp::BrickKey& key : keys) in_ram += renderer->brick_cache().contains(key.brick, key.step);
+    ready[std::size_t(t)] = keys.empty() ? 1.f : float(in_ram) / float(keys.size());
+  }
+}
+
+tsp::Image PlayerApp::read_view() {
+  const WindowRect& v = layout.view;
+  return ctx->read_pixels(v.x, ctx->height() - v.y - v.h, v.w, v.h);
 }
 
 void PlayerApp::advance_playback(double dt) {
@@ -405,6 +446,8 @@ void PlayerApp::advance_playback(double dt) {
     return;
   }
   play_accum_ += std::min(dt, kMaxFrameDt) * speed;
+  // Every step: at most one step a frame, however slow the frames (no step is skipped).
+  if (every_step) play_accum_ = std::min(play_accum_, 1.0);
   while (play_accum_ >= 1) {
     play_accum_ -= 1;
     if (step + 1 < steps()) {
@@ -419,217 +462,8 @@ void PlayerApp::advance_playback(double dt) {
   }
 }
 
-void PlayerApp::handle_input() {
-  const ImGuiIO& io = ImGui::GetIO();
-  if (!io.WantCaptureMouse) {
-    const bool pan = io.MouseDown[1] || io.MouseDown[2] || (io.MouseDown[0] && io.KeyShift);
-    if (pan) {
-      const double scale = 2.0 / (camera.zoom * std::max(1, std::min(camera.width, camera.height)));
-      camera.pan[0] -= io.MouseDelta.x * scale;
-      camera.pan[1] += io.MouseDelta.y * scale;
-    } else if (io.MouseDown[0]) {
-      camera.azimuth_deg -= io.MouseDelta.x * kOrbitDegPerPixel;
-      camera.elevation_deg = std::clamp(camera.elevation_deg + io.MouseDelta.y * kOrbitDegPerPixel,
-                                        -kMaxElevation, kMaxElevation);
-    }
-    if (io.MouseWheel != 0) camera.zoom *= std::pow(kZoomPerWheelStep, io.MouseWheel);
-    if (io.MouseDoubleClicked[0]) set_focus_at(io.MousePos.x, io.MousePos.y);
-  }
-  // Every press since the last frame, in order (a text field with the focus takes them all).
-  std::vector<int> keys;
-  keys.swap(key_queue_);
-  if (io.WantCaptureKeyboard) return;
-  for (int key : keys) {
-    apply_key(key);
-    if (options_.trace) trace_changes();
-  }
-}
-
-void PlayerApp::trace_tf_canvas(float x, float y, float w, float h) {
-  if (!options_.trace) return;
-  const std::array<float, 4> r{x, y, w, h};
-  if (r == traced_canvas_) return;
-  traced_canvas_ = r;
-  std::printf("trace: tf canvas %.0f %.0f %.0f %.0f\n", x, y, w, h);
-  std::fflush(stdout);
-}
-
-void PlayerApp::apply_key(int key) {
-  switch (key) {
-    case GLFW_KEY_SPACE:
-      playing = !playing;
-      break;
-    case GLFW_KEY_LEFT:
-      go_to(step - 1);
-      break;
-    case GLFW_KEY_RIGHT:
-      go_to(step + 1);
-      break;
-    case GLFW_KEY_HOME:
-      go_to(0);
-      break;
-    case GLFW_KEY_END:
-      go_to(steps() - 1);
-      break;
-    case GLFW_KEY_S:
-      request_save();
-      break;
-    case GLFW_KEY_L:
-      show_cut = !show_cut;
-      break;
-    case GLFW_KEY_R:
-      camera = initial_camera;
-      if (options_.trace) {
-        std::printf("trace: camera reset\n");
-        std::fflush(stdout);
-      }
-      break;
-    case GLFW_KEY_F1:
-    case GLFW_KEY_SLASH:  // '?' on most layouts
-      show_help = !show_help;
-      break;
-    case GLFW_KEY_P:
-      camera.projection = camera.projection == tsp::Projection::orthographic
-                              ? tsp::Projection::perspective
-                              : tsp::Projection::orthographic;
-      break;
-    default:
-      break;
-  }
-}
-
-void PlayerApp::apply(const ScriptAction& a) {
-  using Kind = ScriptAction::Kind;
-  switch (a.kind) {
-    case Kind::step:
-      if (a.number >= steps())
-        throw tsp::UsageError(options_.script + ":" + std::to_string(a.line) + ": step " +
-                              std::to_string(a.number) + ": the file has steps 0.." +
-                              std::to_string(steps() - 1));
-      go_to(a.number);
-      break;
-    case Kind::play:
-      playing = true;
-      break;
-    case Kind::pause:
-      playing = false;
-      break;
-    case Kind::speed:
-      speed = a.value;
-      break;
-    case Kind::loop:
-      loop = a.flag;
-      break;
-    case Kind::tf:
-      set_tf(tsp::transfer_function_from_arg(a.text, file->tree().value_range(), tf.size()), true);
-      break;
-    case Kind::tolerance:
-      set_tolerances({a.value, a.value2});
-      break;
-    case Kind::metric:
-      set_metric(tsp::parse_metric(a.text));
-      break;
-    case Kind::cache:
-      set_cache(a.flag, texture_budget_mb);
-      break;
-    case Kind::prefetch:
-      prefetch_on = a.flag;
-      break;
-    case Kind::upload_budget:
-      upload_budget_mb = a.value;
-      break;
-    case Kind::view:
-      camera.azimuth_deg = a.value;
-      camera.elevation_deg = a.value2;
-      break;
-    case Kind::zoom:
-      camera.zoom = a.value;
-      break;
-    case Kind::projection:
-      camera.projection = a.flag ? tsp::Projection::perspective : tsp::Projection::orthographic;
-      break;
-    case Kind::screenshot:
-    case Kind::screenshot_ui:
-      pending_shot_ = a.text;
-      pending_with_ui_ = a.kind == Kind::screenshot_ui;
-      break;
-    case Kind::wait_frames:
-      wait_frames_ = a.number;
-      break;
-    case Kind::wait_seconds:
-      wait_until_s_ = glfwGetTime() + a.value;
-      break;
-    case Kind::compositing:
-      compositing = tspgl::parse_compositing(a.text, "compositing");
-      break;
-    case Kind::spacing:
-      spacing = a.value;
-      break;
-    case Kind::preintegrated:
-      preintegrated = a.flag;
-      break;
-    case Kind::quality:
-      quality = float(a.value);
-      apply_quality(a.value);
-      break;
-    case Kind::stats:
-      write_stats(a.text);
-      break;
-    case Kind::lod:
-      set_lod(a.flag);
-      break;
-    case Kind::target_fps:
-      target_fps = float(a.value);
-      break;
-    case Kind::show_cut:
-      show_cut = a.flag;
-      break;
-    case Kind::quit:
-      quit_ = true;
-      break;
-  }
-}
-
-// Runs actions until one needs frames to pass: a screenshot (saved after this frame's render),
-// wait-frames or quit.
-void PlayerApp::run_script() {
-  if (!pending_shot_.empty()) return;
-  if (wait_frames_ > 0) {
-    --wait_frames_;
-    return;
-  }
-  if (glfwGetTime() < wait_until_s_) return;
-  while (script_pos_ < script_.size() && !quit_) {
-    const ScriptAction& a = script_[script_pos_++];
-    apply(a);
-    if (options_.trace) trace_changes();  // each action's effect on its own line
-    if (a.kind == ScriptAction::Kind::screenshot || a.kind == ScriptAction::Kind::screenshot_ui ||
-        a.kind == ScriptAction::Kind::wait_frames || a.kind == ScriptAction::Kind::wait_seconds)
-      break;
-  }
-}
-
-void PlayerApp::trace_changes() {
-  Traced& t = traced_;
-  auto line = [](const std::string& s) {
-    std::printf("trace: %s\n", s.c_str());
-    std::fflush(stdout);
-  };
-  if (t.first || step != t.step) line("step " + std::to_string(step));
-  if (!t.first && tf.version() != t.tf_version)
-    line("transfer function edited (" + std::to_string(tf.size()) + " entries over [" +
-         std::to_string(tf.domain().lo) + ", " + std::to_string(tf.domain().hi) + "])");
-  if (!t.first && (tol.spatial != t.tol.spatial || tol.temporal != t.tol.temporal))
-    line("tolerances spatial " + std::to_string(tol.spatial) + ", temporal " +
-         std::to_string(tol.temporal));
-  if (!t.first && metric != t.metric) line(std::string("metric ") + tsp::to_string(metric));
-  if (t.first || playing != t.playing) line(playing ? "playing" : "paused");
-  if (!t.first && lod_on != t.lod_on) line(std::string("lod ") + (lod_on ? "on" : "off"));
-  t = {step, tf.version(), tol, metric, playing, lod_on, false};
-}
-
 void PlayerApp::save_pending_shot() {
-  tsp::write_png(pending_shot_, ctx->read_pixels());
+  tsp::write_png(pending_shot_, pending_with_ui_ ? ctx->read_pixels() : read_view());
   std::printf("saved %s (step %d)\n", pending_shot_.c_str(), step);
   std::fflush(stdout);
   pending_shot_.clear();
@@ -645,6 +479,10 @@ void PlayerApp::frame() {
   ImGui_ImplOpenGL3_NewFrame();
   ImGui_ImplGlfw_NewFrame();
   ImGui::NewFrame();
+  // The volume's rectangle: beside the docked panels, or the whole window (again below, after
+  // keys and script actions that may show or hide the panels).
+  layout = compute_layout(ctx->width(), ctx->height(), panels, int(ImGui::GetFrameHeight()));
+  poll_open();
   run_script();
   if (quit_) {
     ImGui::EndFrame();
@@ -653,6 +491,14 @@ void PlayerApp::frame() {
   handle_input();
   advance_playback(dt);
   if (options_.trace) trace_changes();
+  layout = compute_layout(ctx->width(), ctx->height(), panels, int(ImGui::GetFrameHeight()));
+  if (layout.docked) {  // what the volume does not cover is the panels' background
+    const tspgl::GlApi& gl = ctx->gl();
+    gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+    gl.Viewport(0, 0, ctx->width(), ctx->height());
+    gl.ClearColor(0, 0, 0, 1);
+    gl.Clear(GL_COLOR_BUFFER_BIT);
+  }
   render_volume();
   if (frame_delay_ms_ > 0)
     std::this_thread::sleep_for(std::chrono::duration<double, std::milli>(frame_delay_ms_));
@@ -668,7 +514,7 @@ void PlayerApp::frame() {
     char name[64];
     std::snprintf(name, sizeof name, "tspplay_step_%04d.png", step);
     try {
-      tsp::write_png(name, ctx->read_pixels());
+      tsp::write_png(name, read_view());
       status = std::string("saved ") + name;
     } catch (const tsp::Error& e) {
       status = e.what();
@@ -676,6 +522,7 @@ void PlayerApp::frame() {
     std::printf("%s\n", status.c_str());
   }
 
+  if (recorder_) record_frame(now);
   if (camera.width > 0 && camera.height > 0) {
     const tsp::Camera cam(file->tree().octree().dims(), camera);
     draw_cut_overlay(cam);

@@ -2,14 +2,19 @@
 // player_ui.cpp (the Dear ImGui panels). Internal to src/player.
 #pragma once
 #include <array>
+#include <atomic>
 #include <cstdint>
-#include <optional>
 #include <deque>
 #include <memory>
+#include <mutex>
+#include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "gl/context.h"
+#include "jobs/movie.h"
+#include "player/layout.h"
 #include "player/player.h"
 #include "player/script.h"
 #include "render/volume_renderer.h"
@@ -45,6 +50,21 @@ inline constexpr double kIdleDelaySeconds = 0.25;
 inline constexpr int kIdleFrames = 2;
 /// Splits per frame while refining when idle (a whole 64³ series is full in a frame or two).
 inline constexpr int kIdleSplitsPerFrame = 64;
+/// Steps whose readiness (bricks in RAM or textures) is re-checked per frame, for the timeline.
+inline constexpr int kReadyStepsPerFrame = 4;
+/// Frames per second of a recorded movie (frames repeat or drop to keep the wall-clock time).
+inline constexpr int kRecordFps = 25;
+
+/// A build of a File > Open input running on its own thread, with its progress.
+struct OpenJob {
+  std::string input, field;
+  std::thread thread;
+  std::atomic<bool> cancel{false}, done{false};
+  std::atomic<std::int64_t> progress_done{0}, progress_total{0};
+  std::mutex mu;             ///< guards the strings below
+  std::string phase, line;   ///< the build's phase, the last line it said
+  std::string result, error; ///< the .tsp to play, or what went wrong
+};
 
 /// One frame time sample for the HUD.
 struct FrameSample {
@@ -87,6 +107,13 @@ class PlayerApp {
   double texture_budget_mb = double(tspgl::kDefaultTextureBudget) / (1 << 20);
   int step = 0;
   bool playing = false, loop = true;
+  bool every_step = false;  ///< playback shows every step (slower than real time if need be)
+  bool panels = true;       ///< the UI panels (Tab); hidden: the volume fills the window
+  bool log_opacity = false; ///< the TF editor's opacity axis on a log scale
+  Layout layout;            ///< this frame's layout (the volume's rectangle, docked panels)
+  /// Per step: the share of the bricks its frame would read that are in RAM or textures
+  /// (−1: not checked yet), for the timeline's marks.
+  std::vector<float> ready;
   double speed = 5;    ///< steps per second
   std::string status;  ///< last message shown in the UI (saved files, errors)
   bool lod_on = true;                   ///< the adaptive LOD cut (off: full resolution always)
@@ -144,6 +171,26 @@ class PlayerApp {
   /// volume's centre.
   void set_focus_at(double x, double y);
 
+  // ---- files (player_files.cpp) ----
+  /// File > Open: plays input (a .tsp file at once; any other input is built into the cache
+  /// folder on a thread, with progress, then played). Errors go to status.
+  void open_input(const std::string& input, const std::string& field);
+  /// The running File > Open build, if any (for its progress dialog).
+  OpenJob* open_job() { return open_job_.get(); }
+  /// Asks the running File > Open build to stop (no file is left).
+  void cancel_open();
+  /// Starts recording the volume (with its annotations) to a movie at path. Errors go to status.
+  void start_recording(const std::string& path);
+  /// Stops recording and writes the movie (waits for ffmpeg). Errors go to status.
+  void stop_recording();
+  /// True while recording; seconds recorded so far.
+  bool recording() const { return recorder_ != nullptr; }
+  double recorded_seconds() const;
+  /// Saves the TF to path (our JSON). Errors go to status.
+  void save_tf_as(const std::string& path);
+  /// The file being played.
+  const std::string& tsp_path() const { return options_.tsp_path; }
+
  private:
   void frame();
   void advance_playback(double dt);
@@ -153,6 +200,14 @@ class PlayerApp {
   void draw_ui();  // player_ui.cpp
   void render_volume();
   void save_pending_shot();
+  /// The volume's pixels as shown (the layout's view rectangle), top row first.
+  tsp::Image read_view();
+  /// Swaps in the .tsp file at path (File > Open): new tree, renderer, metric, TF and camera.
+  void open_file(const std::string& path);
+  void poll_open();                  // a finished File > Open build: play it or report
+  void record_frame(double now_s);   // appends this frame to the movie while recording
+  void update_ready(const tsp::Camera& cam, const tspgl::RenderSettings& settings,
+                    tsp::LodStops stops);
   void trace_changes();  // --trace: prints what changed since the last frame
   void apply_key(int key);  // one key press (or repeat) from the queue
 
@@ -185,7 +240,7 @@ class PlayerApp {
     std::uint64_t tf_version = 0;
     tsp::Tolerances tol{-1, -1};
     tsp::Metric metric = tsp::Metric::approximate;
-    bool playing = false, lod_on = true;
+    bool playing = false, lod_on = true, panels = true;
     bool first = true;
   } traced_;
   std::unique_ptr<tsp::LazyErrors> lazy_;
@@ -206,6 +261,10 @@ class PlayerApp {
   int prefetched_cut_ = -1;  ///< cut size whose likely splits were last requested
   double start_s_ = 0, last_frame_s_ = 0;
   std::unique_ptr<tsp::LodController> lod_;
+  std::unique_ptr<OpenJob> open_job_;
+  std::unique_ptr<tspgl::MovieWriter> recorder_;
+  double record_start_s_ = 0;
+  int ready_next_ = 0;  ///< the next step update_ready checks
   // What changed last (interaction), and the frame's time outside rendering, for the LOD target.
   struct Seen {
     tsp::CameraParams camera;

@@ -34,6 +34,10 @@ tsp::LodStops PlayerApp::update_lod(const tsp::Camera& cam, tspgl::RenderSetting
   // Any change of what is shown counts as interaction.
   const Seen now{camera, step, tf.version(), playing};
   const bool changed = playing || !(now == seen_);
+  // Playing with the view and the TF still, a frame per step is enough: the frame time may
+  // follow the playback speed (5 steps/s: 200 ms) rather than the interactive target.
+  const bool steady_playback =
+      playing && now.camera == seen_.camera && now.tf_version == seen_.tf_version;
   if (changed) {
     last_change_s_ = now_s;
     frames_since_change_ = 0;
@@ -57,7 +61,9 @@ tsp::LodStops PlayerApp::update_lod(const tsp::Camera& cam, tspgl::RenderSetting
     o.min_error = 0;
     o.split_limit = kIdleSplitsPerFrame;
   } else {
-    o.target_ms = std::max(kMinRenderMs, 1000.0 / std::max(1.f, target_fps) - overhead_ms_);
+    const double frame_ms = std::max(1000.0 / std::max(1.f, target_fps),
+                                     steady_playback ? 1000.0 / std::max(speed, 1e-3) : 0.0);
+    o.target_ms = std::max(kMinRenderMs, frame_ms - overhead_ms_);
     o.min_error = tsp::LodOptions{}.min_error;
     o.split_limit = tsp::LodOptions{}.split_limit;
   }
@@ -102,30 +108,40 @@ void PlayerApp::set_focus_at(double x, double y) {
 
 namespace {
 
-// Corner c (bit a: high along axis a) of box, projected to window pixels; false behind the eye.
-bool corner(const glm::dmat4& vp, const tsp::Aabb& box, int c, double w, double h, ImVec2& out) {
+// Corner c (bit a: high along axis a) of box, projected to window pixels of the view v; false
+// behind the eye.
+bool corner(const glm::dmat4& vp, const tsp::Aabb& box, int c, const WindowRect& v, ImVec2& out) {
   const glm::dvec4 q = vp * glm::dvec4(c & 1 ? box.hi[0] : box.lo[0], c & 2 ? box.hi[1] : box.lo[1],
                                         c & 4 ? box.hi[2] : box.lo[2], 1.0);
   if (q.w <= 1e-9) return false;
-  out = ImVec2(float((q.x / q.w * 0.5 + 0.5) * w), float((0.5 - q.y / q.w * 0.5) * h));
+  out = ImVec2(float(v.x + (q.x / q.w * 0.5 + 0.5) * v.w),
+               float(v.y + (0.5 - q.y / q.w * 0.5) * v.h));
   return true;
+}
+
+// The background draw list, clipped to the view (the docked panels lie beside it).
+ImDrawList* view_draw_list(const WindowRect& v) {
+  ImDrawList* dl = ImGui::GetBackgroundDrawList();
+  dl->PushClipRect(ImVec2(float(v.x), float(v.y)), ImVec2(float(v.x + v.w), float(v.y + v.h)),
+                   false);
+  return dl;
 }
 
 }  // namespace
 
 void PlayerApp::draw_annotations(const tsp::Camera& cam) {
   if (!annotations) return;
-  ImDrawList* dl = ImGui::GetBackgroundDrawList();
+  const WindowRect& v = layout.view;
+  ImDrawList* dl = view_draw_list(v);
   // Crisp one-pixel lines in exactly the outline colour (as render --annotate draws them).
   dl->Flags &= ~ImDrawListFlags_AntiAliasedLines;
   const glm::dmat4 vp = cam.view_projection();
-  const double w = ctx->width(), h = ctx->height();
   const tsp::Octree& o = file->tree().octree();
   const tsp::Aabb box = tsp::geometric_box(tsp::Box{{0, 0, 0}, {o.dims().x, o.dims().y, o.dims().z}},
                                            o.dims());
   ImVec2 p[8];
   bool ok = true;
-  for (int c = 0; c < 8; ++c) ok &= corner(vp, box, c, w, h, p[c]);
+  for (int c = 0; c < 8; ++c) ok &= corner(vp, box, c, v, p[c]);
   if (ok) {
     for (int c = 0; c < 8; ++c)
       for (int a = 0; a < 3; ++a)
@@ -139,7 +155,7 @@ void PlayerApp::draw_annotations(const tsp::Camera& cam) {
       tsp::Aabb tip;
       tip.hi[a] = len;
       ImVec2 e;
-      if (!corner(vp, tip, 1 << a, w, h, e)) continue;
+      if (!corner(vp, tip, 1 << a, v, e)) continue;
       dl->AddLine(p[0], e, cols[a], 2.f);
       dl->AddText(ImVec2(e.x + 3, e.y - 7), cols[a], names[a]);
     }
@@ -151,25 +167,22 @@ void PlayerApp::draw_annotations(const tsp::Camera& cam) {
     std::snprintf(label, sizeof label, "step %d", step);
   else
     std::snprintf(label, sizeof label, "step %d   t = %g", step, times[std::size_t(step)]);
-  dl->AddText(ImVec2(float(w) * 0.5f - 40, 8), IM_COL32(235, 235, 235, 255), label);
+  dl->AddText(ImVec2(float(v.x) + float(v.w) * 0.5f - 40, float(v.y) + 8),
+              IM_COL32(235, 235, 235, 255), label);
+  dl->PopClipRect();
 }
 
 void PlayerApp::draw_cut_overlay(const tsp::Camera& cam) {
   if (!show_cut || !lod_) return;
-  ImDrawList* dl = ImGui::GetBackgroundDrawList();
+  const WindowRect& v = layout.view;
+  ImDrawList* dl = view_draw_list(v);
   const glm::dmat4 vp = cam.view_projection();
-  const double w = ctx->width(), h = ctx->height();
   const tsp::Octree& o = file->tree().octree();
   for (int id : lod_->cut().nodes()) {
     const tsp::Aabb box = tsp::geometric_box(o.node(id).box, o.dims());
     ImVec2 p[8];
     bool ok = true;
-    for (int c = 0; c < 8; ++c) {
-      const glm::dvec4 q = vp * glm::dvec4(c & 1 ? box.hi[0] : box.lo[0], c & 2 ? box.hi[1] : box.lo[1],
-                                            c & 4 ? box.hi[2] : box.lo[2], 1.0);
-      if (q.w <= 1e-9) ok = false;
-      p[c] = ImVec2(float((q.x / q.w * 0.5 + 0.5) * w), float((0.5 - q.y / q.w * 0.5) * h));
-    }
+    for (int c = 0; c < 8; ++c) ok &= corner(vp, box, c, v, p[c]);
     if (!ok) continue;
     const ImU32 col = kLevelColours[std::min<std::size_t>(std::size_t(o.lod_level(id)),
                                                           std::size(kLevelColours) - 1)];
@@ -177,6 +190,7 @@ void PlayerApp::draw_cut_overlay(const tsp::Camera& cam) {
       for (int a = 0; a < 3; ++a)
         if (!(c & (1 << a))) dl->AddLine(p[c], p[c | (1 << a)], col);
   }
+  dl->PopClipRect();
 }
 
 }  // namespace tspplayer

@@ -1,5 +1,6 @@
-// The player's Dear ImGui panels: timeline, view and metric settings, heads-up statistics and
-// the transfer-function editor. Drawn after the volume each frame (docs/player.md).
+// The player's Dear ImGui panels: the layout (docked beside the volume, floating over it in a
+// small window, or hidden), the settings, statistics and timeline sections, the controls
+// overlay. Drawn after the volume each frame (docs/player.md).
 #include <imgui.h>
 
 #include <algorithm>
@@ -9,8 +10,8 @@
 
 #include "player/controls.h"
 #include "player/player_app.h"
+#include "player/player_ui.h"
 #include "tsp/core/error.h"
-#include "tsp/metric/tf_io.h"
 
 namespace tspplayer {
 
@@ -18,21 +19,56 @@ namespace {
 
 constexpr float kMaxSpeed = 60.f;  // steps per second
 constexpr float kMinSpeed = 0.25f;
-constexpr float kHistogramHeight = 80.f;
 constexpr float kHudPlotHeight = 60.f;
-constexpr float kHandleRadius = 5.f;
-constexpr float kLabelWidth = 130.f;  // room for a settings label, pixels  // TF control point handles, pixels
+constexpr float kLabelWidth = 130.f;  // room for a settings label, pixels
+constexpr float kReadyStripHeight = 5.f;  // the timeline's readiness marks, pixels
 constexpr double kBytesPerMiB = 1 << 20;
 constexpr const char* kMetricNames[] = {"scalar", "reference", "approximate", "perceptual"};
 // In tspgl::Compositing order.
 constexpr const char* kCompositingNames[] = {"slices", "boxes", "rays"};
 constexpr const char* kClassNames[] = {"not rendered", "untextured", "reused texture",
                                        "new texture"};
+// What a tolerance measures, per metric (tsp::Metric order; docs/metrics.md).
+constexpr const char* kToleranceUnits[] = {
+    "units: coefficient of variation of the values (sigma/mean)",
+    "units: colour deviation over colour magnitude (eq. 7), every voxel",
+    "units: colour deviation over colour magnitude (eq. 7), estimated",
+    "units: L*u*v* deviation / 100 over colour magnitude"};
+// The docked panels: no title, fixed where the layout puts them, under any popup.
+constexpr ImGuiWindowFlags kDockedFlags =
+    ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoMove |
+    ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings |
+    ImGuiWindowFlags_NoBringToFrontOnFocus;
 
-void timeline(PlayerApp& app) {
-  ImGui::SetNextWindowPos(ImVec2(10, float(app.ctx->height()) - 110), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(float(app.ctx->width()) - 20, 100), ImGuiCond_FirstUseEver);
-  ImGui::Begin("Timeline");
+void place(const WindowRect& r) {
+  ImGui::SetNextWindowPos(ImVec2(float(r.x), float(r.y)), ImGuiCond_Always);
+  ImGui::SetNextWindowSize(ImVec2(float(r.w), float(r.h)), ImGuiCond_Always);
+}
+
+// The controls overlay (F1 or ?): every key and mouse action, from the one table.
+void help(PlayerApp& app) {
+  if (!app.show_help) return;
+  const ImGuiIO& io = ImGui::GetIO();
+  ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, io.DisplaySize.y * 0.5f),
+                          ImGuiCond_Always, ImVec2(0.5f, 0.5f));
+  ImGui::Begin("Controls (F1 or ? to close)", &app.show_help,
+               ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse);
+  if (ImGui::BeginTable("controls", 2, ImGuiTableFlags_RowBg)) {
+    for (const Control& c : kControls) {
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(c.input);
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(c.action);
+    }
+    ImGui::EndTable();
+  }
+  ImGui::End();
+}
+
+}  // namespace
+
+void timeline_section(PlayerApp& app) {
   if (ImGui::Button(app.playing ? "Pause" : "Play")) app.playing = !app.playing;
   ImGui::SameLine();
   if (ImGui::Button("|<")) app.go_to(0);
@@ -45,8 +81,12 @@ void timeline(PlayerApp& app) {
   ImGui::SameLine();
   ImGui::Checkbox("loop", &app.loop);
   ImGui::SameLine();
+  ImGui::Checkbox("every step", &app.every_step);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("show every step while playing, slower than the speed if frames are slow");
+  ImGui::SameLine();
   float speed = float(app.speed);
-  ImGui::SetNextItemWidth(160);
+  ImGui::SetNextItemWidth(140);
   if (ImGui::SliderFloat("steps/s", &speed, kMinSpeed, kMaxSpeed, "%.2f",
                          ImGuiSliderFlags_Logarithmic))
     app.speed = std::clamp(double(speed), double(kMinSpeed), double(kMaxSpeed));
@@ -71,13 +111,29 @@ void timeline(PlayerApp& app) {
     app.playing = true;
     resume_after_scrub = false;
   }
-  ImGui::End();
+  // Under the scrubber, each step's readiness: green when its frame reads nothing from the file
+  // (bricks in RAM or textures), darker as more of it must still be read.
+  const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  const int n = app.steps();
+  const float w = (hi.x - lo.x) / float(n);
+  for (int t = 0; t < n; ++t) {
+    const float r = app.ready[std::size_t(t)];
+    if (r < 0) continue;
+    const ImU32 col = r >= 1.f ? IM_COL32(70, 200, 90, 255)
+                               : IM_COL32(int(60 + 120 * r), int(60 + 100 * r), 60, 255);
+    dl->AddRectFilled(ImVec2(lo.x + w * float(t), hi.y + 1),
+                      ImVec2(lo.x + w * float(t + 1) - (w > 3 ? 1.f : 0.f),
+                             hi.y + 1 + kReadyStripHeight),
+                      col);
+  }
+  ImGui::Dummy(ImVec2(0, kReadyStripHeight));
+  if (ImGui::IsItemHovered() || ImGui::IsMouseHoveringRect(ImVec2(lo.x, hi.y),
+                                                           ImVec2(hi.x, hi.y + kReadyStripHeight)))
+    ImGui::SetTooltip("green: the step's bricks are in memory (no file read to show it)");
 }
 
-void settings(PlayerApp& app) {
-  ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(340, 260), ImGuiCond_FirstUseEver);
-  ImGui::Begin("Settings");
+void settings_section(PlayerApp& app) {
   // Widgets end kLabelWidth short of the window's edge: their labels are never clipped.
   ImGui::PushItemWidth(-kLabelWidth);
   ImGui::Checkbox("outline, axes, step", &app.annotations);
@@ -98,6 +154,9 @@ void settings(PlayerApp& app) {
   changed |= ImGui::SliderFloat("temporal tol", &t, 0.f, app.tol_max, "%.4g",
                                 ImGuiSliderFlags_Logarithmic);
   done |= ImGui::IsItemDeactivatedAfterEdit();
+  ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+  ImGui::TextWrapped("%s; 0 = exact", kToleranceUnits[int(app.metric)]);
+  ImGui::PopStyleColor();
   // Frames follow the slider at once; unreachable textures are dropped when it is released.
   if (changed) app.tol = {double(s), double(t)};
   if (done) app.set_tolerances(app.tol);
@@ -110,7 +169,8 @@ void settings(PlayerApp& app) {
     app.spacing = std::clamp(double(sp), tspgl::kMinSliceSpacing, tspgl::kMaxSliceSpacing);
   ImGui::Checkbox("pre-integrated TF", &app.preintegrated);
   // The quality target sets all of the knobs above from a calibration (made once, cached).
-  ImGui::SliderFloat("quality (dE)", &app.quality, 0.f, 10.f, app.quality > 0 ? "%.2f" : "off");
+  ImGui::SliderFloat("quality (mean dE)", &app.quality, 0.f, 10.f,
+                     app.quality > 0 ? "%.2f" : "off");
   if (ImGui::IsItemDeactivatedAfterEdit() && app.quality > 0) {
     app.status = "calibrating (once per tree, TF, metric and view) ...";
     app.apply_quality(app.quality);
@@ -124,19 +184,22 @@ void settings(PlayerApp& app) {
   ImGui::Checkbox("show cut (L)", &app.show_cut);
   ImGui::SliderFloat("target fps", &app.target_fps, 5.f, 120.f, "%.0f");
 
-  bool cache = app.cache_on;
-  if (ImGui::Checkbox("texture cache", &cache)) app.set_cache(cache, app.texture_budget_mb);
-  ImGui::SameLine();
-  ImGui::Checkbox("prefetch", &app.prefetch_on);
-  float upload = float(app.upload_budget_mb);
-  if (ImGui::SliderFloat("upload MiB/frame", &upload, 0.f, 256.f, upload > 0 ? "%.1f" : "no limit",
-                         ImGuiSliderFlags_Logarithmic))
-    app.upload_budget_mb = std::max(0.0, double(upload));
-  static double budget = -1;
-  if (budget < 0) budget = app.texture_budget_mb;
-  ImGui::SetNextItemWidth(120);
-  ImGui::InputDouble("budget MiB", &budget, 16, 128, "%.0f");
-  if (ImGui::IsItemDeactivatedAfterEdit()) app.set_cache(app.cache_on, budget);
+  if (ImGui::TreeNode("caches and uploads")) {
+    bool cache = app.cache_on;
+    if (ImGui::Checkbox("texture cache", &cache)) app.set_cache(cache, app.texture_budget_mb);
+    ImGui::SameLine();
+    ImGui::Checkbox("prefetch", &app.prefetch_on);
+    float upload = float(app.upload_budget_mb);
+    if (ImGui::SliderFloat("upload MiB/frame", &upload, 0.f, 256.f,
+                           upload > 0 ? "%.1f" : "no limit", ImGuiSliderFlags_Logarithmic))
+      app.upload_budget_mb = std::max(0.0, double(upload));
+    static double budget = -1;
+    if (budget < 0) budget = app.texture_budget_mb;
+    ImGui::SetNextItemWidth(120);
+    ImGui::InputDouble("budget MiB", &budget, 16, 128, "%.0f");
+    if (ImGui::IsItemDeactivatedAfterEdit()) app.set_cache(app.cache_on, budget);
+    ImGui::TreePop();
+  }
 
   int proj = app.camera.projection == tsp::Projection::perspective;
   ImGui::RadioButton("orthographic", &proj, 0);
@@ -145,21 +208,17 @@ void settings(PlayerApp& app) {
   app.camera.projection = proj ? tsp::Projection::perspective : tsp::Projection::orthographic;
   if (ImGui::Button("save PNG (S)")) app.request_save();
   ImGui::SameLine();
-  if (ImGui::Button("reset view")) {
+  if (ImGui::Button("reset view (R)")) {
     const int w = app.camera.width, h = app.camera.height;
-    app.camera = tsp::CameraParams{};
+    app.camera = app.initial_camera;
     app.camera.width = w;
     app.camera.height = h;
   }
   if (!app.status.empty()) ImGui::TextWrapped("%s", app.status.c_str());
   ImGui::PopItemWidth();
-  ImGui::End();
 }
 
-void hud(PlayerApp& app) {
-  ImGui::SetNextWindowPos(ImVec2(float(app.ctx->width()) - 390, 10), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(380, 330), ImGuiCond_FirstUseEver);
-  ImGui::Begin("Statistics");
+void stats_section(PlayerApp& app) {
   // A temporal tolerance that merged steps says which step's bricks the picture shows.
   const tspgl::FrameReport& lf = app.last;
   if (app.tol.temporal > 0 && lf.spans_hi > lf.spans_lo) {  // (at 0 only unchanging data merge)
@@ -190,15 +249,15 @@ void hud(PlayerApp& app) {
     std::string levels;
     for (std::size_t k = 0; k < app.lod_stats.nodes_per_level.size(); ++k)
       levels += (k ? " " : "") + std::to_string(app.lod_stats.nodes_per_level[k]);
-    ImGui::Text("LOD %s: cut %d nodes [by level %s], scale %.2f",
-                app.refining ? "refining to full" : "holding the target", app.lod_stats.cut_size,
-                levels.c_str(), app.lod_stats.render_scale);
+    ImGui::TextWrapped("LOD %s: cut %d nodes [by level %s], scale %.2f",
+                       app.refining ? "refining to full" : "holding the target",
+                       app.lod_stats.cut_size, levels.c_str(), app.lod_stats.render_scale);
   }
   ImGui::Text("render %.1f ms: traversal %.1f, slicing %.1f,\n  upload %.1f, draw %.1f", r.ms,
               r.traversal_ms, r.slicing_ms, r.upload_ms, r.draw_ms);
+  const double pixels = std::max(1.0, double(app.layout.view.w) * app.layout.view.h);
   ImGui::Text("fragments %.2f M (%.2f per pixel), %s, spacing %.2g", double(r.fragments) / 1e6,
-              double(r.fragments) / std::max(1.0, double(app.ctx->width()) * app.ctx->height()),
-              tspgl::to_string(app.compositing), app.spacing);
+              double(r.fragments) / pixels, tspgl::to_string(app.compositing), app.spacing);
   for (int c = 0; c < tsp::kDrawClassCount; ++c)
     ImGui::Text("%-15s %5.1f %%", kClassNames[c], r.class_percent[std::size_t(c)]);
   ImGui::Text("textures %lld resident, %.1f MiB", static_cast<long long>(r.textures_resident),
@@ -215,216 +274,56 @@ void hud(PlayerApp& app) {
               static_cast<long long>(b.resident_count), double(b.resident_bytes) / kBytesPerMiB,
               static_cast<long long>(b.hits), static_cast<long long>(b.misses),
               static_cast<long long>(b.prefetched));
-  ImGui::End();
 }
-
-void tf_editor(PlayerApp& app) {
-  ImGui::SetNextWindowPos(ImVec2(10, 280), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(340, 330), ImGuiCond_FirstUseEver);
-  ImGui::Begin("Transfer function");
-  // Histogram (log counts) with the opacity curve drawn over it.
-  const auto& hist = app.file->metadata().histogram;
-  std::vector<float> logh;
-  for (std::uint64_t c : hist) logh.push_back(std::log1p(float(c)));
-  const ImVec2 origin = ImGui::GetCursorScreenPos();
-  const float width = ImGui::GetContentRegionAvail().x;
-  ImDrawList* dl = ImGui::GetWindowDrawList();
-  const tsp::ValueRange d = app.tf.domain();
-  // Bars drawn by hand, not ImGui::PlotHistogram: that is an item whose hover (its tooltip)
-  // would take the clicks meant for the handles below; and each bin sits at its values on the
-  // TF domain's scale (the histogram covers the quantization range), so bars and curve line up.
-  {
-    const tsp::ValueRange q = app.file->tree().value_range();
-    float top = 0;
-    for (float v : logh) top = std::max(top, v);
-    const double dspan = d.hi > d.lo ? d.hi - d.lo : 1.0;
-    const double bin = (q.hi - q.lo) / double(logh.size());
-    dl->AddRectFilled(origin, ImVec2(origin.x + width, origin.y + kHistogramHeight),
-                      ImGui::GetColorU32(ImGuiCol_FrameBg));
-    for (std::size_t i = 0; i < logh.size() && top > 0; ++i) {
-      const double v0 = q.lo + bin * double(i), v1 = v0 + bin;
-      const float x0 = std::max(origin.x, origin.x + width * float((v0 - d.lo) / dspan));
-      const float x1 = std::min(origin.x + width, origin.x + width * float((v1 - d.lo) / dspan));
-      if (x1 <= x0) continue;
-      dl->AddRectFilled(ImVec2(x0, origin.y + kHistogramHeight * (1 - logh[i] / top)),
-                        ImVec2(std::max(x1, x0 + 1), origin.y + kHistogramHeight),
-                        ImGui::GetColorU32(ImGuiCol_PlotHistogram));
-    }
-  }
-  const int n = app.tf.size();
-  for (int j = 1; j < n; ++j) {
-    const tsp::Rgba a = app.tf.entry(j - 1), b = app.tf.entry(j);
-    // Entries at their values, so the curve and the handles share the TF domain's scale.
-    const float x0 = origin.x + width * float((app.tf.entry_value(j - 1) - d.lo) / (d.hi - d.lo));
-    const float x1 = origin.x + width * float((app.tf.entry_value(j) - d.lo) / (d.hi - d.lo));
-    dl->AddLine(ImVec2(x0, origin.y + kHistogramHeight * (1 - a.a)),
-                ImVec2(x1, origin.y + kHistogramHeight * (1 - b.a)),
-                ImGui::ColorConvertFloat4ToU32(ImVec4(b.r, b.g, b.b, 1)), 2.f);
-  }
-  bool edited = false;
-  int remove = -1;
-  // Handles on the curve: drag to move a point (value, opacity), double-click empty space to
-  // add one, right-click a point to remove it.
-  ImGui::SetCursorScreenPos(origin);
-  ImGui::InvisibleButton("##canvas", ImVec2(width, kHistogramHeight));
-  app.trace_tf_canvas(origin.x, origin.y, width, kHistogramHeight);
-  const double span = d.hi > d.lo ? d.hi - d.lo : 1.0;
-  auto screen = [&](const tsp::TfPoint& p) {
-    return ImVec2(origin.x + width * float((p.x - d.lo) / span),
-                  origin.y + kHistogramHeight * (1 - p.c.a));
-  };
-  const ImVec2 mouse = ImGui::GetIO().MousePos;
-  const double mouse_x = std::clamp(d.lo + double(mouse.x - origin.x) / width * span, d.lo, d.hi);
-  const float mouse_a = std::clamp(1.f - (mouse.y - origin.y) / kHistogramHeight, 0.f, 1.f);
-  // The handle nearest a screen point, within reach (−1: none).
-  auto handle_at = [&](ImVec2 at) {
-    int found = -1;
-    float best = kHandleRadius * kHandleRadius * 4;
-    for (std::size_t i = 0; i < app.tf_points.size(); ++i) {
-      const ImVec2 h = screen(app.tf_points[i]);
-      const float dist = (h.x - at.x) * (h.x - at.x) + (h.y - at.y) * (h.y - at.y);
-      if (dist < best) {
-        best = dist;
-        found = int(i);
-      }
-    }
-    return found;
-  };
-  const int hovered = handle_at(mouse);
-  static int dragging = -1;
-  // The handle under the press, not under the mouse now: on a slow frame the press and the
-  // first moves arrive together, and the mouse has already left the handle.
-  if (ImGui::IsItemActivated()) {
-    const auto press = app.left_press();
-    dragging = handle_at(ImVec2(press[0], press[1]));
-  }
-
-  if (ImGui::IsItemActive() && dragging >= 0 && dragging < int(app.tf_points.size()) &&
-      (ImGui::GetIO().MouseDelta.x != 0 || ImGui::GetIO().MouseDelta.y != 0)) {
-    app.tf_points[std::size_t(dragging)].x = mouse_x;
-    app.tf_points[std::size_t(dragging)].c.a = mouse_a;
-    edited = true;
-  }
-  if (ImGui::IsItemDeactivated()) dragging = -1;
-  if (ImGui::IsItemHovered() && ImGui::IsMouseDoubleClicked(0) && hovered < 0) {
-    tsp::Rgba c = app.tf.lookup(mouse_x);
-    c.a = mouse_a;
-    app.tf_points.push_back({mouse_x, c});
-    edited = true;
-  }
-  if (ImGui::IsItemHovered() && ImGui::IsMouseClicked(1) && hovered >= 0 &&
-      app.tf_points.size() > 2)
-    remove = hovered;
-  for (std::size_t i = 0; i < app.tf_points.size(); ++i) {
-    const tsp::TfPoint& p = app.tf_points[i];
-    const ImVec2 h = screen(p);
-    dl->AddCircleFilled(h, kHandleRadius,
-                        ImGui::ColorConvertFloat4ToU32(ImVec4(p.c.r, p.c.g, p.c.b, 1)));
-    dl->AddCircle(h, kHandleRadius,
-                  int(i) == hovered ? IM_COL32(255, 255, 0, 255) : IM_COL32_WHITE);
-  }
-  ImGui::Text("domain %.4g .. %.4g", d.lo, d.hi);
-  ImGui::TextDisabled("drag a point; double-click adds, right-click removes");
-  for (std::size_t i = 0; i < app.tf_points.size(); ++i) {
-    tsp::TfPoint& p = app.tf_points[i];
-    ImGui::PushID(int(i));
-    float x = float(p.x);
-    ImGui::SetNextItemWidth(110);
-    if (ImGui::DragFloat("##x", &x, float(d.hi - d.lo) / 500.f, float(d.lo), float(d.hi), "%.4g")) {
-      p.x = std::clamp(double(x), d.lo, d.hi);
-      edited = true;
-    }
-    ImGui::SameLine();
-    float c[4] = {p.c.r, p.c.g, p.c.b, p.c.a};
-    if (ImGui::ColorEdit4("##c", c, ImGuiColorEditFlags_AlphaBar | ImGuiColorEditFlags_NoInputs)) {
-      p.c = {c[0], c[1], c[2], c[3]};
-      edited = true;
-    }
-    ImGui::SameLine();
-    ImGui::SetNextItemWidth(90);
-    if (ImGui::SliderFloat("##a", &c[3], 0.f, 1.f, "a %.3f")) {
-      p.c.a = c[3];
-      edited = true;
-    }
-    ImGui::SameLine();
-    if (app.tf_points.size() > 2 && ImGui::SmallButton("x")) remove = int(i);
-    ImGui::PopID();
-  }
-  if (remove >= 0) {
-    app.tf_points.erase(app.tf_points.begin() + remove);
-    edited = true;
-  }
-  if (ImGui::Button("add point")) {
-    app.tf_points.push_back({(d.lo + d.hi) / 2, app.tf.lookup((d.lo + d.hi) / 2)});
-    edited = true;
-  }
-  if (edited) app.apply_tf_points();  // lazy metric: only touched nodes recompute next frame
-
-  static int preset = 0;
-  const std::vector<std::string> names = tsp::preset_names();
-  std::vector<const char*> cnames;
-  for (const auto& s : names) cnames.push_back(s.c_str());
-  ImGui::SetNextItemWidth(120);
-  ImGui::Combo("##preset", &preset, cnames.data(), int(cnames.size()));
-  ImGui::SameLine();
-  if (ImGui::Button("apply preset"))
-    app.set_tf(tsp::preset_transfer_function(names[std::size_t(preset)], d, app.tf.size()), true);
-  ImGui::SameLine();
-  if (ImGui::Button("fit to data")) {  // the map as it is, stretched over the data's range
-    app.set_tf(tsp::rescaled(app.tf, d), true);
-    app.status = "transfer function stretched over the data range";
-  }
-
-  static char path[512] = "";
-  if (path[0] == 0) std::snprintf(path, sizeof path, "%s", app.tf_path.c_str());
-  ImGui::SetNextItemWidth(-1);
-  ImGui::InputText("##path", path, sizeof path);
-  app.tf_path = path;
-  try {
-    if (ImGui::Button("load")) {
-      app.set_tf(tsp::transfer_function_from_arg(app.tf_path, d, app.tf.size()), true);
-      const std::string w = tsp::tf_range_warning(app.tf, app.file->metadata().data_range);
-      app.status = w.empty() ? "loaded " + app.tf_path : "loaded " + app.tf_path + "; " + w;
-    }
-    ImGui::SameLine();
-    if (ImGui::Button("save")) {
-      tsp::save_transfer_function(app.tf, app.tf_path);
-      app.status = "saved " + app.tf_path;
-    }
-  } catch (const tsp::Error& e) {
-    app.status = e.what();  // shown in the settings panel; the player keeps running
-  }
-  ImGui::End();
-}
-
-// The controls overlay (F1 or ?): every key and mouse action, from the one table.
-void help(PlayerApp& app) {
-  if (!app.show_help) return;
-  const ImGuiIO& io = ImGui::GetIO();
-  ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, io.DisplaySize.y * 0.5f),
-                          ImGuiCond_Always, ImVec2(0.5f, 0.5f));
-  ImGui::Begin("Controls (F1 or ? to close)", &app.show_help,
-               ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse);
-  if (ImGui::BeginTable("controls", 2, ImGuiTableFlags_RowBg)) {
-    for (const Control& c : kControls) {
-      ImGui::TableNextRow();
-      ImGui::TableNextColumn();
-      ImGui::TextUnformatted(c.input);
-      ImGui::TableNextColumn();
-      ImGui::TextUnformatted(c.action);
-    }
-    ImGui::EndTable();
-  }
-  ImGui::End();
-}
-
-}  // namespace
 
 void PlayerApp::draw_ui() {
-  timeline(*this);
-  settings(*this);
-  hud(*this);
-  tf_editor(*this);
+  if (panels) {
+    menu_and_dialogs(*this);
+    if (layout.docked) {
+      // One side panel of collapsible sections beside the volume, the timeline under it.
+      place(layout.side);
+      ImGui::Begin("##side", nullptr, kDockedFlags);
+      if (ImGui::CollapsingHeader("Settings", ImGuiTreeNodeFlags_DefaultOpen))
+        settings_section(*this);
+      if (ImGui::CollapsingHeader("Transfer function", ImGuiTreeNodeFlags_DefaultOpen))
+        tf_section(*this);
+      if (ImGui::CollapsingHeader("Statistics", ImGuiTreeNodeFlags_DefaultOpen))
+        stats_section(*this);
+      ImGui::End();
+      place(layout.timeline);
+      ImGui::Begin("##timeline", nullptr, kDockedFlags);
+      timeline_section(*this);
+      ImGui::End();
+    } else {
+      // A small window: the sections float over the volume, collapsed to their titles at first
+      // (a click opens one) so that the volume stays in sight.
+      const float w = float(ctx->width()), h = float(ctx->height());
+      const float top = ImGui::GetFrameHeight() + 4;
+      ImGui::SetNextWindowPos(ImVec2(10, h - 110), ImGuiCond_FirstUseEver);
+      ImGui::SetNextWindowSize(ImVec2(w - 20, 100), ImGuiCond_FirstUseEver);
+      ImGui::Begin("Timeline");
+      timeline_section(*this);
+      ImGui::End();
+      ImGui::SetNextWindowPos(ImVec2(10, top), ImGuiCond_FirstUseEver);
+      ImGui::SetNextWindowSize(ImVec2(340, 260), ImGuiCond_FirstUseEver);
+      ImGui::SetNextWindowCollapsed(true, ImGuiCond_FirstUseEver);
+      ImGui::Begin("Settings");
+      settings_section(*this);
+      ImGui::End();
+      ImGui::SetNextWindowPos(ImVec2(std::max(10.f, w - 390), top), ImGuiCond_FirstUseEver);
+      ImGui::SetNextWindowSize(ImVec2(380, 330), ImGuiCond_FirstUseEver);
+      ImGui::SetNextWindowCollapsed(true, ImGuiCond_FirstUseEver);
+      ImGui::Begin("Statistics");
+      stats_section(*this);
+      ImGui::End();
+      ImGui::SetNextWindowPos(ImVec2(10, top + 2 * ImGui::GetFrameHeight()), ImGuiCond_FirstUseEver);
+      ImGui::SetNextWindowSize(ImVec2(340, 330), ImGuiCond_FirstUseEver);
+      ImGui::SetNextWindowCollapsed(true, ImGuiCond_FirstUseEver);
+      ImGui::Begin("Transfer function");
+      tf_section(*this);
+      ImGui::End();
+    }
+  }
   help(*this);
 }
 

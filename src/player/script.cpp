@@ -59,7 +59,9 @@ struct LineParser {
 // The actions that take on|off.
 constexpr std::pair<const char*, Kind> kSwitches[] = {
     {"loop", Kind::loop},           {"cache", Kind::cache}, {"prefetch", Kind::prefetch},
-    {"preintegrated", Kind::preintegrated}, {"lod", Kind::lod},     {"show-cut", Kind::show_cut}};
+    {"preintegrated", Kind::preintegrated}, {"lod", Kind::lod},     {"show-cut", Kind::show_cut},
+    {"panels", Kind::panels},       {"every-step", Kind::every_step},
+    {"log-opacity", Kind::log_opacity}};
 
 ScriptAction parse_line(const LineParser& p) {
   ScriptAction a;
@@ -167,12 +169,25 @@ ScriptAction parse_line(const LineParser& p) {
     a.value = p.number(1, "target-fps FPS");
     if (!(a.value >= 1 && a.value <= kMaxTargetFps))
       p.fail("target-fps must be 1 to " + std::to_string(int(kMaxTargetFps)) + " frames per second");
+  } else if (cmd == "open") {
+    if (p.words.size() != 2 && p.words.size() != 3)
+      p.fail("'open' takes 1 or 2 arguments: expected 'open PATH [FIELD]', found " +
+             std::to_string(p.words.size() - 1));
+    a.kind = Kind::open;
+    a.text = p.words[1];
+    if (p.words.size() == 3) a.text2 = p.words[2];
+  } else if (cmd == "record") {
+    p.expect_args(1, "record PATH.mp4|PATH.gif|stop");
+    a.kind = p.words[1] == "stop" ? Kind::record_stop : Kind::record;
+    a.text = p.words[1];
+    if (a.kind == Kind::record && !p.words[1].ends_with(".mp4") && !p.words[1].ends_with(".gif"))
+      p.fail("'" + p.words[1] + "': expected a .mp4 or .gif file name, or stop");
   } else {
     p.fail("unknown action '" + cmd +
            "': expected step, play, pause, speed, loop, tf, tolerance, metric, cache, prefetch, "
            "upload-budget, view, zoom, projection, screenshot, screenshot-ui, wait-frames, "
            "wait-seconds, compositing, spacing, preintegrated, quality, stats, lod, target-fps, "
-           "show-cut or quit");
+           "show-cut, panels, every-step, log-opacity, open, record or quit");
   }
   return a;
 }

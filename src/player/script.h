@@ -40,13 +40,19 @@ struct ScriptAction {
     lod,            ///< the LOD cut on (`flag`) or off
     target_fps,     ///< LOD target `value` frames per second while interacting
     show_cut,       ///< outline the cut's nodes by level on (`flag`) or off
+    panels,         ///< the UI panels shown (`flag`) or hidden (the volume fills the window)
+    every_step,     ///< playback shows every step (`flag`) or keeps real time, dropping steps
+    log_opacity,    ///< the TF editor's opacity axis logarithmic (`flag`) or linear
+    open,           ///< open `text` (a .tsp file or any build input; field `text2`), waiting
+    record,         ///< start recording a movie to `text` (.mp4 or .gif)
+    record_stop,    ///< stop recording and write the movie (waits for the encoder)
     quit            ///< close the player
   };
   Kind kind = Kind::quit;
   int number = 0;
   double value = 0, value2 = 0;
   bool flag = false;
-  std::string text;
+  std::string text, text2;
   int line = 0;  ///< 1-based line in the script, for messages
 };
 

@@ -59,6 +59,9 @@ struct RenderSettings {
   /// the frame is drawn smaller and magnified (the LOD controller's last resort when even the
   /// coarsest cut misses the target). Partial-image reuse is off below 1.
   double render_scale = 1;
+  /// Where the frame goes in the context's default framebuffer: the lower-left corner (GL window
+  /// coordinates, y up); the frame's size is the camera's. The player docks its panels beside it.
+  std::array<int, 2> viewport_origin{0, 0};
 };
 
 /// Smallest RenderSettings::render_scale.

@@ -12,9 +12,9 @@ RenderTarget::~RenderTarget() {
   if (colour_) gl_.DeleteRenderbuffers(1, &colour_);
 }
 
-void RenderTarget::bind(double scale) {
-  const int w = std::max(1, int(std::lround(ctx_.width() * scale)));
-  const int h = std::max(1, int(std::lround(ctx_.height() * scale)));
+void RenderTarget::bind(int width, int height, double scale) {
+  const int w = std::max(1, int(std::lround(width * scale)));
+  const int h = std::max(1, int(std::lround(height * scale)));
   if (!fbo_ || width_ != w || height_ != h) {
     if (!fbo_) gl_.GenFramebuffers(1, &fbo_);
     if (!colour_) gl_.GenRenderbuffers(1, &colour_);
@@ -32,11 +32,11 @@ void RenderTarget::bind(double scale) {
   gl_.Viewport(0, 0, width_, height_);
 }
 
-void RenderTarget::resolve() {
+void RenderTarget::resolve(int x, int y, int w, int h) {
   gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, fbo_);
   gl_.BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-  const bool same = width_ == ctx_.width() && height_ == ctx_.height();
-  gl_.BlitFramebuffer(0, 0, width_, height_, 0, 0, ctx_.width(), ctx_.height(), GL_COLOR_BUFFER_BIT,
+  const bool same = width_ == w && height_ == h;
+  gl_.BlitFramebuffer(0, 0, width_, height_, x, y, x + w, y + h, GL_COLOR_BUFFER_BIT,
                       same ? GL_NEAREST : GL_LINEAR);
   gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
 }

@@ -6,8 +6,9 @@
 
 namespace tspgl {
 
-/// An RGBA16 framebuffer the size of a context's default framebuffer. Use from the context's
-/// thread with the context current; not copyable.
+/// An RGBA16 framebuffer the size of a frame (the camera's), copied into a rectangle of a
+/// context's default framebuffer. Use from the context's thread with the context current; not
+/// copyable.
 class RenderTarget {
  public:
   /// Nothing is allocated until bind().
@@ -17,13 +18,14 @@ class RenderTarget {
   RenderTarget(const RenderTarget&) = delete;
   RenderTarget& operator=(const RenderTarget&) = delete;
 
-  /// (Re)allocates it at the context's current size times scale (in (0, 1]; at least 1 pixel)
-  /// when needed, binds it and sets the viewport. Throws tsp::GlError when RGBA16 framebuffers
-  /// are not supported.
-  void bind(double scale = 1);
-  /// Copies it into the context's default framebuffer (magnified with linear filtering when
-  /// smaller) and binds that.
-  void resolve();
+  /// (Re)allocates it at width × height times scale (in (0, 1]; at least 1 pixel) when needed,
+  /// binds it and sets the viewport. Throws tsp::GlError when RGBA16 framebuffers are not
+  /// supported.
+  void bind(int width, int height, double scale = 1);
+  /// Copies it into the rectangle of the context's default framebuffer whose lower-left corner is
+  /// (x, y) and whose size is w × h (magnified with linear filtering when it differs) and binds
+  /// that framebuffer.
+  void resolve(int x, int y, int w, int h);
 
  private:
   GlContext& ctx_;

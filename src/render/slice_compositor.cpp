@@ -188,7 +188,9 @@ void SliceCompositor::set_region(const PixelRect& r, const RenderSettings& setti
 void SliceCompositor::begin_frame(const tsp::Camera& camera, const RenderSettings& settings,
                                   bool keep) {
   ctx_.make_current();
-  target_.bind(settings.render_scale);
+  const tsp::CameraParams& view = camera.params();
+  output_ = {settings.viewport_origin[0], settings.viewport_origin[1], view.width, view.height};
+  target_.bind(view.width, view.height, settings.render_scale);
   gl_.Disable(GL_SCISSOR_TEST);
   if (!keep) clear(gl_, settings);
   gl_.Disable(GL_DEPTH_TEST);
@@ -347,7 +349,7 @@ void SliceCompositor::draw_rays() {
 std::int64_t SliceCompositor::end_frame() {
   gl_.EndQuery(GL_SAMPLES_PASSED);
   gl_.Disable(GL_SCISSOR_TEST);
-  target_.resolve();
+  target_.resolve(output_[0], output_[1], output_[2], output_[3]);
   ctx_.finish();
   GLuint64 fragments = 0;
   gl_.GetQueryObjectui64v(fragments_query_, GL_QUERY_RESULT, &fragments);

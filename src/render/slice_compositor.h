@@ -87,9 +87,9 @@ class SliceCompositor {
   void set_transfer_function(const tsp::TransferFunction& tf, tsp::ValueRange quantized);
   /// Textures carry a stencil in their second channel (RG16): outside samples are not drawn.
   void set_stencil(bool on) { stencil_ = on; }
-  /// Makes the context current, binds the 16-bit target (cleared unless `keep`: then the last
-  /// frame's pixels stay, for partial-image reuse), sets blending and the camera. Throws
-  /// tsp::GlError.
+  /// Makes the context current, binds the 16-bit target at the camera's size (cleared unless
+  /// `keep`: then the last frame's pixels stay, for partial-image reuse), sets blending and the
+  /// camera. Throws tsp::GlError.
   void begin_frame(const tsp::Camera& camera, const RenderSettings& settings, bool keep = false);
   /// Restricts the following draws to rect and clears it to the background (x1 ≤ x0: no
   /// restriction again).
@@ -104,9 +104,10 @@ class SliceCompositor {
   /// Draws the volume box once, ray casting the pages of the last set_pages (once per frame, or
   /// once per set_region with partial-image reuse).
   void draw_rays();
-  /// Copies the target to the default framebuffer and waits for GL; returns the fragments the
-  /// frame's draws produced that were not discarded (GL_SAMPLES_PASSED: one per blended slice
-  /// fragment, one per pixel and box drawn whole). Throws tsp::GlError.
+  /// Copies the target to the default framebuffer (at settings.viewport_origin) and waits for
+  /// GL; returns the fragments the frame's draws produced that were not discarded
+  /// (GL_SAMPLES_PASSED: one per blended slice fragment, one per pixel and box drawn whole).
+  /// Throws tsp::GlError.
   std::int64_t end_frame();
   /// The context.
   GlContext& context() { return ctx_; }
@@ -121,6 +122,7 @@ class SliceCompositor {
   GLuint vao_ = 0, vbo_ = 0, cube_vao_ = 0, cube_vbo_ = 0;
   TfTexture tf_;
   RenderTarget target_;
+  std::array<int, 4> output_{};  ///< x, y, width, height of the frame in the default framebuffer
   std::vector<float> vertices_;
   std::vector<GLint> firsts_;
   std::vector<GLsizei> counts_;

@@ -165,7 +165,8 @@ TEST(Player, DraggingATransferFunctionHandleMovesIt) {
       "--frame-delay-ms 500 --tf " + q(tf) + " --script " + q(script) + " > " + q(out) +
       " 2>&1 &\n" +
       "for i in $(seq 50); do grep -q 'tf canvas' " + q(out) + " && break; sleep 0.1; done\n"
-      "read x y w h <<< $(grep -m1 'tf canvas' " + q(out) + " | cut -d' ' -f4-7)\n"
+      // (the canvas settles once the side panel's scroll bar appears: its last position)
+      "sleep 1.5; read x y w h <<< $(grep 'tf canvas' " + q(out) + " | tail -1 | cut -d' ' -f4-7)\n"
       "win=$(xdotool search --sync --name " + q("tspplay - " + tsp.string()) + " | head -1)\n"
       "hx=$((x + w - 2)); hy=$((y + 1))\n"
       "xdotool mousemove --window \"$win\" $hx $hy; sleep 1.2\n"
@@ -215,7 +216,7 @@ TEST(Player, OutlineShowsInTheUiScreenshot) {
   if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
   fs::path tsp = make_tsp(), dir = tsptest::temp_dir(), shot = dir / "ui.png";
   fs::path script = write_script("wait-frames 2\nscreenshot-ui " + shot.string() + "\nquit\n");
-  auto r = run_tspplay("play " + q(tsp) + " --size 640x480 --script " + q(script));
+  auto r = run_tspplay("play " + q(tsp) + " --size 900x600 --script " + q(script));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const tsp::Image img = tsp::read_png(shot.string());
   int outline = 0;
@@ -342,7 +343,7 @@ TEST(Player, ScreenshotWaitsForTheCompleteFrameUnderAnUploadBudget) {
   EXPECT_EQ(run_tspplay("play " + q(tsp) + " --upload-budget -1").exit_code, 2);
 }
 
-// The UI panels are drawn over the volume (ImGui's OpenGL3 back end works in the window), and
+// The UI panels are drawn beside the volume (ImGui's OpenGL3 back end works in the window), and
 // the volume-only screenshot of the same frame has none of them.
 TEST(Player, ScreenshotUiShowsThePanelsOverTheVolume) {
   if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
@@ -350,11 +351,167 @@ TEST(Player, ScreenshotUiShowsThePanelsOverTheVolume) {
   fs::path vol = dir / "vol.png", ui = dir / "ui.png";
   fs::path script = write_script("step 1\nscreenshot " + vol.string() + "\nscreenshot-ui " +
                                  ui.string() + "\nquit\n");
-  auto r = run_tspplay("play " + q(tsp) + " --size 640x480 --script " + q(script));
+  auto r = run_tspplay("play " + q(tsp) + " --size 900x600 --script " + q(script));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const tsp::Image a = tsp::read_png(vol.string()), b = tsp::read_png(ui.string());
-  EXPECT_GT(tsp::diff_images(a, b).mean, kDifferentFrameDeltaE);
+  ASSERT_EQ(b.width, 900);
+  EXPECT_LT(a.width, b.width);  // the volume's own view, left of the side panel
   EXPECT_GT(covered(b), covered(a) + 0.1);  // the panels cover much of the black background
+}
+
+
+nlohmann::json read_json(const fs::path& p) {
+  std::ifstream in(p);
+  return nlohmann::json::parse(in);
+}
+
+// A window large enough docks the panels beside the volume: the volume-only screenshot is the
+// view's size (stats say where it is) and matches `tspplay render` at that size; hidden panels
+// (Tab, or `panels off`) give the volume the whole window.
+TEST(Player, DockedPanelsLeaveTheVolumeItsOwnViewAndTabHidesThem) {
+  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
+  fs::path script = write_script("step 1\nwait-frames 2\nstats " + (dir / "d.json").string() +
+                                 "\nscreenshot " + (dir / "d.png").string() + "\nscreenshot-ui " +
+                                 (dir / "ui.png").string() + "\npanels off\nwait-frames 2\nstats " +
+                                 (dir / "f.json").string() + "\nscreenshot " +
+                                 (dir / "f.png").string() + "\nquit\n");
+  auto r = run_tspplay("play " + q(tsp) + " --size 900x600 --trace --script " + q(script));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("trace: panels off"), std::string::npos) << r.out;
+  const nlohmann::json d = read_json(dir / "d.json"), f = read_json(dir / "f.json");
+  ASSERT_TRUE(d["docked"].get<bool>());
+  const int vw = d["view"][2], vh = d["view"][3];
+  EXPECT_EQ(vw, 900 - 370);  // the side panel's width
+  EXPECT_LT(vh, 600);
+  const tsp::Image docked = tsp::read_png((dir / "d.png").string());
+  ASSERT_EQ(docked.width, vw);
+  ASSERT_EQ(docked.height, vh);
+  EXPECT_GT(covered(docked), 0.02);
+  fs::path out = dir / "frames";
+  const std::string size = std::to_string(vw) + "x" + std::to_string(vh);
+  auto rr = run_tspplay("render " + q(tsp) + " --steps 1 --size " + size + " -o " + q(out));
+  ASSERT_EQ(rr.exit_code, 0) << rr.err;
+  EXPECT_LT(tsp::diff_images(docked, tsp::read_png((out / "step_0001.png").string())).mean,
+            kSameFrameDeltaE);
+  // The UI screenshot is the whole window; left of the side panel it is the volume.
+  const tsp::Image ui = tsp::read_png((dir / "ui.png").string());
+  EXPECT_EQ(ui.width, 900);
+  EXPECT_FALSE(f["docked"].get<bool>());
+  EXPECT_EQ(f["view"][2].get<int>(), 900);
+  EXPECT_EQ(tsp::read_png((dir / "f.png").string()).height, 600);
+}
+
+// File > Open from a script: another .tsp plays at once; a raw input is built into the cache
+// folder first (on a thread; the script waits), then plays; the picture is the new file's.
+TEST(Player, OpenSwitchesToAnotherFileAndBuildsARawInputFirst) {
+  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  const fs::path dir = tsptest::temp_dir(), other = dir / "v.tsp", h5 = dir / "raw.h5";
+  ASSERT_EQ(run_tspplay("generate vortex -o " + q(dir / "v.h5") + " --dims 24,22,20 --steps 3")
+                .exit_code, 0);
+  ASSERT_EQ(run_tspplay("build " + q(dir / "v.h5") + " -o " + q(other)).exit_code, 0);
+  ASSERT_EQ(run_tspplay("generate shock -o " + q(h5) + " --dims 20,18,16 --steps 5").exit_code, 0);
+  fs::path tsp = make_tsp();
+  fs::path script = write_script(
+      "open " + other.string() + "\nwait-frames 2\nstats " + (dir / "a.json").string() +
+      "\nscreenshot " + (dir / "a.png").string() + "\nopen " + h5.string() +
+      " shock\nwait-frames 2\nstats " + (dir / "b.json").string() + "\nopen " +
+      (dir / "missing.h5").string() + "\nwait-frames 1\nstats " + (dir / "c.json").string() +
+      "\nquit\n");
+  auto r = run_tspplay("play " + q(tsp) + " --size " + kSize + " --cache-dir " +
+                       q(dir / "cache") + " --script " + q(script));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(read_json(dir / "a.json")["file"], other.string());
+  EXPECT_LT(tsp::diff_images(tsp::read_png((dir / "a.png").string()), render_step(other, 0)).mean,
+            kSameFrameDeltaE);
+  const std::string built = read_json(dir / "b.json")["file"];
+  EXPECT_NE(built.find((dir / "cache" / "builds").string()), std::string::npos) << built;
+  EXPECT_EQ(read_json(dir / "b.json")["steps_ready"].size(), 5u);  // the raw input's 5 steps
+  EXPECT_NE(r.out.find("building it into"), std::string::npos) << r.out;
+  // A missing input is reported (stderr and the status line) and the player keeps playing.
+  EXPECT_NE(r.err.find("missing.h5"), std::string::npos) << r.err;
+  EXPECT_EQ(read_json(dir / "c.json")["file"], built);
+}
+
+// The record button's script action: the volume as played, with its annotations, in real time
+// (25 frames a second of wall time), decoded by ffprobe; an unknown extension is refused.
+TEST(Player, RecordWritesAMovieOfWhatIsPlayed) {
+  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  ASSERT_EQ(std::system("command -v ffprobe > /dev/null"), 0)
+      << "ffmpeg missing (scripts/install-deps.sh installs it)";
+  fs::path tsp = make_tsp(), dir = tsptest::temp_dir(), movie = dir / "rec.mp4";
+  fs::path script = write_script("wait-frames 2\nrecord " + movie.string() +
+                                 "\nplay\nwait-seconds 1.2\nrecord stop\nstats " +
+                                 (dir / "s.json").string() + "\nquit\n");
+  auto r = run_tspplay("play " + q(tsp) + " --size " + kSize + " --script " + q(script));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("recorded " + movie.string()), std::string::npos) << r.out << r.err;
+  const std::string cmd = "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+                          "stream=width,height,nb_read_frames -of csv=p=0 " + q(movie);
+  std::string probe;
+  if (FILE* p = popen(cmd.c_str(), "r")) {
+    char buf[256];
+    while (fgets(buf, sizeof buf, p)) probe += buf;
+    pclose(p);
+  }
+  int w = 0, h = 0, frames = 0;
+  ASSERT_EQ(std::sscanf(probe.c_str(), "%d,%d,%d", &w, &h, &frames), 3) << probe;
+  EXPECT_EQ(w, 128);
+  EXPECT_EQ(h, 96);
+  EXPECT_GE(frames, 25);  // 1.2 s of wall time at 25 frames a second, give or take a frame
+  EXPECT_LE(frames, 45);
+  EXPECT_FALSE(read_json(dir / "s.json")["recording"].get<bool>());
+  EXPECT_EQ(run_tspplay("play " + q(tsp) + " --script " +
+                        q(write_script("record " + (dir / "m.avi").string() + "\n")))
+                .exit_code,
+            1);
+}
+
+// "every step": playback shows each step in turn even when frames are slower than the speed
+// asks (here 100 ms a frame at 60 steps a second); without it steps are dropped to keep time.
+TEST(Player, EveryStepPlaybackSkipsNoStep) {
+  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  const fs::path dir = tsptest::temp_dir(), tsp = dir / "e.tsp";
+  ASSERT_EQ(run_tspplay("generate shock -o " + q(dir / "e.h5") + " --dims 16,14,12 --steps 12")
+                .exit_code, 0);
+  ASSERT_EQ(run_tspplay("build " + q(dir / "e.h5") + " -o " + q(tsp)).exit_code, 0);
+  auto steps_seen = [&](const std::string& every) {
+    auto r = run_tspplay("play " + q(tsp) + " --size " + kSize +
+                         " --trace --frame-delay-ms 100 --script " +
+                         q(write_script("every-step " + every +
+                                        "\nloop off\nspeed 60\nplay\nwait-seconds 2\nquit\n")));
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    std::vector<int> seen;
+    for (std::size_t p = r.out.find("trace: step "); p != std::string::npos;
+         p = r.out.find("trace: step ", p + 1))
+      seen.push_back(std::stoi(r.out.substr(p + 12)));
+    return seen;
+  };
+  const std::vector<int> every = steps_seen("on");
+  ASSERT_GE(every.size(), 6u);
+  for (std::size_t i = 1; i < every.size(); ++i) EXPECT_EQ(every[i], every[i - 1] + 1) << i;
+  const std::vector<int> real_time = steps_seen("off");
+  bool skipped = false;
+  for (std::size_t i = 1; i < real_time.size(); ++i) skipped |= real_time[i] > real_time[i - 1] + 1;
+  EXPECT_TRUE(skipped);
+}
+
+// The timeline's marks: after one pass over every step with prefetch, each step's bricks are in
+// memory (ready 1); a fresh player has only the shown step ready.
+TEST(Player, TimelineMarksTheStepsWhoseBricksAreInMemory) {
+  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
+  std::string text = "lod off\ntf preset:filled\nwait-frames 3\nstats " + (dir / "a.json").string() + "\n";
+  for (int k = 0; k < 4; ++k) text += "step " + std::to_string(k) + "\nwait-frames 1\n";
+  text += "step 0\nwait-frames 3\nstats " + (dir / "b.json").string() + "\nquit\n";
+  auto r = run_tspplay("play " + q(tsp) + " --size " + kSize + " --script " + q(write_script(text)));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json a = read_json(dir / "a.json")["steps_ready"];
+  const nlohmann::json b = read_json(dir / "b.json")["steps_ready"];
+  ASSERT_EQ(a.size(), 4u);
+  EXPECT_EQ(a[0].get<double>(), 1.0);
+  EXPECT_LT(a[3].get<double>(), 1.0);
+  for (int k = 0; k < 4; ++k) EXPECT_EQ(b[std::size_t(k)].get<double>(), 1.0) << k;
 }
 
 }  // namespace

@@ -83,6 +83,22 @@ TEST(PlayerScript, ParsesEveryAction) {
   EXPECT_TRUE(l[2].flag);
   EXPECT_EQ(l[3].kind, Kind::wait_seconds);
   EXPECT_DOUBLE_EQ(l[3].value, 0.5);
+  const auto f = parse_script("panels off\nevery-step on\nlog-opacity on\nopen a.tsp\n"
+                              "open raw.h5 U:mag\nrecord m.mp4\nrecord stop\n",
+                              "f.txt");
+  ASSERT_EQ(f.size(), 7u);
+  EXPECT_EQ(f[0].kind, Kind::panels);
+  EXPECT_FALSE(f[0].flag);
+  EXPECT_EQ(f[1].kind, Kind::every_step);
+  EXPECT_TRUE(f[1].flag);
+  EXPECT_EQ(f[2].kind, Kind::log_opacity);
+  EXPECT_EQ(f[3].kind, Kind::open);
+  EXPECT_EQ(f[3].text, "a.tsp");
+  EXPECT_EQ(f[3].text2, "");
+  EXPECT_EQ(f[4].text2, "U:mag");
+  EXPECT_EQ(f[5].kind, Kind::record);
+  EXPECT_EQ(f[5].text, "m.mp4");
+  EXPECT_EQ(f[6].kind, Kind::record_stop);
 }
 
 TEST(PlayerScript, ErrorsNameTheLineAndWhatWasExpected) {
@@ -108,6 +124,10 @@ TEST(PlayerScript, ErrorsNameTheLineAndWhatWasExpected) {
   EXPECT_NE(error_of("target-fps 0").find("target-fps must be 1 to"), std::string::npos);
   EXPECT_NE(error_of("lod maybe").find("expected on or off"), std::string::npos);
   EXPECT_NE(error_of("wait-seconds -1").find("wait-seconds must be"), std::string::npos);
+  EXPECT_NE(error_of("record m.avi").find("expected a .mp4 or .gif file name, or stop"),
+            std::string::npos);
+  EXPECT_NE(error_of("open").find("'open' takes 1 or 2 arguments"), std::string::npos);
+  EXPECT_NE(error_of("panels maybe").find("expected on or off"), std::string::npos);
 }
 
 TEST(PlayerScript, LoadsAFileAndNamesAMissingOne) {

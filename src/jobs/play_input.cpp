@@ -1,0 +1,84 @@
+#include "jobs/play_input.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <mutex>
+
+#include "jobs/calibration.h"
+#include "tsp/core/error.h"
+#include "tsp/hdf5/hdf5_handle.h"
+#include "tsp/hdf5/hdf5_lock.h"
+#include "tsp/voxelize/open_input.h"
+
+namespace tspgl {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// FNV-1a of text, for cache names.
+std::uint64_t fnv1a(const std::string& text) {
+  std::uint64_t h = 1469598103934665603ull;
+  for (unsigned char c : text) h = (h ^ c) * 1099511628211ull;
+  return h;
+}
+
+}  // namespace
+
+bool is_tsp_file(const std::string& path) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) return false;
+  std::lock_guard lock(tsp::hdf5_mutex());
+  tsp::h5::silence_errors();
+  if (H5Fis_hdf5(path.c_str()) <= 0) return false;
+  tsp::h5::Handle f(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
+  return f && H5Aexists(f.get(), "format") > 0;
+}
+
+std::string play_cache_path(const std::string& input, const std::string& field,
+                            const std::string& cache_dir) {
+  std::error_code ec;
+  const fs::path abs = fs::absolute(input, ec);
+  std::string key = abs.string() + "|" + field;
+  if (fs::is_regular_file(input, ec))  // (a pattern names no one file: its path alone)
+    key += "|" + std::to_string(fs::file_size(input, ec)) + "|" +
+           std::to_string(fs::last_write_time(input, ec).time_since_epoch().count());
+  const std::string dir = cache_dir.empty() ? default_calibration_dir() : cache_dir;
+  if (dir.empty())
+    throw tsp::UsageError(input + " is not a .tsp file and there is no cache folder to build it "
+                          "into (set HOME, XDG_CACHE_HOME or --cache-dir)");
+  char hash[17];
+  std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(fnv1a(key)));
+  return (fs::path(dir) / "builds" / (abs.filename().string() + "-" + hash + ".tsp")).string();
+}
+
+std::string prepare_play_input(const std::string& input, const std::string& field,
+                               const std::string& cache_dir, const PlayBuildHooks& hooks) {
+  if (is_tsp_file(input)) {
+    if (!field.empty())
+      throw tsp::UsageError("--field " + field + ": " + input +
+                            " is a .tsp file (its field was chosen when it was built)");
+    return input;
+  }
+  const std::string out = play_cache_path(input, field, cache_dir);
+  if (is_tsp_file(out)) {
+    hooks.say("play: " + input + " is not a .tsp file; playing " + out + ", built from it earlier");
+    return out;
+  }
+  std::error_code ec;
+  const fs::path builds = fs::path(out).parent_path();
+  fs::create_directories(builds, ec);
+  if (ec) throw tsp::IoError(builds.string() + ": cannot create the build cache: " + ec.message());
+  tsp::SourceOptions so;
+  so.field = field;
+  auto source = tsp::open_input(input, so, tsp::VoxelizeOptions{});
+  hooks.say("play: " + input + " is not a .tsp file; building it into " + out +
+            " (reused next time)");
+  tsp::BuildOptions bo;
+  bo.field_name = field;
+  bo.brick_size = tsp::default_brick_size(source->dims());
+  hooks.build(*source, out, bo);
+  return out;
+}
+
+}  // namespace tspgl

@@ -1,0 +1,35 @@
+// What `tspplay play` (and the player's File > Open) plays: a .tsp file as it is, or any input
+// `build` reads, built first into the cache folder's builds/ and reused while unchanged.
+#pragma once
+#include <functional>
+#include <string>
+
+#include "tsp/build/build.h"
+
+namespace tspgl {
+
+/// True when path is a .tsp file (an HDF5 file whose root has a `format` attribute), whatever
+/// its name. Never throws.
+bool is_tsp_file(const std::string& path);
+
+/// Where input (with field) is built for playing: `DIR/builds/NAME-HASH.tsp` under cache_dir (""
+/// : default_calibration_dir()), the hash over the input's absolute path, size, modification
+/// time and the field. Throws tsp::UsageError when there is no cache folder.
+std::string play_cache_path(const std::string& input, const std::string& field,
+                            const std::string& cache_dir);
+
+/// How a build for playing reports: `say` gets one line of text, `build` runs the build (a
+/// progress bar, a cancel button) and returns its report.
+struct PlayBuildHooks {
+  std::function<void(const std::string&)> say;
+  std::function<tsp::BuildReport(tsp::VolumeSource&, const std::string& out, tsp::BuildOptions)>
+      build;
+};
+
+/// The .tsp file to play for input: input itself when it is a .tsp file (a field is then a
+/// tsp::UsageError), else play_cache_path's file, built with build's defaults unless it exists.
+/// Throws what opening or building the input throws.
+std::string prepare_play_input(const std::string& input, const std::string& field,
+                               const std::string& cache_dir, const PlayBuildHooks& hooks);
+
+}  // namespace tspgl

@@ -1,0 +1,207 @@
+// The player's files: File > Open (a .tsp file at once, any other input built into the cache
+// folder on a thread with progress), recording the volume to a movie, saving the TF.
+// Our loader (gl/gl_api.h) declares the GL functions; GLFW must not pull in GL/gl.h.
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "jobs/annotate.h"
+#include "jobs/play_input.h"
+#include "player/player_app.h"
+#include "tsp/core/error.h"
+#include "tsp/metric/tf_io.h"
+
+namespace tspplayer {
+
+namespace {
+
+// Reports a failure in the UI and on stderr (a scripted run's log shows it too).
+void report(std::string& status, const std::string& what) {
+  status = what;
+  std::fprintf(stderr, "tspplay: %s\n", what.c_str());
+}
+
+}  // namespace
+
+void PlayerApp::open_input(const std::string& input, const std::string& field) {
+  if (open_job_) {
+    report(status, "open " + input + ": still opening " + open_job_->input);
+    return;
+  }
+  if (tspgl::is_tsp_file(input)) {
+    if (!field.empty()) {
+      report(status, "open " + input + ": a .tsp file has its field already (" + field + ")");
+      return;
+    }
+    try {
+      open_file(input);
+    } catch (const tsp::Error& e) {
+      report(status, "open " + input + ": " + e.what());
+    }
+    return;
+  }
+  // Anything else is built on a thread (the window keeps drawing the current file), then played.
+  auto job = std::make_unique<OpenJob>();
+  job->input = input;
+  job->field = field;
+  OpenJob* j = job.get();
+  const std::string cache_dir = options_.cache_dir;
+  job->thread = std::thread([j, cache_dir] {
+    tspgl::PlayBuildHooks hooks;
+    hooks.say = [j](const std::string& line) {
+      std::printf("%s\n", line.c_str());
+      std::fflush(stdout);
+      std::lock_guard lock(j->mu);
+      j->line = line;
+    };
+    hooks.build = [j](tsp::VolumeSource& source, const std::string& out, tsp::BuildOptions o) {
+      o.progress = [j](const std::string& phase, std::int64_t done, std::int64_t total) {
+        if (j->cancel) throw tsp::Error("cancelled; no file written");
+        {
+          std::lock_guard lock(j->mu);
+          j->phase = phase;
+        }
+        j->progress_done = done;
+        j->progress_total = total;
+      };
+      return tsp::build_tsp_file(source, out, o);
+    };
+    try {
+      const std::string out = tspgl::prepare_play_input(j->input, j->field, cache_dir, hooks);
+      std::lock_guard lock(j->mu);
+      j->result = out;
+    } catch (const std::exception& e) {
+      std::lock_guard lock(j->mu);
+      j->error = e.what();
+    }
+    j->done = true;
+  });
+  open_job_ = std::move(job);
+  status = "opening " + input + " ...";
+}
+
+void PlayerApp::cancel_open() {
+  if (open_job_) open_job_->cancel = true;
+}
+
+void PlayerApp::poll_open() {
+  if (!open_job_ || !open_job_->done) return;
+  open_job_->thread.join();
+  const std::unique_ptr<OpenJob> job = std::move(open_job_);
+  if (!job->error.empty()) {
+    report(status, "open " + job->input + ": " + job->error);
+    return;
+  }
+  try {
+    open_file(job->result);
+  } catch (const tsp::Error& e) {
+    report(status, "open " + job->result + ": " + e.what());
+  }
+}
+
+void PlayerApp::open_file(const std::string& path) {
+  std::unique_ptr<tsp::TspFile> next = tsp::TspFile::open(path);  // throws: nothing changed
+  if (recorder_) stop_recording();  // a movie has one size and one dataset
+  prefetcher.reset();
+  renderer.reset();
+  lod_.reset();
+  file = std::move(next);
+  options_.tsp_path = path;
+  const tsp::TspTree& tree = file->tree();
+  // The TF the player started with, fitted to the new data (a map edited for other data
+  // rarely suits this one).
+  tsp::TransferFunction fresh = tsp::transfer_function_from_arg(
+      options_.tf, tree.value_range(), tsp::kDefaultTfEntries, tsp::parse_tf_range(options_.tf_range));
+  tf = fresh;
+  lazy_ = std::make_unique<tsp::LazyErrors>(tree, metric, tf);
+  reference_version_ = ~std::uint64_t(0);
+  set_tf(tf, true);
+  step = 0;
+  playing = false;
+  focus.reset();
+  tol = {0, 0};
+  quality = 0;
+  quality_note.clear();
+  history.clear();
+  ready.assign(std::size_t(tree.time().steps()), -1.f);
+  ready_next_ = 0;
+  camera = tsp::CameraParams{};
+  initial_camera = camera;
+  make_renderer();
+  update_tol_max();
+  glfwSetWindowTitle(static_cast<GLFWwindow*>(ctx->native_window()), ("tspplay - " + path).c_str());
+  status = "playing " + path;
+  std::printf("opened %s (%d steps)\n", path.c_str(), steps());
+  std::fflush(stdout);
+}
+
+void PlayerApp::start_recording(const std::string& path) {
+  if (recorder_) stop_recording();
+  try {
+    recorder_ = std::make_unique<tspgl::MovieWriter>(path, layout.view.w, layout.view.h, kRecordFps);
+    record_start_s_ = glfwGetTime();
+    status = "recording " + path;
+  } catch (const tsp::Error& e) {
+    report(status, std::string("record: ") + e.what());
+  }
+}
+
+double PlayerApp::recorded_seconds() const {
+  return recorder_ ? double(recorder_->frames()) / kRecordFps : 0.0;
+}
+
+void PlayerApp::stop_recording() {
+  if (!recorder_) return;
+  const std::unique_ptr<tspgl::MovieWriter> r = std::move(recorder_);
+  try {
+    r->finish();
+    char line[512];
+    std::snprintf(line, sizeof line, "recorded %s (%lld frames, %.1f s)", r->path().c_str(),
+                  static_cast<long long>(r->frames()), double(r->frames()) / kRecordFps);
+    status = line;
+    std::printf("%s\n", line);
+    std::fflush(stdout);
+  } catch (const tsp::Error& e) {
+    report(status, std::string("record: ") + e.what());
+  }
+}
+
+// The volume as shown, with the outline, axes, legend and step drawn in (as render --annotate):
+// repeated or skipped so that the movie keeps the wall-clock time of what was played.
+void PlayerApp::record_frame(double now_s) {
+  tsp::Image img = read_view();
+  if (annotations) {
+    const auto& times = file->metadata().times;
+    tspgl::annotate_frame(img, tsp::Camera(file->tree().octree().dims(), camera),
+                          file->tree().octree().dims(), tf, step,
+                          times.empty() ? std::nullopt
+                                        : std::optional<double>(times[std::size_t(step)]));
+  }
+  const std::int64_t due = std::int64_t(std::floor((now_s - record_start_s_) * kRecordFps)) + 1;
+  const int repeat = int(std::clamp<std::int64_t>(due - recorder_->frames(), 0, kRecordFps * 10));
+  if (repeat == 0) return;
+  try {
+    recorder_->write(img, repeat);
+  } catch (const tsp::UsageError&) {  // the view changed size: keep the movie so far
+    stop_recording();
+    status += " (stopped: the view changed size)";
+  } catch (const tsp::Error& e) {
+    recorder_.reset();
+    report(status, std::string("record: ") + e.what());
+  }
+}
+
+void PlayerApp::save_tf_as(const std::string& path) {
+  try {
+    tsp::save_transfer_function(tf, path);
+    tf_path = path;
+    status = "saved " + path;
+  } catch (const tsp::Error& e) {
+    report(status, e.what());
+  }
+}
+
+}  // namespace tspplayer

@@ -1,0 +1,256 @@
+// The player's input: keys (from GLFW's callback, in order), mouse over the volume, script
+// actions, and --trace lines for what changed (docs/player.md).
+// Our loader (gl/gl_api.h) declares the GL functions; GLFW must not pull in GL/gl.h.
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "player/player_app.h"
+#include "tsp/core/error.h"
+#include "tsp/metric/tf_io.h"
+
+namespace tspplayer {
+
+namespace {
+constexpr double kOrbitDegPerPixel = 0.4;
+constexpr double kZoomPerWheelStep = 1.1;
+constexpr double kMaxElevation = 89;
+}  // namespace
+
+void PlayerApp::handle_input() {
+  const ImGuiIO& io = ImGui::GetIO();
+  if (!io.WantCaptureMouse) {
+    const bool pan = io.MouseDown[1] || io.MouseDown[2] || (io.MouseDown[0] && io.KeyShift);
+    if (pan) {
+      const double scale = 2.0 / (camera.zoom * std::max(1, std::min(camera.width, camera.height)));
+      camera.pan[0] -= io.MouseDelta.x * scale;
+      camera.pan[1] += io.MouseDelta.y * scale;
+    } else if (io.MouseDown[0]) {
+      camera.azimuth_deg -= io.MouseDelta.x * kOrbitDegPerPixel;
+      camera.elevation_deg = std::clamp(camera.elevation_deg + io.MouseDelta.y * kOrbitDegPerPixel,
+                                        -kMaxElevation, kMaxElevation);
+    }
+    if (io.MouseWheel != 0) camera.zoom *= std::pow(kZoomPerWheelStep, io.MouseWheel);
+    if (io.MouseDoubleClicked[0])
+      set_focus_at(io.MousePos.x - layout.view.x, io.MousePos.y - layout.view.y);
+  }
+  // Every press since the last frame, in order (a text field with the focus takes them all).
+  std::vector<int> keys;
+  keys.swap(key_queue_);
+  if (io.WantCaptureKeyboard) return;
+  for (int key : keys) {
+    apply_key(key);
+    if (options_.trace) trace_changes();
+  }
+}
+
+void PlayerApp::trace_tf_canvas(float x, float y, float w, float h) {
+  if (!options_.trace) return;
+  const std::array<float, 4> r{x, y, w, h};
+  if (r == traced_canvas_) return;
+  traced_canvas_ = r;
+  std::printf("trace: tf canvas %.0f %.0f %.0f %.0f\n", x, y, w, h);
+  std::fflush(stdout);
+}
+
+void PlayerApp::apply_key(int key) {
+  switch (key) {
+    case GLFW_KEY_SPACE:
+      playing = !playing;
+      break;
+    case GLFW_KEY_LEFT:
+      go_to(step - 1);
+      break;
+    case GLFW_KEY_RIGHT:
+      go_to(step + 1);
+      break;
+    case GLFW_KEY_HOME:
+      go_to(0);
+      break;
+    case GLFW_KEY_END:
+      go_to(steps() - 1);
+      break;
+    case GLFW_KEY_S:
+      request_save();
+      break;
+    case GLFW_KEY_L:
+      show_cut = !show_cut;
+      break;
+    case GLFW_KEY_R:
+      camera = initial_camera;
+      if (options_.trace) {
+        std::printf("trace: camera reset\n");
+        std::fflush(stdout);
+      }
+      break;
+    case GLFW_KEY_F1:
+    case GLFW_KEY_SLASH:  // '?' on most layouts
+      show_help = !show_help;
+      break;
+    case GLFW_KEY_TAB:
+      panels = !panels;
+      break;
+    case GLFW_KEY_P:
+      camera.projection = camera.projection == tsp::Projection::orthographic
+                              ? tsp::Projection::perspective
+                              : tsp::Projection::orthographic;
+      break;
+    default:
+      break;
+  }
+}
+
+void PlayerApp::apply(const ScriptAction& a) {
+  using Kind = ScriptAction::Kind;
+  switch (a.kind) {
+    case Kind::step:
+      if (a.number >= steps())
+        throw tsp::UsageError(options_.script + ":" + std::to_string(a.line) + ": step " +
+                              std::to_string(a.number) + ": the file has steps 0.." +
+                              std::to_string(steps() - 1));
+      go_to(a.number);
+      break;
+    case Kind::play:
+      playing = true;
+      break;
+    case Kind::pause:
+      playing = false;
+      break;
+    case Kind::speed:
+      speed = a.value;
+      break;
+    case Kind::loop:
+      loop = a.flag;
+      break;
+    case Kind::tf:
+      set_tf(tsp::transfer_function_from_arg(a.text, file->tree().value_range(), tf.size()), true);
+      break;
+    case Kind::tolerance:
+      set_tolerances({a.value, a.value2});
+      break;
+    case Kind::metric:
+      set_metric(tsp::parse_metric(a.text));
+      break;
+    case Kind::cache:
+      set_cache(a.flag, texture_budget_mb);
+      break;
+    case Kind::prefetch:
+      prefetch_on = a.flag;
+      break;
+    case Kind::upload_budget:
+      upload_budget_mb = a.value;
+      break;
+    case Kind::view:
+      camera.azimuth_deg = a.value;
+      camera.elevation_deg = a.value2;
+      break;
+    case Kind::zoom:
+      camera.zoom = a.value;
+      break;
+    case Kind::projection:
+      camera.projection = a.flag ? tsp::Projection::perspective : tsp::Projection::orthographic;
+      break;
+    case Kind::screenshot:
+    case Kind::screenshot_ui:
+      pending_shot_ = a.text;
+      pending_with_ui_ = a.kind == Kind::screenshot_ui;
+      break;
+    case Kind::wait_frames:
+      wait_frames_ = a.number;
+      break;
+    case Kind::wait_seconds:
+      wait_until_s_ = glfwGetTime() + a.value;
+      break;
+    case Kind::compositing:
+      compositing = tspgl::parse_compositing(a.text, "compositing");
+      break;
+    case Kind::spacing:
+      spacing = a.value;
+      break;
+    case Kind::preintegrated:
+      preintegrated = a.flag;
+      break;
+    case Kind::quality:
+      quality = float(a.value);
+      apply_quality(a.value);
+      break;
+    case Kind::stats:
+      write_stats(a.text);
+      break;
+    case Kind::lod:
+      set_lod(a.flag);
+      break;
+    case Kind::target_fps:
+      target_fps = float(a.value);
+      break;
+    case Kind::show_cut:
+      show_cut = a.flag;
+      break;
+    case Kind::panels:
+      panels = a.flag;
+      break;
+    case Kind::every_step:
+      every_step = a.flag;
+      break;
+    case Kind::log_opacity:
+      log_opacity = a.flag;
+      break;
+    case Kind::open:
+      open_input(a.text, a.text2);
+      break;
+    case Kind::record:
+      start_recording(a.text);
+      break;
+    case Kind::record_stop:
+      stop_recording();
+      break;
+    case Kind::quit:
+      quit_ = true;
+      break;
+  }
+}
+
+// Runs actions until one needs frames to pass: a screenshot (saved after this frame's render),
+// wait-frames or quit.
+void PlayerApp::run_script() {
+  if (!pending_shot_.empty() || open_job_) return;  // (an open waits for its build)
+  if (wait_frames_ > 0) {
+    --wait_frames_;
+    return;
+  }
+  if (glfwGetTime() < wait_until_s_) return;
+  while (script_pos_ < script_.size() && !quit_) {
+    const ScriptAction& a = script_[script_pos_++];
+    apply(a);
+    if (options_.trace) trace_changes();  // each action's effect on its own line
+    if (a.kind == ScriptAction::Kind::screenshot || a.kind == ScriptAction::Kind::screenshot_ui ||
+        a.kind == ScriptAction::Kind::wait_frames || a.kind == ScriptAction::Kind::wait_seconds)
+      break;
+  }
+}
+
+void PlayerApp::trace_changes() {
+  Traced& t = traced_;
+  auto line = [](const std::string& s) {
+    std::printf("trace: %s\n", s.c_str());
+    std::fflush(stdout);
+  };
+  if (t.first || step != t.step) line("step " + std::to_string(step));
+  if (!t.first && tf.version() != t.tf_version)
+    line("transfer function edited (" + std::to_string(tf.size()) + " entries over [" +
+         std::to_string(tf.domain().lo) + ", " + std::to_string(tf.domain().hi) + "])");
+  if (!t.first && (tol.spatial != t.tol.spatial || tol.temporal != t.tol.temporal))
+    line("tolerances spatial " + std::to_string(tol.spatial) + ", temporal " +
+         std::to_string(tol.temporal));
+  if (!t.first && metric != t.metric) line(std::string("metric ") + tsp::to_string(metric));
+  if (t.first || playing != t.playing) line(playing ? "playing" : "paused");
+  if (!t.first && lod_on != t.lod_on) line(std::string("lod ") + (lod_on ? "on" : "off"));
+  if (!t.first && panels != t.panels) line(std::string("panels ") + (panels ? "on" : "off"));
+  t = {step, tf.version(), tol, metric, playing, lod_on, panels, false};
+}
+
+}  // namespace tspplayer

@@ -1,0 +1,237 @@
+// The player's menu bar and the dialogs it opens: File > Open (a folder browser over any input
+// `build` reads, with a progress dialog while an input builds), save the TF as, record a movie.
+// Our loader (gl/gl_api.h) declares the GL functions; GLFW must not pull in GL/gl.h.
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "player/player_app.h"
+#include "player/player_ui.h"
+
+namespace tspplayer {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kPathChars = 1024;
+constexpr float kBrowserHeight = 240.f;
+constexpr const char* kOpenPopup = "Open";
+constexpr const char* kTfPopup = "Save transfer function as";
+constexpr const char* kRecordPopup = "Record movie";
+constexpr const char* kProgressPopup = "Opening";
+
+// The open dialog's folder listing: folders first, then files, names sorted; hidden entries left
+// out. Read again only when the folder changes.
+struct Listing {
+  fs::path dir;
+  std::vector<std::pair<std::string, bool>> entries;  // name, is a folder
+  std::string error;
+
+  void read(const fs::path& d) {
+    dir = d;
+    entries.clear();
+    error.clear();
+    std::error_code ec;
+    for (fs::directory_iterator it(d, ec), end; !ec && it != end; it.increment(ec)) {
+      const std::string name = it->path().filename().string();
+      if (name.empty() || name[0] == '.') continue;
+      std::error_code e2;
+      entries.push_back({name, it->is_directory(e2)});
+    }
+    if (ec) error = d.string() + ": " + ec.message();
+    std::sort(entries.begin(), entries.end(), [](const auto& a, const auto& b) {
+      return a.second != b.second ? a.second : a.first < b.first;
+    });
+  }
+};
+
+struct MenuState {
+  bool want_open = false, want_tf = false, want_record = false;
+  char open_path[kPathChars] = "";
+  char field[128] = "";
+  char tf_path[kPathChars] = "";
+  char movie_path[kPathChars] = "tspplay_movie.mp4";
+  Listing listing;
+};
+
+MenuState& state() {
+  static MenuState s;
+  return s;
+}
+
+void copy(char* to, std::size_t size, const std::string& from) {
+  std::snprintf(to, size, "%s", from.c_str());
+}
+
+void menu_bar(PlayerApp& app) {
+  MenuState& s = state();
+  if (!ImGui::BeginMainMenuBar()) return;
+  if (ImGui::BeginMenu("File")) {
+    if (ImGui::MenuItem("Open...")) s.want_open = true;
+    if (ImGui::MenuItem("Save transfer function as...")) s.want_tf = true;
+    if (!app.recording()) {
+      if (ImGui::MenuItem("Record movie...")) s.want_record = true;
+    } else if (ImGui::MenuItem("Stop recording")) {
+      app.stop_recording();
+    }
+    if (ImGui::MenuItem("Save PNG", "S")) app.request_save();
+    ImGui::Separator();
+    if (ImGui::MenuItem("Quit"))
+      glfwSetWindowShouldClose(static_cast<GLFWwindow*>(app.ctx->native_window()), 1);
+    ImGui::EndMenu();
+  }
+  if (ImGui::BeginMenu("View")) {
+    ImGui::MenuItem("Panels", "Tab", &app.panels);
+    ImGui::MenuItem("Outline, axes, step", nullptr, &app.annotations);
+    ImGui::MenuItem("LOD cut", "L", &app.show_cut);
+    bool persp = app.camera.projection == tsp::Projection::perspective;
+    if (ImGui::MenuItem("Perspective", "P", &persp))
+      app.camera.projection = persp ? tsp::Projection::perspective : tsp::Projection::orthographic;
+    if (ImGui::MenuItem("Reset camera", "R")) {
+      const int w = app.camera.width, h = app.camera.height;
+      app.camera = app.initial_camera;
+      app.camera.width = w;
+      app.camera.height = h;
+    }
+    ImGui::MenuItem("Controls", "F1", &app.show_help);
+    ImGui::EndMenu();
+  }
+  // On the right: the recording and the frame rate, always in sight.
+  char right[128];
+  const double ms = app.history.empty() ? 0.0 : app.history.back().ms;
+  if (app.recording())
+    std::snprintf(right, sizeof right, "REC %.1f s   %.1f ms", app.recorded_seconds(), ms);
+  else
+    std::snprintf(right, sizeof right, "%.1f ms", ms);
+  const float tw = ImGui::CalcTextSize(right).x;
+  ImGui::SetCursorPosX(ImGui::GetWindowWidth() - tw - 12);
+  if (app.recording())
+    ImGui::TextColored(ImVec4(1.f, 0.35f, 0.3f, 1.f), "%s", right);
+  else
+    ImGui::TextDisabled("%s", right);
+  ImGui::EndMainMenuBar();
+}
+
+void open_dialog(PlayerApp& app) {
+  MenuState& s = state();
+  if (s.want_open) {
+    s.want_open = false;
+    std::error_code ec;
+    fs::path start = fs::path(app.tsp_path()).parent_path();
+    if (start.empty() || !fs::is_directory(start, ec)) start = fs::current_path(ec);
+    s.listing.read(fs::absolute(start, ec));
+    copy(s.open_path, sizeof s.open_path, s.listing.dir.string() + "/");
+    ImGui::OpenPopup(kOpenPopup);
+  }
+  ImGui::SetNextWindowSize(ImVec2(560, 0), ImGuiCond_Appearing);
+  if (!ImGui::BeginPopupModal(kOpenPopup, nullptr)) return;
+  ImGui::TextWrapped("A .tsp file, or any input build reads (HDF5, NetCDF, VTK, raw patterns): "
+                     "it is built into the cache folder first.");
+  ImGui::TextDisabled("%s", s.listing.dir.string().c_str());
+  bool open_now = false;
+  ImGui::BeginChild("##files", ImVec2(0, kBrowserHeight), true);
+  if (ImGui::Selectable("../")) {
+    s.listing.read(s.listing.dir.parent_path());
+    copy(s.open_path, sizeof s.open_path, s.listing.dir.string() + "/");
+  }
+  if (!s.listing.error.empty()) ImGui::TextColored(ImVec4(1, 0.5f, 0.4f, 1), "%s", s.listing.error.c_str());
+  const auto entries = s.listing.entries;  // (a click may re-read the listing)
+  for (const auto& [name, is_dir] : entries) {
+    const fs::path full = s.listing.dir / name;
+    if (ImGui::Selectable((name + (is_dir ? "/" : "")).c_str(), full.string() == s.open_path,
+                          ImGuiSelectableFlags_AllowDoubleClick)) {
+      if (is_dir) {
+        s.listing.read(full);
+        copy(s.open_path, sizeof s.open_path, s.listing.dir.string() + "/");
+      } else {
+        copy(s.open_path, sizeof s.open_path, full.string());
+        open_now = ImGui::IsMouseDoubleClicked(0);
+      }
+    }
+  }
+  ImGui::EndChild();
+  ImGui::SetNextItemWidth(-60);
+  ImGui::InputText("path", s.open_path, sizeof s.open_path);
+  ImGui::SetNextItemWidth(200);
+  ImGui::InputText("field (inputs with several)", s.field, sizeof s.field);
+  if (ImGui::Button("Open") || open_now) {
+    app.open_input(s.open_path, s.field);
+    ImGui::CloseCurrentPopup();
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("Cancel")) ImGui::CloseCurrentPopup();
+  ImGui::EndPopup();
+}
+
+// A one-path dialog (save TF as, record): returns true when OK was pressed.
+bool path_dialog(const char* title, bool& want, char* path, std::size_t size, const char* what) {
+  if (want) {
+    want = false;
+    ImGui::OpenPopup(title);
+  }
+  ImGui::SetNextWindowSize(ImVec2(480, 0), ImGuiCond_Appearing);
+  if (!ImGui::BeginPopupModal(title, nullptr)) return false;
+  ImGui::TextUnformatted(what);
+  ImGui::SetNextItemWidth(-1);
+  ImGui::InputText("##path", path, size);
+  bool ok = false;
+  if (ImGui::Button("OK")) {
+    ok = true;
+    ImGui::CloseCurrentPopup();
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("Cancel")) ImGui::CloseCurrentPopup();
+  ImGui::EndPopup();
+  return ok;
+}
+
+// While a File > Open input builds: its progress, and a way out.
+void progress_dialog(PlayerApp& app) {
+  OpenJob* job = app.open_job();
+  if (job && !ImGui::IsPopupOpen(kProgressPopup)) ImGui::OpenPopup(kProgressPopup);
+  ImGui::SetNextWindowSize(ImVec2(480, 0), ImGuiCond_Appearing);
+  if (!ImGui::BeginPopupModal(kProgressPopup, nullptr)) return;
+  if (!job) {
+    ImGui::CloseCurrentPopup();
+    ImGui::EndPopup();
+    return;
+  }
+  std::string phase, line;
+  {
+    std::lock_guard lock(job->mu);
+    phase = job->phase;
+    line = job->line;
+  }
+  ImGui::TextWrapped("%s", line.empty() ? ("opening " + job->input).c_str() : line.c_str());
+  const double total = double(job->progress_total), done = double(job->progress_done);
+  ImGui::ProgressBar(total > 0 ? float(done / total) : 0.f, ImVec2(-1, 0),
+                     phase.empty() ? "starting" : phase.c_str());
+  if (ImGui::Button(job->cancel ? "cancelling ..." : "Cancel")) app.cancel_open();
+  ImGui::EndPopup();
+}
+
+}  // namespace
+
+void menu_and_dialogs(PlayerApp& app) {
+  MenuState& s = state();
+  menu_bar(app);
+  open_dialog(app);
+  if (s.want_tf) copy(s.tf_path, sizeof s.tf_path, app.tf_path);
+  if (path_dialog(kTfPopup, s.want_tf, s.tf_path, sizeof s.tf_path,
+                  "Our transfer-function JSON (docs/transfer-functions.md):"))
+    app.save_tf_as(s.tf_path);
+  if (path_dialog(kRecordPopup, s.want_record, s.movie_path, sizeof s.movie_path,
+                  "The volume as shown, with its annotations, in real time (.mp4 or .gif); "
+                  "File > Stop recording writes it:"))
+    app.start_recording(s.movie_path);
+  progress_dialog(app);
+}
+
+}  // namespace tspplayer
