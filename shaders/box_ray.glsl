@@ -1,8 +1,11 @@
 // The ray through this fragment's exit point and its span in depth (dot with the view direction),
 // shared by the box programs (prepended to them). Rays run from the eye (perspective) or along
-// view_dir (orthographic); depth is measured along view_dir, like the slice planes.
+// ray_dir (orthographic); depth is measured along view_dir, like the slice planes.
 uniform vec3 box_lo, box_hi;
-uniform vec3 view_dir;   // unit, from the eye into the scene
+uniform vec3 view_dir;   // normal of the slice planes, from the eye into the scene, over the
+                         // central ray's cosine (unit for cubic voxels): depth along the central
+                         // ray is its length
+uniform vec3 ray_dir;    // unit, the orthographic rays (view_dir unless voxels are not cubes)
 uniform vec3 eye;        // perspective only
 uniform int perspective;
 in vec3 exit_point;
@@ -16,7 +19,7 @@ struct RaySpan {
 
 RaySpan ray_span() {
   RaySpan r;
-  r.ray = perspective != 0 ? normalize(exit_point - eye) : view_dir;
+  r.ray = perspective != 0 ? normalize(exit_point - eye) : ray_dir;
   // Walking back from the exit point, p(t) = exit − t·ray leaves the box at the first slab
   // crossing: t = min over axes of max((exit − lo)/ray, (exit − hi)/ray).
   vec3 inv = 1.0 / max(abs(r.ray), vec3(1e-12)) * sign(r.ray + vec3(1e-30));

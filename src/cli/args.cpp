@@ -31,6 +31,24 @@ double parse_number(const std::string& text, const std::string& option) {
   return v;
 }
 
+std::array<double, 3> parse_triple(const std::string& text, const std::string& option,
+                                   const std::string& expected) {
+  std::array<double, 3> v{};
+  std::size_t start = 0;
+  for (int k = 0; k < 3; ++k) {
+    const std::size_t comma = text.find(',', start);
+    if ((k < 2) != (comma != std::string::npos))
+      throw tsp::UsageError(option + " '" + text + "': expected " + expected);
+    try {
+      v[std::size_t(k)] = parse_number(text.substr(start, comma - start), option);
+    } catch (const tsp::UsageError&) {
+      throw tsp::UsageError(option + " '" + text + "': expected " + expected);
+    }
+    start = comma + 1;
+  }
+  return v;
+}
+
 tsp::Dims parse_dims(const std::string& text, const std::string& option, int max_edge,
                      bool allow_cube) {
   const std::string expected = std::string(allow_cube ? "X,Y,Z or N" : "X,Y,Z") +

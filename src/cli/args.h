@@ -1,6 +1,7 @@
 // Parsing of option values shared by the subcommands; every failure is a tsp::UsageError that
 // names the option, the text given and what was expected.
 #pragma once
+#include <array>
 #include <string>
 #include <utility>
 
@@ -14,6 +15,11 @@ long long parse_integer(const std::string& text, const std::string& option, long
 
 /// Whole-string floating-point number; throws UsageError naming the option.
 double parse_number(const std::string& text, const std::string& option);
+
+/// "X,Y,Z": three whole-string numbers (`expected` says what they are); throws UsageError
+/// quoting the whole text.
+std::array<double, 3> parse_triple(const std::string& text, const std::string& option,
+                                   const std::string& expected);
 
 /// "X,Y,Z" (or "N" for a cube when allow_cube) with every edge in [1, max_edge]; throws UsageError.
 tsp::Dims parse_dims(const std::string& text, const std::string& option, int max_edge,

@@ -25,6 +25,7 @@ struct BuildArgs {
   std::string cell_data = "constant";
   std::string voxelizer = "locate", hex = "isoparametric";
   int antialias = 1;
+  std::string spacing, origin;
 };
 
 void run_build(const BuildArgs& a) {
@@ -41,6 +42,8 @@ void run_build(const BuildArgs& a) {
   bo.threads = a.threads;
   bo.field_name = a.field;
   if (!a.range.empty()) bo.range = parse_range(a.range, "--range");
+  if (!a.spacing.empty()) bo.spacing = parse_triple(a.spacing, "--spacing", "DX,DY,DZ");
+  if (!a.origin.empty()) bo.origin = parse_triple(a.origin, "--origin", "X,Y,Z");
   tsp::VoxelizeOptions vo;
   vo.resolution = a.resolution;
   vo.voxel_size = a.voxel_size;
@@ -88,6 +91,10 @@ const CommandRegistrar reg(10, [](CLI::App& app) {
   c->add_option("--brick", a->brick, "Brick edge in samples, a power of two 8..64 (default: the one nearest a quarter of "
                 "the longest grid edge, in [8, 64]: 16 for 64^3, 32 for 128^3)");
   c->add_option("--range", a->range, "Quantization range LO:HI (default: the data's range)");
+  c->add_option("--spacing", a->spacing,
+                "DX,DY,DZ: the physical voxel size, instead of what the input says (render and "
+                "play show the volume in these proportions)");
+  c->add_option("--origin", a->origin, "X,Y,Z: the physical position of voxel (0,0,0)");
   c->add_option("--raw-dims", a->raw_dims, "Raw input: grid size X,Y,Z");
   c->add_option("--raw-type", a->raw_type, "Raw input: element type u8|u16|f32")
       ->check(CLI::IsMember({"u8", "u16", "f32"}));

@@ -22,6 +22,7 @@ struct PlayArgs {
   std::string size = "960x720";
   std::string lod = "on";
   std::string field, cache_dir;
+  std::string proportions = "physical", scale;
 };
 
 void run(PlayArgs a) {
@@ -30,6 +31,11 @@ void run(PlayArgs a) {
   a.options.width = int(parse_integer(a.size.substr(0, x), "--size", 1, 8192, "WxH, 1..8192"));
   a.options.height = int(parse_integer(a.size.substr(x + 1), "--size", 1, 8192, "WxH, 1..8192"));
   a.options.cache_dir = a.cache_dir;
+  if (a.proportions != "physical" && a.proportions != "samples")
+    throw tsp::UsageError("--proportions '" + a.proportions + "': expected physical or samples");
+  a.options.physical_proportions = a.proportions == "physical";
+  if (!a.scale.empty())
+    a.options.scale = parse_triple(a.scale, "--scale", "SX,SY,SZ, factors on the voxel spacing");
   tspgl::PlayBuildHooks hooks;
   hooks.say = [](const std::string& line) {
     std::printf("%s\n", line.c_str());
@@ -70,6 +76,9 @@ const CommandRegistrar reg(35, [](CLI::App& app) {
               "Print one line per applied change (step, transfer function, tolerances, metric, "
               "play/pause, LOD) and per saved screenshot");
   c->add_option("--size", a->size, "Window size WxH (default 960x720)");
+  c->add_option("--proportions", a->proportions,
+                "physical (default: the file's voxel spacing shapes the view) or samples");
+  c->add_option("--scale", a->scale, "SX,SY,SZ: stretch each axis (e.g. 1,1,20 for height)");
   c->add_option("--upload-budget", a->options.upload_budget_mb,
                 "Texture MiB uploaded per frame; the rest follows in later frames (default 16, "
                 "0: no limit)");

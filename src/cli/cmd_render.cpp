@@ -38,6 +38,7 @@ struct RenderArgs {
   double target_ms = 0, orbit = 0;
   int split_limit = tsp::LodOptions{}.split_limit;
   std::string focus;
+  std::string proportions = "physical", scale;
   std::vector<std::string> explicit_knobs;  ///< knob options given with --quality (an error)
 };
 
@@ -90,18 +91,12 @@ void run(const RenderArgs& a) {
   if (a.split_limit < 1) throw tsp::UsageError("--split-limit " + std::to_string(a.split_limit) +
                                                ": expected at least 1 split per frame");
   o.lod_options.split_limit = a.split_limit;
-  if (!a.focus.empty()) {
-    std::array<double, 3> v{};
-    std::size_t start = 0;
-    for (int k = 0; k < 3; ++k) {
-      const std::size_t comma = a.focus.find(',', start);
-      if ((k < 2) != (comma != std::string::npos))
-        throw tsp::UsageError("--focus '" + a.focus + "': expected X,Y,Z in voxels");
-      v[std::size_t(k)] = parse_number(a.focus.substr(start, comma - start), "--focus");
-      start = comma + 1;
-    }
-    o.lod_options.focus = v;
-  }
+  if (!a.focus.empty()) o.lod_options.focus = parse_triple(a.focus, "--focus", "X,Y,Z in voxels");
+  if (a.proportions != "physical" && a.proportions != "samples")
+    throw tsp::UsageError("--proportions '" + a.proportions + "': expected physical or samples");
+  o.physical_proportions = a.proportions == "physical";
+  if (!a.scale.empty())
+    o.scale = parse_triple(a.scale, "--scale", "SX,SY,SZ, factors on the voxel spacing");
   if (a.out.empty()) throw tsp::UsageError("-o: the output directory must not be empty");
   if (!(a.texture_budget_mb > 0) || !(a.texture_budget_mb <= double(tspgl::kMaxBudgetBytes >> 20)))
     throw tsp::UsageError("--texture-budget " + std::to_string(a.texture_budget_mb) +
@@ -187,6 +182,11 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
   c->add_option("--size", a->size, "Image size WxH (default 640x480)");
   c->add_option("--view", a->view, "Azimuth,elevation in degrees (default 30,20)");
   c->add_flag("--perspective", a->perspective, "Perspective projection (default orthographic)");
+  c->add_option("--proportions", a->proportions,
+                "physical (default: the file's voxel spacing shapes the view) or samples (cubic "
+                "voxels)");
+  c->add_option("--scale", a->scale,
+                "SX,SY,SZ: stretch each axis by this factor (e.g. 1,1,20 exaggerates height)");
   c->add_option("--passes", a->passes, "Play the steps this many times (default 1)");
   c->add_option("--spacing", a->spacing, "Slice spacing in voxels (default 0.5)");
   c->add_option("--compositing", a->compositing,

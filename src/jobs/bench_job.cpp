@@ -289,9 +289,12 @@ class TfBench {
 
 }  // namespace
 
-json run_bench(const BenchOptions& o, const BenchProgress& progress) {
-  check_options(o);
+json run_bench(const BenchOptions& options, const BenchProgress& progress) {
+  check_options(options);
+  BenchOptions o = options;
   auto file = tsp::TspFile::open(o.tsp_path);
+  // Physical proportions, as render shows the file by default.
+  o.camera.voxel_size = shown_voxel_size(file->metadata().spacing, {1, 1, 1}, true);
   const tsp::TspTree& tree = file->tree();
   const int last = checked_last_step(tree, o.first_step, o.last_step, o.tsp_path);
   std::vector<tsp::TransferFunction> tfs;

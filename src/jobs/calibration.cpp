@@ -24,7 +24,7 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 // Bumped whenever what a calibration measures changes, so old cache files are recomputed.
-constexpr int kCalibrationVersion = 1;
+constexpr int kCalibrationVersion = 2;  // 2: the key holds the voxel size
 
 std::uint64_t fnv1a(const std::string& s) {
   std::uint64_t h = 1469598103934665603ull;
@@ -75,6 +75,7 @@ json key_of(const CalibrationRequest& r, const tsp::TransferFunction& tf,
           {"pan", {c.pan[0], c.pan[1]}},
           {"projection", c.projection == tsp::Projection::perspective ? "perspective" : "orthographic"},
           {"fov", c.fov_deg},
+          {"voxel_size", {c.voxel_size[0], c.voxel_size[1], c.voxel_size[2]}},
           {"steps", steps},
           {"sweep", r.sweep},
           {"sweep_decades", kSweepDecades},

@@ -146,8 +146,19 @@ RenderJobOptions with_quality(RenderJobOptions o, const tsp::TspFile& file,
 
 }  // namespace
 
-RenderJobResult run_render_job(const RenderJobOptions& options, const RenderProgress& progress,
+std::array<double, 3> shown_voxel_size(const std::array<double, 3>& spacing,
+                                       const std::array<double, 3>& scale, bool physical) {
+  std::array<double, 3> v{};
+  for (std::size_t a = 0; a < 3; ++a) {
+    const double s = physical && std::isfinite(spacing[a]) && spacing[a] > 0 ? spacing[a] : 1.0;
+    v[a] = s * scale[a];
+  }
+  return v;
+}
+
+RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderProgress& progress,
                                const CalibrationProgress& calibration_progress) {
+  RenderJobOptions options = requested;
   // Options first: nothing is opened or rendered with a bad one.
   if (options.quality != 0 && !(options.quality > 0 && options.quality <= kMaxQualityDe))
     throw tsp::UsageError("--quality " + std::to_string(options.quality) +
@@ -171,8 +182,15 @@ RenderJobResult run_render_job(const RenderJobOptions& options, const RenderProg
   if (!std::isfinite(options.orbit_deg) || std::fabs(options.orbit_deg) > 360)
     throw tsp::UsageError("--orbit " + std::to_string(options.orbit_deg) +
                           ": expected degrees per frame in [-360, 360]");
+  for (double k : options.scale)
+    if (!(k > 0) || !(k <= kMaxScale))
+      throw tsp::UsageError("--scale: expected three factors in (0, " +
+                            std::to_string(int(kMaxScale)) + "], found " + std::to_string(k));
   auto file = tsp::TspFile::open(options.tsp_path);
   const tsp::TspTree& tree = file->tree();
+  // Physical proportions: the file's voxel spacing (times --scale) shapes the view.
+  options.camera.voxel_size =
+      shown_voxel_size(file->metadata().spacing, options.scale, options.physical_proportions);
   const int last = checked_last_step(tree, options.first_step, options.last_step, options.tsp_path);
   const tsp::TransferFunction tf = tsp::transfer_function_from_arg(
       options.tf, tree.value_range(), tsp::kDefaultTfEntries, options.tf_range);

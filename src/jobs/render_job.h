@@ -38,7 +38,10 @@ struct RenderJobOptions {
   tsp::Metric metric = tsp::Metric::approximate;
   tsp::CachePolicy cache = tsp::CachePolicy::on;
   bool baseline = false;                      ///< render without the TSP tree
-  tsp::CameraParams camera;                   ///< size, view, projection
+  tsp::CameraParams camera;                   ///< size, view, projection (voxel_size is set
+                                              ///< from the file, physical_proportions and scale)
+  bool physical_proportions = true;           ///< --proportions physical|samples
+  std::array<double, 3> scale{1, 1, 1};       ///< --scale SX,SY,SZ: exaggeration per axis
   int passes = 1;                             ///< times the step range is played
   /// The frame knobs: --spatial-tol/--temporal-tol, --spacing, --compositing, --flat,
   /// --span-step, --preintegrated, --reuse (upload_budget: unused, a job uploads every frame).
@@ -68,6 +71,13 @@ struct LodRecord {
 
 /// Largest --target-ms.
 inline constexpr double kMaxTargetMs = 60000;
+/// Largest --scale factor.
+inline constexpr double kMaxScale = 1000;
+
+/// The voxel size a view shows: the file's spacing (or cubes, without physical proportions)
+/// times scale per axis. Spacing that is not positive and finite counts as 1. Never throws.
+std::array<double, 3> shown_voxel_size(const std::array<double, 3>& spacing,
+                                       const std::array<double, 3>& scale, bool physical);
 /// Most passes a job plays.
 inline constexpr int kMaxPasses = 1000;
 

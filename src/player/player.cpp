@@ -15,6 +15,7 @@
 
 #include "gl/gl_error.h"
 #include "jobs/calibration.h"
+#include "jobs/render_job.h"
 #include "tsp/core/json_text.h"
 #include "tsp/core/temp_output.h"
 #include "player/imgui_gl_load.h"
@@ -131,6 +132,11 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
   lazy_ = std::make_unique<tsp::LazyErrors>(tree, metric, tf);
   set_tf(tf, true);
   ready.assign(std::size_t(tree.time().steps()), -1.f);
+  for (double k : options.scale)
+    if (!(k > 0) || !(k <= tspgl::kMaxScale))
+      throw tsp::UsageError("--scale: expected three factors in (0, " +
+                            std::to_string(int(tspgl::kMaxScale)) + "], found " + std::to_string(k));
+  camera.voxel_size = voxel_size();
 
   ctx = tspgl::create_window_context(options.width, options.height, "tspplay - " + options.tsp_path,
                                      true);
@@ -200,6 +206,16 @@ void PlayerApp::make_renderer() {
   prefetcher = std::make_unique<tsp::BrickPrefetcher>(renderer->brick_cache());
   prefetched_for_ = -1;
   prefetched_cut_ = -1;
+}
+
+std::array<double, 3> PlayerApp::voxel_size() const {
+  return tspgl::shown_voxel_size(file->metadata().spacing, options_.scale,
+                                 options_.physical_proportions);
+}
+
+void PlayerApp::set_scale(const std::array<double, 3>& scale) {
+  options_.scale = scale;
+  camera.voxel_size = initial_camera.voxel_size = voxel_size();
 }
 
 int PlayerApp::steps() const {

@@ -2,6 +2,7 @@
 // `tspplay play`: the window player (GLFW + Dear ImGui) over one .tsp file. Controls, script
 // format and behaviour: docs/player.md.
 #pragma once
+#include <array>
 #include <string>
 
 namespace tspplayer {
@@ -21,6 +22,8 @@ struct PlayerOptions {
   double target_fps = 30;         ///< --target-fps: held while interacting, in [1, 240]
   bool trace = false;             ///< --trace: one stdout line per applied change
   double frame_delay_ms = 0;      ///< --frame-delay-ms: a slow machine, for tests (0..2000)
+  bool physical_proportions = true;      ///< --proportions physical|samples
+  std::array<double, 3> scale{1, 1, 1};  ///< --scale: stretch per axis (exaggeration)
 };
 
 /// Opens the window and runs until it is closed, the script quits or the screenshot is saved.

@@ -160,6 +160,12 @@ class PlayerApp {
   void go_to(int t);
   /// Number of steps of the file.
   int steps() const;
+  /// The voxel size the view shows: the file's spacing (physical proportions) times the scale.
+  std::array<double, 3> voxel_size() const;
+  /// Stretches the axes by scale (exaggeration) from the next frame on.
+  void set_scale(const std::array<double, 3>& scale);
+  /// The axis stretch (--scale).
+  const std::array<double, 3>& scale() const { return options_.scale; }
   /// Saves the current volume frame as PNG (path chosen from the step) and reports it in status.
   void request_save();
   /// True when the last frame is at full quality: LOD off, or the idle refinement left no node

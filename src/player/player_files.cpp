@@ -129,6 +129,7 @@ void PlayerApp::open_file(const std::string& path) {
   ready.assign(std::size_t(tree.time().steps()), -1.f);
   ready_next_ = 0;
   camera = tsp::CameraParams{};
+  camera.voxel_size = voxel_size();
   initial_camera = camera;
   make_renderer();
   update_tol_max();

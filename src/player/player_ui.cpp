@@ -201,6 +201,12 @@ void settings_section(PlayerApp& app) {
     ImGui::TreePop();
   }
 
+  // Physical proportions from the file's voxel spacing, stretched per axis (e.g. height).
+  float scale[3] = {float(app.scale()[0]), float(app.scale()[1]), float(app.scale()[2])};
+  if (ImGui::DragFloat3("axis scale", scale, 0.02f, 0.05f, 100.f, "%.2f",
+                        ImGuiSliderFlags_Logarithmic))
+    app.set_scale({std::clamp(double(scale[0]), 0.05, 100.0), std::clamp(double(scale[1]), 0.05, 100.0),
+                   std::clamp(double(scale[2]), 0.05, 100.0)});
   int proj = app.camera.projection == tsp::Projection::perspective;
   ImGui::RadioButton("orthographic", &proj, 0);
   ImGui::SameLine();

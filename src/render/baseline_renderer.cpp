@@ -84,7 +84,7 @@ FrameReport BaselineRenderer::render(int step, const tsp::Camera& camera,
     item.as_box = settings.compositing == Compositing::boxes;
     if (!item.as_box) {
       const tsp::IncrementalSlicer slicer(
-          tsp::SlicePlanes::toward(camera.direction(), settings.spacing));
+          tsp::SlicePlanes::toward(camera.direction(), settings.spacing * camera.ray_cosine()));
       slicer.slice(item.bounds, soup_);
       item.polygon_count = int(soup_.size());
       compositor_.upload(soup_);

@@ -200,14 +200,20 @@ void SliceCompositor::begin_frame(const tsp::Camera& camera, const RenderSetting
   gl_.BlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
   gl_.BindVertexArray(vao_);
   const glm::mat4 vp(camera.view_projection());
-  const auto dir = camera.direction(), eye = camera.eye();
+  const auto dir = camera.direction(), eye = camera.eye(), ray = camera.ray_direction();
+  const double cosine = camera.ray_cosine();
   for (const Program* p : {&textured_, &flat_, &box_textured_, &box_flat_, &rays_}) {
     p->use();
     gl_.UniformMatrix4fv(p->uniform("view_projection"), 1, GL_FALSE, glm::value_ptr(vp));
   }
   for (const Program* p : {&box_textured_, &box_flat_, &rays_}) {
     p->use();
-    gl_.Uniform3f(p->uniform("view_dir"), float(dir[0]), float(dir[1]), float(dir[2]));
+    // Depth in the shaders is measured along direction() / ray_cosine(): along the central ray
+    // it is ray length, so planes `spacing` apart in it take samples `spacing` apart along the
+    // rays, and flat opacity accumulates per voxel of ray (the same for cubic voxels).
+    gl_.Uniform3f(p->uniform("view_dir"), float(dir[0] / cosine), float(dir[1] / cosine),
+                  float(dir[2] / cosine));
+    gl_.Uniform3f(p->uniform("ray_dir"), float(ray[0]), float(ray[1]), float(ray[2]));
     gl_.Uniform3f(p->uniform("eye"), float(eye[0]), float(eye[1]), float(eye[2]));
     gl_.Uniform1i(p->uniform("perspective"), camera.perspective() ? 1 : 0);
   }
@@ -224,9 +230,11 @@ void SliceCompositor::begin_frame(const tsp::Camera& camera, const RenderSetting
     gl_.Uniform1i(p->uniform("use_preintegrated"), settings.preintegrated ? 1 : 0);
     gl_.Uniform1i(p->uniform("use_stencil"), stencil_ ? 1 : 0);
   }
-  textured_.use();  // the back sample of a slice lies one spacing farther along the view
-  gl_.Uniform3f(textured_.uniform("back_step"), float(dir[0] * settings.spacing),
-                float(dir[1] * settings.spacing), float(dir[2] * settings.spacing));
+  // The back sample of a slice lies where the (central) ray meets the next plane, one spacing
+  // along it.
+  textured_.use();
+  gl_.Uniform3f(textured_.uniform("back_step"), float(ray[0] * settings.spacing),
+                float(ray[1] * settings.spacing), float(ray[2] * settings.spacing));
   if (settings.preintegrated) tf_.bind_preintegrated(kPreintegratedUnit, settings.spacing);
   tf_.bind(kTfUnit, settings.spacing);
   gl_.ActiveTexture(GL_TEXTURE0 + kVolumeUnit);

@@ -91,7 +91,7 @@ std::vector<tsp::BrickKey> VolumeRenderer::bricks_to_upload(int step, const tsp:
 void VolumeRenderer::fill_items(const tsp::FramePlan& plan, tsp::FrameMetric& metric,
                                 const tsp::Camera& camera, const RenderSettings& settings) {
   const tsp::Octree& octree = tree_.octree();
-  const tsp::IncrementalSlicer slicer(tsp::SlicePlanes::toward(camera.direction(), settings.spacing));
+  const tsp::IncrementalSlicer slicer(tsp::SlicePlanes::toward(camera.direction(), settings.spacing * camera.ray_cosine()));
   soup_.clear();
   items_.clear();
   auto add = [&](const tsp::Aabb& box, bool as_box) -> DrawItem& {

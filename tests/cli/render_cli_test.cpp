@@ -8,6 +8,7 @@
 
 #include "support/paths.h"
 #include "tsp/report/image.h"
+#include "tsp/report/image_diff.h"
 
 namespace {
 
@@ -302,6 +303,41 @@ TEST(RenderCli, FramesSayWhichStepsATemporalToleranceMerged) {
     EXPECT_GE(f["steps_merged"][1].get<int>(), f["step"].get<int>());
   }
   EXPECT_TRUE(wider) << merged["frames"].dump();
+}
+
+
+// Physical proportions: `build --spacing` records the voxel size (info shows it); render shows the
+// volume in those proportions by default — a different picture from `--proportions samples`,
+// which matches a file of unit spacing — and `--scale` stretches an axis further.
+TEST(RenderCli, SpacingShapesTheViewUnlessSamplesAreAskedFor) {
+  const fs::path dir = tsptest::temp_dir(), h5 = dir / "s.h5";
+  ASSERT_EQ(run_tspplay("generate shock -o " + q(h5) + " --dims 30,28,26 --steps 2").exit_code, 0);
+  ASSERT_EQ(run_tspplay("build " + q(h5) + " -o " + q(dir / "unit.tsp")).exit_code, 0);
+  auto b = run_tspplay("build " + q(h5) + " --spacing 1,1,3 --origin 0,0,-5 -o " +
+                       q(dir / "tall.tsp"));
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  const auto info = run_tspplay("info " + q(dir / "tall.tsp"));
+  EXPECT_NE(info.out.find("at (0, 0, -5) + (i,j,k)*(1, 1, 3)"), std::string::npos) << info.out;
+  auto frame = [&](const std::string& file, const std::string& extra, const std::string& name) {
+    auto r = run_tspplay("render " + q(dir / file) + " --tf preset:filled --steps 1 --size 80x60 " +
+                         extra + " -o " + q(dir / name));
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return tsp::read_png((dir / name / "step_0001.png").string());
+  };
+  const tsp::Image unit = frame("unit.tsp", "", "u"), tall = frame("tall.tsp", "", "t"),
+                   samples = frame("tall.tsp", "--proportions samples", "s"),
+                   scaled = frame("unit.tsp", "--scale 1,1,3", "x");
+  EXPECT_GT(tsp::diff_images(tall, unit).mean, 1.0);      // three times as tall
+  EXPECT_LT(tsp::diff_images(samples, unit).mean, 0.05);  // cubes: the unit file's picture
+  EXPECT_LT(tsp::diff_images(scaled, tall).mean, 0.05);   // --scale does what spacing does
+  for (const char* bad : {"--scale 1,0,1", "--scale 1,2", "--proportions real"})
+    EXPECT_EQ(run_tspplay("render " + q(dir / "unit.tsp") + " " + bad + " -o " + q(dir / "bad"))
+                  .exit_code,
+              2)
+        << bad;
+  EXPECT_EQ(run_tspplay("build " + q(h5) + " --spacing 1,-1,1 -o " + q(dir / "bad.tsp")).exit_code,
+            2);
+  EXPECT_FALSE(fs::exists(dir / "bad.tsp"));
 }
 
 }  // namespace

@@ -514,4 +514,28 @@ TEST(Player, TimelineMarksTheStepsWhoseBricksAreInMemory) {
   for (int k = 0; k < 4; ++k) EXPECT_EQ(b[std::size_t(k)].get<double>(), 1.0) << k;
 }
 
+// Physical proportions in the player: a file with tall voxels (and --scale) shows as render
+// shows it.
+TEST(Player, ShowsThePhysicalProportionsAsRenderDoes) {
+  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  const fs::path dir = tsptest::temp_dir(), tall = dir / "tall.tsp";
+  ASSERT_EQ(run_tspplay("generate shock -o " + q(dir / "t.h5") + " --dims 30,28,26 --steps 2")
+                .exit_code, 0);
+  ASSERT_EQ(run_tspplay("build " + q(dir / "t.h5") + " --spacing 1,1,2 -o " + q(tall)).exit_code,
+            0);
+  for (const std::string scale : {"1,1,1", "2,1,1"}) {
+    const fs::path shot = dir / ("p" + scale + ".png"), out = dir / ("r" + scale);
+    auto p = run_tspplay("play " + q(tall) + " --step 1 --scale " + scale + " --size " + kSize +
+                         " --screenshot " + q(shot));
+    ASSERT_EQ(p.exit_code, 0) << p.err;
+    auto r = run_tspplay("render " + q(tall) + " --steps 1 --scale " + scale + " --size " + kSize +
+                         " -o " + q(out));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_LT(tsp::diff_images(tsp::read_png(shot.string()),
+                               tsp::read_png((out / "step_0001.png").string())).mean,
+              kSameFrameDeltaE)
+        << scale;
+  }
+}
+
 }  // namespace

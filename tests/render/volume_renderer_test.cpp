@@ -177,6 +177,64 @@ TEST(VolumeRenderer, FlatNodeDrawnOnceIsTheExactExponential) {
   expect_close("flat_exact_vs_fine_slices", exact_rays, fine_slices, 0.5, 3.0);
 }
 
+// Anisotropic voxels (spacing 2 along x): a 17×33×33 grid is the box of a 33³ grid of cubes.
+// Seen along y, the rays cross the same 64 slices and the two pictures agree; seen obliquely,
+// samples still lie `spacing` apart along the rays (in sample units), so the centre pixel is the
+// exponential over the centre ray's length through the box in sample units — for the one-pass
+// caster, slicing and the baseline alike.
+TEST(VolumeRenderer, StretchedVoxelsShowThePhysicalBoxSampledAlongTheRays) {
+  const auto constant = [](int, int, int, int) { return 0.5f; };
+  auto narrow = tsptest::MemorySource::from_function({17, 33, 33}, 1, constant);
+  auto cube = tsptest::MemorySource::from_function({33, 33, 33}, 1, constant);
+  const tsp::Rgba c{0.9f, 0.5f, 0.2f, 0.04f};
+  Scene stretched(build(narrow, "narrow", tsp::ValueRange{0, 1}), flat_tf(c), tsp::CachePolicy::on);
+  Scene cubes(build(cube, "cubes", tsp::ValueRange{0, 1}), flat_tf(c), tsp::CachePolicy::on);
+  auto camera = [](const Scene& sc, double az, double el, std::array<double, 3> voxel) {
+    tsp::CameraParams p;
+    p.azimuth_deg = az;
+    p.elevation_deg = el;
+    p.width = sc.ctx->width();
+    p.height = sc.ctx->height();
+    p.voxel_size = voxel;
+    return tsp::Camera(sc.file->tree().octree().dims(), p);
+  };
+  auto frame = [](Scene& sc, const tsp::Camera& cam, Compositing comp, bool baseline) {
+    RenderSettings s;
+    s.compositing = comp;
+    s.exact_flat = false;  // textured and flat nodes alike sample every spacing
+    if (baseline)
+      sc.baseline->render(0, cam, s);
+    else
+      sc.renderer->render(0, cam, s, sc.nodes);
+    return sc.ctx->read_pixels();
+  };
+  const tsp::Camera along_y = camera(stretched, 0, 0, {2, 1, 1});
+  const tsp::Image want = frame(cubes, camera(cubes, 0, 0, {1, 1, 1}), Compositing::rays, false);
+  for (Compositing comp : {Compositing::rays, Compositing::slices})
+    expect_close("stretched_along_y", frame(stretched, along_y, comp, false), want, 0.5, 2.0);
+  expect_close("stretched_along_y_baseline", frame(stretched, along_y, Compositing::slices, true),
+               want, 0.5, 2.0);
+
+  const tsp::Camera oblique = camera(stretched, 30, 20, {2, 1, 1});
+  const auto r = oblique.ray_direction();
+  const double half[3] = {8, 16, 16};
+  double len = 1e300;
+  for (int a = 0; a < 3; ++a) len = std::min(len, half[a] / std::max(std::abs(r[a]), 1e-12));
+  len *= 2;  // through the centre: twice the way out
+  const double opacity = 1 - std::pow(1 - double(c.a), len);
+  const tsp::Luv expected = tsp::srgb8_to_luv(std::uint8_t(std::lround(255 * c.r * opacity)),
+                                              std::uint8_t(std::lround(255 * c.g * opacity)),
+                                              std::uint8_t(std::lround(255 * c.b * opacity)));
+  for (int k = 0; k < 3; ++k) {
+    const tsp::Image img = frame(stretched, oblique, k == 1 ? Compositing::slices : Compositing::rays,
+                                 k == 2);
+    const std::uint8_t* px = img.at(img.width / 2, img.height / 2);
+    EXPECT_LT(tsp::delta_e_luv(tsp::srgb8_to_luv(px[0], px[1], px[2]), expected), 1.0)
+        << "case " << k << ": got " << int(px[0]) << "," << int(px[1]) << "," << int(px[2])
+        << " for opacity " << opacity << " over " << len << " samples";
+  }
+}
+
 // Pre-integration: along the centre ray the value ramps linearly so that the half-way points
 // between samples (spacing 4) fall on entry centres of an 8-entry TF; each sample's segment is
 // then exactly one table entry, and the pixel is the front-to-back composite of

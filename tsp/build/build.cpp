@@ -373,6 +373,14 @@ BuildReport build_tsp_file(VolumeSource& source, const std::string& out_path,
   if (options.threads < 0)
     throw UsageError("--threads " + std::to_string(options.threads) + ": expected 0 or more");
   if (out_path.empty()) throw UsageError("no output file given (-o)");
+  for (std::size_t a = 0; a < 3; ++a) {
+    if (options.spacing && !(std::isfinite((*options.spacing)[a]) && (*options.spacing)[a] > 0))
+      throw UsageError("--spacing: expected three positive, finite voxel sizes, found " +
+                       std::to_string((*options.spacing)[a]));
+    if (options.origin && !std::isfinite((*options.origin)[a]))
+      throw UsageError("--origin: expected three finite coordinates, found " +
+                       std::to_string((*options.origin)[a]));
+  }
   require_not_an_input(out_path, source.files());
   const Dims dims = source.dims();
   const int steps = source.steps();
@@ -421,10 +429,10 @@ BuildReport build_tsp_file(VolumeSource& source, const std::string& out_path,
     meta.nonfinite_count = report.nonfinite_count;
     meta.histogram = pass.histogram;
     meta.created_by = "tspplay " TSPPLAY_VERSION;
-    meta.origin = source.origin();
+    meta.origin = options.origin.value_or(source.origin());
     meta.times = source.times();
     if (meta.times.size() != std::size_t(steps)) meta.times.clear();  // a reader's slip: none
-    meta.spacing = source.spacing();
+    meta.spacing = options.spacing.value_or(source.spacing());
     writer.finish(tree, meta);
   }
   out.commit();

@@ -1,6 +1,7 @@
 // tsp/build: turning a VolumeSource into a .tsp file; may include core/, source/, tree/, store/.
 // Building a .tsp file from a VolumeSource: bricks, the TSP tree and its statistics.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -30,6 +31,9 @@ struct BuildOptions {
   int threads = 0;                     ///< worker threads; 0 = hardware concurrency
   std::string field_name;              ///< recorded in the file
   ProgressFn progress;                 ///< may be empty
+  /// The grid's physical position and voxel spacing, instead of what the source says (positive,
+  /// finite spacing; finite origin — checked by build_tsp_file).
+  std::optional<std::array<double, 3>> origin, spacing;
 };
 
 /// What a build did, for the CLI and the benchmark.

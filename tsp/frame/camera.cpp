@@ -18,7 +18,13 @@ double radians(double deg) { return deg * kPi / 180.0; }
 
 Camera::Camera(Dims dims, const CameraParams& p) : params_(p) {
   assert(p.width > 0 && p.height > 0 && p.zoom > 0);
-  const glm::dvec3 extent(std::max(dims.x - 1, 0), std::max(dims.y - 1, 0), std::max(dims.z - 1, 0));
+  assert(p.voxel_size[0] > 0 && p.voxel_size[1] > 0 && p.voxel_size[2] > 0);
+  // World = sample coordinates stretched by the voxel size, smallest axis 1.
+  const double smallest = std::min({p.voxel_size[0], p.voxel_size[1], p.voxel_size[2]});
+  const glm::dvec3 stretch(p.voxel_size[0] / smallest, p.voxel_size[1] / smallest,
+                           p.voxel_size[2] / smallest);
+  const glm::dvec3 extent = stretch * glm::dvec3(std::max(dims.x - 1, 0), std::max(dims.y - 1, 0),
+                                                 std::max(dims.z - 1, 0));
   const glm::dvec3 centre = extent * 0.5;
   // Bounding-sphere radius; a single-voxel volume still gets a unit sphere.
   const double radius = std::max(0.5 * glm::length(extent), 0.5);
@@ -45,9 +51,14 @@ Camera::Camera(Dims dims, const CameraParams& p) : params_(p) {
     projection_ = glm::ortho(-half_w, half_w, -half_h, half_h, distance - radius * 1.01,
                              distance + radius * 1.01);
   }
-  eye_ = target + to_eye * distance;
-  dir_ = -to_eye;
-  view_ = glm::lookAt(eye_, target, up);
+  const glm::dvec3 eye_world = target + to_eye * distance;
+  // Back to sample coordinates: points divide by the stretch; depth = dot(−to_eye, stretch·x),
+  // so the planes of equal depth have normal stretch·(−to_eye); rays run along (−to_eye)/stretch.
+  eye_ = eye_world / stretch;
+  dir_ = glm::normalize(-to_eye * stretch);
+  ray_ = glm::normalize(-to_eye / stretch);
+  ray_cosine_ = std::clamp(glm::dot(ray_, dir_), 1e-6, 1.0);
+  view_ = glm::lookAt(eye_world, target, up) * glm::scale(glm::dmat4(1.0), stretch);
 }
 
 std::array<double, 2> parse_view_angles(const std::string& text) {

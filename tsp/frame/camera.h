@@ -21,15 +21,22 @@ struct CameraParams {
   double fov_deg = 30;        ///< vertical field of view for perspective
   std::array<double, 2> pan{0, 0};  ///< shift of the look-at point, in units of the bounding radius
   int width = 640, height = 480;
+  /// Physical size of a voxel per axis (any positive scale): the volume is shown in these
+  /// proportions (the .tsp's spacing, times any exaggeration). {1, 1, 1}: sample proportions.
+  std::array<double, 3> voxel_size{1, 1, 1};
   bool operator==(const CameraParams&) const = default;
 };
 
-/// A camera fitted to a volume's geometry [0, D−1]³ in sample coordinates.
+/// A camera fitted to a volume's geometry [0, D−1]³ in sample coordinates. With anisotropic
+/// voxels (CameraParams::voxel_size) the world is the sample grid stretched by the voxel size
+/// (normalised so its smallest axis is 1): view() maps sample coordinates through that stretch,
+/// and in sample coordinates the slice planes' normal (direction()) and the orthographic rays
+/// (ray_direction()) differ.
 class Camera {
  public:
-  /// Fits the view to dims; asserts width, height > 0 and zoom > 0.
+  /// Fits the view to dims; asserts width, height > 0, zoom > 0 and a positive voxel size.
   Camera(Dims dims, const CameraParams& params);
-  /// World (sample coordinates) → eye space.
+  /// Sample coordinates → eye space.
   const glm::dmat4& view() const { return view_; }
   /// Eye space → clip space.
   const glm::dmat4& projection() const { return projection_; }
@@ -37,8 +44,16 @@ class Camera {
   glm::dmat4 view_projection() const { return projection_ * view_; }
   /// Eye position in sample coordinates.
   std::array<double, 3> eye() const { return {eye_.x, eye_.y, eye_.z}; }
-  /// Unit view direction (from the eye into the scene) in sample coordinates.
+  /// Unit normal of the planes of equal depth (view-aligned slices), pointing from the eye into
+  /// the scene, in sample coordinates: the view direction when voxels are cubes.
   std::array<double, 3> direction() const { return {dir_.x, dir_.y, dir_.z}; }
+  /// Unit direction of the orthographic rays (perspective: of the central ray) from the eye
+  /// into the scene, in sample coordinates; direction() when voxels are cubes.
+  std::array<double, 3> ray_direction() const { return {ray_.x, ray_.y, ray_.z}; }
+  /// dot(ray_direction(), direction()) in (0, 1] (1 for cubic voxels): slice planes lie
+  /// spacing × ray_cosine() apart along direction(), so that samples lie `spacing` sample units
+  /// apart along the rays, however stretched the voxels.
+  double ray_cosine() const { return ray_cosine_; }
   /// True for perspective projection.
   bool perspective() const { return params_.projection == Projection::perspective; }
   /// The parameters it was made from.
@@ -47,7 +62,8 @@ class Camera {
  private:
   CameraParams params_;
   glm::dmat4 view_{1.0}, projection_{1.0};
-  glm::dvec3 eye_{0.0}, dir_{0.0, 1.0, 0.0};
+  glm::dvec3 eye_{0.0}, dir_{0.0, 1.0, 0.0}, ray_{0.0, 1.0, 0.0};
+  double ray_cosine_ = 1;
 };
 
 /// Where a box lands on the image.

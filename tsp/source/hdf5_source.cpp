@@ -153,6 +153,57 @@ GridGeometry dimension_scales(hid_t ds, int first_spatial, Dims dims) {
   return g;
 }
 
+// The mean over a horizontal plane of a WRF geopotential, (PH + PHB)[t = 0, level], in m²/s²;
+// NaN when it cannot be read.
+double mean_geopotential(hid_t file, hsize_t level, const std::vector<hsize_t>& shape) {
+  const hsize_t n = shape[2] * shape[3];
+  double total = 0;
+  for (const char* name : {"PH", "PHB"}) {
+    Handle ds(H5Dopen2(file, name, H5P_DEFAULT));
+    Handle space(ds ? H5Dget_space(ds.get()) : -1);
+    if (!ds || !space) return std::numeric_limits<double>::quiet_NaN();
+    const hsize_t start[4] = {0, level, 0, 0}, count[4] = {1, 1, shape[2], shape[3]};
+    Handle mem(H5Screate_simple(1, &n, nullptr));
+    std::vector<double> v(static_cast<std::size_t>(n));
+    if (H5Sselect_hyperslab(space.get(), H5S_SELECT_SET, start, nullptr, count, nullptr) < 0 ||
+        H5Dread(ds.get(), H5T_NATIVE_DOUBLE, mem.get(), space.get(), H5P_DEFAULT, v.data()) < 0)
+      return std::numeric_limits<double>::quiet_NaN();
+    for (double x : v) total += x;
+  }
+  return total / double(n);
+}
+
+// WRF output (NetCDF-4) has no coordinate variables for its grid: the horizontal spacing is the
+// global attributes DX and DY (metres), and the levels' heights follow the geopotential
+// (PH + PHB)/g on the staggered levels. The vertical spacing is the mean layer thickness of the
+// first step's horizontal means, (top − bottom)/(levels − 1); the levels are not evenly spaced
+// (thinner near the ground), so this is their average. Origin: x, y 0, z the lowest level's
+// mean height (half a layer up for mass-point variables). Leaves g alone when DX/DY are absent.
+// Never throws (what it cannot read is ignored).
+void wrf_geometry(hid_t file, Dims dims, GridGeometry& g) {
+  constexpr double kGravity = 9.81;
+  const auto dx = numeric_attribute(file, "DX", "");
+  const auto dy = numeric_attribute(file, "DY", "");
+  if (!dx || !dy || dx->size() != 1 || dy->size() != 1 || !((*dx)[0] > 0) || !((*dy)[0] > 0) ||
+      !std::isfinite((*dx)[0]) || !std::isfinite((*dy)[0]))
+    return;
+  g.spacing[0] = (*dx)[0];
+  g.spacing[1] = (*dy)[0];
+  if (H5Lexists(file, "PH", H5P_DEFAULT) <= 0 || H5Lexists(file, "PHB", H5P_DEFAULT) <= 0) return;
+  Handle ph(H5Dopen2(file, "PH", H5P_DEFAULT));
+  if (!ph) return;
+  const std::vector<hsize_t> shape = h5::dataset_shape(ph.get());
+  if (shape.size() != 4 || shape[0] < 1 || shape[1] < 2 || shape[2] < 1 || shape[3] < 1) return;
+  const hsize_t levels = shape[1];  // staggered: one more than the mass-point levels
+  if (hsize_t(dims.z) != levels && hsize_t(dims.z) != levels - 1) return;
+  const double bottom = mean_geopotential(file, 0, shape) / kGravity;
+  const double top = mean_geopotential(file, levels - 1, shape) / kGravity;
+  const double dz = (top - bottom) / double(levels - 1);
+  if (!std::isfinite(dz) || !(dz > 0)) return;
+  g.spacing[2] = dz;
+  g.origin[2] = bottom + (hsize_t(dims.z) == levels ? 0.0 : 0.5 * dz);
+}
+
 // One step: a dataset and, for 4-D datasets, the index along its first dimension.
 struct StepRef {
   std::string dataset;
@@ -223,7 +274,13 @@ std::unique_ptr<VolumeSource> open_dataset(const std::string& path, Handle file,
     dims = dims_from_zyx(&shape[0], 1, where);
     steps.push_back({ds_path, false, 0});
   }
-  const GridGeometry geometry = dimension_scales(ds.get(), shape.size() == 4 ? 1 : 0, dims);
+  GridGeometry geometry = dimension_scales(ds.get(), shape.size() == 4 ? 1 : 0, dims);
+  if (geometry.spacing == std::array<double, 3>{1, 1, 1}) {
+    try {
+      wrf_geometry(file.get(), dims, geometry);
+    } catch (const Error&) {  // a non-numeric DX: not WRF's, ignored
+    }
+  }
   auto source = std::make_unique<Hdf5Source>(path, std::move(file), "dataset " + ds_path, dims,
                                              std::move(steps));
   source->geometry_ = geometry;

@@ -67,6 +67,45 @@ TEST(Camera, DirectionMatchesEyeToCentreAndAnglesForBothProjections) {
   }
 }
 
+// Anisotropic voxels: a grid of 11×21×31 samples with voxels 3×1×2 is the same box as a
+// 31×21×61 grid of cubes, point for point: sample (i, j, k) lands where (3i, j, 2k) does. The
+// orthographic rays run along the eye's direction divided by the stretch; slice planes are
+// normal to it multiplied by the stretch; the eye maps back through the stretch.
+TEST(Camera, StretchedVoxelsProjectLikeTheStretchedGridOfCubes) {
+  for (Projection proj : {Projection::orthographic, Projection::perspective})
+    for (double az : {0.0, 37.0, 200.0})
+      for (double el : {-40.0, 0.0, 25.0}) {
+        CameraParams p;
+        p.azimuth_deg = az;
+        p.elevation_deg = el;
+        p.projection = proj;
+        p.pan = {0.1, -0.2};
+        CameraParams cubes = p;
+        p.voxel_size = {6, 2, 4};  // (any scale: the smallest axis becomes 1)
+        const Camera stretched({11, 21, 31}, p), plain({31, 21, 61}, cubes);
+        const glm::dvec3 s(3, 1, 2);
+        for (glm::dvec3 q : {glm::dvec3(0, 0, 0), glm::dvec3(10, 20, 30), glm::dvec3(2.5, 7, 11)}) {
+          const glm::dvec3 a = project(stretched, q), b = project(plain, q * s);
+          EXPECT_NEAR(a.x, b.x, 1e-9);
+          EXPECT_NEAR(a.y, b.y, 1e-9);
+          EXPECT_NEAR(a.z, b.z, 1e-9);
+        }
+        const auto e = stretched.eye(), ep = plain.eye();
+        for (int i = 0; i < 3; ++i) EXPECT_NEAR(e[i] * s[i], ep[i], 1e-9);
+        const auto d = plain.direction(), r = stretched.ray_direction(), n = stretched.direction();
+        const glm::dvec3 ray = glm::normalize(glm::dvec3(d[0], d[1], d[2]) / s);
+        const glm::dvec3 normal = glm::normalize(glm::dvec3(d[0], d[1], d[2]) * s);
+        for (int i = 0; i < 3; ++i) {
+          EXPECT_NEAR(r[i], ray[i], 1e-12);
+          EXPECT_NEAR(n[i], normal[i], 1e-12);
+        }
+        EXPECT_NEAR(stretched.ray_cosine(), glm::dot(ray, normal), 1e-12);
+        if (az != 0 || el != 0) EXPECT_LT(stretched.ray_cosine(), 1.0);  // (along y: s_y = 1)
+        // Cubes: rays and plane normals agree.
+        EXPECT_DOUBLE_EQ(plain.ray_cosine(), 1.0);
+      }
+}
+
 TEST(Camera, ZoomScalesTheImageAboutTheCentre) {
   CameraParams p;
   Camera a({50, 50, 50}, p);

@@ -1,6 +1,7 @@
 #include "tsp/source/hdf5_source.h"
 
 #include <gtest/gtest.h>
+#include <hdf5.h>
 
 #include <cmath>
 #include <filesystem>
@@ -218,6 +219,39 @@ TEST(Hdf5Source, WrfCloudWaterMatchesH5dump) {
     std::vector<float> v = tsptest::read_step(*s, smp.t);
     EXPECT_NEAR(at(v, smp.x, smp.y, smp.z), smp.value, 1e-5 * std::fabs(smp.value) + 1e-12)
         << smp.t << "," << smp.z << "," << smp.y << "," << smp.x;
+  }
+}
+
+// WRF has no coordinate variables: the grid's spacing comes from the global DX and DY (10 km
+// here, `h5dump -a DX`) and the mean layer thickness of the geopotential (PH + PHB)/g at the first
+// step — computed here over the whole arrays as an independent check.
+TEST(Hdf5Source, WrfSpacingFromDxDyAndTheGeopotential) {
+  if (!fs::exists(wrf_file())) GTEST_SKIP() << "shared data absent: " << wrf_file();
+  hid_t f = H5Fopen(wrf_file().c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  std::vector<float> ph(4 * 15 * 48 * 48), phb(ph.size());
+  for (auto [name, v] : {std::pair{"PH", &ph}, std::pair{"PHB", &phb}}) {
+    hid_t d = H5Dopen2(f, name, H5P_DEFAULT);
+    ASSERT_GE(H5Dread(d, H5T_NATIVE_FLOAT, H5S_ALL, H5S_ALL, H5P_DEFAULT, v->data()), 0);
+    H5Dclose(d);
+  }
+  H5Fclose(f);
+  auto mean_height = [&](int level) {  // step 0
+    double sum = 0;
+    for (int i = 0; i < 48 * 48; ++i) {
+      const std::size_t k = std::size_t(level) * 48 * 48 + std::size_t(i);
+      sum += double(ph[k]) + double(phb[k]);
+    }
+    return sum / (48 * 48) / 9.81;
+  };
+  const double dz = (mean_height(14) - mean_height(0)) / 14;
+  for (const char* field : {"T", "W"}) {  // mass points (14 levels) and staggered (15)
+    auto s = open(wrf_file().string(), field);
+    EXPECT_DOUBLE_EQ(s->spacing()[0], 10000.0);
+    EXPECT_DOUBLE_EQ(s->spacing()[1], 10000.0);
+    EXPECT_NEAR(s->spacing()[2], dz, 1e-9 * dz) << field;
+    const double first = mean_height(0) + (s->dims().z == 14 ? 0.5 * dz : 0.0);
+    EXPECT_NEAR(s->origin()[2], first, 1e-9 * first) << field;
   }
 }
 
