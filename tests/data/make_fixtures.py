@@ -231,7 +231,31 @@ def make_scales(path):
             d.dims[i].attach_scale(h[name])
 
 
+def make_wrf_like(path):
+    """h5/wrf_like.nc: what a WRF output file gives the reader, small: global DX = 2000 and
+    DY = 3000 (metres), T over 2 steps of (z, y, x) = (3, 4, 5), the geopotential PH + PHB on 4
+    staggered levels at heights 100, 400, 700, 1000 m (times g = 9.81; PH carries a part of it
+    that varies across the plane and averages to 0), and Times 3 hours apart. The reader takes
+    spacing (2000, 3000, 300), origin z 250 (half a layer above the lowest level) and times 0,
+    10800."""
+    g = 9.81
+    heights = np.array([100.0, 400.0, 700.0, 1000.0])
+    with h5py.File(path, "w") as h:
+        h.attrs["DX"] = np.float32(2000)
+        h.attrs["DY"] = np.float32(3000)
+        h["T"] = np.stack([f(t) for t in range(2)]).astype(np.float32)
+        wobble = np.tile(np.array([[1.0, -1.0, 2.0, -2.0, 0.0]]), (NY, 1))  # sums to 0 per row
+        ph = np.stack([np.stack([g * 0.5 * hz + wobble for hz in heights]) for _ in range(2)])
+        phb = np.stack([np.stack([g * 0.5 * hz * np.ones((NY, NX)) for hz in heights])
+                        for _ in range(2)])
+        h["PH"] = ph.astype(np.float64)
+        h["PHB"] = phb.astype(np.float64)
+        dates = ["2005-08-28_12:00:00", "2005-08-28_15:00:00"]
+        h["Times"] = np.array([list(d) for d in dates], dtype="S1")
+
+
 if __name__ == "__main__":
     make_vti()
     make_h5()
     make_scales(os.path.join(HERE, "h5", "scales.h5"))
+    make_wrf_like(os.path.join(HERE, "h5", "wrf_like.nc"))

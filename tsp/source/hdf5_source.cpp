@@ -3,8 +3,11 @@
 #include <cassert>
 #include <climits>
 #include <cmath>
+#include <cstdio>
+#include <ctime>
 #include <fstream>
 #include <limits>
+#include <optional>
 
 #include "tsp/core/error.h"
 #include "tsp/hdf5/hdf5_handle.h"
@@ -109,48 +112,109 @@ struct Packing {
   }
 };
 
-// Where the grid lies in space from the dataset's NetCDF-4 / HDF5 dimension scales (coordinate
-// variables, attached through its DIMENSION_LIST attribute): for spatial axis a (dataset
-// dimension first_spatial + 2 − a, x last) a 1-D numeric scale of the axis' length whose values
-// step uniformly upwards (within 0.1 % of a step) gives origin and spacing; any other axis
-// keeps 0 and 1. Never throws (a scale it cannot read is ignored).
-GridGeometry dimension_scales(hid_t ds, int first_spatial, Dims dims) {
-  GridGeometry g;
-  if (H5Aexists(ds, "DIMENSION_LIST") <= 0) return g;
+// The values of the dimension scale (coordinate variable) attached to dimension `dim` of ds
+// through its DIMENSION_LIST attribute, when it is a 1-D numeric dataset of `length` values;
+// nullopt otherwise. Never throws (a scale it cannot read is ignored).
+std::optional<std::vector<double>> scale_values(hid_t ds, int dim, hsize_t length) {
+  if (H5Aexists(ds, "DIMENSION_LIST") <= 0) return std::nullopt;
   Handle attr(H5Aopen(ds, "DIMENSION_LIST", H5P_DEFAULT));
   Handle space(H5Aget_space(attr.get()));
-  if (!attr || !space || H5Sget_simple_extent_ndims(space.get()) != 1) return g;
+  if (!attr || !space || H5Sget_simple_extent_ndims(space.get()) != 1) return std::nullopt;
   hsize_t n = 0;
   H5Sget_simple_extent_dims(space.get(), &n, nullptr);
-  if (n != hsize_t(first_spatial + 3)) return g;
+  if (dim < 0 || hsize_t(dim) >= n) return std::nullopt;
   Handle vlen(H5Tvlen_create(H5T_STD_REF_OBJ));
   std::vector<hvl_t> lists(static_cast<std::size_t>(n));
-  if (H5Aread(attr.get(), vlen.get(), lists.data()) < 0) return g;
-  for (int a = 0; a < 3; ++a) {
-    const hvl_t& l = lists[std::size_t(first_spatial + 2 - a)];
-    if (l.len < 1 || !l.p) continue;
+  if (H5Aread(attr.get(), vlen.get(), lists.data()) < 0) return std::nullopt;
+  std::optional<std::vector<double>> values;
+  const hvl_t& l = lists[std::size_t(dim)];
+  if (l.len >= 1 && l.p) {
     hobj_ref_t ref = static_cast<const hobj_ref_t*>(l.p)[0];
     Handle scale(H5Rdereference2(ds, H5P_DEFAULT, H5R_OBJECT, &ref));
-    if (!scale || H5Iget_type(scale.get()) != H5I_DATASET) continue;
-    const std::vector<hsize_t> shape = h5::dataset_shape(scale.get());
-    Handle type(H5Dget_type(scale.get()));
-    const H5T_class_t cls = H5Tget_class(type.get());
-    if (shape.size() != 1 || shape[0] != hsize_t(dims[a]) || dims[a] < 2 ||
-        (cls != H5T_FLOAT && cls != H5T_INTEGER))
-      continue;
-    std::vector<double> x(static_cast<std::size_t>(shape[0]));
-    if (H5Dread(scale.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, x.data()) < 0)
-      continue;
-    const double step = (x.back() - x.front()) / double(x.size() - 1);
-    bool uniform = std::isfinite(step) && step > 0;
-    for (std::size_t i = 0; uniform && i < x.size(); ++i)
-      uniform = std::fabs(x[i] - (x.front() + double(i) * step)) <= 1e-3 * step;
-    if (!uniform) continue;
-    g.origin[std::size_t(a)] = x.front();
-    g.spacing[std::size_t(a)] = step;
+    if (scale && H5Iget_type(scale.get()) == H5I_DATASET) {
+      const std::vector<hsize_t> shape = h5::dataset_shape(scale.get());
+      Handle type(H5Dget_type(scale.get()));
+      const H5T_class_t cls = H5Tget_class(type.get());
+      if (shape.size() == 1 && shape[0] == length && (cls == H5T_FLOAT || cls == H5T_INTEGER) &&
+          is_standard_numeric_type(type.get())) {
+        std::vector<double> x(static_cast<std::size_t>(length));
+        if (H5Dread(scale.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, x.data()) >= 0)
+          values = std::move(x);
+      }
+    }
   }
   H5Dvlen_reclaim(vlen.get(), space.get(), H5P_DEFAULT, lists.data());
+  return values;
+}
+
+// Where the grid lies in space from the dataset's NetCDF-4 / HDF5 dimension scales (coordinate
+// variables): for spatial axis a (dataset dimension first_spatial + 2 − a, x last) a 1-D
+// numeric scale of the axis' length whose values step uniformly upwards (within 0.1 % of a
+// step) gives origin and spacing; any other axis keeps 0 and 1. Never throws.
+GridGeometry dimension_scales(hid_t ds, int first_spatial, Dims dims) {
+  GridGeometry g;
+  for (int a = 0; a < 3; ++a) {
+    if (dims[a] < 2) continue;
+    const auto x = scale_values(ds, first_spatial + 2 - a, hsize_t(dims[a]));
+    if (!x) continue;
+    const double step = (x->back() - x->front()) / double(x->size() - 1);
+    bool uniform = std::isfinite(step) && step > 0;
+    for (std::size_t i = 0; uniform && i < x->size(); ++i)
+      uniform = std::fabs((*x)[i] - (x->front() + double(i) * step)) <= 1e-3 * step;
+    if (!uniform) continue;
+    g.origin[std::size_t(a)] = x->front();
+    g.spacing[std::size_t(a)] = step;
+  }
   return g;
+}
+
+// Seconds since 1970 of a WRF date "YYYY-MM-DD_HH:MM:SS" (nullopt when it is not one).
+std::optional<double> wrf_date_seconds(const std::string& text) {
+  std::tm tm{};
+  int y = 0, mo = 0, d = 0, h = 0, mi = 0, sec = 0;
+  if (std::sscanf(text.c_str(), "%4d-%2d-%2d_%2d:%2d:%2d", &y, &mo, &d, &h, &mi, &sec) != 6)
+    return std::nullopt;
+  tm.tm_year = y - 1900;
+  tm.tm_mon = mo - 1;
+  tm.tm_mday = d;
+  tm.tm_hour = h;
+  tm.tm_min = mi;
+  tm.tm_sec = sec;
+  return double(timegm(&tm));
+}
+
+// The physical time of each of a 4-D dataset's steps: the time dimension's coordinate variable
+// when it has one value per step, increasing; else WRF's `Times` (one date string per step) as
+// seconds since the first step. Empty when neither (or they do not increase). Never throws.
+std::vector<double> step_times(hid_t file, hid_t ds, hsize_t steps) {
+  auto increasing = [](const std::vector<double>& v) {
+    for (std::size_t i = 0; i < v.size(); ++i)
+      if (!std::isfinite(v[i]) || (i > 0 && !(v[i] > v[i - 1]))) return false;
+    return !v.empty();
+  };
+  if (auto t = scale_values(ds, 0, steps); t && increasing(*t)) return *t;
+  if (H5Lexists(file, "Times", H5P_DEFAULT) <= 0) return {};
+  Handle times(H5Dopen2(file, "Times", H5P_DEFAULT));
+  if (!times) return {};
+  const std::vector<hsize_t> shape = h5::dataset_shape(times.get());
+  Handle type(H5Dget_type(times.get()));
+  if (shape.size() != 2 || shape[0] != steps || shape[1] < 1 || shape[1] > 64 ||
+      H5Tget_class(type.get()) != H5T_STRING || H5Tis_variable_str(type.get()) > 0 ||
+      H5Tget_size(type.get()) != 1)
+    return {};
+  std::vector<char> chars(static_cast<std::size_t>(shape[0] * shape[1]));
+  // The file's own one-byte string type: no conversion (a NULLTERM string of one byte holds
+  // only its terminator, so converting NULLPAD characters to it would empty them).
+  Handle mem(H5Tcopy(type.get()));
+  if (H5Dread(times.get(), mem.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, chars.data()) < 0) return {};
+  std::vector<double> t;
+  for (hsize_t i = 0; i < steps; ++i) {
+    const auto s = wrf_date_seconds(std::string(chars.data() + i * shape[1], shape[1]));
+    if (!s) return {};
+    t.push_back(*s);
+  }
+  for (std::size_t i = t.size(); i-- > 0;) t[i] -= t[0];
+  return increasing(t) || t.size() == 1 ? t : std::vector<double>{};
 }
 
 // The mean over a horizontal plane of a WRF geopotential, (PH + PHB)[t = 0, level], in m²/s²;
@@ -162,6 +226,9 @@ double mean_geopotential(hid_t file, hsize_t level, const std::vector<hsize_t>& 
     Handle ds(H5Dopen2(file, name, H5P_DEFAULT));
     Handle space(ds ? H5Dget_space(ds.get()) : -1);
     if (!ds || !space) return std::numeric_limits<double>::quiet_NaN();
+    Handle type(H5Dget_type(ds.get()));
+    if (h5::dataset_shape(ds.get()) != shape || !is_standard_numeric_type(type.get()))
+      return std::numeric_limits<double>::quiet_NaN();
     const hsize_t start[4] = {0, level, 0, 0}, count[4] = {1, 1, shape[2], shape[3]};
     Handle mem(H5Screate_simple(1, &n, nullptr));
     std::vector<double> v(static_cast<std::size_t>(n));
@@ -194,6 +261,8 @@ void wrf_geometry(hid_t file, Dims dims, GridGeometry& g) {
   if (!ph) return;
   const std::vector<hsize_t> shape = h5::dataset_shape(ph.get());
   if (shape.size() != 4 || shape[0] < 1 || shape[1] < 2 || shape[2] < 1 || shape[3] < 1) return;
+  // The horizontal plane is the grid's (or one wider, staggered): nothing larger is read.
+  if (shape[2] > hsize_t(dims.y) + 1 || shape[3] > hsize_t(dims.x) + 1) return;
   const hsize_t levels = shape[1];  // staggered: one more than the mass-point levels
   if (hsize_t(dims.z) != levels && hsize_t(dims.z) != levels - 1) return;
   const double bottom = mean_geopotential(file, 0, shape) / kGravity;
@@ -226,7 +295,9 @@ class Hdf5Source final : public VolumeSource {
   std::string describe() const override { return path_ + ", " + field_text_; }
   std::array<double, 3> origin() const override { return geometry_.origin; }
   std::array<double, 3> spacing() const override { return geometry_.spacing; }
+  std::vector<double> times() const override { return times_; }
   GridGeometry geometry_;
+  std::vector<double> times_;
   std::vector<std::string> files() const override { return {path_}; }
 
   void read_step(int t, std::span<float> out) override {
@@ -281,9 +352,12 @@ std::unique_ptr<VolumeSource> open_dataset(const std::string& path, Handle file,
     } catch (const Error&) {  // a non-numeric DX: not WRF's, ignored
     }
   }
+  std::vector<double> times;
+  if (shape.size() == 4) times = step_times(file.get(), ds.get(), shape[0]);
   auto source = std::make_unique<Hdf5Source>(path, std::move(file), "dataset " + ds_path, dims,
                                              std::move(steps));
   source->geometry_ = geometry;
+  source->times_ = std::move(times);
   return source;
 }
 

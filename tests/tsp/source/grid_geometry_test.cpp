@@ -53,6 +53,34 @@ TEST(GridGeometry, Hdf5DimensionScalesThatStepUniformly) {
   o.field = "";
   auto plain = open_source((tsptest::test_data_dir() / "h5" / "grid4d.h5").string(), o);
   EXPECT_EQ(plain->spacing(), (std::array<double, 3>{1, 1, 1}));  // no scales: 0 and 1
+  // The time dimension's coordinate variable gives the steps' times.
+  EXPECT_EQ(s->times(), (std::vector<double>{0, 1, 2}));
+  EXPECT_TRUE(plain->times().empty());
+}
+
+// A small file shaped like WRF output (tests/data/make_fixtures.py, make_wrf_like): DX, DY,
+// geopotential levels 300 m apart from 100 m, Times 3 hours apart.
+TEST(GridGeometry, WrfLikeFileGivesSpacingOriginAndTimes) {
+  SourceOptions o;
+  o.field = "T";
+  auto s = open_source((tsptest::test_data_dir() / "h5" / "wrf_like.nc").string(), o);
+  EXPECT_EQ(s->dims(), (Dims{5, 4, 3}));
+  EXPECT_DOUBLE_EQ(s->spacing()[0], 2000);
+  EXPECT_DOUBLE_EQ(s->spacing()[1], 3000);
+  EXPECT_NEAR(s->spacing()[2], 300, 1e-9);
+  EXPECT_NEAR(s->origin()[2], 250, 1e-9);
+  EXPECT_EQ(s->times(), (std::vector<double>{0, 10800}));
+}
+
+// WRF's Times (one "YYYY-MM-DD_HH:MM:SS" per step, 3-hourly from 2005-08-28_12:00:00) as seconds
+// since the first step.
+TEST(GridGeometry, WrfTimesAreSecondsSinceTheFirstStep) {
+  const auto wrf = tsptest::shared_data_dir() / "wrf-katrina" / "ci_test_file.nc";
+  if (!std::filesystem::exists(wrf)) GTEST_SKIP() << "shared data absent: " << wrf;
+  SourceOptions o;
+  o.field = "T";
+  EXPECT_EQ(open_source(wrf.string(), o)->times(),
+            (std::vector<double>{0, 3 * 3600, 6 * 3600, 9 * 3600}));
 }
 
 TEST(GridGeometry, SeriesListsNameTheStepsTimes) {
