@@ -34,30 +34,57 @@ class InterruptScope {
 
 }  // namespace
 
-tsp::BuildReport build_with_progress(tsp::VolumeSource& source, const std::string& out_path,
-                                     tsp::BuildOptions options) {
+namespace {
+
+// Runs build(options) with a progress bar and clean Ctrl-C, then warns of replaced samples.
+template <class Build>
+auto run_with_progress(tsp::BuildOptions options, const Build& build) {
   ProgressBar bar;
   options.progress = [&bar](const std::string& phase, std::int64_t done, std::int64_t total) {
     if (g_interrupted) throw tsp::Error("interrupted; no output written");
     bar.update(phase, done, total);
   };
-  tsp::BuildReport r;
-  {
-    InterruptScope scope;
-    try {
-      r = tsp::build_tsp_file(source, out_path, options);
-    } catch (...) {
-      bar.finish();
-      throw;
-    }
+  InterruptScope scope;
+  try {
+    auto r = build(options);
     bar.finish();
+    return r;
+  } catch (...) {
+    bar.finish();
+    throw;
   }
+}
+
+void warn_nonfinite(const tsp::BuildReport& r, const std::string& field) {
   if (r.nonfinite_count > 0)
     std::fprintf(
         stderr,
-        "tspplay: warning: %lld NaN/Inf samples replaced (NaN and -Inf by %g, +Inf by %g)\n",
-        static_cast<long long>(r.nonfinite_count), r.value_range.lo, r.value_range.hi);
+        "tspplay: warning: %s%lld NaN/Inf samples replaced (NaN and -Inf by %g, +Inf by %g)\n",
+        field.empty() ? "" : (field + ": ").c_str(), static_cast<long long>(r.nonfinite_count),
+        r.value_range.lo, r.value_range.hi);
+}
+
+}  // namespace
+
+tsp::BuildReport build_with_progress(tsp::VolumeSource& source, const std::string& out_path,
+                                     tsp::BuildOptions options) {
+  const tsp::BuildReport r = run_with_progress(options, [&](const tsp::BuildOptions& o) {
+    return tsp::build_tsp_file(source, out_path, o);
+  });
+  warn_nonfinite(r, "");
   return r;
+}
+
+std::vector<tsp::BuildReport> build_fields_with_progress(const tsp::FieldSourceFn& open_field,
+                                                         const std::vector<std::string>& fields,
+                                                         const std::string& out_path,
+                                                         tsp::BuildOptions options) {
+  const std::vector<tsp::BuildReport> reports =
+      run_with_progress(options, [&](const tsp::BuildOptions& o) {
+        return tsp::build_tsp_fields(open_field, fields, out_path, o);
+      });
+  for (std::size_t k = 0; k < reports.size(); ++k) warn_nonfinite(reports[k], fields[k]);
+  return reports;
 }
 
 void print_build_summary(const std::string& out_path, const tsp::BuildReport& r) {

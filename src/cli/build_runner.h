@@ -1,6 +1,7 @@
 // Running a build from the command line: progress bar, clean Ctrl-C, the closing summary.
 #pragma once
 #include <string>
+#include <vector>
 
 #include "tsp/build/build.h"
 
@@ -11,6 +12,13 @@ namespace tspcli {
 /// warning. Throws whatever build_tsp_file throws.
 tsp::BuildReport build_with_progress(tsp::VolumeSource& source, const std::string& out_path,
                                      tsp::BuildOptions options);
+
+/// Builds several fields of one input into out_path (tsp::build_tsp_fields) with the same
+/// progress bar and Ctrl-C handling. Throws whatever build_tsp_fields throws.
+std::vector<tsp::BuildReport> build_fields_with_progress(const tsp::FieldSourceFn& open_field,
+                                                         const std::vector<std::string>& fields,
+                                                         const std::string& out_path,
+                                                         tsp::BuildOptions options);
 
 /// Prints "wrote OUT: ..." with the tree's size, ranges and throughput (reopens the file).
 void print_build_summary(const std::string& out_path, const tsp::BuildReport& report);

@@ -17,6 +17,7 @@ namespace tspcli {
 namespace {
 
 struct BenchArgs {
+  std::string field;
   std::string file, out, steps, size = "640x480", view = "30,20";
   std::vector<std::string> tfs;
   std::string metrics = "scalar,approximate,perceptual,reference", targets = "1,3";
@@ -54,6 +55,7 @@ double parse_target(const std::string& text) {
 void run(const BenchArgs& a) {
   tspgl::BenchOptions o;
   o.tsp_path = a.file;
+  o.field = a.field;
   o.out_dir = a.out;
   if (!a.tfs.empty()) o.tfs = a.tfs;
   if (!a.steps.empty()) {
@@ -138,6 +140,7 @@ const CommandRegistrar reg(45, [](CLI::App& app) {
   auto* c = app.add_subcommand("bench", "Reproduce the paper's Tables 3, 4 and 5 with plots");
   auto a = std::make_shared<BenchArgs>();
   c->add_option("file", a->file, "The .tsp file")->required();
+  c->add_option("--field", a->field, "A file with several fields: this one (default: the first)");
   c->add_option("--tf", a->tfs,
                 "Transfer function(s): JSON files or preset:NAME (default preset:sparse)");
   c->add_option("-o,--output", a->out, "Report directory (CSV, JSON, SVG)")->required();

@@ -3,6 +3,7 @@
 #include <cstdlib>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "cli/args.h"
 #include "cli/build_runner.h"
@@ -55,6 +56,35 @@ void run_build(const BuildArgs& a) {
   if (a.antialias != 1 && a.voxelizer != "scan")
     throw tsp::UsageError("--antialias " + std::to_string(a.antialias) +
                           " needs --voxelizer scan (the locating voxelizer samples voxel centres)");
+  // --field A,B,C: several fields, one tree each, in one file.
+  std::vector<std::string> fields;
+  for (std::size_t p = 0; a.field.find(',') != std::string::npos && p <= a.field.size();) {
+    std::size_t c = a.field.find(',', p);
+    if (c == std::string::npos) c = a.field.size();
+    fields.push_back(a.field.substr(p, c - p));
+    p = c + 1;
+  }
+  if (!fields.empty()) {
+    auto open_field = [&](const std::string& field) {
+      tsp::SourceOptions fo = so;
+      fo.field = field;
+      return tsp::open_input(a.input, fo, vo);
+    };
+    // The first field, opened now, sets the default brick size; the build then takes it.
+    std::unique_ptr<tsp::VolumeSource> first = open_field(fields[0]);
+    if (bo.brick_size == 0) bo.brick_size = tsp::default_brick_size(first->dims());
+    auto open_with_first = [&](const std::string& field) {
+      return first ? std::move(first) : open_field(field);
+    };
+    const std::vector<tsp::BuildReport> reports =
+        build_fields_with_progress(open_with_first, fields, a.output, bo);
+    for (std::size_t k = 0; k < fields.size(); ++k)
+      std::printf("field %s: value range [%g, %g], %.1f MB in %.2f s\n", fields[k].c_str(),
+                  reports[k].value_range.lo, reports[k].value_range.hi,
+                  double(reports[k].source_bytes) / 1e6, reports[k].seconds);
+    print_build_summary(a.output, reports.front());
+    return;
+  }
   auto source = tsp::open_input(a.input, so, vo);
   if (bo.brick_size == 0) bo.brick_size = tsp::default_brick_size(source->dims());
   tsp::BuildReport r = build_with_progress(*source, a.output, bo);
@@ -70,7 +100,8 @@ const CommandRegistrar reg(10, [](CLI::App& app) {
       ->required();
   c->add_option("-o,--output", a->output, "The .tsp file to write")->required();
   c->add_option("--field", a->field,
-                "Field (dataset/variable/array) to read; meshes: NAME, NAME:mag or NAME:x|y|z");
+                "Field (dataset/variable/array) to read; meshes: NAME, NAME:mag or NAME:x|y|z; "
+                "A,B,C: several fields, one tree each, in one file (render/play --field picks one)");
   c->add_option("--resolution", a->resolution,
                 "Meshes: samples on the longest edge (default: from the median cell size, 16..256)");
   c->add_option("--voxel-size", a->voxel_size, "Meshes: voxel edge in the mesh's units");

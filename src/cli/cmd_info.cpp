@@ -17,7 +17,7 @@ namespace tspcli {
 namespace {
 
 struct InfoArgs {
-  std::string file;
+  std::string file, field;
   bool json = false;
   bool nodes = false;
 };
@@ -28,8 +28,9 @@ const CommandRegistrar reg(20, [](CLI::App& app) {
   c->add_option("file", a->file, "The .tsp file")->required();
   c->add_flag("--json", a->json, "Print JSON");
   c->add_flag("--nodes", a->nodes, "Include every TSP node's statistics");
+  c->add_option("--field", a->field, "A file with several fields: describe this one (default: the first)");
   c->callback([a] {
-    auto f = tsp::TspFile::open(a->file);
+    auto f = tsp::TspFile::open(a->file, a->field);
     if (a->json)
       std::cout << tsp::json_text(info_json(*f, a->nodes), 2) << "\n";
     else

@@ -22,7 +22,7 @@ namespace {
 using nlohmann::json;
 
 struct MetricsArgs {
-  std::string file;
+  std::string file, field;
   std::string tf;
   std::string metric = "approximate";
   int entries = tsp::kDefaultTfEntries;
@@ -70,7 +70,7 @@ json distribution_json(const Distribution &d) {
 
 void run(const MetricsArgs &a) {
   const tsp::Metric metric = tsp::parse_metric(a.metric);
-  auto file = tsp::TspFile::open(a.file);
+  auto file = tsp::TspFile::open(a.file, a.field);
   const tsp::TspTree &tree = file->tree();
   const tsp::TransferFunction tf =
       tsp::transfer_function_from_arg(a.tf, tree.value_range(), a.entries);
@@ -142,6 +142,7 @@ const CommandRegistrar reg(40, [](CLI::App &app) {
       app.add_subcommand("metrics", "Recompute an error metric for a transfer "
                                     "function and summarise the errors");
   c->add_option("file", args->file, "the .tsp file")->required();
+  c->add_option("--field", args->field, "A file with several fields: this one (default: the first)");
   c->add_option("--tf", args->tf,
                 "transfer function: a JSON file (ours or a ParaView preset) or "
                 "preset:NAME "

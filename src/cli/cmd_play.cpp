@@ -46,7 +46,9 @@ void run(PlayArgs a) {
     print_build_summary(out, r);
     return r;
   };
+  const bool tsp = tspgl::is_tsp_file(a.options.tsp_path);
   a.options.tsp_path = tspgl::prepare_play_input(a.options.tsp_path, a.field, a.cache_dir, hooks);
+  a.options.field = tsp ? a.field : "";  // a .tsp: the field shown first; an input: the one built
   tspplayer::run_player(a.options);
 }
 
@@ -58,7 +60,9 @@ const CommandRegistrar reg(35, [](CLI::App& app) {
                 "The .tsp file, or any input build reads (built into the cache folder first, "
                 "reused while unchanged)")
       ->required();
-  c->add_option("--field", a->field, "Raw input: the field to build (as for build --field)");
+  c->add_option("--field", a->field,
+                "A .tsp with several fields: the one shown first; any other input: the field to "
+                "build (as for build --field)");
   c->add_option("--cache-dir", a->cache_dir,
                 "Raw input: the cache folder (default $TSPPLAY_CACHE_DIR, $XDG_CACHE_HOME/tspplay "
                 "or ~/.cache/tspplay; builds go to its builds/)");

@@ -21,6 +21,7 @@ namespace {
 namespace fs = std::filesystem;
 
 struct RenderArgs {
+  std::string field;
   std::string file, tf = "preset:sparse", out, steps, size = "640x480", view = "30,20", movie,
               tf_range;
   int fps = tspgl::kMovieFps;
@@ -45,6 +46,7 @@ struct RenderArgs {
 void run(const RenderArgs& a) {
   tspgl::RenderJobOptions o;
   o.tsp_path = a.file;
+  o.field = a.field;
   o.tf = a.tf;
   o.tf_range = tsp::parse_tf_range(a.tf_range);
   o.annotate = a.annotate;
@@ -159,6 +161,7 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
   auto* c = app.add_subcommand("render", "Render steps headless (OSMesa) to PNGs and frames.json");
   auto a = std::make_shared<RenderArgs>();
   c->add_option("file", a->file, "The .tsp file")->required();
+  c->add_option("--field", a->field, "A file with several fields: this one (default: the first)");
   c->add_option("--tf", a->tf, "Transfer function: a JSON file or preset:NAME (default preset:sparse)");
   c->add_option("-o,--output", a->out, "Directory for step_NNNN.png and frames.json")->required();
   c->add_option("--tf-range", a->tf_range,

@@ -88,6 +88,7 @@ json info_json(const tsp::TspFile& f, bool with_nodes) {
   j["created_by"] = m.created_by;
   j["source"] = m.source;
   j["field"] = m.field;
+  j["fields"] = f.fields();
   j["dims"] = {d.x, d.y, d.z};
   j["steps"] = tree.time().steps();
   j["brick"] = o.brick_size();
@@ -155,6 +156,11 @@ void print_info(const tsp::TspFile& f, bool with_nodes) {
               tsp::kTspFormatVersion, m.created_by.c_str());
   std::printf("source        %s\n", m.source.c_str());
   std::printf("field         %s\n", m.field.empty() ? "(unnamed)" : m.field.c_str());
+  if (f.fields().size() > 1) {
+    std::string names;
+    for (const std::string& n : f.fields()) names += (names.empty() ? "" : ", ") + n;
+    std::printf("fields        %s (one tree each; --field NAME picks one)\n", names.c_str());
+  }
   std::printf("dims          %s voxels\n", tsp::to_string(o.dims()).c_str());
   std::printf("steps         %d\n", tree.time().steps());
   std::printf("brick         %d samples (shared layer included)\n", o.brick_size());

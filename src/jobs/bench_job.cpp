@@ -292,7 +292,7 @@ class TfBench {
 json run_bench(const BenchOptions& options, const BenchProgress& progress) {
   check_options(options);
   BenchOptions o = options;
-  auto file = tsp::TspFile::open(o.tsp_path);
+  auto file = tsp::TspFile::open(o.tsp_path, o.field);
   // Physical proportions, as render shows the file by default.
   o.camera.voxel_size = shown_voxel_size(file->metadata().spacing, {1, 1, 1}, true);
   const tsp::TspTree& tree = file->tree();
@@ -318,6 +318,7 @@ json run_bench(const BenchOptions& options, const BenchProgress& progress) {
 
   RenderJobOptions base;
   base.tsp_path = o.tsp_path;
+  base.field = o.field;
   base.first_step = o.first_step;
   base.last_step = last;
   base.camera = o.camera;

@@ -19,6 +19,7 @@ namespace tspgl {
 /// Everything `tspplay bench` takes.
 struct BenchOptions {
   std::string tsp_path;                           ///< the .tsp file
+  std::string field;                              ///< --field: one of its fields ("": the first)
   std::vector<std::string> tfs{"preset:sparse"};  ///< transfer functions (file or preset:NAME)
   std::string out_dir;                            ///< report/ (created)
   int first_step = 0, last_step = -1;             ///< inclusive; −1: the last step

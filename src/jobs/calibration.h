@@ -34,6 +34,7 @@ struct Calibration {
 /// What to calibrate.
 struct CalibrationRequest {
   std::string tsp_path;  ///< the .tsp file the bricks come from (its identity keys the cache)
+  std::string field;     ///< which of its fields ("": the first)
   tsp::Metric metric = tsp::Metric::approximate;
   tsp::CameraParams camera;
   int steps = 6;                 ///< calibration steps, spread evenly over the file's steps

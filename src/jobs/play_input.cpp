@@ -54,12 +54,7 @@ std::string play_cache_path(const std::string& input, const std::string& field,
 
 std::string prepare_play_input(const std::string& input, const std::string& field,
                                const std::string& cache_dir, const PlayBuildHooks& hooks) {
-  if (is_tsp_file(input)) {
-    if (!field.empty())
-      throw tsp::UsageError("--field " + field + ": " + input +
-                            " is a .tsp file (its field was chosen when it was built)");
-    return input;
-  }
+  if (is_tsp_file(input)) return input;  // (a field then picks one of its fields)
   const std::string out = play_cache_path(input, field, cache_dir);
   if (is_tsp_file(out)) {
     hooks.say("play: " + input + " is not a .tsp file; playing " + out + ", built from it earlier");

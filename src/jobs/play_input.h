@@ -26,8 +26,9 @@ struct PlayBuildHooks {
       build;
 };
 
-/// The .tsp file to play for input: input itself when it is a .tsp file (a field is then a
-/// tsp::UsageError), else play_cache_path's file, built with build's defaults unless it exists.
+/// The .tsp file to play for input: input itself when it is a .tsp file (field then names one
+/// of its fields, for the player), else play_cache_path's file, built from field with build's
+/// defaults unless it exists.
 /// Throws what opening or building the input throws.
 std::string prepare_play_input(const std::string& input, const std::string& field,
                                const std::string& cache_dir, const PlayBuildHooks& hooks);

@@ -120,6 +120,7 @@ RenderJobOptions with_quality(RenderJobOptions o, const tsp::TspFile& file,
                               const CalibrationProgress& progress) {
   CalibrationRequest r;
   r.tsp_path = o.tsp_path;
+  r.field = file.fields()[std::size_t(file.field_index())];
   r.metric = o.metric;
   r.camera = o.camera;
   r.cache_dir = o.calibration_dir;
@@ -186,7 +187,7 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
     if (!(k > 0) || !(k <= kMaxScale))
       throw tsp::UsageError("--scale: expected three factors in (0, " +
                             std::to_string(int(kMaxScale)) + "], found " + std::to_string(k));
-  auto file = tsp::TspFile::open(options.tsp_path);
+  auto file = tsp::TspFile::open(options.tsp_path, options.field);
   const tsp::TspTree& tree = file->tree();
   // Physical proportions: the file's voxel spacing (times --scale) shapes the view.
   options.camera.voxel_size =

@@ -29,6 +29,7 @@ enum class LodMode { off, fixed, adaptive };
 /// Everything `tspplay render` takes.
 struct RenderJobOptions {
   std::string tsp_path;                       ///< the .tsp file
+  std::string field;                          ///< --field: one of its fields ("": the first)
   std::string tf = "preset:sparse";           ///< --tf: a file or preset:NAME
   tsp::TfRangeChoice tf_range;                ///< --tf-range: where the TF sits over the data
   bool annotate = false;                      ///< --annotate: outline, axes, legend, step/time

@@ -94,7 +94,7 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
   if (options.width < 1 || options.height < 1)
     throw tsp::UsageError("--size must be positive, found " + std::to_string(options.width) + "x" +
                           std::to_string(options.height));
-  file = tsp::TspFile::open(options.tsp_path);
+  file = tsp::TspFile::open(options.tsp_path, options.field);
   const tsp::TspTree& tree = file->tree();
   if (options.step < 0 || options.step >= tree.time().steps())
     throw tsp::UsageError("--step " + std::to_string(options.step) + ": " + options.tsp_path +
@@ -194,14 +194,18 @@ PlayerApp::~PlayerApp() {
   }
   prefetcher.reset();  // its thread reads into the renderer's brick cache
   renderer.reset();    // its GL objects go before the context
+  parked_.clear();
+  compositor_.reset();
 }
 
 void PlayerApp::make_renderer() {
   prefetcher.reset();
+  // The programs are compiled once per window and shared by every renderer made after.
+  if (renderer) compositor_ = renderer->compositor();
   renderer.reset();
   renderer = std::make_unique<tspgl::VolumeRenderer>(
       *ctx, *file, cache_on ? tsp::CachePolicy::on : tsp::CachePolicy::off,
-      std::int64_t(texture_budget_mb * (1 << 20)));
+      std::int64_t(texture_budget_mb * (1 << 20)), tspgl::kDefaultBrickBudget, compositor_);
   renderer->set_transfer_function(tf);
   prefetcher = std::make_unique<tsp::BrickPrefetcher>(renderer->brick_cache());
   prefetched_for_ = -1;
@@ -308,6 +312,9 @@ void PlayerApp::write_stats(const std::string& path) const {
   j["view"] = {layout.view.x, layout.view.y, layout.view.w, layout.view.h};
   j["docked"] = layout.docked;
   j["file"] = options_.tsp_path;
+  j["field"] = file->fields()[std::size_t(file->field_index())];
+  j["fields"] = file->fields();
+  j["field_switch_ms"] = field_switch_ms;
   j["step"] = step;
   j["steps_ready"] = ready;
   j["every_step"] = every_step;
@@ -539,6 +546,10 @@ void PlayerApp::frame() {
   }
 
   if (recorder_) record_frame(now);
+  if (switch_started_s_ >= 0 && last.complete() && (playing || full_quality())) {
+    field_switch_ms = (glfwGetTime() - switch_started_s_) * 1000;  // the new field's first frame
+    switch_started_s_ = -1;
+  }
   if (camera.width > 0 && camera.height > 0) {
     const tsp::Camera cam(file->tree().octree().dims(), camera);
     draw_cut_overlay(cam);

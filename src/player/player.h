@@ -10,6 +10,7 @@ namespace tspplayer {
 /// Everything `tspplay play` takes.
 struct PlayerOptions {
   std::string tsp_path;              ///< the .tsp file
+  std::string field;                 ///< --field: the field shown first ("": the file's first)
   std::string cache_dir;             ///< --cache-dir: where File > Open builds inputs ("": default)
   std::string tf = "preset:sparse";  ///< --tf: a file or preset:NAME
   std::string tf_range;              ///< --tf-range: auto (default), data, file or LO:HI

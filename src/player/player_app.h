@@ -5,6 +5,7 @@
 #include <atomic>
 #include <cstdint>
 #include <deque>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -86,7 +87,7 @@ class PlayerApp {
   // ---- state the UI reads and edits (player_ui.cpp) ----
   std::unique_ptr<tsp::TspFile> file;
   std::unique_ptr<tspgl::GlContext> ctx;
-  std::unique_ptr<tspgl::VolumeRenderer> renderer;
+  std::unique_ptr<tspgl::VolumeRenderer> renderer;  ///< draws `file` (the shown field)
   std::unique_ptr<tsp::BrickPrefetcher>
       prefetcher;  ///< reads into renderer's brick cache; made after it
   tsp::TransferFunction tf;
@@ -196,6 +197,13 @@ class PlayerApp {
   void save_tf_as(const std::string& path);
   /// The file being played.
   const std::string& tsp_path() const { return options_.tsp_path; }
+  /// Shows another field of the file (its own TF, kept per field; its bricks stream in through
+  /// its own caches, kept while another field is shown). Errors go to status.
+  void switch_field(const std::string& name);
+  /// The shown field's name.
+  const std::string& field() const { return file->fields()[std::size_t(file->field_index())]; }
+  /// Milliseconds from the last field switch to its first complete frame (−1: none yet).
+  double field_switch_ms = -1;
 
  private:
   void frame();
@@ -269,6 +277,16 @@ class PlayerApp {
   std::unique_ptr<tsp::LodController> lod_;
   std::unique_ptr<OpenJob> open_job_;
   std::unique_ptr<tspgl::MovieWriter> recorder_;
+  /// Fields shown before and put aside by switch_field, with their renderer (textures and
+  /// bricks) and TF; and the programs every renderer of this window shares.
+  struct ParkedField {
+    std::unique_ptr<tsp::TspFile> file;
+    std::unique_ptr<tspgl::VolumeRenderer> renderer;
+    tsp::TransferFunction tf;
+  };
+  std::map<std::string, ParkedField> parked_;
+  std::shared_ptr<tspgl::SliceCompositor> compositor_;
+  double switch_started_s_ = -1;  ///< when the last switch began (−1: reported)
   double record_start_s_ = 0;
   int ready_next_ = 0;  ///< the next step update_ready checks
   // What changed last (interaction), and the frame's time outside rendering, for the LOD target.

@@ -106,7 +106,9 @@ void PlayerApp::open_file(const std::string& path) {
   std::unique_ptr<tsp::TspFile> next = tsp::TspFile::open(path);  // throws: nothing changed
   if (recorder_) stop_recording();  // a movie has one size and one dataset
   prefetcher.reset();
+  if (renderer) compositor_ = renderer->compositor();
   renderer.reset();
+  parked_.clear();
   lod_.reset();
   file = std::move(next);
   options_.tsp_path = path;
@@ -137,6 +139,54 @@ void PlayerApp::open_file(const std::string& path) {
   status = "playing " + path;
   std::printf("opened %s (%d steps)\n", path.c_str(), steps());
   std::fflush(stdout);
+}
+
+void PlayerApp::switch_field(const std::string& name) {
+  if (name == field()) return;
+  ParkedField next;
+  if (auto it = parked_.find(name); it != parked_.end()) {
+    next = std::move(it->second);
+    parked_.erase(it);
+  } else {
+    try {
+      next.file = tsp::TspFile::open(options_.tsp_path, name);
+    } catch (const tsp::Error& e) {
+      report(status, e.what());
+      return;
+    }
+    // The TF the player was started with, fitted to this field's data.
+    next.tf = tsp::transfer_function_from_arg(options_.tf, next.file->tree().value_range(),
+                                              tsp::kDefaultTfEntries,
+                                              tsp::parse_tf_range(options_.tf_range));
+  }
+  switch_started_s_ = glfwGetTime();
+  prefetcher.reset();  // it reads into the renderer's brick cache
+  const std::string current = field();
+  if (renderer) compositor_ = renderer->compositor();
+  parked_[current] = ParkedField{std::move(file), std::move(renderer), tf};
+  file = std::move(next.file);
+  tf = next.tf;
+  lazy_ = std::make_unique<tsp::LazyErrors>(file->tree(), metric, tf);
+  reference_version_ = ~std::uint64_t(0);
+  tf_points.clear();
+  set_tf(tf, true);
+  if (next.renderer) {
+    renderer = std::move(next.renderer);
+    renderer->set_transfer_function(tf);
+    prefetcher = std::make_unique<tsp::BrickPrefetcher>(renderer->brick_cache());
+    prefetched_for_ = prefetched_cut_ = -1;
+  } else {
+    make_renderer();
+  }
+  lod_.reset();
+  ready.assign(std::size_t(steps()), -1.f);
+  ready_next_ = 0;
+  update_tol_max();
+  status = "field " + name;
+  if (options_.trace) {
+    std::printf("trace: field %s\n", name.c_str());
+    std::fflush(stdout);
+  }
 }
 
 void PlayerApp::start_recording(const std::string& path) {

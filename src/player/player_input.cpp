@@ -202,6 +202,9 @@ void PlayerApp::apply(const ScriptAction& a) {
     case Kind::open:
       open_input(a.text, a.text2);
       break;
+    case Kind::field:
+      switch_field(a.text);
+      break;
     case Kind::record:
       start_recording(a.text);
       break;

@@ -136,6 +136,15 @@ void timeline_section(PlayerApp& app) {
 void settings_section(PlayerApp& app) {
   // Widgets end kLabelWidth short of the window's edge: their labels are never clipped.
   ImGui::PushItemWidth(-kLabelWidth);
+  // A file with several fields: which one is shown (each keeps its TF and its caches).
+  if (const auto& fields = app.file->fields(); fields.size() > 1) {
+    const int current = app.file->field_index();
+    if (ImGui::BeginCombo("field", fields[std::size_t(current)].c_str())) {
+      for (std::size_t k = 0; k < fields.size(); ++k)
+        if (ImGui::Selectable(fields[k].c_str(), int(k) == current)) app.switch_field(fields[k]);
+      ImGui::EndCombo();
+    }
+  }
   ImGui::Checkbox("outline, axes, step", &app.annotations);
   int m = int(app.metric);
   if (ImGui::Combo("metric", &m, kMetricNames, IM_ARRAYSIZE(kMetricNames)))

@@ -176,6 +176,10 @@ ScriptAction parse_line(const LineParser& p) {
     a.kind = Kind::open;
     a.text = p.words[1];
     if (p.words.size() == 3) a.text2 = p.words[2];
+  } else if (cmd == "field") {
+    p.expect_args(1, "field NAME");
+    a.kind = Kind::field;
+    a.text = p.words[1];
   } else if (cmd == "record") {
     p.expect_args(1, "record PATH.mp4|PATH.gif|stop");
     a.kind = p.words[1] == "stop" ? Kind::record_stop : Kind::record;
@@ -187,7 +191,7 @@ ScriptAction parse_line(const LineParser& p) {
            "': expected step, play, pause, speed, loop, tf, tolerance, metric, cache, prefetch, "
            "upload-budget, view, zoom, projection, screenshot, screenshot-ui, wait-frames, "
            "wait-seconds, compositing, spacing, preintegrated, quality, stats, lod, target-fps, "
-           "show-cut, panels, every-step, log-opacity, open, record or quit");
+           "show-cut, panels, every-step, log-opacity, open, field, record or quit");
   }
   return a;
 }

@@ -44,6 +44,7 @@ struct ScriptAction {
     every_step,     ///< playback shows every step (`flag`) or keeps real time, dropping steps
     log_opacity,    ///< the TF editor's opacity axis logarithmic (`flag`) or linear
     open,           ///< open `text` (a .tsp file or any build input; field `text2`), waiting
+    field,          ///< show the file's field `text`
     record,         ///< start recording a movie to `text` (.mp4 or .gif)
     record_stop,    ///< stop recording and write the movie (waits for the encoder)
     quit            ///< close the player

@@ -23,20 +23,21 @@ tsp::ViewOrder view_order(const tsp::Camera& camera) {
 
 VolumeRenderer::VolumeRenderer(GlContext& ctx, const tsp::BrickStore& bricks,
                                tsp::CachePolicy cache, std::int64_t texture_budget,
-                               std::int64_t brick_budget)
+                               std::int64_t brick_budget,
+                               std::shared_ptr<SliceCompositor> compositor)
     : tree_(bricks.tree()),
       // The cache counts 16-bit samples; a stencilled texel holds two (RG16).
       cache_(tree_.has_stencil() ? texture_budget / 2 : texture_budget, cache),
       bricks_(bricks, brick_budget),
-      compositor_(ctx),
+      compositor_(compositor ? std::move(compositor) : std::make_shared<SliceCompositor>(ctx)),
       textures_(ctx.gl(), bricks_) {
-  compositor_.set_stencil(tree_.has_stencil());
+  compositor_->set_stencil(tree_.has_stencil());
 }
 
 VolumeRenderer::~VolumeRenderer() = default;
 
 void VolumeRenderer::set_transfer_function(const tsp::TransferFunction& tf) {
-  compositor_.set_transfer_function(tf, tree_.value_range());
+  compositor_->set_transfer_function(tf, tree_.value_range());
   ++tf_serial_;
 }
 
@@ -128,7 +129,7 @@ void VolumeRenderer::fill_items(const tsp::FramePlan& plan, tsp::FrameMetric& me
       add(box, settings.compositing == Compositing::boxes).slot = textures_.at(pt.key);
     }
   }
-  compositor_.upload(soup_);
+  compositor_->upload(soup_);
 }
 
 void VolumeRenderer::fill_pages(const tsp::FramePlan& plan, tsp::FrameMetric& metric) {
@@ -215,7 +216,7 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
   if (reuse) rects = dirty_rects(tree_, camera, previous_->ids, ids);
   previous_.reset();  // valid again only once this frame is complete
   r.traversal_ms = phase.lap_ms();
-  compositor_.begin_frame(camera, settings, reuse);
+  compositor_->begin_frame(camera, settings, reuse);
 
   // Uploads first (growing the atlas moves every slot), then the draw list or the brick pages.
   for (const tsp::TextureKey& k : plan.evict_before) textures_.erase(k);
@@ -225,7 +226,7 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
 
   if (settings.compositing == Compositing::rays) {
     fill_pages(plan, metric);
-    compositor_.set_pages(pages_, octree.dims());
+    compositor_->set_pages(pages_, octree.dims());
   } else {
     fill_items(plan, metric, camera, settings);
   }
@@ -234,20 +235,20 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
 
   auto draw_all = [&] {
     if (settings.compositing == Compositing::rays)
-      compositor_.draw_rays();
+      compositor_->draw_rays();
     else
-      compositor_.draw(items_);
+      compositor_->draw(items_);
   };
   if (!reuse) {
     draw_all();
   } else {
     std::int64_t area = 0;
     for (const PixelRect& rect : rects) {
-      compositor_.set_region(rect, settings);
+      compositor_->set_region(rect, settings);
       draw_all();
       area += rect.area();
     }
-    compositor_.set_region(PixelRect{}, settings);
+    compositor_->set_region(PixelRect{}, settings);
     r.redrawn_percent = 100.0 * double(area) /
                         double(std::max(1, camera.params().width * camera.params().height));
   }
@@ -256,7 +257,7 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
   else
     for (const DrawItem& it : items_) r.boxes += it.as_box;
   for (const tsp::TextureKey& k : plan.release_after) textures_.erase(k);
-  r.fragments = compositor_.end_frame();
+  r.fragments = compositor_->end_frame();
   previous_ = Previous{key, std::move(ids)};
   r.draw_ms = phase.lap_ms();
   r.ms = frame.ms();

@@ -5,6 +5,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -29,11 +30,16 @@ namespace tspgl {
 class VolumeRenderer {
  public:
   /// Sets up programs and buffers in ctx (which must be current and outlive the renderer);
-  /// bricks must outlive it too and have a thread-safe read_brick. Throws tsp::GlError,
-  /// tsp::IoError (shader files).
+  /// bricks must outlive it too and have a thread-safe read_brick. With compositor (made in
+  /// ctx), its programs are shared instead of compiled again: one renderer per field of a file
+  /// (the player's field switch), drawing one at a time. Throws tsp::GlError, tsp::IoError
+  /// (shader files).
   VolumeRenderer(GlContext& ctx, const tsp::BrickStore& bricks, tsp::CachePolicy cache,
                  std::int64_t texture_budget = kDefaultTextureBudget,
-                 std::int64_t brick_budget = kDefaultBrickBudget);
+                 std::int64_t brick_budget = kDefaultBrickBudget,
+                 std::shared_ptr<SliceCompositor> compositor = nullptr);
+  /// The compositor it draws with (to share with another renderer in the same context).
+  const std::shared_ptr<SliceCompositor>& compositor() const { return compositor_; }
   ~VolumeRenderer();
   VolumeRenderer(const VolumeRenderer&) = delete;
   VolumeRenderer& operator=(const VolumeRenderer&) = delete;
@@ -71,7 +77,7 @@ class VolumeRenderer {
   const tsp::TspTree& tree_;
   tsp::TextureCache cache_;
   tsp::BrickCache bricks_;
-  SliceCompositor compositor_;
+  std::shared_ptr<SliceCompositor> compositor_;
   BrickTextures textures_;
   tsp::PolygonSoup soup_;
   std::vector<DrawItem> items_;  // slices and boxes compositing

@@ -155,6 +155,38 @@ TEST(BuildInfoCli, KatrinaTemperature) {
   EXPECT_FALSE(info_json(dir / "t.tsp", "").contains("nodes"));
 }
 
+// --field A,B: one tree each in one file. info lists the fields and describes any one of them
+// with --field, each matching the brute force over its own dataset; render and metrics take
+// --field too.
+TEST(BuildInfoCli, SeveralFieldsInOneFile) {
+  const fs::path dir = tsptest::temp_dir(), h5 = tsptest::test_data_dir() / "h5" / "int16.h5";
+  auto r = run_tspplay("build " + q(h5) + " --field plain,u64 --brick 8 -o " + q(dir / "m.tsp"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json first = info_json(dir / "m.tsp");
+  EXPECT_EQ(first["fields"], json({"plain", "u64"}));
+  EXPECT_EQ(first["field"], "plain");
+  check_info(first, read_all(h5.string(), "plain"), 8);
+  const json second = info_json(dir / "m.tsp", " --nodes --field u64");
+  EXPECT_EQ(second["field"], "u64");
+  check_info(second, read_all(h5.string(), "u64"), 8);
+  const auto text = run_tspplay("info " + q(dir / "m.tsp"));
+  EXPECT_NE(text.out.find("fields        plain, u64"), std::string::npos) << text.out;
+  for (const std::string cmd : {"render " + q(dir / "m.tsp") + " --field u64 --size 32x24 -o " +
+                                    q(dir / "f"),
+                                "metrics " + q(dir / "m.tsp") + " --field u64 --tf preset:sparse"})
+    EXPECT_EQ(run_tspplay(cmd).exit_code, 0) << cmd;
+  const auto bad = run_tspplay("info " + q(dir / "m.tsp") + " --field density");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("holds the field(s) plain, u64"), std::string::npos) << bad.err;
+  // A field on another grid, or one named twice: refused, nothing written.
+  const fs::path grid4d = tsptest::test_data_dir() / "h5" / "grid4d.h5";
+  EXPECT_EQ(run_tspplay("build " + q(grid4d) + " --field f,single -o " + q(dir / "x.tsp")).exit_code,
+            1);
+  EXPECT_EQ(run_tspplay("build " + q(h5) + " --field plain,plain -o " + q(dir / "x.tsp")).exit_code,
+            2);
+  EXPECT_FALSE(fs::exists(dir / "x.tsp"));
+}
+
 TEST(BuildInfoCli, RangeOptionSetsTheQuantizationRange) {
   const fs::path dir = tsptest::temp_dir();
   auto r = run_tspplay("build " + q(katrina()) + " --field T --brick 16 --range=-5:40 -o " +

@@ -205,9 +205,10 @@ TEST(Player, PlaysARawInputThroughTheBuildCache) {
   EXPECT_NE(r.out.find("built from it earlier"), std::string::npos) << r.out;
   EXPECT_LT(tsp::diff_images(tsp::read_png((dir / "a.png").string()),
                              tsp::read_png((dir / "b.png").string())).mean, kSameFrameDeltaE);
-  // --field names a raw input's field; a .tsp already has one.
-  r = run_tspplay("play " + q(make_tsp()) + " --field shock --screenshot " + q(dir / "c.png"));
+  // --field names a raw input's field, or one of a .tsp file's fields.
+  r = run_tspplay("play " + q(make_tsp()) + " --field pressure --screenshot " + q(dir / "c.png"));
   EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("holds the field(s) shock"), std::string::npos) << r.err;
 }
 
 // The outline box is drawn over the volume by default (the UI screenshot holds it): a hint of
@@ -536,6 +537,61 @@ TEST(Player, ShowsThePhysicalProportionsAsRenderDoes) {
               kSameFrameDeltaE)
         << scale;
   }
+}
+
+// Several fields: `field NAME` shows the other field (as `render --field` does), each with its
+// own TF; switching back finds the first field's textures still resident; stats say which field
+// and how long the switch took to its first complete frame.
+TEST(Player, SwitchesFieldsLiveEachWithItsOwnTransferFunction) {
+  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  const fs::path dir = tsptest::temp_dir(), h5 = dir / "two.h5", tsp = dir / "two.tsp";
+  ASSERT_EQ(run_tspplay("generate shock -o " + q(dir / "a.h5") + " --dims 24,20,18 --steps 3")
+                .exit_code, 0);
+  // Two fields in one HDF5 file: the shock and the vortex datasets copied side by side.
+  ASSERT_EQ(run_tspplay("generate vortex -o " + q(dir / "b.h5") + " --dims 24,20,18 --steps 3")
+                .exit_code, 0);
+  ASSERT_EQ(std::system(("h5copy -i " + q(dir / "a.h5") + " -o " + q(h5) + " -s shock -d shock && " +
+                         "h5copy -i " + q(dir / "b.h5") + " -o " + q(h5) + " -s vortex -d vortex")
+                            .c_str()),
+            0);
+  auto b = run_tspplay("build " + q(h5) + " --field shock,vortex -o " + q(tsp));
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  const std::string script =
+      "step 1\ntf preset:filled\nwait-frames 2\nscreenshot " + (dir / "s.png").string() +
+      "\nfield vortex\nscreenshot " + (dir / "v.png").string() + "\nstats " +
+      (dir / "v.json").string() + "\nfield shock\nscreenshot " + (dir / "s2.png").string() +
+      "\nstats " + (dir / "s.json").string() + "\nquit\n";
+  auto r = run_tspplay("play " + q(tsp) + " --size " + kSize + " --trace --script " +
+                       q(write_script(script)));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("trace: field vortex"), std::string::npos) << r.out;
+  auto render = [&](const std::string& field, const std::string& tf) {
+    const fs::path out = dir / ("r" + field);
+    auto rr = run_tspplay("render " + q(tsp) + " --field " + field + " --tf " + tf +
+                          " --steps 1 --size " + kSize + " -o " + q(out));
+    EXPECT_EQ(rr.exit_code, 0) << rr.err;
+    return tsp::read_png((out / "step_0001.png").string());
+  };
+  // The shock with the filled TF set before the switch; the vortex with the start TF (sparse).
+  EXPECT_LT(tsp::diff_images(tsp::read_png((dir / "s.png").string()), render("shock", "preset:filled")).mean,
+            kSameFrameDeltaE);
+  EXPECT_LT(tsp::diff_images(tsp::read_png((dir / "v.png").string()), render("vortex", "preset:sparse")).mean,
+            kSameFrameDeltaE);
+  EXPECT_LT(tsp::diff_images(tsp::read_png((dir / "s2.png").string()),
+                             tsp::read_png((dir / "s.png").string())).mean,
+            kSameFrameDeltaE);  // back: its TF kept
+  const nlohmann::json v = read_json(dir / "v.json"), s = read_json(dir / "s.json");
+  EXPECT_EQ(v["field"], "vortex");
+  EXPECT_EQ(s["field"], "shock");
+  EXPECT_EQ(v["fields"].size(), 2u);
+  EXPECT_GE(v["field_switch_ms"].get<double>(), 0.0);
+  // No such field: reported, the shown one stays.
+  auto bad = run_tspplay("play " + q(tsp) + " --size " + kSize + " --script " +
+                         q(write_script("field density\nstats " + (dir / "b.json").string() +
+                                        "\nquit\n")));
+  EXPECT_EQ(bad.exit_code, 0) << bad.err;
+  EXPECT_NE(bad.err.find("holds the field(s) shock, vortex"), std::string::npos) << bad.err;
+  EXPECT_EQ(read_json(dir / "b.json")["field"], "shock");
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <filesystem>
 #include <tuple>
@@ -233,6 +234,65 @@ TEST(VolumeRenderer, StretchedVoxelsShowThePhysicalBoxSampledAlongTheRays) {
         << "case " << k << ": got " << int(px[0]) << "," << int(px[1]) << "," << int(px[2])
         << " for opacity " << opacity << " over " << len << " samples";
   }
+}
+
+// A BrickStore that counts its reads (for the field-switch test).
+class CountingStore : public tsp::BrickStore {
+ public:
+  explicit CountingStore(const tsp::TspFile& f) : f_(f) {}
+  const tsp::TspTree& tree() const override { return f_.tree(); }
+  void read_brick(int b, int t, std::span<std::uint16_t> out) const override {
+    ++reads;
+    f_.read_brick(b, t, out);
+  }
+  mutable std::atomic<int> reads{0};
+
+ private:
+  const tsp::TspFile& f_;
+};
+
+// Two fields of one file drawn by two renderers sharing one compositor (the player's field
+// switch): drawing the second reads only its own bricks, and its picture is what a renderer of
+// its own draws.
+TEST(VolumeRenderer, ASecondFieldSharesTheProgramsAndReadsOnlyItsOwnBricks) {
+  const std::string path = (tsptest::temp_dir() / "fields.tsp").string();
+  tsp::BuildOptions o;
+  o.brick_size = 8;
+  tsp::build_tsp_fields(
+      [](const std::string& f) -> std::unique_ptr<tsp::VolumeSource> {
+        return std::make_unique<tsptest::MemorySource>(tsptest::MemorySource::from_function(
+            {20, 18, 16}, 2, [&f](int x, int y, int z, int t) {
+              return f == "a" ? float(x + y + z + t) : float((x * y + z * 7 + t) % 13);
+            }));
+      },
+      {"a", "b"}, path, o);
+  auto fa = tsp::TspFile::open(path, "a"), fb = tsp::TspFile::open(path, "b");
+  CountingStore sa(*fa), sb(*fb);
+  auto ctx = create_offscreen_context(96, 72);
+  tsp::CameraParams p;
+  p.width = 96;
+  p.height = 72;
+  const tsp::Camera cam(fa->tree().octree().dims(), p);
+  auto draw = [&](VolumeRenderer& r, const tsp::TspFile& f) {
+    const auto tf = tsp::preset_transfer_function("filled", f.tree().value_range());
+    r.set_transfer_function(tf);
+    tsp::MetricResult m = tsp::compute_errors(tsp::Metric::approximate, f.tree(), tf, nullptr, 1);
+    tsp::WholeTreeMetric nodes(m);
+    r.render(0, cam, RenderSettings{}, nodes);
+    return ctx->read_pixels();
+  };
+  VolumeRenderer ra(*ctx, sa, tsp::CachePolicy::on);
+  draw(ra, *fa);
+  const int a_reads = sa.reads;
+  EXPECT_GT(a_reads, 0);
+  VolumeRenderer rb(*ctx, sb, tsp::CachePolicy::on, kDefaultTextureBudget, kDefaultBrickBudget,
+                    ra.compositor());
+  EXPECT_EQ(rb.compositor(), ra.compositor());
+  const tsp::Image shared = draw(rb, *fb);
+  EXPECT_EQ(sa.reads, a_reads);  // nothing of field a
+  EXPECT_GT(sb.reads, 0);
+  VolumeRenderer own(*ctx, *fb, tsp::CachePolicy::on);
+  expect_close("second_field", shared, draw(own, *fb), 0.01, 0.1);
 }
 
 // Pre-integration: along the centre ray the value ramps linearly so that the half-way points

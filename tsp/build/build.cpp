@@ -366,9 +366,10 @@ ValueRange checked_range(const std::optional<ValueRange>& r, ValueRange data) {
 
 }  // namespace
 
-BuildReport build_tsp_file(VolumeSource& source, const std::string& out_path,
-                           const BuildOptions& options) {
-  const Stopwatch watch;
+namespace {
+
+// Options checked before any work. Throws UsageError.
+void check_options(const std::string& out_path, const BuildOptions& options) {
   if (options.range) checked_range(options.range, {});  // reject a bad range before any work
   if (options.threads < 0)
     throw UsageError("--threads " + std::to_string(options.threads) + ": expected 0 or more");
@@ -381,7 +382,13 @@ BuildReport build_tsp_file(VolumeSource& source, const std::string& out_path,
       throw UsageError("--origin: expected three finite coordinates, found " +
                        std::to_string((*options.origin)[a]));
   }
-  require_not_an_input(out_path, source.files());
+}
+
+// Builds one field of source into the temporary output out (field_index 0: the file's root,
+// created; K ≥ 1: the group fields/K of the file field 0 was written to).
+BuildReport build_field(VolumeSource& source, const TempOutput& out, int field_index,
+                        const BuildOptions& options) {
+  const Stopwatch watch;
   const Dims dims = source.dims();
   const int steps = source.steps();
   if (steps < 1) throw FormatError(source.describe() + ": no time steps");
@@ -390,7 +397,6 @@ BuildReport build_tsp_file(VolumeSource& source, const std::string& out_path,
 
   BuildReport report;
   report.source_bytes = dims.count() * steps * std::int64_t(sizeof(float));
-  TempOutput out(out_path);
 
   std::vector<std::int64_t> samples(o.brick_count());
   for (int b = 0; b < o.brick_count(); ++b) samples[b] = o.brick_samples(b).count();
@@ -417,7 +423,7 @@ BuildReport build_tsp_file(VolumeSource& source, const std::string& out_path,
   std::vector<NodeAccum> acc(tree.size());
   TspMetadata meta;
   {
-    TspWriter writer(out.tmp(), tree);
+    TspWriter writer(out.tmp(), tree, field_index);
     BrickPass pass(tree, scratch, levels, stencil, writer, report.value_range, acc);
     pass.run(resolve_threads(options.threads), options.progress, report.source_bytes);
     combine_octree(tree, acc);
@@ -435,9 +441,68 @@ BuildReport build_tsp_file(VolumeSource& source, const std::string& out_path,
     meta.spacing = options.spacing.value_or(source.spacing());
     writer.finish(tree, meta);
   }
-  out.commit();
   report.seconds = watch.seconds();
   return report;
+}
+
+}  // namespace
+
+BuildReport build_tsp_file(VolumeSource& source, const std::string& out_path,
+                           const BuildOptions& options) {
+  check_options(out_path, options);
+  require_not_an_input(out_path, source.files());
+  TempOutput out(out_path);
+  BuildReport r = build_field(source, out, 0, options);
+  out.commit();
+  return r;
+}
+
+std::vector<BuildReport> build_tsp_fields(const FieldSourceFn& open_field,
+                                          const std::vector<std::string>& fields,
+                                          const std::string& out_path,
+                                          const BuildOptions& options) {
+  check_options(out_path, options);
+  if (fields.empty()) throw UsageError("--field: no field named");
+  for (std::size_t i = 0; i < fields.size(); ++i) {
+    if (fields[i].empty() || fields[i].find('\n') != std::string::npos)
+      throw UsageError("--field: field " + std::to_string(i + 1) +
+                       " of the list is empty or holds a line break");
+    for (std::size_t j = 0; j < i; ++j)
+      if (fields[i] == fields[j])
+        throw UsageError("--field: the field '" + fields[i] + "' is named twice");
+  }
+  std::vector<BuildReport> reports;
+  std::optional<TempOutput> out;
+  Dims dims0;
+  int steps0 = 0;
+  for (std::size_t k = 0; k < fields.size(); ++k) {
+    std::unique_ptr<VolumeSource> source = open_field(fields[k]);
+    if (k == 0) {
+      require_not_an_input(out_path, source->files());
+      out.emplace(out_path);
+      dims0 = source->dims();
+      steps0 = source->steps();
+    } else if (!(source->dims() == dims0) || source->steps() != steps0) {
+      throw FormatError(source->describe() + ": field " + fields[k] + " has " +
+                        to_string(source->dims()) + " voxels and " +
+                        std::to_string(source->steps()) + " steps, the first field " + fields[0] +
+                        " " + to_string(dims0) + " and " + std::to_string(steps0) +
+                        " (one .tsp holds fields on one grid)");
+    }
+    BuildOptions o = options;
+    o.field_name = fields[k];
+    if (options.progress && fields.size() > 1) {
+      const std::string tag = fields[k] + " (" + std::to_string(k + 1) + "/" +
+                              std::to_string(fields.size()) + ") ";
+      o.progress = [tag, &options](const std::string& phase, std::int64_t done, std::int64_t total) {
+        options.progress(tag + phase, done, total);
+      };
+    }
+    reports.push_back(build_field(*source, *out, int(k), o));
+  }
+  if (fields.size() > 1) TspWriter::write_field_list(out->tmp(), fields);
+  out->commit();
+  return reports;
 }
 
 int default_brick_size(Dims dims) {

@@ -4,8 +4,10 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "tsp/core/types.h"
 #include "tsp/source/volume_source.h"
@@ -44,6 +46,20 @@ struct BuildReport {
   ValueRange data_range;             ///< finite min/max of the input ({0, 0} when none)
   ValueRange value_range;            ///< quantization range written to the file
 };
+
+/// Opens the source of one named field of the input (build_tsp_fields).
+using FieldSourceFn = std::function<std::unique_ptr<VolumeSource>(const std::string& field)>;
+
+/// Builds several fields of one input into one .tsp file, one tree each, in the order given: the
+/// first at the file's root (so every reader sees it), the others in groups fields/1, fields/2, …
+/// with the list in the root attribute `fields` (docs/formats.md). Each field is built like
+/// build_tsp_file, reading its own source (open_field(name)); all must have the first field's
+/// dims and steps. options.field_name is ignored (each field gets its name); progress phases
+/// are prefixed with the field. One report per field. Throws like build_tsp_file, and
+/// FormatError for a field on another grid; never leaves a partial out_path.
+std::vector<BuildReport> build_tsp_fields(const FieldSourceFn& open_field,
+                                          const std::vector<std::string>& fields,
+                                          const std::string& out_path, const BuildOptions& options);
 
 /// Reads every step of source once, writes out_path (via a temporary name renamed at the end),
 /// and returns what it did. Samples are clamped to the quantization range (NaN and −Inf become

@@ -31,7 +31,12 @@ std::string shape_text(const std::vector<hsize_t>& s) {
 // names the file and the object.
 class Reader {
  public:
-  Reader(const std::string& path, hid_t file) : path_(path), file_(file) {}
+  /// file: the field's location (the root group or fields/K); prefix: its path for messages.
+  Reader(const std::string& path, hid_t file, std::string prefix = "/")
+      : path_(path), file_(file), prefix_(std::move(prefix)) {}
+
+  /// "dataset /NAME" (with the field's group) for messages.
+  std::string dataset_name(const char* name) const { return "dataset " + prefix_ + name; }
 
   [[noreturn]] void fail(const std::string& what, const std::string& msg) const {
     throw FormatError(path_ + ": " + what + ": " + msg);
@@ -70,16 +75,16 @@ class Reader {
   }
 
   Handle open_dataset(const char* name, const std::vector<hsize_t>& shape, H5T_class_t cls) const {
-    if (!h5::exists(file_, name)) fail(std::string("dataset ") + name, "missing");
+    if (!h5::exists(file_, name)) fail(dataset_name(name), "missing");
     Handle ds(H5Dopen2(file_, name, H5P_DEFAULT));
-    if (!ds) fail(std::string("dataset ") + name, "cannot be opened");
+    if (!ds) fail(dataset_name(name), "cannot be opened");
     auto found = h5::dataset_shape(ds.get());
     if (found != shape)
-      fail(std::string("dataset ") + name,
+      fail(dataset_name(name),
            "expected shape " + shape_text(shape) + ", found " + shape_text(found));
     Handle type(H5Dget_type(ds.get()));
     if (H5Tget_class(type.get()) != cls || !io::is_standard_numeric_type(type.get()))
-      fail(std::string("dataset ") + name,
+      fail(dataset_name(name),
            cls == H5T_FLOAT ? "expected floating-point values of a standard type"
                             : "expected integers of a standard type");
     return ds;
@@ -93,17 +98,17 @@ class Reader {
     for (hsize_t d : shape) n *= d;
     std::vector<T> v(n);
     if (n > 0 && H5Dread(ds.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()) < 0)
-      fail(std::string("dataset ") + name, "unreadable (truncated or corrupt file?)");
+      fail(dataset_name(name), "unreadable (truncated or corrupt file?)");
     return v;
   }
 
   template <class T>
   void expect_equal(const char* name, const std::vector<T>& found,
                     const std::vector<T>& want) const {
-    if (found.size() != want.size()) fail(std::string("dataset ") + name, "wrong size");
+    if (found.size() != want.size()) fail(dataset_name(name), "wrong size");
     for (std::size_t i = 0; i < want.size(); ++i)
       if (found[i] != want[i])
-        fail(std::string("dataset ") + name,
+        fail(dataset_name(name),
              "element " + std::to_string(i) + " is " + std::to_string(found[i]) + ", expected " +
                  std::to_string(want[i]) + " for the file's dims and brick size");
   }
@@ -111,6 +116,7 @@ class Reader {
  private:
   std::string path_;
   hid_t file_;
+  std::string prefix_;
 };
 
 void append_box(std::vector<int>& v, const Box& b) {
@@ -122,6 +128,9 @@ void append_box(std::vector<int>& v, const Box& b) {
 struct TspFile::Impl {
   std::string path;
   Handle file;
+  Handle loc;  ///< the field's location: the root group, or fields/K
+  std::vector<std::string> fields;
+  int field_index = 0;
   Handle data;
   Handle inside;
   std::unique_ptr<TspTree> tree;
@@ -134,16 +143,14 @@ TspFile::~TspFile() {
   std::lock_guard lock(hdf5_mutex());
   impl_->data.reset();
   impl_->inside.reset();
+  impl_->loc.reset();
   impl_->file.reset();
 }
 
-std::unique_ptr<TspFile> TspFile::open(const std::string& path) {
-  std::lock_guard lock(hdf5_mutex());
-  auto impl = std::make_unique<Impl>();
-  impl->path = path;
-  impl->file = h5::open_file_readonly(path);
-  Reader r(path, impl->file.get());
+namespace {
 
+// Checks the format tag and version of a field's location. Throws FormatError.
+void check_format(const Reader& r, const std::string& path) {
   if (!r.has_attr(layout::kAttrFormat))
     throw FormatError(path +
                       ": not a tspplay .tsp file (HDF5 without a 'format' attribute; "
@@ -157,10 +164,70 @@ std::unique_ptr<TspFile> TspFile::open(const std::string& path) {
     throw FormatError(path + ": .tsp format version " + std::to_string(version) +
                       ", this tspplay reads version " + std::to_string(kTspFormatVersion) +
                       " only; rebuild the file with this tspplay");
+}
+
+std::vector<std::string> split_lines(const std::string& text) {
+  std::vector<std::string> out;
+  std::size_t p = 0;
+  while (p <= text.size()) {
+    std::size_t n = text.find('\n', p);
+    if (n == std::string::npos) n = text.size();
+    out.push_back(text.substr(p, n - p));
+    p = n + 1;
+  }
+  return out;
+}
+
+}  // namespace
+
+std::unique_ptr<TspFile> TspFile::open(const std::string& path, const std::string& field) {
+  std::lock_guard lock(hdf5_mutex());
+  auto impl = std::make_unique<Impl>();
+  impl->path = path;
+  impl->file = h5::open_file_readonly(path);
+  Handle root_group(H5Gopen2(impl->file.get(), "/", H5P_DEFAULT));
+  const Reader root(path, root_group.get());
+  check_format(root, path);
+  // The fields: the root's own, then fields/1, fields/2, … (files with several).
+  impl->fields = root.has_attr(layout::kAttrFields)
+                     ? split_lines(root.attr_string(layout::kAttrFields))
+                     : std::vector<std::string>{root.attr_string(layout::kAttrField)};
+  for (std::size_t i = 0; i < impl->fields.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if (impl->fields[i] == impl->fields[j])
+        root.fail("attribute fields", "the field '" + impl->fields[i] + "' is listed twice");
+  if (!field.empty()) {
+    const auto it = std::find(impl->fields.begin(), impl->fields.end(), field);
+    if (it == impl->fields.end()) {
+      std::string names;
+      for (const std::string& f : impl->fields) names += (names.empty() ? "" : ", ") + f;
+      throw UsageError("--field " + field + ": " + path + " holds the field(s) " + names);
+    }
+    impl->field_index = int(it - impl->fields.begin());
+  }
+  std::string prefix = "/";
+  if (impl->field_index == 0) {
+    impl->loc = std::move(root_group);
+  } else {
+    const std::string group = std::string(layout::kFieldsGroup) + "/" +
+                              std::to_string(impl->field_index);
+    if (!h5::exists(impl->file.get(), group.c_str()))
+      root.fail("group /" + group, "missing (the field '" + field + "' is listed but not stored)");
+    impl->loc = Handle(H5Gopen2(impl->file.get(), group.c_str(), H5P_DEFAULT));
+    if (!impl->loc) root.fail("group /" + group, "cannot be opened");
+    prefix = "/" + group + "/";
+  }
+  const Reader r(path, impl->loc.get(), prefix);
+  if (impl->field_index > 0) check_format(r, path);
 
   auto dims = r.attr_numbers<int>(layout::kAttrDims, H5T_NATIVE_INT, 3);
   int steps = r.attr_numbers<int>(layout::kAttrSteps, H5T_NATIVE_INT, 1)[0];
   int brick = r.attr_numbers<int>(layout::kAttrBrickSize, H5T_NATIVE_INT, 1)[0];
+  if (impl->field_index > 0 &&
+      (dims != root.attr_numbers<int>(layout::kAttrDims, H5T_NATIVE_INT, 3) ||
+       steps != root.attr_numbers<int>(layout::kAttrSteps, H5T_NATIVE_INT, 1)[0] ||
+       brick != root.attr_numbers<int>(layout::kAttrBrickSize, H5T_NATIVE_INT, 1)[0]))
+    r.fail("attributes dims/steps/brick_size", "differ from the file's first field");
   if (steps < 1) r.fail("attribute steps", "expected at least 1, found " + std::to_string(steps));
   check_grid(dims[0], dims[1], dims[2], steps, path + ": attributes dims/steps");
   try {
@@ -234,17 +301,17 @@ std::unique_ptr<TspFile> TspFile::open(const std::string& path) {
                                       H5T_FLOAT);
   for (std::size_t i = 0; i < level_error.size(); ++i)
     if (!std::isfinite(level_error[i]) || level_error[i] < 0)
-      r.fail(std::string("dataset ") + layout::kLevelError,
+      r.fail(r.dataset_name(layout::kLevelError),
              "element " + std::to_string(i) + " is " + std::to_string(level_error[i]) +
                  ", expected a finite RMS residual >= 0");
   std::copy(level_error.begin(), level_error.end(), tree.level_errors().begin());
 
-  const bool stencil = H5Lexists(impl->file.get(), layout::kOctreeInside, H5P_DEFAULT) > 0;
+  const bool stencil = H5Lexists(impl->loc.get(), layout::kOctreeInside, H5P_DEFAULT) > 0;
   if (stencil) {
     auto inside = r.dataset<float>(layout::kOctreeInside, {no}, H5T_NATIVE_FLOAT, H5T_FLOAT);
     for (std::size_t i = 0; i < inside.size(); ++i)
       if (!(inside[i] >= 0 && inside[i] <= 1))
-        r.fail(std::string("dataset ") + layout::kOctreeInside,
+        r.fail(r.dataset_name(layout::kOctreeInside),
                "element " + std::to_string(i) + " is " + std::to_string(inside[i]) +
                    ", expected a fraction in [0, 1]");
     tree.set_inside_fractions(std::move(inside));
@@ -260,11 +327,11 @@ std::unique_ptr<TspFile> TspFile::open(const std::string& path) {
     }
   }
 
-  if (H5Lexists(impl->file.get(), layout::kTimeValues, H5P_DEFAULT) > 0) {
+  if (H5Lexists(impl->loc.get(), layout::kTimeValues, H5P_DEFAULT) > 0) {
     m.times = r.dataset<double>(layout::kTimeValues, {hsize_t(steps)}, H5T_NATIVE_DOUBLE, H5T_FLOAT);
     for (std::size_t i = 0; i < m.times.size(); ++i)
       if (!std::isfinite(m.times[i]))
-        r.fail(std::string("dataset ") + layout::kTimeValues,
+        r.fail(r.dataset_name(layout::kTimeValues),
                "element " + std::to_string(i) + " is not a finite time");
   }
 
@@ -312,7 +379,7 @@ std::unique_ptr<TspFile> TspFile::open(const std::string& path) {
       {ns, hsize_t(steps), hsize_t(shape[2]), hsize_t(shape[1]), hsize_t(shape[0])}, H5T_INTEGER);
   Handle type(H5Dget_type(impl->data.get()));
   if (H5Tget_size(type.get()) != 2 || H5Tget_sign(type.get()) != H5T_SGN_NONE)
-    r.fail(std::string("dataset ") + layout::kBrickData, "expected 16-bit unsigned codes");
+    r.fail(r.dataset_name(layout::kBrickData), "expected 16-bit unsigned codes");
   if (stencil) {
     impl->inside = r.open_dataset(
         layout::kBrickInside,
@@ -320,7 +387,7 @@ std::unique_ptr<TspFile> TspFile::open(const std::string& path) {
         H5T_INTEGER);
     Handle itype(H5Dget_type(impl->inside.get()));
     if (H5Tget_size(itype.get()) != 1)
-      r.fail(std::string("dataset ") + layout::kBrickInside, "expected 8-bit flags");
+      r.fail(r.dataset_name(layout::kBrickInside), "expected 8-bit flags");
   }
   return std::unique_ptr<TspFile>(new TspFile(std::move(impl)));
 }
@@ -333,6 +400,12 @@ const TspMetadata& TspFile::metadata() const {
 }
 const std::string& TspFile::path() const {
   return impl_->path;
+}
+const std::vector<std::string>& TspFile::fields() const {
+  return impl_->fields;
+}
+int TspFile::field_index() const {
+  return impl_->field_index;
 }
 
 namespace {

@@ -33,9 +33,10 @@ struct TspMetadata {
 /// An open .tsp file: tree, metadata, and brick reads (one HDF5 chunk per brick and step).
 class TspFile : public BrickStore {
  public:
-  /// Opens path and loads the tree; throws IoError (missing/unreadable) or FormatError
-  /// (not a .tsp file, other version, inconsistent contents), naming the file.
-  static std::unique_ptr<TspFile> open(const std::string& path);
+  /// Opens path and loads the tree of `field` (empty: the file's first field); throws IoError
+  /// (missing/unreadable), FormatError (not a .tsp file, other version, inconsistent contents),
+  /// naming the file, or UsageError (no such field: the message lists the file's fields).
+  static std::unique_ptr<TspFile> open(const std::string& path, const std::string& field = "");
   ~TspFile() override;
   /// The tree with every node's statistics.
   const TspTree& tree() const override;
@@ -43,6 +44,11 @@ class TspFile : public BrickStore {
   const TspMetadata& metadata() const;
   /// Path the file was opened from.
   const std::string& path() const;
+  /// Every field the file holds, in order (one for a file built with one field; its name may be
+  /// empty).
+  const std::vector<std::string>& fields() const;
+  /// Which of fields() this one is.
+  int field_index() const;
   /// Reads one stored brick (leaf or level) at one step; thread-safe. Throws IoError/FormatError.
   void read_brick(int brick, int step, std::span<std::uint16_t> out) const override;
   /// Reads one stored brick's stencil at one step (files with a stencil); thread-safe. Throws

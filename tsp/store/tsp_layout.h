@@ -35,37 +35,42 @@ inline constexpr const char* kAttrQuantization = "quantization";  // text of the
 inline constexpr const char* kAttrNodeId = "tsp_node_id";         // text of the id rule
 inline constexpr const char* kAttrOrigin = "origin";    // float64[3]: voxel (0,0,0) in space
 inline constexpr const char* kAttrSpacing = "spacing";  // float64[3]: voxel spacing per axis
+// Root only, files with several fields: their names in order, one per line (the first is the
+// root's own field).
+inline constexpr const char* kAttrFields = "fields";
+inline constexpr const char* kFieldsGroup = "fields";  // holds one group per further field, "1", …
 
-// Datasets.
-inline constexpr const char* kBricks = "/bricks";
+// Datasets and groups, relative to the field's location: the file's root for its first field,
+// fields/K for field K ≥ 1 of a file with several (kAttrFields lists them).
+inline constexpr const char* kBricks = "bricks";
 // uint16 [nb+nl,T,Bz,By,Bx]: the nb leaf bricks, then the nl level bricks (format 2)
-inline constexpr const char* kBrickData = "/bricks/data";
+inline constexpr const char* kBrickData = "bricks/data";
 // uint8, the shape of /bricks/data, only for inputs with a stencil: 1 = inside the data
-inline constexpr const char* kBrickInside = "/bricks/inside";
-inline constexpr const char* kBrickSamplesBox = "/bricks/samples_box";  // int32 [nb,6]
-inline constexpr const char* kBrickOwnBox = "/bricks/own_box";          // int32 [nb,6]
-inline constexpr const char* kLevels = "/levels";
-inline constexpr const char* kLevelNode = "/levels/node";        // int32 [nl]: octree node
-inline constexpr const char* kLevelLattice = "/levels/lattice";  // int32 [nl,9]: origin, factor, samples
-inline constexpr const char* kLevelError = "/levels/error";      // float32 [nl,T]: RMS residual
-inline constexpr const char* kOctree = "/octree";
-inline constexpr const char* kOctreeBox = "/octree/box";            // int32 [no,6]
-inline constexpr const char* kOctreeLevel = "/octree/level";        // int32 [no]
-inline constexpr const char* kOctreeParent = "/octree/parent";      // int32 [no]
-inline constexpr const char* kOctreeChildren = "/octree/children";  // int32 [no,8]
-inline constexpr const char* kOctreeBrick = "/octree/brick";        // int32 [no]
-inline constexpr const char* kOctreeInside = "/octree/inside";      // float32 [no], with a stencil
-inline constexpr const char* kTime = "/time";
-inline constexpr const char* kTimeSpan = "/time/span";  // int32 [2T-1,2]
-inline constexpr const char* kTimeValues = "/time/values";  // float64 [T], when the input names them
-inline constexpr const char* kStats = "/stats";
-inline constexpr const char* kStatsMean = "/stats/mean";                // float64 [n]
-inline constexpr const char* kStatsStd = "/stats/std";                  // float64 [n]
-inline constexpr const char* kStatsMin = "/stats/min";                  // float32 [n]
-inline constexpr const char* kStatsMax = "/stats/max";                  // float32 [n]
-inline constexpr const char* kStatsSpatial = "/stats/spatial_error";    // float32 [n]
-inline constexpr const char* kStatsTemporal = "/stats/temporal_error";  // float32 [n]
-inline constexpr const char* kHistogram = "/histogram";                 // uint64 [kHistogramBins]
+inline constexpr const char* kBrickInside = "bricks/inside";
+inline constexpr const char* kBrickSamplesBox = "bricks/samples_box";  // int32 [nb,6]
+inline constexpr const char* kBrickOwnBox = "bricks/own_box";          // int32 [nb,6]
+inline constexpr const char* kLevels = "levels";
+inline constexpr const char* kLevelNode = "levels/node";        // int32 [nl]: octree node
+inline constexpr const char* kLevelLattice = "levels/lattice";  // int32 [nl,9]: origin, factor, samples
+inline constexpr const char* kLevelError = "levels/error";      // float32 [nl,T]: RMS residual
+inline constexpr const char* kOctree = "octree";
+inline constexpr const char* kOctreeBox = "octree/box";            // int32 [no,6]
+inline constexpr const char* kOctreeLevel = "octree/level";        // int32 [no]
+inline constexpr const char* kOctreeParent = "octree/parent";      // int32 [no]
+inline constexpr const char* kOctreeChildren = "octree/children";  // int32 [no,8]
+inline constexpr const char* kOctreeBrick = "octree/brick";        // int32 [no]
+inline constexpr const char* kOctreeInside = "octree/inside";      // float32 [no], with a stencil
+inline constexpr const char* kTime = "time";
+inline constexpr const char* kTimeSpan = "time/span";  // int32 [2T-1,2]
+inline constexpr const char* kTimeValues = "time/values";  // float64 [T], when the input names them
+inline constexpr const char* kStats = "stats";
+inline constexpr const char* kStatsMean = "stats/mean";                // float64 [n]
+inline constexpr const char* kStatsStd = "stats/std";                  // float64 [n]
+inline constexpr const char* kStatsMin = "stats/min";                  // float32 [n]
+inline constexpr const char* kStatsMax = "stats/max";                  // float32 [n]
+inline constexpr const char* kStatsSpatial = "stats/spatial_error";    // float32 [n]
+inline constexpr const char* kStatsTemporal = "stats/temporal_error";  // float32 [n]
+inline constexpr const char* kHistogram = "histogram";                 // uint64 [kHistogramBins]
 
 inline constexpr const char* kQuantizationRule =
     "code q in [0,65535] stands for v = lo + q*(hi-lo)/65535 with [lo,hi] = value_range; "

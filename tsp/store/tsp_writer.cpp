@@ -71,14 +71,16 @@ std::array<int, 6> flat(const Box& b) {
 struct TspWriter::Impl {
   std::string path;
   Handle file;
+  Handle loc;  ///< where this field goes: the root group, or fields/K
   Handle data;
   Handle inside;
   int steps = 0;
   std::array<int, 3> shape{};  // x, y, z
 };
 
-TspWriter::TspWriter(const std::string& path, const TspTree& tree)
+TspWriter::TspWriter(const std::string& path, const TspTree& tree, int field_index)
     : impl_(std::make_unique<Impl>()) {
+  assert(field_index >= 0);
   std::lock_guard lock(hdf5_mutex());
   h5::silence_errors();
   Impl& w = *impl_;
@@ -88,13 +90,27 @@ TspWriter::TspWriter(const std::string& path, const TspTree& tree)
   Handle fapl(H5Pcreate(H5P_FILE_ACCESS));
   // The newest 1.10 structures: chunk indexes suited to fixed-size datasets. h5py reads them.
   H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_LATEST, H5F_LIBVER_LATEST);
-  w.file = Handle(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()));
-  if (!w.file) throw IoError(path + ": cannot create the output file");
-  make_group(w.file.get(), path, layout::kBricks);
-  make_group(w.file.get(), path, layout::kOctree);
-  make_group(w.file.get(), path, layout::kTime);
-  make_group(w.file.get(), path, layout::kStats);
-  make_group(w.file.get(), path, layout::kLevels);
+  if (field_index == 0) {
+    w.file = Handle(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()));
+    if (!w.file) throw IoError(path + ": cannot create the output file");
+    w.loc = Handle(check_id(H5Gopen2(w.file.get(), "/", H5P_DEFAULT), path, "/"));
+  } else {  // a further field of the file the first one was written to: its own group
+    w.file = Handle(H5Fopen(path.c_str(), H5F_ACC_RDWR, fapl.get()));
+    if (!w.file) throw IoError(path + ": cannot reopen the output file for another field");
+    if (!h5::exists(w.file.get(), layout::kFieldsGroup))
+      make_group(w.file.get(), path, layout::kFieldsGroup);
+    const std::string group =
+        std::string(layout::kFieldsGroup) + "/" + std::to_string(field_index);
+    w.loc = Handle(check_id(H5Gcreate2(w.file.get(), group.c_str(), H5P_DEFAULT, H5P_DEFAULT,
+                                       H5P_DEFAULT),
+                            path, group));
+  }
+  const hid_t loc = w.loc.get();
+  make_group(loc, path, layout::kBricks);
+  make_group(loc, path, layout::kOctree);
+  make_group(loc, path, layout::kTime);
+  make_group(loc, path, layout::kStats);
+  make_group(loc, path, layout::kLevels);
 
   const int nb = tree.octree().stored_brick_count();
   std::vector<hsize_t> dims = {hsize_t(nb), hsize_t(w.steps), hsize_t(w.shape[2]),
@@ -110,7 +126,7 @@ TspWriter::TspWriter(const std::string& path, const TspTree& tree)
   Handle dapl(H5Pcreate(H5P_DATASET_ACCESS));
   // No chunk cache: whole chunks go straight to the file instead of being copied first.
   H5Pset_chunk_cache(dapl.get(), 0, 0, 1.0);
-  w.data = Handle(check_id(H5Dcreate2(w.file.get(), layout::kBrickData, H5T_STD_U16LE, space.get(),
+  w.data = Handle(check_id(H5Dcreate2(loc, layout::kBrickData, H5T_STD_U16LE, space.get(),
                                       H5P_DEFAULT, dcpl.get(), dapl.get()),
                            path, layout::kBrickData));
   if (tree.has_stencil()) {
@@ -120,7 +136,7 @@ TspWriter::TspWriter(const std::string& path, const TspTree& tree)
     H5Pset_fill_time(icpl.get(), H5D_FILL_TIME_NEVER);
     H5Pset_deflate(icpl.get(), 1);
     H5Pset_fletcher32(icpl.get());
-    w.inside = Handle(check_id(H5Dcreate2(w.file.get(), layout::kBrickInside, H5T_STD_U8LE,
+    w.inside = Handle(check_id(H5Dcreate2(loc, layout::kBrickInside, H5T_STD_U8LE,
                                           space.get(), H5P_DEFAULT, icpl.get(), H5P_DEFAULT),
                                path, layout::kBrickInside));
   }
@@ -130,7 +146,24 @@ TspWriter::~TspWriter() {
   std::lock_guard lock(hdf5_mutex());
   impl_->data.reset();
   impl_->inside.reset();
+  impl_->loc.reset();
   impl_->file.reset();
+}
+
+void TspWriter::write_field_list(const std::string& path, const std::vector<std::string>& names) {
+  std::lock_guard lock(hdf5_mutex());
+  h5::silence_errors();
+  std::string text;
+  for (const std::string& n : names) {
+    assert(n.find('\n') == std::string::npos);
+    text += (text.empty() ? "" : "\n") + n;
+  }
+  Handle file(H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT));
+  if (!file) throw IoError(path + ": cannot reopen the output file to list its fields");
+  Handle root(check_id(H5Gopen2(file.get(), "/", H5P_DEFAULT), path, "/"));
+  write_attr_string(root.get(), path, layout::kAttrFields, text);
+  root.reset();
+  if (H5Fflush(file.get(), H5F_SCOPE_GLOBAL) < 0) throw IoError(path + ": cannot flush the output file");
 }
 
 namespace {
@@ -178,7 +211,7 @@ void TspWriter::finish(const TspTree& tree, const TspMetadata& meta) {
   std::lock_guard lock(hdf5_mutex());
   Impl& w = *impl_;
   const std::string& p = w.path;
-  hid_t f = w.file.get();
+  hid_t f = w.loc.get();
   const Octree& o = tree.octree();
   const Dims d = o.dims();
 
@@ -267,9 +300,9 @@ void TspWriter::finish(const TspTree& tree, const TspMetadata& meta) {
   write_dataset(f, p, layout::kHistogram, H5T_NATIVE_UINT64, H5T_STD_U64LE,
                 {hsize_t(meta.histogram.size())}, meta.histogram.data());
 
-  // Root attributes last: a file cut short before this point has no format tag and is rejected.
-  Handle root(check_id(H5Gopen2(f, "/", H5P_DEFAULT), p, "/"));
-  hid_t r = root.get();
+  // The location's attributes last: a file cut short before this point has no format tag and
+  // is rejected.
+  hid_t r = f;
   const int version = kTspFormatVersion, steps = time.steps(), bs = o.brick_size();
   const int dims[3] = {d.x, d.y, d.z};
   const ValueRange vr = tree.value_range();
@@ -293,11 +326,12 @@ void TspWriter::finish(const TspTree& tree, const TspMetadata& meta) {
   write_attr_string(r, p, layout::kAttrQuantization, layout::kQuantizationRule);
   write_attr_string(r, p, layout::kAttrNodeId, layout::kNodeIdRule);
   write_attr_string(r, p, layout::kAttrLevelRule, layout::kLevelRule);
-  root.reset();
 
   w.data.reset();
   w.inside.reset();
-  if (H5Fflush(f, H5F_SCOPE_GLOBAL) < 0) throw IoError(p + ": cannot flush the output file");
+  if (H5Fflush(w.file.get(), H5F_SCOPE_GLOBAL) < 0)
+    throw IoError(p + ": cannot flush the output file");
+  w.loc.reset();
   w.file.reset();
 }
 

@@ -6,6 +6,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "tsp/store/tsp_file.h"
 #include "tsp/tree/tsp_tree.h"
@@ -16,8 +17,10 @@ namespace tsp {
 /// bricks may be written from several threads.
 class TspWriter {
  public:
-  /// Creates (truncates) path with room for the bricks of tree's shape; throws IoError.
-  TspWriter(const std::string& path, const TspTree& tree);
+  /// Creates (truncates) path with room for the bricks of tree's shape (field_index 0: the
+  /// file's first field, at its root), or reopens the file the first field was written to and
+  /// adds field field_index ≥ 1 in its group fields/K. Throws IoError.
+  TspWriter(const std::string& path, const TspTree& tree, int field_index = 0);
   ~TspWriter();
   TspWriter(const TspWriter&) = delete;
   TspWriter& operator=(const TspWriter&) = delete;
@@ -30,6 +33,9 @@ class TspWriter {
   /// Writes the tree (shape and statistics), the ranges and the metadata, then closes the file.
   /// Throws IoError.
   void finish(const TspTree& tree, const TspMetadata& metadata);
+  /// After every field is finished: lists their names, in order, in the root attribute `fields`
+  /// (files with several fields). Throws IoError.
+  static void write_field_list(const std::string& path, const std::vector<std::string>& names);
 
  private:
   struct Impl;
