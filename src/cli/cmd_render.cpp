@@ -28,7 +28,7 @@ struct RenderArgs {
   bool annotate = false;
   std::string metric = "approximate", cache = "on", compositing = "rays", flat = "exact",
               span_step = "middle", preintegrated = "off",
-              reuse = "on";
+              reuse = "on", dense = "on";
   double spatial = 0, temporal = 0, spacing = tspgl::kDefaultSliceSpacing;
   int passes = 1;
   double texture_budget_mb = double(tspgl::kDefaultTextureBudget) / (1 << 20);
@@ -71,6 +71,7 @@ void run(const RenderArgs& a) {
   o.settings.span_step = tsp::parse_span_step(a.span_step, "--span-step");
   o.settings.preintegrated = a.preintegrated == "on";
   o.settings.reuse_image = a.reuse == "on";
+  o.settings.dense = a.dense == "on";
   if (a.quality != 0 && !a.explicit_knobs.empty())
     throw tsp::UsageError("--quality picks compositing, spacing, tolerances and pre-integration "
                           "itself: drop " + a.explicit_knobs.front());
@@ -204,6 +205,10 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
   c->add_option("--reuse", a->reuse,
                 "Partial-image reuse: redraw only where bricks changed since the last frame "
                 "(same view, TF, knobs): on|off (default on)")
+      ->check(CLI::IsMember({"on", "off"}));
+  c->add_option("--dense", a->dense,
+                "Rays: a frame that textures every leaf brick is cast through one whole-volume "
+                "texture instead of the brick grid: on|off (default on)")
       ->check(CLI::IsMember({"on", "off"}));
   c->add_option("--span-step", a->span_step,
                 "Step whose bricks texture a span: middle or first (the paper's; default middle)")

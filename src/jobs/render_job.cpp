@@ -58,6 +58,7 @@ json frame_json(const FrameRecord& f) {
           {"boxes", r.boxes},
           {"fragments", r.fragments},
           {"redrawn_percent", r.redrawn_percent},
+          {"dense", r.dense},
           {"steps_merged", {r.spans_lo, r.spans_hi}},
           {"steps_shown", {r.shown_lo, r.shown_hi}},
           {"azimuth_deg", f.azimuth_deg},

@@ -62,6 +62,10 @@ struct RenderSettings {
   /// Where the frame goes in the context's default framebuffer: the lower-left corner (GL window
   /// coordinates, y up); the frame's size is the camera's. The player docks its panels beside it.
   std::array<int, 2> viewport_origin{0, 0};
+  /// Rays compositing: a frame that textures every leaf brick at full resolution is ray cast
+  /// through one whole-volume texture (render/dense_volume.h) instead of walking the brick grid
+  /// — the same samples, fewer diverging loops. False: always the brick grid.
+  bool dense = true;
 };
 
 /// Smallest RenderSettings::render_scale.
@@ -96,6 +100,7 @@ struct FrameReport {
   std::int64_t boxes = 0;              ///< boxes drawn whole (ray cast or exact flat)
   std::int64_t fragments = 0;          ///< fragments drawn, not discarded (GL_SAMPLES_PASSED)
   double redrawn_percent = 100;        ///< share of the image drawn again (partial-image reuse)
+  bool dense = false;  ///< ray cast as one whole-volume texture (DenseVolume), not the brick grid
   std::int64_t deferred_textures = 0;  ///< textures left for later frames (upload_budget)
   /// True when every texture the frame needs was drawn (nothing deferred).
   bool complete() const { return deferred_textures == 0; }

@@ -30,7 +30,8 @@ VolumeRenderer::VolumeRenderer(GlContext& ctx, const tsp::BrickStore& bricks,
       cache_(tree_.has_stencil() ? texture_budget / 2 : texture_budget, cache),
       bricks_(bricks, brick_budget),
       compositor_(compositor ? std::move(compositor) : std::make_shared<SliceCompositor>(ctx)),
-      textures_(ctx.gl(), bricks_) {
+      textures_(ctx.gl(), bricks_),
+      dense_(ctx.gl(), bricks_) {
   compositor_->set_stencil(tree_.has_stencil());
 }
 
@@ -60,6 +61,7 @@ VolumeRenderer::ReuseKey VolumeRenderer::reuse_key(const tsp::Camera& camera,
 void VolumeRenderer::clear_textures() {
   previous_.reset();
   textures_.clear();
+  dense_.clear();
   cache_.clear();
 }
 
@@ -130,6 +132,26 @@ void VolumeRenderer::fill_items(const tsp::FramePlan& plan, tsp::FrameMetric& me
     }
   }
   compositor_->upload(soup_);
+}
+
+bool VolumeRenderer::dense_frame(const tsp::FramePlan& plan) {
+  const tsp::Octree& octree = tree_.octree();
+  dense_keys_.assign(std::size_t(octree.brick_count()), tsp::TextureKey{});
+  int covered = 0;
+  for (const tsp::PlannedNode& n : plan.nodes) {
+    if (n.cls == tsp::DrawClass::not_rendered) continue;
+    if (n.cls == tsp::DrawClass::untextured) return false;  // flat: the grid walk draws it exactly
+    for (int i = n.first_texture; i < n.first_texture + n.texture_count; ++i) {
+      const tsp::PlannedTexture& pt = plan.textures[std::size_t(i)];
+      if (pt.deferred || pt.key.level != 0) return false;  // a mean colour, or a level brick
+      // (Neighbours from different steps — a temporal tolerance merged one's span — share one
+      // sample layer here: the later brick's. Within the tolerance; measured in rendering.md.)
+      dense_keys_[std::size_t(pt.key.brick)] = pt.key;
+      ++covered;
+    }
+  }
+  // Every leaf brick drawn (a transparent one left out would be sampled here).
+  return covered == octree.brick_count();
 }
 
 void VolumeRenderer::fill_pages(const tsp::FramePlan& plan, tsp::FrameMetric& metric) {
@@ -224,7 +246,17 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
     if (!pt.deferred && pt.upload) textures_.upload(pt.key);
   r.upload_ms = phase.lap_ms();
 
-  if (settings.compositing == Compositing::rays) {
+  r.dense = settings.compositing == Compositing::rays && settings.dense && dense_frame(plan);
+  if (r.dense) {
+    // Every leaf brick textured at full resolution from one step: the whole volume as one page.
+    dense_.update(dense_keys_);
+    r.upload_ms += phase.lap_ms();
+    pages_.reset({1, 1, 1}, {std::max(octree.dims().x - 1, 1), std::max(octree.dims().y - 1, 1),
+                             std::max(octree.dims().z - 1, 1)});
+    pages_.set_textured(0, dense_.slot());
+    pages_.finish();
+    compositor_->set_pages(pages_, octree.dims());
+  } else if (settings.compositing == Compositing::rays) {
     fill_pages(plan, metric);
     compositor_->set_pages(pages_, octree.dims());
   } else {

@@ -11,6 +11,7 @@
 
 #include "gl/context.h"
 #include "render/brick_textures.h"
+#include "render/dense_volume.h"
 #include "render/frame_report.h"
 #include "render/image_reuse.h"
 #include "render/slice_compositor.h"
@@ -79,6 +80,8 @@ class VolumeRenderer {
   tsp::BrickCache bricks_;
   std::shared_ptr<SliceCompositor> compositor_;
   BrickTextures textures_;
+  DenseVolume dense_;  // rays compositing of frames that texture every leaf brick
+  std::vector<tsp::TextureKey> dense_keys_;
   tsp::PolygonSoup soup_;
   std::vector<DrawItem> items_;  // slices and boxes compositing
   // What the last complete frame was drawn with, for partial-image reuse.
@@ -110,6 +113,8 @@ class VolumeRenderer {
   void fill_items(const tsp::FramePlan& plan, tsp::FrameMetric& metric, const tsp::Camera& camera,
                   const RenderSettings& settings);
   void fill_pages(const tsp::FramePlan& plan, tsp::FrameMetric& metric);
+  // True when plan textures every leaf brick at full resolution (fills dense_keys_).
+  bool dense_frame(const tsp::FramePlan& plan);
 };
 
 }  // namespace tspgl

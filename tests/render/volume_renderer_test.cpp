@@ -441,6 +441,48 @@ TEST(VolumeRenderer, ZeroToleranceMatchesBaselineOnGeneratedData) {
   }
 }
 
+// A frame that textures every leaf brick (a filled TF over data with nothing transparent or
+// uniform) is ray cast through one whole-volume texture: the same picture as the brick grid's
+// walk, at zero tolerance and with a temporal tolerance that shows bricks of several steps
+// (their shared layers differ: within 0.1 mean ΔE); frames with transparent bricks walk the
+// grid.
+TEST(VolumeRenderer, DenseWholeVolumeRaysMatchTheBrickGrid) {
+  auto src = tsptest::MemorySource::from_function({40, 36, 30}, 6, [](int x, int y, int z, int t) {
+    return float(std::sin(0.31 * x + 0.1 * t) * std::cos(0.23 * y) + 0.05 * z + 0.3 * t);
+  });
+  const std::string path = build(src, "dense");
+  auto file = tsp::TspFile::open(path);
+  Scene scene(path, tsp::preset_transfer_function("filled", file->tree().value_range()),
+              tsp::CachePolicy::on);
+  auto frame = [&](int step, bool dense, tsp::Tolerances tol, bool& used) {
+    RenderSettings s;
+    s.dense = dense;
+    s.tol = tol;
+    s.reuse_image = false;
+    const FrameReport r = scene.renderer->render(step, scene.camera(30, 20), s, scene.nodes);
+    used = r.dense;
+    return scene.ctx->read_pixels();
+  };
+  bool used = false, grid_used = true;
+  for (int step : {0, 4}) {
+    const tsp::Image dense = frame(step, true, {}, used);
+    EXPECT_TRUE(used) << step;
+    const tsp::Image grid = frame(step, false, {}, grid_used);
+    EXPECT_FALSE(grid_used);
+    expect_close("dense_" + std::to_string(step), dense, grid, 0.01, 0.1);
+  }
+  // Spans merged in time: bricks of several steps side by side.
+  const tsp::Tolerances merged{0, 10};
+  const tsp::Image dense = frame(3, true, merged, used);
+  EXPECT_TRUE(used);
+  expect_close("dense_merged", dense, frame(3, false, merged, grid_used), 0.1, 2.0);
+  // Transparent bricks (the sparse TF): the grid walk, which leaps over them.
+  Scene sparse(path, tsp::preset_transfer_function("sparse", file->tree().value_range()),
+               tsp::CachePolicy::on);
+  RenderSettings s;
+  EXPECT_FALSE(sparse.renderer->render(0, sparse.camera(30, 20), s, sparse.nodes).dense);
+}
+
 TEST(VolumeRenderer, ZeroToleranceMatchesBaselineOnRealData) {
   const fs::path nc = tsptest::shared_data_dir() / "wrf-katrina" / "ci_test_file.nc";
   if (!fs::exists(nc)) GTEST_SKIP() << nc << " not present";
