@@ -13,8 +13,11 @@
 //             at 1/f and samples every m·spacing, m = the largest f, on planes (k + ½)·m·spacing,
 //             each sample's opacity corrected to the length of ray it stands for inside the
 //             brick: α_L = 1 − (1 − α)^(L/spacing) (spec §9, §14).
-// It stops once the ray is opaque (early ray termination). (box_ray.glsl and sample_tf.glsl are
-// prepended.)
+// It stops once the ray is opaque (early ray termination). With a clip solid (clip.glsl) the
+// textured samples outside the ray's kept intervals are skipped and, with clip_surface, the ray
+// stops opaque where it first meets the solid's surface; the renderer draws every brick the
+// surface may cross textured and flags it (only flagged bricks look at the intervals).
+// (box_ray.glsl, sample_tf.glsl and clip.glsl are prepended.)
 uniform float spacing;
 uniform vec3 atlas_scale;            // 1 / atlas size in texels
 uniform sampler3D pages;             // per brick: textured (xyz atlas offset, w = 1 + lx + 8·ly +
@@ -24,8 +27,38 @@ uniform sampler3D pages;             // per brick: textured (xyz atlas offset, w
 uniform vec3 cell;                   // sample spacings one brick covers, per axis
 uniform ivec3 grid;                  // bricks per axis
 const float kOpaque = 0.999;
-const float kNudge = 1e-3;           // voxels into the volume, to pick the first brick
+const float kNudge = 1e-3;
+const int kClipFlag = 512;           // BrickPages::kClipFlag           // voxels into the volume, to pick the first brick
 out vec4 colour;
+
+// The clip surface where the ray meets it (clip_intervals in clip.glsl): its colour from this
+// brick's texture at that point, shaded by the probe's normal, composited opaque into acc.
+float t_surface = kFar;  // ray parameter of the surface (kFar: none, or clipping only)
+int surface_probe = -1;
+int iv_k = 0;            // the kept interval the samples have reached
+void draw_surface(vec3 entry, vec3 ray, vec3 scale, vec3 page_offset, vec3 tc_lo, vec3 tc_hi,
+                  inout vec4 acc) {
+  vec3 p = entry + ray * t_surface;
+  vec3 tc = clamp((p * scale + page_offset) * atlas_scale, tc_lo, tc_hi);
+  vec3 c = texture(surface_tf, texture(volume, tc).r * surface_map.x + surface_map.y).rgb;
+  vec3 n = probe_normal(surface_probe, grid_origin + grid_spacing * p);
+  float shade = 0.35 + 0.65 * abs(dot(n, normalize(grid_spacing * ray)));
+  acc += (1.0 - acc.a) * vec4(c * shade, 1.0);
+}
+
+// The kept interval the samples have reached, as scalars (the common case — one interval —
+// never indexes the arrays per sample).
+float cur_s = kFar, cur_e = -kFar;
+// How many samples of step dt from t to the next kept one (0: t is kept; −1: none is left).
+float skip_to_kept(float t, float dt) {
+  while (t > cur_e && iv_k + 1 < iv_n) {
+    ++iv_k;
+    cur_s = iv_s[iv_k];
+    cur_e = iv_e[iv_k];
+  }
+  if (t > cur_e) return -1.0;
+  return t >= cur_s ? 0.0 : ceil((cur_s - t) / dt);
+}
 
 void main() {
   RaySpan r = ray_span();
@@ -49,6 +82,26 @@ void main() {
   float m_cur = 1.0;  // the sample step multiplier t_next is aligned to
   vec4 acc = vec4(0.0);
   float u_prev = -1.0;  // tf coordinate half a spacing behind the previous sample (−1: none)
+  bool done = false;    // the ray met the clip surface
+  if (clip_on()) {      // the kept intervals, and where the ray first meets the surface
+    clip_intervals(entry, r.ray, len);
+    if (iv_n > 0) {
+      cur_s = iv_s[0];
+      cur_e = iv_e[0];
+    }
+    for (int k = 0; clip_surface != 0 && k < iv_n; ++k) {
+      if (iv_s[k] > 0.0 && iv_s[k] < len && iv_ps[k] >= 0) {
+        t_surface = iv_s[k];
+        surface_probe = iv_ps[k];
+        break;
+      }
+      if (iv_e[k] > 0.0 && iv_e[k] < len && iv_pe[k] >= 0) {
+        t_surface = iv_e[k];
+        surface_probe = iv_pe[k];
+        break;
+      }
+    }
+  }
   int max_steps = grid.x + grid.y + grid.z + 2;
   for (int i = 0; i < max_steps; ++i) {
     vec4 page = texelFetch(pages, c, 0);
@@ -67,6 +120,9 @@ void main() {
     float t_out = min(min(min(t_max.x, t_max.y), t_max.z), len);
     if (page.w > 0.5) {
       int code = int(page.w + 0.5) - 1;
+      // Only bricks the clip surface may cross test their samples against the solid.
+      bool brick_clip = clip_on() && code >= kClipFlag;
+      code &= kClipFlag - 1;
       ivec3 lv = ivec3(code & 7, (code >> 3) & 7, (code >> 6) & 7);
       vec3 scale = 1.0 / vec3(ivec3(1) << lv);
       float m = float(1 << max(lv.x, max(lv.y, lv.z)));
@@ -85,10 +141,34 @@ void main() {
       vec3 tc = ((entry + r.ray * t_next) * scale + page.xyz) * atlas_scale;
       vec3 dtc = r.ray * dtm * scale * atlas_scale;
       if (m == 1.0) {
-        for (; t_next < t_out; t_next += dtm) {
-          acc += (1.0 - acc.a) * sample_colour(tc, 0.5 * dtc, tc_lo, tc_hi, u_prev);
-          if (acc.a >= kOpaque) break;
-          tc += dtc;
+        // Stretch by stretch of kept samples (one stretch, the whole brick, without a clip
+        // solid): no test per sample.
+        for (;;) {
+          float stretch_end = t_out;
+          if (brick_clip) {
+            float skip = skip_to_kept(t_next, dtm);
+            if (skip < 0.0) {  // nothing is kept further along the ray: it ends here
+              done = true;
+              break;
+            }
+            if (skip > 0.0) {
+              t_next += skip * dtm;
+              tc += dtc * skip;
+              u_prev = -1.0;
+            }
+            stretch_end = min(t_out, min(cur_e + 1e-6 * dtm, t_surface));
+          }
+          for (; t_next < stretch_end; t_next += dtm) {
+            acc += (1.0 - acc.a) * sample_colour(tc, 0.5 * dtc, tc_lo, tc_hi, u_prev);
+            if (acc.a >= kOpaque) break;
+            tc += dtc;
+          }
+          if (!brick_clip || acc.a >= kOpaque || t_next >= t_out) break;
+          if (t_next >= t_surface) {  // the surface before the next sample: opaque, the end
+            draw_surface(entry, r.ray, scale, page.xyz, tc_lo, tc_hi, acc);
+            done = true;
+            break;
+          }
         }
       } else {
         // Each sample stands for its slab of the ray inside this brick: the first from where the
@@ -103,6 +183,18 @@ void main() {
         for (float tj = first; tj < t_out; tj += dtm) {
           float lo_j = tj == first ? t : tj - 0.5 * dtm;
           float hi_j = tj + dtm >= t_out ? t_out : tj + 0.5 * dtm;
+          if (brick_clip) {
+            if (tj >= t_surface) {
+              draw_surface(entry, r.ray, scale, page.xyz, tc_lo, tc_hi, acc);
+              done = true;
+              break;
+            }
+            if (skip_to_kept(tj, dtm) != 0.0) {  // (level bricks: sample by sample)
+              u_prev = -1.0;
+              tc += dtc;
+              continue;
+            }
+          }
           vec4 s = sample_colour(tc, 0.5 * dtc, tc_lo, tc_hi, u_prev);
           if (s.a > 0.0) {
             float a = 1.0 - pow(max(1.0 - s.a, 0.0), (hi_j - lo_j) / dt);
@@ -114,13 +206,18 @@ void main() {
         }
         if (t_next < t_out) t_next += ceil((t_out - t_next) / dtm) * dtm;
       }
+      // The surface after this brick's last sample but inside it.
+      if (brick_clip && !done && acc.a < kOpaque && t_surface < t_out) {
+        draw_surface(entry, r.ray, scale, page.xyz, tc_lo, tc_hi, acc);
+        done = true;
+      }
     } else {
       float a = 1.0 - exp(page.w * (t_out - t) * r.cos_theta);
       acc += (1.0 - acc.a) * vec4(page.rgb * a, a);
       u_prev = -1.0;
       if (t_next < t_out) t_next += ceil((t_out - t_next) / (dt * m_cur)) * dt * m_cur;
     }
-    if (acc.a >= kOpaque || t_out >= len) break;
+    if (done || acc.a >= kOpaque || t_out >= len) break;
     t = t_out;
     // Step into the neighbour across the nearest face.
     if (t_max.x <= t_max.y && t_max.x <= t_max.z) {

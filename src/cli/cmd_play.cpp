@@ -23,6 +23,7 @@ struct PlayArgs {
   std::string lod = "on";
   std::string field, cache_dir;
   std::string proportions = "physical", scale;
+  std::string probe_surface = "on";
 };
 
 void run(PlayArgs a) {
@@ -34,6 +35,7 @@ void run(PlayArgs a) {
   if (a.proportions != "physical" && a.proportions != "samples")
     throw tsp::UsageError("--proportions '" + a.proportions + "': expected physical or samples");
   a.options.physical_proportions = a.proportions == "physical";
+  a.options.probe_surface = a.probe_surface == "on";
   if (!a.scale.empty())
     a.options.scale = parse_triple(a.scale, "--scale", "SX,SY,SZ, factors on the voxel spacing");
   tspgl::PlayBuildHooks hooks;
@@ -83,6 +85,13 @@ const CommandRegistrar reg(35, [](CLI::App& app) {
   c->add_option("--proportions", a->proportions,
                 "physical (default: the file's voxel spacing shapes the view) or samples");
   c->add_option("--scale", a->scale, "SX,SY,SZ: stretch each axis (e.g. 1,1,20 for height)");
+  c->add_option("--probe", a->options.probes,
+                "Clip probe, repeatable (as render --probe; the Probes panel edits them)");
+  c->add_option("--probe-op", a->options.probe_op, "intersect (default), union or subtract")
+      ->check(CLI::IsMember({"intersect", "union", "subtract"}));
+  c->add_option("--probe-surface", a->probe_surface,
+                "on (default): the probe's surface shows the data; off: pure clipping")
+      ->check(CLI::IsMember({"on", "off"}));
   c->add_option("--upload-budget", a->options.upload_budget_mb,
                 "Texture MiB uploaded per frame; the rest follows in later frames (default 16, "
                 "0: no limit)");

@@ -40,6 +40,8 @@ struct RenderArgs {
   int split_limit = tsp::LodOptions{}.split_limit;
   std::string focus;
   std::string proportions = "physical", scale;
+  std::vector<std::string> probes;
+  std::string probe_op = "intersect", probe_surface = "off", probe_tf;
   std::vector<std::string> explicit_knobs;  ///< knob options given with --quality (an error)
 };
 
@@ -98,6 +100,10 @@ void run(const RenderArgs& a) {
   if (a.proportions != "physical" && a.proportions != "samples")
     throw tsp::UsageError("--proportions '" + a.proportions + "': expected physical or samples");
   o.physical_proportions = a.proportions == "physical";
+  for (const std::string& p : a.probes) o.probes.push_back(tsp::parse_probe(p));
+  o.probe_op = tsp::parse_probe_op(a.probe_op);
+  o.probe_surface = a.probe_surface == "on";
+  o.probe_tf = a.probe_tf;
   if (!a.scale.empty())
     o.scale = parse_triple(a.scale, "--scale", "SX,SY,SZ, factors on the voxel spacing");
   if (a.out.empty()) throw tsp::UsageError("-o: the output directory must not be empty");
@@ -189,6 +195,20 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
   c->add_option("--proportions", a->proportions,
                 "physical (default: the file's voxel spacing shapes the view) or samples (cubic "
                 "voxels)");
+  c->add_option("--probe", a->probes,
+                "Clip probe in physical coordinates, repeatable: plane:A,B,C,D (keeps "
+                "A*x+B*y+C*z <= D), sphere:X,Y,Z,R or box:X,Y,Z,HX,HY,HZ[,AX,AY,AZ] (half sizes, "
+                "rotation in degrees); the volume outside their combination is not drawn");
+  c->add_option("--probe-op", a->probe_op,
+                "How the probes combine: intersect (default), union or subtract (the first "
+                "minus the others)")
+      ->check(CLI::IsMember({"intersect", "union", "subtract"}));
+  c->add_option("--probe-surface", a->probe_surface,
+                "on: draw the clip surface opaque, coloured by the data through --probe-tf and "
+                "shaded by its normal; off (default): pure clipping")
+      ->check(CLI::IsMember({"on", "off"}));
+  c->add_option("--probe-tf", a->probe_tf,
+                "Colours of the clip surface: a TF file or preset:NAME (default: --tf's)");
   c->add_option("--scale", a->scale,
                 "SX,SY,SZ: stretch each axis by this factor (e.g. 1,1,20 exaggerates height)");
   c->add_option("--passes", a->passes, "Play the steps this many times (default 1)");

@@ -77,6 +77,8 @@ namespace tspgl {
   X(PFNGLUNIFORM3FVPROC, Uniform3fv)                             \
   X(PFNGLUNIFORM4FVPROC, Uniform4fv)                             \
   X(PFNGLUNIFORMMATRIX4FVPROC, UniformMatrix4fv)                 \
+  X(PFNGLUNIFORMMATRIX3FVPROC, UniformMatrix3fv)                 \
+  X(PFNGLUNIFORM1IVPROC, Uniform1iv)                             \
   /* textures (1D transfer-function lookup, 3D bricks) */        \
   X(PFNGLGENTEXTURESPROC, GenTextures)                           \
   X(PFNGLDELETETEXTURESPROC, DeleteTextures)                     \

@@ -51,6 +51,7 @@ json frame_json(const FrameRecord& f) {
           {"untextured", r.class_percent[1]},
           {"reused_texture", r.class_percent[2]},
           {"new_texture", r.class_percent[3]},
+          {"clipped", r.class_percent[4]},
           {"bytes_uploaded", r.bytes_uploaded},
           {"textures_resident", r.textures_resident},
           {"texture_bytes", r.texture_bytes},
@@ -178,6 +179,10 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
     throw tsp::UsageError("--target-ms needs --lod auto (the adaptive cut holds the target)");
   if (options.lod != LodMode::off && options.baseline)
     throw tsp::UsageError("--lod is for the TSP renderer: drop --baseline");
+  if (!options.probes.empty() && options.baseline)
+    throw tsp::UsageError("--probe is for the TSP renderer: drop --baseline");
+  if ((options.probe_surface || !options.probe_tf.empty()) && options.probes.empty())
+    throw tsp::UsageError("--probe-surface/--probe-tf need a --probe");
   if (options.lod == LodMode::fixed && options.lod_level < 0)
     throw tsp::UsageError("--lod " + std::to_string(options.lod_level) +
                           ": expected off, auto or a level >= 0");
@@ -229,6 +234,17 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
     renderer = std::make_unique<VolumeRenderer>(*ctx, *file, o.cache, o.texture_budget);
   if (baseline) baseline->set_transfer_function(tf);
   if (renderer) renderer->set_transfer_function(tf);
+  if (!o.probes.empty()) {  // the clip solid, in the file's physical coordinates
+    const tsp::ClipRegion clip(o.probes, o.probe_op, file->metadata().origin,
+                               file->metadata().spacing);
+    std::optional<tsp::TransferFunction> surface;
+    if (o.probe_surface)
+      surface = o.probe_tf.empty() ? tf
+                                   : tsp::transfer_function_from_arg(o.probe_tf, tree.value_range(),
+                                                                     tsp::kDefaultTfEntries,
+                                                                     o.tf_range);
+    renderer->set_clip(clip, surface);
+  }
   tsp::WholeTreeMetric nodes(metric);
   if (o.step_stride < 1)
     throw tsp::UsageError("--steps: the stride must be 1 or more, got " +
@@ -261,12 +277,14 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
         rec.lod = LodRecord{0, tsp::cut_stats(*fixed_cut)};
       } else if (controller) {
         // Untimed: refine until nothing is left to split (a converged cut every frame).
-        tsp::LodFrameStats st = controller->update(camera, t, tf, settings.spacing);
+        tsp::LodFrameStats st =
+            controller->update(camera, t, tf, settings.spacing, renderer->clip_sides());
+        int splits = st.splits;  // of every round (the loop stops on a round without any)
         while (o.target_ms <= 0 && st.splits > 0) {
-          const int splits = st.splits;
-          st = controller->update(camera, t, tf, settings.spacing);
-          st.splits += splits;
+          st = controller->update(camera, t, tf, settings.spacing, renderer->clip_sides());
+          splits += st.splits;
         }
+        st.splits = splits;
         stops = controller->cut().stops();
         rec.lod = LodRecord{o.target_ms, st};
       }

@@ -10,6 +10,7 @@
 
 #include "render/frame_report.h"
 #include "tsp/metric/tf_io.h"
+#include "tsp/clip/probe.h"
 #include "tsp/frame/camera.h"
 #include "tsp/frame/texture_cache.h"
 #include "tsp/lod/lod_controller.h"
@@ -42,6 +43,10 @@ struct RenderJobOptions {
   tsp::CameraParams camera;                   ///< size, view, projection (voxel_size is set
                                               ///< from the file, physical_proportions and scale)
   bool physical_proportions = true;           ///< --proportions physical|samples
+  std::vector<tsp::Probe> probes;             ///< --probe: the clip solid's probes
+  tsp::ProbeOp probe_op = tsp::ProbeOp::intersect;  ///< --probe-op
+  bool probe_surface = false;                 ///< --probe-surface on: draw the clip surface
+  std::string probe_tf;                       ///< --probe-tf: its colours ("": the volume's TF)
   std::array<double, 3> scale{1, 1, 1};       ///< --scale SX,SY,SZ: exaggeration per axis
   int passes = 1;                             ///< times the step range is played
   /// The frame knobs: --spatial-tol/--temporal-tol, --spacing, --compositing, --flat,

@@ -137,6 +137,11 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
       throw tsp::UsageError("--scale: expected three factors in (0, " +
                             std::to_string(int(tspgl::kMaxScale)) + "], found " + std::to_string(k));
   camera.voxel_size = voxel_size();
+  for (const std::string& text : options.probes) probes.push_back(tsp::parse_probe(text));
+  probe_op = tsp::parse_probe_op(options.probe_op);
+  probe_surface = options.probe_surface;
+  (void)tsp::ClipRegion(probes, probe_op, file->metadata().origin, file->metadata().spacing);
+  if (!probes.empty()) probe_selected = 0;
 
   ctx = tspgl::create_window_context(options.width, options.height, "tspplay - " + options.tsp_path,
                                      true);
@@ -210,6 +215,7 @@ void PlayerApp::make_renderer() {
   prefetcher = std::make_unique<tsp::BrickPrefetcher>(renderer->brick_cache());
   prefetched_for_ = -1;
   prefetched_cut_ = -1;
+  applied_probe_version_ = ~std::uint64_t(0);  // the new renderer gets the probes
 }
 
 std::array<double, 3> PlayerApp::voxel_size() const {
@@ -315,6 +321,10 @@ void PlayerApp::write_stats(const std::string& path) const {
   j["field"] = file->fields()[std::size_t(file->field_index())];
   j["fields"] = file->fields();
   j["field_switch_ms"] = field_switch_ms;
+  nlohmann::json jp = nlohmann::json::array();
+  for (const tsp::Probe& p : probes) jp.push_back(tsp::to_string(p));
+  j["probes"] = jp;
+  j["probe_op"] = tsp::to_string(probe_op);
   j["step"] = step;
   j["steps_ready"] = ready;
   j["every_step"] = every_step;
@@ -347,7 +357,8 @@ void PlayerApp::write_stats(const std::string& path) const {
   j["classes"] = {{"not_rendered", last.class_percent[0]},
                   {"untextured", last.class_percent[1]},
                   {"reused_texture", last.class_percent[2]},
-                  {"new_texture", last.class_percent[3]}};
+                  {"new_texture", last.class_percent[3]},
+                  {"clipped", last.class_percent[4]}};
   tsp::write_file_atomically(path, tsp::json_text(j, 2) + "\n");
 }
 
@@ -522,6 +533,7 @@ void PlayerApp::frame() {
     gl.ClearColor(0, 0, 0, 1);
     gl.Clear(GL_COLOR_BUFFER_BIT);
   }
+  apply_probes();
   render_volume();
   if (frame_delay_ms_ > 0)
     std::this_thread::sleep_for(std::chrono::duration<double, std::milli>(frame_delay_ms_));
@@ -554,6 +566,7 @@ void PlayerApp::frame() {
     const tsp::Camera cam(file->tree().octree().dims(), camera);
     draw_cut_overlay(cam);
     draw_annotations(cam);
+    if (panels) draw_probe_overlay(cam);
   }
   draw_ui();
   ImGui::Render();

@@ -4,6 +4,7 @@
 #pragma once
 #include <array>
 #include <string>
+#include <vector>
 
 namespace tspplayer {
 
@@ -24,6 +25,9 @@ struct PlayerOptions {
   bool trace = false;             ///< --trace: one stdout line per applied change
   double frame_delay_ms = 0;      ///< --frame-delay-ms: a slow machine, for tests (0..2000)
   bool physical_proportions = true;      ///< --proportions physical|samples
+  std::vector<std::string> probes;       ///< --probe: clip probes (as render --probe)
+  std::string probe_op = "intersect";    ///< --probe-op
+  bool probe_surface = true;             ///< --probe-surface on|off
   std::array<double, 3> scale{1, 1, 1};  ///< --scale: stretch per axis (exaggeration)
 };
 

@@ -19,6 +19,7 @@
 #include "player/player.h"
 #include "player/script.h"
 #include "render/volume_renderer.h"
+#include "tsp/clip/probe.h"
 #include "tsp/frame/camera.h"
 #include "tsp/lod/lod_controller.h"
 #include "tsp/metric/frame_metric.h"
@@ -178,6 +179,19 @@ class PlayerApp {
   /// volume's centre.
   void set_focus_at(double x, double y);
 
+  // ---- clip probes (player_probes.cpp) ----
+  std::vector<tsp::Probe> probes;  ///< in physical coordinates
+  tsp::ProbeOp probe_op = tsp::ProbeOp::intersect;
+  bool probe_surface = true;       ///< draw the clip surface (the data on the probe)
+  int probe_selected = -1;         ///< the probe the gizmo moves (−1: none)
+  std::uint64_t probe_version = 0; ///< bumped on every probe change (interaction for the LOD)
+  /// Adds a probe (selected); errors (more than ClipRegion::kMaxProbes) go to status.
+  void add_probe(const tsp::Probe& p);
+  /// A new probe of `kind` through the volume's centre, sized to it.
+  tsp::Probe default_probe(tsp::Probe::Kind kind) const;
+  /// Marks the probes changed (after editing them in place).
+  void probes_changed() { ++probe_version; }
+
   // ---- files (player_files.cpp) ----
   /// File > Open: plays input (a .tsp file at once; any other input is built into the cache
   /// folder on a thread, with progress, then played). Errors go to status.
@@ -222,6 +236,14 @@ class PlayerApp {
   void record_frame(double now_s);   // appends this frame to the movie while recording
   void update_ready(const tsp::Camera& cam, const tspgl::RenderSettings& settings,
                     tsp::LodStops stops);
+  // Probes (player_probes.cpp): hands them to the renderer when they changed; moves the
+  // selected one with the mouse (ctrl: drag moves, wheel resizes; alt: drag turns) and returns
+  // true when it took the mouse; outlines it over the volume.
+  void apply_probes();
+  bool probe_gizmo(const tsp::Camera& cam);
+  void draw_probe_overlay(const tsp::Camera& cam);
+  std::uint64_t applied_probe_version_ = ~std::uint64_t(0);
+  std::uint64_t applied_probe_tf_ = ~std::uint64_t(0);
   void trace_changes();  // --trace: prints what changed since the last frame
   void apply_key(int key);  // one key press (or repeat) from the queue
 
@@ -294,6 +316,7 @@ class PlayerApp {
     tsp::CameraParams camera;
     int step = -1;
     std::uint64_t tf_version = ~std::uint64_t(0);
+    std::uint64_t probe_version = ~std::uint64_t(0);
     bool playing = false;
     bool operator==(const Seen&) const = default;
   } seen_;

@@ -125,6 +125,9 @@ void PlayerApp::open_file(const std::string& path) {
   playing = false;
   focus.reset();
   tol = {0, 0};
+  probes.clear();  // (in the old file's physical coordinates)
+  probe_selected = -1;
+  probes_changed();
   quality = 0;
   quality_note.clear();
   history.clear();
@@ -170,6 +173,7 @@ void PlayerApp::switch_field(const std::string& name) {
   reference_version_ = ~std::uint64_t(0);
   tf_points.clear();
   set_tf(tf, true);
+  applied_probe_version_ = ~std::uint64_t(0);  // the probes go to this field's renderer too
   if (next.renderer) {
     renderer = std::move(next.renderer);
     renderer->set_transfer_function(tf);

@@ -23,7 +23,9 @@ constexpr double kMaxElevation = 89;
 
 void PlayerApp::handle_input() {
   const ImGuiIO& io = ImGui::GetIO();
-  if (!io.WantCaptureMouse) {
+  const bool gizmo = !io.WantCaptureMouse && camera.width > 0 && camera.height > 0 &&
+                     probe_gizmo(tsp::Camera(file->tree().octree().dims(), camera));
+  if (!io.WantCaptureMouse && !gizmo) {
     const bool pan = io.MouseDown[1] || io.MouseDown[2] || (io.MouseDown[0] && io.KeyShift);
     if (pan) {
       const double scale = 2.0 / (camera.zoom * std::max(1, std::min(camera.width, camera.height)));
@@ -204,6 +206,36 @@ void PlayerApp::apply(const ScriptAction& a) {
       break;
     case Kind::field:
       switch_field(a.text);
+      break;
+    case Kind::probe:
+      add_probe(tsp::parse_probe(a.text));
+      break;
+    case Kind::probe_op:
+      probe_op = tsp::parse_probe_op(a.text);
+      probes_changed();
+      break;
+    case Kind::probe_surface:
+      probe_surface = a.flag;
+      probes_changed();
+      break;
+    case Kind::probe_clear:
+      probes.clear();
+      probe_selected = -1;
+      probes_changed();
+      break;
+    case Kind::probe_move:
+      if (a.number < 1 || a.number > int(probes.size()))
+        throw tsp::UsageError(options_.script + ":" + std::to_string(a.line) + ": probe " +
+                              std::to_string(a.number) + ": there are " +
+                              std::to_string(probes.size()) + " probes");
+      {
+        tsp::Probe& p = probes[std::size_t(a.number - 1)];
+        if (p.kind == tsp::Probe::Kind::plane)  // along its normal
+          p.radius += p.centre[0] * a.value + p.centre[1] * a.value2 + p.centre[2] * a.value3;
+        else
+          p.centre = {p.centre[0] + a.value, p.centre[1] + a.value2, p.centre[2] + a.value3};
+        probes_changed();
+      }
       break;
     case Kind::record:
       start_recording(a.text);

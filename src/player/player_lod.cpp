@@ -32,12 +32,13 @@ void PlayerApp::set_lod(bool on) {
 tsp::LodStops PlayerApp::update_lod(const tsp::Camera& cam, tspgl::RenderSettings& settings,
                                     double now_s) {
   // Any change of what is shown counts as interaction.
-  const Seen now{camera, step, tf.version(), playing};
+  const Seen now{camera, step, tf.version(), probe_version, playing};
   const bool changed = playing || !(now == seen_);
   // Playing with the view and the TF still, a frame per step is enough: the frame time may
   // follow the playback speed (5 steps/s: 200 ms) rather than the interactive target.
   const bool steady_playback =
-      playing && now.camera == seen_.camera && now.tf_version == seen_.tf_version;
+      playing && now.camera == seen_.camera && now.tf_version == seen_.tf_version &&
+      now.probe_version == seen_.probe_version;
   if (changed) {
     last_change_s_ = now_s;
     frames_since_change_ = 0;
@@ -69,7 +70,7 @@ tsp::LodStops PlayerApp::update_lod(const tsp::Camera& cam, tspgl::RenderSetting
   }
   o.texture_budget = std::int64_t(texture_budget_mb * (1 << 20));
   lod_->set_options(o);
-  lod_stats = lod_->update(cam, step, tf, settings.spacing);
+  lod_stats = lod_->update(cam, step, tf, settings.spacing, renderer->clip_sides());
   // When the picture got back to full quality after the last change.
   if (full_quality()) {
     if (full_quality_after_s < 0) full_quality_after_s = now_s - last_change_s_;

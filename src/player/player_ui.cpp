@@ -27,7 +27,7 @@ constexpr const char* kMetricNames[] = {"scalar", "reference", "approximate", "p
 // In tspgl::Compositing order.
 constexpr const char* kCompositingNames[] = {"slices", "boxes", "rays"};
 constexpr const char* kClassNames[] = {"not rendered", "untextured", "reused texture",
-                                       "new texture"};
+                                       "new texture", "clipped"};
 // What a tolerance measures, per metric (tsp::Metric order; docs/metrics.md).
 constexpr const char* kToleranceUnits[] = {
     "units: coefficient of variation of the values (sigma/mean)",
@@ -302,6 +302,8 @@ void PlayerApp::draw_ui() {
         settings_section(*this);
       if (ImGui::CollapsingHeader("Transfer function", ImGuiTreeNodeFlags_DefaultOpen))
         tf_section(*this);
+      if (ImGui::CollapsingHeader("Probes", probes.empty() ? 0 : ImGuiTreeNodeFlags_DefaultOpen))
+        probes_section(*this);
       if (ImGui::CollapsingHeader("Statistics", ImGuiTreeNodeFlags_DefaultOpen))
         stats_section(*this);
       ImGui::End();
@@ -336,6 +338,12 @@ void PlayerApp::draw_ui() {
       ImGui::SetNextWindowCollapsed(true, ImGuiCond_FirstUseEver);
       ImGui::Begin("Transfer function");
       tf_section(*this);
+      ImGui::End();
+      ImGui::SetNextWindowPos(ImVec2(10, top + 3 * ImGui::GetFrameHeight()), ImGuiCond_FirstUseEver);
+      ImGui::SetNextWindowSize(ImVec2(340, 240), ImGuiCond_FirstUseEver);
+      ImGui::SetNextWindowCollapsed(true, ImGuiCond_FirstUseEver);
+      ImGui::Begin("Probes");
+      probes_section(*this);
       ImGui::End();
     }
   }

@@ -14,6 +14,8 @@ void stats_section(PlayerApp& app);
 void timeline_section(PlayerApp& app);
 /// The transfer-function editor (player_tf_editor.cpp).
 void tf_section(PlayerApp& app);
+/// The clip probes: list, parameters, combination, surface (player_probes.cpp).
+void probes_section(PlayerApp& app);
 /// The main menu bar and the dialogs it opens: File > Open, save TF as, record (player_menu.cpp).
 void menu_and_dialogs(PlayerApp& app);
 

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <utility>
 
+#include "tsp/clip/probe.h"
 #include "tsp/core/error.h"
 
 namespace tspplayer {
@@ -61,7 +62,7 @@ constexpr std::pair<const char*, Kind> kSwitches[] = {
     {"loop", Kind::loop},           {"cache", Kind::cache}, {"prefetch", Kind::prefetch},
     {"preintegrated", Kind::preintegrated}, {"lod", Kind::lod},     {"show-cut", Kind::show_cut},
     {"panels", Kind::panels},       {"every-step", Kind::every_step},
-    {"log-opacity", Kind::log_opacity}};
+    {"log-opacity", Kind::log_opacity}, {"probe-surface", Kind::probe_surface}};
 
 ScriptAction parse_line(const LineParser& p) {
   ScriptAction a;
@@ -176,6 +177,31 @@ ScriptAction parse_line(const LineParser& p) {
     a.kind = Kind::open;
     a.text = p.words[1];
     if (p.words.size() == 3) a.text2 = p.words[2];
+  } else if (cmd == "probe" || cmd == "probe-op") {
+    p.expect_args(1, cmd == "probe" ? "probe plane:A,B,C,D|sphere:X,Y,Z,R|box:..."
+                                    : "probe-op intersect|union|subtract");
+    a.kind = cmd == "probe" ? Kind::probe : Kind::probe_op;
+    a.text = p.words[1];
+    try {  // checked now: a bad probe is a script error, not a surprise mid-run
+      if (a.kind == Kind::probe)
+        tsp::parse_probe(a.text);
+      else
+        tsp::parse_probe_op(a.text);
+    } catch (const tsp::UsageError& e) {
+      p.fail(e.what());
+    }
+  } else if (cmd == "probe-clear") {
+    p.expect_args(0, "probe-clear");
+    a.kind = Kind::probe_clear;
+  } else if (cmd == "probe-move") {
+    p.expect_args(4, "probe-move N DX DY DZ");
+    a.kind = Kind::probe_move;
+    a.number = p.integer(1, "probe-move N DX DY DZ", 1);
+    a.value = p.number(2, "probe-move N DX DY DZ");
+    a.value2 = p.number(3, "probe-move N DX DY DZ");
+    a.value3 = p.number(4, "probe-move N DX DY DZ");
+    if (!std::isfinite(a.value) || !std::isfinite(a.value2) || !std::isfinite(a.value3))
+      p.fail("probe-move: the displacement must be finite");
   } else if (cmd == "field") {
     p.expect_args(1, "field NAME");
     a.kind = Kind::field;
@@ -191,7 +217,8 @@ ScriptAction parse_line(const LineParser& p) {
            "': expected step, play, pause, speed, loop, tf, tolerance, metric, cache, prefetch, "
            "upload-budget, view, zoom, projection, screenshot, screenshot-ui, wait-frames, "
            "wait-seconds, compositing, spacing, preintegrated, quality, stats, lod, target-fps, "
-           "show-cut, panels, every-step, log-opacity, open, field, record or quit");
+           "show-cut, panels, every-step, log-opacity, open, field, probe, probe-op, "
+           "probe-surface, probe-clear, probe-move, record or quit");
   }
   return a;
 }

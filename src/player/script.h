@@ -45,13 +45,18 @@ struct ScriptAction {
     log_opacity,    ///< the TF editor's opacity axis logarithmic (`flag`) or linear
     open,           ///< open `text` (a .tsp file or any build input; field `text2`), waiting
     field,          ///< show the file's field `text`
+    probe,          ///< add the clip probe `text` (as render --probe)
+    probe_op,       ///< how the probes combine: `text` intersect|union|subtract
+    probe_surface,  ///< draw the clip surface (`flag`)
+    probe_clear,    ///< remove every probe
+    probe_move,     ///< move probe `number` (1-based) by `value`, `value2`, `value3` (physical)
     record,         ///< start recording a movie to `text` (.mp4 or .gif)
     record_stop,    ///< stop recording and write the movie (waits for the encoder)
     quit            ///< close the player
   };
   Kind kind = Kind::quit;
   int number = 0;
-  double value = 0, value2 = 0;
+  double value = 0, value2 = 0, value3 = 0;
   bool flag = false;
   std::string text, text2;
   int line = 0;  ///< 1-based line in the script, for messages

@@ -28,6 +28,7 @@ std::int64_t DenseVolume::update(const std::vector<tsp::TextureKey>& keys) {
   gl_.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
   for (int b = 0; b < o.brick_count(); ++b) {
     const tsp::TextureKey& k = keys[std::size_t(b)];
+    if (k.brick < 0) continue;  // not sampled this frame (clipped away): left as it is
     assert(k.brick == b && k.level == 0);
     if (held_[std::size_t(b)] == k) continue;
     tsp::BrickSamples samples = bricks_.get(b, k.t0);

@@ -25,9 +25,10 @@ class DenseVolume {
   DenseVolume(const DenseVolume&) = delete;
   DenseVolume& operator=(const DenseVolume&) = delete;
 
-  /// Makes leaf brick b hold keys[b]'s samples (level-0 keys, one per leaf brick), writing only
-  /// the bricks whose key changed since the last update. Returns the bytes written. Throws what
-  /// the brick store throws, tsp::GlError.
+  /// Makes leaf brick b hold keys[b]'s samples (level-0 keys, one per leaf brick; brick −1: not
+  /// sampled this frame, left as it is), writing only the bricks whose key changed since the
+  /// last update. Returns the bytes written. Throws what the brick store throws,
+  /// tsp::GlError.
   std::int64_t update(const std::vector<tsp::TextureKey>& keys);
   /// The texture as a slot for the whole volume (sample p at texel p).
   BrickSlot slot() const;

@@ -92,7 +92,7 @@ struct FrameReport {
   double slicing_ms = 0;    ///< slice polygons and their vertex buffer
   double upload_ms = 0;     ///< brick reads and texture uploads
   double draw_ms = 0;       ///< draw calls and glFinish
-  std::array<double, tsp::kDrawClassCount> class_percent{};  ///< NR, UP, RT, NT by voxels
+  std::array<double, tsp::kDrawClassCount> class_percent{};  ///< NR, UP, RT, NT, clipped by voxels
   std::int64_t bytes_uploaded = 0;
   std::int64_t textures_resident = 0;
   std::int64_t texture_bytes = 0;

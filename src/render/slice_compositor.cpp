@@ -15,6 +15,7 @@ constexpr int kVolumeUnit = 0;  // texture unit of the brick (or whole-volume) t
 constexpr int kTfUnit = 1;      // texture unit of the transfer-function lookup
 constexpr int kPagesUnit = 2;   // texture unit of the ray caster's brick pages
 constexpr int kPreintegratedUnit = 3;  // texture unit of the pre-integrated TF table
+constexpr int kSurfaceTfUnit = 4;      // texture unit of the clip surface's colours
 // Largest opacity per voxel a flat box is given, so that ln(1 − α) stays finite.
 constexpr float kMaxFlatAlpha = 1.f - 1e-6f;
 
@@ -27,12 +28,13 @@ void clear(const GlApi& gl, const RenderSettings& settings) {
   gl.Clear(GL_COLOR_BUFFER_BIT);
 }
 
-// A program of vertex_name and fragment_name with the GLSL files `includes` inserted, in order,
-// after the fragment shader's #version line.
+// A program of vertex_name and fragment_name with `defines` and then the GLSL files `includes`
+// inserted, in order, after the fragment shader's #version line.
 Program load_program_with(const GlApi& gl, const std::string& vertex_name,
                           const std::string& fragment_name,
-                          std::initializer_list<const char*> includes) {
-  std::string frag = shader_source(fragment_name), inserted;
+                          std::initializer_list<const char*> includes,
+                          const std::string& defines = "") {
+  std::string frag = shader_source(fragment_name), inserted = defines;
   for (const char* name : includes) inserted += shader_source(name);
   const std::size_t eol = frag.find('\n');
   frag.insert(eol == std::string::npos ? frag.size() : eol + 1, inserted);
@@ -69,7 +71,7 @@ void BrickPages::set_flat(int b, const tsp::Rgba& c) {
   f[3] = log_transmittance(c.a);
 }
 
-void BrickPages::set_textured(int b, const BrickSlot& slot) {
+void BrickPages::set_textured(int b, const BrickSlot& slot, bool clipped) {
   atlas_ = slot;
   float* w = &texels_[4 * std::size_t(b)];
   w[0] = slot.offset[0];
@@ -82,7 +84,8 @@ void BrickPages::set_textured(int b, const BrickSlot& slot) {
                              kMaxPageLevel);
     code = code * (kMaxPageLevel + 1) + l;
   }
-  w[3] = 1.f + float(code);
+  // + kClipFlag: the clip surface may cross it (its samples are tested against the solid).
+  w[3] = 1.f + float(code + (clipped ? kClipFlag : 0));
 }
 
 void BrickPages::finish() {
@@ -127,9 +130,11 @@ SliceCompositor::SliceCompositor(GlContext& ctx)
       box_textured_(load_program_with(ctx.gl(), "box.vert", "box_textured.frag",
                                       {"box_ray.glsl", "sample_tf.glsl"})),
       box_flat_(load_program_with(ctx.gl(), "box.vert", "box_flat.frag", {"box_ray.glsl"})),
-      rays_(load_program_with(ctx.gl(), "box.vert", "volume_ray.frag",
-                              {"box_ray.glsl", "sample_tf.glsl"})),
+      rays_plain_(load_program_with(ctx.gl(), "box.vert", "volume_ray.frag",
+                                    {"box_ray.glsl", "sample_tf.glsl", "clip.glsl"},
+                                    "#define TSP_CLIP 0\n")),
       tf_(ctx.gl()),
+      surface_tf_(ctx.gl()),
       target_(ctx) {
   const std::vector<float> cube = cube_triangles();
   gl_.GenVertexArrays(1, &cube_vao_);
@@ -146,13 +151,8 @@ SliceCompositor::SliceCompositor(GlContext& ctx)
   gl_.BindBuffer(GL_ARRAY_BUFFER, vbo_);
   gl_.EnableVertexAttribArray(0);
   gl_.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
-  for (const Program* p : {&textured_, &box_textured_, &rays_}) {
-    p->use();
-    gl_.Uniform1i(p->uniform("volume"), kVolumeUnit);
-    gl_.Uniform1i(p->uniform("transfer_function"), kTfUnit);
-    gl_.Uniform1i(p->uniform("preintegrated"), kPreintegratedUnit);
-  }
-  gl_.Uniform1i(rays_.uniform("pages"), kPagesUnit);
+  for (const Program* p : {&textured_, &box_textured_}) set_units(*p);
+  set_units(rays_plain_);
   gl_.GenQueries(1, &fragments_query_);
   gl_.GenTextures(1, &pages_);
   gl_.BindTexture(GL_TEXTURE_3D, pages_);
@@ -173,6 +173,60 @@ SliceCompositor::~SliceCompositor() {
 void SliceCompositor::set_transfer_function(const tsp::TransferFunction& tf,
                                             tsp::ValueRange quantized) {
   tf_.set(tf, quantized);
+}
+
+void SliceCompositor::set_units(const Program& p) {
+  p.use();
+  gl_.Uniform1i(p.uniform("volume"), kVolumeUnit);
+  gl_.Uniform1i(p.uniform("transfer_function"), kTfUnit);
+  gl_.Uniform1i(p.uniform("preintegrated"), kPreintegratedUnit);
+  gl_.Uniform1i(p.uniform("pages"), kPagesUnit);
+  gl_.Uniform1i(p.uniform("surface_tf"), kSurfaceTfUnit);
+}
+
+void SliceCompositor::set_clip(const tsp::ClipRegion& clip, const tsp::TransferFunction* surface,
+                               tsp::ValueRange quantized) {
+  const int n = int(clip.probes().size());
+  // The clipping caster is its own program, built the first time a probe is used: its code
+  // costs llvmpipe's shader compiler seconds, which frames without probes should not pay.
+  if (n > 0 && !rays_clip_) {
+    rays_clip_.emplace(load_program_with(gl_, "box.vert", "volume_ray.frag",
+                                         {"box_ray.glsl", "sample_tf.glsl", "clip.glsl"},
+                                         "#define TSP_CLIP 1\n"));
+    set_units(*rays_clip_);
+  }
+  rays_ = n > 0 ? &*rays_clip_ : &rays_plain_;
+  rays_->use();
+  gl_.Uniform1i(rays_->uniform("clip_count"), n);
+  surface_on_ = n > 0 && surface;
+  gl_.Uniform1i(rays_->uniform("clip_surface"), surface_on_ ? 1 : 0);
+  if (n == 0) return;
+  std::vector<GLint> kind(static_cast<std::size_t>(n));
+  std::vector<float> a(std::size_t(n) * 4), size(std::size_t(n) * 3), rot(std::size_t(n) * 9);
+  for (int i = 0; i < n; ++i) {
+    const tsp::Probe& p = clip.probes()[std::size_t(i)];
+    kind[std::size_t(i)] = int(p.kind);
+    for (int c = 0; c < 3; ++c) {
+      a[std::size_t(4 * i + c)] = float(p.centre[std::size_t(c)]);
+      size[std::size_t(3 * i + c)] = float(p.size[std::size_t(c)]);
+    }
+    a[std::size_t(4 * i + 3)] = float(p.radius);
+    for (int c = 0; c < 9; ++c)
+      rot[std::size_t(9 * i + c)] = float(clip.rotations()[std::size_t(i)][std::size_t(c)]);
+  }
+  gl_.Uniform1i(rays_->uniform("clip_op"), int(clip.op()));
+  gl_.Uniform1iv(rays_->uniform("clip_kind"), n, kind.data());
+  gl_.Uniform4fv(rays_->uniform("clip_a"), n, a.data());
+  gl_.Uniform3fv(rays_->uniform("clip_size"), n, size.data());
+  gl_.UniformMatrix3fv(rays_->uniform("clip_rot"), n, GL_TRUE, rot.data());  // row-major
+  gl_.Uniform3f(rays_->uniform("grid_origin"), float(clip.origin()[0]), float(clip.origin()[1]),
+                float(clip.origin()[2]));
+  gl_.Uniform3f(rays_->uniform("grid_spacing"), float(clip.spacing()[0]),
+                float(clip.spacing()[1]), float(clip.spacing()[2]));
+  if (surface_on_) {
+    surface_tf_.set(*surface, quantized);
+    gl_.Uniform2f(rays_->uniform("surface_map"), surface_tf_.scale(), surface_tf_.offset());
+  }
 }
 
 void SliceCompositor::set_region(const PixelRect& r, const RenderSettings& settings) {
@@ -202,11 +256,11 @@ void SliceCompositor::begin_frame(const tsp::Camera& camera, const RenderSetting
   const glm::mat4 vp(camera.view_projection());
   const auto dir = camera.direction(), eye = camera.eye(), ray = camera.ray_direction();
   const double cosine = camera.ray_cosine();
-  for (const Program* p : {&textured_, &flat_, &box_textured_, &box_flat_, &rays_}) {
+  for (const Program* p : std::initializer_list<const Program*>{&textured_, &flat_, &box_textured_, &box_flat_, rays_}) {
     p->use();
     gl_.UniformMatrix4fv(p->uniform("view_projection"), 1, GL_FALSE, glm::value_ptr(vp));
   }
-  for (const Program* p : {&box_textured_, &box_flat_, &rays_}) {
+  for (const Program* p : std::initializer_list<const Program*>{&box_textured_, &box_flat_, rays_}) {
     p->use();
     // Depth in the shaders is measured along direction() / ray_cosine(): along the central ray
     // it is ray length, so planes `spacing` apart in it take samples `spacing` apart along the
@@ -217,15 +271,15 @@ void SliceCompositor::begin_frame(const tsp::Camera& camera, const RenderSetting
     gl_.Uniform3f(p->uniform("eye"), float(eye[0]), float(eye[1]), float(eye[2]));
     gl_.Uniform1i(p->uniform("perspective"), camera.perspective() ? 1 : 0);
   }
-  for (const Program* p : {&textured_, &box_textured_, &rays_}) {
+  for (const Program* p : std::initializer_list<const Program*>{&textured_, &box_textured_, rays_}) {
     p->use();
     gl_.Uniform2f(p->uniform("tf_map"), tf_.scale(), tf_.offset());
   }
-  for (const Program* p : {&box_textured_, &rays_}) {
+  for (const Program* p : std::initializer_list<const Program*>{&box_textured_, rays_}) {
     p->use();
     gl_.Uniform1f(p->uniform("spacing"), float(settings.spacing));
   }
-  for (const Program* p : {&textured_, &box_textured_, &rays_}) {
+  for (const Program* p : std::initializer_list<const Program*>{&textured_, &box_textured_, rays_}) {
     p->use();
     gl_.Uniform1i(p->uniform("use_preintegrated"), settings.preintegrated ? 1 : 0);
     gl_.Uniform1i(p->uniform("use_stencil"), stencil_ ? 1 : 0);
@@ -236,6 +290,7 @@ void SliceCompositor::begin_frame(const tsp::Camera& camera, const RenderSetting
   gl_.Uniform3f(textured_.uniform("back_step"), float(ray[0] * settings.spacing),
                 float(ray[1] * settings.spacing), float(ray[2] * settings.spacing));
   if (settings.preintegrated) tf_.bind_preintegrated(kPreintegratedUnit, settings.spacing);
+  if (surface_on_) surface_tf_.bind_opaque(kSurfaceTfUnit);
   tf_.bind(kTfUnit, settings.spacing);
   gl_.ActiveTexture(GL_TEXTURE0 + kVolumeUnit);
   gl_.BeginQuery(GL_SAMPLES_PASSED, fragments_query_);
@@ -331,21 +386,21 @@ void SliceCompositor::set_pages(const BrickPages& pages, tsp::Dims dims) {
   gl_.ActiveTexture(GL_TEXTURE0 + kVolumeUnit);
   const BrickSlot& atlas = pages.atlas();
   rays_atlas_ = atlas.texture;
-  rays_.use();
-  gl_.Uniform3f(rays_.uniform("atlas_scale"), atlas.texture ? 1.f / float(atlas.atlas_size[0]) : 0.f,
+  rays_->use();
+  gl_.Uniform3f(rays_->uniform("atlas_scale"), atlas.texture ? 1.f / float(atlas.atlas_size[0]) : 0.f,
                 atlas.texture ? 1.f / float(atlas.atlas_size[1]) : 0.f,
                 atlas.texture ? 1.f / float(atlas.atlas_size[2]) : 0.f);
   const auto& c = pages.cell();
-  gl_.Uniform3f(rays_.uniform("cell"), float(c[0]), float(c[1]), float(c[2]));
-  gl_.Uniform3i(rays_.uniform("grid"), g[0], g[1], g[2]);
-  gl_.Uniform3f(rays_.uniform("box_lo"), 0.f, 0.f, 0.f);
-  gl_.Uniform3f(rays_.uniform("box_hi"), float(std::max(dims.x - 1, 1)),
+  gl_.Uniform3f(rays_->uniform("cell"), float(c[0]), float(c[1]), float(c[2]));
+  gl_.Uniform3i(rays_->uniform("grid"), g[0], g[1], g[2]);
+  gl_.Uniform3f(rays_->uniform("box_lo"), 0.f, 0.f, 0.f);
+  gl_.Uniform3f(rays_->uniform("box_hi"), float(std::max(dims.x - 1, 1)),
                 float(std::max(dims.y - 1, 1)), float(std::max(dims.z - 1, 1)));
 }
 
 void SliceCompositor::draw_rays() {
   gl_.BindTexture(GL_TEXTURE_3D, rays_atlas_);
-  rays_.use();
+  rays_->use();
   gl_.BindVertexArray(cube_vao_);
   gl_.Enable(GL_CULL_FACE);
   gl_.CullFace(GL_FRONT);

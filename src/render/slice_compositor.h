@@ -6,6 +6,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "gl/context.h"
@@ -15,6 +16,7 @@
 #include "render/image_reuse.h"
 #include "render/render_target.h"
 #include "render/tf_texture.h"
+#include "tsp/clip/probe.h"
 #include "tsp/core/types.h"
 #include "tsp/frame/camera.h"
 #include "tsp/frame/slicing.h"
@@ -47,8 +49,11 @@ class BrickPages {
   void reset(std::array<int, 3> grid, std::array<int, 3> cell);
   /// Brick b drawn flat in c (opacity per voxel of depth; below kMinFlatAlpha it stays empty).
   void set_flat(int b, const tsp::Rgba& c);
-  /// Brick b sampled from slot (a leaf's, or a level brick's covering b: slot.scale < 1).
-  void set_textured(int b, const BrickSlot& slot);
+  /// Brick b sampled from slot (a leaf's, or a level brick's covering b: slot.scale < 1); with
+  /// clipped, the clip surface may cross it and the ray caster tests its samples.
+  void set_textured(int b, const BrickSlot& slot, bool clipped = false);
+  /// Added to a textured page's code when its samples are tested against the clip solid.
+  static constexpr int kClipFlag = 512;
   /// After the last set_*: gives every empty brick the radius of the cube of empty bricks centred
   /// on it (Chebyshev distance to the nearest non-empty brick − 1, at most kMaxLeapRadius), which
   /// the ray caster leaps over.
@@ -87,6 +92,11 @@ class SliceCompositor {
   void set_transfer_function(const tsp::TransferFunction& tf, tsp::ValueRange quantized);
   /// Textures carry a stencil in their second channel (RG16): outside samples are not drawn.
   void set_stencil(bool on) { stencil_ = on; }
+  /// The one-pass ray caster clips to clip (no probe: nothing clipped) and, with surface, draws
+  /// the clip surface opaque in surface's colours (for bricks quantized over `quantized`).
+  /// Throws tsp::GlError.
+  void set_clip(const tsp::ClipRegion& clip, const tsp::TransferFunction* surface,
+                tsp::ValueRange quantized);
   /// Makes the context current, binds the 16-bit target at the camera's size (cleared unless
   /// `keep`: then the last frame's pixels stay, for partial-image reuse), sets blending and the
   /// camera. Throws tsp::GlError.
@@ -115,12 +125,17 @@ class SliceCompositor {
  private:
   GlContext& ctx_;
   const GlApi& gl_;
-  Program textured_, flat_, box_textured_, box_flat_, rays_;
+  Program textured_, flat_, box_textured_, box_flat_, rays_plain_;
+  std::optional<Program> rays_clip_;  ///< the caster with the clip code (made on first use)
+  const Program* rays_ = &rays_plain_;  ///< the caster in use
+  void set_units(const Program& p);
   bool stencil_ = false;
   GLuint pages_ = 0, fragments_query_ = 0;
   GLuint rays_atlas_ = 0;  ///< the atlas the last set_pages' textured bricks read
   GLuint vao_ = 0, vbo_ = 0, cube_vao_ = 0, cube_vbo_ = 0;
   TfTexture tf_;
+  TfTexture surface_tf_;  ///< the clip surface's colours
+  bool surface_on_ = false;
   RenderTarget target_;
   std::array<int, 4> output_{};  ///< x, y, width, height of the frame in the default framebuffer
   std::vector<float> vertices_;

@@ -25,6 +25,7 @@ void TfTexture::set(const tsp::TransferFunction& tf, tsp::ValueRange quantized) 
   tf_ = tf;
   spacing_ = -1;  // re-uploaded, corrected for the spacing, by the next bind
   table_spacing_ = -1;
+  opaque_current_ = false;
   // A normalised code s means v = q.lo + s·q.width; its TF coordinate is (v − tf.lo)/tf.width.
   const tsp::ValueRange d = tf.domain();
   scale_ = quantized.width() / d.width();
@@ -48,6 +49,22 @@ void TfTexture::bind(int unit, double spacing) {
                  rgba.data());
   check_gl(gl_, "uploading the transfer function");
   spacing_ = spacing;
+}
+
+void TfTexture::bind_opaque(int unit) {
+  gl_.ActiveTexture(GLenum(GL_TEXTURE0 + unit));
+  gl_.BindTexture(GL_TEXTURE_1D, id_);
+  if (opaque_current_) return;
+  std::vector<float> rgba;
+  rgba.reserve(std::size_t(tf_.size()) * 4);
+  for (const tsp::Rgba& e : tf_.entries()) rgba.insert(rgba.end(), {e.r, e.g, e.b, 1.f});
+  gl_.TexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  gl_.TexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  gl_.TexParameteri(GL_TEXTURE_1D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  gl_.TexImage1D(GL_TEXTURE_1D, 0, GL_RGBA32F, GLsizei(tf_.size()), 0, GL_RGBA, GL_FLOAT,
+                 rgba.data());
+  check_gl(gl_, "uploading the surface transfer function");
+  opaque_current_ = true;
 }
 
 void TfTexture::bind_preintegrated(int unit, double spacing) {

@@ -33,6 +33,9 @@ class TfTexture {
   /// to texture unit `unit`, recomputing it first when the TF or spacing changed (O(K³) on the
   /// CPU: tens of ms for K = 256). Throws tsp::GlError.
   void bind_preintegrated(int unit, double spacing);
+  /// Binds the TF's colours, opaque and not premultiplied (a probe surface's lookup), to
+  /// texture unit `unit`, re-uploading first when the TF changed. Throws tsp::GlError.
+  void bind_opaque(int unit);
   /// TF coordinate = normalised code · scale + offset (the shader's tf_map).
   float scale() const { return float(scale_); }
   /// See scale().
@@ -44,6 +47,7 @@ class TfTexture {
   double scale_ = 1, offset_ = 0;
   double spacing_ = -1;             ///< spacing the texture was corrected for (−1: stale)
   double table_spacing_ = -1;       ///< spacing the pre-integrated table was made for
+  bool opaque_current_ = false;     ///< the opaque colours are uploaded (bind_opaque)
   tsp::TransferFunction tf_;        ///< the TF as given (uncorrected, not premultiplied)
 };
 

@@ -42,6 +42,24 @@ void VolumeRenderer::set_transfer_function(const tsp::TransferFunction& tf) {
   ++tf_serial_;
 }
 
+void VolumeRenderer::set_clip(const tsp::ClipRegion& clip,
+                              const std::optional<tsp::TransferFunction>& surface) {
+  const bool same = clip == clip_ && !surface && !clip_surface_;
+  clip_ = clip;
+  clip_surface_ = clip.active() && surface.has_value();
+  // One voxel of margin: the surface crosses textured bricks only (render/dense_volume.h).
+  clip_sides_ = clip_.classify_nodes(tree_.octree(), 1.0);
+  // A solid that keeps the whole volume (its root kept, with the margin) clips nothing: the
+  // plain caster, without the clip code's cost.
+  if (!clip_sides_.empty() && clip_sides_[0] == std::uint8_t(tsp::ClipSide::kept)) {
+    clip_sides_.clear();
+    clip_surface_ = false;
+  }
+  compositor_->set_clip(clip_sides_.empty() ? tsp::ClipRegion{} : clip_,
+                        clip_surface_ ? &*surface : nullptr, tree_.value_range());
+  if (!same) ++clip_serial_;
+}
+
 VolumeRenderer::ReuseKey VolumeRenderer::reuse_key(const tsp::Camera& camera,
                                                    const RenderSettings& s) const {
   ReuseKey k;
@@ -54,6 +72,7 @@ VolumeRenderer::ReuseKey VolumeRenderer::reuse_key(const tsp::Camera& camera,
   k.preintegrated = s.preintegrated;
   k.background = s.background;
   k.tf_serial = tf_serial_;
+  k.clip_serial = clip_serial_;
   k.render_scale = s.render_scale;
   return k;
 }
@@ -80,9 +99,13 @@ std::vector<tsp::BrickKey> VolumeRenderer::bricks_to_upload(int step, const tsp:
   const tsp::ViewOrder order = view_order(camera);
   const tsp::NodeErrors& errors = metric.errors_for_step(step);
   std::vector<tsp::BrickKey> keys;
-  for (const tsp::Emitted& e : tsp::traverse(tree_, step, settings.tol, errors, order, stops)) {
+  for (const tsp::Emitted& e :
+       tsp::traverse(tree_, step, settings.tol, errors, order, stops, clip_sides_)) {
     const int id = tree_.id(e.octree_id, e.time_id);
-    if (tsp::node_shading(tree_, id, metric.class_info(id), settings.tol) != tsp::Shading::textured) continue;
+    if (e.clip == 1) continue;  // clipped away: never uploaded
+    const tsp::Shading sh = tsp::node_shading(tree_, id, metric.class_info(id), settings.tol);
+    if (sh != tsp::Shading::textured && !(e.clip == 2 && (sh == tsp::Shading::flat || clip_surface_)))
+      continue;
     for (int brick : tsp::node_bricks(tree_.octree(), e.octree_id, order, stops))
       if (const int t = tsp::representative_step(e.span, settings.span_step);
           !textures_.contains(tsp::texture_key(tree_.octree(), brick, t)))
@@ -141,6 +164,12 @@ bool VolumeRenderer::dense_frame(const tsp::FramePlan& plan) {
   for (const tsp::PlannedNode& n : plan.nodes) {
     if (n.cls == tsp::DrawClass::not_rendered) continue;
     if (n.cls == tsp::DrawClass::untextured) return false;  // flat: the grid walk draws it exactly
+    if (n.cls == tsp::DrawClass::clipped) {
+      // Clipped away: the caster's kept intervals jump over it, so its texels are never
+      // sampled and need no update (brick −1).
+      octree.for_each_brick(n.node.octree_id, [&](int) { ++covered; });
+      continue;
+    }
     for (int i = n.first_texture; i < n.first_texture + n.texture_count; ++i) {
       const tsp::PlannedTexture& pt = plan.textures[std::size_t(i)];
       if (pt.deferred || pt.key.level != 0) return false;  // a mean colour, or a level brick
@@ -152,6 +181,11 @@ bool VolumeRenderer::dense_frame(const tsp::FramePlan& plan) {
   }
   // Every leaf brick drawn (a transparent one left out would be sampled here).
   return covered == octree.brick_count();
+}
+
+bool VolumeRenderer::leaf_clipped(int brick) const {
+  return !clip_sides_.empty() &&
+         clip_sides_[std::size_t(tree_.octree().brick_node(brick))] != std::uint8_t(tsp::ClipSide::kept);
 }
 
 void VolumeRenderer::fill_pages(const tsp::FramePlan& plan, tsp::FrameMetric& metric) {
@@ -175,7 +209,7 @@ void VolumeRenderer::fill_pages(const tsp::FramePlan& plan, tsp::FrameMetric& me
         const tsp::Rgba c = metric.mean_colour(tsp_id);
         octree.for_each_brick(o, [&](int b) { pages_.set_flat(b, c); });
       } else if (pt.key.level == 0) {
-        pages_.set_textured(pt.key.brick, textures_.at(pt.key));
+        pages_.set_textured(pt.key.brick, textures_.at(pt.key), leaf_clipped(pt.key.brick));
       } else {
         // A level brick: the full-resolution traversal still decides, leaf page by leaf page,
         // what is skipped (transparent) or drawn flat (coherent); the rest samples the level.
@@ -183,7 +217,7 @@ void VolumeRenderer::fill_pages(const tsp::FramePlan& plan, tsp::FrameMetric& me
         octree.for_each_brick(o, [&](int b) {
           const LeafShading& ls = leaf_shading_[std::size_t(b)];
           if (ls.shading == tsp::Shading::textured)
-            pages_.set_textured(b, slot);
+            pages_.set_textured(b, slot, leaf_clipped(b));
           else if (ls.shading == tsp::Shading::flat)
             pages_.set_flat(b, metric.mean_colour(ls.tsp_id));
         });
@@ -194,9 +228,12 @@ void VolumeRenderer::fill_pages(const tsp::FramePlan& plan, tsp::FrameMetric& me
 }
 
 FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
-                                   const RenderSettings& settings, tsp::FrameMetric& metric,
+                                   const RenderSettings& requested, tsp::FrameMetric& metric,
                                    tsp::LodStops stops) {
   const tsp::Stopwatch frame;
+  // Probes clip per sample in the one-pass ray caster: frames with probes are ray cast.
+  RenderSettings settings = requested;
+  if (!clip_sides_.empty()) settings.compositing = Compositing::rays;
   const tsp::Octree& octree = tree_.octree();
   FrameReport r;
   r.step = step;
@@ -207,10 +244,10 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
   // mean_colour below only read memoised results.
   const tsp::NodeErrors& errors = metric.errors_for_step(step);
   const std::vector<tsp::Emitted> emitted =
-      tsp::traverse(tree_, step, settings.tol, errors, order, stops);
+      tsp::traverse(tree_, step, settings.tol, errors, order, stops, clip_sides_);
   const tsp::FramePlan plan = tsp::plan_frame(tree_, step, emitted, tsp::node_info(metric),
                                               settings.tol, order, cache_, settings.upload_budget,
-                                              settings.span_step, stops);
+                                              settings.span_step, stops, clip_surface_);
   // Ray casting a level brick, each leaf page below it keeps the full-resolution traversal's
   // shading: skipped when transparent, flat when coherent (fill_pages).
   level_pages_.clear();
@@ -219,9 +256,14 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
                   [](const tsp::PlannedTexture& pt) { return pt.key.level > 0; });
   if (settings.compositing == Compositing::rays && level_textures) {
     leaf_shading_.assign(std::size_t(octree.brick_count()), {});
-    for (const tsp::Emitted& e : tsp::traverse(tree_, step, settings.tol, errors, order)) {
+    for (const tsp::Emitted& e :
+         tsp::traverse(tree_, step, settings.tol, errors, order, {}, clip_sides_)) {
       const int id = tree_.id(e.octree_id, e.time_id);
-      const LeafShading ls{tsp::node_shading(tree_, id, metric.class_info(id), settings.tol), id};
+      LeafShading ls{tsp::node_shading(tree_, id, metric.class_info(id), settings.tol), id};
+      // As plan_frame: clipped away → nothing; across the clip surface → sampled.
+      if (e.clip == 1) ls.shading = tsp::Shading::none;
+      if (e.clip == 2 && (ls.shading == tsp::Shading::flat || clip_surface_))
+        ls.shading = tsp::Shading::textured;
       octree.for_each_brick(e.octree_id, [&](int b) { leaf_shading_[std::size_t(b)] = ls; });
     }
     for (const LeafShading& ls : leaf_shading_)
@@ -253,7 +295,7 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
     r.upload_ms += phase.lap_ms();
     pages_.reset({1, 1, 1}, {std::max(octree.dims().x - 1, 1), std::max(octree.dims().y - 1, 1),
                              std::max(octree.dims().z - 1, 1)});
-    pages_.set_textured(0, dense_.slot());
+    pages_.set_textured(0, dense_.slot(), !clip_sides_.empty());
     pages_.finish();
     compositor_->set_pages(pages_, octree.dims());
   } else if (settings.compositing == Compositing::rays) {

@@ -47,6 +47,17 @@ class VolumeRenderer {
 
   /// Uses tf from the next frame on (1D lookup texture; never invalidates brick textures).
   void set_transfer_function(const tsp::TransferFunction& tf);
+  /// Clips the next frames to clip (tsp/clip; an empty region clips nothing): nodes it removes
+  /// are neither drawn nor uploaded (class clipped), nodes across its surface are drawn
+  /// textured and clipped per sample by the one-pass ray caster — frames with probes are ray
+  /// cast whatever the compositing setting — and with surface the clip surface shows the data
+  /// in surface's colours, opaque, shaded by its normal. Throws tsp::GlError.
+  void set_clip(const tsp::ClipRegion& clip, const std::optional<tsp::TransferFunction>& surface);
+  /// The clip region in use.
+  const tsp::ClipRegion& clip() const { return clip_; }
+  /// Per octree node, where it lies with respect to the clip region (empty: none), for the LOD
+  /// cut.
+  tsp::ClipSides clip_sides() const { return clip_sides_; }
   /// Draws step with the TSP tree: metric gives every node's errors, mean colour and
   /// transparency (a live metric evaluates only what step's traversal can visit, spec §4).
   /// With stops (an LOD cut, tsp/lod), the descent ends at the marked nodes, which draw their
@@ -93,6 +104,7 @@ class VolumeRenderer {
     bool exact_flat = true, preintegrated = false;
     std::array<float, 3> background{};
     std::uint64_t tf_serial = 0;
+    std::uint64_t clip_serial = 0;
     double render_scale = 1;
     bool operator==(const ReuseKey&) const = default;
   };
@@ -102,6 +114,10 @@ class VolumeRenderer {
   };
   std::optional<Previous> previous_;
   std::uint64_t tf_serial_ = 0;  // set_transfer_function calls
+  tsp::ClipRegion clip_;
+  bool clip_surface_ = false;
+  std::vector<std::uint8_t> clip_sides_;  // per octree node (tsp::ClipSide), empty: no clip
+  std::uint64_t clip_serial_ = 0;         // set_clip calls that changed it
   ReuseKey reuse_key(const tsp::Camera& camera, const RenderSettings& s) const;
   BrickPages pages_;             // rays compositing
   struct LeafShading {
@@ -113,6 +129,8 @@ class VolumeRenderer {
   void fill_items(const tsp::FramePlan& plan, tsp::FrameMetric& metric, const tsp::Camera& camera,
                   const RenderSettings& settings);
   void fill_pages(const tsp::FramePlan& plan, tsp::FrameMetric& metric);
+  // True when the clip surface may cross leaf brick `brick` (its node is not wholly kept).
+  bool leaf_clipped(int brick) const;
   // True when plan textures every leaf brick at full resolution (fills dense_keys_).
   bool dense_frame(const tsp::FramePlan& plan);
 };

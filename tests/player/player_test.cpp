@@ -594,4 +594,39 @@ TEST(Player, SwitchesFieldsLiveEachWithItsOwnTransferFunction) {
   EXPECT_EQ(read_json(dir / "b.json")["field"], "shock");
 }
 
+// Clip probes from a script: the picture is render's with the same --probe options, the removed
+// voxels are counted as clipped, and moving a probe changes the picture (and counts as input).
+TEST(Player, ProbesClipAsRenderDoesAndMoveFromTheScript) {
+  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
+  const std::string probe = "sphere:8,8,7,7", plane = "plane:0,0,1,9";  // in the first brick
+  // (LOD off: with the cut, a uniform node across the surface stays whole and is clipped per
+  // sample — the same picture, but no voxel counted as clipped.)
+  fs::path script = write_script("lod off\ntf preset:filled\nprobe " + probe + "\nprobe " + plane +
+                                 "\nscreenshot " + (dir / "a.png").string() + "\nstats " +
+                                 (dir / "a.json").string() + "\nprobe-move 2 0 0 -4\nscreenshot " +
+                                 (dir / "b.png").string() + "\nprobe-clear\nscreenshot " +
+                                 (dir / "c.png").string() + "\nquit\n");
+  auto r = run_tspplay("play " + q(tsp) + " --size " + kSize + " --script " + q(script));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto rr = run_tspplay("render " + q(tsp) + " --tf preset:filled --steps 0 --size " + kSize +
+                        " --probe " + probe + " --probe " + plane + " --probe-surface on -o " +
+                        q(dir / "r"));
+  ASSERT_EQ(rr.exit_code, 0) << rr.err;
+  const tsp::Image a = tsp::read_png((dir / "a.png").string());
+  EXPECT_LT(tsp::diff_images(a, tsp::read_png((dir / "r" / "step_0000.png").string())).mean,
+            kSameFrameDeltaE);
+  const nlohmann::json j = read_json(dir / "a.json");
+  EXPECT_EQ(j["probes"].size(), 2u);
+  EXPECT_GT(j["classes"]["clipped"].get<double>(), 10.0);
+  EXPECT_GT(tsp::diff_images(a, tsp::read_png((dir / "b.png").string())).mean,
+            kDifferentFrameDeltaE);  // the plane moved down
+  EXPECT_LT(tsp::diff_images(tsp::read_png((dir / "c.png").string()), render_step(tsp, 0, "preset:filled")).mean,
+            kSameFrameDeltaE);  // no probe left
+  // A bad probe is a script error naming the line.
+  auto bad = run_tspplay("play " + q(tsp) + " --script " + q(write_script("probe sphere:1,2\n")));
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.err.find("actions.txt:1"), std::string::npos) << bad.err;
+}
+
 }  // namespace

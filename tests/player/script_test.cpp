@@ -99,6 +99,21 @@ TEST(PlayerScript, ParsesEveryAction) {
   EXPECT_EQ(f[5].kind, Kind::record);
   EXPECT_EQ(f[5].text, "m.mp4");
   EXPECT_EQ(f[6].kind, Kind::record_stop);
+  const auto g = parse_script("probe sphere:1,2,3,4\nprobe-op union\nprobe-surface off\n"
+                              "probe-move 1 0.5 0 -2\nprobe-clear\nfield p\n",
+                              "g.txt");
+  ASSERT_EQ(g.size(), 6u);
+  EXPECT_EQ(g[0].kind, Kind::probe);
+  EXPECT_EQ(g[0].text, "sphere:1,2,3,4");
+  EXPECT_EQ(g[1].kind, Kind::probe_op);
+  EXPECT_EQ(g[2].kind, Kind::probe_surface);
+  EXPECT_FALSE(g[2].flag);
+  EXPECT_EQ(g[3].kind, Kind::probe_move);
+  EXPECT_EQ(g[3].number, 1);
+  EXPECT_DOUBLE_EQ(g[3].value3, -2);
+  EXPECT_EQ(g[4].kind, Kind::probe_clear);
+  EXPECT_EQ(g[5].kind, Kind::field);
+  EXPECT_EQ(g[5].text, "p");
 }
 
 TEST(PlayerScript, ErrorsNameTheLineAndWhatWasExpected) {
@@ -128,6 +143,10 @@ TEST(PlayerScript, ErrorsNameTheLineAndWhatWasExpected) {
             std::string::npos);
   EXPECT_NE(error_of("open").find("'open' takes 1 or 2 arguments"), std::string::npos);
   EXPECT_NE(error_of("panels maybe").find("expected on or off"), std::string::npos);
+  EXPECT_NE(error_of("probe cone:1").find("expected plane"), std::string::npos);
+  EXPECT_NE(error_of("probe-op xor").find("expected intersect, union or subtract"),
+            std::string::npos);
+  EXPECT_NE(error_of("probe-move 0 1 2 3").find("not an integer >= 1"), std::string::npos);
 }
 
 TEST(PlayerScript, LoadsAFileAndNamesAMissingOne) {

@@ -32,6 +32,8 @@ const char* to_string(DrawClass c) {
       return "reused_texture";
     case DrawClass::new_texture:
       return "new_texture";
+    case DrawClass::clipped:
+      return "clipped";
   }
   return "?";
 }
@@ -93,7 +95,7 @@ double FramePlan::percent(DrawClass c) const {
 FramePlan plan_frame(const TspTree& tree, int step, std::span<const Emitted> emitted,
                      const NodeInfoFn& info, const Tolerances& tol, const ViewOrder& view,
                      TextureCache& cache, std::int64_t upload_budget, SpanStep span_step,
-                     LodStops stops) {
+                     LodStops stops, bool clip_surface) {
   const Octree& octree = tree.octree();
   FramePlan plan;
   plan.step = step;
@@ -104,8 +106,15 @@ FramePlan plan_frame(const TspTree& tree, int step, std::span<const Emitted> emi
     PlannedNode p;
     p.node = e;
     p.voxels = octree.node(e.octree_id).box.count();
-    const Shading shading = node_shading(tree, tree.id(e.octree_id, e.time_id), info(tree.id(e.octree_id, e.time_id)), tol);
-    if (shading == Shading::none) {
+    Shading shading = e.clip == 1 ? Shading::none
+                                  : node_shading(tree, tree.id(e.octree_id, e.time_id),
+                                                 info(tree.id(e.octree_id, e.time_id)), tol);
+    // Across the clip surface: clipped per sample, which a flat node (drawn whole) cannot be.
+    if (e.clip == 2 && (shading == Shading::flat || (clip_surface && shading == Shading::none)))
+      shading = Shading::textured;
+    if (e.clip == 1) {
+      p.cls = DrawClass::clipped;
+    } else if (shading == Shading::none) {
       p.cls = DrawClass::not_rendered;
     } else if (shading == Shading::flat) {
       p.cls = DrawClass::untextured;

@@ -21,10 +21,12 @@
 namespace tsp {
 
 /// The paper's Table-5 classes, in report order.
-enum class DrawClass : std::uint8_t { not_rendered, untextured, reused_texture, new_texture };
+/// clipped: removed by a clip probe (tsp/clip), drawn nowhere and never uploaded (issue 14).
+enum class DrawClass : std::uint8_t { not_rendered, untextured, reused_texture, new_texture, clipped };
 /// Number of DrawClass values.
-inline constexpr int kDrawClassCount = 4;
-/// "not_rendered", "untextured", "reused_texture" or "new_texture" (the frames.json names).
+inline constexpr int kDrawClassCount = 5;
+/// "not_rendered", "untextured", "reused_texture", "new_texture" or "clipped" (the frames.json
+/// names).
 const char* to_string(DrawClass c);
 
 /// Which step's data textures a span (spec §5; the paper uses the first).
@@ -116,12 +118,16 @@ struct FramePlan {
 /// a texture not resident whose upload would take the frame's uploads over upload_budget bytes
 /// is deferred — not requested from the cache, so it stays absent until a later frame uploads it
 /// — except the frame's first upload, which always goes ahead so that repeated frames of one step
-/// complete. The renderer draws deferred bricks flat in their node's mean colour. Asserts the
-/// cache has no open frame.
+/// complete. The renderer draws deferred bricks flat in their node's mean colour. A node the
+/// traversal clipped away (Emitted::clip 1) is class clipped and uploads nothing; one across
+/// the clip surface (clip 2) is textured where it would be flat — and, with clip_surface (the
+/// surface shows the data on it), where it would be transparent too. Asserts the cache has no
+/// open frame.
 FramePlan plan_frame(const TspTree& tree, int step, std::span<const Emitted> emitted,
                      const NodeInfoFn& info, const Tolerances& tol, const ViewOrder& view,
                      TextureCache& cache, std::int64_t upload_budget = 0,
-                     SpanStep span_step = SpanStep::middle, LodStops stops = {});
+                     SpanStep span_step = SpanStep::middle, LodStops stops = {},
+                     bool clip_surface = false);
 
 /// Every texture key some step's frame could draw under errors, info and tol — the set to keep
 /// with TextureCache::drop_unreachable after a tolerance change (stops: the LOD cut in use).

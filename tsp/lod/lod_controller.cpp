@@ -34,7 +34,7 @@ LodController::LodController(const TspTree& tree, LodOptions options)
       cost_(std::size_t(tree.octree().size()), 0) {}
 
 void LodController::evaluate(const Camera& camera, int t, const TransferFunction& tf,
-                             const TfColourSlopes& slopes, double spacing) {
+                             const TfColourSlopes& slopes, double spacing, ClipSides clip) {
   const Octree& o = tree_.octree();
   const Dims d = o.dims();
   const std::array<double, 3> focus =
@@ -59,8 +59,10 @@ void LodController::evaluate(const Camera& camera, int t, const TransferFunction
     if (n.is_leaf()) {
       // Culled, transparent or uniform at this step (drawn flat or skipped at any level).
       const bool empty = p.culled || s.empty() || slopes.transparent(s.min, s.max) || s.min == s.max;
+      // Clipped away by a probe: drawn nowhere, at no cost.
+      const bool clipped = !clip.empty() && clip[std::size_t(id)] == 1;
       leaf_sum[std::size_t(id)] =
-          p.pixel_area * p.depth_voxels / spacing * (empty ? kEmptyCostShare : 1.0);
+          clipped ? 0.0 : p.pixel_area * p.depth_voxels / spacing * (empty ? kEmptyCostShare : 1.0);
       area_sum[std::size_t(id)] = p.pixel_area;
       vis_sum[std::size_t(id)] = p.pixel_area * leaf_vis[std::size_t(n.brick)];
     } else {
@@ -83,7 +85,9 @@ void LodController::evaluate(const Camera& camera, int t, const TransferFunction
     // equal frame time (docs/results.md).
     const double attention =
         options_.focus ? focus_weight(c, focus, diagonal) * view_weight(p, camera) : 1.0;
-    error_[std::size_t(id)] = lod_error(tree_, id, t, p, slopes, attention * visibility);
+    error_[std::size_t(id)] = !clip.empty() && clip[std::size_t(id)] == 1
+                                  ? 0.0  // clipped away: no level shows anything of it
+                                  : lod_error(tree_, id, t, p, slopes, attention * visibility);
   }
 }
 
@@ -102,10 +106,10 @@ void LodController::adapt_scale(bool coarsest) {
 }
 
 LodFrameStats LodController::update(const Camera& camera, int t, const TransferFunction& tf,
-                                    double spacing) {
+                                    double spacing, ClipSides clip) {
   const Octree& o = tree_.octree();
   const TfColourSlopes slopes(tf);
-  evaluate(camera, t, tf, slopes, spacing);
+  evaluate(camera, t, tf, slopes, spacing, clip);
   int splits_done = 0, merges_done = 0;
   double cost = 0;
   for (int id : cut_.nodes()) cost += cost_[std::size_t(id)];

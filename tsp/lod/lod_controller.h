@@ -12,6 +12,7 @@
 #include "tsp/frame/camera.h"
 #include "tsp/lod/cost_model.h"
 #include "tsp/lod/lod_cut.h"
+#include "tsp/tree/traversal.h"
 #include "tsp/lod/lod_error.h"
 #include "tsp/metric/transfer_function.h"
 #include "tsp/tree/tsp_tree.h"
@@ -55,8 +56,10 @@ class LodController {
   /// Starts from the coarsest cut (the root). tree must outlive it.
   LodController(const TspTree& tree, LodOptions options);
   /// Adapts the cut for the next frame of step t under camera, tf and sample spacing, and returns
-  /// what it did. Never throws.
-  LodFrameStats update(const Camera& camera, int t, const TransferFunction& tf, double spacing);
+  /// what it did; nodes clip marks removed (a probe's, tsp/clip) cost nothing and never split.
+  /// Never throws.
+  LodFrameStats update(const Camera& camera, int t, const TransferFunction& tf, double spacing,
+                       ClipSides clip = {});
   /// The measured time of the frame drawn with the last update's cut, without its texture
   /// uploads (bounded separately by split_limit); fits the cost model.
   void measured(double ms);
@@ -91,7 +94,7 @@ class LodController {
   bool last_coarsest_ = false;  // the last update left the root alone
   void adapt_scale(bool coarsest);
   void evaluate(const Camera& camera, int t, const TransferFunction& tf,
-                const TfColourSlopes& slopes, double spacing);
+                const TfColourSlopes& slopes, double spacing, ClipSides clip);
 };
 
 }  // namespace tsp

@@ -73,18 +73,24 @@ constexpr int kFailed = -1;
 class Walker {
  public:
   Walker(const TspTree& tree, int t, const Tolerances& tol, const NodeErrors& errors,
-         const ViewOrder& view, LodStops stops)
-      : tree_(tree), t_(t), tol_(tol), errors_(errors), view_(view), stops_(stops) {}
+         const ViewOrder& view, LodStops stops, ClipSides clip)
+      : tree_(tree), t_(t), tol_(tol), errors_(errors), view_(view), stops_(stops), clip_(clip) {}
 
   void visit(int o) {
+    const std::uint8_t side = clip_.empty() ? kKept : clip_[std::size_t(o)];
+    if (side == kRemoved) {  // clipped away: nothing of it is drawn
+      emit(o, tree_.time().leaf_of(t_), side);
+      return;
+    }
     const bool leaf = tree_.octree().node(o).is_leaf();
     const bool stop = leaf || (!stops_.empty() && stops_[std::size_t(o)] != 0);
-    int tau = coherent_time_node(o, leaf);
+    // Across the clip surface: drawn only per sample, so never whole above a leaf or cut node.
+    int tau = side == kAcross && !stop ? kFailed : coherent_time_node(o, leaf);
     if (tau == kFailed && stop && !leaf) tau = coherent_time_node(o, true);
     if (tau != kFailed) {
-      emit(o, tau);
+      emit(o, tau, side);
     } else if (stop) {
-      emit(o, tree_.time().leaf_of(t_));
+      emit(o, tree_.time().leaf_of(t_), side);
     } else {
       ChildOrder kids = back_to_front_children(tree_.octree(), o, view_);
       for (int i = 0; i < kids.count; ++i) visit(kids.ids[i]);
@@ -109,25 +115,31 @@ class Walker {
     }
   }
 
-  void emit(int o, int tau) { out_.push_back(Emitted{o, tau, tree_.time().span(tau)}); }
+  void emit(int o, int tau, std::uint8_t side) {
+    out_.push_back(Emitted{o, tau, tree_.time().span(tau), side});
+  }
 
+  static constexpr std::uint8_t kKept = 0, kRemoved = 1, kAcross = 2;
   const TspTree& tree_;
   int t_;
   const Tolerances& tol_;
   const NodeErrors& errors_;
   const ViewOrder& view_;
   LodStops stops_;
+  ClipSides clip_;
   std::vector<Emitted> out_;
 };
 
 }  // namespace
 
 std::vector<Emitted> traverse(const TspTree& tree, int t, const Tolerances& tol,
-                              const NodeErrors& errors, const ViewOrder& view, LodStops stops) {
+                              const NodeErrors& errors, const ViewOrder& view, LodStops stops,
+                              ClipSides clip) {
   assert(t >= 0 && t < tree.time().steps());
   assert(int(errors.spatial.size()) == tree.size() && int(errors.temporal.size()) == tree.size());
   assert(stops.empty() || int(stops.size()) == tree.octree().size());
-  Walker walker(tree, t, tol, errors, view, stops);
+  assert(clip.empty() || int(clip.size()) == tree.octree().size());
+  Walker walker(tree, t, tol, errors, view, stops, clip);
   walker.visit(0);
   return walker.take();
 }

@@ -30,6 +30,9 @@ struct Emitted {
   int octree_id = -1;
   int time_id = -1;
   Span span;
+  /// With clip sides: 0 kept whole, 1 clipped away (drawn nowhere), 2 across the clip surface
+  /// (a leaf or LOD cut node; drawn textured and clipped per sample).
+  std::uint8_t clip = 0;
   bool operator==(const Emitted&) const = default;
 };
 
@@ -66,14 +69,20 @@ ChildOrder back_to_front_children(const Octree& octree, int id, const ViewOrder&
 /// Per octree node, 1 where the spatial descent stops (the nodes of an LOD cut, tsp/lod); empty:
 /// stop at the leaves only.
 using LodStops = std::span<const std::uint8_t>;
+/// Per octree node, where it lies with respect to a clip solid (tsp/clip's ClipSide: 0 kept,
+/// 1 removed, 2 across); empty: no clipping.
+using ClipSides = std::span<const std::uint8_t>;
 
 /// Traverses the tree for step t and returns the emitted nodes in back-to-front order.
 /// The emitted octree nodes tile the volume exactly once. With stops, a node marked there is
 /// treated as a leaf: emitted with the largest temporally coherent span (or its leaf span) when
-/// no coherent span holds it whole. Asserts 0 ≤ t < steps, that errors hold tree.size() entries
-/// each, and that stops is empty or has one entry per octree node.
+/// no coherent span holds it whole. With clip sides, a node clipped away is emitted as such
+/// (clip 1, its time leaf: drawn nowhere, but it tiles the volume like the others), and a node
+/// across the clip surface is never drawn whole above the leaves or the cut (the descent goes
+/// on; clip 2 at a leaf or cut node). Asserts 0 ≤ t < steps, that errors hold tree.size()
+/// entries each, and that stops and clip are empty or have one entry per octree node.
 std::vector<Emitted> traverse(const TspTree& tree, int t, const Tolerances& tol,
                               const NodeErrors& errors, const ViewOrder& view,
-                              LodStops stops = {});
+                              LodStops stops = {}, ClipSides clip = {});
 
 }  // namespace tsp

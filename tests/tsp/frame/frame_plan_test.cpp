@@ -97,7 +97,7 @@ TEST(FramePlan, HandBuiltFramesGetTheirClassesTexturesAndShares) {
     EXPECT_EQ(p0.textures_resident, 2);
     EXPECT_EQ(p0.texture_bytes, 2 * 1024);
     EXPECT_EQ(p0.total_voxels, 15 * 15 * 8);
-    EXPECT_EQ(p0.class_voxels, (std::array<std::int64_t, 4>{392, 448, 0, 448 + 512}));
+    EXPECT_EQ(p0.class_voxels, (std::array<std::int64_t, 5>{392, 448, 0, 448 + 512, 0}));
     EXPECT_DOUBLE_EQ(p0.percent(DrawClass::not_rendered), 100.0 * 392 / 1800);
     EXPECT_DOUBLE_EQ(p0.percent(DrawClass::new_texture), 100.0 * 960 / 1800);
 
@@ -106,7 +106,7 @@ TEST(FramePlan, HandBuiltFramesGetTheirClassesTexturesAndShares) {
     EXPECT_EQ(p1.nodes[2].cls, DrawClass::reused_texture);
     EXPECT_EQ(p1.nodes[3].cls, DrawClass::new_texture);
     EXPECT_EQ(p1.textures[1].key, (TextureKey{3, 1, 0}));
-    EXPECT_EQ(p1.class_voxels, (std::array<std::int64_t, 4>{392, 448, 448, 512}));
+    EXPECT_EQ(p1.class_voxels, (std::array<std::int64_t, 5>{392, 448, 448, 512, 0}));
     EXPECT_DOUBLE_EQ(p1.percent(DrawClass::reused_texture), 100.0 * 448 / 1800);
     EXPECT_EQ(p1.uploads, 1);
     EXPECT_TRUE(p1.evict_before.empty());
@@ -173,7 +173,7 @@ TEST(FramePlan, SharesSumTo100AndMatchTheTraversalsOutput) {
     const std::vector<Emitted> out = traverse(tree, t, tol, m.errors, kView);
     const FramePlan plan = plan_frame(tree, t, out, node_info(m), tol, kView, cache);
     ASSERT_EQ(plan.nodes.size(), out.size());
-    std::array<std::int64_t, 4> want{};
+    std::array<std::int64_t, kDrawClassCount> want{};
     std::int64_t uploads = 0;
     for (std::size_t i = 0; i < out.size(); ++i) {
       const PlannedNode& p = plan.nodes[i];
