@@ -41,7 +41,7 @@ struct RenderArgs {
   std::string focus;
   std::string proportions = "physical", scale;
   std::vector<std::string> probes;
-  std::string probe_op = "intersect", probe_surface = "off", probe_tf;
+  std::string probe_op = "intersect", probe_surface = "off", probe_tf, probe_motion;
   std::vector<std::string> explicit_knobs;  ///< knob options given with --quality (an error)
 };
 
@@ -104,6 +104,8 @@ void run(const RenderArgs& a) {
   o.probe_op = tsp::parse_probe_op(a.probe_op);
   o.probe_surface = a.probe_surface == "on";
   o.probe_tf = a.probe_tf;
+  if (!a.probe_motion.empty())
+    o.probe_motion = parse_triple(a.probe_motion, "--probe-motion", "DX,DY,DZ per frame");
   if (!a.scale.empty())
     o.scale = parse_triple(a.scale, "--scale", "SX,SY,SZ, factors on the voxel spacing");
   if (a.out.empty()) throw tsp::UsageError("-o: the output directory must not be empty");
@@ -207,6 +209,9 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
                 "on: draw the clip surface opaque, coloured by the data through --probe-tf and "
                 "shaded by its normal; off (default): pure clipping")
       ->check(CLI::IsMember({"on", "off"}));
+  c->add_option("--probe-motion", a->probe_motion,
+                "DX,DY,DZ: every probe moves this far each frame (physical units; a plane along "
+                "its normal), e.g. to sweep a slice through the data");
   c->add_option("--probe-tf", a->probe_tf,
                 "Colours of the clip surface: a TF file or preset:NAME (default: --tf's)");
   c->add_option("--scale", a->scale,

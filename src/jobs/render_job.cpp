@@ -181,8 +181,12 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
     throw tsp::UsageError("--lod is for the TSP renderer: drop --baseline");
   if (!options.probes.empty() && options.baseline)
     throw tsp::UsageError("--probe is for the TSP renderer: drop --baseline");
-  if ((options.probe_surface || !options.probe_tf.empty()) && options.probes.empty())
-    throw tsp::UsageError("--probe-surface/--probe-tf need a --probe");
+  if ((options.probe_surface || !options.probe_tf.empty() ||
+       options.probe_motion != std::array<double, 3>{0, 0, 0}) &&
+      options.probes.empty())
+    throw tsp::UsageError("--probe-surface/--probe-tf/--probe-motion need a --probe");
+  for (double d : options.probe_motion)
+    if (!std::isfinite(d)) throw tsp::UsageError("--probe-motion: expected finite numbers");
   if (options.lod == LodMode::fixed && options.lod_level < 0)
     throw tsp::UsageError("--lod " + std::to_string(options.lod_level) +
                           ": expected off, auto or a level >= 0");
@@ -234,17 +238,25 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
     renderer = std::make_unique<VolumeRenderer>(*ctx, *file, o.cache, o.texture_budget);
   if (baseline) baseline->set_transfer_function(tf);
   if (renderer) renderer->set_transfer_function(tf);
-  if (!o.probes.empty()) {  // the clip solid, in the file's physical coordinates
-    const tsp::ClipRegion clip(o.probes, o.probe_op, file->metadata().origin,
-                               file->metadata().spacing);
-    std::optional<tsp::TransferFunction> surface;
-    if (o.probe_surface)
-      surface = o.probe_tf.empty() ? tf
-                                   : tsp::transfer_function_from_arg(o.probe_tf, tree.value_range(),
-                                                                     tsp::kDefaultTfEntries,
-                                                                     o.tf_range);
-    renderer->set_clip(clip, surface);
-  }
+  // The clip solid, in the file's physical coordinates; with probe_motion its probes move
+  // every frame (a plane along its normal's share of the motion).
+  std::optional<tsp::TransferFunction> surface;
+  if (o.probe_surface)
+    surface = o.probe_tf.empty() ? tf
+                                 : tsp::transfer_function_from_arg(o.probe_tf, tree.value_range(),
+                                                                   tsp::kDefaultTfEntries,
+                                                                   o.tf_range);
+  auto set_clip = [&](int frame) {
+    std::vector<tsp::Probe> probes = o.probes;
+    for (tsp::Probe& p : probes) tsp::move_probe(p, {o.probe_motion[0] * frame,
+                                                     o.probe_motion[1] * frame,
+                                                     o.probe_motion[2] * frame});
+    renderer->set_clip(tsp::ClipRegion(probes, o.probe_op, file->metadata().origin,
+                                       file->metadata().spacing),
+                       surface);
+  };
+  const bool moving = o.probe_motion != std::array<double, 3>{0, 0, 0};
+  if (!o.probes.empty()) set_clip(0);
   tsp::WholeTreeMetric nodes(metric);
   if (o.step_stride < 1)
     throw tsp::UsageError("--steps: the stride must be 1 or more, got " +
@@ -271,6 +283,7 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
       rec.azimuth_deg = params.azimuth_deg;
       if (!file->metadata().times.empty()) rec.time = file->metadata().times[std::size_t(t)];
       const tsp::Camera camera(tree.octree().dims(), params);
+      if (moving && !o.probes.empty() && frame_index > 0) set_clip(frame_index);
       tsp::LodStops stops;
       if (fixed_cut) {
         stops = fixed_cut->stops();

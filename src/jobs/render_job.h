@@ -47,6 +47,8 @@ struct RenderJobOptions {
   tsp::ProbeOp probe_op = tsp::ProbeOp::intersect;  ///< --probe-op
   bool probe_surface = false;                 ///< --probe-surface on: draw the clip surface
   std::string probe_tf;                       ///< --probe-tf: its colours ("": the volume's TF)
+  std::array<double, 3> probe_motion{0, 0, 0};  ///< --probe-motion: every probe moves this far
+                                                ///< each frame (physical units)
   std::array<double, 3> scale{1, 1, 1};       ///< --scale SX,SY,SZ: exaggeration per axis
   int passes = 1;                             ///< times the step range is played
   /// The frame knobs: --spatial-tol/--temporal-tol, --spacing, --compositing, --flat,

@@ -228,14 +228,8 @@ void PlayerApp::apply(const ScriptAction& a) {
         throw tsp::UsageError(options_.script + ":" + std::to_string(a.line) + ": probe " +
                               std::to_string(a.number) + ": there are " +
                               std::to_string(probes.size()) + " probes");
-      {
-        tsp::Probe& p = probes[std::size_t(a.number - 1)];
-        if (p.kind == tsp::Probe::Kind::plane)  // along its normal
-          p.radius += p.centre[0] * a.value + p.centre[1] * a.value2 + p.centre[2] * a.value3;
-        else
-          p.centre = {p.centre[0] + a.value, p.centre[1] + a.value2, p.centre[2] + a.value3};
-        probes_changed();
-      }
+      tsp::move_probe(probes[std::size_t(a.number - 1)], {a.value, a.value2, a.value3});
+      probes_changed();
       break;
     case Kind::record:
       start_recording(a.text);

@@ -377,7 +377,7 @@ void SliceCompositor::draw(const std::vector<DrawItem>& items) {
   }
 }
 
-void SliceCompositor::set_pages(const BrickPages& pages, tsp::Dims dims) {
+void SliceCompositor::set_pages(const BrickPages& pages, tsp::Dims dims, const tsp::Aabb* bounds) {
   const auto& g = pages.grid();
   gl_.ActiveTexture(GL_TEXTURE0 + kPagesUnit);
   gl_.BindTexture(GL_TEXTURE_3D, pages_);
@@ -393,9 +393,12 @@ void SliceCompositor::set_pages(const BrickPages& pages, tsp::Dims dims) {
   const auto& c = pages.cell();
   gl_.Uniform3f(rays_->uniform("cell"), float(c[0]), float(c[1]), float(c[2]));
   gl_.Uniform3i(rays_->uniform("grid"), g[0], g[1], g[2]);
-  gl_.Uniform3f(rays_->uniform("box_lo"), 0.f, 0.f, 0.f);
-  gl_.Uniform3f(rays_->uniform("box_hi"), float(std::max(dims.x - 1, 1)),
-                float(std::max(dims.y - 1, 1)), float(std::max(dims.z - 1, 1)));
+  tsp::Aabb box{{0, 0, 0},
+                {double(std::max(dims.x - 1, 1)), double(std::max(dims.y - 1, 1)),
+                 double(std::max(dims.z - 1, 1))}};
+  if (bounds) box = *bounds;
+  gl_.Uniform3f(rays_->uniform("box_lo"), float(box.lo[0]), float(box.lo[1]), float(box.lo[2]));
+  gl_.Uniform3f(rays_->uniform("box_hi"), float(box.hi[0]), float(box.hi[1]), float(box.hi[2]));
 }
 
 void SliceCompositor::draw_rays() {

@@ -110,7 +110,9 @@ class SliceCompositor {
   void draw(const std::vector<DrawItem>& items);
   /// Uploads pages, the brick grid the one-pass ray caster walks, for a volume of dims (rays
   /// compositing; once per frame, before draw_rays).
-  void set_pages(const BrickPages& pages, tsp::Dims dims);
+  /// With bounds (a union of whole bricks' geometric boxes), the rays are cast through that box
+  /// only — what lies outside draws nothing (transparent or clipped bricks).
+  void set_pages(const BrickPages& pages, tsp::Dims dims, const tsp::Aabb* bounds = nullptr);
   /// Draws the volume box once, ray casting the pages of the last set_pages (once per frame, or
   /// once per set_region with partial-image reuse).
   void draw_rays();

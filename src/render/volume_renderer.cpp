@@ -289,6 +289,18 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
   r.upload_ms = phase.lap_ms();
 
   r.dense = settings.compositing == Compositing::rays && settings.dense && dense_frame(plan);
+  // The rays go through the bounds of what is drawn: transparent and clipped bricks around it
+  // cost no fragments and no leaps.
+  tsp::Aabb drawn{{1e300, 1e300, 1e300}, {-1e300, -1e300, -1e300}};
+  for (const tsp::PlannedNode& n : plan.nodes) {
+    if (n.cls == tsp::DrawClass::not_rendered || n.cls == tsp::DrawClass::clipped) continue;
+    const tsp::Aabb b = tsp::geometric_box(octree.node(n.node.octree_id).box, octree.dims());
+    for (int a = 0; a < 3; ++a) {
+      drawn.lo[a] = std::min(drawn.lo[a], b.lo[a]);
+      drawn.hi[a] = std::max(drawn.hi[a], b.hi[a]);
+    }
+  }
+  const bool nothing_drawn = drawn.lo[0] > drawn.hi[0];
   if (r.dense) {
     // Every leaf brick textured at full resolution from one step: the whole volume as one page.
     dense_.update(dense_keys_);
@@ -297,10 +309,10 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
                              std::max(octree.dims().z - 1, 1)});
     pages_.set_textured(0, dense_.slot(), !clip_sides_.empty());
     pages_.finish();
-    compositor_->set_pages(pages_, octree.dims());
+    compositor_->set_pages(pages_, octree.dims(), nothing_drawn ? nullptr : &drawn);
   } else if (settings.compositing == Compositing::rays) {
     fill_pages(plan, metric);
-    compositor_->set_pages(pages_, octree.dims());
+    compositor_->set_pages(pages_, octree.dims(), nothing_drawn ? nullptr : &drawn);
   } else {
     fill_items(plan, metric, camera, settings);
   }

@@ -123,6 +123,14 @@ ProbeOp parse_probe_op(const std::string& text) {
   throw UsageError("--probe-op '" + text + "': expected intersect, union or subtract");
 }
 
+void move_probe(Probe& p, const std::array<double, 3>& d) {
+  if (p.kind == Probe::Kind::plane) {
+    p.radius += p.centre[0] * d[0] + p.centre[1] * d[1] + p.centre[2] * d[2];
+    return;
+  }
+  for (int a = 0; a < 3; ++a) p.centre[std::size_t(a)] += d[std::size_t(a)];
+}
+
 const char* to_string(ProbeOp op) {
   return op == ProbeOp::intersect ? "intersect" : op == ProbeOp::unite ? "union" : "subtract";
 }

@@ -40,6 +40,9 @@ ProbeOp parse_probe_op(const std::string& text);
 std::string to_string(const Probe& p);
 /// "intersect", "union" or "subtract".
 const char* to_string(ProbeOp op);
+/// Moves p by d (physical units): a sphere's or a box's centre; a plane along its normal by
+/// d's share of it. Never throws.
+void move_probe(Probe& p, const std::array<double, 3>& d);
 
 /// Where a box lies with respect to the clip solid.
 enum class ClipSide : std::uint8_t { kept = 0, removed = 1, straddles = 2 };
