@@ -82,11 +82,22 @@ std::vector<std::vector<KnobCandidate>> search_tsp_knobs(const ProbeKnobs& probe
       seen[tol] = r;
       return r.mean_de;
     };
+    error_at(0);  // zero tolerance too: on some data it is the fastest picture (no flat nodes)
     const std::vector<FoundTolerance> found = search_tolerances(error_at, span, targets, iterations);
     for (std::size_t i = 0; i < found.size(); ++i) {
-      if (!found[i].met) continue;
-      k.tol = found[i].tol;
-      out[i].push_back({k, seen.at(found[i].tol)});
+      // The fastest tolerance probed that met the target: the largest one found, unless a
+      // smaller one drew faster (a tolerance can cost time: flat nodes break a whole-volume
+      // frame into the brick grid).
+      const ProbeResult* best = nullptr;
+      double best_tol = 0;
+      for (const auto& [tol, r] : seen)
+        if (r.mean_de <= targets[i] && (!best || r.ms < best->ms)) {
+          best = &r;
+          best_tol = tol;
+        }
+      if (!best) continue;
+      k.tol = best_tol;
+      out[i].push_back({k, *best});
     }
   }
   for (auto& v : out) sort_fastest_first(v);

@@ -57,6 +57,19 @@ TEST(KnobSearch, TspFindsTheLargestTolerancePerSpacing) {
   EXPECT_LE(found[0][0].probe.ms, found[0][1].probe.ms);
 }
 
+// When a tolerance costs time (flat nodes break a whole-volume frame into the brick grid), the
+// fastest tolerance within the target wins — here zero tolerance, probed first.
+TEST(KnobSearch, TspPrefersAFasterSmallerToleranceIncludingZero) {
+  KnobGrid g{{Compositing::rays}, {1}};
+  const ProbeKnobs slower_with_tol = [](const Knobs& k) {
+    return ProbeResult{0.4 * k.spacing + 100 * k.tol, 10.0 + (k.tol > 0 ? 5.0 : 0.0)};
+  };
+  const auto found = search_tsp_knobs(slower_with_tol, g, ErrorSpan{1e-6, 1.0}, {1.0}, 20);
+  ASSERT_EQ(found[0].size(), 1u);
+  EXPECT_EQ(found[0][0].knobs.tol, 0.0);
+  EXPECT_DOUBLE_EQ(found[0][0].probe.ms, 10.0);
+}
+
 TEST(KnobSearch, ConfigurationsThatMissEveryTargetAreLeftOut) {
   KnobGrid g{{Compositing::slices}, {4}};  // ΔE 1.6 even at zero tolerance
   EXPECT_TRUE(search_tsp_knobs(analytic, g, ErrorSpan{1e-6, 1.0}, {1.0}, 10)[0].empty());
