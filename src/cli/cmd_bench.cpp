@@ -23,7 +23,8 @@ struct BenchArgs {
   std::string metrics = "scalar,approximate,perceptual,reference", targets = "1,3";
   int search_steps = 8, search_iterations = 10, passes = 2, timed_candidates = 3, rounds = 3;
   std::string compositings = "slices,boxes,rays", spacings = "0.5,1,1.5,2,3,4,6,8",
-              baseline_spacings = "0.25,0.5,0.75,1,1.5,2,3,4,6,8", compositing = "rays", preintegration = "off";
+              baseline_spacings = "0.25,0.5,0.75,1,1.5,2,3,4,6,8", compositing = "rays", preintegration = "off",
+              lod_levels = "0";
   double spacing = tspgl::kDefaultSliceSpacing, reference_spacing = 0.25;
 };
 
@@ -91,6 +92,9 @@ void run(const BenchArgs& a) {
     comps.push_back(tspgl::parse_compositing(c, "--compositings"));
   o.tsp_grid.compositings = o.baseline_grid.compositings = comps;
   o.tsp_grid.spacings = parse_spacings(a.spacings, "--spacings");
+  o.tsp_grid.lod_levels.clear();
+  for (const std::string& l : split(a.lod_levels))
+    o.tsp_grid.lod_levels.push_back(int(parse_integer(l, "--lod-levels", 0, 16, "levels 0..16")));
   o.baseline_grid.spacings = parse_spacings(a.baseline_spacings, "--baseline-spacings");
   std::vector<bool> pre;
   for (const std::string& p : split(a.preintegration)) {
@@ -159,6 +163,9 @@ const CommandRegistrar reg(45, [](CLI::App& app) {
   c->add_option("--compositings", a->compositings,
                 "Compositings the Table-4 search tries (default slices,boxes,rays)");
   c->add_option("--spacings", a->spacings, "TSP spacings the Table-4 search tries (default 0.5,1,1.5,2,3,4,6,8)");
+  c->add_option("--lod-levels", a->lod_levels,
+                "LOD levels the TSP search draws everywhere, e.g. 0,1,2 (default 0: full "
+                "resolution; each adds a search of every compositing and spacing)");
   c->add_option("--preintegration", a->preintegration,
                 "TF lookups the Table-4 search tries, for both renderers: off, on or off,on "
                 "(default off)");

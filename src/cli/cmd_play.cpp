@@ -92,6 +92,10 @@ const CommandRegistrar reg(35, [](CLI::App& app) {
   c->add_option("--probe-surface", a->probe_surface,
                 "on (default): the probe's surface shows the data; off: pure clipping")
       ->check(CLI::IsMember({"on", "off"}));
+  c->add_option("--ram-budget", a->options.ram_budget_mb,
+                "Bricks held in RAM, MiB (default 1024): a file larger than RAM streams through it");
+  c->add_option("--texture-budget", a->options.texture_budget_mb,
+                "Textures resident, MiB (default 512)");
   c->add_option("--upload-budget", a->options.upload_budget_mb,
                 "Texture MiB uploaded per frame; the rest follows in later frames (default 16, "
                 "0: no limit)");

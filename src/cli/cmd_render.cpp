@@ -32,6 +32,7 @@ struct RenderArgs {
   double spatial = 0, temporal = 0, spacing = tspgl::kDefaultSliceSpacing;
   int passes = 1;
   double texture_budget_mb = double(tspgl::kDefaultTextureBudget) / (1 << 20);
+  double ram_budget_mb = double(tspgl::kDefaultBrickBudget) / (1 << 20);
   bool baseline = false, perspective = false;
   double quality = 0;
   std::string calibration_dir, save_tf;
@@ -114,6 +115,11 @@ void run(const RenderArgs& a) {
                           ": expected a budget in (0, " +
                           std::to_string(tspgl::kMaxBudgetBytes >> 20) + "] MiB");
   o.texture_budget = std::max<std::int64_t>(1, std::int64_t(a.texture_budget_mb * (1 << 20)));
+  if (!(a.ram_budget_mb > 0) || !(a.ram_budget_mb <= double(tspgl::kMaxBudgetBytes >> 20)))
+    throw tsp::UsageError("--ram-budget " + std::to_string(a.ram_budget_mb) +
+                          ": expected a budget in (0, " +
+                          std::to_string(tspgl::kMaxBudgetBytes >> 20) + "] MiB");
+  o.ram_budget = std::max<std::int64_t>(1, std::int64_t(a.ram_budget_mb * (1 << 20)));
 
   if (!a.movie.empty()) {  // checked before rendering: a bad movie request wastes no frames
     tspgl::check_movie_name(a.movie, "--movie");
@@ -239,6 +245,9 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
                 "Step whose bricks texture a span: middle or first (the paper's; default middle)")
       ->check(CLI::IsMember({"first", "middle"}));
   c->add_option("--texture-budget", a->texture_budget_mb, "Texture cache budget in MiB (default 512)");
+  c->add_option("--ram-budget", a->ram_budget_mb,
+                "Bricks held in RAM, MiB (default 1024): a file larger than RAM streams through "
+                "it (frames.json records ram_mib and rss_mib per frame)");
   c->add_option("--quality", a->quality,
                 "Mean dE target against the full-quality picture: picks the fastest calibrated "
                 "compositing, spacing, tolerances and pre-integration (calibrates once, cached)");

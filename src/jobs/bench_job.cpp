@@ -88,6 +88,8 @@ void check_options(const BenchOptions& o) {
 RenderJobOptions with_knobs(RenderJobOptions job, const Knobs& k, tsp::Metric metric) {
   job.baseline = k.baseline;
   apply(k, job.settings);
+  job.lod = k.lod_level > 0 ? LodMode::fixed : LodMode::off;
+  job.lod_level = k.lod_level;
   job.metric = metric;
   job.cache = tsp::CachePolicy::on;
   return job;

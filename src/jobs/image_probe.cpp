@@ -2,15 +2,18 @@
 
 #include <algorithm>
 #include <cassert>
+#include <optional>
 
 #include "jobs/render_job.h"
+#include "tsp/lod/lod_cut.h"
 #include "tsp/report/image_diff.h"
 
 namespace tspgl {
 
 ImageProbe::ImageProbe(const tsp::BrickStore& bricks, const tsp::TransferFunction& tf,
                        const tsp::CameraParams& params, std::vector<int> steps)
-    : ctx_(create_offscreen_context(params.width, params.height)),
+    : bricks_(bricks),
+      ctx_(create_offscreen_context(params.width, params.height)),
       renderer_(*ctx_, bricks, tsp::CachePolicy::off),
       baseline_(*ctx_, bricks),
       camera_(bricks.tree().octree().dims(), params),
@@ -25,11 +28,18 @@ ProbeFrames ImageProbe::render(const Knobs& k, const tsp::MetricResult* metric) 
   apply(k, s);
   std::unique_ptr<tsp::WholeTreeMetric> nodes;
   if (!k.baseline) nodes = std::make_unique<tsp::WholeTreeMetric>(*metric);
+  // An LOD level everywhere (render --lod K, clamped to the tree's levels).
+  std::optional<tsp::LodCut> cut;
+  if (!k.baseline && k.lod_level > 0) {
+    const tsp::Octree& o = bricks_.tree().octree();
+    cut = tsp::LodCut::at_level(o, std::min(k.lod_level, o.max_lod_level()));
+  }
   ProbeFrames out;
   std::vector<double> ms;
   for (int t : steps_) {
     const FrameReport r = k.baseline ? baseline_.render(t, camera_, s)
-                                     : renderer_.render(t, camera_, s, *nodes);
+                                     : renderer_.render(t, camera_, s, *nodes,
+                                                        cut ? cut->stops() : tsp::LodStops{});
     ms.push_back(r.ms);
     out.images.push_back(ctx_->read_pixels());
   }

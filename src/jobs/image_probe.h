@@ -33,6 +33,7 @@ class ImageProbe {
   ProbeFrames render(const Knobs& k, const tsp::MetricResult* metric);
 
  private:
+  const tsp::BrickStore& bricks_;
   std::unique_ptr<GlContext> ctx_;
   VolumeRenderer renderer_;
   BaselineRenderer baseline_;

@@ -31,15 +31,18 @@ void apply(const Knobs& k, RenderSettings& settings) {
 
 std::vector<Knobs> grid_cells(const KnobGrid& grid, bool baseline) {
   std::vector<Knobs> out;
-  for (bool pre : grid.preintegration)
-    for (Compositing c : grid.compositings)
-      for (double s : grid.spacings) {
-        Knobs& k = out.emplace_back();
-        k.baseline = baseline;
-        k.compositing = c;
-        k.spacing = s;
-        k.preintegrated = pre;
-      }
+  const std::vector<int> levels = baseline ? std::vector<int>{0} : grid.lod_levels;
+  for (int level : levels)
+    for (bool pre : grid.preintegration)
+      for (Compositing c : grid.compositings)
+        for (double s : grid.spacings) {
+          Knobs& k = out.emplace_back();
+          k.baseline = baseline;
+          k.compositing = c;
+          k.spacing = s;
+          k.preintegrated = pre;
+          k.lod_level = level;
+        }
   return out;
 }
 
@@ -47,6 +50,7 @@ std::string render_options(const Knobs& k, tsp::Metric metric) {
   std::string s = k.baseline ? "--baseline " : "";
   s += "--compositing " + std::string(to_string(k.compositing)) + " --spacing " + exact(k.spacing);
   if (k.preintegrated) s += " --preintegrated on";
+  if (!k.baseline && k.lod_level > 0) s += " --lod " + std::to_string(k.lod_level);
   if (!k.baseline)
     s += std::string(" --metric ") + tsp::to_string(metric) + " --spatial-tol " + exact(k.tol) +
          " --temporal-tol " + exact(k.tol);

@@ -22,6 +22,7 @@ struct Knobs {
   double spacing = kDefaultSliceSpacing;        ///< slice spacing in voxels
   double tol = 0;                               ///< spatial = temporal tolerance (TSP)
   bool preintegrated = false;                   ///< pre-integrated TF lookup
+  int lod_level = 0;  ///< TSP: an LOD level drawn everywhere (render --lod K; 0: full resolution)
 };
 
 /// Sets settings' compositing, spacing, tolerances (spatial = temporal = k.tol) and
@@ -55,9 +56,11 @@ struct KnobGrid {
                                         Compositing::rays};
   std::vector<double> spacings{0.5, 1, 1.5, 2, 3, 4};
   std::vector<bool> preintegration{false};  ///< TF lookups tried (point, pre-integrated)
+  std::vector<int> lod_levels{0};  ///< TSP only: LOD levels drawn everywhere (0: full resolution)
 };
 
-/// Every cell of grid (pre-integration × compositing × spacing, tol 0), baseline as given.
+/// Every cell of grid (pre-integration × compositing × spacing, and for the TSP renderer × LOD
+/// level; tol 0), baseline as given.
 std::vector<Knobs> grid_cells(const KnobGrid& grid, bool baseline);
 
 /// For each target: the baseline configurations of grid (every compositing × spacing, each

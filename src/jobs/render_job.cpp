@@ -15,6 +15,7 @@
 #include "tsp/core/error.h"
 #include "tsp/core/file_check.h"
 #include "tsp/core/json_text.h"
+#include "tsp/core/memory_use.h"
 #include "tsp/core/stopwatch.h"
 #include "tsp/core/temp_output.h"
 #include "tsp/metric/compute_errors.h"
@@ -63,6 +64,8 @@ json frame_json(const FrameRecord& f) {
           {"steps_merged", {r.spans_lo, r.spans_hi}},
           {"steps_shown", {r.shown_lo, r.shown_hi}},
           {"azimuth_deg", f.azimuth_deg},
+          {"ram_mib", double(f.ram_bytes) / (1 << 20)},
+          {"rss_mib", double(f.rss_bytes) / (1 << 20)},
           {"time", f.time ? json(*f.time) : json(nullptr)},
           {"lod", f.lod ? lod_json(*f.lod) : json(nullptr)}};
 }
@@ -171,6 +174,7 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
                           std::to_string(kMaxPasses));
   validate(options.settings);
   validate_budget(options.texture_budget, "--texture-budget");
+  validate_budget(options.ram_budget, "--ram-budget");
   if (!(options.target_ms >= 0) || options.target_ms > kMaxTargetMs)
     throw tsp::UsageError("--target-ms " + std::to_string(options.target_ms) +
                           ": expected a frame time in (0, " + std::to_string(int(kMaxTargetMs)) +
@@ -233,9 +237,10 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
   std::unique_ptr<VolumeRenderer> renderer;
   std::unique_ptr<BaselineRenderer> baseline;
   if (o.baseline)
-    baseline = std::make_unique<BaselineRenderer>(*ctx, *file);
+    baseline = std::make_unique<BaselineRenderer>(*ctx, *file, o.ram_budget);
   else
-    renderer = std::make_unique<VolumeRenderer>(*ctx, *file, o.cache, o.texture_budget);
+    renderer = std::make_unique<VolumeRenderer>(*ctx, *file, o.cache, o.texture_budget,
+                                                o.ram_budget);
   if (baseline) baseline->set_transfer_function(tf);
   if (renderer) renderer->set_transfer_function(tf);
   // The clip solid, in the file's physical coordinates; with probe_motion its probes move
@@ -306,6 +311,8 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
       rec.report = baseline ? baseline->render(t, camera, frame_settings)
                             : renderer->render(t, camera, frame_settings, nodes, stops);
       if (controller) controller->measured(rec.report.ms - rec.report.upload_ms);
+      rec.ram_bytes = (baseline ? baseline->brick_cache() : renderer->brick_cache()).stats().resident_bytes;
+      rec.rss_bytes = tsp::resident_bytes();
       result.frames.push_back(rec);
       // The last pass's images win; earlier passes only measure.
       const bool png = !dir.empty() && o.write_images && pass == o.passes;

@@ -55,6 +55,7 @@ struct RenderJobOptions {
   /// --span-step, --preintegrated, --reuse (upload_budget: unused, a job uploads every frame).
   RenderSettings settings;
   std::int64_t texture_budget = kDefaultTextureBudget;
+  std::int64_t ram_budget = kDefaultBrickBudget;  ///< --ram-budget: bricks held in RAM (bytes)
   bool write_images = true;                   ///< PNGs (frames.json is written when out_dir is set)
   /// --quality DE (> 0): compositing, spacing, tolerances and pre-integration are picked from the
   /// calibration (calibration.h) instead of those in settings; 0: off.
@@ -96,6 +97,8 @@ struct FrameRecord {
   double azimuth_deg = 0;          ///< the camera's azimuth (it moves with --orbit)
   std::optional<LodRecord> lod;    ///< with --lod
   std::optional<double> time;      ///< the step's physical time, when the file has times
+  std::int64_t ram_bytes = 0;      ///< bricks in RAM after the frame (the brick cache)
+  std::int64_t rss_bytes = 0;      ///< the process's resident memory after the frame
 };
 
 /// What a job did.

@@ -17,6 +17,7 @@
 #include "jobs/calibration.h"
 #include "jobs/render_job.h"
 #include "tsp/core/json_text.h"
+#include "tsp/core/memory_use.h"
 #include "tsp/core/temp_output.h"
 #include "player/imgui_gl_load.h"
 #include "player/player_app.h"
@@ -110,6 +111,13 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
                           ": expected 0 (no limit) to " +
                           std::to_string(tspgl::kMaxBudgetBytes >> 20) + " MiB per frame");
   upload_budget_mb = options.upload_budget_mb;
+  for (auto [value, name] : {std::pair{options.ram_budget_mb, "--ram-budget"},
+                             std::pair{options.texture_budget_mb, "--texture-budget"}})
+    if (!(value > 0) || !(value <= double(tspgl::kMaxBudgetBytes >> 20)))
+      throw tsp::UsageError(std::string(name) + " " + std::to_string(value) +
+                            ": expected a budget in (0, " +
+                            std::to_string(tspgl::kMaxBudgetBytes >> 20) + "] MiB");
+  texture_budget_mb = options.texture_budget_mb;
   if (!(options.target_fps >= 1 && options.target_fps <= kMaxTargetFps))
     throw tsp::UsageError("--target-fps " + std::to_string(options.target_fps) + ": expected 1 to " +
                           std::to_string(int(kMaxTargetFps)) + " frames per second");
@@ -210,7 +218,8 @@ void PlayerApp::make_renderer() {
   renderer.reset();
   renderer = std::make_unique<tspgl::VolumeRenderer>(
       *ctx, *file, cache_on ? tsp::CachePolicy::on : tsp::CachePolicy::off,
-      std::int64_t(texture_budget_mb * (1 << 20)), tspgl::kDefaultBrickBudget, compositor_);
+      std::int64_t(texture_budget_mb * (1 << 20)), std::int64_t(options_.ram_budget_mb * (1 << 20)),
+      compositor_);
   renderer->set_transfer_function(tf);
   prefetcher = std::make_unique<tsp::BrickPrefetcher>(renderer->brick_cache());
   prefetched_for_ = -1;
@@ -325,6 +334,9 @@ void PlayerApp::write_stats(const std::string& path) const {
   for (const tsp::Probe& p : probes) jp.push_back(tsp::to_string(p));
   j["probes"] = jp;
   j["probe_op"] = tsp::to_string(probe_op);
+  j["ram_mib"] = double(renderer->brick_cache().stats().resident_bytes) / (1 << 20);
+  j["rss_mib"] = double(tsp::resident_bytes()) / (1 << 20);
+  j["peak_rss_mib"] = double(tsp::peak_resident_bytes()) / (1 << 20);
   j["step"] = step;
   j["steps_ready"] = ready;
   j["every_step"] = every_step;

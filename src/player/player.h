@@ -20,6 +20,8 @@ struct PlayerOptions {
   std::string script;             ///< --script: action script (run before --screenshot)
   int width = 960, height = 720;  ///< --size: window size in pixels
   double upload_budget_mb = 16;   ///< --upload-budget: texture MiB uploaded per frame (0: no limit)
+  double ram_budget_mb = 1024;    ///< --ram-budget: bricks held in RAM, MiB
+  double texture_budget_mb = 512; ///< --texture-budget: textures resident, MiB
   bool lod = true;                ///< --lod on|off: the adaptive LOD cut
   double target_fps = 30;         ///< --target-fps: held while interacting, in [1, 240]
   bool trace = false;             ///< --trace: one stdout line per applied change

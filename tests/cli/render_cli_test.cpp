@@ -340,4 +340,36 @@ TEST(RenderCli, SpacingShapesTheViewUnlessSamplesAreAskedFor) {
   EXPECT_FALSE(fs::exists(dir / "bad.tsp"));
 }
 
+// Out of core: with --ram-budget far below the file's bricks, every frame keeps the bricks in
+// RAM within the budget (frames.json ram_mib), and the pictures are those of an unbounded run.
+TEST(RenderCli, RamBudgetBoundsTheBricksHeldWhateverTheFileSize) {
+  const fs::path dir = tsptest::temp_dir(), h5 = dir / "s.h5", tsp = dir / "s.tsp";
+  ASSERT_EQ(run_tspplay("generate shock -o " + q(h5) + " --dims 48,40,36 --steps 8").exit_code, 0);
+  ASSERT_EQ(run_tspplay("build " + q(h5) + " --brick 16 -o " + q(tsp)).exit_code, 0);
+  // The bricks: 8 steps of 48·40·36 samples (and their levels) at 2 bytes — about 1 MiB; the
+  // budget a tenth of that.
+  const double budget_mib = 0.1;
+  auto r = run_tspplay("render " + q(tsp) + " --tf preset:filled --size 64x48 --passes 2 "
+                       "--ram-budget 0.1 --texture-budget 0.1 -o " + q(dir / "small"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto big = run_tspplay("render " + q(tsp) + " --tf preset:filled --size 64x48 -o " + q(dir / "big"));
+  ASSERT_EQ(big.exit_code, 0) << big.err;
+  const json frames = read_json(dir / "small" / "frames.json")["frames"];
+  ASSERT_EQ(frames.size(), 16u);
+  for (const auto& f : frames) {
+    EXPECT_LE(f["ram_mib"].get<double>(), budget_mib + 1e-9) << f.dump();
+    EXPECT_GT(f["rss_mib"].get<double>(), 0.0);
+  }
+  for (int t = 0; t < 8; ++t) {
+    char name[32];
+    std::snprintf(name, sizeof name, "step_%04d.png", t);
+    EXPECT_LT(tsp::diff_images(tsp::read_png((dir / "small" / name).string()),
+                               tsp::read_png((dir / "big" / name).string()))
+                  .mean,
+              0.01)
+        << t;
+  }
+  EXPECT_EQ(run_tspplay("render " + q(tsp) + " --ram-budget 0 -o " + q(dir / "x")).exit_code, 2);
+}
+
 }  // namespace

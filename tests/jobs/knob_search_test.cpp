@@ -70,6 +70,21 @@ TEST(KnobSearch, TspPrefersAFasterSmallerToleranceIncludingZero) {
   EXPECT_DOUBLE_EQ(found[0][0].probe.ms, 10.0);
 }
 
+// LOD levels are a TSP knob: the TSP grid holds every level × compositing × spacing, the
+// baseline's only full resolution, and the render options name the level.
+TEST(KnobSearch, LodLevelsAreATspKnobNamedInTheRenderOptions) {
+  KnobGrid g{{Compositing::rays}, {1, 2}};
+  g.lod_levels = {0, 1, 2};
+  EXPECT_EQ(grid_cells(g, false).size(), 6u);
+  EXPECT_EQ(grid_cells(g, true).size(), 2u);
+  for (const Knobs& k : grid_cells(g, true)) EXPECT_EQ(k.lod_level, 0);
+  Knobs k;
+  k.lod_level = 2;
+  EXPECT_NE(render_options(k, tsp::Metric::approximate).find(" --lod 2"), std::string::npos);
+  k.lod_level = 0;
+  EXPECT_EQ(render_options(k, tsp::Metric::approximate).find("--lod"), std::string::npos);
+}
+
 TEST(KnobSearch, ConfigurationsThatMissEveryTargetAreLeftOut) {
   KnobGrid g{{Compositing::slices}, {4}};  // ΔE 1.6 even at zero tolerance
   EXPECT_TRUE(search_tsp_knobs(analytic, g, ErrorSpan{1e-6, 1.0}, {1.0}, 10)[0].empty());

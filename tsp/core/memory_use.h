@@ -1,0 +1,13 @@
+// How much memory this process holds, for the out-of-core measurements (docs/results.md): the
+// resident set now and its peak, from /proc/self/status (Linux).
+#pragma once
+#include <cstdint>
+
+namespace tsp {
+
+/// Resident set size in bytes now (VmRSS); 0 where /proc is not available. Never throws.
+std::int64_t resident_bytes();
+/// Peak resident set size in bytes (VmHWM); 0 where /proc is not available. Never throws.
+std::int64_t peak_resident_bytes();
+
+}  // namespace tsp
