@@ -15,8 +15,10 @@
 namespace tsp {
 namespace {
 
-// Voxels per tile edge: a tile's bins stay small and tiles spread over the workers.
-constexpr int kTile = 16;
+// Tiles are slabs of whole rows and planes (cells stored in row order stay together in memory
+// while a tile is sampled) of about kTileVoxels voxels, at least kTilesPerWorker per worker.
+constexpr std::int64_t kTileVoxels = 1 << 16;
+constexpr int kTilesPerWorker = 4;
 // Barycentric (or parametric) coordinates down to −kInsideTolerance count as inside: voxel
 // centres on a face shared by two cells (or on the mesh's boundary) are found despite rounding.
 constexpr double kInsideTolerance = 1e-9;
@@ -34,9 +36,25 @@ constexpr int kCorner[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
                                {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
 
 struct TileGrid {
-  std::array<int, 3> n{};  // tiles per axis
+  std::array<int, 3> size{};  // voxels per tile edge
+  std::array<int, 3> n{};     // tiles per axis
   int count() const { return n[0] * n[1] * n[2]; }
 };
+
+// Slabs: whole rows, as many rows as fit kTileVoxels (whole planes when they fit), and as many
+// planes as fit it while leaving kTilesPerWorker tiles per worker.
+TileGrid slab_tiles(Dims d, int workers) {
+  TileGrid t;
+  t.size[0] = d.x;
+  t.size[1] = int(std::clamp<std::int64_t>(kTileVoxels / d.x, 1, d.y));
+  const std::int64_t per_plane = std::int64_t(t.size[0]) * t.size[1];
+  const std::int64_t planes_left = std::max<std::int64_t>(
+      1, (std::int64_t(d.z) * ((d.y + t.size[1] - 1) / t.size[1]) + workers * kTilesPerWorker - 1) /
+             (std::int64_t(workers) * kTilesPerWorker));
+  t.size[2] = int(std::clamp<std::int64_t>(std::min(kTileVoxels / per_plane, planes_left), 1, d.z));
+  for (int a = 0; a < 3; ++a) t.n[a] = (d[a] + t.size[a] - 1) / t.size[a];
+  return t;
+}
 
 // ceil and floor of x in [−2, 2³¹): without SSE4.1 std::ceil is a library call, and this runs
 // for every cell.
@@ -95,15 +113,16 @@ struct Voxelizer {
   // separating-axis test keeps).
   void bin(Item item, const int lo[3], const int hi[3], const std::array<Vec3, 4>* tet,
            std::vector<std::vector<Item>>& bins, VoxelizeStats& st) const {
-    for (int tz = lo[2] / kTile; tz <= hi[2] / kTile; ++tz)
-      for (int ty = lo[1] / kTile; ty <= hi[1] / kTile; ++ty)
-        for (int tx = lo[0] / kTile; tx <= hi[0] / kTile; ++tx) {
+    const auto& ts = tiles.size;
+    for (int tz = lo[2] / ts[2]; tz <= hi[2] / ts[2]; ++tz)
+      for (int ty = lo[1] / ts[1]; ty <= hi[1] / ts[1]; ++ty)
+        for (int tx = lo[0] / ts[0]; tx <= hi[0] / ts[0]; ++tx) {
           const int tl[3] = {tx, ty, tz};
           bool whole = true;  // the voxel box lies in this one tile: no test needed
           Aabb box;
           for (int a = 0; a < 3; ++a) {
-            const int v0 = std::max(lo[a], tl[a] * kTile);
-            const int v1 = std::min(hi[a], tl[a] * kTile + kTile - 1);
+            const int v0 = std::max(lo[a], tl[a] * ts[a]);
+            const int v1 = std::min(hi[a], tl[a] * ts[a] + ts[a] - 1);
             whole &= v0 == lo[a] && v1 == hi[a];
             box.lo[a] = grid.origin[a] + v0 * grid.spacing[a] - margin[a];
             box.hi[a] = grid.origin[a] + v1 * grid.spacing[a] + margin[a];
@@ -261,7 +280,7 @@ struct Voxelizer {
     }
     for (int r = 0; r < 3; ++r) size = std::max(size, mx[r] - mn[r]);
     bool affine = true;
-    for (int k = 0; k < 8 && affine; ++k)
+    for (int k : {2, 5, 6, 7})  // corners 0, 1, 3 and 4 define the map
       for (int r = 0; r < 3; ++r) {
         const double want = x[0][r] + a[r][0] * kCorner[k][0] + a[r][1] * kCorner[k][1] +
                             a[r][2] * kCorner[k][2];
@@ -346,13 +365,13 @@ VoxelizeStats voxelize(const Mesh& mesh, const VoxelGrid& grid, std::span<float>
   if (scan)
     for (int a = 0; a < 3; ++a)
       vx.margin[std::size_t(a)] = (0.5 - 0.5 / options.antialias) * grid.spacing[std::size_t(a)];
-  for (int a = 0; a < 3; ++a) vx.tiles.n[a] = (d[a] + kTile - 1) / kTile;
+  vx.tiles = slab_tiles(d, resolve_threads(threads));
   VoxelizeStats stats;
   stats.tets = std::int64_t(tets.tets.size());
   for (CellType t : mesh.types) stats.hexahedra += whole_hex && is_hexahedral(t);
 
-  // Bin, in parallel over contiguous blocks of cells; merged in block order, every bin lists its
-  // cells (and a cell's tetrahedra) in index order.
+  // Bin, in parallel over contiguous blocks of cells; read in block order, every tile's bins list
+  // its cells (and a cell's tetrahedra) in index order.
   const std::int64_t nc = mesh.cell_count();
   const int blocks = int(std::min<std::int64_t>(
       std::max<std::int64_t>(nc, 1), std::int64_t(resolve_threads(threads)) * kBinBlocksPerWorker));
@@ -366,26 +385,18 @@ VoxelizeStats voxelize(const Mesh& mesh, const VoxelGrid& grid, std::span<float>
       const std::int64_t c0 = nc * b / blocks, c1 = nc * (b + 1) / blocks;
       auto& bins = block_bins[std::size_t(b)];
       bins.resize(std::size_t(vx.tiles.count()));
-      vx.bin_cells(c0, c1, tet_first[std::size_t(c0)], bins, block_stats[std::size_t(b)]);
+      VoxelizeStats st;  // local: neighbouring blocks' stats share a cache line
+      vx.bin_cells(c0, c1, tet_first[std::size_t(c0)], bins, st);
+      block_stats[std::size_t(b)] = st;
     }
   });
-  std::vector<std::vector<Item>> bins(static_cast<std::size_t>(vx.tiles.count()));
-  for (std::size_t tile = 0; tile < bins.size(); ++tile) {
-    std::size_t n = 0;
-    for (const auto& bb : block_bins) n += bb[tile].size();
-    bins[tile].reserve(n);
-    for (auto& bb : block_bins) {
-      bins[tile].insert(bins[tile].end(), bb[tile].begin(), bb[tile].end());
-      std::vector<Item>().swap(bb[tile]);
-    }
-  }
   for (const VoxelizeStats& s : block_stats) {
     stats.tile_tests += s.tile_tests;
     stats.tile_entries += s.tile_entries;
   }
 
   // Sample: tiles in parallel; in each, cells in index order, the first containing one wins.
-  std::vector<std::int64_t> inside_count(bins.size(), 0);
+  std::vector<std::int64_t> inside_count(std::size_t(vx.tiles.count()), 0);
   detail::ScanBuffers acc;
   if (scan) {
     acc.k = options.antialias;
@@ -398,14 +409,20 @@ VoxelizeStats voxelize(const Mesh& mesh, const VoxelGrid& grid, std::span<float>
                          int(ti / (std::int64_t(vx.tiles.n[0]) * vx.tiles.n[1]))};
       int t0[3], t1[3];
       for (int a = 0; a < 3; ++a) {
-        t0[a] = tl[a] * kTile;
-        t1[a] = std::min(d[a] - 1, t0[a] + kTile - 1);
+        t0[a] = tl[a] * vx.tiles.size[a];
+        t1[a] = std::min(d[a] - 1, t0[a] + vx.tiles.size[a] - 1);
       }
-      for (Item item : bins[std::size_t(ti)])
-        inside_count[std::size_t(ti)] +=
-            scan        ? detail::scan_tet(tets, item, grid, t0, t1, acc)
-            : item >= 0 ? vx.sample_tet(item, t0, t1)
-                        : vx.sample_hex(-1 - item, t0, t1);
+      // The blocks' bins in block order: the tile's items in cell order, never merged.
+      // Counted locally: neighbouring tiles' counters share a cache line across workers.
+      std::int64_t found = 0;
+      for (auto& block : block_bins) {
+        for (Item item : block[std::size_t(ti)])
+          found += scan        ? detail::scan_tet(tets, item, grid, t0, t1, acc)
+                   : item >= 0 ? vx.sample_tet(item, t0, t1)
+                               : vx.sample_hex(-1 - item, t0, t1);
+        std::vector<Item>().swap(block[std::size_t(ti)]);
+      }
+      inside_count[std::size_t(ti)] = found;
     }
   });
   if (scan) {
