@@ -15,8 +15,9 @@
 namespace tsp {
 namespace {
 
-// Tiles are slabs of whole rows and planes (cells stored in row order stay together in memory
-// while a tile is sampled) of about kTileVoxels voxels, at least kTilesPerWorker per worker.
+// Tiles are bars of whole rows (cells stored in row order stay together in memory while a tile
+// is sampled) of about kTileVoxels voxels with a near-square cross-section (a cell spans few
+// tiles), at least kTilesPerWorker per worker.
 constexpr std::int64_t kTileVoxels = 1 << 16;
 constexpr int kTilesPerWorker = 4;
 // Barycentric (or parametric) coordinates down to −kInsideTolerance count as inside: voxel
@@ -28,7 +29,7 @@ constexpr double kDegenerate = 1e-14;
 // coordinates that counts as converged.
 constexpr int kNewtonIterations = 16;
 constexpr double kNewtonTolerance = 1e-12;
-// Binning runs over this many contiguous blocks of cells per worker (their bins are merged in
+// Binning runs over this many contiguous blocks of cells per worker (their bins are read in
 // block order, so every bin stays in cell order).
 constexpr int kBinBlocksPerWorker = 4;
 // VTK hexahedron corners in parametric coordinates.
@@ -41,18 +42,18 @@ struct TileGrid {
   int count() const { return n[0] * n[1] * n[2]; }
 };
 
-// Slabs: whole rows, as many rows as fit kTileVoxels (whole planes when they fit), and as many
-// planes as fit it while leaving kTilesPerWorker tiles per worker.
-TileGrid slab_tiles(Dims d, int workers) {
+// Bars: whole rows, a cross-section of about kTileVoxels / d.x voxels as square as the grid
+// allows, thinned along z while there are fewer than kTilesPerWorker tiles per worker.
+TileGrid bar_tiles(Dims d, int workers) {
   TileGrid t;
-  t.size[0] = d.x;
-  t.size[1] = int(std::clamp<std::int64_t>(kTileVoxels / d.x, 1, d.y));
-  const std::int64_t per_plane = std::int64_t(t.size[0]) * t.size[1];
-  const std::int64_t planes_left = std::max<std::int64_t>(
-      1, (std::int64_t(d.z) * ((d.y + t.size[1] - 1) / t.size[1]) + workers * kTilesPerWorker - 1) /
-             (std::int64_t(workers) * kTilesPerWorker));
-  t.size[2] = int(std::clamp<std::int64_t>(std::min(kTileVoxels / per_plane, planes_left), 1, d.z));
-  for (int a = 0; a < 3; ++a) t.n[a] = (d[a] + t.size[a] - 1) / t.size[a];
+  const int edge = std::max(1, int(std::sqrt(double(kTileVoxels) / d.x)));
+  t.size = {d.x, std::min(edge, d.y), 0};
+  t.size[2] = int(std::clamp<std::int64_t>(kTileVoxels / (std::int64_t(d.x) * t.size[1]), 1, d.z));
+  const auto count = [&] {
+    for (int a = 0; a < 3; ++a) t.n[a] = (d[a] + t.size[a] - 1) / t.size[a];
+    return t.count();
+  };
+  while (count() < workers * kTilesPerWorker && t.size[2] > 1) t.size[2] = (t.size[2] + 1) / 2;
   return t;
 }
 
@@ -365,7 +366,7 @@ VoxelizeStats voxelize(const Mesh& mesh, const VoxelGrid& grid, std::span<float>
   if (scan)
     for (int a = 0; a < 3; ++a)
       vx.margin[std::size_t(a)] = (0.5 - 0.5 / options.antialias) * grid.spacing[std::size_t(a)];
-  vx.tiles = slab_tiles(d, resolve_threads(threads));
+  vx.tiles = bar_tiles(d, resolve_threads(threads));
   VoxelizeStats stats;
   stats.tets = std::int64_t(tets.tets.size());
   for (CellType t : mesh.types) stats.hexahedra += whole_hex && is_hexahedral(t);
