@@ -3,6 +3,8 @@
 #   install-deps.sh             (a --movie argument from older scripts is accepted and ignored:
 #                               ffmpeg, which `render --movie` and the demo encode with, is always
 #                               installed, and the suite decodes a movie with it)
+#   install-deps.sh --mpi       also Open MPI, for tspplay-mpi (the MPI build, docs/mpi.md): the
+#                               next build makes it and the suite then runs its tests
 set -euo pipefail
 PKGS=(
   cmake ninja-build g++ pkg-config
@@ -14,6 +16,10 @@ PKGS=(
   ffmpeg      # movies: render --movie, the demo's movie, and the suite's movie test
   xdotool     # real X key and mouse events for the player tests under Xvfb
 )
+for a in "$@"; do
+  # Open MPI's compiler wrappers and launcher; tspplay-mpi uses the serial HDF5 above.
+  [ "$a" = "--mpi" ] && PKGS+=(libopenmpi-dev openmpi-bin)
+done
 missing=()
 for p in "${PKGS[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

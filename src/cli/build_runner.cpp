@@ -13,6 +13,10 @@ namespace {
 // Set by SIGINT/SIGTERM; the progress callback turns it into an exception, so the build unwinds
 // and removes its temporary file instead of leaving it behind.
 volatile std::sig_atomic_t g_interrupted = 0;
+
+// The partition of tspplay-mpi's build (set once by its main); null in tspplay.
+tsp::BuildPartition* g_partition = nullptr;
+int g_partition_threads = 0;  // worker threads per process when --threads is not given
 extern "C" void on_interrupt(int) { g_interrupted = 1; }
 
 // Installs the interrupt handlers for its lifetime.
@@ -40,9 +44,13 @@ namespace {
 template <class Build>
 auto run_with_progress(tsp::BuildOptions options, const Build& build) {
   ProgressBar bar;
-  options.progress = [&bar](const std::string& phase, std::int64_t done, std::int64_t total) {
+  options.partition = g_partition;
+  if (g_partition && options.threads == 0) options.threads = g_partition_threads;
+  const bool writer = build_writes_output();  // other ranks show no bar
+  options.progress = [&bar, writer](const std::string& phase, std::int64_t done,
+                                    std::int64_t total) {
     if (g_interrupted) throw tsp::Error("interrupted; no output written");
-    bar.update(phase, done, total);
+    if (writer) bar.update(phase, done, total);
   };
   InterruptScope scope;
   try {
@@ -56,7 +64,7 @@ auto run_with_progress(tsp::BuildOptions options, const Build& build) {
 }
 
 void warn_nonfinite(const tsp::BuildReport& r, const std::string& field) {
-  if (r.nonfinite_count > 0)
+  if (r.nonfinite_count > 0 && build_writes_output())
     std::fprintf(
         stderr,
         "tspplay: warning: %s%lld NaN/Inf samples replaced (NaN and -Inf by %g, +Inf by %g)\n",
@@ -65,6 +73,13 @@ void warn_nonfinite(const tsp::BuildReport& r, const std::string& field) {
 }
 
 }  // namespace
+
+void set_build_partition(tsp::BuildPartition* partition, int threads) {
+  g_partition = partition;
+  g_partition_threads = threads;
+}
+
+bool build_writes_output() { return !g_partition || g_partition->rank() == 0; }
 
 tsp::BuildReport build_with_progress(tsp::VolumeSource& source, const std::string& out_path,
                                      tsp::BuildOptions options) {

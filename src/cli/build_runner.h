@@ -7,6 +7,15 @@
 
 namespace tspcli {
 
+/// Makes every later build of this process its share of a build split over processes
+/// (tspplay-mpi's main, before parsing; null: the whole build), with `threads` workers each
+/// unless --threads says (0: all cores). Not thread-safe.
+void set_build_partition(tsp::BuildPartition* partition, int threads);
+
+/// Whether this process writes the output (always, unless it is a rank other than 0 of a
+/// partitioned build). Never throws.
+bool build_writes_output();
+
 /// Builds out_path from source with a progress bar on a terminal; SIGINT/SIGTERM cancel the
 /// build cleanly (no output, no temporary file) by throwing tsp::Error. Prints the NaN/Inf
 /// warning. Throws whatever build_tsp_file throws.

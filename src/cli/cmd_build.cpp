@@ -78,6 +78,7 @@ void run_build(const BuildArgs& a) {
     };
     const std::vector<tsp::BuildReport> reports =
         build_fields_with_progress(open_with_first, fields, a.output, bo);
+    if (!build_writes_output()) return;  // rank 0 of tspplay-mpi reports
     for (std::size_t k = 0; k < fields.size(); ++k)
       std::printf("field %s: value range [%g, %g], %.1f MB in %.2f s\n", fields[k].c_str(),
                   reports[k].value_range.lo, reports[k].value_range.hi,
@@ -88,7 +89,7 @@ void run_build(const BuildArgs& a) {
   auto source = tsp::open_input(a.input, so, vo);
   if (bo.brick_size == 0) bo.brick_size = tsp::default_brick_size(source->dims());
   tsp::BuildReport r = build_with_progress(*source, a.output, bo);
-  print_build_summary(a.output, r);
+  if (build_writes_output()) print_build_summary(a.output, r);
 }
 
 const CommandRegistrar reg(10, [](CLI::App& app) {

@@ -86,6 +86,7 @@ json info_json(const tsp::TspFile& f, bool with_nodes) {
   j["file_size"] = std::filesystem::file_size(f.path());
   j["format_version"] = tsp::kTspFormatVersion;
   j["created_by"] = m.created_by;
+  j["build_ranks"] = m.build_ranks;
   j["source"] = m.source;
   j["field"] = m.field;
   j["fields"] = f.fields();
@@ -152,8 +153,11 @@ void print_info(const tsp::TspFile& f, bool with_nodes) {
   const tsp::TspMetadata& m = f.metadata();
   const auto g = o.brick_grid();
   const double mib = double(std::filesystem::file_size(f.path())) / (1024.0 * 1024.0);
-  std::printf("file          %s (%.2f MiB, format version %d, %s)\n", f.path().c_str(), mib,
-              tsp::kTspFormatVersion, m.created_by.c_str());
+  std::printf("file          %s (%.2f MiB, format version %d, %s%s)\n", f.path().c_str(), mib,
+              tsp::kTspFormatVersion, m.created_by.c_str(),
+              m.build_ranks > 1
+                  ? (", built by " + std::to_string(m.build_ranks) + " MPI ranks").c_str()
+                  : "");
   std::printf("source        %s\n", m.source.c_str());
   std::printf("field         %s\n", m.field.empty() ? "(unnamed)" : m.field.c_str());
   if (f.fields().size() > 1) {

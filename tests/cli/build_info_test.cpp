@@ -171,7 +171,7 @@ TEST(BuildInfoCli, SeveralFieldsInOneFile) {
   check_info(second, read_all(h5.string(), "u64"), 8);
   const auto text = run_tspplay("info " + q(dir / "m.tsp"));
   EXPECT_NE(text.out.find("fields        plain, u64"), std::string::npos) << text.out;
-  for (const std::string cmd : {"render " + q(dir / "m.tsp") + " --field u64 --size 32x24 -o " +
+  for (const std::string& cmd : {"render " + q(dir / "m.tsp") + " --field u64 --size 32x24 -o " +
                                     q(dir / "f"),
                                 "metrics " + q(dir / "m.tsp") + " --field u64 --tf preset:sparse"})
     EXPECT_EQ(run_tspplay(cmd).exit_code, 0) << cmd;

@@ -16,6 +16,8 @@ fs::path test_data_dir() { return TSP_TEST_DATA_DIR; }
 fs::path shared_data_dir() { return TSP_SHARED_DATA_DIR; }
 fs::path datasets_dir() { return TSP_DATASETS_DIR; }
 fs::path tspplay_bin() { return TSPPLAY_BIN; }
+fs::path tspplay_mpi_bin() { return TSPPLAY_MPI_BIN; }
+fs::path mpiexec_bin() { return TSPPLAY_MPIEXEC; }
 
 namespace {
 struct TempRoot {
@@ -55,10 +57,14 @@ fs::path temp_dir() {
 }
 
 RunResult run_tspplay(const std::string& args) {
+  return run_command("'" + tspplay_bin().string() + "' " + args);
+}
+
+RunResult run_command(const std::string& command) {
   fs::path dir = temp_dir();
   fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-  std::string cmd = "'" + tspplay_bin().string() + "' " + args + " </dev/null >'" + out.string() +
-                    "' 2>'" + err.string() + "'";
+  std::string cmd =
+      command + " </dev/null >'" + out.string() + "' 2>'" + err.string() + "'";
   int status = std::system(cmd.c_str());
   RunResult r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;

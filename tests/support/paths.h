@@ -27,6 +27,12 @@ struct RunResult {
   std::string out;
   std::string err;
 };
+/// The built tspplay-mpi executable and the MPI launcher; empty when MPI was not found.
+std::filesystem::path tspplay_mpi_bin();
+/// The MPI launcher (mpirun) found with MPI; empty when MPI was not found.
+std::filesystem::path mpiexec_bin();
+/// Runs a shell command line through /bin/sh (stdin from /dev/null) and captures its output.
+RunResult run_command(const std::string& command);
 /// Runs `tspplay ARGS` through /bin/sh (args are passed as-is: quote them) and captures its output.
 RunResult run_tspplay(const std::string& args);
 }  // namespace tsptest

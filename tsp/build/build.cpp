@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <limits>
-#include <mutex>
 #include <vector>
 
-#include "tsp/build/brick_stats.h"
+#include "tsp/build/brick_pass.h"
 #include "tsp/build/level_filter.h"
 #include "tsp/build/scratch_file.h"
 #include "tsp/build/step_prefetcher.h"
@@ -26,7 +26,6 @@ namespace tsp {
 namespace {
 
 constexpr const char* kPhaseRead = "reading";
-constexpr const char* kPhaseBricks = "bricks";
 
 // Finite extremes and non-finite count of the input, over every voxel of every step.
 struct InputScan {
@@ -54,20 +53,16 @@ struct InputScan {
   ValueRange range() const { return lo <= hi ? ValueRange{lo, hi} : ValueRange{0, 0}; }
 };
 
-// The stencil's scratch files (sources with a stencil only): the leaf and level bricks' inside
-// flags as floats (a level brick's flag is the level filter of the flags, inside when ≥ ½).
-struct StencilScratch {
-  ScratchFile* leaves = nullptr;
-  ScratchFile* levels = nullptr;
-};
 
 // Pass 1: every step once, in order; each brick's samples go to its place in the scratch file.
 // Each step's level bricks (filtered from the whole step, which only this pass holds) go to
 // levels, and their residuals to level_errors ([level brick][step]).
+// With a partition, only this process's stored bricks are scattered and filtered.
 InputScan scatter_steps(VolumeSource& source, const Octree& octree, ScratchFile& scratch,
-                        ScratchFile& levels, StencilScratch stencil, std::span<float> level_errors,
-                        const std::optional<ValueRange>& clamp, const ProgressFn& progress,
-                        std::int64_t total_bytes) {
+                        ScratchFile& levels, detail::StencilScratch stencil,
+                        std::span<float> level_errors,
+                        const std::optional<ValueRange>& clamp, const BuildPartition* part,
+                        const ProgressFn& progress, std::int64_t total_bytes) {
   const Dims d = octree.dims();
   const std::int64_t step_bytes = d.count() * std::int64_t(sizeof(float));
   InputScan scan;
@@ -121,204 +116,19 @@ InputScan scatter_steps(VolumeSource& source, const Octree& octree, ScratchFile&
     parallel_for(kScatterWorkers, 1, kScatterWorkers,
                  [&](int w, std::int64_t first, std::int64_t) {
                    for (auto b = first; b < n; b += kScatterWorkers) {
+                     if (part && !part->owns(b)) continue;
                      scatter(vol, t, int(b), bricks[std::size_t(w)], scratch);
                      if (stencil.leaves)
                        scatter(mask, t, int(b), bricks[std::size_t(w)], *stencil.leaves);
                    }
                    for (auto j = first; j < nl; j += kScatterWorkers)
-                     level(vol, t, int(j), w);
+                     if (!part || part->owns(n + j)) level(vol, t, int(j), w);
                  });
     prefetch.release();
     if (progress) progress(kPhaseRead, (t + 1) * step_bytes, total_bytes);
   }
   return scan;
 }
-
-// NaN and −Inf become lo, +Inf hi; everything is clamped into [lo, hi].
-void sanitize(std::span<float> v, ValueRange r) {
-  const float lo = float(r.lo), hi = float(r.hi);
-  for (float& x : v) x = std::isnan(x) ? lo : std::clamp(x, lo, hi);
-}
-
-// Bit-for-bit the same code as Quantizer::encode for sanitized (non-NaN) samples, without a libm
-// call per sample: adding and subtracting 2^52 rounds half to even like nearbyint in the default
-// rounding mode.
-struct FastQuantizer {
-  double lo, width;
-  bool flat;
-  explicit FastQuantizer(ValueRange r) : lo(r.lo), width(r.width()), flat(!(r.width() > 0)) {}
-  std::uint16_t operator()(float v) const {
-    if (flat) return 0;
-    constexpr double kRound = 4503599627370496.0;  // 2^52
-    double q = (double(v) - lo) / width * kQuantMax;
-    q = (q + kRound) - kRound;
-    // Branch-free clamp (v is never NaN here: sanitize() ran first); −0 converts to 0.
-    q = std::min(std::max(q, 0.0), double(kQuantMax));
-    return std::uint16_t(int(q));
-  }
-};
-
-// Encodes a brick's series [T][samples] into the padded stored layout [T][Bz][By][Bx] (codes
-// by q, stencil flags by a threshold), repeating the last sample along each axis into the
-// padding.
-template <typename T, typename Encode>
-void quantize_padded(std::span<const float> series, const BrickLattice& s,
-                     std::array<int, 3> shape, int steps, const Encode& q, std::vector<T>& out) {
-  const int sx = s.samples[0], sy = s.samples[1], sz = s.samples[2];
-  out.resize(std::size_t(steps) * shape[0] * shape[1] * shape[2]);
-  T* o = out.data();
-  for (int t = 0; t < steps; ++t) {
-    const float* step = series.data() + std::size_t(t) * std::size_t(s.count());
-    for (int z = 0; z < shape[2]; ++z)
-      for (int y = 0; y < shape[1]; ++y) {
-        const float* row =
-            step + std::size_t(sx) * (std::min(y, sy - 1) + std::size_t(sy) * std::min(z, sz - 1));
-        for (int x = 0; x < sx; ++x) o[x] = q(row[x]);
-        for (int x = sx; x < shape[0]; ++x) o[x] = o[sx - 1];
-        o += shape[0];
-      }
-  }
-}
-
-// A stencil flag from its (filtered) float: inside when at least half.
-struct InsideFlag {
-  std::uint8_t operator()(float v) const { return v >= 0.5f ? 1 : 0; }
-};
-
-// Histogram of the brick's own voxels over all steps: bin floor((v − lo)·bins/(hi − lo)),
-// clamped to the last bin; everything in bin 0 for a zero-width range. With a stencil (mask:
-// the series' flags) only inside voxels count.
-void add_histogram(std::span<const float> series, std::span<const float> mask, const Box& s,
-                   const Box& own, int steps, ValueRange r, std::vector<std::uint64_t>& hist) {
-  const double scale = r.width() > 0 ? kHistogramBins / r.width() : 0;
-  for (int t = 0; t < steps; ++t) {
-    const float* step = series.data() + std::size_t(t) * s.count();
-    for (int z = own.lo[2]; z < own.hi[2]; ++z)
-      for (int y = own.lo[1]; y < own.hi[1]; ++y) {
-        const float* row = step + std::size_t(s.size(0)) *
-                                      ((y - s.lo[1]) + std::size_t(s.size(1)) * (z - s.lo[2]));
-        for (int x = own.lo[0]; x < own.hi[0]; ++x) {
-          if (!mask.empty() && mask[std::size_t(row - series.data()) + std::size_t(x - s.lo[0])] < 0.5f)
-            continue;
-          int bin = int((double(row[x - s.lo[0]]) - r.lo) * scale);
-          hist[std::clamp(bin, 0, kHistogramBins - 1)]++;
-        }
-      }
-  }
-}
-
-// Pass 2: brick-major over the scratch file, on `threads` workers.
-struct BrickPass {
-  BrickPass(const TspTree& t, ScratchFile& s, ScratchFile& l, StencilScratch st, TspWriter& w,
-            ValueRange r, std::vector<NodeAccum>& a)
-      : tree(t), scratch(s), levels(l), stencil(st), writer(w), range(r), acc(a),
-        inside_voxels(std::size_t(t.octree().brick_count()), 0) {}
-  const TspTree& tree;
-  ScratchFile& scratch;
-  ScratchFile& levels;
-  StencilScratch stencil;
-  TspWriter& writer;
-  ValueRange range;
-  std::vector<NodeAccum>& acc;  // by TSP node id; each worker fills its leaves' slices
-  std::vector<std::uint64_t> histogram = std::vector<std::uint64_t>(kHistogramBins, 0);
-  std::vector<std::int64_t> inside_voxels;  // per leaf brick: own voxels inside at some step
-
-  std::mutex mutex;  // guards progress calls
-  int done = 0;
-
-  // Per-worker buffers and histogram (merged after the pass, in worker order).
-  struct Scratch {
-    std::vector<float> series;
-    std::vector<std::uint16_t> codes;
-    std::vector<float> mask;          // the stencil's series, as floats
-    std::vector<std::uint8_t> flags;  // padded stencil codes, or the union over steps
-    std::vector<std::uint64_t> hist = std::vector<std::uint64_t>(kHistogramBins, 0);
-  };
-
-  void brick(int b, Scratch& w, const ProgressFn& progress, std::int64_t total_bytes) {
-    const Octree& o = tree.octree();
-    const TimeTree& time = tree.time();
-    const int steps = time.steps();
-    const Box s = o.brick_samples(b), own = o.brick_box(b);
-    w.series.resize(std::size_t(s.count()) * steps);
-    scratch.read_series(b, w.series);
-    scratch.discard(b);
-    sanitize(w.series, range);
-    quantize_padded(w.series, o.lattice(b), stored_brick_shape(o), steps, FastQuantizer(range),
-                    w.codes);
-    writer.write_brick_series(b, w.codes);
-    std::span<const std::uint8_t> use;
-    if (stencil.leaves) {
-      w.mask.resize(w.series.size());
-      stencil.leaves->read_series(b, w.mask);
-      stencil.leaves->discard(b);
-      quantize_padded(w.mask, o.lattice(b), stored_brick_shape(o), steps, InsideFlag{}, w.flags);
-      writer.write_inside_series(b, w.flags);
-      // A voxel counts in the statistics when it is inside at some step (moving meshes).
-      const std::size_t per = std::size_t(s.count());
-      w.flags.assign(per, 0);
-      for (int t = 0; t < steps; ++t)
-        for (std::size_t i = 0; i < per; ++i)
-          w.flags[i] |= w.mask[std::size_t(t) * per + i] >= 0.5f ? 1 : 0;
-      use = w.flags;
-      std::int64_t in = 0;
-      for (int z = own.lo[2]; z < own.hi[2]; ++z)
-        for (int y = own.lo[1]; y < own.hi[1]; ++y)
-          for (int x = own.lo[0]; x < own.hi[0]; ++x)
-            in += w.flags[std::size_t((x - s.lo[0]) +
-                                      s.size(0) * ((y - s.lo[1]) + s.size(1) * (z - s.lo[2])))];
-      inside_voxels[std::size_t(b)] = in;
-    }
-    add_histogram(w.series, stencil.leaves ? std::span<const float>(w.mask) : std::span<const float>(),
-                  s, own, steps, range, w.hist);
-    std::span<NodeAccum> leaf(acc.data() + tree.id(o.brick_node(b), 0), time.size());
-    brick_time_stats(time, s, own, w.series, range.width(), leaf, use);
-    report(progress, total_bytes);
-  }
-
-  // A level brick: quantized like a leaf (its statistics are the node's, merged from its leaves).
-  void level(int j, Scratch& w, const ProgressFn& progress, std::int64_t total_bytes) {
-    const Octree& o = tree.octree();
-    const int steps = tree.time().steps();
-    const BrickLattice l = o.lattice(o.brick_count() + j);
-    w.series.resize(std::size_t(l.count()) * steps);
-    levels.read_series(j, w.series);
-    levels.discard(j);
-    sanitize(w.series, range);
-    quantize_padded(w.series, l, stored_brick_shape(o), steps, FastQuantizer(range), w.codes);
-    writer.write_brick_series(o.brick_count() + j, w.codes);
-    if (stencil.levels) {
-      w.mask.resize(w.series.size());
-      stencil.levels->read_series(j, w.mask);
-      stencil.levels->discard(j);
-      quantize_padded(w.mask, l, stored_brick_shape(o), steps, InsideFlag{}, w.flags);
-      writer.write_inside_series(o.brick_count() + j, w.flags);
-    }
-    report(progress, total_bytes);
-  }
-
-  void report(const ProgressFn& progress, std::int64_t total_bytes) {
-    std::lock_guard lock(mutex);
-    ++done;
-    if (progress)
-      progress(kPhaseBricks, total_bytes * done / tree.octree().stored_brick_count(), total_bytes);
-  }
-
-  void run(int threads, const ProgressFn& progress, std::int64_t total_bytes) {
-    const int bricks = tree.octree().brick_count();
-    const int stored = tree.octree().stored_brick_count();
-    std::vector<Scratch> workers(std::size_t(parallel_workers(stored, 1, threads)));
-    parallel_for(stored, 1, threads, [&](int w, std::int64_t first, std::int64_t last) {
-      for (auto b = first; b < last; ++b)
-        if (b < bricks)
-          brick(int(b), workers[std::size_t(w)], progress, total_bytes);
-        else
-          level(int(b - bricks), workers[std::size_t(w)], progress, total_bytes);
-    });
-    for (const Scratch& w : workers)
-      for (int i = 0; i < kHistogramBins; ++i) histogram[i] += w.hist[i];
-  }
-};
 
 // Internal octree nodes combine their children's sums per time node, bottom-up.
 void combine_octree(const TspTree& tree, std::vector<NodeAccum>& acc) {
@@ -368,6 +178,17 @@ ValueRange checked_range(const std::optional<ValueRange>& r, ValueRange data) {
 
 namespace {
 
+// Ranks other than 0 of a partitioned build compute bricks but write no file.
+bool writes_nothing(const BuildOptions& options) {
+  return options.partition && options.partition->rank() != 0;
+}
+
+// The directory out_path goes to ("." for a bare name): where scratch files go.
+std::string output_dir(const std::string& out_path) {
+  const std::filesystem::path dir = std::filesystem::path(out_path).parent_path();
+  return dir.empty() ? "." : dir.string();
+}
+
 // Options checked before any work. Throws UsageError.
 void check_options(const std::string& out_path, const BuildOptions& options) {
   if (options.range) checked_range(options.range, {});  // reject a bad range before any work
@@ -385,8 +206,11 @@ void check_options(const std::string& out_path, const BuildOptions& options) {
 }
 
 // Builds one field of source into the temporary output out (field_index 0: the file's root,
-// created; K ≥ 1: the group fields/K of the file field 0 was written to).
-BuildReport build_field(VolumeSource& source, const TempOutput& out, int field_index,
+// created; K ≥ 1: the group fields/K of the file field 0 was written to), with scratch files in
+// scratch_dir. Ranks other than 0 of a partitioned build have no out (null): they compute
+// their bricks and hand them to rank 0.
+BuildReport build_field(VolumeSource& source, const TempOutput* out,
+                        const std::string& scratch_dir, int field_index,
                         const BuildOptions& options) {
   const Stopwatch watch;
   const Dims dims = source.dims();
@@ -398,23 +222,25 @@ BuildReport build_field(VolumeSource& source, const TempOutput& out, int field_i
   BuildReport report;
   report.source_bytes = dims.count() * steps * std::int64_t(sizeof(float));
 
-  std::vector<std::int64_t> samples(o.brick_count());
-  for (int b = 0; b < o.brick_count(); ++b) samples[b] = o.brick_samples(b).count();
-  ScratchFile scratch(out.dir(), samples, steps);
+  BuildPartition* part = options.partition;
+  const auto mine = [part](std::int64_t b) { return !part || part->owns(b); };
+  std::vector<std::int64_t> samples(o.brick_count());  // none for other ranks' bricks
+  for (int b = 0; b < o.brick_count(); ++b) samples[b] = mine(b) ? o.brick_samples(b).count() : 0;
+  ScratchFile scratch(scratch_dir, samples, steps);
   std::vector<std::int64_t> level_samples(o.level_brick_count());
   for (int j = 0; j < o.level_brick_count(); ++j)
-    level_samples[j] = o.lattice(o.brick_count() + j).count();
-  ScratchFile levels(out.dir(), level_samples, steps);
+    level_samples[j] = mine(o.brick_count() + j) ? o.lattice(o.brick_count() + j).count() : 0;
+  ScratchFile levels(scratch_dir, level_samples, steps);
   std::optional<ScratchFile> leaf_masks, level_masks;
-  StencilScratch stencil;
+  detail::StencilScratch stencil;
   if (source.has_stencil()) {
-    leaf_masks.emplace(out.dir(), samples, steps);
-    level_masks.emplace(out.dir(), level_samples, steps);
+    leaf_masks.emplace(scratch_dir, samples, steps);
+    level_masks.emplace(scratch_dir, level_samples, steps);
     stencil = {&*leaf_masks, &*level_masks};
     tree.set_inside_fractions(std::vector<float>(std::size_t(o.size()), 1.f));  // filled below
   }
   InputScan scan = scatter_steps(source, o, scratch, levels, stencil, tree.level_errors(),
-                                 options.range, options.progress, report.source_bytes);
+                                 options.range, part, options.progress, report.source_bytes);
   report.data_range = scan.range();
   report.nonfinite_count = scan.nonfinite;
   report.value_range = checked_range(options.range, report.data_range);
@@ -422,10 +248,19 @@ BuildReport build_field(VolumeSource& source, const TempOutput& out, int field_i
 
   std::vector<NodeAccum> acc(tree.size());
   TspMetadata meta;
+  const int threads = resolve_threads(options.threads);
+  if (!out) {  // a rank other than 0: its bricks go to rank 0
+    detail::run_brick_pass(tree, scratch, levels, stencil, nullptr, report.value_range, acc,
+                           tree.level_errors(), part, threads, options.progress,
+                           report.source_bytes);
+    report.seconds = watch.seconds();
+    return report;
+  }
   {
-    TspWriter writer(out.tmp(), tree, field_index);
-    BrickPass pass(tree, scratch, levels, stencil, writer, report.value_range, acc);
-    pass.run(resolve_threads(options.threads), options.progress, report.source_bytes);
+    TspWriter writer(out->tmp(), tree, field_index);
+    const detail::BrickPassResult pass = detail::run_brick_pass(
+        tree, scratch, levels, stencil, &writer, report.value_range, acc, tree.level_errors(), part,
+        threads, options.progress, report.source_bytes);
     combine_octree(tree, acc);
     if (stencil.leaves) tree.set_inside_fractions(inside_fractions(o, pass.inside_voxels));
     for (int i = 0; i < tree.size(); ++i) tree.stats(i) = acc[i].finish(report.value_range.width());
@@ -439,6 +274,7 @@ BuildReport build_field(VolumeSource& source, const TempOutput& out, int field_i
     meta.times = source.times();
     if (meta.times.size() != std::size_t(steps)) meta.times.clear();  // a reader's slip: none
     meta.spacing = options.spacing.value_or(source.spacing());
+    meta.build_ranks = part ? part->ranks() : 1;
     writer.finish(tree, meta);
   }
   report.seconds = watch.seconds();
@@ -451,8 +287,9 @@ BuildReport build_tsp_file(VolumeSource& source, const std::string& out_path,
                            const BuildOptions& options) {
   check_options(out_path, options);
   require_not_an_input(out_path, source.files());
+  if (writes_nothing(options)) return build_field(source, nullptr, output_dir(out_path), 0, options);
   TempOutput out(out_path);
-  BuildReport r = build_field(source, out, 0, options);
+  BuildReport r = build_field(source, &out, out.dir(), 0, options);
   out.commit();
   return r;
 }
@@ -479,7 +316,7 @@ std::vector<BuildReport> build_tsp_fields(const FieldSourceFn& open_field,
     std::unique_ptr<VolumeSource> source = open_field(fields[k]);
     if (k == 0) {
       require_not_an_input(out_path, source->files());
-      out.emplace(out_path);
+      if (!writes_nothing(options)) out.emplace(out_path);
       dims0 = source->dims();
       steps0 = source->steps();
     } else if (!(source->dims() == dims0) || source->steps() != steps0) {
@@ -498,8 +335,10 @@ std::vector<BuildReport> build_tsp_fields(const FieldSourceFn& open_field,
         options.progress(tag + phase, done, total);
       };
     }
-    reports.push_back(build_field(*source, *out, int(k), o));
+    reports.push_back(build_field(*source, out ? &*out : nullptr,
+                                  out ? out->dir() : output_dir(out_path), int(k), o));
   }
+  if (!out) return reports;
   if (fields.size() > 1) TspWriter::write_field_list(out->tmp(), fields);
   out->commit();
   return reports;

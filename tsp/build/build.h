@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "tsp/build/build_partition.h"
 #include "tsp/core/types.h"
 #include "tsp/source/volume_source.h"
 
@@ -36,6 +37,9 @@ struct BuildOptions {
   /// The grid's physical position and voxel spacing, instead of what the source says (positive,
   /// finite spacing; finite origin — checked by build_tsp_file).
   std::optional<std::array<double, 3>> origin, spacing;
+  /// Non-null: this process builds its share of a build split over processes (tspplay-mpi);
+  /// only rank 0 writes out_path, the others return after handing it their bricks.
+  BuildPartition* partition = nullptr;
 };
 
 /// What a build did, for the CLI and the benchmark.

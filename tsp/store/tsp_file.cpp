@@ -253,6 +253,11 @@ std::unique_ptr<TspFile> TspFile::open(const std::string& path, const std::strin
   m.source = r.attr_string(layout::kAttrSource);
   m.field = r.attr_string(layout::kAttrField);
   m.created_by = r.attr_string(layout::kAttrCreatedBy);
+  if (r.has_attr(layout::kAttrBuildRanks)) {
+    m.build_ranks = r.attr_numbers<int>(layout::kAttrBuildRanks, H5T_NATIVE_INT, 1)[0];
+    if (m.build_ranks < 1)
+      r.fail("attribute build_ranks", "expected 1 or more, found " + std::to_string(m.build_ranks));
+  }
 
   // The stored shape must be the one these dims and brick size produce.
   const Octree& o = tree.octree();

@@ -27,6 +27,7 @@ struct TspMetadata {
   std::string created_by;              ///< "tspplay VERSION"
   std::array<double, 3> origin{0, 0, 0};   ///< physical position of voxel (0, 0, 0)
   std::array<double, 3> spacing{1, 1, 1};  ///< physical voxel spacing per axis
+  int build_ranks = 1;  ///< processes that built the file (tspplay-mpi ranks; 1: serial)
   std::vector<double> times;  ///< physical time of every step, when the input named them
 };
 

@@ -31,6 +31,8 @@ inline constexpr const char* kAttrSource = "source";
 inline constexpr const char* kAttrField = "field";
 inline constexpr const char* kAttrCreatedBy = "created_by";
 inline constexpr const char* kAttrNonfinite = "nonfinite_count";  // int64
+// int32: processes that built the file (tspplay-mpi); 1 for the serial build; absent: 1.
+inline constexpr const char* kAttrBuildRanks = "build_ranks";
 inline constexpr const char* kAttrQuantization = "quantization";  // text of the rule
 inline constexpr const char* kAttrNodeId = "tsp_node_id";         // text of the id rule
 inline constexpr const char* kAttrOrigin = "origin";    // float64[3]: voxel (0,0,0) in space

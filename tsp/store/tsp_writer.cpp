@@ -317,6 +317,7 @@ void TspWriter::finish(const TspTree& tree, const TspMetadata& meta) {
   write_attr(r, p, layout::kAttrValueRange, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, {2}, value_range);
   write_attr(r, p, layout::kAttrDataRange, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, {2}, data_range);
   write_attr(r, p, layout::kAttrNonfinite, H5T_NATIVE_INT64, H5T_STD_I64LE, {}, &nonfinite);
+  write_attr(r, p, layout::kAttrBuildRanks, H5T_NATIVE_INT, H5T_STD_I32LE, {}, &meta.build_ranks);
   write_attr(r, p, layout::kAttrOrigin, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, {3}, meta.origin.data());
   write_attr(r, p, layout::kAttrSpacing, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, {3},
              meta.spacing.data());

@@ -1,0 +1,40 @@
+// tspplay-mpi: the build's partition over MPI ranks (tsp::BuildPartition over MPI_COMM_WORLD).
+#pragma once
+#include <mpi.h>
+
+#include "tsp/build/build_partition.h"
+
+namespace tspmpi {
+
+/// The ranks of comm build one file: point-to-point messages carry bricks to rank 0, a
+/// reduction sums the histogram. Needs MPI initialised with at least MPI_THREAD_SERIALIZED.
+/// One method at a time per process (the builder serialises them).
+class MpiPartition final : public tsp::BuildPartition {
+ public:
+  /// Uses comm (not duplicated: it must outlive this). Never throws.
+  explicit MpiPartition(MPI_Comm comm);
+  /// This process's rank in comm. Never throws.
+  int rank() const override { return rank_; }
+  /// comm's size. Never throws.
+  int ranks() const override { return ranks_; }
+  /// Sends result to rank 0: a header, then codes, stencil and statistics in pieces of at most
+  /// 1 GiB. Throws tsp::Error on an MPI error.
+  void send(const tsp::BrickResult& result) override;
+  /// Receives the next brick from any rank (header first, then its pieces from that rank).
+  /// Throws tsp::Error on an MPI error or a header with negative sizes.
+  tsp::BrickResult receive() override;
+  /// MPI_Reduce (sum) of v into rank 0's v; the next messages belong to the next pass. Throws
+  /// tsp::Error on an MPI error.
+  void sum_to_writer(std::span<std::uint64_t> v) override;
+  /// Ranks of comm on this node (MPI_COMM_TYPE_SHARED). Never throws.
+  int ranks_on_node() const { return on_node_; }
+
+ private:
+  int tag(int kind) const;  // kind's tag in the current pass
+
+  MPI_Comm comm_;
+  int rank_ = 0, ranks_ = 1, on_node_ = 1;
+  int pass_ = 0;  // passes ended by sum_to_writer: messages of pass k carry tags of pass k
+};
+
+}  // namespace tspmpi

@@ -1,0 +1,84 @@
+// tspplay-mpi build (src/mpi, tsp/build's BuildPartition): the file N ranks write holds exactly
+// the serial build's bricks, stencil, statistics and metadata, whatever N; a failing build
+// leaves no output. Runs when MPI was found at configure time (scripts/install-deps.sh --mpi).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "support/paths.h"
+#include "support/tsp_compare.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using tsptest::quote;
+
+bool have_mpi() { return !tsptest::tspplay_mpi_bin().empty() && !tsptest::mpiexec_bin().empty(); }
+
+// `mpirun -np N tspplay-mpi ARGS`, as root and with more ranks than cores where needed.
+tsptest::RunResult run_mpi(int ranks, const std::string& args) {
+  return tsptest::run_command(quote(tsptest::mpiexec_bin()) +
+                              " --oversubscribe --allow-run-as-root -np " + std::to_string(ranks) +
+                              " " + quote(tsptest::tspplay_mpi_bin()) + " " + args);
+}
+
+TEST(MpiBuild, RanksWriteTheSerialFile) {
+  if (!have_mpi()) GTEST_SKIP() << "MPI not found at configure time (install-deps.sh --mpi)";
+  const fs::path dir = tsptest::temp_dir();
+  const fs::path in = dir / "two.h5", vortex = dir / "vortex.h5", serial = dir / "serial.tsp";
+  // Uneven dims: partial bricks at the far faces; 5 steps: an uneven time tree. Two fields in
+  // one file: a tree each.
+  const std::string grid = " --dims 40,36,28 --steps 5 -o ";
+  ASSERT_EQ(tsptest::run_tspplay("generate shock" + grid + quote(in)).exit_code, 0);
+  ASSERT_EQ(tsptest::run_tspplay("generate vortex" + grid + quote(vortex)).exit_code, 0);
+  ASSERT_EQ(tsptest::run_command("h5copy -i " + quote(vortex) + " -o " + quote(in) +
+                                 " -s /vortex -d /vortex").exit_code, 0);
+  const std::string args = " --field shock,vortex --brick 8 -o ";
+  const auto s = tsptest::run_tspplay("build " + quote(in) + args + quote(serial));
+  ASSERT_EQ(s.exit_code, 0) << s.err;
+  for (int ranks : {1, 2, 3}) {
+    const fs::path out = dir / ("mpi" + std::to_string(ranks) + ".tsp");
+    const auto r = run_mpi(ranks, "build " + quote(in) + args + quote(out));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("wrote"), std::string::npos) << r.out;  // rank 0's summary, once
+    EXPECT_EQ(r.out.find("wrote"), r.out.rfind("wrote")) << r.out;
+    tsptest::expect_same_build(serial, out, ranks, "shock");
+    if (ranks > 1) {
+      const auto info = tsptest::run_tspplay("info " + quote(out));
+      EXPECT_NE(info.out.find("built by " + std::to_string(ranks) + " MPI ranks"),
+                std::string::npos) << info.out;
+    }
+    tsptest::expect_same_build(serial, out, ranks, "vortex");
+  }
+}
+
+TEST(MpiBuild, MeshWithStencil) {
+  if (!have_mpi()) GTEST_SKIP() << "MPI not found at configure time (install-deps.sh --mpi)";
+  const fs::path dir = tsptest::temp_dir();
+  const fs::path in = tsptest::datasets_dir() / "samples/damBreakWithObstacle/"
+                                                "damBreakWithObstacle.vtu.series";
+  const fs::path serial = dir / "serial.tsp", out = dir / "mpi3.tsp";
+  const std::string args = " --field alpha.water --resolution 24 --brick 8 -o ";
+  const auto s = tsptest::run_tspplay("build " + quote(in) + args + quote(serial));
+  ASSERT_EQ(s.exit_code, 0) << s.err;
+  const auto r = run_mpi(3, "build " + quote(in) + args + quote(out));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  tsptest::expect_same_build(serial, out, 3);
+}
+
+TEST(MpiBuild, FailureNamesTheRankAndLeavesNoOutput) {
+  if (!have_mpi()) GTEST_SKIP() << "MPI not found at configure time (install-deps.sh --mpi)";
+  const fs::path dir = tsptest::temp_dir();
+  const fs::path out = dir / "out.tsp";
+  const auto r = run_mpi(2, "build " + quote(dir / "missing.h5") + " -o " + quote(out));
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("tspplay-mpi: rank "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("missing.h5"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+  for (const auto& e : fs::directory_iterator(dir))  // no temporary left either
+    EXPECT_EQ(e.path().filename().string().find(".out.tsp.tmp"), std::string::npos) << e.path();
+}
+
+}  // namespace

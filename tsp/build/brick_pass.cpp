@@ -1,0 +1,312 @@
+#include "tsp/build/brick_pass.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <exception>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include "tsp/build/brick_stats.h"
+#include "tsp/core/error.h"
+#include "tsp/core/parallel_for.h"
+#include "tsp/store/tsp_layout.h"
+
+namespace tsp::detail {
+namespace {
+
+// NaN and −Inf become lo, +Inf hi; everything is clamped into [lo, hi].
+void sanitize(std::span<float> v, ValueRange r) {
+  const float lo = float(r.lo), hi = float(r.hi);
+  for (float& x : v) x = std::isnan(x) ? lo : std::clamp(x, lo, hi);
+}
+
+// Bit-for-bit the same code as Quantizer::encode for sanitized (non-NaN) samples, without a libm
+// call per sample: adding and subtracting 2^52 rounds half to even like nearbyint in the default
+// rounding mode.
+struct FastQuantizer {
+  double lo, width;
+  bool flat;
+  explicit FastQuantizer(ValueRange r) : lo(r.lo), width(r.width()), flat(!(r.width() > 0)) {}
+  std::uint16_t operator()(float v) const {
+    if (flat) return 0;
+    constexpr double kRound = 4503599627370496.0;  // 2^52
+    double q = (double(v) - lo) / width * kQuantMax;
+    q = (q + kRound) - kRound;
+    // Branch-free clamp (v is never NaN here: sanitize() ran first); −0 converts to 0.
+    q = std::min(std::max(q, 0.0), double(kQuantMax));
+    return std::uint16_t(int(q));
+  }
+};
+
+// Encodes a brick's series [T][samples] into the padded stored layout [T][Bz][By][Bx] (codes
+// by q, stencil flags by a threshold), repeating the last sample along each axis into the
+// padding.
+template <typename T, typename Encode>
+void quantize_padded(std::span<const float> series, const BrickLattice& s,
+                     std::array<int, 3> shape, int steps, const Encode& q, std::vector<T>& out) {
+  const int sx = s.samples[0], sy = s.samples[1], sz = s.samples[2];
+  out.resize(std::size_t(steps) * shape[0] * shape[1] * shape[2]);
+  T* o = out.data();
+  for (int t = 0; t < steps; ++t) {
+    const float* step = series.data() + std::size_t(t) * std::size_t(s.count());
+    for (int z = 0; z < shape[2]; ++z)
+      for (int y = 0; y < shape[1]; ++y) {
+        const float* row =
+            step + std::size_t(sx) * (std::min(y, sy - 1) + std::size_t(sy) * std::min(z, sz - 1));
+        for (int x = 0; x < sx; ++x) o[x] = q(row[x]);
+        for (int x = sx; x < shape[0]; ++x) o[x] = o[sx - 1];
+        o += shape[0];
+      }
+  }
+}
+
+// A stencil flag from its (filtered) float: inside when at least half.
+struct InsideFlag {
+  std::uint8_t operator()(float v) const { return v >= 0.5f ? 1 : 0; }
+};
+
+// Histogram of the brick's own voxels over all steps: bin floor((v − lo)·bins/(hi − lo)),
+// clamped to the last bin; everything in bin 0 for a zero-width range. With a stencil (mask:
+// the series' flags) only inside voxels count.
+void add_histogram(std::span<const float> series, std::span<const float> mask, const Box& s,
+                   const Box& own, int steps, ValueRange r, std::vector<std::uint64_t>& hist) {
+  const double scale = r.width() > 0 ? kHistogramBins / r.width() : 0;
+  for (int t = 0; t < steps; ++t) {
+    const float* step = series.data() + std::size_t(t) * s.count();
+    for (int z = own.lo[2]; z < own.hi[2]; ++z)
+      for (int y = own.lo[1]; y < own.hi[1]; ++y) {
+        const float* row = step + std::size_t(s.size(0)) *
+                                      ((y - s.lo[1]) + std::size_t(s.size(1)) * (z - s.lo[2]));
+        for (int x = own.lo[0]; x < own.hi[0]; ++x) {
+          if (!mask.empty() && mask[std::size_t(row - series.data()) + std::size_t(x - s.lo[0])] < 0.5f)
+            continue;
+          int bin = int((double(row[x - s.lo[0]]) - r.lo) * scale);
+          hist[std::clamp(bin, 0, kHistogramBins - 1)]++;
+        }
+      }
+  }
+}
+
+// Pass 2: brick-major over the scratch file, on `threads` workers.
+// With a partition, each process takes its own stored bricks; rank 0 writes them and those the
+// other ranks send (absorb), the others send theirs (ship) instead of writing.
+struct BrickPass {
+  BrickPass(const TspTree& t, ScratchFile& s, ScratchFile& l, StencilScratch st, TspWriter* w,
+            ValueRange r, std::vector<NodeAccum>& a, std::span<float> le, BuildPartition* p)
+      : tree(t), scratch(s), levels(l), stencil(st), writer(w), range(r), acc(a),
+        level_errors(le), part(p), inside_voxels(std::size_t(t.octree().brick_count()), 0) {}
+  const TspTree& tree;
+  ScratchFile& scratch;
+  ScratchFile& levels;
+  StencilScratch stencil;
+  TspWriter* writer;  // null on ranks other than 0
+  ValueRange range;
+  std::vector<NodeAccum>& acc;  // by TSP node id; each worker fills its leaves' slices
+  std::span<float> level_errors;  // [level brick][step]
+  BuildPartition* part;           // null: one process builds everything
+  std::mutex send_mutex;          // one send at a time (MPI_THREAD_SERIALIZED)
+  std::vector<std::uint8_t> received = std::vector<std::uint8_t>(
+      std::size_t(tree.octree().stored_brick_count()), 0);  // rank 0: bricks absorbed
+  std::vector<std::uint64_t> histogram = std::vector<std::uint64_t>(kHistogramBins, 0);
+  std::vector<std::int64_t> inside_voxels;  // per leaf brick: own voxels inside at some step
+
+  std::mutex mutex;  // guards progress calls
+  int done = 0;
+
+  // Per-worker buffers and histogram (merged after the pass, in worker order).
+  struct Scratch {
+    std::vector<float> series;
+    std::vector<std::uint16_t> codes;
+    std::vector<float> mask;          // the stencil's series, as floats
+    std::vector<std::uint8_t> flags;  // padded stencil codes, or the union over steps
+    std::vector<std::uint64_t> hist = std::vector<std::uint64_t>(kHistogramBins, 0);
+  };
+
+  void brick(int b, Scratch& w, const ProgressFn& progress, std::int64_t total_bytes) {
+    const Octree& o = tree.octree();
+    const TimeTree& time = tree.time();
+    const int steps = time.steps();
+    const Box s = o.brick_samples(b), own = o.brick_box(b);
+    w.series.resize(std::size_t(s.count()) * steps);
+    scratch.read_series(b, w.series);
+    scratch.discard(b);
+    sanitize(w.series, range);
+    quantize_padded(w.series, o.lattice(b), stored_brick_shape(o), steps, FastQuantizer(range),
+                    w.codes);
+    BrickResult res;  // what a rank other than 0 ships instead of writing
+    res.brick = b;
+    put_codes(b, w.codes, res);
+    std::span<const std::uint8_t> use;
+    if (stencil.leaves) {
+      w.mask.resize(w.series.size());
+      stencil.leaves->read_series(b, w.mask);
+      stencil.leaves->discard(b);
+      quantize_padded(w.mask, o.lattice(b), stored_brick_shape(o), steps, InsideFlag{}, w.flags);
+      put_inside(b, w.flags, res);
+      // A voxel counts in the statistics when it is inside at some step (moving meshes).
+      const std::size_t per = std::size_t(s.count());
+      w.flags.assign(per, 0);
+      for (int t = 0; t < steps; ++t)
+        for (std::size_t i = 0; i < per; ++i)
+          w.flags[i] |= w.mask[std::size_t(t) * per + i] >= 0.5f ? 1 : 0;
+      use = w.flags;
+      std::int64_t in = 0;
+      for (int z = own.lo[2]; z < own.hi[2]; ++z)
+        for (int y = own.lo[1]; y < own.hi[1]; ++y)
+          for (int x = own.lo[0]; x < own.hi[0]; ++x)
+            in += w.flags[std::size_t((x - s.lo[0]) +
+                                      s.size(0) * ((y - s.lo[1]) + s.size(1) * (z - s.lo[2])))];
+      inside_voxels[std::size_t(b)] = in;
+      res.inside_voxels = in;
+    }
+    add_histogram(w.series, stencil.leaves ? std::span<const float>(w.mask) : std::span<const float>(),
+                  s, own, steps, range, w.hist);
+    std::span<NodeAccum> leaf(acc.data() + tree.id(o.brick_node(b), 0), time.size());
+    brick_time_stats(time, s, own, w.series, range.width(), leaf, use);
+    if (remote()) {
+      const auto bytes = std::as_bytes(std::span<const NodeAccum>(leaf));
+      res.stats.assign(bytes.begin(), bytes.end());
+      ship(res);
+    }
+    report(progress, total_bytes);
+  }
+
+  // A level brick: quantized like a leaf (its statistics are the node's, merged from its leaves).
+  void level(int j, Scratch& w, const ProgressFn& progress, std::int64_t total_bytes) {
+    const Octree& o = tree.octree();
+    const int steps = tree.time().steps();
+    const BrickLattice l = o.lattice(o.brick_count() + j);
+    w.series.resize(std::size_t(l.count()) * steps);
+    levels.read_series(j, w.series);
+    levels.discard(j);
+    sanitize(w.series, range);
+    quantize_padded(w.series, l, stored_brick_shape(o), steps, FastQuantizer(range), w.codes);
+    BrickResult res;
+    res.brick = o.brick_count() + j;
+    put_codes(res.brick, w.codes, res);
+    if (stencil.levels) {
+      w.mask.resize(w.series.size());
+      stencil.levels->read_series(j, w.mask);
+      stencil.levels->discard(j);
+      quantize_padded(w.mask, l, stored_brick_shape(o), steps, InsideFlag{}, w.flags);
+      put_inside(res.brick, w.flags, res);
+    }
+    if (remote()) {
+      const auto bytes = std::as_bytes(level_errors.subspan(std::size_t(j) * steps, steps));
+      res.stats.assign(bytes.begin(), bytes.end());
+      ship(res);
+    }
+    report(progress, total_bytes);
+  }
+
+  bool remote() const { return part && part->rank() != 0; }
+  void put_codes(int b, std::span<const std::uint16_t> codes, BrickResult& res) {
+    if (remote())
+      res.codes.assign(codes.begin(), codes.end());
+    else
+      writer->write_brick_series(b, codes);
+  }
+  void put_inside(int b, std::span<const std::uint8_t> flags, BrickResult& res) {
+    if (remote())
+      res.inside.assign(flags.begin(), flags.end());
+    else
+      writer->write_inside_series(b, flags);
+  }
+  void ship(const BrickResult& res) {
+    std::lock_guard lock(send_mutex);
+    part->send(res);
+  }
+
+  // Rank 0: writes a brick another rank computed and takes its statistics. Throws Error when
+  // the message does not fit the tree (ranks built from different inputs).
+  void absorb(const BrickResult& r, const ProgressFn& progress, std::int64_t total_bytes) {
+    const Octree& o = tree.octree();
+    const int steps = tree.time().steps();
+    const auto shape = stored_brick_shape(o);
+    const std::size_t per = std::size_t(steps) * shape[0] * shape[1] * shape[2];
+    const bool leaf = r.brick < o.brick_count();
+    const std::size_t stats_bytes =
+        leaf ? tree.time().size() * sizeof(NodeAccum) : std::size_t(steps) * sizeof(float);
+    if (r.brick < 0 || r.brick >= o.stored_brick_count() || part->owns(r.brick) ||
+        received[std::size_t(r.brick)]++ ||
+        r.codes.size() != per || r.inside.size() != (stencil.leaves ? per : 0) ||
+        r.stats.size() != stats_bytes)
+      throw Error("build: rank " + std::to_string(r.brick % part->ranks()) +
+                  " sent brick " + std::to_string(r.brick) +
+                  " twice or of another shape than rank 0's tree (do all ranks read the same "
+                  "input?)");
+    writer->write_brick_series(r.brick, r.codes);
+    if (stencil.leaves) writer->write_inside_series(r.brick, r.inside);
+    if (leaf) {
+      std::memcpy(acc.data() + tree.id(o.brick_node(r.brick), 0), r.stats.data(), stats_bytes);
+      inside_voxels[std::size_t(r.brick)] = r.inside_voxels;
+    } else {
+      std::memcpy(level_errors.data() + std::size_t(r.brick - o.brick_count()) * steps,
+                  r.stats.data(), stats_bytes);
+    }
+    report(progress, total_bytes);
+  }
+
+  void report(const ProgressFn& progress, std::int64_t total_bytes) {
+    std::lock_guard lock(mutex);
+    ++done;
+    if (progress)
+      progress(kPhaseBricks, total_bytes * done / tree.octree().stored_brick_count(), total_bytes);
+  }
+
+  // This process's stored bricks on `threads` workers; with a partition, rank 0 meanwhile
+  // absorbs the others' bricks on one more thread, and the histogram is summed on rank 0.
+  void run(int threads, const ProgressFn& progress, std::int64_t total_bytes) {
+    const int bricks = tree.octree().brick_count();
+    const int stored = tree.octree().stored_brick_count();
+    const int ranks = part ? part->ranks() : 1, rank = part ? part->rank() : 0;
+    const std::int64_t mine = (stored - rank + ranks - 1) / ranks;  // b = rank + k·ranks
+    std::exception_ptr receive_error;
+    std::thread receiver;
+    if (part && rank == 0 && ranks > 1)
+      receiver = std::thread([&, others = stored - mine] {
+        try {
+          for (std::int64_t k = 0; k < others; ++k) absorb(part->receive(), progress, total_bytes);
+        } catch (...) {
+          receive_error = std::current_exception();
+        }
+      });
+    std::vector<Scratch> workers(std::size_t(parallel_workers(mine, 1, threads)));
+    try {
+      parallel_for(mine, 1, threads, [&](int w, std::int64_t first, std::int64_t last) {
+        for (auto k = first; k < last; ++k) {
+          const std::int64_t b = rank + k * ranks;
+          if (b < bricks)
+            brick(int(b), workers[std::size_t(w)], progress, total_bytes);
+          else
+            level(int(b - bricks), workers[std::size_t(w)], progress, total_bytes);
+        }
+      });
+    } catch (...) {
+      // The receiver waits on ranks that may never send: the caller ends the job (MPI_Abort).
+      if (receiver.joinable()) receiver.detach();
+      throw;
+    }
+    if (receiver.joinable()) receiver.join();
+    if (receive_error) std::rethrow_exception(receive_error);
+    for (const Scratch& w : workers)
+      for (int i = 0; i < kHistogramBins; ++i) histogram[i] += w.hist[i];
+    if (part) part->sum_to_writer(histogram);
+  }
+};
+
+}  // namespace
+
+BrickPassResult run_brick_pass(const TspTree& tree, ScratchFile& scratch, ScratchFile& levels,
+                               StencilScratch stencil, TspWriter* writer, ValueRange range,
+                               std::vector<NodeAccum>& acc, std::span<float> level_errors,
+                               BuildPartition* partition, int threads, const ProgressFn& progress,
+                               std::int64_t total_bytes) {
+  BrickPass pass(tree, scratch, levels, stencil, writer, range, acc, level_errors, partition);
+  pass.run(threads, progress, total_bytes);
+  return {std::move(pass.histogram), std::move(pass.inside_voxels)};
+}
+
+}  // namespace tsp::detail
