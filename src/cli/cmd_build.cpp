@@ -27,7 +27,17 @@ struct BuildArgs {
   std::string voxelizer = "locate", hex = "isoparametric";
   int antialias = 1;
   std::string spacing, origin;
+  std::string compress = "none";
 };
+
+// --compress none|deflate[:L] → the deflate level (0: none). Throws UsageError.
+int deflate_level(const std::string& s) {
+  constexpr int kDefaultDeflate = 4;
+  if (s == "none") return 0;
+  if (s == "deflate") return kDefaultDeflate;
+  if (s.size() == 9 && s.rfind("deflate:", 0) == 0 && s[8] >= '1' && s[8] <= '9') return s[8] - '0';
+  throw tsp::UsageError("--compress " + s + ": expected none, deflate or deflate:L with L in 1..9");
+}
 
 void run_build(const BuildArgs& a) {
   tsp::SourceOptions so;
@@ -42,6 +52,7 @@ void run_build(const BuildArgs& a) {
   bo.brick_size = a.brick;
   bo.threads = a.threads;
   bo.field_name = a.field;
+  bo.deflate = deflate_level(a.compress);
   if (!a.range.empty()) bo.range = parse_range(a.range, "--range");
   if (!a.spacing.empty()) bo.spacing = parse_triple(a.spacing, "--spacing", "DX,DY,DZ");
   if (!a.origin.empty()) bo.origin = parse_triple(a.origin, "--origin", "X,Y,Z");
@@ -131,6 +142,9 @@ const CommandRegistrar reg(10, [](CLI::App& app) {
   c->add_option("--raw-type", a->raw_type, "Raw input: element type u8|u16|f32")
       ->check(CLI::IsMember({"u8", "u16", "f32"}));
   c->add_flag("--big-endian", a->big_endian, "Raw input: big-endian samples");
+  c->add_option("--compress", a->compress,
+                "Brick chunks: none (default), deflate (level 4) or deflate:L, L 1..9 (byte "
+                "shuffle + deflate; smaller files, slower builds; for playback from slow disks)");
   c->add_option("--threads", a->threads, "Worker threads (default: all cores)");
   c->callback([a] { run_build(*a); });
 });

@@ -259,4 +259,24 @@ TEST(BuildInfoCli, InfoRejectsFilesThatAreNotTsp) {
   EXPECT_EQ(r.out, "");
 }
 
+TEST(BuildCli, Compress) {
+  const fs::path dir = tsptest::temp_dir();
+  ASSERT_EQ(run_tspplay("generate shock --dims 24 --steps 3 -o " + q(dir / "s.h5")).exit_code, 0);
+  const auto plain = run_tspplay("build " + q(dir / "s.h5") + " -o " + q(dir / "a.tsp"));
+  const auto packed =
+      run_tspplay("build " + q(dir / "s.h5") + " --compress deflate:1 -o " + q(dir / "b.tsp"));
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  ASSERT_EQ(packed.exit_code, 0) << packed.err;
+  EXPECT_LT(fs::file_size(dir / "b.tsp"), fs::file_size(dir / "a.tsp"));
+  EXPECT_EQ(run_tspplay("render " + q(dir / "b.tsp") + " --size 32x24 -o " + q(dir / "f")).exit_code,
+            0);
+  for (const char* bad : {"zstd", "deflate:0", "deflate:10"}) {
+    const auto r = run_tspplay("build " + q(dir / "s.h5") + " --compress " + bad + " -o " +
+                               q(dir / "c.tsp"));
+    EXPECT_EQ(r.exit_code, 2) << bad;
+    EXPECT_NE(r.err.find("expected none, deflate or deflate:L"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "c.tsp"));
+  }
+}
+
 }  // namespace

@@ -192,6 +192,9 @@ std::string output_dir(const std::string& out_path) {
 // Options checked before any work. Throws UsageError.
 void check_options(const std::string& out_path, const BuildOptions& options) {
   if (options.range) checked_range(options.range, {});  // reject a bad range before any work
+  if (options.deflate < 0 || options.deflate > 9)
+    throw UsageError("--compress deflate:" + std::to_string(options.deflate) +
+                     ": expected a level 1..9");
   if (options.threads < 0)
     throw UsageError("--threads " + std::to_string(options.threads) + ": expected 0 or more");
   if (out_path.empty()) throw UsageError("no output file given (-o)");
@@ -257,7 +260,7 @@ BuildReport build_field(VolumeSource& source, const TempOutput* out,
     return report;
   }
   {
-    TspWriter writer(out->tmp(), tree, field_index);
+    TspWriter writer(out->tmp(), tree, field_index, options.deflate);
     const detail::BrickPassResult pass = detail::run_brick_pass(
         tree, scratch, levels, stencil, &writer, report.value_range, acc, tree.level_errors(), part,
         threads, options.progress, report.source_bytes);

@@ -40,6 +40,9 @@ struct BuildOptions {
   /// Non-null: this process builds its share of a build split over processes (tspplay-mpi);
   /// only rank 0 writes out_path, the others return after handing it their bricks.
   BuildPartition* partition = nullptr;
+  /// 1–9: brick chunks compressed with shuffle + deflate at that level (`build --compress`);
+  /// 0: stored as is. Readers need nothing (HDF5 decompresses). Checked by the build.
+  int deflate = 0;
 };
 
 /// What a build did, for the CLI and the benchmark.

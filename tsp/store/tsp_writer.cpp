@@ -78,9 +78,9 @@ struct TspWriter::Impl {
   std::array<int, 3> shape{};  // x, y, z
 };
 
-TspWriter::TspWriter(const std::string& path, const TspTree& tree, int field_index)
+TspWriter::TspWriter(const std::string& path, const TspTree& tree, int field_index, int deflate)
     : impl_(std::make_unique<Impl>()) {
-  assert(field_index >= 0);
+  assert(field_index >= 0 && deflate >= 0 && deflate <= 9);
   std::lock_guard lock(hdf5_mutex());
   h5::silence_errors();
   Impl& w = *impl_;
@@ -120,6 +120,10 @@ TspWriter::TspWriter(const std::string& path, const TspTree& tree, int field_ind
   Handle dcpl(H5Pcreate(H5P_DATASET_CREATE));
   H5Pset_chunk(dcpl.get(), 5, chunk.data());
   H5Pset_fill_time(dcpl.get(), H5D_FILL_TIME_NEVER);  // every chunk is written exactly once
+  if (deflate > 0) {  // the 16-bit codes' high bytes together first: they compress best
+    H5Pset_shuffle(dcpl.get());
+    H5Pset_deflate(dcpl.get(), unsigned(deflate));
+  }
   // A Fletcher-32 checksum per chunk (one brick at one step): a corrupted brick is reported by
   // HDF5 on read instead of being drawn.
   H5Pset_fletcher32(dcpl.get());

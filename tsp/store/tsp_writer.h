@@ -19,8 +19,9 @@ class TspWriter {
  public:
   /// Creates (truncates) path with room for the bricks of tree's shape (field_index 0: the
   /// file's first field, at its root), or reopens the file the first field was written to and
-  /// adds field field_index ≥ 1 in its group fields/K. Throws IoError.
-  TspWriter(const std::string& path, const TspTree& tree, int field_index = 0);
+  /// adds field field_index ≥ 1 in its group fields/K. deflate 1–9 compresses every brick
+  /// chunk (byte shuffle, then deflate at that level; 0: stored as is). Throws IoError.
+  TspWriter(const std::string& path, const TspTree& tree, int field_index = 0, int deflate = 0);
   ~TspWriter();
   TspWriter(const TspWriter&) = delete;
   TspWriter& operator=(const TspWriter&) = delete;

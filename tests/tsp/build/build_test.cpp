@@ -11,6 +11,7 @@
 
 #include "support/memory_source.h"
 #include "support/paths.h"
+#include "support/tsp_compare.h"
 #include "tsp/core/error.h"
 #include "tsp/store/tsp_file.h"
 
@@ -155,6 +156,27 @@ TEST(Build, ThreadCountDoesNotChangeTheResult) {
     ASSERT_EQ(x.temporal_error, y.temporal_error);
   }
   EXPECT_EQ(a->metadata().histogram, b->metadata().histogram);
+}
+
+// --compress: every brick and statistic as without it; the file smaller (a smooth field with
+// constant regions); a level outside 1..9 refused before any work.
+TEST(Build, DeflateKeepsEveryBrickAndShrinksTheFile) {
+  MemorySource src = MemorySource::from_function({40, 33, 21}, 4, [](int x, int y, int z, int t) {
+    return x < 20 ? 1.f : float(std::sin(0.2 * x + 0.1 * y * t) + 0.05 * z);
+  });
+  const std::filesystem::path dir = tsptest::temp_dir();
+  BuildOptions plain, packed;
+  plain.brick_size = packed.brick_size = 8;
+  packed.deflate = 6;
+  build_tsp_file(src, (dir / "plain.tsp").string(), plain);
+  build_tsp_file(src, (dir / "packed.tsp").string(), packed);
+  tsptest::expect_same_build(dir / "plain.tsp", dir / "packed.tsp", 1);
+  EXPECT_LT(std::filesystem::file_size(dir / "packed.tsp") * 2,
+            std::filesystem::file_size(dir / "plain.tsp"));
+  BuildOptions bad;
+  bad.deflate = 10;
+  EXPECT_THROW(build_tsp_file(src, (dir / "bad.tsp").string(), bad), tsp::UsageError);
+  EXPECT_FALSE(std::filesystem::exists(dir / "bad.tsp"));
 }
 
 TEST(Build, SingleVoxelSingleStep) {
