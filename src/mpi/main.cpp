@@ -38,14 +38,14 @@ int default_threads(int ranks_on_node) {
 
 int main(int argc, char** argv) {
   int provided = 0;
-  if (MPI_Init_thread(&argc, &argv, MPI_THREAD_SERIALIZED, &provided) != MPI_SUCCESS) {
+  if (MPI_Init_thread(&argc, &argv, MPI_THREAD_MULTIPLE, &provided) != MPI_SUCCESS) {
     std::fprintf(stderr, "tspplay-mpi: error: MPI_Init_thread failed\n");
     return 1;
   }
   tspmpi::MpiPartition partition(MPI_COMM_WORLD);
   const int rank = partition.rank(), ranks = partition.ranks();
-  if (provided < MPI_THREAD_SERIALIZED)
-    abort_job(rank, ranks, "error", "the MPI library does not provide MPI_THREAD_SERIALIZED", 1);
+  if (provided < MPI_THREAD_MULTIPLE)
+    abort_job(rank, ranks, "error", "the MPI library does not provide MPI_THREAD_MULTIPLE", 1);
   tspcli::set_build_partition(&partition, default_threads(partition.ranks_on_node()));
 
   CLI::App app{"tspplay-mpi " TSPPLAY_VERSION

@@ -1,7 +1,11 @@
 #include "mpi/mpi_partition.h"
 
 #include <algorithm>
+#include <chrono>
 #include <climits>
+#include <thread>
+#include <cstring>
+#include <vector>
 #include <string>
 
 #include "tsp/core/error.h"
@@ -12,13 +16,20 @@ namespace {
 // Message kinds: a brick's header, then its payloads (MPI keeps messages of one sender and tag
 // in order, so pieces of successive bricks cannot cross). Each pass has its own kTagsPerPass
 // tags, so a rank already in the next pass cannot feed rank 0's current one.
-enum Kind : int { kHeader = 0, kCodes, kInside, kStats, kTagsPerPass };
+enum Kind : int { kHeader = 0, kCodes, kInside, kStats, kSamples, kTagsPerPass };
+// A samples message: brick, step, stencil flag (int32 each) and the residual (float32), then
+// the samples.
+constexpr std::size_t kSamplesHeader = 4 * sizeof(std::int32_t);
 // Passes (fields of one build) before the tags wrap around; MPI guarantees tags up to 32767.
 constexpr int kPassesBeforeWrap = 32767 / kTagsPerPass;
 // Fields of the header: brick, codes, inside and stats sizes (elements), inside voxels.
 constexpr int kHeaderFields = 5;
 // Bytes per MPI message: counts are ints.
 constexpr std::size_t kPieceBytes = std::size_t(1) << 30;
+
+// Polling instead of a blocking receive: Open MPI's blocking calls spin on a core, which the
+// rank's own workers need while its receiver waits.
+constexpr auto kPollInterval = std::chrono::microseconds(50);
 
 void check(int rc, const char* what) {
   if (rc == MPI_SUCCESS) return;
@@ -47,6 +58,15 @@ void receive_bytes(void* data, std::size_t bytes, int source, int tag, MPI_Comm 
 
 }  // namespace
 
+void MpiPartition::wait_for(int tag, MPI_Message* message, MPI_Status* status) const {
+  for (;;) {
+    int found = 0;
+    check(MPI_Improbe(MPI_ANY_SOURCE, tag, comm_, &found, message, status), "waiting for a message");
+    if (found) return;
+    std::this_thread::sleep_for(kPollInterval);
+  }
+}
+
 MpiPartition::MpiPartition(MPI_Comm comm) : comm_(comm) {
   MPI_Comm_rank(comm_, &rank_);
   MPI_Comm_size(comm_, &ranks_);
@@ -72,9 +92,10 @@ void MpiPartition::send(const tsp::BrickResult& r) {
 
 tsp::BrickResult MpiPartition::receive() {
   std::int64_t header[kHeaderFields];
+  MPI_Message message;
   MPI_Status status;
-  check(MPI_Recv(header, kHeaderFields, MPI_INT64_T, MPI_ANY_SOURCE, tag(kHeader), comm_,
-                 &status),
+  wait_for(tag(kHeader), &message, &status);
+  check(MPI_Mrecv(header, kHeaderFields, MPI_INT64_T, &message, MPI_STATUS_IGNORE),
         "receiving a brick");
   const int from = status.MPI_SOURCE;
   if (header[1] < 0 || header[2] < 0 || header[3] < 0 || header[0] < 0 || header[0] > INT_MAX)
@@ -90,6 +111,47 @@ tsp::BrickResult MpiPartition::receive() {
   receive_bytes(r.inside.data(), r.inside.size(), from, tag(kInside), comm_);
   receive_bytes(r.stats.data(), r.stats.size(), from, tag(kStats), comm_);
   return r;
+}
+
+void MpiPartition::send_samples(const tsp::StepSamples& s, std::span<const float> samples) {
+  std::vector<char> buf(kSamplesHeader + samples.size() * sizeof(float));
+  const std::int32_t head[3] = {s.brick, s.step, s.stencil ? 1 : 0};
+  std::memcpy(buf.data(), head, sizeof(head));
+  std::memcpy(buf.data() + sizeof(head), &s.residual, sizeof(float));
+  std::memcpy(buf.data() + kSamplesHeader, samples.data(), samples.size() * sizeof(float));
+  if (buf.size() > std::size_t(INT_MAX)) throw tsp::Error("MPI: a brick of over 2 GiB");
+  check(MPI_Send(buf.data(), int(buf.size()), MPI_BYTE, s.brick % ranks_, tag(kSamples), comm_),
+        "sending samples");
+}
+
+tsp::StepSamples MpiPartition::receive_samples() {
+  MPI_Message message;
+  MPI_Status status;
+  wait_for(tag(kSamples), &message, &status);
+  int bytes = 0;
+  MPI_Get_count(&status, MPI_BYTE, &bytes);
+  std::vector<char> buf(std::size_t(std::max(bytes, 0)));
+  check(MPI_Mrecv(buf.data(), bytes, MPI_BYTE, &message, MPI_STATUS_IGNORE), "receiving samples");
+  if (buf.size() < kSamplesHeader || (buf.size() - kSamplesHeader) % sizeof(float) != 0)
+    throw tsp::Error("MPI: rank " + std::to_string(status.MPI_SOURCE) +
+                     " sent a samples message of " + std::to_string(bytes) + " bytes");
+  std::int32_t head[3];
+  std::memcpy(head, buf.data(), sizeof(head));
+  tsp::StepSamples s;
+  s.brick = head[0];
+  s.step = head[1];
+  s.stencil = head[2] != 0;
+  std::memcpy(&s.residual, buf.data() + sizeof(head), sizeof(float));
+  s.samples.resize((buf.size() - kSamplesHeader) / sizeof(float));
+  std::memcpy(s.samples.data(), buf.data() + kSamplesHeader, s.samples.size() * sizeof(float));
+  return s;
+}
+
+void MpiPartition::combine_scan(float& lo, float& hi, std::int64_t& nonfinite) {
+  check(MPI_Allreduce(MPI_IN_PLACE, &lo, 1, MPI_FLOAT, MPI_MIN, comm_), "combining the scans");
+  check(MPI_Allreduce(MPI_IN_PLACE, &hi, 1, MPI_FLOAT, MPI_MAX, comm_), "combining the scans");
+  check(MPI_Allreduce(MPI_IN_PLACE, &nonfinite, 1, MPI_INT64_T, MPI_SUM, comm_),
+        "combining the scans");
 }
 
 void MpiPartition::sum_to_writer(std::span<std::uint64_t> v) {

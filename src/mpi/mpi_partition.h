@@ -6,9 +6,10 @@
 
 namespace tspmpi {
 
-/// The ranks of comm build one file: point-to-point messages carry bricks to rank 0, a
-/// reduction sums the histogram. Needs MPI initialised with at least MPI_THREAD_SERIALIZED.
-/// One method at a time per process (the builder serialises them).
+/// The ranks of comm build one file: point-to-point messages carry samples to the bricks'
+/// owners (pass 1) and finished bricks to rank 0 (pass 2), reductions combine the input scans
+/// and the histogram. Needs MPI initialised with MPI_THREAD_MULTIPLE (senders and a receiver
+/// on different threads).
 class MpiPartition final : public tsp::BuildPartition {
  public:
   /// Uses comm (not duplicated: it must outlive this). Never throws.
@@ -26,11 +27,21 @@ class MpiPartition final : public tsp::BuildPartition {
   /// MPI_Reduce (sum) of v into rank 0's v; the next messages belong to the next pass. Throws
   /// tsp::Error on an MPI error.
   void sum_to_writer(std::span<std::uint64_t> v) override;
+  /// One message to the brick's owner: a small header, then the samples. Throws tsp::Error on
+  /// an MPI error.
+  void send_samples(const tsp::StepSamples& s, std::span<const float> samples) override;
+  /// The next samples message of the current pass from any rank (matched probe, so the size is
+  /// known before receiving). Throws tsp::Error on an MPI error or a malformed message.
+  tsp::StepSamples receive_samples() override;
+  /// MPI_Allreduce: MIN of lo, MAX of hi, SUM of nonfinite. Throws tsp::Error on an MPI error.
+  void combine_scan(float& lo, float& hi, std::int64_t& nonfinite) override;
   /// Ranks of comm on this node (MPI_COMM_TYPE_SHARED). Never throws.
   int ranks_on_node() const { return on_node_; }
 
  private:
   int tag(int kind) const;  // kind's tag in the current pass
+  // Waits (polling) for a message with this tag from any rank. Throws tsp::Error.
+  void wait_for(int tag, MPI_Message* message, MPI_Status* status) const;
 
   MPI_Comm comm_;
   int rank_ = 0, ranks_ = 1, on_node_ = 1;

@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <exception>
 #include <filesystem>
 #include <limits>
+#include <string>
+#include <thread>
 #include <vector>
 
 #include "tsp/build/brick_pass.h"
@@ -56,77 +59,133 @@ struct InputScan {
 
 // Pass 1: every step once, in order; each brick's samples go to its place in the scratch file.
 // Each step's level bricks (filtered from the whole step, which only this pass holds) go to
-// levels, and their residuals to level_errors ([level brick][step]).
-// With a partition, only this process's stored bricks are scattered and filtered.
+// levels, and their residuals to level_errors ([level brick][step]). With a partition, this
+// process reads its steps (t mod ranks = rank) and sends each other process's bricks at those
+// steps to it, while a receiving thread stores what the others send of this process's bricks;
+// the scans are then combined, so every process returns the scan of the whole input.
 InputScan scatter_steps(VolumeSource& source, const Octree& octree, ScratchFile& scratch,
                         ScratchFile& levels, detail::StencilScratch stencil,
-                        std::span<float> level_errors,
-                        const std::optional<ValueRange>& clamp, const BuildPartition* part,
-                        const ProgressFn& progress, std::int64_t total_bytes) {
+                        std::span<float> level_errors, const std::optional<ValueRange>& clamp,
+                        BuildPartition* part, const ProgressFn& progress,
+                        std::int64_t total_bytes) {
   const Dims d = octree.dims();
+  const int steps = source.steps(), n = octree.brick_count(), nl = octree.level_brick_count();
+  const int ranks = part ? part->ranks() : 1, rank = part ? part->rank() : 0;
   const std::int64_t step_bytes = d.count() * std::int64_t(sizeof(float));
-  InputScan scan;
-  // The reader thread also scans each step, which balances the threads of this pass.
-  StepPrefetcher prefetch(source, [&scan](int, const std::vector<float>& v,
-                                          const std::vector<std::uint8_t>& inside) {
-    scan.add(v, inside);
-  });
-  std::vector<float> mask;  // the step's stencil as floats, for scattering and filtering
-  // Copying into the page cache is kernel time that parallelises: two scatter workers split
-  // each step's bricks (pwrite at fixed offsets needs no ordering).
-  constexpr int kScatterWorkers = 2;
-  std::vector<std::vector<float>> bricks(kScatterWorkers);
-  const int n = octree.brick_count();
-  auto scatter = [&](const std::vector<float>& vol, int t, int b, std::vector<float>& brick,
-                     ScratchFile& into) {
-    const Box s = octree.brick_samples(b);
-    brick.resize(std::size_t(s.count()));
-    float* out = brick.data();
-    const std::size_t row = std::size_t(s.size(0));
-    for (int z = s.lo[2]; z < s.hi[2]; ++z)
-      for (int y = s.lo[1]; y < s.hi[1]; ++y, out += row)
-        std::memcpy(out, vol.data() + s.lo[0] + std::int64_t(d.x) * (y + std::int64_t(d.y) * z),
-                    row * sizeof(float));
-    into.write(b, t, brick);
-  };
-  const int nl = octree.level_brick_count();
-  std::vector<LevelFilterScratch> filter(kScatterWorkers);
-  auto level = [&](const std::vector<float>& vol, int t, int j, int w) {
-    const int i = octree.brick_count() + j;
-    const BrickLattice l = octree.lattice(i);
-    filter_level(vol, d, l, clamp, filter[std::size_t(w)], bricks[std::size_t(w)]);
-    level_errors[std::size_t(j) * source.steps() + t] =
-        float(level_residual(vol, d, l, octree.node(octree.stored_brick_node(i)).box,
-                             bricks[std::size_t(w)], clamp));
-    levels.write(j, t, bricks[std::size_t(w)]);
-    if (stencil.levels) {
-      filter_level(mask, d, l, std::nullopt, filter[std::size_t(w)], bricks[std::size_t(w)]);
-      stencil.levels->write(j, t, bricks[std::size_t(w)]);
+  // A brick's samples (or stencil flags) at a step, into this process's scratch files.
+  auto store = [&](int stored, int t, bool is_mask, std::span<const float> v, float residual) {
+    if (stored < n) {
+      (is_mask ? *stencil.leaves : scratch).write(stored, t, v);
+      return;
     }
+    const int j = stored - n;
+    (is_mask ? *stencil.levels : levels).write(j, t, v);
+    if (!is_mask) level_errors[std::size_t(j) * steps + t] = residual;
   };
-  for (int t = 0; t < source.steps(); ++t) {
-    const std::vector<float>& vol = prefetch.next();
-    if (stencil.leaves) {
-      const std::vector<std::uint8_t>& inside = prefetch.inside();
-      mask.resize(inside.size());
-      for (std::size_t i = 0; i < inside.size(); ++i) mask[i] = inside[i] ? 1.f : 0.f;
-    }
-    // Worker k takes bricks k, k + kScatterWorkers, … (then level bricks): both write side by
-    // side.
-    parallel_for(kScatterWorkers, 1, kScatterWorkers,
-                 [&](int w, std::int64_t first, std::int64_t) {
-                   for (auto b = first; b < n; b += kScatterWorkers) {
-                     if (part && !part->owns(b)) continue;
-                     scatter(vol, t, int(b), bricks[std::size_t(w)], scratch);
-                     if (stencil.leaves)
-                       scatter(mask, t, int(b), bricks[std::size_t(w)], *stencil.leaves);
-                   }
-                   for (auto j = first; j < nl; j += kScatterWorkers)
-                     if (!part || part->owns(n + j)) level(vol, t, int(j), w);
-                 });
-    prefetch.release();
-    if (progress) progress(kPhaseRead, (t + 1) * step_bytes, total_bytes);
+  // ... or to the process that owns the brick.
+  auto deliver = [&](int stored, int t, bool is_mask, const std::vector<float>& v,
+                     float residual) {
+    if (!part || part->owns(stored))
+      store(stored, t, is_mask, v, residual);
+    else
+      part->send_samples({stored, t, is_mask, residual, {}}, v);
+  };
+  // What the other processes read of this process's bricks, stored as it arrives.
+  std::exception_ptr receive_error;
+  std::thread receiver;
+  if (part && ranks > 1) {
+    std::int64_t owned = 0;
+    for (int i = 0; i < n + nl; ++i) owned += part->owns(i);
+    const int mine = (steps - rank + ranks - 1) / ranks;  // steps this process reads
+    const std::int64_t expected = owned * (steps - mine) * (stencil.leaves ? 2 : 1);
+    receiver = std::thread([&, expected] {
+      try {
+        for (std::int64_t k = 0; k < expected; ++k) {
+          const StepSamples m = part->receive_samples();
+          if (m.brick < 0 || m.brick >= n + nl || !part->owns(m.brick) || m.step < 0 ||
+              m.step >= steps || part->reads(m.step) || (m.stencil && !stencil.leaves) ||
+              std::int64_t(m.samples.size()) != octree.lattice(m.brick).count())
+            throw Error("build: a rank sent samples of brick " + std::to_string(m.brick) +
+                        " at step " + std::to_string(m.step) + " that rank " +
+                        std::to_string(rank) + " does not expect (do all ranks read the same "
+                        "input?)");
+          store(m.brick, m.step, m.stencil, m.samples, m.residual);
+        }
+      } catch (...) {
+        receive_error = std::current_exception();
+      }
+    });
   }
+  InputScan scan;
+  try {
+    // The reader thread also scans each step, which balances the threads of this pass.
+    StepPrefetcher prefetch(
+        source,
+        [&scan](int, const std::vector<float>& v, const std::vector<std::uint8_t>& inside) {
+          scan.add(v, inside);
+        },
+        rank, ranks);
+    std::vector<float> mask;  // the step's stencil as floats, for scattering and filtering
+    // Copying into the page cache is kernel time that parallelises: two scatter workers split
+    // each step's bricks (pwrite at fixed offsets needs no ordering).
+    constexpr int kScatterWorkers = 2;
+    std::vector<std::vector<float>> bricks(kScatterWorkers);
+    auto scatter = [&](const std::vector<float>& vol, int t, int b, bool is_mask,
+                       std::vector<float>& brick) {
+      const Box s = octree.brick_samples(b);
+      brick.resize(std::size_t(s.count()));
+      float* out = brick.data();
+      const std::size_t row = std::size_t(s.size(0));
+      for (int z = s.lo[2]; z < s.hi[2]; ++z)
+        for (int y = s.lo[1]; y < s.hi[1]; ++y, out += row)
+          std::memcpy(out,
+                      vol.data() + s.lo[0] + std::int64_t(d.x) * (y + std::int64_t(d.y) * z),
+                      row * sizeof(float));
+      deliver(b, t, is_mask, brick, 0.f);
+    };
+    std::vector<LevelFilterScratch> filter(kScatterWorkers);
+    auto level = [&](const std::vector<float>& vol, int t, int j, int w) {
+      const int i = n + j;
+      const BrickLattice l = octree.lattice(i);
+      std::vector<float>& brick = bricks[std::size_t(w)];
+      filter_level(vol, d, l, clamp, filter[std::size_t(w)], brick);
+      const float residual = float(level_residual(
+          vol, d, l, octree.node(octree.stored_brick_node(i)).box, brick, clamp));
+      deliver(i, t, false, brick, residual);
+      if (stencil.levels) {
+        filter_level(mask, d, l, std::nullopt, filter[std::size_t(w)], brick);
+        deliver(i, t, true, brick, 0.f);
+      }
+    };
+    for (int t = rank; t < steps; t += ranks) {
+      const std::vector<float>& vol = prefetch.next();
+      if (stencil.leaves) {
+        const std::vector<std::uint8_t>& inside = prefetch.inside();
+        mask.resize(inside.size());
+        for (std::size_t i = 0; i < inside.size(); ++i) mask[i] = inside[i] ? 1.f : 0.f;
+      }
+      // Worker k takes bricks k, k + kScatterWorkers, … (then level bricks): both write side
+      // by side.
+      parallel_for(kScatterWorkers, 1, kScatterWorkers,
+                   [&](int w, std::int64_t first, std::int64_t) {
+                     for (auto b = first; b < n; b += kScatterWorkers) {
+                       scatter(vol, t, int(b), false, bricks[std::size_t(w)]);
+                       if (stencil.leaves) scatter(mask, t, int(b), true, bricks[std::size_t(w)]);
+                     }
+                     for (auto j = first; j < nl; j += kScatterWorkers) level(vol, t, int(j), w);
+                   });
+      prefetch.release();
+      if (progress)
+        progress(kPhaseRead, std::min<std::int64_t>(steps, t + 1) * step_bytes, total_bytes);
+    }
+  } catch (...) {
+    // The receiver waits on ranks that may never send: the caller ends the job (MPI_Abort).
+    if (receiver.joinable()) receiver.detach();
+    throw;
+  }
+  if (receiver.joinable()) receiver.join();
+  if (receive_error) std::rethrow_exception(receive_error);
+  if (part) part->combine_scan(scan.lo, scan.hi, scan.nonfinite);
   return scan;
 }
 

@@ -17,14 +17,26 @@ struct BrickResult {
   std::int64_t inside_voxels = 0;     ///< leaf with a stencil: own voxels inside at some step
 };
 
-/// A build split over ranks() processes: process rank() computes the stored bricks b with
-/// b % ranks() == rank() (every process reads every step), and process 0 writes the file from
-/// its own bricks and those the others send. A build of several fields makes one pass per
-/// field, each ending with sum_to_writer on every rank: a rank that has finished a pass may
-/// already send the next pass's bricks, and receive() must not return them before rank 0's own
-/// sum_to_writer of the current pass (implementations count passes and tag messages with it).
-/// Each process calls its methods from one thread at a time (the builder serialises them), so
-/// MPI_THREAD_SERIALIZED suffices.
+/// One stored brick's samples at one step, sent in pass 1 by the process that read the step to
+/// the one that owns the brick.
+struct StepSamples {
+  int brick = -1;              ///< stored brick: leaves first, then level bricks
+  int step = -1;               ///< time step
+  bool stencil = false;        ///< the brick's inside flags (as floats), not its values
+  float residual = 0;          ///< level brick values: its residual at this step (level_errors)
+  std::vector<float> samples;  ///< the brick's samples at the step, x fastest (received)
+};
+
+/// A build split over ranks() processes. Pass 1: process rank() reads the steps t with
+/// t % ranks() == rank(), and sends each stored brick's samples at those steps to the brick's
+/// owner (send_samples); the input scans are combined (combine_scan). Pass 2: process rank()
+/// computes the stored bricks b with b % ranks() == rank(), and process 0 writes the file from
+/// its own bricks and those the others send (send/receive). A build of several fields makes one
+/// pass pair per field, each ending with sum_to_writer on every rank: a rank that has finished
+/// may already send the next field's samples and bricks, and receive() and receive_samples()
+/// must not return them before this process's own sum_to_writer of the current field
+/// (implementations count fields and tag messages with it). A process calls send_samples from
+/// several threads while one thread receives (MPI_THREAD_MULTIPLE).
 class BuildPartition {
  public:
   virtual ~BuildPartition() = default;
@@ -39,6 +51,17 @@ class BuildPartition {
   /// Sums v element-wise over every rank into rank 0's v (collective), ending this process's
   /// current pass. Throws Error.
   virtual void sum_to_writer(std::span<std::uint64_t> v) = 0;
+  /// Pass 1: sends a brick's samples at a step (s.samples empty: they are `samples`) to the
+  /// brick's owner (blocks until taken; may be called from several threads at once). Throws
+  /// Error.
+  virtual void send_samples(const StepSamples& s, std::span<const float> samples) = 0;
+  /// Pass 1: the next samples another process sent this one in the current pass. Throws Error.
+  virtual StepSamples receive_samples() = 0;
+  /// End of pass 1 (collective): the minimum of lo, the maximum of hi and the sum of nonfinite
+  /// over every rank, into every rank's. Throws Error.
+  virtual void combine_scan(float& lo, float& hi, std::int64_t& nonfinite) = 0;
+  /// Whether this process reads step t in pass 1. Never throws.
+  bool reads(int t) const { return t % ranks() == rank(); }
   /// Whether this process computes stored brick b. Never throws.
   bool owns(std::int64_t b) const { return b % ranks() == rank(); }
 };

@@ -4,8 +4,9 @@
 
 namespace tsp {
 
-StepPrefetcher::StepPrefetcher(VolumeSource& source, StepHook on_read)
-    : source_(source), on_read_(std::move(on_read)) {
+StepPrefetcher::StepPrefetcher(VolumeSource& source, StepHook on_read, int first, int stride)
+    : source_(source), on_read_(std::move(on_read)), first_(first), stride_(stride) {
+  assert(first >= 0 && stride >= 1);
   thread_ = std::thread([this] { run(); });
 }
 
@@ -20,7 +21,7 @@ StepPrefetcher::~StepPrefetcher() {
 
 void StepPrefetcher::run() {
   const std::size_t voxels = std::size_t(source_.dims().count());
-  for (int t = 0; t < source_.steps(); ++t) {
+  for (int t = first_; t < source_.steps(); t += stride_) {
     int b;
     {
       std::unique_lock lock(mutex_);

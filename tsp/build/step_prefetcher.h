@@ -21,9 +21,10 @@ class StepPrefetcher {
   /// inside is the step's stencil, empty when the source has none.
   using StepHook = std::function<void(int step, const std::vector<float>& samples,
                                       const std::vector<std::uint8_t>& inside)>;
-  /// Starts reading steps 0, 1, … of source on a new thread, running on_read (may be empty) on
-  /// each; errors of either are rethrown by next().
-  explicit StepPrefetcher(VolumeSource& source, StepHook on_read = {});
+  /// Starts reading steps first, first + stride, … of source on a new thread, running on_read
+  /// (may be empty) on each; errors of either are rethrown by next().
+  explicit StepPrefetcher(VolumeSource& source, StepHook on_read = {}, int first = 0,
+                          int stride = 1);
   /// Stops the thread (after the read in progress) and joins it.
   ~StepPrefetcher();
   StepPrefetcher(const StepPrefetcher&) = delete;
@@ -41,6 +42,7 @@ class StepPrefetcher {
   void run();
   VolumeSource& source_;
   StepHook on_read_;
+  int first_, stride_;
   std::vector<float> buffers_[2];
   std::vector<std::uint8_t> masks_[2];
   std::mutex mutex_;

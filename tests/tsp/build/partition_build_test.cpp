@@ -9,6 +9,7 @@
 #include <deque>
 #include <exception>
 #include <filesystem>
+#include <limits>
 #include <mutex>
 #include <chrono>
 #include <memory>
@@ -35,6 +36,15 @@ struct Hub {
   std::deque<std::pair<int, tsp::BrickResult>> bricks;  // with the sender's pass
   std::vector<std::vector<std::uint64_t>> sum;           // per pass
   std::vector<int> summed;  // per pass: ranks other than 0 that added to sum
+  // Pass 1: samples in flight to each rank (with the sender's pass), and the combined scans.
+  std::vector<std::deque<std::pair<int, tsp::StepSamples>>> samples =
+      std::vector<std::deque<std::pair<int, tsp::StepSamples>>>(std::size_t(ranks));
+  struct Scan {
+    float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+    std::int64_t nonfinite = 0;
+    int ranks = 0;  // contributed so far
+  };
+  std::vector<Scan> scans;  // per pass
 };
 
 class ThreadPartition final : public tsp::BuildPartition {
@@ -58,6 +68,41 @@ class ThreadPartition final : public tsp::BuildPartition {
     tsp::BrickResult r = std::move(mine->second);
     hub_.bricks.erase(mine);
     return r;
+  }
+  void send_samples(const tsp::StepSamples& s, std::span<const float> samples) override {
+    tsp::StepSamples m = s;
+    m.samples.assign(samples.begin(), samples.end());
+    std::lock_guard lock(hub_.mutex);
+    hub_.samples[std::size_t(s.brick % hub_.ranks)].emplace_back(pass_, std::move(m));
+    hub_.changed.notify_all();
+  }
+  tsp::StepSamples receive_samples() override {
+    std::unique_lock lock(hub_.mutex);
+    auto& inbox = hub_.samples[std::size_t(rank_)];
+    auto mine = inbox.end();
+    hub_.changed.wait(lock, [&] {
+      mine = std::find_if(inbox.begin(), inbox.end(),
+                          [&](const auto& m) { return m.first == pass_; });
+      return mine != inbox.end();
+    });
+    tsp::StepSamples s = std::move(mine->second);
+    inbox.erase(mine);
+    return s;
+  }
+  void combine_scan(float& lo, float& hi, std::int64_t& nonfinite) override {
+    std::unique_lock lock(hub_.mutex);
+    const std::size_t p = std::size_t(pass_);
+    if (hub_.scans.size() <= p) hub_.scans.resize(p + 1);
+    Hub::Scan& s = hub_.scans[p];
+    s.lo = std::min(s.lo, lo);
+    s.hi = std::max(s.hi, hi);
+    s.nonfinite += nonfinite;
+    ++s.ranks;
+    hub_.changed.notify_all();
+    hub_.changed.wait(lock, [&] { return hub_.scans[p].ranks == hub_.ranks; });
+    lo = hub_.scans[p].lo;
+    hi = hub_.scans[p].hi;
+    nonfinite = hub_.scans[p].nonfinite;
   }
   void sum_to_writer(std::span<std::uint64_t> v) override {
     std::unique_lock lock(hub_.mutex);
