@@ -87,6 +87,7 @@ json info_json(const tsp::TspFile& f, bool with_nodes) {
   j["format_version"] = tsp::kTspFormatVersion;
   j["created_by"] = m.created_by;
   j["build_ranks"] = m.build_ranks;
+  j["deflate"] = m.deflate;
   j["source"] = m.source;
   j["field"] = m.field;
   j["fields"] = f.fields();
@@ -168,7 +169,8 @@ void print_info(const tsp::TspFile& f, bool with_nodes) {
   std::printf("dims          %s voxels\n", tsp::to_string(o.dims()).c_str());
   std::printf("steps         %d\n", tree.time().steps());
   std::printf("brick         %d samples (shared layer included)\n", o.brick_size());
-  std::printf("bricks        %d (%d x %d x %d)\n", o.brick_count(), g[0], g[1], g[2]);
+  std::printf("bricks        %d (%d x %d x %d)%s\n", o.brick_count(), g[0], g[1], g[2],
+              m.deflate > 0 ? (", deflate level " + std::to_string(m.deflate)).c_str() : "");
   std::printf("nodes         %d octree (depth %d) x %d time = %d TSP nodes\n", o.size(), o.depth(),
               tree.time().size(), tree.size());
   std::printf("value range   [%g, %g] (16-bit quantization)\n", tree.value_range().lo,

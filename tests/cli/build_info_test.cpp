@@ -268,6 +268,9 @@ TEST(BuildCli, Compress) {
   ASSERT_EQ(plain.exit_code, 0) << plain.err;
   ASSERT_EQ(packed.exit_code, 0) << packed.err;
   EXPECT_LT(fs::file_size(dir / "b.tsp"), fs::file_size(dir / "a.tsp"));
+  const auto info = run_tspplay("info " + q(dir / "b.tsp"));
+  EXPECT_NE(info.out.find(", deflate level 1"), std::string::npos) << info.out;
+  EXPECT_EQ(run_tspplay("info " + q(dir / "a.tsp")).out.find("deflate"), std::string::npos);
   EXPECT_EQ(run_tspplay("render " + q(dir / "b.tsp") + " --size 32x24 -o " + q(dir / "f")).exit_code,
             0);
   for (const char* bad : {"zstd", "deflate:0", "deflate:10"}) {

@@ -385,6 +385,14 @@ std::unique_ptr<TspFile> TspFile::open(const std::string& path, const std::strin
   Handle type(H5Dget_type(impl->data.get()));
   if (H5Tget_size(type.get()) != 2 || H5Tget_sign(type.get()) != H5T_SGN_NONE)
     r.fail(r.dataset_name(layout::kBrickData), "expected 16-bit unsigned codes");
+  {  // build --compress: the deflate filter's level, if any
+    Handle dcpl(H5Dget_create_plist(impl->data.get()));
+    unsigned flags = 0, values[1] = {0};
+    std::size_t count = 1;
+    if (dcpl && H5Pget_filter_by_id2(dcpl.get(), H5Z_FILTER_DEFLATE, &flags, &count, values, 0,
+                                     nullptr, nullptr) >= 0)
+      m.deflate = count > 0 ? int(values[0]) : 1;
+  }
   if (stencil) {
     impl->inside = r.open_dataset(
         layout::kBrickInside,

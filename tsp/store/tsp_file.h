@@ -28,6 +28,7 @@ struct TspMetadata {
   std::array<double, 3> origin{0, 0, 0};   ///< physical position of voxel (0, 0, 0)
   std::array<double, 3> spacing{1, 1, 1};  ///< physical voxel spacing per axis
   int build_ranks = 1;  ///< processes that built the file (tspplay-mpi ranks; 1: serial)
+  int deflate = 0;      ///< deflate level of the bricks (build --compress; read, not written)
   std::vector<double> times;  ///< physical time of every step, when the input named them
 };
 
