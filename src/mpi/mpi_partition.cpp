@@ -61,7 +61,8 @@ void receive_bytes(void* data, std::size_t bytes, int source, int tag, MPI_Comm 
 void MpiPartition::wait_for(int tag, MPI_Message* message, MPI_Status* status) const {
   for (;;) {
     int found = 0;
-    check(MPI_Improbe(MPI_ANY_SOURCE, tag, comm_, &found, message, status), "waiting for a message");
+    check(MPI_Improbe(MPI_ANY_SOURCE, tag, comm_, &found, message, status),
+          "waiting for a message");
     if (found) return;
     std::this_thread::sleep_for(kPollInterval);
   }
@@ -84,6 +85,7 @@ void MpiPartition::send(const tsp::BrickResult& r) {
   const std::int64_t header[kHeaderFields] = {r.brick, std::int64_t(r.codes.size()),
                                               std::int64_t(r.inside.size()),
                                               std::int64_t(r.stats.size()), r.inside_voxels};
+  std::lock_guard lock(send_mutex_);
   check(MPI_Send(header, kHeaderFields, MPI_INT64_T, 0, tag(kHeader), comm_), "sending a brick");
   send_bytes(r.codes.data(), r.codes.size() * sizeof(std::uint16_t), tag(kCodes), comm_);
   send_bytes(r.inside.data(), r.inside.size(), tag(kInside), comm_);
@@ -120,7 +122,7 @@ void MpiPartition::send_samples(const tsp::StepSamples& s, std::span<const float
   std::memcpy(buf.data() + sizeof(head), &s.residual, sizeof(float));
   std::memcpy(buf.data() + kSamplesHeader, samples.data(), samples.size() * sizeof(float));
   if (buf.size() > std::size_t(INT_MAX)) throw tsp::Error("MPI: a brick of over 2 GiB");
-  check(MPI_Send(buf.data(), int(buf.size()), MPI_BYTE, s.brick % ranks_, tag(kSamples), comm_),
+  check(MPI_Send(buf.data(), int(buf.size()), MPI_BYTE, owner(s.brick), tag(kSamples), comm_),
         "sending samples");
 }
 

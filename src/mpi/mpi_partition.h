@@ -2,6 +2,8 @@
 #pragma once
 #include <mpi.h>
 
+#include <mutex>
+
 #include "tsp/build/build_partition.h"
 
 namespace tspmpi {
@@ -19,7 +21,8 @@ class MpiPartition final : public tsp::BuildPartition {
   /// comm's size. Never throws.
   int ranks() const override { return ranks_; }
   /// Sends result to rank 0: a header, then codes, stencil and statistics in pieces of at most
-  /// 1 GiB. Throws tsp::Error on an MPI error.
+  /// 1 GiB, one brick at a time per process (they must not interleave). Thread-safe. Throws
+  /// tsp::Error on an MPI error.
   void send(const tsp::BrickResult& result) override;
   /// Receives the next brick from any rank (header first, then its pieces from that rank).
   /// Throws tsp::Error on an MPI error or a header with negative sizes.
@@ -46,6 +49,7 @@ class MpiPartition final : public tsp::BuildPartition {
   MPI_Comm comm_;
   int rank_ = 0, ranks_ = 1, on_node_ = 1;
   int pass_ = 0;  // passes ended by sum_to_writer: messages of pass k carry tags of pass k
+  std::mutex send_mutex_;  // a brick's messages leave together
 };
 
 }  // namespace tspmpi

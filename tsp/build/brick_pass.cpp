@@ -3,12 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <exception>
 #include <mutex>
 #include <string>
-#include <thread>
 
 #include "tsp/build/brick_stats.h"
+#include "tsp/build/receiver_thread.h"
 #include "tsp/core/error.h"
 #include "tsp/core/parallel_for.h"
 #include "tsp/store/tsp_layout.h"
@@ -91,7 +90,7 @@ void add_histogram(std::span<const float> series, std::span<const float> mask, c
 
 // Pass 2: brick-major over the scratch file, on `threads` workers.
 // With a partition, each process takes its own stored bricks; rank 0 writes them and those the
-// other ranks send (absorb), the others send theirs (ship) instead of writing.
+// other ranks send (absorb), the others send theirs instead of writing.
 struct BrickPass {
   BrickPass(const TspTree& t, ScratchFile& s, ScratchFile& l, StencilScratch st, TspWriter* w,
             ValueRange r, std::vector<NodeAccum>& a, std::span<float> le, BuildPartition* p)
@@ -106,7 +105,6 @@ struct BrickPass {
   std::vector<NodeAccum>& acc;  // by TSP node id; each worker fills its leaves' slices
   std::span<float> level_errors;  // [level brick][step]
   BuildPartition* part;           // null: one process builds everything
-  std::mutex send_mutex;          // one send at a time (MPI_THREAD_SERIALIZED)
   std::vector<std::uint8_t> received = std::vector<std::uint8_t>(
       std::size_t(tree.octree().stored_brick_count()), 0);  // rank 0: bricks absorbed
   std::vector<std::uint64_t> histogram = std::vector<std::uint64_t>(kHistogramBins, 0);
@@ -168,7 +166,7 @@ struct BrickPass {
     if (remote()) {
       const auto bytes = std::as_bytes(std::span<const NodeAccum>(leaf));
       res.stats.assign(bytes.begin(), bytes.end());
-      ship(res);
+      part->send(res);
     }
     report(progress, total_bytes);
   }
@@ -196,7 +194,7 @@ struct BrickPass {
     if (remote()) {
       const auto bytes = std::as_bytes(level_errors.subspan(std::size_t(j) * steps, steps));
       res.stats.assign(bytes.begin(), bytes.end());
-      ship(res);
+      part->send(res);
     }
     report(progress, total_bytes);
   }
@@ -213,10 +211,6 @@ struct BrickPass {
       res.inside.assign(flags.begin(), flags.end());
     else
       writer->write_inside_series(b, flags);
-  }
-  void ship(const BrickResult& res) {
-    std::lock_guard lock(send_mutex);
-    part->send(res);
   }
 
   // Rank 0: writes a brick another rank computed and takes its statistics. Throws Error when
@@ -262,35 +256,21 @@ struct BrickPass {
     const int bricks = tree.octree().brick_count();
     const int stored = tree.octree().stored_brick_count();
     const int ranks = part ? part->ranks() : 1, rank = part ? part->rank() : 0;
-    const std::int64_t mine = (stored - rank + ranks - 1) / ranks;  // b = rank + k·ranks
-    std::exception_ptr receive_error;
-    std::thread receiver;
-    if (part && rank == 0 && ranks > 1)
-      receiver = std::thread([&, others = stored - mine] {
-        try {
-          for (std::int64_t k = 0; k < others; ++k) absorb(part->receive(), progress, total_bytes);
-        } catch (...) {
-          receive_error = std::current_exception();
-        }
-      });
+    const std::int64_t mine = part ? part->share(stored) : stored;  // b = rank + k·ranks
+    ReceiverThread receiver(rank == 0 ? stored - mine : 0, [&](std::int64_t) {
+      absorb(part->receive(), progress, total_bytes);
+    });
     std::vector<Scratch> workers(std::size_t(parallel_workers(mine, 1, threads)));
-    try {
-      parallel_for(mine, 1, threads, [&](int w, std::int64_t first, std::int64_t last) {
-        for (auto k = first; k < last; ++k) {
-          const std::int64_t b = rank + k * ranks;
-          if (b < bricks)
-            brick(int(b), workers[std::size_t(w)], progress, total_bytes);
-          else
-            level(int(b - bricks), workers[std::size_t(w)], progress, total_bytes);
-        }
-      });
-    } catch (...) {
-      // The receiver waits on ranks that may never send: the caller ends the job (MPI_Abort).
-      if (receiver.joinable()) receiver.detach();
-      throw;
-    }
-    if (receiver.joinable()) receiver.join();
-    if (receive_error) std::rethrow_exception(receive_error);
+    parallel_for(mine, 1, threads, [&](int w, std::int64_t first, std::int64_t last) {
+      for (auto k = first; k < last; ++k) {
+        const std::int64_t b = rank + k * ranks;
+        if (b < bricks)
+          brick(int(b), workers[std::size_t(w)], progress, total_bytes);
+        else
+          level(int(b - bricks), workers[std::size_t(w)], progress, total_bytes);
+      }
+    });
+    receiver.finish();
     for (const Scratch& w : workers)
       for (int i = 0; i < kHistogramBins; ++i) histogram[i] += w.hist[i];
     if (part) part->sum_to_writer(histogram);

@@ -3,15 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <exception>
-#include <filesystem>
 #include <limits>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "tsp/build/brick_pass.h"
 #include "tsp/build/level_filter.h"
+#include "tsp/build/receiver_thread.h"
 #include "tsp/build/scratch_file.h"
 #include "tsp/build/step_prefetcher.h"
 #include "tsp/core/error.h"
@@ -90,34 +88,23 @@ InputScan scatter_steps(VolumeSource& source, const Octree& octree, ScratchFile&
     else
       part->send_samples({stored, t, is_mask, residual, {}}, v);
   };
-  // What the other processes read of this process's bricks, stored as it arrives.
-  std::exception_ptr receive_error;
-  std::thread receiver;
-  if (part && ranks > 1) {
-    std::int64_t owned = 0;
-    for (int i = 0; i < n + nl; ++i) owned += part->owns(i);
-    const int mine = (steps - rank + ranks - 1) / ranks;  // steps this process reads
-    const std::int64_t expected = owned * (steps - mine) * (stencil.leaves ? 2 : 1);
-    receiver = std::thread([&, expected] {
-      try {
-        for (std::int64_t k = 0; k < expected; ++k) {
-          const StepSamples m = part->receive_samples();
-          if (m.brick < 0 || m.brick >= n + nl || !part->owns(m.brick) || m.step < 0 ||
-              m.step >= steps || part->reads(m.step) || (m.stencil && !stencil.leaves) ||
-              std::int64_t(m.samples.size()) != octree.lattice(m.brick).count())
-            throw Error("build: a rank sent samples of brick " + std::to_string(m.brick) +
-                        " at step " + std::to_string(m.step) + " that rank " +
-                        std::to_string(rank) + " does not expect (do all ranks read the same "
-                        "input?)");
-          store(m.brick, m.step, m.stencil, m.samples, m.residual);
-        }
-      } catch (...) {
-        receive_error = std::current_exception();
-      }
-    });
-  }
+  // What the other processes read of this process's bricks (each of its stored bricks at each
+  // step it does not read, values and stencil), stored as it arrives.
+  const std::int64_t expected = part ? part->share(n + nl) * (steps - part->share(steps)) *
+                                           (stencil.leaves ? 2 : 1)
+                                     : 0;
+  detail::ReceiverThread receiver(expected, [&](std::int64_t) {
+    const StepSamples m = part->receive_samples();
+    if (m.brick < 0 || m.brick >= n + nl || !part->owns(m.brick) || m.step < 0 ||
+        m.step >= steps || part->reads(m.step) || (m.stencil && !stencil.leaves) ||
+        std::int64_t(m.samples.size()) != octree.lattice(m.brick).count())
+      throw Error("build: a rank sent samples of brick " + std::to_string(m.brick) + " at step " +
+                  std::to_string(m.step) + " that rank " + std::to_string(rank) +
+                  " does not expect (do all ranks read the same input?)");
+    store(m.brick, m.step, m.stencil, m.samples, m.residual);
+  });
   InputScan scan;
-  try {
+  {
     // The reader thread also scans each step, which balances the threads of this pass.
     StepPrefetcher prefetch(
         source,
@@ -175,16 +162,10 @@ InputScan scatter_steps(VolumeSource& source, const Octree& octree, ScratchFile&
                      for (auto j = first; j < nl; j += kScatterWorkers) level(vol, t, int(j), w);
                    });
       prefetch.release();
-      if (progress)
-        progress(kPhaseRead, std::min<std::int64_t>(steps, t + 1) * step_bytes, total_bytes);
+      if (progress) progress(kPhaseRead, (t + 1) * step_bytes, total_bytes);
     }
-  } catch (...) {
-    // The receiver waits on ranks that may never send: the caller ends the job (MPI_Abort).
-    if (receiver.joinable()) receiver.detach();
-    throw;
   }
-  if (receiver.joinable()) receiver.join();
-  if (receive_error) std::rethrow_exception(receive_error);
+  receiver.finish();
   if (part) part->combine_scan(scan.lo, scan.hi, scan.nonfinite);
   return scan;
 }
@@ -240,12 +221,6 @@ namespace {
 // Ranks other than 0 of a partitioned build compute bricks but write no file.
 bool writes_nothing(const BuildOptions& options) {
   return options.partition && options.partition->rank() != 0;
-}
-
-// The directory out_path goes to ("." for a bare name): where scratch files go.
-std::string output_dir(const std::string& out_path) {
-  const std::filesystem::path dir = std::filesystem::path(out_path).parent_path();
-  return dir.empty() ? "." : dir.string();
 }
 
 // Options checked before any work. Throws UsageError.
@@ -349,10 +324,11 @@ BuildReport build_tsp_file(VolumeSource& source, const std::string& out_path,
                            const BuildOptions& options) {
   check_options(out_path, options);
   require_not_an_input(out_path, source.files());
-  if (writes_nothing(options)) return build_field(source, nullptr, output_dir(out_path), 0, options);
-  TempOutput out(out_path);
-  BuildReport r = build_field(source, &out, out.dir(), 0, options);
-  out.commit();
+  std::optional<TempOutput> out;
+  if (!writes_nothing(options)) out.emplace(out_path);
+  BuildReport r =
+      build_field(source, out ? &*out : nullptr, output_directory(out_path), 0, options);
+  if (out) out->commit();
   return r;
 }
 
@@ -397,8 +373,8 @@ std::vector<BuildReport> build_tsp_fields(const FieldSourceFn& open_field,
         options.progress(tag + phase, done, total);
       };
     }
-    reports.push_back(build_field(*source, out ? &*out : nullptr,
-                                  out ? out->dir() : output_dir(out_path), int(k), o));
+    reports.push_back(
+        build_field(*source, out ? &*out : nullptr, output_directory(out_path), int(k), o));
   }
   if (!out) return reports;
   if (fields.size() > 1) TspWriter::write_field_list(out->tmp(), fields);

@@ -1,6 +1,7 @@
 // tsp/build: a build split over processes (tspplay-mpi); may include core/. The library knows
 // only this interface: the MPI executable implements it (src/mpi/), so tsp needs no MPI.
 #pragma once
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -35,8 +36,8 @@ struct StepSamples {
 /// pass pair per field, each ending with sum_to_writer on every rank: a rank that has finished
 /// may already send the next field's samples and bricks, and receive() and receive_samples()
 /// must not return them before this process's own sum_to_writer of the current field
-/// (implementations count fields and tag messages with it). A process calls send_samples from
-/// several threads while one thread receives (MPI_THREAD_MULTIPLE).
+/// (implementations count fields and tag messages with it). A process calls send and
+/// send_samples from several threads while one thread receives (MPI_THREAD_MULTIPLE).
 class BuildPartition {
  public:
   virtual ~BuildPartition() = default;
@@ -44,7 +45,8 @@ class BuildPartition {
   virtual int rank() const = 0;
   /// How many processes build the file, ≥ 1. Never throws.
   virtual int ranks() const = 0;
-  /// Ranks other than 0: hands one brick's results to rank 0 (blocks until taken). Throws Error.
+  /// Ranks other than 0: hands one brick's results to rank 0 (blocks until taken; may be called
+  /// from several threads at once). Throws Error.
   virtual void send(const BrickResult& result) = 0;
   /// Rank 0: the next brick of the current pass, from whichever rank sent first. Throws Error.
   virtual BrickResult receive() = 0;
@@ -60,10 +62,17 @@ class BuildPartition {
   /// End of pass 1 (collective): the minimum of lo, the maximum of hi and the sum of nonfinite
   /// over every rank, into every rank's. Throws Error.
   virtual void combine_scan(float& lo, float& hi, std::int64_t& nonfinite) = 0;
+  /// The process that reads step t, or computes stored brick b (both round robin). Never throws.
+  int owner(std::int64_t i) const { return int(i % ranks()); }
   /// Whether this process reads step t in pass 1. Never throws.
-  bool reads(int t) const { return t % ranks() == rank(); }
+  bool reads(int t) const { return owner(t) == rank(); }
   /// Whether this process computes stored brick b. Never throws.
-  bool owns(std::int64_t b) const { return b % ranks() == rank(); }
+  bool owns(std::int64_t b) const { return owner(b) == rank(); }
+  /// How many of the indices 0 … count − 1 (steps or stored bricks) are this process's. Never
+  /// throws.
+  std::int64_t share(std::int64_t count) const {
+    return std::max<std::int64_t>(0, (count - rank() + ranks() - 1) / ranks());
+  }
 };
 
 }  // namespace tsp

@@ -31,9 +31,14 @@ std::string temp_prefix(const fs::path& out) { return "." + out.filename().strin
 
 }  // namespace
 
+std::string output_directory(const std::string& out_path) {
+  const fs::path dir = fs::path(out_path).parent_path();
+  return dir.empty() ? "." : dir.string();
+}
+
 int remove_stale_temporaries(const std::string& out_path) {
   const fs::path p(out_path);
-  const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
+  const fs::path dir = output_directory(out_path);
   const std::string prefix = temp_prefix(p);
   int removed = 0;
   std::error_code ec;
@@ -52,7 +57,7 @@ int remove_stale_temporaries(const std::string& out_path) {
 
 TempOutput::TempOutput(const std::string& out_path) : final_(out_path) {
   fs::path p(out_path);
-  fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
+  fs::path dir = output_directory(out_path);
   std::error_code ec;
   if (fs::is_directory(p, ec)) throw IoError(out_path + ": is a directory, expected a file name");
   if (!fs::is_directory(dir, ec))

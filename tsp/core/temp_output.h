@@ -32,6 +32,10 @@ class TempOutput {
   bool committed_ = false;
 };
 
+/// The directory out_path goes to ("." for a bare file name), where TempOutput puts its
+/// temporary. Never throws.
+std::string output_directory(const std::string& out_path);
+
 /// Removes the stale temporaries of out_path (`.NAME.tmp-*` beside it whose writer is gone) and
 /// returns how many. Never throws.
 int remove_stale_temporaries(const std::string& out_path);

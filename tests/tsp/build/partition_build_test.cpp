@@ -9,6 +9,7 @@
 #include <deque>
 #include <exception>
 #include <filesystem>
+#include <functional>
 #include <limits>
 #include <mutex>
 #include <chrono>
@@ -73,7 +74,7 @@ class ThreadPartition final : public tsp::BuildPartition {
     tsp::StepSamples m = s;
     m.samples.assign(samples.begin(), samples.end());
     std::lock_guard lock(hub_.mutex);
-    hub_.samples[std::size_t(s.brick % hub_.ranks)].emplace_back(pass_, std::move(m));
+    hub_.samples[std::size_t(owner(s.brick))].emplace_back(pass_, std::move(m));
     hub_.changed.notify_all();
   }
   tsp::StepSamples receive_samples() override {
@@ -153,6 +154,29 @@ tsptest::MemorySource wavy() {
   });
 }
 
+// Runs build(rank, partition) on `ranks` threads, one partition each over one hub; rethrows
+// the first rank's exception. Returns how many bricks were sent but never received.
+std::size_t run_ranks(int ranks,
+                      const std::function<void(int, tsp::BuildPartition&)>& build) {
+  Hub hub(ranks);
+  std::vector<ThreadPartition> parts;
+  for (int r = 0; r < ranks; ++r) parts.emplace_back(hub, r);
+  std::vector<std::exception_ptr> errors(static_cast<std::size_t>(ranks));
+  std::vector<std::thread> threads;
+  for (int r = 0; r < ranks; ++r)
+    threads.emplace_back([&, r] {
+      try {
+        build(r, parts[std::size_t(r)]);
+      } catch (...) {
+        errors[std::size_t(r)] = std::current_exception();
+      }
+    });
+  for (auto& t : threads) t.join();
+  for (const auto& e : errors)
+    if (e) std::rethrow_exception(e);
+  return hub.bricks.size();
+}
+
 // Builds `make()`'s series serially to dir/serial.tsp and with `ranks` thread-ranks to
 // dir/split.tsp, and compares them.
 template <class MakeSource>
@@ -164,26 +188,13 @@ void expect_split_equals_serial(const MakeSource& make, int ranks) {
   auto serial_source = make();
   tsp::build_tsp_file(serial_source, (dir / "serial.tsp").string(), options);
 
-  Hub hub(ranks);
-  std::vector<ThreadPartition> parts;
-  for (int r = 0; r < ranks; ++r) parts.emplace_back(hub, r);
-  std::vector<std::exception_ptr> errors(static_cast<std::size_t>(ranks));
-  std::vector<std::thread> threads;
-  for (int r = 0; r < ranks; ++r)
-    threads.emplace_back([&, r] {
-      try {
-        auto source = make();
-        tsp::BuildOptions o = options;
-        o.partition = &parts[std::size_t(r)];
-        tsp::build_tsp_file(source, (dir / "split.tsp").string(), o);
-      } catch (...) {
-        errors[std::size_t(r)] = std::current_exception();
-      }
-    });
-  for (auto& t : threads) t.join();
-  for (const auto& e : errors)
-    if (e) std::rethrow_exception(e);
-  EXPECT_TRUE(hub.bricks.empty());
+  const std::size_t left = run_ranks(ranks, [&](int, tsp::BuildPartition& part) {
+    auto source = make();
+    tsp::BuildOptions o = options;
+    o.partition = &part;
+    tsp::build_tsp_file(source, (dir / "split.tsp").string(), o);
+  });
+  EXPECT_EQ(left, 0u);
   tsptest::expect_same_build(dir / "serial.tsp", dir / "split.tsp", ranks);
   // Only rank 0 wrote: no other file (no temporaries) in the directory.
   int files = 0;
@@ -223,28 +234,16 @@ TEST(PartitionBuild, SeveralFields) {
   for (int ranks : {2, 3}) {
     SCOPED_TRACE(ranks);
     const fs::path out = dir / ("split" + std::to_string(ranks) + ".tsp");
-    Hub hub(ranks);
-    std::vector<ThreadPartition> parts;
-    for (int r = 0; r < ranks; ++r) parts.emplace_back(hub, r);
-    std::vector<std::exception_ptr> errors(static_cast<std::size_t>(ranks));
-    std::vector<std::thread> threads;
-    for (int r = 0; r < ranks; ++r)
-      threads.emplace_back([&, r] {
-        try {
-          tsp::BuildOptions o = options;
-          o.partition = &parts[std::size_t(r)];
-          // Rank 1 runs ahead: it sends the next fields' bricks while rank 0 still waits for
-          // the first field's bricks of the slowed ranks.
-          if (r != 1) std::this_thread::sleep_for(std::chrono::milliseconds(100));
-          tsp::build_tsp_fields(open_field, fields, out.string(), o);
-        } catch (...) {
-          errors[std::size_t(r)] = std::current_exception();
-        }
-      });
-    for (auto& t : threads) t.join();
-    for (const auto& e : errors)
-      if (e) std::rethrow_exception(e);
-    for (const std::string& f : fields) tsptest::expect_same_build(dir / "serial.tsp", out, ranks, f);
+    run_ranks(ranks, [&](int r, tsp::BuildPartition& part) {
+      tsp::BuildOptions o = options;
+      o.partition = &part;
+      // Rank 1 runs ahead: it sends the next fields' bricks while rank 0 still waits for the
+      // first field's bricks of the slowed ranks.
+      if (r != 1) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      tsp::build_tsp_fields(open_field, fields, out.string(), o);
+    });
+    for (const std::string& f : fields)
+      tsptest::expect_same_build(dir / "serial.tsp", out, ranks, f);
   }
 }
 
