@@ -21,6 +21,7 @@ struct PlayArgs {
   tspplayer::PlayerOptions options;
   std::string size = "960x720";
   std::string lod = "on";
+  std::string lod_fallback = "scale";
   std::string field, cache_dir;
   std::string proportions = "physical", scale;
   std::string probe_surface = "on";
@@ -102,6 +103,10 @@ const CommandRegistrar reg(35, [](CLI::App& app) {
   c->add_option("--lod", a->lod, "Level of detail: on (hold --target-fps while interacting, full "
                                  "quality when idle) or off (default on)")
       ->check(CLI::IsMember({"on", "off"}));
+  c->add_option("--lod-fallback", a->lod_fallback,
+                "When even the coarsest cut misses --target-fps: scale (a smaller render target, "
+                "default) or splats (each node of a coarse cut one splat of its mean colour)")
+      ->check(CLI::IsMember({"scale", "splats"}));
   c->add_option("--target-fps", a->options.target_fps,
                 "Frames per second the LOD cut holds while interacting (default 30)");
   std::string keys = "\nControls (also F1 or ? in the player):\n";
@@ -112,6 +117,7 @@ const CommandRegistrar reg(35, [](CLI::App& app) {
   c->footer(keys);
   c->callback([a] {
     a->options.lod = a->lod == "on";
+    a->options.splat_fallback = a->lod_fallback == "splats";
     run(*a);
   });
 });

@@ -36,7 +36,8 @@ struct RenderArgs {
   bool baseline = false, perspective = false;
   double quality = 0;
   std::string calibration_dir, save_tf;
-  std::string lod;       ///< off|auto|K ("": off, or auto with --target-ms)
+  std::string lod;       ///< off|auto|K|splat:PX ("": off, or auto with --target-ms)
+  std::string lod_fallback = "scale";
   double target_ms = 0, orbit = 0;
   int split_limit = tsp::LodOptions{}.split_limit;
   std::string focus;
@@ -88,6 +89,11 @@ void run(const RenderArgs& a) {
     o.lod = tspgl::LodMode::off;
   } else if (lod == "auto") {
     o.lod = tspgl::LodMode::adaptive;
+  } else if (lod.rfind("splat:", 0) == 0) {
+    o.lod = tspgl::LodMode::splat;
+    o.splat_px = parse_number(lod.substr(6), "--lod splat:PX");
+    if (!(o.splat_px >= 0))
+      throw tsp::UsageError("--lod " + lod + ": expected a minimum splat size of 0 pixels or more");
   } else {
     o.lod = tspgl::LodMode::fixed;
     o.lod_level = int(parse_integer(lod, "--lod", 0, 30, "off, auto or a level 0 to 30"));
@@ -97,6 +103,7 @@ void run(const RenderArgs& a) {
   if (a.split_limit < 1) throw tsp::UsageError("--split-limit " + std::to_string(a.split_limit) +
                                                ": expected at least 1 split per frame");
   o.lod_options.split_limit = a.split_limit;
+  o.lod_options.fallback = tsp::parse_lod_fallback(a.lod_fallback, "--lod-fallback");
   if (!a.focus.empty()) o.lod_options.focus = parse_triple(a.focus, "--focus", "X,Y,Z in voxels");
   if (a.proportions != "physical" && a.proportions != "samples")
     throw tsp::UsageError("--proportions '" + a.proportions + "': expected physical or samples");
@@ -256,7 +263,12 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
                 "as JSON, e.g. for bench/vtk_reference.py");
   c->add_option("--lod", a->lod,
                 "Spatial level of detail: off (full resolution), K (level K everywhere; 0 = full) "
-                "or auto (the adaptive cut; default with --target-ms)");
+                "auto (the adaptive cut; default with --target-ms) or splat:PX (every node drawn "
+                "as one splat of its mean colour and opacity, split while its children project to "
+                "PX pixels or more)");
+  c->add_option("--lod-fallback", a->lod_fallback,
+                "--lod auto, when even the coarsest cut misses --target-ms: scale (a smaller "
+                "render target, default) or splats (a splat cut whose minimum size adapts)");
   c->add_option("--target-ms", a->target_ms,
                 "Frame-time target in ms that --lod auto holds by adapting the cut");
   c->add_option("--orbit", a->orbit, "Advance the azimuth this many degrees every frame");

@@ -36,7 +36,8 @@ json lod_json(const LodRecord& l) {
           {"nodes_per_level", s.nodes_per_level}, {"splits", s.splits},
           {"merges", s.merges},              {"texture_bytes", s.texture_bytes},
           {"cost", s.cost},                  {"predicted_ms", s.predicted_ms},
-          {"max_error", s.max_error},     {"render_scale", s.render_scale}};
+          {"max_error", s.max_error},     {"render_scale", s.render_scale},
+          {"splat_px", s.splat_px},          {"splats", s.splats}};
 }
 
 json frame_json(const FrameRecord& f) {
@@ -290,7 +291,17 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
       const tsp::Camera camera(tree.octree().dims(), params);
       if (moving && !o.probes.empty() && frame_index > 0) set_clip(frame_index);
       tsp::LodStops stops;
-      if (fixed_cut) {
+      tsp::SplatCut splats;
+      bool splat_frame = false;
+      if (o.lod == LodMode::splat) {
+        splats = tsp::splat_cut(tree.octree(), camera, o.splat_px, renderer->clip_sides());
+        stops = splats.stops;
+        tsp::LodFrameStats st;
+        st.cut_size = st.splats = splats.size;
+        st.splat_px = o.splat_px;
+        rec.lod = LodRecord{0, st};
+        splat_frame = true;
+      } else if (fixed_cut) {
         stops = fixed_cut->stops();
         rec.lod = LodRecord{0, tsp::cut_stats(*fixed_cut)};
       } else if (controller) {
@@ -303,10 +314,14 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
           splits += st.splits;
         }
         st.splits = splits;
-        stops = controller->cut().stops();
+        stops = controller->stops();
+        splat_frame = controller->splatting();
         rec.lod = LodRecord{o.target_ms, st};
       }
       RenderSettings frame_settings = settings;
+      // Splats are flat boxes: composited one box each (the cheapest way to draw them measured,
+      // docs/results.md); a clipped frame stays ray cast.
+      if (splat_frame) frame_settings.compositing = Compositing::boxes;
       if (controller) frame_settings.render_scale = controller->render_scale();
       rec.report = baseline ? baseline->render(t, camera, frame_settings)
                             : renderer->render(t, camera, frame_settings, nodes, stops);
@@ -348,10 +363,12 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
     j["span_step"] = tsp::to_string(settings.span_step);
     j["preintegrated"] = settings.preintegrated;
     j["reuse"] = settings.reuse_image;
-    j["lod"] = o.lod == LodMode::off ? json("off")
+    j["lod"] = o.lod == LodMode::off     ? json("off")
                : o.lod == LodMode::fixed ? json(lod_level)
+               : o.lod == LodMode::splat ? json("splat:" + json(o.splat_px).dump())
                                          : json("auto");
     j["target_ms"] = o.target_ms;
+    j["lod_fallback"] = tsp::to_string(o.lod_options.fallback);
     j["orbit_deg"] = o.orbit_deg;
     j["lod_levels"] = tree.octree().max_lod_level() + 1;
     if (o.quality > 0)

@@ -25,7 +25,7 @@ struct FrameRecord;
 using FrameSink = std::function<void(const FrameRecord&, const tsp::Image&)>;
 
 /// --lod: full resolution, one level everywhere, or the controller's adaptive cut.
-enum class LodMode { off, fixed, adaptive };
+enum class LodMode { off, fixed, adaptive, splat };
 
 /// Everything `tspplay render` takes.
 struct RenderJobOptions {
@@ -64,6 +64,7 @@ struct RenderJobOptions {
   std::string save_tf;                        ///< --save-tf: write the TF used here (JSON)
   LodMode lod = LodMode::off;                 ///< --lod off|K|auto
   int lod_level = 0;                          ///< --lod K
+  double splat_px = 0;                        ///< --lod splat:PX, the minimum splat size
   /// --target-ms (> 0, with --lod auto): the controller holds this frame time; 0 with --lod auto:
   /// every frame refined until no node's error is above lod_options.min_error.
   double target_ms = 0;

@@ -123,6 +123,7 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
                           std::to_string(int(kMaxTargetFps)) + " frames per second");
   lod_on = options.lod;
   target_fps = float(options.target_fps);
+  splat_fallback = options.splat_fallback;
   if (!options.script.empty()) script_ = load_script(options.script);
   if (!options.screenshot.empty()) {
     ScriptAction shot;
@@ -361,6 +362,9 @@ void PlayerApp::write_stats(const std::string& path) const {
               {"cut_size", lod_stats.cut_size},
               {"nodes_per_level", lod_stats.nodes_per_level},
               {"render_scale", lod_stats.render_scale},
+              {"splats", lod_stats.splats},
+              {"splat_px", lod_stats.splat_px},
+              {"splat_fallback", splat_fallback},
               {"max_error", lod_stats.max_error},
               {"full_quality_after_s", full_quality_after_s},
               // Full quality: no node left whose level differs from full resolution in the

@@ -24,6 +24,7 @@ struct PlayerOptions {
   double texture_budget_mb = 512; ///< --texture-budget: textures resident, MiB
   bool lod = true;                ///< --lod on|off: the adaptive LOD cut
   double target_fps = 30;         ///< --target-fps: held while interacting, in [1, 240]
+  bool splat_fallback = false;    ///< --lod-fallback splats: splats when even the coarsest cut is slow
   bool trace = false;             ///< --trace: one stdout line per applied change
   double frame_delay_ms = 0;      ///< --frame-delay-ms: a slow machine, for tests (0..2000)
   bool physical_proportions = true;      ///< --proportions physical|samples

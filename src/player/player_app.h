@@ -121,6 +121,7 @@ class PlayerApp {
   bool lod_on = true;                   ///< the adaptive LOD cut (off: full resolution always)
   float target_fps = float(kDefaultTargetFps);  ///< held while interacting
   bool show_cut = false;                ///< outline the cut's nodes, coloured by level (key L)
+  bool splat_fallback = false;          ///< splats (not a smaller target) below the coarsest cut
   bool show_help = false;               ///< the controls overlay (F1 or ?)
   bool annotations = true;              ///< outline box, axes triad, step/time over the volume
   tsp::CameraParams initial_camera;     ///< what R resets the camera to

@@ -69,6 +69,7 @@ tsp::LodStops PlayerApp::update_lod(const tsp::Camera& cam, tspgl::RenderSetting
     o.split_limit = tsp::LodOptions{}.split_limit;
   }
   o.texture_budget = std::int64_t(texture_budget_mb * (1 << 20));
+  o.fallback = splat_fallback ? tsp::LodFallback::splats : tsp::LodFallback::scale;
   lod_->set_options(o);
   lod_stats = lod_->update(cam, step, tf, settings.spacing, renderer->clip_sides());
   // When the picture got back to full quality after the last change.
@@ -78,7 +79,9 @@ tsp::LodStops PlayerApp::update_lod(const tsp::Camera& cam, tspgl::RenderSetting
     full_quality_after_s = -1;
   }
   settings.render_scale = lod_->render_scale();
-  return lod_->cut().stops();
+  // Splats are flat boxes, cheapest composited one box each (a clipped frame stays ray cast).
+  if (lod_->splatting()) settings.compositing = tspgl::Compositing::boxes;
+  return lod_->stops();
 }
 
 bool PlayerApp::full_quality() const {

@@ -192,6 +192,7 @@ void settings_section(PlayerApp& app) {
   ImGui::SameLine();
   ImGui::Checkbox("show cut (L)", &app.show_cut);
   ImGui::SliderFloat("target fps", &app.target_fps, 5.f, 120.f, "%.0f");
+  ImGui::Checkbox("splats when the coarsest cut is too slow", &app.splat_fallback);
 
   if (ImGui::TreeNode("caches and uploads")) {
     bool cache = app.cache_on;
@@ -264,9 +265,13 @@ void stats_section(PlayerApp& app) {
     std::string levels;
     for (std::size_t k = 0; k < app.lod_stats.nodes_per_level.size(); ++k)
       levels += (k ? " " : "") + std::to_string(app.lod_stats.nodes_per_level[k]);
-    ImGui::TextWrapped("LOD %s: cut %d nodes [by level %s], scale %.2f",
-                       app.refining ? "refining to full" : "holding the target",
-                       app.lod_stats.cut_size, levels.c_str(), app.lod_stats.render_scale);
+    if (app.lod_stats.splats > 0)
+      ImGui::TextWrapped("LOD holding the target with %d splats (minimum %.0f px)",
+                         app.lod_stats.splats, app.lod_stats.splat_px);
+    else
+      ImGui::TextWrapped("LOD %s: cut %d nodes [by level %s], scale %.2f",
+                         app.refining ? "refining to full" : "holding the target",
+                         app.lod_stats.cut_size, levels.c_str(), app.lod_stats.render_scale);
   }
   ImGui::Text("render %.1f ms: traversal %.1f, slicing %.1f,\n  upload %.1f, draw %.1f", r.ms,
               r.traversal_ms, r.slicing_ms, r.upload_ms, r.draw_ms);

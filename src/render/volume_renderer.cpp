@@ -106,6 +106,8 @@ std::vector<tsp::BrickKey> VolumeRenderer::bricks_to_upload(int step, const tsp:
     const tsp::Shading sh = tsp::node_shading(tree_, id, metric.class_info(id), settings.tol);
     if (sh != tsp::Shading::textured && !(e.clip == 2 && (sh == tsp::Shading::flat || clip_surface_)))
       continue;
+    if (sh == tsp::Shading::textured && e.clip != 2 && tsp::splat_stop(stops, e.octree_id))
+      continue;  // a splat: its mean colour, no brick
     for (int brick : tsp::node_bricks(tree_.octree(), e.octree_id, order, stops))
       if (const int t = tsp::representative_step(e.span, settings.span_step);
           !textures_.contains(tsp::texture_key(tree_.octree(), brick, t)))

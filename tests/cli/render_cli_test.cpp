@@ -106,6 +106,25 @@ TEST(RenderCli, LodOptionsRecordTheCutPerFrame) {
     EXPECT_TRUE(j["frames"][5]["lod"].contains(k)) << k;
   EXPECT_EQ(j["frames"][5]["lod"]["target_ms"], 30.0);
   EXPECT_EQ(j["frames"][0]["lod"]["cut_size"], 1);  // the first frame: the coarsest cut
+  EXPECT_EQ(j["lod_fallback"], "scale");
+  // --lod splat:PX: every frame the splat cut of that minimum size, no texture uploaded.
+  for (const char* px : {"0", "100000"}) {
+    const fs::path out = dir / (std::string("splat") + px);
+    auto splat = run_tspplay("render " + q(tsp) + " --tf preset:filled --steps 0:1 --size 96x64 "
+                             "--lod splat:" + px + " -o " + q(out));
+    ASSERT_EQ(splat.exit_code, 0) << splat.err;
+    j = read_json(out / "frames.json");
+    EXPECT_EQ(j["lod"], std::string("splat:") + px + ".0");
+    for (const json& f : j["frames"]) {
+      EXPECT_EQ(f["bytes_uploaded"], 0);
+      EXPECT_EQ(f["lod"]["splat_px"], std::stod(px));
+      EXPECT_EQ(f["lod"]["splats"], std::string(px) == "0" ? 8 : 1);  // every leaf, or the root
+    }
+  }
+  auto fallback = run_tspplay("render " + q(tsp) + " --tf preset:filled --steps 0:1 --size 96x64 "
+                              "--target-ms 30 --lod-fallback splats -o " + q(dir / "fallback"));
+  ASSERT_EQ(fallback.exit_code, 0) << fallback.err;
+  EXPECT_EQ(read_json(dir / "fallback" / "frames.json")["lod_fallback"], "splats");
 }
 
 TEST(RenderCli, BadInputIsAClearErrorAndWritesNothing) {
@@ -128,6 +147,9 @@ TEST(RenderCli, BadInputIsAClearErrorAndWritesNothing) {
       {"render " + q(tsp) + " --lod 1 --baseline -o " + q(out), 2, "--lod is for the TSP renderer"},
       {"render " + q(tsp) + " --orbit 400 -o " + q(out), 2, "--orbit"},
       {"render " + q(tsp) + " --focus 1,2 --lod auto -o " + q(out), 2, "--focus"},
+      {"render " + q(tsp) + " --lod splat:-1 -o " + q(out), 2, "--lod splat:-1"},
+      {"render " + q(tsp) + " --lod splat:big -o " + q(out), 2, "--lod splat:PX"},
+      {"render " + q(tsp) + " --target-ms 20 --lod-fallback smaller -o " + q(out), 2, "--lod-fallback smaller"},
   };
   for (const Case& c : cases) {
     auto r = run_tspplay(c.args);

@@ -306,6 +306,33 @@ TEST(Player, LodHoldsTheTargetWhileOrbitingAndRefinesToFullQualityWhenIdle) {
   EXPECT_LT(tsp::diff_images(lod, render_step(tsp, 0, "preset:filled")).mean, kSameFrameDeltaE);
 }
 
+// --lod-fallback splats: while orbiting at a target no software renderer reaches, the picture is
+// never drawn at a smaller render target (splats instead, when even the root is too slow); idle,
+// it refines to the same full-quality picture as with LOD off, with no splat left.
+TEST(Player, SplatFallbackKeepsFullSizeAndRefinesToFullQuality) {
+  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
+  std::string text = "tf preset:filled\ntarget-fps 240\nview 30 20\nwait-frames 2\n";
+  for (int k = 1; k <= 12; ++k) text += "view " + std::to_string(30 + 5 * k) + " 20\nwait-frames 1\n";
+  text += "stats " + (dir / "moving.json").string() + "\nview 30 20\nwait-seconds 1.5\nstats " +
+          (dir / "idle.json").string() + "\nscreenshot " + (dir / "splat.png").string() + "\nquit\n";
+  auto r = run_tspplay("play " + q(tsp) + " --size " + kSize + " --lod-fallback splats --script " +
+                       q(write_script(text)));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string moving = read_text(dir / "moving.json"), idle = read_text(dir / "idle.json");
+  EXPECT_NE(moving.find("\"splat_fallback\": true"), std::string::npos) << moving;
+  EXPECT_NE(moving.find("\"render_scale\": 1.0"), std::string::npos) << moving;
+  EXPECT_NE(idle.find("\"full_quality\": true"), std::string::npos) << idle;
+  EXPECT_NE(idle.find("\"splats\": 0"), std::string::npos) << idle;
+  EXPECT_LT(tsp::diff_images(tsp::read_png((dir / "splat.png").string()),
+                             render_step(tsp, 0, "preset:filled"))
+                .mean,
+            kSameFrameDeltaE);
+  auto bad = run_tspplay("play " + q(tsp) + " --lod-fallback smaller");
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.err.find("--lod-fallback"), std::string::npos) << bad.err;
+}
+
 // Errors are found before any window opens, so these run without a display too.
 TEST(Player, BadScriptLineIsAnErrorNamingFileAndLine) {
   fs::path tsp = make_tsp();

@@ -1,6 +1,7 @@
 // LOD levels through the renderer on OSMesa: a constant box at every level against the analytic
-// exponential and level 0 (the per-level opacity correction, in every compositing), and a
-// linear ramp across a boundary between levels without a seam.
+// exponential and level 0 (the per-level opacity correction, in every compositing), a linear
+// ramp across a boundary between levels without a seam, and splat cuts (flat nodes, no
+// textures) of a constant box against the same exponential.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,6 +12,7 @@
 #include "tsp/build/build.h"
 #include "tsp/core/color.h"
 #include "tsp/lod/lod_cut.h"
+#include "tsp/lod/splat_cut.h"
 #include "tsp/metric/compute_errors.h"
 #include "tsp/report/image_diff.h"
 #include "tsp/store/tsp_file.h"
@@ -42,6 +44,25 @@ struct LodScene {
     nodes = std::make_unique<tsp::WholeTreeMetric>(metric);
   }
   const tsp::Octree& octree() const { return file->tree().octree(); }
+  tsp::CameraParams view(double az, double el) const {
+    tsp::CameraParams p;
+    p.azimuth_deg = az;
+    p.elevation_deg = el;
+    p.width = ctx->width();
+    p.height = ctx->height();
+    return p;
+  }
+  // A splat cut's frame: every drawn node flat, nothing uploaded.
+  tsp::Image splat_frame(double min_px, double az, double el, Compositing c) {
+    const tsp::Camera cam(octree().dims(), view(az, el));
+    const tsp::SplatCut cut = tsp::splat_cut(octree(), cam, min_px);
+    RenderSettings s;
+    s.compositing = c;
+    const FrameReport r = renderer->render(0, cam, s, *nodes, cut.stops);
+    EXPECT_DOUBLE_EQ(r.class_percent[std::size_t(tsp::DrawClass::untextured)], 100.0);
+    EXPECT_EQ(r.bytes_uploaded, 0);
+    return ctx->read_pixels();
+  }
   tsp::Image frame(const tsp::LodCut& cut, double az, double el, Compositing c = Compositing::rays) {
     tsp::CameraParams p;
     p.azimuth_deg = az;
@@ -89,6 +110,26 @@ TEST(LodRender, ConstantBoxAtEveryLevelIsTheExponentialAndLevelZero) {
       const tsp::DiffStats d =
           tsp::diff_images(oblique, scene.frame(tsp::LodCut::at_level(scene.octree(), 0), 30, 20));
       EXPECT_LT(d.mean, 0.5) << "level " << k << " " << to_string(comp) << ", p99 " << d.p99;
+    }
+  }
+}
+
+TEST(LodRender, SplatsOfAConstantBoxAreTheExponential) {
+  // Each splat is its node's mean colour and opacity composited over the ray's length through
+  // its box: on a constant field exact at any cut (the root alone, a middle cut, every leaf), as
+  // rays through flat pages and as flat boxes.
+  const tsp::Rgba c{0.2f, 0.6f, 0.9f, 0.03f};
+  LodScene scene("splat_cube", {65, 65, 65}, [](int, int, int, int) { return 0.5f; },
+                 constant_tf(c));
+  const double opacity = 1 - std::pow(1 - double(c.a), 64);
+  const double want[3] = {c.r * opacity, c.g * opacity, c.b * opacity};
+  const tsp::Image level0 = scene.frame(tsp::LodCut::at_level(scene.octree(), 0), 30, 20);
+  for (double min_px : {1e9, 20.0, 0.0}) {
+    for (Compositing comp : {Compositing::boxes, Compositing::rays}) {
+      EXPECT_LT(pixel_delta_e(scene.splat_frame(min_px, 0, 0, comp), want), 1.0)
+          << "min " << min_px << " " << to_string(comp);
+      const tsp::DiffStats d = tsp::diff_images(scene.splat_frame(min_px, 30, 20, comp), level0);
+      EXPECT_LT(d.mean, 0.5) << "min " << min_px << " " << to_string(comp) << ", p99 " << d.p99;
     }
   }
 }

@@ -74,6 +74,10 @@ std::vector<int> node_bricks(const Octree& octree, int id, const ViewOrder& view
   return leaf_bricks(octree, id, view);
 }
 
+bool splat_stop(LodStops stops, int octree_id) {
+  return !stops.empty() && stops[std::size_t(octree_id)] == kSplatStop;
+}
+
 TextureKey texture_key(const Octree& octree, int brick, int t0) {
   return TextureKey{brick, t0,
                     brick < octree.brick_count() ? 0 : octree.lod_level(octree.stored_brick_node(brick))};
@@ -109,6 +113,9 @@ FramePlan plan_frame(const TspTree& tree, int step, std::span<const Emitted> emi
     Shading shading = e.clip == 1 ? Shading::none
                                   : node_shading(tree, tree.id(e.octree_id, e.time_id),
                                                  info(tree.id(e.octree_id, e.time_id)), tol);
+    // A splat (tsp/lod/splat_cut.h): its mean colour and opacity, never a texture.
+    if (shading == Shading::textured && e.clip != 2 && splat_stop(stops, e.octree_id))
+      shading = Shading::flat;
     // Across the clip surface: clipped per sample, which a flat node (drawn whole) cannot be.
     if (e.clip == 2 && (shading == Shading::flat || (clip_surface && shading == Shading::none)))
       shading = Shading::textured;
@@ -161,7 +168,9 @@ TextureKeySet reachable_textures(const TspTree& tree, const NodeErrors& errors,
   TextureKeySet keys;
   for (int t = 0; t < tree.time().steps(); ++t) {
     for (const Emitted& e : traverse(tree, t, tol, errors, kAnyView, stops)) {
-      if (node_shading(tree, tree.id(e.octree_id, e.time_id), info(tree.id(e.octree_id, e.time_id)), tol) != Shading::textured) continue;
+      if (node_shading(tree, tree.id(e.octree_id, e.time_id), info(tree.id(e.octree_id, e.time_id)), tol) != Shading::textured ||
+          splat_stop(stops, e.octree_id))
+        continue;
       for (int brick : node_bricks(tree.octree(), e.octree_id, kAnyView, stops))
         keys.insert(texture_key(tree.octree(), brick, representative_step(e.span, span_step)));
     }

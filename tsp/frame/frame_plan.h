@@ -69,6 +69,8 @@ std::vector<int> leaf_bricks(const Octree& octree, int id, const ViewOrder& view
 /// The stored bricks that texture emitted node id: its level brick when it is an internal node
 /// marked in stops (an LOD cut node), otherwise its leaf bricks back-to-front.
 std::vector<int> node_bricks(const Octree& octree, int id, const ViewOrder& view, LodStops stops);
+/// True when stops mark octree node octree_id a splat (kSplatStop): drawn flat, never textured.
+bool splat_stop(LodStops stops, int octree_id);
 /// The texture key of stored brick `brick` at step t0 (level: the brick's LOD level).
 TextureKey texture_key(const Octree& octree, int brick, int t0);
 

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <queue>
 
+#include "tsp/core/error.h"
+
 namespace tsp {
 
 namespace {
@@ -16,6 +18,11 @@ constexpr double kSwapGain = 2.0;
 // The render scale drops when the coarsest cut takes longer than kScaleDownAt × target, and
 // rises when a frame takes less than kScaleUpAt × target; never below kMinScale.
 constexpr double kScaleDownAt = 1.1, kScaleUpAt = 0.8, kMinScale = 0.25;
+// The splat fallback halves the minimum splat size at most this many times from the root's
+// extent in one update (a finer cut than the leaves' is never made).
+constexpr int kMaxSplatHalvings = 16;
+// After a splat frame over the band the cut stays coarser this many frames before it may refine.
+constexpr int kSplatHoldFrames = 8;
 // Frames predicted within this share of the target leave the cut as it is; a merge that would
 // fall below the band waits until a frame is kFarOver × the target.
 constexpr double kDeadBand = 0.1, kFarOver = 1.25;
@@ -89,6 +96,61 @@ void LodController::evaluate(const Camera& camera, int t, const TransferFunction
                                   ? 0.0  // clipped away: no level shows anything of it
                                   : lod_error(tree_, id, t, p, slopes, attention * visibility);
   }
+}
+
+const char* to_string(LodFallback f) { return f == LodFallback::splats ? "splats" : "scale"; }
+
+LodFallback parse_lod_fallback(const std::string& text, const std::string& option) {
+  if (text == "scale") return LodFallback::scale;
+  if (text == "splats") return LodFallback::splats;
+  throw UsageError(option + " " + text + ": expected scale or splats");
+}
+
+void LodController::adapt_splats(const Camera& camera, ClipSides clip) {
+  const double target = options_.target_ms;
+  const Octree& o = tree_.octree();
+  if (!splatting_) {
+    // The coarsest textured cut was drawn and missed the target: splats from now on.
+    if (!last_coarsest_ || splat_frame_ || !(last_ms_ > kScaleDownAt * target)) return;
+    splatting_ = true;
+    splat_ms_ = splat_area_ = 0;
+    splat_halvings_ = splat_hold_ = 0;
+  } else if (coarsest_cost_ > 0) {
+    // Back to the textured cut once its coarsest cut, as measured last and scaled by its cost
+    // in this view, fits well under the target.
+    const double coarsest = coarsest_ms_ * cost_[0] / coarsest_cost_;
+    if (coarsest < kScaleUpAt * target) {
+      splatting_ = false;
+      last_ms_ = coarsest;  // what the next (textured) frame is expected to take
+      return;
+    }
+  }
+  // The minimum splat size halves (finer) or doubles (coarser) from the root's extent, one step
+  // a frame: coarser when the last splat frame was over the band (and then held there a while),
+  // finer when it was under the band and the finer cut, its time in proportion to its splats'
+  // screen area, is predicted to fit. The root alone until a splat frame is measured.
+  const double root = std::max(projected_extent(o, camera, 0), 1.0);
+  const auto cut_at = [&](int halvings) {
+    return splat_cut(o, camera, std::ldexp(root, -halvings), clip);
+  };
+  if (splat_ms_ > (1 + kDeadBand) * target) {
+    // Down to the next coarser cut that differs from this one.
+    const int size = cut_at(splat_halvings_).size;
+    while (splat_halvings_ > 0 && cut_at(splat_halvings_).size == size) --splat_halvings_;
+    splat_hold_ = kSplatHoldFrames;
+  } else if (splat_hold_ > 0) {
+    --splat_hold_;
+  } else if (splat_ms_ > 0 && splat_area_ > 0 && splat_ms_ < (1 - kDeadBand) * target) {
+    const int size = cut_at(splat_halvings_).size;
+    for (int k = splat_halvings_ + 1; k <= kMaxSplatHalvings; ++k) {
+      const SplatCut c = cut_at(k);
+      if (c.size == size) continue;
+      if (splat_ms_ * c.pixel_area / splat_area_ <= target) splat_halvings_ = k;
+      break;
+    }
+  }
+  splat_px_ = std::ldexp(root, -splat_halvings_);
+  splat_ = cut_at(splat_halvings_);
 }
 
 void LodController::adapt_scale(bool coarsest) {
@@ -177,10 +239,17 @@ LodFrameStats LodController::update(const Camera& camera, int t, const TransferF
     if (predict(after) < low && predict(cost) < kFarOver * target) break;
     do_merge(id);
   }
-  // At the coarsest cut and still over: a smaller render target; no split until it is back at 1.
-  adapt_scale(last_coarsest_);
+  // At the coarsest cut and still over: a smaller render target, or splats; no split until the
+  // frame is back at full size and textured.
+  if (timed && options_.fallback == LodFallback::splats) {
+    scale_ = 1;
+    adapt_splats(camera, clip);
+  } else {
+    splatting_ = false;
+    adapt_scale(last_coarsest_);
+  }
   // Under budget: split the most useful nodes, swapping one merge for a much better split.
-  while (scale_ >= 1 && !splits.empty() && splits_done < options_.split_limit) {
+  while (scale_ >= 1 && !splatting_ && !splits.empty() && splits_done < options_.split_limit) {
     const auto [e, id] = splits.top();
     if (!cut_.can_split(id)) {
       splits.pop();
@@ -220,6 +289,11 @@ LodFrameStats LodController::update(const Camera& camera, int t, const TransferF
   st.predicted_ms = model_.ready() ? model_.predict(cost) : 0;
   st.render_scale = scale_;
   scale_of_frame_ = scale_;
+  splat_frame_ = splatting_;
+  if (splatting_) {
+    st.splat_px = splat_px_;
+    st.splats = splat_.size;
+  }
   for (int id : cut_.nodes())
     if (cut_.can_split(id)) st.max_error = std::max(st.max_error, error_[std::size_t(id)]);
   return st;
@@ -248,6 +322,15 @@ std::vector<int> LodController::likely_split_bricks(int n) const {
 }
 
 void LodController::measured(double ms) {
+  if (splat_frame_) {  // a splat frame: the splat cut's own measure, not the textured cut's
+    splat_ms_ = ms;
+    splat_area_ = splat_.pixel_area;
+    return;
+  }
+  if (last_coarsest_ && scale_of_frame_ >= 1) {
+    coarsest_ms_ = ms;
+    coarsest_cost_ = last_cost_;
+  }
   last_ms_ = ms;
   scale_of_last_ = scale_of_frame_;
   // The model is fitted on full-size frames only (a smaller target changes every pixel's cost).

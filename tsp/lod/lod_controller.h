@@ -7,17 +7,30 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "tsp/frame/camera.h"
 #include "tsp/lod/cost_model.h"
 #include "tsp/lod/lod_cut.h"
+#include "tsp/lod/splat_cut.h"
 #include "tsp/tree/traversal.h"
 #include "tsp/lod/lod_error.h"
 #include "tsp/metric/transfer_function.h"
 #include "tsp/tree/tsp_tree.h"
 
 namespace tsp {
+
+/// What the controller does when even the coarsest cut misses the target.
+enum class LodFallback {
+  scale,   ///< a smaller render target (down to a quarter per axis), upscaled
+  splats,  ///< a splat cut (tsp/lod/splat_cut.h) at full size, its minimum splat size adapted
+};
+
+/// "scale" or "splats". Never throws.
+const char* to_string(LodFallback f);
+/// Parses "scale" or "splats"; throws UsageError naming option otherwise.
+LodFallback parse_lod_fallback(const std::string& text, const std::string& option);
 
 /// What bounds the controller.
 struct LodOptions {
@@ -31,6 +44,8 @@ struct LodOptions {
   /// Centre of attention (voxels): when set, errors are weighted by distance from it and by
   /// distance from the image centre (paper 002); unset, every pixel counts alike.
   std::optional<std::array<double, 3>> focus;
+  /// When even the coarsest cut misses the target (timed only).
+  LodFallback fallback = LodFallback::scale;
 };
 
 /// What one update did, for frames.json.
@@ -44,6 +59,9 @@ struct LodFrameStats {
   double max_error = 0;              ///< the largest error left among splittable cut nodes
   /// Render-target share per axis for the frame (1 unless even the root misses the target).
   double render_scale = 1;
+  /// Splat fallback: the minimum splat size in pixels and the splats drawn (0: textured cut).
+  double splat_px = 0;
+  int splats = 0;
 };
 
 /// A cut's size, nodes per level and texture bytes (the rest zero: no update made it). Never
@@ -71,6 +89,10 @@ class LodController {
   void set_options(LodOptions o) { options_ = std::move(o); }
   /// The cut.
   const LodCut& cut() const { return cut_; }
+  /// What the next frame draws: the splat cut's stops while splatting, else the cut's.
+  LodStops stops() const { return splatting_ ? LodStops(splat_.stops) : cut_.stops(); }
+  /// True while the splat fallback is in use.
+  bool splatting() const { return splatting_; }
   /// The cost of node o in the last update: pixels × samples over its leaf bricks that are not
   /// culled or transparent (a small share for those), divided by its sample step multiplier.
   double node_cost(int o) const { return cost_[std::size_t(o)]; }
@@ -92,7 +114,17 @@ class LodController {
   double scale_of_last_ = 1;  // the scale the last measured frame was drawn at
   double scale_of_frame_ = 1; // the scale the last update chose
   bool last_coarsest_ = false;  // the last update left the root alone
+  // The splat fallback: on while the coarsest textured cut would miss the target.
+  bool splatting_ = false;
+  bool splat_frame_ = false;     // the last update chose splats
+  SplatCut splat_;               // the last update's splat cut
+  double splat_px_ = 0;
+  int splat_halvings_ = 0;       // minimum splat size = the root's extent / 2^halvings
+  int splat_hold_ = 0;           // frames left before the splat cut may refine again
+  double splat_ms_ = 0, splat_area_ = 0;  // the last measured splat frame and its Σ area
+  double coarsest_ms_ = 0, coarsest_cost_ = 0;  // the last measured coarsest textured frame
   void adapt_scale(bool coarsest);
+  void adapt_splats(const Camera& camera, ClipSides clip);
   void evaluate(const Camera& camera, int t, const TransferFunction& tf,
                 const TfColourSlopes& slopes, double spacing, ClipSides clip);
 };

@@ -66,9 +66,15 @@ struct ChildOrder {
 /// f = view.farthest_octant(octree, id), absent ones skipped. Empty for a leaf.
 ChildOrder back_to_front_children(const Octree& octree, int id, const ViewOrder& view);
 
-/// Per octree node, 1 where the spatial descent stops (the nodes of an LOD cut, tsp/lod); empty:
-/// stop at the leaves only.
+/// Per octree node, non-zero where the spatial descent stops (the nodes of an LOD cut, tsp/lod):
+/// kCutStop draws the node's brick, kSplatStop draws it as one splat of its mean colour and
+/// opacity (tsp/lod/splat_cut.h); empty: stop at the leaves only.
 using LodStops = std::span<const std::uint8_t>;
+/// LodStops value: the node is in the cut and draws its own (level) brick.
+inline constexpr std::uint8_t kCutStop = 1;
+/// LodStops value: the node is in the cut and is drawn flat, its mean colour and opacity
+/// (a splat), never textured.
+inline constexpr std::uint8_t kSplatStop = 2;
 /// Per octree node, where it lies with respect to a clip solid (tsp/clip's ClipSide: 0 kept,
 /// 1 removed, 2 across); empty: no clipping.
 using ClipSides = std::span<const std::uint8_t>;

@@ -265,6 +265,43 @@ TEST(FramePlan, ReachableTexturesAreTheUnionOfEveryStepsTextures) {
   }
 }
 
+// Splat stops (tsp/lod/splat_cut.h): every node the traversal would texture at a splat stop is
+// drawn flat instead, and no texture is requested or reachable; the other nodes keep their class.
+TEST(FramePlan, SplatStopsAreDrawnFlatWithoutTextures) {
+  const TspTree tree({40, 33, 17}, 9, 8);
+  std::mt19937 rng(9);
+  const MetricResult m = tsptest::random_metric(tree, rng, 0.2f);
+  const Tolerances tol{0, 0.5};  // flat only where the spatial error is exactly 0
+  const Octree& o = tree.octree();
+  // The root's children are splats (a cut one level down).
+  std::vector<std::uint8_t> stops(std::size_t(o.size()), 0);
+  for (int c : o.node(0).children)
+    if (c >= 0) stops[std::size_t(c)] = kSplatStop;
+  std::vector<std::uint8_t> cut = stops;
+  for (std::uint8_t& s : cut) s = s ? kCutStop : 0;
+  int textured_nodes = 0;
+  for (int t = 0; t < tree.time().steps(); ++t) {
+    TextureCache cache(kUnlimited, CachePolicy::on), cache_cut(kUnlimited, CachePolicy::on);
+    const FramePlan splats = plan_frame(tree, t, traverse(tree, t, tol, m.errors, kView, stops),
+                                        node_info(m), tol, kView, cache, 0, SpanStep::middle, stops);
+    const FramePlan textured = plan_frame(tree, t, traverse(tree, t, tol, m.errors, kView, cut),
+                                          node_info(m), tol, kView, cache_cut, 0, SpanStep::middle, cut);
+    ASSERT_EQ(splats.nodes.size(), textured.nodes.size());
+    EXPECT_TRUE(splats.textures.empty());
+    textured_nodes += int(textured.textures.size());
+
+    for (std::size_t k = 0; k < splats.nodes.size(); ++k) {
+      const DrawClass want = textured.nodes[k].cls == DrawClass::new_texture ||
+                                     textured.nodes[k].cls == DrawClass::reused_texture
+                                 ? DrawClass::untextured
+                                 : textured.nodes[k].cls;
+      EXPECT_EQ(splats.nodes[k].cls, want) << "step " << t << " node " << k;
+    }
+  }
+  EXPECT_GT(textured_nodes, 0);  // the same cut, not splats, textures some nodes
+  EXPECT_TRUE(reachable_textures(tree, m, tol, SpanStep::middle, stops).empty());
+}
+
 // The upload budget is an input of the plan: the first upload always goes ahead, the textures
 // over the budget are deferred (never entered in the cache), and later frames complete them.
 TEST(FramePlan, UploadBudgetDefersTexturesWithoutEnteringTheCache) {

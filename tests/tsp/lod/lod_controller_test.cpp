@@ -199,5 +199,46 @@ TEST(LodController, ShrinksTheRenderTargetWhenEvenTheRootIsTooSlow) {
   EXPECT_EQ(c.render_scale(), 1.0);
 }
 
+TEST(LodController, FallsBackToSplatsWhenEvenTheRootIsTooSlow) {
+  const Dims d{129, 129, 129};
+  const TspTree tree = make_tree(d, 16);
+  const TransferFunction tf = ramp_tf(0.05f);
+  LodOptions opt;
+  opt.target_ms = 10;
+  opt.fallback = LodFallback::splats;
+  LodController c(tree, opt);
+  // The textured root takes 40 ms; a splat frame 2 ms plus 0.5 ms per splat.
+  std::vector<double> times;
+  int most_splats = 0;
+  for (int k = 0; k < 40; ++k) {
+    const LodFrameStats st = c.update(camera(d, 30), 0, tf, 0.5);
+    EXPECT_EQ(st.render_scale, 1.0);  // splats instead of a smaller target
+    EXPECT_EQ(c.cut().size(), 1);
+    const double ms = c.splatting() ? 2 + 0.5 * st.splats : 40.0;
+    if (c.splatting()) {
+      EXPECT_EQ(st.splats, [&] {
+        int n = 0;
+        for (std::uint8_t s : c.stops()) n += s == kSplatStop;
+        return n;
+      }());
+      most_splats = std::max(most_splats, st.splats);
+    }
+    c.measured(ms);
+    times.push_back(ms);
+  }
+  EXPECT_TRUE(c.splatting());
+  EXPECT_GT(most_splats, 1);  // refined past the root's single splat while it fitted
+  for (std::size_t k = 10; k < times.size(); ++k) EXPECT_LE(times[k], 10 * 1.1) << "frame " << k;
+  // Once the coarsest textured cut fits again, the frames are textured and the cut refines.
+  c.set_target(200);
+  for (int k = 0; k < 10; ++k) {
+    c.update(camera(d, 30), 0, tf, 0.5);
+    c.measured(c.splatting() ? 5 : 40.0 + 0.5 * c.cut().size());
+  }
+  EXPECT_FALSE(c.splatting());
+  EXPECT_GT(c.cut().size(), 1);
+  for (std::uint8_t s : c.stops()) EXPECT_NE(s, kSplatStop);
+}
+
 }  // namespace
 }  // namespace tsp

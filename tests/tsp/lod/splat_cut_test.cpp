@@ -1,0 +1,81 @@
+// The splat cut against its definition, checked node by node: it covers the volume exactly once,
+// a node is split exactly when it has children and projects to at least twice the minimum size,
+// its area is the sum of its nodes' screen rectangles, and nodes a probe removed are not split.
+#include "tsp/lod/splat_cut.h"
+
+#include <gtest/gtest.h>
+
+#include "tsp/lod/lod_error.h"
+
+namespace tsp {
+namespace {
+
+Camera camera(Dims d, int width = 640, int height = 480) {
+  CameraParams p;
+  p.width = width;
+  p.height = height;
+  p.azimuth_deg = 30;
+  p.elevation_deg = 20;
+  return Camera(d, p);
+}
+
+// Per leaf brick, how many of itself and its ancestors are in the cut.
+std::vector<int> coverage(const Octree& o, const std::vector<std::uint8_t>& stops) {
+  std::vector<int> n(std::size_t(o.brick_count()), 0);
+  for (int id = 0; id < o.size(); ++id) {
+    if (!o.node(id).is_leaf()) continue;
+    for (int a = id; a >= 0; a = o.node(a).parent) n[std::size_t(o.node(id).brick)] += stops[std::size_t(a)] != 0;
+  }
+  return n;
+}
+
+TEST(SplatCut, MatchesItsDefinitionAtEveryMinimumSize) {
+  const Octree o({129, 129, 129}, 16);
+  const Camera cam = camera(o.dims());
+  int previous = 0;
+  for (double min_px : {1e9, 400.0, 200.0, 100.0, 50.0, 20.0, 0.0}) {
+    const SplatCut cut = splat_cut(o, cam, min_px);
+    ASSERT_EQ(int(cut.stops.size()), o.size());
+    for (int k : coverage(o, cut.stops)) EXPECT_EQ(k, 1) << "min " << min_px;
+    double area = 0;
+    int size = 0;
+    for (int id = 0; id < o.size(); ++id) {
+      const double extent = projected_extent(o, cam, id);
+      bool ancestor_in_cut = false;
+      for (int a = o.node(id).parent; a >= 0; a = o.node(a).parent) ancestor_in_cut |= cut.stops[std::size_t(a)] != 0;
+      if (ancestor_in_cut) {
+        EXPECT_EQ(cut.stops[std::size_t(id)], 0);
+        continue;
+      }
+      // Reached: in the cut unless split, split exactly when it has children and is large.
+      const bool split = !o.node(id).is_leaf() && (min_px <= 0 || extent >= 2 * min_px);
+      EXPECT_EQ(cut.stops[std::size_t(id)], split ? 0 : kSplatStop) << "node " << id;
+      if (!split) {
+        ++size;
+        area += project_box(cam, geometric_box(o.node(id).box, o.dims())).pixel_area;
+      }
+    }
+    EXPECT_EQ(cut.size, size);
+    EXPECT_NEAR(cut.pixel_area, area, 1e-6 * area);
+    EXPECT_GE(cut.size, previous);  // a smaller minimum never makes fewer splats
+    previous = cut.size;
+  }
+  EXPECT_EQ(splat_cut(o, cam, 1e9).size, 1);
+  EXPECT_EQ(splat_cut(o, cam, 0).size, o.brick_count());
+}
+
+TEST(SplatCut, NodesRemovedByAProbeAreNotSplit) {
+  const Octree o({65, 65, 65}, 16);
+  std::vector<std::uint8_t> clip(std::size_t(o.size()), 0);
+  const int removed = o.node(0).children[0];
+  clip[std::size_t(removed)] = 1;  // removed (ClipSide 1): its whole subtree
+  const SplatCut cut = splat_cut(o, camera(o.dims()), 0, clip);
+  EXPECT_EQ(cut.stops[std::size_t(removed)], kSplatStop);
+  for (int k : coverage(o, cut.stops)) EXPECT_EQ(k, 1);
+  // The removed node costs no area.
+  const SplatCut open = splat_cut(o, camera(o.dims()), 0);
+  EXPECT_LT(cut.pixel_area, open.pixel_area);
+}
+
+}  // namespace
+}  // namespace tsp

@@ -1,0 +1,34 @@
+// The splat cut (issue 14 item 4; TetSplat, paper 001): the last fallback when even the coarsest
+// textured cut misses the frame budget. Every node of the cut is drawn as one splat — its mean
+// colour and opacity over its box, composited exactly by the ray's length through it (the flat
+// node's drawing) — and never textured. TetSplat's minimum splat size is the knob: a node is
+// split only while its children would still project to at least min_px pixels across, so a
+// larger minimum means fewer, larger splats and a faster frame.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "tsp/frame/camera.h"
+#include "tsp/tree/octree.h"
+#include "tsp/tree/traversal.h"
+
+namespace tsp {
+
+/// One splat cut: LodStops with kSplatStop on its nodes, and what it costs.
+struct SplatCut {
+  std::vector<std::uint8_t> stops;  ///< one entry per octree node (kSplatStop on the cut)
+  int size = 0;                     ///< nodes in the cut
+  double pixel_area = 0;            ///< Σ of the cut nodes' screen rectangles (culled: 0)
+};
+
+/// The projected extent of octree node id in pixels: the larger side of its screen rectangle.
+/// Never throws.
+double projected_extent(const Octree& octree, const Camera& camera, int id);
+
+/// The splat cut for a minimum splat size of min_px pixels: from the root down, a node is split
+/// when it has children and its projected extent is at least 2·min_px (its children then
+/// project to about min_px or more); nodes clip marks removed (ClipSides 1) are never split.
+/// min_px ≤ 0: every leaf. Covers the volume exactly once. Never throws.
+SplatCut splat_cut(const Octree& octree, const Camera& camera, double min_px, ClipSides clip = {});
+
+}  // namespace tsp
