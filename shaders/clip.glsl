@@ -6,7 +6,8 @@
 // clip_surface the ray stops, opaque, where it first meets that surface inside the data: coloured
 // by surface_tf at the value there and shaded by the surface normal (TetSplat's view).
 // TSP_CLIP (defined before this file) is 0 in the caster without probes: clip_on() is then the
-// constant false and all of this is compiled away.
+// constant false and all of this is compiled away; 2 in the caster for an intersection without
+// a surface, which only cuts each ray to kept_interval() once (clip_on() false there too).
 const int kMaxProbes = 8;
 const float kFar = 1e30;
 uniform int clip_count;                // 0: no clipping
@@ -20,7 +21,7 @@ uniform int clip_surface;              // 1: draw the surface
 uniform sampler1D surface_tf;          // its colours (not premultiplied)
 uniform vec2 surface_map;              // tf coordinate = normalised scalar · x + y
 
-bool clip_on() { return TSP_CLIP != 0 && clip_count > 0; }
+bool clip_on() { return TSP_CLIP == 1 && clip_count > 0; }
 
 // The ray's kept intervals, sorted, disjoint: [iv_s[k], iv_e[k]] for k < iv_n, with the probe
 // whose surface each end lies on (−1: none, the interval runs on).
@@ -116,6 +117,18 @@ void clip_intervals(vec3 entry, vec3 ray, float len) {
     }
     iv_push(s, a.y, ps, 0);
   }
+}
+
+// The intersection's kept interval of the ray p(t) = entry + ray·t (sample coordinates): the
+// largest start and the smallest end over the probes (empty when start > end). No arrays.
+vec2 kept_interval(vec3 entry, vec3 ray) {
+  vec3 q0 = grid_origin + grid_spacing * entry, qd = grid_spacing * ray;
+  vec2 kept = vec2(-kFar, kFar);
+  for (int i = 0; i < clip_count; ++i) {
+    vec2 v = probe_interval(i, q0, qd);
+    kept = vec2(max(kept.x, v.x), min(kept.y, v.y));
+  }
+  return kept;
 }
 
 // Probe i's outward unit normal at physical point q.

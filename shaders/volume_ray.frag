@@ -65,6 +65,20 @@ void main() {
   float len = (r.depth_exit - r.depth_entry) / r.cos_theta;
   if (len <= 0.0) discard;
   vec3 entry = exit_point - r.ray * len;
+#if TSP_CLIP == 2
+  // Pure clipping by an intersection (the common case: one plane, a box, a sphere) keeps one
+  // interval of the ray: the ray is cut to it here and walks it as an unclipped ray. This
+  // variant has no other clip code: llvmpipe runs every branch of a shader under a mask, so
+  // the general code would cost every sample (docs/results.md).
+  {
+    vec2 kept = kept_interval(entry, r.ray);
+    float s = max(kept.x, 0.0), e = min(kept.y, len);
+    if (s >= e) discard;
+    entry += r.ray * s;
+    r.depth_entry += s * r.cos_theta;
+    len = e - s;
+  }
+#endif
   // 3-D DDA over the brick grid (Amanatides & Woo): t_max is where the ray leaves the current
   // brick through each axis' face, t_delta a whole brick's worth of t along each axis. Empty
   // bricks carry the Chebyshev radius of the empty cube around them: the ray leaps out of it.

@@ -129,6 +129,8 @@ class SliceCompositor {
   const GlApi& gl_;
   Program textured_, flat_, box_textured_, box_flat_, rays_plain_;
   std::optional<Program> rays_clip_;  ///< the caster with the clip code (made on first use)
+  /// The caster for an intersection without a surface: each ray cut to its one kept interval.
+  std::optional<Program> rays_cut_;
   const Program* rays_ = &rays_plain_;  ///< the caster in use
   void set_units(const Program& p);
   bool stencil_ = false;
