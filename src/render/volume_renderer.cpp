@@ -302,7 +302,13 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
       drawn.hi[a] = std::max(drawn.hi[a], b.hi[a]);
     }
   }
-  const bool nothing_drawn = drawn.lo[0] > drawn.hi[0];
+  // And through the clip solid's bounds there (the bricks across its surface stick out of it) —
+  // without a surface to draw: the caster finds the surface where a ray enters the solid after
+  // its start, which a ray starting on it would miss.
+  if (!clip_sides_.empty() && !clip_surface_ && drawn.lo[0] <= drawn.hi[0])
+    drawn = clip_.bound(drawn);
+  const bool nothing_drawn =
+      drawn.lo[0] > drawn.hi[0] || drawn.lo[1] > drawn.hi[1] || drawn.lo[2] > drawn.hi[2];
   if (r.dense) {
     // Every leaf brick textured at full resolution from one step: the whole volume as one page.
     dense_.update(dense_keys_);

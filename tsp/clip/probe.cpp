@@ -309,4 +309,106 @@ std::vector<std::uint8_t> ClipRegion::classify_nodes(const Octree& octree, doubl
   return sides;
 }
 
+namespace {
+constexpr double kHuge = 1e300;
+Aabb empty_box() { return Aabb{{kHuge, kHuge, kHuge}, {-kHuge, -kHuge, -kHuge}}; }
+void grow(Aabb& b, const std::array<double, 3>& p) {
+  for (int a = 0; a < 3; ++a) {
+    b.lo[a] = std::min(b.lo[a], p[a]);
+    b.hi[a] = std::max(b.hi[a], p[a]);
+  }
+}
+Aabb intersect(const Aabb& x, const Aabb& y) {
+  Aabb r;
+  for (int a = 0; a < 3; ++a) {
+    r.lo[a] = std::max(x.lo[a], y.lo[a]);
+    r.hi[a] = std::min(x.hi[a], y.hi[a]);
+  }
+  return r;
+}
+bool is_empty(const Aabb& b) { return b.lo[0] > b.hi[0] || b.lo[1] > b.hi[1] || b.lo[2] > b.hi[2]; }
+}  // namespace
+
+Aabb ClipRegion::probe_bound(int i, const std::array<double, 3>& lo,
+                             const std::array<double, 3>& hi) const {
+  const Probe& pr = probes_[std::size_t(i)];
+  Aabb b = empty_box();
+  switch (pr.kind) {
+    case Probe::Kind::plane: {
+      // The kept part of the box is a convex polytope: its vertices are the kept corners and the
+      // crossings of the box's 12 edges with the plane.
+      double f[8];
+      for (int c = 0; c < 8; ++c) {
+        const auto p = corner(lo, hi, c);
+        f[c] = pr.centre[0] * p[0] + pr.centre[1] * p[1] + pr.centre[2] * p[2] - pr.radius;
+        if (f[c] <= 0) grow(b, p);
+      }
+      for (int c = 0; c < 8; ++c)
+        for (int bit = 1; bit < 8; bit <<= 1) {
+          const int e = c | bit;
+          if (e == c || (f[c] <= 0) == (f[e] <= 0)) continue;
+          const auto p = corner(lo, hi, c), q = corner(lo, hi, e);
+          const double s = f[c] / (f[c] - f[e]);
+          grow(b, {p[0] + s * (q[0] - p[0]), p[1] + s * (q[1] - p[1]), p[2] + s * (q[2] - p[2])});
+        }
+      return b;
+    }
+    case Probe::Kind::sphere:
+      for (int a = 0; a < 3; ++a) {
+        b.lo[a] = pr.centre[a] - pr.radius;
+        b.hi[a] = pr.centre[a] + pr.radius;
+      }
+      break;
+    case Probe::Kind::box: {
+      const auto& r = rotations_[std::size_t(i)];
+      for (int c = 0; c < 8; ++c) {
+        const std::array<double, 3> l{c & 1 ? pr.size[0] : -pr.size[0],
+                                      c & 2 ? pr.size[1] : -pr.size[1],
+                                      c & 4 ? pr.size[2] : -pr.size[2]};
+        grow(b, {r[0] * l[0] + r[3] * l[1] + r[6] * l[2] + pr.centre[0],
+                 r[1] * l[0] + r[4] * l[1] + r[7] * l[2] + pr.centre[1],
+                 r[2] * l[0] + r[5] * l[1] + r[8] * l[2] + pr.centre[2]});
+      }
+      break;
+    }
+  }
+  return intersect(b, Aabb{lo, hi});
+}
+
+Aabb ClipRegion::bound(const Aabb& domain) const {
+  if (probes_.empty()) return domain;
+  for (int a = 0; a < 3; ++a)
+    if (!(spacing_[a] != 0) || !std::isfinite(spacing_[a])) return domain;
+  // In physical coordinates (each axis ordered, whatever the spacing's sign), then back.
+  std::array<double, 3> lo{}, hi{};
+  for (int a = 0; a < 3; ++a) {
+    const double x = origin_[a] + spacing_[a] * domain.lo[a], y = origin_[a] + spacing_[a] * domain.hi[a];
+    lo[a] = std::min(x, y);
+    hi[a] = std::max(x, y);
+  }
+  Aabb b = op_ == ProbeOp::unite ? empty_box() : Aabb{lo, hi};
+  const int n = op_ == ProbeOp::subtract ? 1 : int(probes_.size());  // the first, minus others
+  for (int i = 0; i < n; ++i) {
+    const Aabb p = probe_bound(i, lo, hi);
+    if (op_ == ProbeOp::unite) {
+      if (!is_empty(p)) {
+        grow(b, p.lo);
+        grow(b, p.hi);
+      }
+    } else {
+      b = intersect(b, p);
+    }
+  }
+  if (is_empty(b)) return empty_box();
+  Aabb out;
+  for (int a = 0; a < 3; ++a) {
+    const double x = (b.lo[a] - origin_[a]) / spacing_[a], y = (b.hi[a] - origin_[a]) / spacing_[a];
+    // A hair wider: rounding must not cut a kept sample off.
+    const double hair = 1e-9 * (1 + std::fabs(domain.hi[a] - domain.lo[a]));
+    out.lo[a] = std::min(x, y) - hair;
+    out.hi[a] = std::max(x, y) + hair;
+  }
+  return intersect(out, domain);
+}
+
 }  // namespace tsp

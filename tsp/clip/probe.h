@@ -74,6 +74,11 @@ class ClipRegion {
   /// renderer uses one voxel, so the surface passes through textured bricks only, never along a
   /// face between a kept and a removed one. Empty when not active.
   std::vector<std::uint8_t> classify_nodes(const Octree& octree, double margin = 0) const;
+  /// A box (sample coordinates) holding every kept point of the sample-coordinate box domain —
+  /// exact for planes, spheres and boxes alone, conservative for their combinations — or an
+  /// empty one (lo > hi) when nothing of domain is kept; domain itself when not active. Never
+  /// throws.
+  Aabb bound(const Aabb& domain) const;
   /// The probes, the op, and the grid's geometry.
   const std::vector<Probe>& probes() const { return probes_; }
   ProbeOp op() const { return op_; }
@@ -93,6 +98,7 @@ class ClipRegion {
   std::vector<std::array<double, 9>> rotations_;
   double probe_distance(int i, const std::array<double, 3>& p) const;
   ClipSide probe_side(int i, const std::array<double, 3>& lo, const std::array<double, 3>& hi) const;
+  Aabb probe_bound(int i, const std::array<double, 3>& lo, const std::array<double, 3>& hi) const;
 };
 
 }  // namespace tsp

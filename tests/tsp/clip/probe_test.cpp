@@ -110,5 +110,58 @@ TEST(Probe, BoxClassificationAgreesWithSamplingEverywhere) {
     }
 }
 
+// The solid's bound against sampling: every kept sample of the domain lies inside it, and for a
+// single probe it is tight (kept samples within two grid steps of each of its faces); an
+// axis-aligned plane bounds exactly its half, and a solid missing the domain bounds nothing.
+TEST(Probe, BoundHoldsEveryKeptSampleAndIsTightForOneProbe) {
+  const Aabb domain{{0, 0, 0}, {40, 30, 20}};
+  const std::array<double, 3> origin{-3, 2, 5}, spacing{0.5, 2, 1.5};
+  const std::vector<std::pair<std::vector<std::string>, ProbeOp>> cases = {
+      {{"plane:1,0.4,-0.3,2"}, ProbeOp::intersect},
+      {{"sphere:5,30,20,9"}, ProbeOp::intersect},
+      {{"box:6,40,18,6,10,4,20,35,10"}, ProbeOp::intersect},
+      {{"plane:1,0,0,4", "sphere:5,30,20,12"}, ProbeOp::intersect},
+      {{"sphere:0,10,10,5", "sphere:12,50,30,6"}, ProbeOp::unite},
+      {{"box:6,30,18,10,20,8", "sphere:6,30,18,5"}, ProbeOp::subtract},
+  };
+  for (const auto& [texts, op] : cases) {
+    std::vector<Probe> probes;
+    for (const std::string& t : texts) probes.push_back(parse_probe(t));
+    const ClipRegion clip(probes, op, origin, spacing);
+    const Aabb b = clip.bound(domain);
+    Aabb seen{{1e300, 1e300, 1e300}, {-1e300, -1e300, -1e300}};
+    const double step = 0.25;
+    for (double x = domain.lo[0]; x <= domain.hi[0]; x += step)
+      for (double y = domain.lo[1]; y <= domain.hi[1]; y += step)
+        for (double z = domain.lo[2]; z <= domain.hi[2]; z += step) {
+          if (!clip.kept({x, y, z})) continue;
+          const std::array<double, 3> q{x, y, z};
+          for (int a = 0; a < 3; ++a) {
+            ASSERT_GE(q[a], b.lo[a]) << texts[0] << " axis " << a;
+            ASSERT_LE(q[a], b.hi[a]) << texts[0] << " axis " << a;
+            seen.lo[a] = std::min(seen.lo[a], q[a]);
+            seen.hi[a] = std::max(seen.hi[a], q[a]);
+          }
+        }
+    if (texts.size() == 1)
+      for (int a = 0; a < 3; ++a) {
+        EXPECT_LT(seen.lo[a] - b.lo[a], 2 * step) << texts[0] << " axis " << a;
+        EXPECT_LT(b.hi[a] - seen.hi[a], 2 * step) << texts[0] << " axis " << a;
+      }
+  }
+  // x ≤ 7 in physical units: sample x ≤ (7 + 3) / 0.5 = 20, the other axes whole.
+  const Aabb half = ClipRegion({parse_probe("plane:1,0,0,7")}, ProbeOp::intersect, origin, spacing)
+                        .bound(domain);
+  EXPECT_NEAR(half.hi[0], 20, 1e-6);
+  for (int a = 0; a < 3; ++a) EXPECT_NEAR(half.lo[a], 0, 1e-6);
+  EXPECT_NEAR(half.hi[1], 30, 1e-6);
+  EXPECT_NEAR(half.hi[2], 20, 1e-6);
+  const Aabb none = ClipRegion({parse_probe("sphere:500,500,500,1")}, ProbeOp::intersect, origin,
+                               spacing)
+                        .bound(domain);
+  EXPECT_GT(none.lo[0], none.hi[0]);
+  EXPECT_EQ(ClipRegion().bound(domain), domain);
+}
+
 }  // namespace
 }  // namespace tsp
