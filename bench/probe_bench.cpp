@@ -20,6 +20,7 @@
 #include "render/volume_renderer.h"
 #include "tsp/core/error.h"
 #include "tsp/core/stopwatch.h"
+#include "tsp/lod/lod_cut.h"
 #include "tsp/metric/lazy_errors.h"
 #include "tsp/metric/tf_io.h"
 #include "tsp/store/tsp_file.h"
@@ -160,7 +161,7 @@ int main(int argc, char** argv) {
       std::shared_ptr<tspgl::SliceCompositor> shared;
       const int step = std::max(0, base.first_step);
       // Opens field f (its renderer sharing the compositor) and draws its first complete frame.
-      auto show = [&](Shown& s, const std::string& f) {
+      auto show = [&](Shown& s, const std::string& f, tsp::LodStops stops = {}) {
         const tsp::Stopwatch w;
         if (!s.renderer) {
           s.file = tsp::TspFile::open(base.tsp_path, f);
@@ -174,7 +175,7 @@ int main(int argc, char** argv) {
         }
         tspgl::RenderSettings rs;
         rs.reuse_image = false;
-        s.renderer->render(step, cam, rs, *s.metric);
+        s.renderer->render(step, cam, rs, *s.metric, stops);
         return w.ms();
       };
       Shown a, b;
@@ -191,6 +192,14 @@ int main(int argc, char** argv) {
       std::printf("switch back to %s: %.1f ms (steady %.1f), to %s again: %.1f ms (renderers "
                   "kept: their textures resident)\n",
                   fa.c_str(), back, steady_a, fb.c_str(), again);
+      // The player with its LOD cut on starts the other field from the coarsest cut (its
+      // controller is reset on a switch) and refines from there: that first frame, cold.
+      Shown c;
+      const tsp::LodCut root(a.file->tree().octree());
+      const double cold_lod = show(c, fb, root.stops());
+      std::printf("field switch %s -> %s with the LOD cut (the player): first complete frame "
+                  "%.1f ms after the switch (the coarsest cut, cold)\n",
+                  fa.c_str(), fb.c_str(), cold_lod);
     } else {
       std::printf("field switch: the file has one field (build --field A,B for this part)\n");
     }
