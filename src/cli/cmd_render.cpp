@@ -28,7 +28,7 @@ struct RenderArgs {
   bool annotate = false;
   std::string metric = "approximate", cache = "on", compositing = "rays", flat = "exact",
               span_step = "middle", preintegrated = "off",
-              reuse = "on", dense = "on";
+              reuse = "on", dense = "on", skip_transparent = "on";
   double spatial = 0, temporal = 0, spacing = tspgl::kDefaultSliceSpacing;
   int passes = 1;
   double texture_budget_mb = double(tspgl::kDefaultTextureBudget) / (1 << 20);
@@ -76,6 +76,7 @@ void run(const RenderArgs& a) {
   o.settings.preintegrated = a.preintegrated == "on";
   o.settings.reuse_image = a.reuse == "on";
   o.settings.dense = a.dense == "on";
+  o.settings.skip_transparent = a.skip_transparent == "on";
   if (a.quality != 0 && !a.explicit_knobs.empty())
     throw tsp::UsageError("--quality picks compositing, spacing, tolerances and pre-integration "
                           "itself: drop " + a.explicit_knobs.front());
@@ -247,6 +248,10 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
   c->add_option("--dense", a->dense,
                 "Rays: a frame that textures every leaf brick is cast through one whole-volume "
                 "texture instead of the brick grid: on|off (default on)")
+      ->check(CLI::IsMember({"on", "off"}));
+  c->add_option("--skip-transparent", a->skip_transparent,
+                "A coherent node holding a transparent child is drawn as its children, so what "
+                "zero tolerance skips is never drawn: on|off (off: the paper's rule; default on)")
       ->check(CLI::IsMember({"on", "off"}));
   c->add_option("--span-step", a->span_step,
                 "Step whose bricks texture a span: middle or first (the paper's; default middle)")

@@ -363,6 +363,7 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
     j["span_step"] = tsp::to_string(settings.span_step);
     j["preintegrated"] = settings.preintegrated;
     j["reuse"] = settings.reuse_image;
+    j["skip_transparent"] = settings.skip_transparent;
     j["lod"] = o.lod == LodMode::off     ? json("off")
                : o.lod == LodMode::fixed ? json(lod_level)
                : o.lod == LodMode::splat ? json("splat:" + json(o.splat_px).dump())

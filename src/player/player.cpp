@@ -284,7 +284,7 @@ void PlayerApp::set_metric(tsp::Metric m) {
     lazy_ = std::make_unique<tsp::LazyErrors>(file->tree(), m, tf);
   else
     reference_version_ = ~std::uint64_t(0);
-  renderer->drop_unreachable(frame_metric(), tol);
+  renderer->drop_unreachable(frame_metric(), tol, tsp::SpanStep::middle, {}, skip_transparent);
   update_tol_max();
 }
 
@@ -295,7 +295,7 @@ void PlayerApp::update_tol_max() {
 
 void PlayerApp::set_tolerances(tsp::Tolerances t) {
   tol = {std::max(0.0, t.spatial), std::max(0.0, t.temporal)};
-  renderer->drop_unreachable(frame_metric(), tol);
+  renderer->drop_unreachable(frame_metric(), tol, tsp::SpanStep::middle, {}, skip_transparent);
 }
 
 void PlayerApp::apply_quality(double de) {
@@ -351,6 +351,7 @@ void PlayerApp::write_stats(const std::string& path) const {
   j["compositing"] = tspgl::to_string(compositing);
   j["spacing"] = spacing;
   j["preintegrated"] = preintegrated;
+  j["skip_transparent"] = skip_transparent;
   j["tolerance"] = {tol.spatial, tol.temporal};
   nlohmann::json points = nlohmann::json::array();  // the editor's handles: value, opacity
   for (const tsp::TfPoint& p : tf_points) points.push_back({p.x, p.c.a});
@@ -449,6 +450,7 @@ void PlayerApp::render_volume() {
   settings.compositing = compositing;
   settings.spacing = spacing;
   settings.preintegrated = preintegrated;
+  settings.skip_transparent = skip_transparent;
   // GL's window coordinates start at the bottom: the view's lower-left corner.
   settings.viewport_origin = {layout.view.x, ctx->height() - layout.view.y - layout.view.h};
   if (metric != tsp::Metric::reference) {

@@ -100,6 +100,7 @@ class PlayerApp {
   tspgl::Compositing compositing = tspgl::Compositing::rays;
   double spacing = tspgl::kDefaultSliceSpacing;
   bool preintegrated = false;
+  bool skip_transparent = true;  ///< a coherent node with a transparent child drawn as its children
   float quality = 0;          ///< the quality slider (mean ΔE; 0: the raw knobs)
   std::string quality_note;   ///< what the last quality pick chose
   float tol_max = 1;  ///< upper end of the tolerance sliders (largest error of a step)

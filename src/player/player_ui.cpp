@@ -177,6 +177,7 @@ void settings_section(PlayerApp& app) {
   if (ImGui::SliderFloat("spacing (voxels)", &sp, 0.25f, 8.f, "%.2f", ImGuiSliderFlags_Logarithmic))
     app.spacing = std::clamp(double(sp), tspgl::kMinSliceSpacing, tspgl::kMaxSliceSpacing);
   ImGui::Checkbox("pre-integrated TF", &app.preintegrated);
+  ImGui::Checkbox("skip transparent children", &app.skip_transparent);
   // The quality target sets all of the knobs above from a calibration (made once, cached).
   ImGui::SliderFloat("quality (mean dE)", &app.quality, 0.f, 10.f,
                      app.quality > 0 ? "%.2f" : "off");

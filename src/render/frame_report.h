@@ -66,6 +66,10 @@ struct RenderSettings {
   /// through one whole-volume texture (render/dense_volume.h) instead of walking the brick grid
   /// — the same samples, fewer diverging loops. False: always the brick grid.
   bool dense = true;
+  /// A coherent node holding a transparent child is drawn as its children (tsp::traverse with
+  /// the metric's transparency), so what zero tolerance skips is never drawn; false: the
+  /// paper's rule (the node drawn whole).
+  bool skip_transparent = true;
 };
 
 /// Smallest RenderSettings::render_scale.

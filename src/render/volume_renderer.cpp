@@ -14,6 +14,13 @@ namespace {
 // Values of tsp::Shading, for page tags.
 constexpr int kShadingCount = 3;
 
+// The traversal's transparency for our rule (RenderSettings::skip_transparent), read from the
+// metric's classes; empty: the paper's rule.
+tsp::TransparentFn transparency(const RenderSettings& s, tsp::FrameMetric& metric) {
+  if (!s.skip_transparent) return {};
+  return [&metric](int id) { return metric.class_info(id).transparent; };
+}
+
 tsp::ViewOrder view_order(const tsp::Camera& camera) {
   return camera.perspective() ? tsp::ViewOrder::perspective(camera.eye())
                               : tsp::ViewOrder::orthographic(camera.direction());
@@ -70,6 +77,7 @@ VolumeRenderer::ReuseKey VolumeRenderer::reuse_key(const tsp::Camera& camera,
   k.compositing = s.compositing;
   k.exact_flat = s.exact_flat;
   k.preintegrated = s.preintegrated;
+  k.skip_transparent = s.skip_transparent;
   k.background = s.background;
   k.tf_serial = tf_serial_;
   k.clip_serial = clip_serial_;
@@ -85,9 +93,10 @@ void VolumeRenderer::clear_textures() {
 }
 
 int VolumeRenderer::drop_unreachable(tsp::FrameMetric& metric, const tsp::Tolerances& tol,
-                                     tsp::SpanStep span_step, tsp::LodStops stops) {
-  const auto dropped =
-      cache_.drop_unreachable(tsp::reachable_textures(tree_, metric, tol, span_step, stops));
+                                     tsp::SpanStep span_step, tsp::LodStops stops,
+                                     bool skip_transparent) {
+  const auto dropped = cache_.drop_unreachable(
+      tsp::reachable_textures(tree_, metric, tol, span_step, stops, skip_transparent));
   for (const tsp::TextureKey& k : dropped) textures_.erase(k);
   return int(dropped.size());
 }
@@ -100,7 +109,8 @@ std::vector<tsp::BrickKey> VolumeRenderer::bricks_to_upload(int step, const tsp:
   const tsp::NodeErrors& errors = metric.errors_for_step(step);
   std::vector<tsp::BrickKey> keys;
   for (const tsp::Emitted& e :
-       tsp::traverse(tree_, step, settings.tol, errors, order, stops, clip_sides_)) {
+       tsp::traverse(tree_, step, settings.tol, errors, order, stops, clip_sides_,
+                     transparency(settings, metric))) {
     const int id = tree_.id(e.octree_id, e.time_id);
     if (e.clip == 1) continue;  // clipped away: never uploaded
     const tsp::Shading sh = tsp::node_shading(tree_, id, metric.class_info(id), settings.tol);
@@ -246,7 +256,8 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
   // mean_colour below only read memoised results.
   const tsp::NodeErrors& errors = metric.errors_for_step(step);
   const std::vector<tsp::Emitted> emitted =
-      tsp::traverse(tree_, step, settings.tol, errors, order, stops, clip_sides_);
+      tsp::traverse(tree_, step, settings.tol, errors, order, stops, clip_sides_,
+                    transparency(settings, metric));
   const tsp::FramePlan plan = tsp::plan_frame(tree_, step, emitted, tsp::node_info(metric),
                                               settings.tol, order, cache_, settings.upload_budget,
                                               settings.span_step, stops, clip_surface_);
@@ -259,7 +270,8 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
   if (settings.compositing == Compositing::rays && level_textures) {
     leaf_shading_.assign(std::size_t(octree.brick_count()), {});
     for (const tsp::Emitted& e :
-         tsp::traverse(tree_, step, settings.tol, errors, order, {}, clip_sides_)) {
+         tsp::traverse(tree_, step, settings.tol, errors, order, {}, clip_sides_,
+                       transparency(settings, metric))) {
       const int id = tree_.id(e.octree_id, e.time_id);
       LeafShading ls{tsp::node_shading(tree_, id, metric.class_info(id), settings.tol), id};
       // As plan_frame: clipped away → nothing; across the clip surface → sampled.

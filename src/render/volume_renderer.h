@@ -71,10 +71,11 @@ class VolumeRenderer {
                                               tsp::FrameMetric& metric,
                                               tsp::LodStops stops = {}) const;
   /// After a tolerance (or metric) change: deletes the textures no frame can draw any more under
-  /// metric and tol (one traversal per step) and returns how many. TF edits need no call.
+  /// metric and tol (one traversal per step; skip_transparent as RenderSettings') and returns
+  /// how many. TF edits need no call.
   int drop_unreachable(tsp::FrameMetric& metric, const tsp::Tolerances& tol,
                        tsp::SpanStep span_step = tsp::SpanStep::middle,
-                       tsp::LodStops stops = {});
+                       tsp::LodStops stops = {}, bool skip_transparent = true);
   /// Deletes every cached texture.
   void clear_textures();
 
@@ -101,7 +102,7 @@ class VolumeRenderer {
     int width = 0, height = 0;
     double spacing = 0;
     Compositing compositing = Compositing::rays;
-    bool exact_flat = true, preintegrated = false;
+    bool exact_flat = true, preintegrated = false, skip_transparent = true;
     std::array<float, 3> background{};
     std::uint64_t tf_serial = 0;
     std::uint64_t clip_serial = 0;

@@ -61,6 +61,11 @@ TEST(RenderCli, WritesFramesAndReportWithEveryKey) {
   }
   // The second pass finds every texture resident (cache on, budget ample): nothing new.
   for (int k = 3; k < 6; ++k) EXPECT_EQ(j["frames"][k]["new_texture"], 0.0) << k;
+  EXPECT_EQ(j["skip_transparent"], true);  // our traversal rule by default
+  auto paper = run_tspplay("render " + q(tsp) + " --tf preset:filled --steps 1 --size 96x64 "
+                           "--skip-transparent off -o " + q(out.string() + "_paper"));
+  ASSERT_EQ(paper.exit_code, 0) << paper.err;
+  EXPECT_EQ(read_json(fs::path(out.string() + "_paper") / "frames.json")["skip_transparent"], false);
 }
 
 TEST(RenderCli, ZeroToleranceMatchesBaselineThroughDiff) {
@@ -148,6 +153,7 @@ TEST(RenderCli, BadInputIsAClearErrorAndWritesNothing) {
       {"render " + q(tsp) + " --orbit 400 -o " + q(out), 2, "--orbit"},
       {"render " + q(tsp) + " --focus 1,2 --lod auto -o " + q(out), 2, "--focus"},
       {"render " + q(tsp) + " --lod splat:-1 -o " + q(out), 2, "--lod splat:-1"},
+      {"render " + q(tsp) + " --skip-transparent maybe -o " + q(out), 2, "--skip-transparent"},
       {"render " + q(tsp) + " --lod splat:big -o " + q(out), 2, "--lod splat:PX"},
       {"render " + q(tsp) + " --target-ms 20 --lod-fallback smaller -o " + q(out), 2, "--lod-fallback smaller"},
   };

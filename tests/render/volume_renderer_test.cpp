@@ -178,6 +178,47 @@ TEST(VolumeRenderer, FlatNodeDrawnOnceIsTheExactExponential) {
   expect_close("flat_exact_vs_fine_slices", exact_rays, fine_slices, 0.5, 3.0);
 }
 
+// Issue 9 item 5: the left half transparent (value 0 under a TF that is transparent there), the
+// right half a smooth ramp; at a tolerance that makes the root coherent, the paper's rule draws
+// the root flat — its mean colour haze over the empty half too — and ours draws its children,
+// skipping the transparent ones as zero tolerance does: seen along y, the left half's pixels stay
+// background with our rule, and the right half is drawn.
+TEST(VolumeRenderer, TransparentChildrenOfACoherentNodeStaySkipped) {
+  // 31³ in bricks of 16 samples: 2 × 2 × 2 bricks sharing the layer x = 15.
+  auto src = tsptest::MemorySource::from_function({31, 31, 31}, 2, [](int x, int, int z, int) {
+    return x <= 15 ? 0.f : 0.6f + 0.01f * float(z % 4);
+  });
+  const std::string path = build(src, "half_empty", tsp::ValueRange{0, 1});
+  std::vector<tsp::TfPoint> pts = {{0.0, {0.f, 0.f, 0.f, 0.f}}, {0.5, {0.f, 0.f, 0.f, 0.f}},
+                                   {0.55, {0.9f, 0.5f, 0.2f, 0.05f}}, {1.0, {0.9f, 0.5f, 0.2f, 0.05f}}};
+  Scene scene(path, tsp::TransferFunction::from_points({0, 1}, pts), tsp::CachePolicy::on);
+  const tsp::Camera cam = scene.camera(0, 0);
+  auto frame = [&](bool skip) {
+    RenderSettings s;
+    s.tol = {1e9, 1e9};
+    s.skip_transparent = skip;
+    const FrameReport r = scene.renderer->render(0, cam, s, scene.nodes);
+    return std::pair{scene.ctx->read_pixels(), r};
+  };
+  const auto [paper, paper_report] = frame(false);
+  const auto [ours, ours_report] = frame(true);
+  EXPECT_DOUBLE_EQ(paper_report.class_percent[std::size_t(tsp::DrawClass::untextured)], 100.0);
+  EXPECT_GT(ours_report.class_percent[std::size_t(tsp::DrawClass::not_rendered)], 40.0);
+  // x grows to the right on screen looking along +y (azimuth 0); a quarter of the width from
+  // either side is well inside each half.
+  const int y = scene.ctx->height() / 2, left = scene.ctx->width() / 2 - scene.ctx->width() / 8,
+            right = scene.ctx->width() / 2 + scene.ctx->width() / 8;
+  auto sum = [&](const tsp::Image& img, int x) {
+    const std::uint8_t* px = img.at(x, y);
+    return px[0] + px[1] + px[2];
+  };
+  const bool left_is_empty_half = sum(ours, left) == 0;
+  const int empty_x = left_is_empty_half ? left : right, full_x = left_is_empty_half ? right : left;
+  EXPECT_EQ(sum(ours, empty_x), 0) << "our rule drew the transparent half";
+  EXPECT_GT(sum(paper, empty_x), 0) << "the paper's flat root should cover the transparent half";
+  EXPECT_GT(sum(ours, full_x), 0);
+}
+
 // Anisotropic voxels (spacing 2 along x): a 17×33×33 grid is the box of a 33³ grid of cubes.
 // Seen along y, the rays cross the same 64 slices and the two pictures agree; seen obliquely,
 // samples still lie `spacing` apart along the rays (in sample units), so the centre pixel is the

@@ -164,10 +164,12 @@ FramePlan plan_frame(const TspTree& tree, int step, std::span<const Emitted> emi
 
 TextureKeySet reachable_textures(const TspTree& tree, const NodeErrors& errors,
                                  const NodeInfoFn& info, const Tolerances& tol,
-                                 SpanStep span_step, LodStops stops) {
+                                 SpanStep span_step, LodStops stops, bool skip_transparent) {
   TextureKeySet keys;
+  TransparentFn transparent;
+  if (skip_transparent) transparent = [&info](int id) { return info(id).transparent; };
   for (int t = 0; t < tree.time().steps(); ++t) {
-    for (const Emitted& e : traverse(tree, t, tol, errors, kAnyView, stops)) {
+    for (const Emitted& e : traverse(tree, t, tol, errors, kAnyView, stops, {}, transparent)) {
       if (node_shading(tree, tree.id(e.octree_id, e.time_id), info(tree.id(e.octree_id, e.time_id)), tol) != Shading::textured ||
           splat_stop(stops, e.octree_id))
         continue;
@@ -184,9 +186,9 @@ TextureKeySet reachable_textures(const TspTree& tree, const MetricResult& m,
 }
 
 TextureKeySet reachable_textures(const TspTree& tree, FrameMetric& m, const Tolerances& tol,
-                                 SpanStep span_step, LodStops stops) {
+                                 SpanStep span_step, LodStops stops, bool skip_transparent) {
   const NodeErrors& errors = m.all_errors();
-  return reachable_textures(tree, errors, node_info(m), tol, span_step, stops);
+  return reachable_textures(tree, errors, node_info(m), tol, span_step, stops, skip_transparent);
 }
 
 }  // namespace tsp

@@ -136,12 +136,14 @@ FramePlan plan_frame(const TspTree& tree, int step, std::span<const Emitted> emi
 /// Costs one traversal per step.
 TextureKeySet reachable_textures(const TspTree& tree, const NodeErrors& errors,
                                  const NodeInfoFn& info, const Tolerances& tol,
-                                 SpanStep span_step = SpanStep::middle, LodStops stops = {});
+                                 SpanStep span_step = SpanStep::middle, LodStops stops = {},
+                                 bool skip_transparent = false);
 /// Same, with the errors and classes of m.
 TextureKeySet reachable_textures(const TspTree& tree, const MetricResult& m, const Tolerances& tol,
                                  SpanStep span_step = SpanStep::middle, LodStops stops = {});
 /// Same, with every node of m made current (FrameMetric::all_errors). Throws what m throws.
 TextureKeySet reachable_textures(const TspTree& tree, FrameMetric& m, const Tolerances& tol,
-                                 SpanStep span_step = SpanStep::middle, LodStops stops = {});
+                                 SpanStep span_step = SpanStep::middle, LodStops stops = {},
+                                 bool skip_transparent = false);
 
 }  // namespace tsp

@@ -73,8 +73,9 @@ constexpr int kFailed = -1;
 class Walker {
  public:
   Walker(const TspTree& tree, int t, const Tolerances& tol, const NodeErrors& errors,
-         const ViewOrder& view, LodStops stops, ClipSides clip)
-      : tree_(tree), t_(t), tol_(tol), errors_(errors), view_(view), stops_(stops), clip_(clip) {}
+         const ViewOrder& view, LodStops stops, ClipSides clip, const TransparentFn& transparent)
+      : tree_(tree), t_(t), tol_(tol), errors_(errors), view_(view), stops_(stops), clip_(clip),
+        transparent_(transparent) {}
 
   void visit(int o) {
     const std::uint8_t side = clip_.empty() ? kKept : clip_[std::size_t(o)];
@@ -87,6 +88,9 @@ class Walker {
     // Across the clip surface: drawn only per sample, so never whole above a leaf or cut node.
     int tau = side == kAcross && !stop ? kFailed : coherent_time_node(o, leaf);
     if (tau == kFailed && stop && !leaf) tau = coherent_time_node(o, true);
+    // Our rule: a coherent node holding a transparent child is drawn as its children, so the
+    // transparent part is skipped as at zero tolerance instead of drawn in the node's mean.
+    if (tau != kFailed && !stop && transparent_ && has_transparent_child(o, tau)) tau = kFailed;
     if (tau != kFailed) {
       emit(o, tau, side);
     } else if (stop) {
@@ -115,6 +119,14 @@ class Walker {
     }
   }
 
+  // True when o at time node tau is not transparent but one of its children is.
+  bool has_transparent_child(int o, int tau) const {
+    if (transparent_(tree_.id(o, tau))) return false;
+    for (int c : tree_.octree().node(o).children)
+      if (c >= 0 && transparent_(tree_.id(c, tau))) return true;
+    return false;
+  }
+
   void emit(int o, int tau, std::uint8_t side) {
     out_.push_back(Emitted{o, tau, tree_.time().span(tau), side});
   }
@@ -127,6 +139,7 @@ class Walker {
   const ViewOrder& view_;
   LodStops stops_;
   ClipSides clip_;
+  const TransparentFn& transparent_;
   std::vector<Emitted> out_;
 };
 
@@ -134,12 +147,12 @@ class Walker {
 
 std::vector<Emitted> traverse(const TspTree& tree, int t, const Tolerances& tol,
                               const NodeErrors& errors, const ViewOrder& view, LodStops stops,
-                              ClipSides clip) {
+                              ClipSides clip, const TransparentFn& transparent) {
   assert(t >= 0 && t < tree.time().steps());
   assert(int(errors.spatial.size()) == tree.size() && int(errors.temporal.size()) == tree.size());
   assert(stops.empty() || int(stops.size()) == tree.octree().size());
   assert(clip.empty() || int(clip.size()) == tree.octree().size());
-  Walker walker(tree, t, tol, errors, view, stops, clip);
+  Walker walker(tree, t, tol, errors, view, stops, clip, transparent);
   walker.visit(0);
   return walker.take();
 }

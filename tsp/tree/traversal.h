@@ -2,6 +2,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -79,16 +80,24 @@ inline constexpr std::uint8_t kSplatStop = 2;
 /// 1 removed, 2 across); empty: no clipping.
 using ClipSides = std::span<const std::uint8_t>;
 
+/// Per TSP node id, true when the node is transparent under the current TF over its span (the
+/// metric's class). Empty: unknown.
+using TransparentFn = std::function<bool(int tsp_id)>;
+
 /// Traverses the tree for step t and returns the emitted nodes in back-to-front order.
 /// The emitted octree nodes tile the volume exactly once. With stops, a node marked there is
 /// treated as a leaf: emitted with the largest temporally coherent span (or its leaf span) when
 /// no coherent span holds it whole. With clip sides, a node clipped away is emitted as such
 /// (clip 1, its time leaf: drawn nowhere, but it tiles the volume like the others), and a node
 /// across the clip surface is never drawn whole above the leaves or the cut (the descent goes
-/// on; clip 2 at a leaf or cut node). Asserts 0 ≤ t < steps, that errors hold tree.size()
+/// on; clip 2 at a leaf or cut node). With transparent (issue 9 item 5, our rule), a coherent
+/// node above the leaves and the cut that is not transparent itself but has a transparent child
+/// (at the same time node) is not emitted: the descent goes on, so what zero tolerance skips is
+/// never drawn; empty: the paper's rule. Asserts 0 ≤ t < steps, that errors hold tree.size()
 /// entries each, and that stops and clip are empty or have one entry per octree node.
 std::vector<Emitted> traverse(const TspTree& tree, int t, const Tolerances& tol,
                               const NodeErrors& errors, const ViewOrder& view,
-                              LodStops stops = {}, ClipSides clip = {});
+                              LodStops stops = {}, ClipSides clip = {},
+                              const TransparentFn& transparent = {});
 
 }  // namespace tsp

@@ -302,6 +302,62 @@ TEST(Traverse, RandomErrorsTileTheVolumeOnceAndFollowTheRule) {
   }
 }
 
+// Our rule (issue 9 item 5): with the metric's transparency, no coherent node above the leaves is
+// emitted while one of its children is transparent (it is drawn as its children, the transparent
+// ones skipped as at zero tolerance); the output still tiles the volume once, every internal node
+// emitted is coherent, and with nothing transparent it is the paper's traversal.
+TEST(Traverse, CoherentNodesWithTransparentChildrenAreDrawnAsTheirChildren) {
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (const Grid& g : kGrids) {
+    TspTree tree(g.dims, g.steps, g.brick);
+    const Octree& o = tree.octree();
+    int descended = 0;
+    for (int trial = 0; trial < 6; ++trial) {
+      NodeErrors e = random_errors(tree, rng, true);
+      // Transparent leaves at random, parents transparent when all their children are.
+      std::vector<char> transparent(std::size_t(tree.size()), 0);
+      for (int tau = 0; tau < tree.time().size(); ++tau)
+        for (int id = o.size() - 1; id >= 0; --id) {
+          bool all = true;
+          for (int c : o.node(id).children)
+            if (c >= 0) all &= transparent[std::size_t(tree.id(c, tau))] != 0;
+          transparent[std::size_t(tree.id(id, tau))] =
+              o.node(id).is_leaf() ? u(rng) < 0.4 : all;
+        }
+      const TransparentFn is_transparent = [&](int id) { return transparent[std::size_t(id)] != 0; };
+      const TransparentFn nothing = [](int) { return false; };
+      const Tolerances tol{0.3 + 0.6 * u(rng), 0.3 + 0.6 * u(rng)};
+      for (int t = 0; t < g.steps; ++t) {
+        const std::string ctx = name(g) + " trial " + std::to_string(trial) + " t=" + std::to_string(t);
+        const auto paper = traverse(tree, t, tol, e, kAnyView);
+        const auto ours = traverse(tree, t, tol, e, kAnyView, {}, {}, is_transparent);
+        expect_tiles_once(tree, ours, ctx);
+        for (const Emitted& x : ours) {
+          const OctreeNode& n = o.node(x.octree_id);
+          if (n.is_leaf()) continue;
+          const int id = tree.id(x.octree_id, x.time_id);
+          EXPECT_LE(e.spatial[std::size_t(id)], tol.spatial) << ctx;  // still a coherent node
+          EXPECT_LE(e.temporal[std::size_t(id)], tol.temporal) << ctx;
+          if (transparent[std::size_t(id)]) continue;
+          for (int c : n.children)
+            if (c >= 0)
+              EXPECT_FALSE(transparent[std::size_t(tree.id(c, x.time_id))])
+                  << ctx << ": node " << x.octree_id << " drawn whole over a transparent child";
+        }
+        descended += ours.size() > paper.size();
+        const auto same = traverse(tree, t, tol, e, kAnyView, {}, {}, nothing);
+        ASSERT_EQ(same.size(), paper.size()) << ctx;
+        for (std::size_t k = 0; k < same.size(); ++k) {
+          EXPECT_EQ(same[k].octree_id, paper[k].octree_id) << ctx;
+          EXPECT_EQ(same[k].time_id, paper[k].time_id) << ctx;
+        }
+      }
+    }
+    EXPECT_GT(descended, 0) << name(g) << ": the rule never applied";
+  }
+}
+
 // ---- back-to-front order --------------------------------------------------------------
 
 TEST(ViewOrder, OrthographicFarthestOctantFollowsDirectionSigns) {
