@@ -279,16 +279,22 @@ std::string read_text(const fs::path& p) {
   return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
+// A script that orbits at a target no software renderer reaches (stats in dir/moving.json), then
+// stops and waits (dir/idle.json) and takes a screenshot, which waits for full quality.
+std::string orbit_then_idle_script(const fs::path& dir, const fs::path& shot) {
+  std::string text = "tf preset:filled\ntarget-fps 240\nview 30 20\nwait-frames 2\n";
+  for (int k = 1; k <= 12; ++k) text += "view " + std::to_string(30 + 5 * k) + " 20\nwait-frames 1\n";
+  return text + "stats " + (dir / "moving.json").string() + "\nview 30 20\nwait-seconds 1.5\nstats " +
+         (dir / "idle.json").string() + "\nscreenshot " + shot.string() + "\nquit\n";
+}
+
 // The LOD cut: while the view keeps changing it holds the target (a coarse cut at a target no
 // software renderer reaches), and once input stops it refines to full quality: the screenshot
 // (which waits for that) matches the player with LOD off and `tspplay render`.
 TEST(Player, LodHoldsTheTargetWhileOrbitingAndRefinesToFullQualityWhenIdle) {
   if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
   fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
-  std::string text = "tf preset:filled\ntarget-fps 240\nview 30 20\nwait-frames 2\n";
-  for (int k = 1; k <= 12; ++k) text += "view " + std::to_string(30 + 5 * k) + " 20\nwait-frames 1\n";
-  text += "stats " + (dir / "moving.json").string() + "\nview 30 20\nwait-seconds 1.5\nstats " +
-          (dir / "idle.json").string() + "\nscreenshot " + (dir / "lod.png").string() + "\nquit\n";
+  const std::string text = orbit_then_idle_script(dir, dir / "lod.png");
   auto r = run_tspplay("play " + q(tsp) + " --size " + kSize + " --script " + q(write_script(text)));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string moving = read_text(dir / "moving.json"), idle = read_text(dir / "idle.json");
@@ -312,10 +318,7 @@ TEST(Player, LodHoldsTheTargetWhileOrbitingAndRefinesToFullQualityWhenIdle) {
 TEST(Player, SplatFallbackKeepsFullSizeAndRefinesToFullQuality) {
   if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
   fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
-  std::string text = "tf preset:filled\ntarget-fps 240\nview 30 20\nwait-frames 2\n";
-  for (int k = 1; k <= 12; ++k) text += "view " + std::to_string(30 + 5 * k) + " 20\nwait-frames 1\n";
-  text += "stats " + (dir / "moving.json").string() + "\nview 30 20\nwait-seconds 1.5\nstats " +
-          (dir / "idle.json").string() + "\nscreenshot " + (dir / "splat.png").string() + "\nquit\n";
+  const std::string text = orbit_then_idle_script(dir, dir / "splat.png");
   auto r = run_tspplay("play " + q(tsp) + " --size " + kSize + " --lod-fallback splats --script " +
                        q(write_script(text)));
   ASSERT_EQ(r.exit_code, 0) << r.err;

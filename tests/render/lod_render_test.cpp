@@ -64,15 +64,10 @@ struct LodScene {
     return ctx->read_pixels();
   }
   tsp::Image frame(const tsp::LodCut& cut, double az, double el, Compositing c = Compositing::rays) {
-    tsp::CameraParams p;
-    p.azimuth_deg = az;
-    p.elevation_deg = el;
-    p.width = ctx->width();
-    p.height = ctx->height();
     RenderSettings s;
     s.compositing = c;
     const FrameReport r =
-        renderer->render(0, tsp::Camera(octree().dims(), p), s, *nodes, cut.stops());
+        renderer->render(0, tsp::Camera(octree().dims(), view(az, el)), s, *nodes, cut.stops());
     EXPECT_DOUBLE_EQ(r.class_percent[std::size_t(tsp::DrawClass::untextured)], 0.0);
     return ctx->read_pixels();
   }
