@@ -6,8 +6,9 @@
 // clip_surface the ray stops, opaque, where it first meets that surface inside the data: coloured
 // by surface_tf at the value there and shaded by the surface normal (TetSplat's view).
 // TSP_CLIP (defined before this file) is 0 in the caster without probes: clip_on() is then the
-// constant false and all of this is compiled away; 2 in the caster for an intersection without
-// a surface, which only cuts each ray to kept_interval() once (clip_on() false there too).
+// constant false and all of this is compiled away; 2 in the caster for an intersection, which
+// only cuts each ray to kept_interval() once (clip_on() false there too) and draws the surface,
+// if on, where the ray enters or leaves that interval.
 const int kMaxProbes = 8;
 const float kFar = 1e30;
 uniform int clip_count;                // 0: no clipping
@@ -120,13 +121,17 @@ void clip_intervals(vec3 entry, vec3 ray, float len) {
 }
 
 // The intersection's kept interval of the ray p(t) = entry + ray·t (sample coordinates): the
-// largest start and the smallest end over the probes (empty when start > end). No arrays.
-vec2 kept_interval(vec3 entry, vec3 ray) {
+// largest start and the smallest end over the probes (empty when start > end), and the probes
+// whose surfaces they lie on. No arrays.
+vec2 kept_interval(vec3 entry, vec3 ray, out int ps, out int pe) {
   vec3 q0 = grid_origin + grid_spacing * entry, qd = grid_spacing * ray;
   vec2 kept = vec2(-kFar, kFar);
+  ps = 0;
+  pe = 0;
   for (int i = 0; i < clip_count; ++i) {
     vec2 v = probe_interval(i, q0, qd);
-    kept = vec2(max(kept.x, v.x), min(kept.y, v.y));
+    if (v.x > kept.x) { kept.x = v.x; ps = i; }
+    if (v.y < kept.y) { kept.y = v.y; pe = i; }
   }
   return kept;
 }

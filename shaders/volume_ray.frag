@@ -46,6 +46,24 @@ void draw_surface(vec3 entry, vec3 ray, vec3 scale, vec3 page_offset, vec3 tc_lo
   acc += (1.0 - acc.a) * vec4(c * shade, 1.0);
 }
 
+// The surface of probe `probe` at sample point p seen along ray, opaque: the value there from
+// the page of the brick holding p (a brick the surface crosses is always textured) through
+// surface_tf, shaded by the probe's normal.
+vec4 surface_colour(vec3 p, vec3 ray, int probe) {
+  ivec3 c = clamp(ivec3(floor(p / cell)), ivec3(0), grid - 1);
+  vec4 page = texelFetch(pages, c, 0);
+  if (page.w <= 0.5) return vec4(0.0);
+  int code = (int(page.w + 0.5) - 1) & (kClipFlag - 1);
+  vec3 scale = 1.0 / vec3(ivec3(1) << ivec3(code & 7, (code >> 3) & 7, (code >> 6) & 7));
+  vec3 lo = vec3(c) * cell;
+  vec3 tc_lo = (lo * scale + page.xyz) * atlas_scale;
+  vec3 tc_hi = (min(lo + cell, box_hi) * scale + page.xyz) * atlas_scale;
+  vec3 tc = clamp((p * scale + page.xyz) * atlas_scale, tc_lo, tc_hi);
+  vec3 col = texture(surface_tf, texture(volume, tc).r * surface_map.x + surface_map.y).rgb;
+  vec3 n = probe_normal(probe, grid_origin + grid_spacing * p);
+  return vec4(col * (0.35 + 0.65 * abs(dot(n, normalize(grid_spacing * ray)))), 1.0);
+}
+
 // The kept interval the samples have reached, as scalars (the common case — one interval —
 // never indexes the arrays per sample).
 float cur_s = kFar, cur_e = -kFar;
@@ -66,14 +84,23 @@ void main() {
   if (len <= 0.0) discard;
   vec3 entry = exit_point - r.ray * len;
 #if TSP_CLIP == 2
-  // Pure clipping by an intersection (the common case: one plane, a box, a sphere) keeps one
-  // interval of the ray: the ray is cut to it here and walks it as an unclipped ray. This
-  // variant has no other clip code: llvmpipe runs every branch of a shader under a mask, so
-  // the general code would cost every sample (docs/results.md).
+  // An intersection (the common case: one plane, a box, a sphere) keeps one interval of the
+  // ray: the ray is cut to it here and walks it as an unclipped ray. With the surface on, a ray
+  // entering the solid through its surface shows that surface alone (nothing lies in front), and
+  // one leaving through it sees it behind the volume. This variant has no other clip code:
+  // llvmpipe runs every branch of a shader under a mask, so the general code would cost every
+  // sample (docs/results.md).
+  int back_probe = -1;  // the probe whose surface ends the ray (surface on), or −1
   {
-    vec2 kept = kept_interval(entry, r.ray);
+    int ps, pe;
+    vec2 kept = kept_interval(entry, r.ray, ps, pe);
     float s = max(kept.x, 0.0), e = min(kept.y, len);
     if (s >= e) discard;
+    if (clip_surface != 0 && kept.x > 0.0) {
+      colour = surface_colour(entry + r.ray * kept.x, r.ray, ps);
+      return;
+    }
+    if (clip_surface != 0 && kept.y < len) back_probe = pe;
     entry += r.ray * s;
     r.depth_entry += s * r.cos_theta;
     len = e - s;
@@ -246,6 +273,10 @@ void main() {
     }
     if (any(lessThan(c, ivec3(0))) || any(greaterThanEqual(c, grid))) break;
   }
+#if TSP_CLIP == 2
+  if (back_probe >= 0 && acc.a < kOpaque)
+    acc += (1.0 - acc.a) * surface_colour(entry + r.ray * len, r.ray, back_probe);
+#endif
   if (acc.a <= 0.0) discard;
   colour = acc;
 }

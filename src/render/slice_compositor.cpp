@@ -189,10 +189,10 @@ void SliceCompositor::set_clip(const tsp::ClipRegion& clip, const tsp::TransferF
   const int n = int(clip.probes().size());
   // The clipping caster is its own program, built the first time a probe is used: its code
   // costs llvmpipe's shader compiler seconds, which frames without probes should not pay.
-  // An intersection without a surface keeps one interval of each ray: a leaner program that
-  // cuts the ray to it (the general one costs llvmpipe about twice per pixel and more per
-  // sample, since every branch runs under a mask).
-  const bool cut = n > 0 && clip.op() == tsp::ProbeOp::intersect && !surface;
+  // An intersection keeps one interval of each ray: a leaner program that cuts the ray to it
+  // and draws the surface at its ends (the general one costs llvmpipe about twice per pixel and
+  // more per sample, since every branch runs under a mask).
+  const bool cut = n > 0 && clip.op() == tsp::ProbeOp::intersect;
   std::optional<Program>& variant = cut ? rays_cut_ : rays_clip_;
   if (n > 0 && !variant) {
     variant.emplace(load_program_with(gl_, "box.vert", "volume_ray.frag",
