@@ -9,7 +9,7 @@
 //     as the player keeps it).
 //
 //   probe_bench FILE.tsp [--tf preset:filled] [--steps A:B] [--target-ms 40] [--passes 3]
-//               [--size WxH]
+//               [--size WxH] [--part all|sweep|half|switch]
 #include <algorithm>
 #include <cstdio>
 #include <string>
@@ -47,7 +47,7 @@ std::vector<double> frame_ms(const tspgl::RenderJobResult& r, int from_pass) {
 int main(int argc, char** argv) {
   if (argc < 2) {
     std::fprintf(stderr, "usage: probe_bench FILE.tsp [--tf T] [--steps A:B] [--target-ms MS] "
-                         "[--passes N] [--size WxH]\n");
+                         "[--passes N] [--size WxH] [--part all|sweep|half|switch]\n");
     return 2;
   }
   try {
@@ -56,11 +56,13 @@ int main(int argc, char** argv) {
     base.tf = "preset:filled";
     base.passes = 3;
     double target = 40;
+    std::string part = "all";  // --part sweep|half|switch: one part alone
     for (int i = 2; i + 1 < argc; i += 2) {
       const std::string a = argv[i], v = argv[i + 1];
       if (a == "--tf") base.tf = v;
       else if (a == "--target-ms") target = std::stod(v);
       else if (a == "--passes") base.passes = std::stoi(v);
+      else if (a == "--part") part = v;
       else if (a == "--steps") {
         const auto c = v.find(':');
         base.first_step = std::stoi(v.substr(0, c));
@@ -85,8 +87,10 @@ int main(int argc, char** argv) {
     std::printf("file %s, %s voxels, TF %s, %dx%d\n", base.tsp_path.c_str(),
                 tsp::to_string(d).c_str(), base.tf.c_str(), base.camera.width, base.camera.height);
 
+    if (part != "all" && part != "sweep" && part != "half" && part != "switch")
+      throw tsp::UsageError("--part " + part + ": expected all, sweep, half or switch");
     // 1. A plane sweeping along z from the bottom to the top, the cut holding the target.
-    {
+    if (part == "all" || part == "sweep") {
       tspgl::RenderJobOptions o = base;
       o.lod = tspgl::LodMode::adaptive;
       o.target_ms = target;
@@ -110,7 +114,7 @@ int main(int argc, char** argv) {
     }
 
     // 2. Half the volume clipped away, six ways, against the unclipped frame.
-    {
+    if (part == "all" || part == "half") {
       // Fragments (pixels the rays start from) of one frame: the share of the image the half
       // still covers bounds what it can save once rays stop early in opaque matter.
       const auto fragments = [](const tspgl::RenderJobResult& r) {
@@ -146,7 +150,8 @@ int main(int argc, char** argv) {
     }
 
     // 3. Field switch.
-    if (file->fields().size() > 1) {
+    if (part != "all" && part != "switch") {
+    } else if (file->fields().size() > 1) {
       const std::string fa = file->fields()[0], fb = file->fields()[1];
       auto ctx = tspgl::create_offscreen_context(base.camera.width, base.camera.height);
       tsp::CameraParams cp = base.camera;
