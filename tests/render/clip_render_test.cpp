@@ -105,8 +105,9 @@ TEST(ClipRender, APlaneThroughTheCentreKeepsHalfAndUploadsHalf) {
   for (int b = 0; b < o.brick_count(); ++b) {
     const tsp::ClipSide side = clip.classify(tsp::geometric_box(o.brick_box(b), o.dims()), 1.0);
     across += side == tsp::ClipSide::straddles;
-    if (side == tsp::ClipSide::removed)
+    if (side == tsp::ClipSide::removed) {
       EXPECT_FALSE(r.brick_cache().contains(b, 0)) << "brick " << b << " was read";
+    }
   }
   EXPECT_EQ(r.texture_count(), across);
 }
