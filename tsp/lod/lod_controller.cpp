@@ -18,9 +18,10 @@ constexpr double kSwapGain = 2.0;
 // The render scale drops when the coarsest cut takes longer than kScaleDownAt × target, and
 // rises when a frame takes less than kScaleUpAt × target; never below kMinScale.
 constexpr double kScaleDownAt = 1.1, kScaleUpAt = 0.8, kMinScale = 0.25;
-// The splat fallback halves the minimum splat size at most this many times from the root's
-// extent in one update (a finer cut than the leaves' is never made).
-constexpr int kMaxSplatHalvings = 16;
+// The splat cut grows by at most this factor in nodes, or one split (kChildrenPerSplit − 1
+// more nodes), from one frame to the next.
+constexpr double kMaxSplatGrowth = 1.25;
+constexpr int kChildrenPerSplit = 8;
 // After a splat frame over the band the cut stays coarser this many frames before it may refine.
 constexpr int kSplatHoldFrames = 8;
 // Frames predicted within this share of the target leave the cut as it is; a merge that would
@@ -114,7 +115,8 @@ void LodController::adapt_splats(const Camera& camera, ClipSides clip) {
     if (!last_coarsest_ || splat_frame_ || !(last_ms_ > kScaleDownAt * target)) return;
     splatting_ = true;
     splat_ms_ = splat_area_ = 0;
-    splat_halvings_ = splat_hold_ = 0;
+    splat_budget_ = 0;
+    splat_hold_ = 0;
   } else if (coarsest_cost_ > 0) {
     // Back to the textured cut once its coarsest cut, as measured last and scaled by its cost
     // in this view, fits well under the target.
@@ -125,32 +127,28 @@ void LodController::adapt_splats(const Camera& camera, ClipSides clip) {
       return;
     }
   }
-  // The minimum splat size halves (finer) or doubles (coarser) from the root's extent, one step
-  // a frame: coarser when the last splat frame was over the band (and then held there a while),
-  // finer when it was under the band and the finer cut, its time in proportion to its splats'
-  // screen area, is predicted to fit. The root alone until a splat frame is measured.
-  const double root = std::max(projected_extent(o, camera, 0), 1.0);
-  const auto cut_at = [&](int halvings) {
-    return splat_cut(o, camera, std::ldexp(root, -halvings), clip);
-  };
-  if (splat_ms_ > (1 + kDeadBand) * target) {
-    // Down to the next coarser cut that differs from this one.
-    const int size = cut_at(splat_halvings_).size;
-    while (splat_halvings_ > 0 && cut_at(splat_halvings_).size == size) --splat_halvings_;
+  // The splat cut is refined largest splat first within a screen-area budget (TetSplat's
+  // minimum splat size is what that budget amounts to), and the budget follows the last splat
+  // frame: time in proportion to the splats' area; after a frame over the band it shrinks to
+  // fit and holds a while. The cut grows by at most one split or a quarter of its nodes a
+  // frame, so a prediction that is too low overshoots by little. The root alone until a splat
+  // frame is measured.
+  // Only a frame under the band may grow the cut; otherwise it keeps at most its nodes.
+  int max_nodes = splat_.size;
+  if (!(splat_ms_ > 0 && splat_area_ > 0)) {
+    splat_budget_ = 0;
+  } else if (splat_ms_ > (1 + kDeadBand) * target) {
+    splat_budget_ = splat_area_ * target / splat_ms_;
     splat_hold_ = kSplatHoldFrames;
   } else if (splat_hold_ > 0) {
     --splat_hold_;
-  } else if (splat_ms_ > 0 && splat_area_ > 0 && splat_ms_ < (1 - kDeadBand) * target) {
-    const int size = cut_at(splat_halvings_).size;
-    for (int k = splat_halvings_ + 1; k <= kMaxSplatHalvings; ++k) {
-      const SplatCut c = cut_at(k);
-      if (c.size == size) continue;
-      if (splat_ms_ * c.pixel_area / splat_area_ <= target) splat_halvings_ = k;
-      break;
-    }
+  } else if (splat_ms_ < (1 - kDeadBand) * target) {
+    splat_budget_ = splat_area_ * target / splat_ms_;
+    max_nodes = std::max(splat_.size + kChildrenPerSplit,
+                         int(std::ceil(kMaxSplatGrowth * double(splat_.size))));
   }
-  splat_px_ = std::ldexp(root, -splat_halvings_);
-  splat_ = cut_at(splat_halvings_);
+  splat_ = splat_cut_within(o, camera, splat_budget_, clip, max_nodes);
+  splat_px_ = splat_.min_px;
 }
 
 void LodController::adapt_scale(bool coarsest) {

@@ -119,7 +119,7 @@ class LodController {
   bool splat_frame_ = false;     // the last update chose splats
   SplatCut splat_;               // the last update's splat cut
   double splat_px_ = 0;
-  int splat_halvings_ = 0;       // minimum splat size = the root's extent / 2^halvings
+  double splat_budget_ = 0;      // screen area the splat cut may cover (splat_cut_within)
   int splat_hold_ = 0;           // frames left before the splat cut may refine again
   double splat_ms_ = 0, splat_area_ = 0;  // the last measured splat frame and its Σ area
   double coarsest_ms_ = 0, coarsest_cost_ = 0;  // the last measured coarsest textured frame

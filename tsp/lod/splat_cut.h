@@ -6,6 +6,7 @@
 // larger minimum means fewer, larger splats and a faster frame.
 #pragma once
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "tsp/frame/camera.h"
@@ -19,6 +20,9 @@ struct SplatCut {
   std::vector<std::uint8_t> stops;  ///< one entry per octree node (kSplatStop on the cut)
   int size = 0;                     ///< nodes in the cut
   double pixel_area = 0;            ///< Σ of the cut nodes' screen rectangles (culled: 0)
+  /// The minimum splat size it amounts to: half the largest projected extent among its nodes
+  /// that could still split (0 when none can).
+  double min_px = 0;
 };
 
 /// The projected extent of octree node id in pixels: the larger side of its screen rectangle.
@@ -30,5 +34,13 @@ double projected_extent(const Octree& octree, const Camera& camera, int id);
 /// project to about min_px or more); nodes clip marks removed (ClipSides 1) are never split.
 /// min_px ≤ 0: every leaf. Covers the volume exactly once. Never throws.
 SplatCut splat_cut(const Octree& octree, const Camera& camera, double min_px, ClipSides clip = {});
+
+/// The splat cut refined largest splat first within a screen-area budget: from the root, the
+/// node with the largest projected extent that can split (it has children, is not removed by
+/// clip) is split while the cut's Σ area after the split stays ≤ max_area and its node count ≤
+/// max_nodes; the root alone when they allow nothing more. Covers the volume exactly once.
+/// Never throws.
+SplatCut splat_cut_within(const Octree& octree, const Camera& camera, double max_area,
+                          ClipSides clip = {}, int max_nodes = std::numeric_limits<int>::max());
 
 }  // namespace tsp

@@ -64,6 +64,42 @@ TEST(SplatCut, MatchesItsDefinitionAtEveryMinimumSize) {
   EXPECT_EQ(splat_cut(o, cam, 0).size, o.brick_count());
 }
 
+// Within a budget: the cut's area stays within it (or the cut is the root alone), its node count
+// within max_nodes, it covers the volume once, it is greedy — no node it split projects smaller
+// than a node it could still split — and a larger budget never makes fewer splats.
+TEST(SplatCut, WithinABudgetSplitsTheLargestSplatsFirst) {
+  const Octree o({129, 97, 65}, 16);
+  CameraParams p;
+  p.width = 640;
+  p.height = 480;
+  p.azimuth_deg = 35;
+  p.elevation_deg = 25;
+  p.projection = Projection::perspective;
+  const Camera cam(o.dims(), p);
+  const double root = splat_cut(o, cam, 1e9).pixel_area;
+  int previous = 0;
+  for (double share : {0.0, 1.0, 1.5, 2.0, 3.0, 5.0, 10.0, 1e9}) {
+    const SplatCut cut = splat_cut_within(o, cam, share * root);
+    for (int k : coverage(o, cut.stops)) EXPECT_EQ(k, 1) << "budget " << share;
+    if (cut.size > 1) EXPECT_LE(cut.pixel_area, share * root * (1 + 1e-12)) << "budget " << share;
+    double smallest_split = 1e300, largest_open = 0;
+    for (int id = 0; id < o.size(); ++id) {
+      bool in_or_below = false;  // the node or one of its ancestors is in the cut
+      for (int a = id; a >= 0; a = o.node(a).parent) in_or_below |= cut.stops[std::size_t(a)] != 0;
+      if (!in_or_below) smallest_split = std::min(smallest_split, projected_extent(o, cam, id));
+      else if (cut.stops[std::size_t(id)] != 0 && !o.node(id).is_leaf())
+        largest_open = std::max(largest_open, projected_extent(o, cam, id));
+    }
+    if (cut.size > 1) EXPECT_GE(smallest_split, largest_open) << "budget " << share;
+    EXPECT_NEAR(cut.min_px, 0.5 * largest_open, 1e-9);
+    EXPECT_GE(cut.size, previous);
+    previous = cut.size;
+  }
+  EXPECT_EQ(splat_cut_within(o, cam, 0).size, 1);
+  EXPECT_EQ(splat_cut_within(o, cam, 1e300).size, o.brick_count());
+  EXPECT_LE(splat_cut_within(o, cam, 1e300, {}, 20).size, 20);
+}
+
 TEST(SplatCut, NodesRemovedByAProbeAreNotSplit) {
   const Octree o({65, 65, 65}, 16);
   std::vector<std::uint8_t> clip(std::size_t(o.size()), 0);
