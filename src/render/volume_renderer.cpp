@@ -112,12 +112,10 @@ std::vector<tsp::BrickKey> VolumeRenderer::bricks_to_upload(int step, const tsp:
        tsp::traverse(tree_, step, settings.tol, errors, order, stops, clip_sides_,
                      transparency(settings, metric))) {
     const int id = tree_.id(e.octree_id, e.time_id);
-    if (e.clip == 1) continue;  // clipped away: never uploaded
-    const tsp::Shading sh = tsp::node_shading(tree_, id, metric.class_info(id), settings.tol);
-    if (sh != tsp::Shading::textured && !(e.clip == 2 && (sh == tsp::Shading::flat || clip_surface_)))
+    // Clipped away, skipped, flat or a splat: no brick.
+    if (tsp::emitted_shading(tree_, e, metric.class_info(id), settings.tol, stops, clip_surface_) !=
+        tsp::Shading::textured)
       continue;
-    if (sh == tsp::Shading::textured && e.clip != 2 && tsp::splat_stop(stops, e.octree_id))
-      continue;  // a splat: its mean colour, no brick
     for (int brick : tsp::node_bricks(tree_.octree(), e.octree_id, order, stops))
       if (const int t = tsp::representative_step(e.span, settings.span_step);
           !textures_.contains(tsp::texture_key(tree_.octree(), brick, t)))
@@ -273,11 +271,9 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
          tsp::traverse(tree_, step, settings.tol, errors, order, {}, clip_sides_,
                        transparency(settings, metric))) {
       const int id = tree_.id(e.octree_id, e.time_id);
-      LeafShading ls{tsp::node_shading(tree_, id, metric.class_info(id), settings.tol), id};
       // As plan_frame: clipped away → nothing; across the clip surface → sampled.
-      if (e.clip == 1) ls.shading = tsp::Shading::none;
-      if (e.clip == 2 && (ls.shading == tsp::Shading::flat || clip_surface_))
-        ls.shading = tsp::Shading::textured;
+      const LeafShading ls{
+          tsp::emitted_shading(tree_, e, metric.class_info(id), settings.tol, {}, clip_surface_), id};
       octree.for_each_brick(e.octree_id, [&](int b) { leaf_shading_[std::size_t(b)] = ls; });
     }
     for (const LeafShading& ls : leaf_shading_)

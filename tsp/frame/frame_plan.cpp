@@ -74,8 +74,17 @@ std::vector<int> node_bricks(const Octree& octree, int id, const ViewOrder& view
   return leaf_bricks(octree, id, view);
 }
 
-bool splat_stop(LodStops stops, int octree_id) {
-  return !stops.empty() && stops[std::size_t(octree_id)] == kSplatStop;
+Shading emitted_shading(const TspTree& tree, const Emitted& e, const NodeClassInfo& info,
+                        const Tolerances& tol, LodStops stops, bool clip_surface) {
+  if (e.clip == 1) return Shading::none;
+  Shading s = node_shading(tree, tree.id(e.octree_id, e.time_id), info, tol);
+  // A splat (tsp/lod/splat_cut.h): its mean colour and opacity, never a texture.
+  const bool splat = !stops.empty() && stops[std::size_t(e.octree_id)] == kSplatStop;
+  if (s == Shading::textured && e.clip != 2 && splat) s = Shading::flat;
+  // Across the clip surface: clipped per sample, which a flat node (drawn whole) cannot be.
+  if (e.clip == 2 && (s == Shading::flat || (clip_surface && s == Shading::none)))
+    s = Shading::textured;
+  return s;
 }
 
 TextureKey texture_key(const Octree& octree, int brick, int t0) {
@@ -110,15 +119,8 @@ FramePlan plan_frame(const TspTree& tree, int step, std::span<const Emitted> emi
     PlannedNode p;
     p.node = e;
     p.voxels = octree.node(e.octree_id).box.count();
-    Shading shading = e.clip == 1 ? Shading::none
-                                  : node_shading(tree, tree.id(e.octree_id, e.time_id),
-                                                 info(tree.id(e.octree_id, e.time_id)), tol);
-    // A splat (tsp/lod/splat_cut.h): its mean colour and opacity, never a texture.
-    if (shading == Shading::textured && e.clip != 2 && splat_stop(stops, e.octree_id))
-      shading = Shading::flat;
-    // Across the clip surface: clipped per sample, which a flat node (drawn whole) cannot be.
-    if (e.clip == 2 && (shading == Shading::flat || (clip_surface && shading == Shading::none)))
-      shading = Shading::textured;
+    const Shading shading =
+        emitted_shading(tree, e, info(tree.id(e.octree_id, e.time_id)), tol, stops, clip_surface);
     if (e.clip == 1) {
       p.cls = DrawClass::clipped;
     } else if (shading == Shading::none) {
@@ -170,8 +172,8 @@ TextureKeySet reachable_textures(const TspTree& tree, const NodeErrors& errors,
   if (skip_transparent) transparent = [&info](int id) { return info(id).transparent; };
   for (int t = 0; t < tree.time().steps(); ++t) {
     for (const Emitted& e : traverse(tree, t, tol, errors, kAnyView, stops, {}, transparent)) {
-      if (node_shading(tree, tree.id(e.octree_id, e.time_id), info(tree.id(e.octree_id, e.time_id)), tol) != Shading::textured ||
-          splat_stop(stops, e.octree_id))
+      if (emitted_shading(tree, e, info(tree.id(e.octree_id, e.time_id)), tol, stops) !=
+          Shading::textured)
         continue;
       for (int brick : node_bricks(tree.octree(), e.octree_id, kAnyView, stops))
         keys.insert(texture_key(tree.octree(), brick, representative_step(e.span, span_step)));

@@ -58,6 +58,13 @@ Shading shading_of(const NodeClassInfo& info, const Tolerances& tol);
 /// shading_of for TSP node id of tree, except that a node partly outside a stencil is never
 /// drawn flat (its box would cover the outside): textured instead. Never throws.
 Shading node_shading(const TspTree& tree, int id, const NodeClassInfo& info, const Tolerances& tol);
+/// How emitted node e is drawn (info: its TSP node's class): none when clipped away; else
+/// node_shading, except that a splat (kSplatStop in stops) is drawn flat, never textured, and a
+/// node across the clip surface is textured where it would be flat — or, with clip_surface, not
+/// drawn — since only samples can be clipped. The one rule for planning, uploads and reachability.
+/// Never throws.
+Shading emitted_shading(const TspTree& tree, const Emitted& e, const NodeClassInfo& info,
+                        const Tolerances& tol, LodStops stops = {}, bool clip_surface = false);
 
 /// Bytes of a brick texture: 2 per stored sample (16-bit scalars, R16); key.brick is a stored
 /// brick (leaf or level).
@@ -69,8 +76,6 @@ std::vector<int> leaf_bricks(const Octree& octree, int id, const ViewOrder& view
 /// The stored bricks that texture emitted node id: its level brick when it is an internal node
 /// marked in stops (an LOD cut node), otherwise its leaf bricks back-to-front.
 std::vector<int> node_bricks(const Octree& octree, int id, const ViewOrder& view, LodStops stops);
-/// True when stops mark octree node octree_id a splat (kSplatStop): drawn flat, never textured.
-bool splat_stop(LodStops stops, int octree_id);
 /// The texture key of stored brick `brick` at step t0 (level: the brick's LOD level).
 TextureKey texture_key(const Octree& octree, int brick, int t0);
 
