@@ -48,12 +48,11 @@ void LodController::evaluate(const Camera& camera, int t, const TransferFunction
   const std::array<double, 3> focus =
       options_.focus.value_or(std::array<double, 3>{0.5 * (d.x - 1), 0.5 * (d.y - 1), 0.5 * (d.z - 1)});
   const double diagonal = std::hypot(double(d.x), double(d.y), double(d.z));
-  std::vector<NodeProjection> proj(std::size_t(o.size()));
+  proj_ = project_nodes(o, camera);
+  const std::vector<NodeProjection>& proj = proj_;
   std::vector<NodeProjection> leaves(std::size_t(o.brick_count()));
-  for (int id = 0; id < o.size(); ++id) {
-    proj[std::size_t(id)] = project_box(camera, geometric_box(o.node(id).box, d));
+  for (int id = 0; id < o.size(); ++id)
     if (o.node(id).is_leaf()) leaves[std::size_t(o.node(id).brick)] = proj[std::size_t(id)];
-  }
   const std::vector<double> leaf_vis = leaf_visibility(tree_, t, camera, leaves, tf);
   // Full-resolution sample cost and visible area of each leaf brick, summed bottom-up (children
   // follow their parents in node order); a node's cost is its leaves' over its sample step
@@ -107,12 +106,11 @@ LodFallback parse_lod_fallback(const std::string& text, const std::string& optio
   throw UsageError(option + " " + text + ": expected scale or splats");
 }
 
-void LodController::adapt_splats(const Camera& camera, ClipSides clip) {
+void LodController::adapt_splats(ClipSides clip) {
   const double target = options_.target_ms;
-  const Octree& o = tree_.octree();
   if (!splatting_) {
     // The coarsest textured cut was drawn and missed the target: splats from now on.
-    if (!last_coarsest_ || splat_frame_ || !(last_ms_ > kScaleDownAt * target)) return;
+    if (!last_coarsest_ || !(last_ms_ > kScaleDownAt * target)) return;
     splatting_ = true;
     splat_ms_ = splat_area_ = 0;
     splat_budget_ = 0;
@@ -147,8 +145,7 @@ void LodController::adapt_splats(const Camera& camera, ClipSides clip) {
     max_nodes = std::max(splat_.size + kChildrenPerSplit,
                          int(std::ceil(kMaxSplatGrowth * double(splat_.size))));
   }
-  splat_ = splat_cut_within(o, camera, splat_budget_, clip, max_nodes);
-  splat_px_ = splat_.min_px;
+  splat_ = splat_cut_within(tree_.octree(), proj_, splat_budget_, clip, max_nodes);
 }
 
 void LodController::adapt_scale(bool coarsest) {
@@ -241,7 +238,7 @@ LodFrameStats LodController::update(const Camera& camera, int t, const TransferF
   // frame is back at full size and textured.
   if (timed && options_.fallback == LodFallback::splats) {
     scale_ = 1;
-    adapt_splats(camera, clip);
+    adapt_splats(clip);
   } else {
     splatting_ = false;
     adapt_scale(last_coarsest_);
@@ -287,9 +284,8 @@ LodFrameStats LodController::update(const Camera& camera, int t, const TransferF
   st.predicted_ms = model_.ready() ? model_.predict(cost) : 0;
   st.render_scale = scale_;
   scale_of_frame_ = scale_;
-  splat_frame_ = splatting_;
   if (splatting_) {
-    st.splat_px = splat_px_;
+    st.splat_px = splat_.min_px;
     st.splats = splat_.size;
   }
   for (int id : cut_.nodes())
@@ -320,7 +316,7 @@ std::vector<int> LodController::likely_split_bricks(int n) const {
 }
 
 void LodController::measured(double ms) {
-  if (splat_frame_) {  // a splat frame: the splat cut's own measure, not the textured cut's
+  if (splatting_) {  // a splat frame: the splat cut's own measure, not the textured cut's
     splat_ms_ = ms;
     splat_area_ = splat_.pixel_area;
     return;

@@ -115,16 +115,15 @@ class LodController {
   double scale_of_frame_ = 1; // the scale the last update chose
   bool last_coarsest_ = false;  // the last update left the root alone
   // The splat fallback: on while the coarsest textured cut would miss the target.
-  bool splatting_ = false;
-  bool splat_frame_ = false;     // the last update chose splats
+  bool splatting_ = false;       // (also: the frame of the last update was a splat frame)
   SplatCut splat_;               // the last update's splat cut
-  double splat_px_ = 0;
   double splat_budget_ = 0;      // screen area the splat cut may cover (splat_cut_within)
   int splat_hold_ = 0;           // frames left before the splat cut may refine again
   double splat_ms_ = 0, splat_area_ = 0;  // the last measured splat frame and its Σ area
   double coarsest_ms_ = 0, coarsest_cost_ = 0;  // the last measured coarsest textured frame
   void adapt_scale(bool coarsest);
-  void adapt_splats(const Camera& camera, ClipSides clip);
+  void adapt_splats(ClipSides clip);
+  std::vector<NodeProjection> proj_;  // every node's projection in the last update's view
   void evaluate(const Camera& camera, int t, const TransferFunction& tf,
                 const TfColourSlopes& slopes, double spacing, ClipSides clip);
 };

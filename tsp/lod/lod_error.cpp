@@ -32,6 +32,13 @@ bool TfColourSlopes::transparent(double lo, double hi) const {
   return tf_->transparent(tf_->entry_of(lo), tf_->entry_of(hi));
 }
 
+std::vector<NodeProjection> project_nodes(const Octree& octree, const Camera& camera) {
+  std::vector<NodeProjection> proj(std::size_t(octree.size()));
+  for (int id = 0; id < octree.size(); ++id)
+    proj[std::size_t(id)] = project_box(camera, geometric_box(octree.node(id).box, octree.dims()));
+  return proj;
+}
+
 NodeProjection project_box(const Camera& camera, const Aabb& box) {
   NodeProjection p;
   const glm::dmat4 vp = camera.view_projection();

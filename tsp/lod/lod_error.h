@@ -45,6 +45,8 @@ struct NodeProjection {
 
 /// Projects box (sample coordinates) through camera. Never throws.
 NodeProjection project_box(const Camera& camera, const Aabb& box);
+/// project_box of every octree node's geometric box, indexed by node. Never throws.
+std::vector<NodeProjection> project_nodes(const Octree& octree, const Camera& camera);
 
 /// Focus weight of a node centred at c: 1 / (1 + 2·|c − focus| / diagonal), paper 002's distance
 /// falloff from the centre of attention (diagonal: the volume's). Never throws.

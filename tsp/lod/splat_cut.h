@@ -7,9 +7,11 @@
 #pragma once
 #include <cstdint>
 #include <limits>
+#include <span>
 #include <vector>
 
 #include "tsp/frame/camera.h"
+#include "tsp/lod/lod_error.h"
 #include "tsp/tree/octree.h"
 #include "tsp/tree/traversal.h"
 
@@ -42,5 +44,9 @@ SplatCut splat_cut(const Octree& octree, const Camera& camera, double min_px, Cl
 /// Never throws.
 SplatCut splat_cut_within(const Octree& octree, const Camera& camera, double max_area,
                           ClipSides clip = {}, int max_nodes = std::numeric_limits<int>::max());
+/// Same, from every node's projection (project_nodes; the LOD controller has them already).
+SplatCut splat_cut_within(const Octree& octree, std::span<const NodeProjection> proj,
+                          double max_area, ClipSides clip = {},
+                          int max_nodes = std::numeric_limits<int>::max());
 
 }  // namespace tsp
