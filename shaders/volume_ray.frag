@@ -31,24 +31,30 @@ const float kNudge = 1e-3;
 const int kClipFlag = 512;           // BrickPages::kClipFlag           // voxels into the volume, to pick the first brick
 out vec4 colour;
 
-// The clip surface where the ray meets it (clip_intervals in clip.glsl): its colour from this
-// brick's texture at that point, shaded by the probe's normal, composited opaque into acc.
+// The surface of probe `probe` at sample point p seen along ray, opaque: the value at texture
+// coordinate tc (clamped to the brick's [tc_lo, tc_hi]) through surface_tf, shaded by the
+// probe's normal.
+vec4 shaded_surface(vec3 p, vec3 ray, int probe, vec3 tc, vec3 tc_lo, vec3 tc_hi) {
+  vec3 col = texture(surface_tf, texture(volume, clamp(tc, tc_lo, tc_hi)).r * surface_map.x +
+                                     surface_map.y).rgb;
+  vec3 n = probe_normal(probe, grid_origin + grid_spacing * p);
+  return vec4(col * (0.35 + 0.65 * abs(dot(n, normalize(grid_spacing * ray)))), 1.0);
+}
+
+// The clip surface where the ray meets it (clip_intervals in clip.glsl), from this brick's
+// texture at that point, composited opaque into acc.
 float t_surface = kFar;  // ray parameter of the surface (kFar: none, or clipping only)
 int surface_probe = -1;
 int iv_k = 0;            // the kept interval the samples have reached
 void draw_surface(vec3 entry, vec3 ray, vec3 scale, vec3 page_offset, vec3 tc_lo, vec3 tc_hi,
                   inout vec4 acc) {
   vec3 p = entry + ray * t_surface;
-  vec3 tc = clamp((p * scale + page_offset) * atlas_scale, tc_lo, tc_hi);
-  vec3 c = texture(surface_tf, texture(volume, tc).r * surface_map.x + surface_map.y).rgb;
-  vec3 n = probe_normal(surface_probe, grid_origin + grid_spacing * p);
-  float shade = 0.35 + 0.65 * abs(dot(n, normalize(grid_spacing * ray)));
-  acc += (1.0 - acc.a) * vec4(c * shade, 1.0);
+  acc += (1.0 - acc.a) * shaded_surface(p, ray, surface_probe,
+                                        (p * scale + page_offset) * atlas_scale, tc_lo, tc_hi);
 }
 
-// The surface of probe `probe` at sample point p seen along ray, opaque: the value there from
-// the page of the brick holding p (a brick the surface crosses is always textured) through
-// surface_tf, shaded by the probe's normal.
+// The surface of probe `probe` at sample point p, from the page of the brick holding p (a brick
+// the surface crosses is always textured).
 vec4 surface_colour(vec3 p, vec3 ray, int probe) {
   ivec3 c = clamp(ivec3(floor(p / cell)), ivec3(0), grid - 1);
   vec4 page = texelFetch(pages, c, 0);
@@ -56,12 +62,9 @@ vec4 surface_colour(vec3 p, vec3 ray, int probe) {
   int code = (int(page.w + 0.5) - 1) & (kClipFlag - 1);
   vec3 scale = 1.0 / vec3(ivec3(1) << ivec3(code & 7, (code >> 3) & 7, (code >> 6) & 7));
   vec3 lo = vec3(c) * cell;
-  vec3 tc_lo = (lo * scale + page.xyz) * atlas_scale;
-  vec3 tc_hi = (min(lo + cell, box_hi) * scale + page.xyz) * atlas_scale;
-  vec3 tc = clamp((p * scale + page.xyz) * atlas_scale, tc_lo, tc_hi);
-  vec3 col = texture(surface_tf, texture(volume, tc).r * surface_map.x + surface_map.y).rgb;
-  vec3 n = probe_normal(probe, grid_origin + grid_spacing * p);
-  return vec4(col * (0.35 + 0.65 * abs(dot(n, normalize(grid_spacing * ray)))), 1.0);
+  return shaded_surface(p, ray, probe, (p * scale + page.xyz) * atlas_scale,
+                        (lo * scale + page.xyz) * atlas_scale,
+                        (min(lo + cell, box_hi) * scale + page.xyz) * atlas_scale);
 }
 
 // The kept interval the samples have reached, as scalars (the common case — one interval —
