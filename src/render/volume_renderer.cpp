@@ -301,22 +301,15 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
   r.dense = settings.compositing == Compositing::rays && settings.dense && dense_frame(plan);
   // The rays go through the bounds of what is drawn: transparent and clipped bricks around it
   // cost no fragments and no leaps.
-  tsp::Aabb drawn{{1e300, 1e300, 1e300}, {-1e300, -1e300, -1e300}};
-  for (const tsp::PlannedNode& n : plan.nodes) {
-    if (n.cls == tsp::DrawClass::not_rendered || n.cls == tsp::DrawClass::clipped) continue;
-    const tsp::Aabb b = tsp::geometric_box(octree.node(n.node.octree_id).box, octree.dims());
-    for (int a = 0; a < 3; ++a) {
-      drawn.lo[a] = std::min(drawn.lo[a], b.lo[a]);
-      drawn.hi[a] = std::max(drawn.hi[a], b.hi[a]);
-    }
-  }
+  tsp::Aabb drawn = tsp::empty_aabb();
+  for (const tsp::PlannedNode& n : plan.nodes)
+    if (n.cls != tsp::DrawClass::not_rendered && n.cls != tsp::DrawClass::clipped)
+      tsp::unite(drawn, tsp::geometric_box(octree.node(n.node.octree_id).box, octree.dims()));
   // And through the clip solid's bounds there (the bricks across its surface stick out of it) —
   // without a surface to draw: the caster finds the surface where a ray enters the solid after
   // its start, which a ray starting on it would miss.
-  if (!clip_sides_.empty() && !clip_surface_ && drawn.lo[0] <= drawn.hi[0])
-    drawn = clip_.bound(drawn);
-  const bool nothing_drawn =
-      drawn.lo[0] > drawn.hi[0] || drawn.lo[1] > drawn.hi[1] || drawn.lo[2] > drawn.hi[2];
+  if (!clip_sides_.empty() && !clip_surface_ && !tsp::is_empty(drawn)) drawn = clip_.bound(drawn);
+  const bool nothing_drawn = tsp::is_empty(drawn);
   if (r.dense) {
     // Every leaf brick textured at full resolution from one step: the whole volume as one page.
     dense_.update(dense_keys_);

@@ -309,30 +309,10 @@ std::vector<std::uint8_t> ClipRegion::classify_nodes(const Octree& octree, doubl
   return sides;
 }
 
-namespace {
-constexpr double kHuge = 1e300;
-Aabb empty_box() { return Aabb{{kHuge, kHuge, kHuge}, {-kHuge, -kHuge, -kHuge}}; }
-void grow(Aabb& b, const std::array<double, 3>& p) {
-  for (int a = 0; a < 3; ++a) {
-    b.lo[a] = std::min(b.lo[a], p[a]);
-    b.hi[a] = std::max(b.hi[a], p[a]);
-  }
-}
-Aabb intersect(const Aabb& x, const Aabb& y) {
-  Aabb r;
-  for (int a = 0; a < 3; ++a) {
-    r.lo[a] = std::max(x.lo[a], y.lo[a]);
-    r.hi[a] = std::min(x.hi[a], y.hi[a]);
-  }
-  return r;
-}
-bool is_empty(const Aabb& b) { return b.lo[0] > b.hi[0] || b.lo[1] > b.hi[1] || b.lo[2] > b.hi[2]; }
-}  // namespace
-
 Aabb ClipRegion::probe_bound(int i, const std::array<double, 3>& lo,
                              const std::array<double, 3>& hi) const {
   const Probe& pr = probes_[std::size_t(i)];
-  Aabb b = empty_box();
+  Aabb b = empty_aabb();
   switch (pr.kind) {
     case Probe::Kind::plane: {
       // The kept part of the box is a convex polytope: its vertices are the kept corners and the
@@ -372,7 +352,7 @@ Aabb ClipRegion::probe_bound(int i, const std::array<double, 3>& lo,
       break;
     }
   }
-  return intersect(b, Aabb{lo, hi});
+  return intersection(b, Aabb{lo, hi});
 }
 
 Aabb ClipRegion::bound(const Aabb& domain) const {
@@ -386,20 +366,16 @@ Aabb ClipRegion::bound(const Aabb& domain) const {
     lo[a] = std::min(x, y);
     hi[a] = std::max(x, y);
   }
-  Aabb b = op_ == ProbeOp::unite ? empty_box() : Aabb{lo, hi};
+  Aabb b = op_ == ProbeOp::unite ? empty_aabb() : Aabb{lo, hi};
   const int n = op_ == ProbeOp::subtract ? 1 : int(probes_.size());  // the first, minus others
   for (int i = 0; i < n; ++i) {
     const Aabb p = probe_bound(i, lo, hi);
-    if (op_ == ProbeOp::unite) {
-      if (!is_empty(p)) {
-        grow(b, p.lo);
-        grow(b, p.hi);
-      }
-    } else {
-      b = intersect(b, p);
-    }
+    if (op_ == ProbeOp::unite)
+      unite(b, p);
+    else
+      b = intersection(b, p);
   }
-  if (is_empty(b)) return empty_box();
+  if (is_empty(b)) return empty_aabb();
   Aabb out;
   for (int a = 0; a < 3; ++a) {
     const double x = (b.lo[a] - origin_[a]) / spacing_[a], y = (b.hi[a] - origin_[a]) / spacing_[a];
@@ -408,7 +384,7 @@ Aabb ClipRegion::bound(const Aabb& domain) const {
     out.lo[a] = std::min(x, y) - hair;
     out.hi[a] = std::max(x, y) + hair;
   }
-  return intersect(out, domain);
+  return intersection(out, domain);
 }
 
 }  // namespace tsp

@@ -4,6 +4,36 @@
 
 namespace tsp {
 
+namespace {
+constexpr double kHuge = 1e300;
+}  // namespace
+
+Aabb empty_aabb() { return Aabb{{kHuge, kHuge, kHuge}, {-kHuge, -kHuge, -kHuge}}; }
+
+bool is_empty(const Aabb& b) { return b.lo[0] > b.hi[0] || b.lo[1] > b.hi[1] || b.lo[2] > b.hi[2]; }
+
+void grow(Aabb& box, const std::array<double, 3>& p) {
+  for (int a = 0; a < 3; ++a) {
+    box.lo[a] = std::min(box.lo[a], p[a]);
+    box.hi[a] = std::max(box.hi[a], p[a]);
+  }
+}
+
+void unite(Aabb& box, const Aabb& other) {
+  if (is_empty(other)) return;
+  grow(box, other.lo);
+  grow(box, other.hi);
+}
+
+Aabb intersection(const Aabb& a, const Aabb& b) {
+  Aabb r;
+  for (int k = 0; k < 3; ++k) {
+    r.lo[k] = std::max(a.lo[k], b.lo[k]);
+    r.hi[k] = std::min(a.hi[k], b.hi[k]);
+  }
+  return r;
+}
+
 Aabb geometric_box(const Box& box, const Dims& d) {
   Aabb g;
   for (int a = 0; a < 3; ++a) {

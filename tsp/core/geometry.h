@@ -14,6 +14,17 @@ struct Aabb {
   bool operator==(const Aabb&) const = default;
 };
 
+/// A box holding nothing (lo > hi on every axis): the start of a union.
+Aabb empty_aabb();
+/// True when box holds no point (lo > hi on some axis). Never throws.
+bool is_empty(const Aabb& box);
+/// Grows box to hold point p. Never throws.
+void grow(Aabb& box, const std::array<double, 3>& p);
+/// Grows box to hold other (nothing when other is empty). Never throws.
+void unite(Aabb& box, const Aabb& other);
+/// The points in both a and b (empty when they do not meet). Never throws.
+Aabb intersection(const Aabb& a, const Aabb& b);
+
 /// The geometric box of voxel box `box` in a volume of dims d: [lo, min(hi, D − 1)] per axis, so
 /// that bricks and octree nodes tile [0, D − 1]³ with shared faces.
 Aabb geometric_box(const Box& box, const Dims& d);
