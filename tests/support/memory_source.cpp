@@ -31,4 +31,14 @@ void MemorySource::read_step(int t, std::span<float> out) {
   std::copy(steps_[t].begin(), steps_[t].end(), out.begin());
 }
 
+void MemorySource::read_slab(int t, int z0, int z1, std::span<float> out) {
+  const std::int64_t plane = std::int64_t(dims_.x) * dims_.y;
+  assert(t >= 0 && t < steps() && 0 <= z0 && z0 < z1 && z1 <= dims_.z &&
+         std::int64_t(out.size()) == plane * (z1 - z0));
+  ++slab_reads_;
+  if (t == fail_at_)
+    throw tsp::IoError(describe() + ": step " + std::to_string(t) + ": simulated read failure");
+  std::copy(steps_[t].begin() + z0 * plane, steps_[t].begin() + z1 * plane, out.begin());
+}
+
 }  // namespace tsptest

@@ -21,6 +21,13 @@ class MemorySource : public tsp::VolumeSource {
   int steps() const override { return int(steps_.size()); }
   std::string describe() const override { return "memory source " + tsp::to_string(dims_); }
   void read_step(int t, std::span<float> out) override;
+  bool reads_slabs() const override { return reads_slabs_; }
+  /// Copies planes z0 … z1 − 1 of step t (fails like read_step).
+  void read_slab(int t, int z0, int z1, std::span<float> out) override;
+  /// Whether a builder may read slabs (read_slab) instead of whole steps; false at first.
+  void set_reads_slabs(bool on) { reads_slabs_ = on; }
+  /// Number of read_slab calls so far.
+  int slab_reads() const { return slab_reads_; }
   /// Sample (x, y, z) of step t.
   float at(int x, int y, int z, int t) const {
     return steps_[t][x + std::size_t(dims_.x) * (y + std::size_t(dims_.y) * z)];
@@ -35,6 +42,8 @@ class MemorySource : public tsp::VolumeSource {
   std::vector<std::vector<float>> steps_;
   int fail_at_;
   int reads_ = 0;
+  bool reads_slabs_ = false;
+  int slab_reads_ = 0;
 };
 
 }  // namespace tsptest

@@ -1,8 +1,10 @@
 #include "tsp/build/build.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <cstring>
+#include <deque>
 #include <limits>
 #include <string>
 #include <vector>
@@ -11,7 +13,7 @@
 #include "tsp/build/level_filter.h"
 #include "tsp/build/receiver_thread.h"
 #include "tsp/build/scratch_file.h"
-#include "tsp/build/step_prefetcher.h"
+#include "tsp/build/slab_prefetcher.h"
 #include "tsp/core/error.h"
 #include "tsp/core/file_check.h"
 #include "tsp/core/parallel_for.h"
@@ -27,19 +29,22 @@ namespace tsp {
 namespace {
 
 constexpr const char* kPhaseRead = "reading";
+// Pass 1 reads a step in slabs of a quarter of a brick layer: a layer's planes are held until its
+// bricks are cut out, and the slabs before and after it are being read and scanned.
+constexpr int kSlabsPerLayer = 4;
 
 // Finite extremes and non-finite count of the input, over every voxel of every step.
 struct InputScan {
   float lo = std::numeric_limits<float>::infinity();
   float hi = -std::numeric_limits<float>::infinity();
   std::int64_t nonfinite = 0;
-  // Only inside voxels count when the step has a stencil.
-  void add(const std::vector<float>& v, const std::vector<std::uint8_t>& inside) {
+  // Only inside voxels (mask ≠ 0) count when the step has a stencil (a mask).
+  void add(std::span<const float> v, std::span<const float> mask) {
     float l = lo, h = hi;
     std::int64_t bad = 0;
     for (std::size_t i = 0; i < v.size(); ++i) {
       const float x = v[i];
-      if (!inside.empty() && !inside[i]) continue;
+      if (!mask.empty() && mask[i] == 0) continue;
       if (std::isfinite(x)) {
         l = std::min(l, x);
         h = std::max(h, x);
@@ -55,12 +60,15 @@ struct InputScan {
 };
 
 
-// Pass 1: every step once, in order; each brick's samples go to its place in the scratch file.
-// Each step's level bricks (filtered from the whole step, which only this pass holds) go to
-// levels, and their residuals to level_errors ([level brick][step]). With a partition, this
-// process reads its steps (t mod ranks = rank) and sends each other process's bricks at those
-// steps to it, while a receiving thread stores what the others send of this process's bricks;
-// the scans are then combined, so every process returns the scan of the whole input.
+// Pass 1: every step once, in order, read in slabs of one brick layer (or whole, where the
+// source cannot read part of a step); each brick's samples go to its place in the scratch file as
+// soon as the planes it covers are in. Each level brick is filtered (and its residual summed) by
+// a LevelStream fed the same planes in z order, so only the planes a window or a brick still
+// needs are held, never the whole step; the level bricks go to levels, their residuals to
+// level_errors ([level brick][step]). With a partition, this process reads its steps (t mod
+// ranks = rank) and sends each other process's bricks at those steps to it, while a receiving
+// thread stores what the others send of this process's bricks; the scans are then combined, so
+// every process returns the scan of the whole input.
 InputScan scatter_steps(VolumeSource& source, const Octree& octree, ScratchFile& scratch,
                         ScratchFile& levels, detail::StencilScratch stencil,
                         std::span<float> level_errors, const std::optional<ValueRange>& clamp,
@@ -69,7 +77,7 @@ InputScan scatter_steps(VolumeSource& source, const Octree& octree, ScratchFile&
   const Dims d = octree.dims();
   const int steps = source.steps(), n = octree.brick_count(), nl = octree.level_brick_count();
   const int ranks = part ? part->ranks() : 1, rank = part ? part->rank() : 0;
-  const std::int64_t step_bytes = d.count() * std::int64_t(sizeof(float));
+  const std::int64_t plane_bytes = std::int64_t(d.x) * d.y * std::int64_t(sizeof(float));
   // A brick's samples (or stencil flags) at a step, into this process's scratch files.
   auto store = [&](int stored, int t, bool is_mask, std::span<const float> v, float residual) {
     if (stored < n) {
@@ -105,64 +113,110 @@ InputScan scatter_steps(VolumeSource& source, const Octree& octree, ScratchFile&
   });
   InputScan scan;
   {
-    // The reader thread also scans each step, which balances the threads of this pass.
-    StepPrefetcher prefetch(
-        source,
-        [&scan](int, const std::vector<float>& v, const std::vector<std::uint8_t>& inside) {
-          scan.add(v, inside);
+    // The reader thread also scans each slab, which balances the threads of this pass.
+    SlabPrefetcher prefetch(
+        source, std::max(1, octree.brick_cells(2) / kSlabsPerLayer),
+        [&scan](const Slab& s) {
+          const std::size_t count = std::size_t((s.z1 - s.z0) * s.plane_size);
+          scan.add(std::span(s.plane(s.z0), count),
+                   s.mask_plane(s.z0) ? std::span(s.mask_plane(s.z0), count)
+                                      : std::span<const float>());
         },
         rank, ranks);
-    std::vector<float> mask;  // the step's stencil as floats, for scattering and filtering
-    // Copying into the page cache is kernel time that parallelises: two scatter workers split
-    // each step's bricks (pwrite at fixed offsets needs no ordering).
-    constexpr int kScatterWorkers = 2;
-    std::vector<std::vector<float>> bricks(kScatterWorkers);
-    auto scatter = [&](const std::vector<float>& vol, int t, int b, bool is_mask,
-                       std::vector<float>& brick) {
+    // One stream per level brick for its values, one more for its stencil.
+    std::vector<LevelStream> values, masks;
+    for (int j = 0; j < nl; ++j) {
+      const BrickLattice l = octree.lattice(n + j);
+      values.emplace_back(d, l, octree.node(octree.stored_brick_node(n + j)).box, clamp);
+      if (stencil.levels) masks.emplace_back(d, l, std::nullopt, std::nullopt);
+    }
+    // Copying into the page cache is kernel time that parallelises: two workers split each
+    // slab's work (pwrite at fixed offsets needs no ordering).
+    constexpr int kWorkers = 2;
+    std::vector<std::vector<float>> bricks(kWorkers);
+    std::deque<Slab> held;  // the step's slabs still needed, in z order
+    auto plane_of = [&held](bool mask) {
+      return [&held, mask](int z) {
+        for (const Slab& s : held)
+          if (z >= s.z0 && z < s.z1) return mask ? s.mask_plane(z) : s.plane(z);
+        assert(false && "a plane that is no longer held");
+        return static_cast<const float*>(nullptr);
+      };
+    };
+    const LevelStream::PlaneFn value_plane = plane_of(false), mask_plane = plane_of(true);
+    auto scatter = [&](int t, int b, bool is_mask, std::vector<float>& brick) {
       const Box s = octree.brick_samples(b);
       brick.resize(std::size_t(s.count()));
       float* out = brick.data();
       const std::size_t row = std::size_t(s.size(0));
-      for (int z = s.lo[2]; z < s.hi[2]; ++z)
+      const LevelStream::PlaneFn& plane = is_mask ? mask_plane : value_plane;
+      for (int z = s.lo[2]; z < s.hi[2]; ++z) {
+        const float* p = plane(z);
         for (int y = s.lo[1]; y < s.hi[1]; ++y, out += row)
-          std::memcpy(out,
-                      vol.data() + s.lo[0] + std::int64_t(d.x) * (y + std::int64_t(d.y) * z),
-                      row * sizeof(float));
+          std::memcpy(out, p + s.lo[0] + std::int64_t(d.x) * y, row * sizeof(float));
+      }
       deliver(b, t, is_mask, brick, 0.f);
     };
-    std::vector<LevelFilterScratch> filter(kScatterWorkers);
-    auto level = [&](const std::vector<float>& vol, int t, int j, int w) {
-      const int i = n + j;
-      const BrickLattice l = octree.lattice(i);
-      std::vector<float>& brick = bricks[std::size_t(w)];
-      filter_level(vol, d, l, clamp, filter[std::size_t(w)], brick);
-      const float residual = float(level_residual(
-          vol, d, l, octree.node(octree.stored_brick_node(i)).box, brick, clamp));
-      deliver(i, t, false, brick, residual);
-      if (stencil.levels) {
-        filter_level(mask, d, l, std::nullopt, filter[std::size_t(w)], brick);
-        deliver(i, t, true, brick, 0.f);
-      }
-    };
+    std::vector<char> scattered(static_cast<std::size_t>(n));
+    std::vector<int> ready;  // this round's work: leaf bricks, then level streams (j + n)
     for (int t = rank; t < steps; t += ranks) {
-      const std::vector<float>& vol = prefetch.next();
-      if (stencil.leaves) {
-        const std::vector<std::uint8_t>& inside = prefetch.inside();
-        mask.resize(inside.size());
-        for (std::size_t i = 0; i < inside.size(); ++i) mask[i] = inside[i] ? 1.f : 0.f;
+      for (LevelStream& s : values) s.restart();
+      for (LevelStream& s : masks) s.restart();
+      std::fill(scattered.begin(), scattered.end(), 0);
+      held.clear();
+      for (int end = 0; end < d.z;) {
+        Slab slab = prefetch.next();
+        assert(slab.step == t && slab.z0 == end);
+        end = slab.z1;
+        held.push_back(std::move(slab));
+        ready.clear();
+        for (int b = 0; b < n; ++b)
+          if (!scattered[std::size_t(b)] && octree.brick_samples(b).hi[2] <= end) {
+            scattered[std::size_t(b)] = 1;
+            ready.push_back(b);
+          }
+        for (int j = 0; j < nl; ++j)
+          if (!values[std::size_t(j)].done() ||
+              (stencil.levels && !masks[std::size_t(j)].done()))
+            ready.push_back(n + j);
+        parallel_for(kWorkers, 1, kWorkers, [&](int w, std::int64_t first, std::int64_t) {
+          std::vector<float>& brick = bricks[std::size_t(w)];
+          for (auto k = std::size_t(first); k < ready.size(); k += kWorkers) {
+            const int i = ready[k];
+            if (i < n) {
+              scatter(t, i, false, brick);
+              if (stencil.leaves) scatter(t, i, true, brick);
+              continue;
+            }
+            LevelStream& v = values[std::size_t(i - n)];
+            if (!v.done()) {
+              v.feed(value_plane, end);
+              if (v.done()) {
+                deliver(i, t, false, v.samples(), float(v.residual()));
+                v.release();
+              }
+            }
+            if (!stencil.levels) continue;
+            LevelStream& m = masks[std::size_t(i - n)];
+            if (m.done()) continue;
+            m.feed(mask_plane, end);
+            if (m.done()) {
+              deliver(i, t, true, m.samples(), 0.f);
+              m.release();
+            }
+          }
+        });
+        // Drop the slabs below every plane a brick or stream still needs.
+        int keep = end;
+        for (int b = 0; b < n; ++b)
+          if (!scattered[std::size_t(b)]) keep = std::min(keep, octree.brick_samples(b).lo[2]);
+        for (const LevelStream& s : values) keep = std::min(keep, s.needs_from());
+        for (const LevelStream& s : masks) keep = std::min(keep, s.needs_from());
+        while (!held.empty() && held.front().z1 <= keep) held.pop_front();
+        if (progress)
+          progress(kPhaseRead, (std::int64_t(t) * d.z + end) * plane_bytes, total_bytes);
       }
-      // Worker k takes bricks k, k + kScatterWorkers, … (then level bricks): both write side
-      // by side.
-      parallel_for(kScatterWorkers, 1, kScatterWorkers,
-                   [&](int w, std::int64_t first, std::int64_t) {
-                     for (auto b = first; b < n; b += kScatterWorkers) {
-                       scatter(vol, t, int(b), false, bricks[std::size_t(w)]);
-                       if (stencil.leaves) scatter(mask, t, int(b), true, bricks[std::size_t(w)]);
-                     }
-                     for (auto j = first; j < nl; j += kScatterWorkers) level(vol, t, int(j), w);
-                   });
-      prefetch.release();
-      if (progress) progress(kPhaseRead, (t + 1) * step_bytes, total_bytes);
+      assert(std::all_of(values.begin(), values.end(), [](auto& s) { return s.done(); }));
     }
   }
   receiver.finish();

@@ -155,6 +155,7 @@ void read_volume(hid_t dataset, const VolumeSlab& slab, std::span<float> out,
     for (std::size_t a = 0; a < slab.fixed.size(); ++a) start[a] = slab.fixed[a];
     for (std::size_t a = 0; a < slab.spatial.size(); ++a)
       count[slab.fixed.size() + a] = slab.spatial[a];
+    start[slab.fixed.size()] = slab.offset;
     if (H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(),
                             nullptr) < 0)
       throw FormatError(where + ": selection outside the dataset");
@@ -172,7 +173,7 @@ void read_volume(hid_t dataset, const VolumeSlab& slab, std::span<float> out,
 
   for (hsize_t o = 0; o < outer; o += per_batch) {
     const hsize_t n = std::min(per_batch, outer - o);
-    start[slab.fixed.size()] = o;
+    start[slab.fixed.size()] = slab.offset + o;
     count[slab.fixed.size()] = n;
     const hsize_t values = n * plane;
     if (H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(),

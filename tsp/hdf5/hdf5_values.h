@@ -30,11 +30,13 @@ std::optional<std::string> string_attribute(hid_t obj, const std::string& name,
                                             const std::string& where);
 
 /// Which elements of a dataset form one volume: fixed indices for the leading dimensions
-/// (e.g. the time index), then whole spatial dimensions (outermost first, x last), then
-/// `trailing` more dimensions read at index 0 (a component axis of size 1).
+/// (e.g. the time index), then spatial dimensions (outermost first, x last: whole, except the
+/// outermost, read from index `offset`), then `trailing` more dimensions read at index 0 (a
+/// component axis of size 1).
 struct VolumeSlab {
   std::vector<hsize_t> fixed;
   std::vector<hsize_t> spatial;
+  hsize_t offset = 0;
   int trailing = 0;
 };
 

@@ -300,9 +300,11 @@ class Hdf5Source final : public VolumeSource {
   std::vector<double> times_;
   std::vector<std::string> files() const override { return {path_}; }
 
-  void read_step(int t, std::span<float> out) override {
-    assert(t >= 0 && t < steps());
-    assert(std::int64_t(out.size()) == dims_.count());
+  void read_step(int t, std::span<float> out) override { read_slab(t, 0, dims_.z, out); }
+  bool reads_slabs() const override { return true; }
+  void read_slab(int t, int z0, int z1, std::span<float> out) override {
+    assert(t >= 0 && t < steps() && 0 <= z0 && z0 < z1 && z1 <= dims_.z);
+    assert(std::int64_t(out.size()) == std::int64_t(dims_.x) * dims_.y * (z1 - z0));
     const StepRef& step = steps_[std::size_t(t)];
     const std::string where = path_ + ", dataset " + step.dataset;
     Handle ds(H5Dopen2(file_.get(), step.dataset.c_str(), H5P_DEFAULT));
@@ -310,7 +312,8 @@ class Hdf5Source final : public VolumeSource {
     Packing packing = Packing::of(ds.get(), where);
     VolumeSlab slab;
     if (step.indexed) slab.fixed = {step.index};
-    slab.spatial = {hsize_t(dims_.z), hsize_t(dims_.y), hsize_t(dims_.x)};
+    slab.spatial = {hsize_t(z1 - z0), hsize_t(dims_.y), hsize_t(dims_.x)};
+    slab.offset = hsize_t(z0);
     BatchConverter convert;
     if (!packing.identity() || !converts_exactly_to_float(ds.get()))
       convert = [&](std::span<const double> in, std::span<float> o) { packing.apply(in, o); };

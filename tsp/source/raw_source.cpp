@@ -120,19 +120,30 @@ class RawSource final : public VolumeSource {
            (big_endian_ ? "big" : "little") + "-endian files of " + to_string(dims_) + ")";
   }
 
-  void read_step(int t, std::span<float> out) override {
-    assert(t >= 0 && t < steps());
-    assert(std::int64_t(out.size()) == dims_.count());
+  void read_step(int t, std::span<float> out) override { read_slab(t, 0, dims_.z, out); }
+  bool reads_slabs() const override { return true; }
+  void read_slab(int t, int z0, int z1, std::span<float> out) override {
+    assert(t >= 0 && t < steps() && 0 <= z0 && z0 < z1 && z1 <= dims_.z);
+    const std::uint64_t plane = std::uint64_t(dims_.x) * std::uint64_t(dims_.y);
+    assert(out.size() == plane * std::uint64_t(z1 - z0));
     const std::string& file = files_[std::size_t(t)];
     const std::uint64_t expected = std::uint64_t(dims_.count()) * bytes_per_sample(type_);
     std::ifstream in(file, std::ios::binary);
     if (!in) throw IoError(file + ": cannot be opened for reading");
-    buffer_.resize(expected);
-    in.read(reinterpret_cast<char*>(buffer_.data()), std::streamsize(expected));
-    if (std::uint64_t(in.gcount()) != expected)
-      throw FormatError(file + ": holds " + std::to_string(in.gcount()) + " bytes, expected " +
-                        std::to_string(expected) + " (" + to_string(dims_) + " " +
-                        type_name(type_) + ")");
+    // The whole file's size is checked whichever planes are read.
+    in.seekg(0, std::ios::end);
+    const std::streamoff size = in.tellg();
+    if (size < 0 || std::uint64_t(size) != expected)
+      throw FormatError(file + ": holds " + std::to_string(std::max<std::streamoff>(size, 0)) +
+                        " bytes, expected " + std::to_string(expected) + " (" + to_string(dims_) +
+                        " " + type_name(type_) + ")");
+    const std::uint64_t bytes = out.size() * bytes_per_sample(type_);
+    buffer_.resize(bytes);
+    in.seekg(std::streamoff(plane * std::uint64_t(z0) * bytes_per_sample(type_)));
+    in.read(reinterpret_cast<char*>(buffer_.data()), std::streamsize(bytes));
+    if (std::uint64_t(in.gcount()) != bytes)
+      throw IoError(file + ": read " + std::to_string(in.gcount()) + " of " +
+                    std::to_string(bytes) + " bytes at plane " + std::to_string(z0));
     convert(out);
   }
 

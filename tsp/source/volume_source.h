@@ -33,6 +33,19 @@ class VolumeSource {
   /// Non-finite values are passed through; the builder applies the NaN/Inf rule.
   /// Throws IoError or FormatError naming the file and field.
   virtual void read_step(int t, std::span<float> out) = 0;
+  /// True when read_slab reads planes of a step without reading the rest, so that a builder
+  /// holds slabs instead of whole steps. Never throws.
+  virtual bool reads_slabs() const { return false; }
+  /// Reads planes z0 … z1 − 1 (0 ≤ z0 < z1 ≤ dims().z) of step t into out ((z1 − z0) · d.x · d.y
+  /// floats, x fastest) as read_step would. The default reads the whole step and copies them.
+  /// Throws like read_step.
+  virtual void read_slab(int t, int z0, int z1, std::span<float> out) {
+    const Dims d = dims();
+    const std::int64_t plane = std::int64_t(d.x) * d.y;
+    std::vector<float> whole(std::size_t(d.count()));
+    read_step(t, whole);
+    std::copy(whole.begin() + z0 * plane, whole.begin() + z1 * plane, out.begin());
+  }
   /// True when some voxels may lie outside the data (a voxelized unstructured mesh): then
   /// read_step_inside says which, and a builder stores the stencil. Never throws.
   virtual bool has_stencil() const { return false; }

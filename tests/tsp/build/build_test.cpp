@@ -179,6 +179,28 @@ TEST(Build, DeflateKeepsEveryBrickAndShrinksTheFile) {
   EXPECT_FALSE(std::filesystem::exists(dir / "bad.tsp"));
 }
 
+// Pass 1 reading slabs (a source that reads part of a step) writes the same file, bit for bit,
+// as reading whole steps: leaf bricks, level bricks and their residuals, with a --range clamp
+// and non-finite voxels, on a grid whose bricks span several slabs and whose levels go 3 deep.
+TEST(Build, SlabReadsWriteTheFileWholeStepsWrite) {
+  MemorySource src = MemorySource::from_function({37, 30, 75}, 3, [](int x, int y, int z, int t) {
+    if (x == 3 && y == 4 && z == 50) return t == 1 ? NAN : INFINITY;
+    return float(std::sin(0.3 * x + 0.2 * y * (t + 1)) + 0.02 * z);
+  });
+  const std::filesystem::path dir = tsptest::temp_dir();
+  BuildOptions o;
+  o.brick_size = 8;
+  o.range = ValueRange{-0.9, 2.0};
+  build_tsp_file(src, (dir / "whole.tsp").string(), o);
+  EXPECT_EQ(src.slab_reads(), 0);
+  src.set_reads_slabs(true);
+  build_tsp_file(src, (dir / "slabs.tsp").string(), o);
+  EXPECT_EQ(src.slab_reads(), 3 * 75);  // a quarter of a layer of 7 cells: slabs of one plane
+  tsptest::expect_same_build(dir / "whole.tsp", dir / "slabs.tsp", 1);
+  auto f = TspFile::open((dir / "slabs.tsp").string());
+  EXPECT_GE(f->tree().octree().level_brick_count(), 9);
+}
+
 TEST(Build, SingleVoxelSingleStep) {
   MemorySource src({1, 1, 1}, {{2.5f}});
   auto f = build(src, {});

@@ -46,11 +46,10 @@ TEST(LevelFilter, MatchesTheDirectWeightedSumForEveryLevelBrick) {
   const auto v = field(d, [&](int, int, int) { return u(rng); });
   const Octree o(d, 8);
   ASSERT_GT(o.level_brick_count(), 3);
-  LevelFilterScratch s;
   std::vector<float> out;
   for (int i = o.brick_count(); i < o.stored_brick_count(); ++i) {
     const BrickLattice l = o.lattice(i);
-    filter_level(v, d, l, std::nullopt, s, out);
+    filter_level(v, d, l, std::nullopt, out);
     ASSERT_EQ(std::int64_t(out.size()), l.count());
     for (int z = 0; z < l.samples[2]; ++z)
       for (int y = 0; y < l.samples[1]; ++y)
@@ -69,11 +68,10 @@ TEST(LevelFilter, ReproducesALinearFieldAtEveryLevelWithZeroResidual) {
   auto lin = [](double x, double y, double z) { return 0.25 + 0.01 * x - 0.02 * y + 0.005 * z; };
   const auto v = field(d, [&](int x, int y, int z) { return float(lin(x, y, z)); });
   const Octree o(d, 16);
-  LevelFilterScratch s;
   std::vector<float> out;
   for (int i = o.brick_count(); i < o.stored_brick_count(); ++i) {
     const BrickLattice l = o.lattice(i);
-    filter_level(v, d, l, std::nullopt, s, out);
+    filter_level(v, d, l, std::nullopt, out);
     for (int z = 0; z < l.samples[2]; ++z)
       for (int y = 0; y < l.samples[1]; ++y)
         for (int x = 0; x < l.samples[0]; ++x) {
@@ -100,7 +98,6 @@ TEST(LevelFilter, NeighboursAtOneLevelAgreeOnTheirSharedFace) {
   std::uniform_real_distribution<float> u(0, 1);
   const auto v = field(d, [&](int, int, int) { return u(rng); });
   const Octree o(d, 16);  // 5 bricks per axis
-  LevelFilterScratch s;
   std::vector<float> a_out, b_out;
   int pairs = 0;
   for (int i = o.brick_count(); i < o.stored_brick_count(); ++i)
@@ -112,8 +109,8 @@ TEST(LevelFilter, NeighboursAtOneLevelAgreeOnTheirSharedFace) {
       if (b.origin[0] != face || a.origin[1] != b.origin[1] || a.origin[2] != b.origin[2] ||
           face > d.x - 1)
         continue;
-      filter_level(v, d, a, std::nullopt, s, a_out);
-      filter_level(v, d, b, std::nullopt, s, b_out);
+      filter_level(v, d, a, std::nullopt, a_out);
+      filter_level(v, d, b, std::nullopt, b_out);
       for (int z = 0; z < std::min(a.samples[2], b.samples[2]); ++z)
         for (int y = 0; y < std::min(a.samples[1], b.samples[1]); ++y)
           EXPECT_EQ(a_out[std::size_t(a.samples[0] - 1 + a.samples[0] * (y + a.samples[1] * z))],
@@ -130,9 +127,8 @@ TEST(LevelFilter, ClampsIntoTheRangeAndLeavesNonFiniteSamplesOut) {
   v[5] = INFINITY;
   const Octree o(d, 8);
   const BrickLattice root = o.lattice(o.node_brick(0));
-  LevelFilterScratch s;
   std::vector<float> out;
-  filter_level(v, d, root, ValueRange{0, 1}, s, out);
+  filter_level(v, d, root, ValueRange{0, 1}, out);
   for (float x : out) {
     ASSERT_TRUE(std::isfinite(x));
     EXPECT_GE(x, 0.f);
@@ -144,7 +140,7 @@ TEST(LevelFilter, ClampsIntoTheRangeAndLeavesNonFiniteSamplesOut) {
   EXPECT_FLOAT_EQ(out[1], 1.f);
   // A window holding no finite sample gives NaN (the builder's sanitizer maps it like any NaN).
   v[0] = std::nanf("");
-  filter_level(v, d, root, ValueRange{0, 1}, s, out);
+  filter_level(v, d, root, ValueRange{0, 1}, out);
   EXPECT_TRUE(std::isnan(out[0]));
 }
 

@@ -178,9 +178,10 @@ std::size_t run_ranks(int ranks,
 }
 
 // Builds `make()`'s series serially to dir/serial.tsp and with `ranks` thread-ranks to
-// dir/split.tsp, and compares them.
+// dir/split.tsp (with split_slabs, the ranks read slabs where the serial build reads whole
+// steps), and compares them.
 template <class MakeSource>
-void expect_split_equals_serial(const MakeSource& make, int ranks) {
+void expect_split_equals_serial(const MakeSource& make, int ranks, bool split_slabs = false) {
   const fs::path dir = tsptest::temp_dir();
   tsp::BuildOptions options;
   options.brick_size = 8;
@@ -190,6 +191,7 @@ void expect_split_equals_serial(const MakeSource& make, int ranks) {
 
   const std::size_t left = run_ranks(ranks, [&](int, tsp::BuildPartition& part) {
     auto source = make();
+    if constexpr (requires { source.set_reads_slabs(true); }) source.set_reads_slabs(split_slabs);
     tsp::BuildOptions o = options;
     o.partition = &part;
     tsp::build_tsp_file(source, (dir / "split.tsp").string(), o);
@@ -206,6 +208,13 @@ TEST(PartitionBuild, RanksWriteTheSerialFile) {
   for (int ranks : {1, 2, 3, 5}) {
     SCOPED_TRACE(ranks);
     expect_split_equals_serial(wavy, ranks);
+  }
+}
+
+TEST(PartitionBuild, RanksReadingSlabsWriteTheSerialFileOfWholeSteps) {
+  for (int ranks : {1, 3}) {
+    SCOPED_TRACE(ranks);
+    expect_split_equals_serial(wavy, ranks, true);
   }
 }
 

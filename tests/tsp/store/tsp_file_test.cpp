@@ -276,7 +276,7 @@ TEST(TspFile, LevelBricksAreTheFilteredSourceAndBadLevelDataIsRefused) {
     const Octree& o = f->tree().octree();
     ASSERT_GT(o.level_brick_count(), 0);
     const Quantizer q{f->tree().value_range()};
-    LevelFilterScratch scratch;
+    
     std::vector<float> want;
     for (int i = o.brick_count(); i < o.stored_brick_count(); ++i)
       for (int t : {0, 4}) {
@@ -285,7 +285,7 @@ TEST(TspFile, LevelBricksAreTheFilteredSourceAndBadLevelDataIsRefused) {
         f->read_brick(i, t, got);
         std::vector<float> step(std::size_t(d.count()));
         src.read_step(t, step);
-        filter_level(step, d, l, std::nullopt, scratch, want);
+        filter_level(step, d, l, std::nullopt, want);
         for (std::size_t k = 0; k < got.size(); ++k)
           ASSERT_EQ(got[k], q.encode(want[k])) << "level brick " << i << " step " << t;
         EXPECT_GT(f->tree().level_error(o.stored_brick_node(i), t), 0.f);

@@ -79,14 +79,17 @@ std::string ProceduralSource::describe() const {
          ", " + std::to_string(steps_) + " steps)";
 }
 
-void ProceduralSource::read_step(int t, std::span<float> out) {
-  assert(t >= 0 && t < steps_);
-  assert(std::int64_t(out.size()) == dims_.count());
+void ProceduralSource::read_step(int t, std::span<float> out) { read_slab(t, 0, dims_.z, out); }
+
+void ProceduralSource::read_slab(int t, int z0, int z1, std::span<float> out) {
+  assert(t >= 0 && t < steps_ && 0 <= z0 && z0 < z1 && z1 <= dims_.z);
+  const std::int64_t plane = std::int64_t(dims_.x) * dims_.y;
+  assert(std::int64_t(out.size()) == plane * (z1 - z0));
   double tau = normalised_time(t, steps_);
   // Contiguous z-slabs, one per worker (values do not depend on the split).
-  const int slab = (dims_.z + threads_ - 1) / threads_;
-  parallel_for(dims_.z, slab, threads_, [&](int, std::int64_t z0, std::int64_t z1) {
-    fill_slab(tau, int(z0), int(z1), out.data());
+  const int slab = (z1 - z0 + threads_ - 1) / threads_;
+  parallel_for(z1 - z0, slab, threads_, [&](int, std::int64_t a, std::int64_t b) {
+    fill_slab(tau, z0 + int(a), z0 + int(b), out.data() + a * plane);
   });
 }
 

@@ -74,7 +74,7 @@ class ShockSource final : public ProceduralSource {
   using ProceduralSource::ProceduralSource;
 
  protected:
-  void fill_slab(double tau, int z0, int z1, float* step) const override {
+  void fill_slab(double tau, int z0, int z1, float* slab) const override {
     const Dims d = dims();
     const double dx = d.x > 1 ? 1.0 / (d.x - 1) : 0.0;
     std::vector<double> px(d.x);
@@ -84,7 +84,7 @@ class ShockSource final : public ProceduralSource {
       const double pz = normalised(k, d.z);
       for (int j = 0; j < d.y; ++j) {
         const double py = normalised(j, d.y);
-        float* out = step + (std::int64_t(k) * d.y + j) * d.x;
+        float* out = slab + (std::int64_t(k - z0) * d.y + j) * d.x;
         std::fill(out, out + d.x, 0.0f);
         fill_gas_row(out, px, dx, py, pz, tau, turb, row_a);
         if (pz < kGroundBase + kGroundRelief) fill_ground_row(out, d.x, dx, py, pz, row_a, row_b);

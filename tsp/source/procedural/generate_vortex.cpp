@@ -71,9 +71,9 @@ class VortexSource final : public ProceduralSource {
   using ProceduralSource::ProceduralSource;
 
  protected:
-  void fill_slab(double tau, int z0, int z1, float* step) const override {
+  void fill_slab(double tau, int z0, int z1, float* slab) const override {
     const Dims d = dims();
-    std::fill(step + std::int64_t(z0) * d.y * d.x, step + std::int64_t(z1) * d.y * d.x, 0.0f);
+    std::fill(slab, slab + std::int64_t(z1 - z0) * d.y * d.x, 0.0f);
     // Blob by blob over each blob's bounding box: every voxel sums the blobs in index order,
     // whichever slab (thread) it falls in.
     for (const Blob& b : blobs_at(seed(), tau)) {
@@ -90,7 +90,7 @@ class VortexSource final : public ProceduralSource {
         const double rz = normalised(k, d.z) - b.cz;
         for (int j = j0; j < j1; ++j) {
           const double ry = normalised(j, d.y) - b.cy;
-          float* out = step + (std::int64_t(k) * d.y + j) * d.x;
+          float* out = slab + (std::int64_t(k - z0) * d.y + j) * d.x;
           for (int i = i0; i < i1; ++i) {
             const double rx = normalised(i, d.x) - b.cx;
             // Blob frame: u along the orbit (shrunk by kStretch), v radial.

@@ -31,11 +31,14 @@ class ProceduralSource : public GeneratedSource {
   /// Fills step t; values never depend on the thread count (each voxel is computed by one thread
   /// in a fixed order). t and out.size() must be valid (asserted).
   void read_step(int t, std::span<float> out) final;
+  bool reads_slabs() const final { return true; }
+  /// Fills planes z0 … z1 − 1 of step t, the same values read_step gives them (asserted sizes).
+  void read_slab(int t, int z0, int z1, std::span<float> out) final;
 
  protected:
-  /// Writes every voxel of z-slices [z0, z1) of the step at normalised time tau into step (which
-  /// points at the whole step, x fastest). Called concurrently for disjoint slabs.
-  virtual void fill_slab(double tau, int z0, int z1, float* step) const = 0;
+  /// Writes every voxel of z-slices [z0, z1) of the step at normalised time tau into slab (which
+  /// points at plane z0, x fastest). Called concurrently for disjoint slabs.
+  virtual void fill_slab(double tau, int z0, int z1, float* slab) const = 0;
 
  private:
   std::string name_;
