@@ -17,8 +17,9 @@ PKGS=(
   xdotool     # real X key and mouse events for the player tests under Xvfb
 )
 for a in "$@"; do
-  # Open MPI's compiler wrappers and launcher; tspplay-mpi uses the serial HDF5 above.
-  [ "$a" = "--mpi" ] && PKGS+=(libopenmpi-dev openmpi-bin)
+  # Open MPI's compiler wrappers and launcher, and parallel HDF5 (tspplay-mpi's own build of
+  # the library links it; the rest keeps the serial HDF5 above).
+  [ "$a" = "--mpi" ] && PKGS+=(libopenmpi-dev openmpi-bin libhdf5-openmpi-dev)
 done
 missing=()
 for p in "${PKGS[@]}"; do

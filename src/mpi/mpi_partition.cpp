@@ -8,6 +8,8 @@
 #include <vector>
 #include <string>
 
+#include <hdf5.h>
+
 #include "tsp/core/error.h"
 
 namespace tspmpi {
@@ -66,6 +68,26 @@ void MpiPartition::wait_for(int tag, MPI_Message* message, MPI_Status* status) c
     if (found) return;
     std::this_thread::sleep_for(kPollInterval);
   }
+}
+
+void MpiCollectiveIo::set_file_access(std::int64_t fapl) {
+  if (H5Pset_fapl_mpio(hid_t(fapl), comm_, MPI_INFO_NULL) < 0)
+    throw tsp::Error("parallel HDF5: cannot set MPI-IO file access");
+}
+
+void MpiCollectiveIo::set_collective_transfer(std::int64_t dxpl) {
+  if (H5Pset_dxpl_mpio(hid_t(dxpl), H5FD_MPIO_COLLECTIVE) < 0)
+    throw tsp::Error("parallel HDF5: cannot set collective transfers");
+}
+
+void MpiCollectiveIo::barrier() { check(MPI_Barrier(comm_), "waiting for every rank"); }
+
+std::string MpiPartition::broadcast_path(const std::string& path) {
+  std::uint64_t n = path.size();
+  check(MPI_Bcast(&n, 1, MPI_UINT64_T, 0, comm_), "sharing the output's name");
+  std::string out = rank_ == 0 ? path : std::string(n, '\0');
+  check(MPI_Bcast(out.data(), int(n), MPI_CHAR, 0, comm_), "sharing the output's name");
+  return out;
 }
 
 MpiPartition::MpiPartition(MPI_Comm comm) : comm_(comm) {

@@ -3,10 +3,28 @@
 #include <mpi.h>
 
 #include <mutex>
+#include <string>
 
 #include "tsp/build/build_partition.h"
+#include "tsp/store/tsp_writer.h"
 
 namespace tspmpi {
+
+/// Parallel HDF5 over comm: MPI-IO file access, collective transfers, MPI_Barrier.
+class MpiCollectiveIo final : public tsp::CollectiveIo {
+ public:
+  /// Uses comm (not duplicated: it must outlive this). Never throws.
+  explicit MpiCollectiveIo(MPI_Comm comm) : comm_(comm) {}
+  /// H5Pset_fapl_mpio over comm. Throws tsp::Error.
+  void set_file_access(std::int64_t fapl) override;
+  /// H5Pset_dxpl_mpio, collective. Throws tsp::Error.
+  void set_collective_transfer(std::int64_t dxpl) override;
+  /// MPI_Barrier over comm. Throws tsp::Error.
+  void barrier() override;
+
+ private:
+  MPI_Comm comm_;
+};
 
 /// The ranks of comm build one file: point-to-point messages carry samples to the bricks'
 /// owners (pass 1) and finished bricks to rank 0 (pass 2), reductions combine the input scans
@@ -38,6 +56,10 @@ class MpiPartition final : public tsp::BuildPartition {
   tsp::StepSamples receive_samples() override;
   /// MPI_Allreduce: MIN of lo, MAX of hi, SUM of nonfinite. Throws tsp::Error on an MPI error.
   void combine_scan(float& lo, float& hi, std::int64_t& nonfinite) override;
+  /// Every rank writes its own bricks into the file with parallel HDF5. Never throws.
+  tsp::CollectiveIo* collective_io() override { return &io_; }
+  /// MPI_Bcast of rank 0's path. Throws tsp::Error on an MPI error.
+  std::string broadcast_path(const std::string& path) override;
   /// Ranks of comm on this node (MPI_COMM_TYPE_SHARED). Never throws.
   int ranks_on_node() const { return on_node_; }
 
@@ -50,6 +72,7 @@ class MpiPartition final : public tsp::BuildPartition {
   int rank_ = 0, ranks_ = 1, on_node_ = 1;
   int pass_ = 0;  // passes ended by sum_to_writer: messages of pass k carry tags of pass k
   std::mutex send_mutex_;  // a brick's messages leave together
+  MpiCollectiveIo io_{comm_};
 };
 
 }  // namespace tspmpi

@@ -272,7 +272,8 @@ ValueRange checked_range(const std::optional<ValueRange>& r, ValueRange data) {
 
 namespace {
 
-// Ranks other than 0 of a partitioned build compute bricks but write no file.
+// Ranks other than 0 of a partitioned build own no output: they compute bricks and send them
+// to rank 0, or write them into rank 0's temporary with collective writes.
 bool writes_nothing(const BuildOptions& options) {
   return options.partition && options.partition->rank() != 0;
 }
@@ -299,7 +300,7 @@ void check_options(const std::string& out_path, const BuildOptions& options) {
 // Builds one field of source into the temporary output out (field_index 0: the file's root,
 // created; K ≥ 1: the group fields/K of the file field 0 was written to), with scratch files in
 // scratch_dir. Ranks other than 0 of a partitioned build have no out (null): they compute
-// their bricks and hand them to rank 0.
+// their bricks and hand them to rank 0 (or, with collective writes, write them themselves).
 BuildReport build_field(VolumeSource& source, const TempOutput* out,
                         const std::string& scratch_dir, int field_index,
                         const BuildOptions& options) {
@@ -340,7 +341,8 @@ BuildReport build_field(VolumeSource& source, const TempOutput* out,
   std::vector<NodeAccum> acc(tree.size());
   TspMetadata meta;
   const int threads = resolve_threads(options.threads);
-  if (!out) {  // a rank other than 0: its bricks go to rank 0
+  CollectiveIo* io = part ? part->collective_io() : nullptr;
+  if (!out && !io) {  // a rank other than 0: its bricks go to rank 0
     detail::run_brick_pass(tree, scratch, levels, stencil, nullptr, report.value_range, acc,
                            tree.level_errors(), part, threads, options.progress,
                            report.source_bytes);
@@ -348,10 +350,18 @@ BuildReport build_field(VolumeSource& source, const TempOutput* out,
     return report;
   }
   {
-    TspWriter writer(out->tmp(), tree, field_index, options.deflate);
+    // With collective writes every rank opens rank 0's temporary and writes its own bricks;
+    // rank 0 then finishes the file alone.
+    const std::string tmp = io ? part->broadcast_path(out ? out->tmp() : "") : out->tmp();
+    TspWriter writer(tmp, tree, field_index, options.deflate, io);
     const detail::BrickPassResult pass = detail::run_brick_pass(
         tree, scratch, levels, stencil, &writer, report.value_range, acc, tree.level_errors(), part,
         threads, options.progress, report.source_bytes);
+    if (io) writer.end_collective(out != nullptr);
+    if (!out) {
+      report.seconds = watch.seconds();
+      return report;
+    }
     combine_octree(tree, acc);
     if (stencil.leaves) tree.set_inside_fractions(inside_fractions(o, pass.inside_voxels));
     for (int i = 0; i < tree.size(); ++i) tree.stats(i) = acc[i].finish(report.value_range.width());

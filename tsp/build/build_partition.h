@@ -5,9 +5,12 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
 namespace tsp {
+
+class CollectiveIo;
 
 /// One stored brick's results, shipped from the process that computed them to the writer.
 struct BrickResult {
@@ -62,6 +65,11 @@ class BuildPartition {
   /// End of pass 1 (collective): the minimum of lo, the maximum of hi and the sum of nonfinite
   /// over every rank, into every rank's. Throws Error.
   virtual void combine_scan(float& lo, float& hi, std::int64_t& nonfinite) = 0;
+  /// How the ranks write the file together (parallel HDF5: every rank writes its own bricks,
+  /// rank 0 the tree), or null when rank 0 writes the whole file (the default). Never throws.
+  virtual CollectiveIo* collective_io() { return nullptr; }
+  /// Rank 0's path, returned on every rank (collective; with collective_io only). Throws Error.
+  virtual std::string broadcast_path(const std::string& path) { return path; }
   /// The process that reads step t, or computes stored brick b (both round robin). Never throws.
   int owner(std::int64_t i) const { return int(i % ranks()); }
   /// Whether this process reads step t in pass 1. Never throws.

@@ -33,6 +33,8 @@ class Handle {
   explicit operator bool() const { return id_ >= 0; }
   /// Closes the identifier now.
   void reset();
+  /// Gives up ownership: returns the identifier, which the caller must close. Never throws.
+  hid_t release() { return std::exchange(id_, H5I_INVALID_HID); }
 
  private:
   hid_t id_ = H5I_INVALID_HID;

@@ -70,6 +70,9 @@ std::array<int, 6> flat(const Box& b) {
 
 struct TspWriter::Impl {
   std::string path;
+  int field_index = 0;
+  CollectiveIo* io = nullptr;
+  Handle dxpl;  ///< with io: collective transfers
   Handle file;
   Handle loc;  ///< where this field goes: the root group, or fields/K
   Handle data;
@@ -78,16 +81,33 @@ struct TspWriter::Impl {
   std::array<int, 3> shape{};  // x, y, z
 };
 
-TspWriter::TspWriter(const std::string& path, const TspTree& tree, int field_index, int deflate)
+// Opens the location of field field_index (the root, or fields/K) in an open file. Throws IoError.
+Handle open_field_group(hid_t file, const std::string& path, int field_index) {
+  const std::string group =
+      field_index == 0 ? std::string("/")
+                       : std::string(layout::kFieldsGroup) + "/" + std::to_string(field_index);
+  return Handle(check_id(H5Gopen2(file, group.c_str(), H5P_DEFAULT), path, group));
+}
+
+TspWriter::TspWriter(const std::string& path, const TspTree& tree, int field_index, int deflate,
+                     CollectiveIo* io)
     : impl_(std::make_unique<Impl>()) {
   assert(field_index >= 0 && deflate >= 0 && deflate <= 9);
   std::lock_guard lock(hdf5_mutex());
   h5::silence_errors();
   Impl& w = *impl_;
   w.path = path;
+  w.field_index = field_index;
+  w.io = io;
   w.steps = tree.time().steps();
   w.shape = stored_brick_shape(tree.octree());
   Handle fapl(H5Pcreate(H5P_FILE_ACCESS));
+  if (io) {
+    io->set_file_access(fapl.get());
+    w.dxpl = Handle(H5Pcreate(H5P_DATASET_XFER));
+    io->set_collective_transfer(w.dxpl.get());
+    if (field_index > 0) io->barrier();  // the finisher of the previous field has closed it
+  }
   // The newest 1.10 structures: chunk indexes suited to fixed-size datasets. h5py reads them.
   H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_LATEST, H5F_LIBVER_LATEST);
   if (field_index == 0) {
@@ -173,23 +193,32 @@ void TspWriter::write_field_list(const std::string& path, const std::vector<std:
 namespace {
 
 // Writes brick's chunks at every step of a [brick, step, z, y, x] dataset from data (memory type
-// mem_type, elem bytes per sample), in batches of steps: HDF5 keeps per-chunk bookkeeping for
-// every chunk of one write (and holds on to it in its free lists), so one write of a long series
-// would cost memory per step. Holds hdf5_mutex(). Throws IoError naming what.
+// mem_type, elem bytes per sample), in batches of steps, one H5Dwrite per batch (with dxpl
+// collective: every process makes the same calls; brick < 0 is this process's empty part).
+// Batches, because HDF5 keeps per-chunk bookkeeping for every chunk of one write (and holds on
+// to it in its free lists), so one write of a long series would cost memory per step. Holds
+// hdf5_mutex(). Throws IoError naming what.
 void write_series(hid_t dataset, hid_t mem_type, std::size_t elem, const std::array<int, 3>& shape,
-                  int steps, int brick, const void* data, const std::string& path,
+                  int steps, int brick, const void* data, hid_t dxpl, const std::string& path,
                   const std::string& what) {
   const hsize_t per_step = hsize_t(shape[0]) * shape[1] * shape[2];
   std::lock_guard lock(hdf5_mutex());
   Handle fspace(H5Dget_space(dataset));
   for (hsize_t t0 = 0; t0 < hsize_t(steps); t0 += kWriteBatchSteps) {
     const hsize_t n = std::min<hsize_t>(kWriteBatchSteps, hsize_t(steps) - t0);
-    hsize_t start[5] = {hsize_t(brick), t0, 0, 0, 0};
+    hsize_t start[5] = {hsize_t(std::max(brick, 0)), t0, 0, 0, 0};
     hsize_t count[5] = {1, n, hsize_t(shape[2]), hsize_t(shape[1]), hsize_t(shape[0])};
     H5Sselect_hyperslab(fspace.get(), H5S_SELECT_SET, start, nullptr, count, nullptr);
+    // Shaped like the file's selection: HDF5 copies element by element between differently
+    // shaped selections.
     Handle mspace(H5Screate_simple(5, count, nullptr));
-    check_status(H5Dwrite(dataset, mem_type, mspace.get(), fspace.get(), H5P_DEFAULT,
-                          static_cast<const unsigned char*>(data) + t0 * per_step * elem),
+    if (brick < 0) {
+      H5Sselect_none(fspace.get());
+      H5Sselect_none(mspace.get());
+    }
+    check_status(H5Dwrite(dataset, mem_type, mspace.get(), fspace.get(), dxpl,
+                          brick < 0 ? nullptr
+                                    : static_cast<const unsigned char*>(data) + t0 * per_step * elem),
                  path, what);
   }
 }
@@ -200,7 +229,8 @@ void TspWriter::write_brick_series(int brick, std::span<const std::uint16_t> cod
   const Impl& w = *impl_;
   assert(codes.size() == std::size_t(w.shape[0]) * w.shape[1] * w.shape[2] * std::size_t(w.steps));
   write_series(w.data.get(), H5T_NATIVE_UINT16, sizeof(std::uint16_t), w.shape, w.steps, brick,
-               codes.data(), w.path, "brick " + std::to_string(brick));
+               codes.data(), w.io ? w.dxpl.get() : H5P_DEFAULT, w.path,
+               "brick " + std::to_string(brick));
 }
 
 void TspWriter::write_inside_series(int brick, std::span<const std::uint8_t> inside) {
@@ -208,7 +238,33 @@ void TspWriter::write_inside_series(int brick, std::span<const std::uint8_t> ins
   assert(w.inside &&
          inside.size() == std::size_t(w.shape[0]) * w.shape[1] * w.shape[2] * std::size_t(w.steps));
   write_series(w.inside.get(), H5T_NATIVE_UINT8, 1, w.shape, w.steps, brick, inside.data(),
-               w.path, "stencil of brick " + std::to_string(brick));
+               w.io ? w.dxpl.get() : H5P_DEFAULT, w.path, "stencil of brick " + std::to_string(brick));
+}
+
+void TspWriter::write_no_brick() {
+  const Impl& w = *impl_;
+  assert(w.io);
+  write_series(w.data.get(), H5T_NATIVE_UINT16, 2, w.shape, w.steps, -1, nullptr, w.dxpl.get(),
+               w.path, "bricks");
+  if (w.inside)
+    write_series(w.inside.get(), H5T_NATIVE_UINT8, 1, w.shape, w.steps, -1, nullptr,
+                 w.dxpl.get(), w.path, "stencils");
+}
+
+void TspWriter::end_collective(bool finisher) {
+  std::lock_guard lock(hdf5_mutex());
+  Impl& w = *impl_;
+  assert(w.io);
+  w.data.reset();
+  w.inside.reset();
+  w.loc.reset();
+  w.dxpl.reset();
+  if (H5Fclose(w.file.release()) < 0) throw IoError(w.path + ": cannot close the output file");
+  w.io = nullptr;
+  if (!finisher) return;
+  w.file = Handle(H5Fopen(w.path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT));
+  if (!w.file) throw IoError(w.path + ": cannot reopen the output file to finish it");
+  w.loc = open_field_group(w.file.get(), w.path, w.field_index);
 }
 
 void TspWriter::finish(const TspTree& tree, const TspMetadata& meta) {
