@@ -60,6 +60,14 @@ struct InputScan {
 };
 
 
+// Planes per slab of pass 1: a quarter of a brick layer, rounded up to a multiple of how the
+// input is stored (an HDF5 chunk's depth), so that no chunk is read (and decompressed) twice.
+int slab_planes(const VolumeSource& source, const Octree& octree) {
+  const int planes = std::max(1, octree.brick_cells(2) / kSlabsPerLayer);
+  const int align = std::clamp(source.slab_alignment(), 0, octree.dims().z);
+  return align > 1 ? (planes + align - 1) / align * align : planes;
+}
+
 // Pass 1: every step once, in order, read in slabs of one brick layer (or whole, where the
 // source cannot read part of a step); each brick's samples go to its place in the scratch file as
 // soon as the planes it covers are in. Each level brick is filtered (and its residual summed) by
@@ -115,7 +123,7 @@ InputScan scatter_steps(VolumeSource& source, const Octree& octree, ScratchFile&
   {
     // The reader thread also scans each slab, which balances the threads of this pass.
     SlabPrefetcher prefetch(
-        source, std::max(1, octree.brick_cells(2) / kSlabsPerLayer),
+        source, slab_planes(source, octree),
         [&scan](const Slab& s) {
           const std::size_t count = std::size_t((s.z1 - s.z0) * s.plane_size);
           scan.add(std::span(s.plane(s.z0), count),

@@ -273,6 +273,17 @@ void wrf_geometry(hid_t file, Dims dims, GridGeometry& g) {
   g.origin[2] = bottom + (hsize_t(dims.z) == levels ? 0.0 : 0.5 * dz);
 }
 
+// The extent along dimension z_dim of a chunked dataset's chunks; 0 when it is not chunked or
+// the layout cannot be read. Never throws.
+int chunk_depth(hid_t dataset, int z_dim) {
+  Handle dcpl(H5Dget_create_plist(dataset));
+  if (!dcpl || H5Pget_layout(dcpl.get()) != H5D_CHUNKED) return 0;
+  hsize_t chunk[8] = {};
+  const int rank = H5Pget_chunk(dcpl.get(), 8, chunk);
+  if (rank <= z_dim || chunk[z_dim] > hsize_t(INT32_MAX)) return 0;
+  return int(chunk[z_dim]);
+}
+
 // One step: a dataset and, for 4-D datasets, the index along its first dimension.
 struct StepRef {
   std::string dataset;
@@ -302,6 +313,8 @@ class Hdf5Source final : public VolumeSource {
 
   void read_step(int t, std::span<float> out) override { read_slab(t, 0, dims_.z, out); }
   bool reads_slabs() const override { return true; }
+  int slab_alignment() const override { return chunk_planes_; }
+  int chunk_planes_ = 0;  // the chunks' depth along z (0: not chunked)
   void read_slab(int t, int z0, int z1, std::span<float> out) override {
     assert(t >= 0 && t < steps() && 0 <= z0 && z0 < z1 && z1 <= dims_.z);
     assert(std::int64_t(out.size()) == std::int64_t(dims_.x) * dims_.y * (z1 - z0));
@@ -361,6 +374,7 @@ std::unique_ptr<VolumeSource> open_dataset(const std::string& path, Handle file,
                                              std::move(steps));
   source->geometry_ = geometry;
   source->times_ = std::move(times);
+  source->chunk_planes_ = chunk_depth(ds.get(), shape.size() == 4 ? 1 : 0);
   return source;
 }
 
@@ -402,8 +416,11 @@ std::unique_ptr<VolumeSource> open_group(const std::string& path, Handle file,
     Handle first(H5Dopen2(file.get(), steps[0].dataset.c_str(), H5P_DEFAULT));
     if (first) geometry = dimension_scales(first.get(), 0, dims);
   }
+  Handle first(H5Dopen2(file.get(), steps[0].dataset.c_str(), H5P_DEFAULT));
+  const int depth = first ? chunk_depth(first.get(), 0) : 0;
   auto source = std::make_unique<Hdf5Source>(path, std::move(file), text, dims, std::move(steps));
   source->geometry_ = geometry;
+  source->chunk_planes_ = depth;
   return source;
 }
 

@@ -36,6 +36,10 @@ class VolumeSource {
   /// True when read_slab reads planes of a step without reading the rest, so that a builder
   /// holds slabs instead of whole steps. Never throws.
   virtual bool reads_slabs() const { return false; }
+  /// Planes per read_slab that suit how the input is stored (an HDF5 chunk's depth: slabs that
+  /// are multiples of it, starting at 0, read each chunk once); 0 when any height suits. Never
+  /// throws.
+  virtual int slab_alignment() const { return 0; }
   /// Reads planes z0 … z1 − 1 (0 ≤ z0 < z1 ≤ dims().z) of step t into out ((z1 − z0) · d.x · d.y
   /// floats, x fastest) as read_step would. The default reads the whole step and copies them.
   /// Throws like read_step.

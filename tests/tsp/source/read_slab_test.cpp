@@ -53,6 +53,22 @@ TEST(ReadSlab, Hdf5DatasetsOfEveryLayoutAndType) {
   }
 }
 
+// A chunked, compressed dataset (what `tspplay generate` writes: chunks of whole planes, as
+// deep as 4 MiB allows) reads its slabs like its steps and tells its chunks' depth, so a build
+// reads each chunk once; a contiguous one has no preferred height.
+TEST(ReadSlab, ChunkedDatasetsTellTheirChunkDepth) {
+  const fs::path dir = tsptest::temp_dir();
+  GenerateOptions o;
+  o.dims = Dims{64, 32, 12};  // 8 KiB planes: chunks of 12 planes, the whole step (< 4 MiB)
+  o.steps = 2;
+  auto gen = make_generated_source("shock", o);
+  write_generated_dataset(*gen, (dir / "g.h5").string(), 4);
+  auto s = tsptest::open_field((dir / "g.h5").string(), "shock");
+  EXPECT_EQ(s->slab_alignment(), 12);
+  expect_slabs_match_steps(*s, "gzip chunks");
+  EXPECT_EQ(tsptest::open_field(h5_fixture("grid4d.h5"), "f")->slab_alignment(), 0);
+}
+
 TEST(ReadSlab, RawFilesInBothByteOrdersAndAShortFileNamed) {
   const fs::path dir = tsptest::temp_dir();
   const Dims d{5, 4, 6};
