@@ -91,14 +91,20 @@ class VtkHdfSource final : public VolumeSource {
   std::string describe() const override { return path_ + ", VTKHDF ImageData " + array_path_; }
   std::vector<std::string> files() const override { return {path_}; }
 
-  void read_step(int t, std::span<float> out) override {
-    assert(t >= 0 && t < steps());
-    assert(std::int64_t(out.size()) == dims_.count());
+  void read_step(int t, std::span<float> out) override { read_slab(t, 0, dims_.z, out); }
+  bool reads_slabs() const override { return true; }
+  void read_slab(int t, int z0, int z1, std::span<float> out) override {
+    assert(t >= 0 && t < steps() && 0 <= z0 && z0 < z1 && z1 <= dims_.z);
+    assert(std::int64_t(out.size()) == std::int64_t(dims_.x) * dims_.y * (z1 - z0));
     const std::string where = path_ + ", dataset " + array_path_;
     Handle ds(H5Dopen2(file_.get(), array_path_.c_str(), H5P_DEFAULT));
     if (!ds) throw FormatError(where + ": dataset cannot be opened");
     VolumeSlab slab = slab_;
     if (transient_) slab.fixed = {time_index_[std::size_t(t)]};
+    if (slab.spatial.size() == 3) {  // a flat image (fewer axes stored) has one plane
+      slab.spatial[0] = hsize_t(z1 - z0);
+      slab.offset = hsize_t(z0);
+    }
     read_volume(
         ds.get(), slab, out,
         [](std::span<const double> in, std::span<float> o) {

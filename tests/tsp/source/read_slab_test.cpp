@@ -1,5 +1,5 @@
 // VolumeSource::read_slab against read_step for every reader that reads slabs (HDF5 3-D, 4-D,
-// per-step groups, packed and converted integers; raw files in both byte orders; the built-in
+// per-step groups, packed and converted integers; VTKHDF image data, static and transient; raw files in both byte orders; the built-in
 // generators): every slab of every step holds exactly the planes the whole step holds.
 #include <gtest/gtest.h>
 
@@ -47,7 +47,9 @@ TEST(ReadSlab, Hdf5DatasetsOfEveryLayoutAndType) {
            {"grid4d.h5", "single"},
            {"group_steps.h5", "steps"},
            {"int16.h5", "packed"},
-           {"int16.h5", "u64"}}) {
+           {"int16.h5", "u64"},
+           {"vtkhdf_static.hdf", ""},
+           {"vtkhdf_transient.hdf", ""}}) {
     auto s = tsptest::open_field(h5_fixture(file), field);
     expect_slabs_match_steps(*s, file + " " + field);
   }
