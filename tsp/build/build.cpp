@@ -68,7 +68,7 @@ int slab_planes(const VolumeSource& source, const Octree& octree) {
   return align > 1 ? (planes + align - 1) / align * align : planes;
 }
 
-// Pass 1: every step once, in order, read in slabs of one brick layer (or whole, where the
+// Pass 1: every step once, in order, read in slabs of slab_planes() planes (or whole, where the
 // source cannot read part of a step); each brick's samples go to its place in the scratch file as
 // soon as the planes it covers are in. Each level brick is filtered (and its residual summed) by
 // a LevelStream fed the same planes in z order, so only the planes a window or a brick still
