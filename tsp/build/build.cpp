@@ -152,8 +152,10 @@ InputScan scatter_steps(VolumeSource& source, const Octree& octree, ScratchFile&
       };
     };
     const LevelStream::PlaneFn value_plane = plane_of(false), mask_plane = plane_of(true);
+    std::vector<Box> samples(static_cast<std::size_t>(n));  // each brick's samples, for the planes
+    for (int b = 0; b < n; ++b) samples[std::size_t(b)] = octree.brick_samples(b);
     auto scatter = [&](int t, int b, bool is_mask, std::vector<float>& brick) {
-      const Box s = octree.brick_samples(b);
+      const Box& s = samples[std::size_t(b)];
       brick.resize(std::size_t(s.count()));
       float* out = brick.data();
       const std::size_t row = std::size_t(s.size(0));
@@ -179,7 +181,7 @@ InputScan scatter_steps(VolumeSource& source, const Octree& octree, ScratchFile&
         held.push_back(std::move(slab));
         ready.clear();
         for (int b = 0; b < n; ++b)
-          if (!scattered[std::size_t(b)] && octree.brick_samples(b).hi[2] <= end) {
+          if (!scattered[std::size_t(b)] && samples[std::size_t(b)].hi[2] <= end) {
             scattered[std::size_t(b)] = 1;
             ready.push_back(b);
           }
@@ -217,7 +219,7 @@ InputScan scatter_steps(VolumeSource& source, const Octree& octree, ScratchFile&
         // Drop the slabs below every plane a brick or stream still needs.
         int keep = end;
         for (int b = 0; b < n; ++b)
-          if (!scattered[std::size_t(b)]) keep = std::min(keep, octree.brick_samples(b).lo[2]);
+          if (!scattered[std::size_t(b)]) keep = std::min(keep, samples[std::size_t(b)].lo[2]);
         for (const LevelStream& s : values) keep = std::min(keep, s.needs_from());
         for (const LevelStream& s : masks) keep = std::min(keep, s.needs_from());
         while (!held.empty() && held.front().z1 <= keep) held.pop_front();

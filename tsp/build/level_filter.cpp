@@ -9,11 +9,7 @@ namespace tsp {
 
 namespace {
 
-// The filter taps of one output sample along an axis: voxels first … first + weights.size() − 1.
-struct Taps {
-  int first = 0;
-  std::vector<float> weights;
-};
+using Taps = detail::FilterTaps;
 
 // Taps of the m samples origin + j·f (clamped to the last voxel n − 1) along an axis of n voxels.
 std::vector<Taps> axis_taps(int origin, int f, int m, int n) {
@@ -39,23 +35,22 @@ float clamp_value(float v, const std::optional<ValueRange>& c) {
 }
 
 // One separable pass along the middle axis of in, laid out [outer][len][inner] with the middle
-// axis starting at voxel in_lo; out gets [outer][m][inner] for the m samples whose windows start
-// at first[j] with weights w[j]. Non-finite inputs are left out and the weights renormalised.
-void pass(const float* in, int outer, int len, int inner, int in_lo, std::span<const int> first,
-          std::span<const std::vector<float>> w, float* out) {
-  const int m = int(first.size());
+// axis starting at voxel in_lo; out gets [outer][taps.size()][inner]. Non-finite inputs are left
+// out and the weights renormalised.
+void pass(const float* in, int outer, int len, int inner, int in_lo, std::span<const Taps> taps,
+          float* out) {
+  const int m = int(taps.size());
   for (int o = 0; o < outer; ++o)
     for (int j = 0; j < m; ++j) {
-      const std::vector<float>& wj = w[std::size_t(j)];
+      const Taps& t = taps[std::size_t(j)];
       float* dst = out + (std::size_t(o) * m + j) * inner;
       for (int i = 0; i < inner; ++i) {
         double sum = 0, wsum = 0;
-        for (std::size_t k = 0; k < wj.size(); ++k) {
-          const float v =
-              in[(std::size_t(o) * len + (first[std::size_t(j)] - in_lo + int(k))) * inner + i];
+        for (std::size_t k = 0; k < t.weights.size(); ++k) {
+          const float v = in[(std::size_t(o) * len + (t.first - in_lo + int(k))) * inner + i];
           if (!std::isfinite(v)) continue;
-          sum += double(wj[k]) * v;
-          wsum += wj[k];
+          sum += double(t.weights[k]) * v;
+          wsum += t.weights[k];
         }
         dst[i] = wsum > 0 ? float(sum / wsum) : std::nanf("");
       }
@@ -115,12 +110,9 @@ LevelStream::LevelStream(Dims d, const BrickLattice& l, std::optional<Box> own,
                          std::optional<ValueRange> clamp)
     : dims_(d), lattice_(l), own_(own), clamp_(clamp) {
   for (int a = 0; a < 3; ++a) {
-    for (const Taps& t : axis_taps(l.origin[a], l.factor[a], l.samples[a], d[a])) {
-      taps_[a].first.push_back(t.first);
-      taps_[a].w.push_back(t.weights);
-    }
-    lo_[a] = taps_[a].first.front();
-    len_[a] = taps_[a].first.back() + int(taps_[a].w.back().size()) - lo_[a];
+    taps_[a] = axis_taps(l.origin[a], l.factor[a], l.samples[a], d[a]);
+    lo_[a] = taps_[a].front().first;
+    len_[a] = taps_[a].back().first + int(taps_[a].back().weights.size()) - lo_[a];
     if (own_) residual_weights(l, *own_, a, res_k_[a], res_t_[a]);
   }
   restart();
@@ -163,10 +155,10 @@ void LevelStream::reduce_plane(const float* plane) {
     for (int x = 0; x < len_[0]; ++x) dst[x] = clamp_value(src[x], clamp_);
   }
   b_.resize(std::size_t(len_[1]) * mx);
-  pass(a_.data(), len_[1], len_[0], 1, lo_[0], taps_[0].first, taps_[0].w, b_.data());  // x
+  pass(a_.data(), len_[1], len_[0], 1, lo_[0], taps_[0], b_.data());  // x
   const std::size_t at = reduced_.size();
   reduced_.resize(at + std::size_t(my) * mx);
-  pass(b_.data(), 1, len_[1], mx, lo_[1], taps_[1].first, taps_[1].w, reduced_.data() + at);  // y
+  pass(b_.data(), 1, len_[1], mx, lo_[1], taps_[1], reduced_.data() + at);  // y
 }
 
 void LevelStream::feed(const PlaneFn& plane, int end) {
@@ -178,16 +170,14 @@ void LevelStream::feed(const PlaneFn& plane, int end) {
     reduce_plane(plane(next_reduce_));
   // z: each sample whose window is reduced.
   for (; next_sample_ < mz; ++next_sample_) {
-    const auto j = std::size_t(next_sample_);
-    const int first = taps_[2].first[j];
-    if (first + int(taps_[2].w[j].size()) > next_reduce_) break;
+    const Taps& t = taps_[2][std::size_t(next_sample_)];
+    if (t.first + int(t.weights.size()) > next_reduce_) break;
     pass(reduced_.data(), 1, next_reduce_ - reduced_lo_, int(inner), reduced_lo_,
-         std::span(taps_[2].first).subspan(j, 1), std::span(taps_[2].w).subspan(j, 1),
-         out_.data() + j * inner);
+         std::span(&t, 1), out_.data() + std::size_t(next_sample_) * inner);
   }
   // Reduced planes below the next sample's window are not needed again.
   const int keep = next_sample_ < mz
-                       ? std::min(taps_[2].first[std::size_t(next_sample_)], next_reduce_)
+                       ? std::min(taps_[2][std::size_t(next_sample_)].first, next_reduce_)
                        : next_reduce_;
   if (keep > reduced_lo_) {
     const std::size_t drop = std::size_t(keep - reduced_lo_) * inner;

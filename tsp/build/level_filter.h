@@ -19,6 +19,14 @@
 
 namespace tsp {
 
+namespace detail {
+/// The filter taps of one output sample along an axis: voxels first … first + weights.size() − 1.
+struct FilterTaps {
+  int first = 0;
+  std::vector<float> weights;
+};
+}  // namespace detail
+
 /// One level brick's filtered samples (and, given its own box, its residual) computed from one
 /// step's planes in z order. Not thread-safe; one stream per level brick.
 class LevelStream {
@@ -52,11 +60,7 @@ class LevelStream {
   BrickLattice lattice_;
   std::optional<Box> own_;
   std::optional<ValueRange> clamp_;
-  struct AxisTaps {
-    std::vector<int> first;            // each sample's first voxel
-    std::vector<std::vector<float>> w;  // each sample's weights
-  };
-  AxisTaps taps_[3];
+  std::vector<detail::FilterTaps> taps_[3];  // each axis's samples
   int lo_[3] = {}, len_[3] = {};
   // Per own voxel along each axis: its lower lattice sample and its weight towards the next.
   std::vector<int> res_k_[3];

@@ -58,10 +58,10 @@ void SlabPrefetcher::run() {
         b->z0 = z0;
         b->values.resize(std::size_t((z1 - z0) * plane));
         if (source_.has_stencil()) {
-          std::vector<std::uint8_t> inside(b->values.size());
-          source_.read_step_inside(t, b->values, inside);
-          b->mask.resize(inside.size());
-          std::transform(inside.begin(), inside.end(), b->mask.begin(),
+          inside_.resize(b->values.size());
+          source_.read_step_inside(t, b->values, inside_);
+          b->mask.resize(inside_.size());
+          std::transform(inside_.begin(), inside_.end(), b->mask.begin(),
                          [](std::uint8_t i) { return i ? 1.f : 0.f; });
         } else if (whole_) {
           source_.read_step(t, b->values);

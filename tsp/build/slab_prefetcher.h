@@ -67,6 +67,7 @@ class SlabPrefetcher {
   int first_, stride_;
   bool whole_;
   std::vector<std::shared_ptr<SlabBuffer>> buffers_;  // every buffer made; free when only here
+  std::vector<std::uint8_t> inside_;  // a stencil step as read, before it becomes a mask
   std::mutex mutex_;
   std::condition_variable cv_;
   std::deque<Slab> ready_;

@@ -412,12 +412,14 @@ std::unique_ptr<VolumeSource> open_group(const std::string& path, Handle file,
   Dims dims = dims_from_zyx(first_shape.data(), std::int64_t(steps.size()), where);
   std::string text = "group " + group_path + " (" + std::to_string(steps.size()) + " steps)";
   GridGeometry geometry;
+  int depth = 0;
   {
     Handle first(H5Dopen2(file.get(), steps[0].dataset.c_str(), H5P_DEFAULT));
-    if (first) geometry = dimension_scales(first.get(), 0, dims);
+    if (first) {
+      geometry = dimension_scales(first.get(), 0, dims);
+      depth = chunk_depth(first.get(), 0);
+    }
   }
-  Handle first(H5Dopen2(file.get(), steps[0].dataset.c_str(), H5P_DEFAULT));
-  const int depth = first ? chunk_depth(first.get(), 0) : 0;
   auto source = std::make_unique<Hdf5Source>(path, std::move(file), text, dims, std::move(steps));
   source->geometry_ = geometry;
   source->chunk_planes_ = depth;

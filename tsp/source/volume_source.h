@@ -4,6 +4,7 @@
 // Later importers (unstructured-grid voxelizer, multiresolution levels) plug in here too.
 #pragma once
 #include <array>
+#include <cassert>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -41,14 +42,10 @@ class VolumeSource {
   /// throws.
   virtual int slab_alignment() const { return 0; }
   /// Reads planes z0 … z1 − 1 (0 ≤ z0 < z1 ≤ dims().z) of step t into out ((z1 − z0) · d.x · d.y
-  /// floats, x fastest) as read_step would. The default reads the whole step and copies them.
-  /// Throws like read_step.
-  virtual void read_slab(int t, int z0, int z1, std::span<float> out) {
-    const Dims d = dims();
-    const std::int64_t plane = std::int64_t(d.x) * d.y;
-    std::vector<float> whole(std::size_t(d.count()));
-    read_step(t, whole);
-    std::copy(whole.begin() + z0 * plane, whole.begin() + z1 * plane, out.begin());
+  /// floats, x fastest) as read_step would; called only when reads_slabs(). Throws like
+  /// read_step.
+  virtual void read_slab(int /*t*/, int /*z0*/, int /*z1*/, std::span<float> /*out*/) {
+    assert(false && "read_slab of a source that does not read slabs");
   }
   /// True when some voxels may lie outside the data (a voxelized unstructured mesh): then
   /// read_step_inside says which, and a builder stores the stencil. Never throws.

@@ -209,8 +209,7 @@ std::unique_ptr<TspFile> TspFile::open(const std::string& path, const std::strin
   if (impl->field_index == 0) {
     impl->loc = std::move(root_group);
   } else {
-    const std::string group = std::string(layout::kFieldsGroup) + "/" +
-                              std::to_string(impl->field_index);
+    const std::string group = layout::field_group(impl->field_index);
     if (!h5::exists(impl->file.get(), group.c_str()))
       root.fail("group /" + group, "missing (the field '" + field + "' is listed but not stored)");
     impl->loc = Handle(H5Gopen2(impl->file.get(), group.c_str(), H5P_DEFAULT));

@@ -1,6 +1,7 @@
 // Names inside a .tsp file, shared by its writer and reader. The layout is documented in
 // docs/formats.md; change both together and bump kTspFormatVersion (tsp/tsp_file.h).
 #pragma once
+#include <string>
 #include <array>
 
 #include "tsp/tree/octree.h"
@@ -41,6 +42,10 @@ inline constexpr const char* kAttrSpacing = "spacing";  // float64[3]: voxel spa
 // root's own field).
 inline constexpr const char* kAttrFields = "fields";
 inline constexpr const char* kFieldsGroup = "fields";  // holds one group per further field, "1", …
+/// The location of field k: the root for k = 0, fields/K for k ≥ 1. Never throws but bad_alloc.
+inline std::string field_group(int k) {
+  return k == 0 ? std::string("/") : std::string(kFieldsGroup) + "/" + std::to_string(k);
+}
 
 // Datasets and groups, relative to the field's location: the file's root for its first field,
 // fields/K for field K ≥ 1 of a file with several (kAttrFields lists them).

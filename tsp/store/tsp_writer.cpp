@@ -83,9 +83,7 @@ struct TspWriter::Impl {
 
 // Opens the location of field field_index (the root, or fields/K) in an open file. Throws IoError.
 Handle open_field_group(hid_t file, const std::string& path, int field_index) {
-  const std::string group =
-      field_index == 0 ? std::string("/")
-                       : std::string(layout::kFieldsGroup) + "/" + std::to_string(field_index);
+  const std::string group = layout::field_group(field_index);
   return Handle(check_id(H5Gopen2(file, group.c_str(), H5P_DEFAULT), path, group));
 }
 
@@ -113,14 +111,13 @@ TspWriter::TspWriter(const std::string& path, const TspTree& tree, int field_ind
   if (field_index == 0) {
     w.file = Handle(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()));
     if (!w.file) throw IoError(path + ": cannot create the output file");
-    w.loc = Handle(check_id(H5Gopen2(w.file.get(), "/", H5P_DEFAULT), path, "/"));
+    w.loc = open_field_group(w.file.get(), path, 0);
   } else {  // a further field of the file the first one was written to: its own group
     w.file = Handle(H5Fopen(path.c_str(), H5F_ACC_RDWR, fapl.get()));
     if (!w.file) throw IoError(path + ": cannot reopen the output file for another field");
     if (!h5::exists(w.file.get(), layout::kFieldsGroup))
       make_group(w.file.get(), path, layout::kFieldsGroup);
-    const std::string group =
-        std::string(layout::kFieldsGroup) + "/" + std::to_string(field_index);
+    const std::string group = layout::field_group(field_index);
     w.loc = Handle(check_id(H5Gcreate2(w.file.get(), group.c_str(), H5P_DEFAULT, H5P_DEFAULT,
                                        H5P_DEFAULT),
                             path, group));
@@ -244,7 +241,8 @@ void TspWriter::write_inside_series(int brick, std::span<const std::uint8_t> ins
 void TspWriter::write_no_brick() {
   const Impl& w = *impl_;
   assert(w.io);
-  write_series(w.data.get(), H5T_NATIVE_UINT16, 2, w.shape, w.steps, -1, nullptr, w.dxpl.get(),
+  write_series(w.data.get(), H5T_NATIVE_UINT16, sizeof(std::uint16_t), w.shape, w.steps, -1,
+               nullptr, w.dxpl.get(),
                w.path, "bricks");
   if (w.inside)
     write_series(w.inside.get(), H5T_NATIVE_UINT8, 1, w.shape, w.steps, -1, nullptr,
