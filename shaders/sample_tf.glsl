@@ -30,3 +30,19 @@ vec4 sample_colour(vec3 tc, vec3 half_step, vec3 lo, vec3 hi, inout float u_fron
   u_front = u_back;
   return c;
 }
+
+// The point lookup alone (the caster's segment loop, built without pre-integration).
+vec4 sample_point(vec3 tc, vec3 lo, vec3 hi) {
+  if (use_stencil != 0 && texture(volume, clamp(tc, lo, hi)).g < 0.5) return vec4(0.0);
+  return texture(transfer_function, tf_coord(tc, lo, hi));
+}
+
+#ifdef TSP_ADAPTIVE
+// Adaptive sampling (tsp/frame/sample_steps.h): row `row` (a texture coordinate) of the table
+// whose row r is the point lookup for a step of spacing·kStepMultipliers[r].
+uniform sampler2D tf_rows;
+vec4 sample_row(vec3 tc, vec3 lo, vec3 hi, float row) {
+  if (use_stencil != 0 && texture(volume, clamp(tc, lo, hi)).g < 0.5) return vec4(0.0);
+  return texture(tf_rows, vec2(tf_coord(tc, lo, hi), row));
+}
+#endif

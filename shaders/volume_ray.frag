@@ -13,6 +13,11 @@
 //             at 1/f and samples every m·spacing, m = the largest f, on planes (k + ½)·m·spacing,
 //             each sample's opacity corrected to the length of ray it stands for inside the
 //             brick: α_L = 1 − (1 − α)^(L/spacing) (spec §9, §14).
+// With TSP_SEGMENTS (the caster without probes, point lookup), full-resolution textured bricks
+// are sampled in segments of one spacing from where the ray enters them, each at its middle,
+// the last cut at the brick's exit: exact at the ray's ends instead of on the slice planes.
+// With TSP_ADAPTIVE as well (adaptive sampling), a segment is m spacings long, m read with its
+// TF row from step_map for the cell (kStepCell³ voxels) where it starts.
 // It stops once the ray is opaque (early ray termination). With a clip solid (clip.glsl) the
 // textured samples outside the ray's kept intervals are skipped and, with clip_surface, the ray
 // stops opaque where it first meets the solid's surface; the renderer draws every brick the
@@ -26,6 +31,10 @@ uniform sampler3D pages;             // per brick: textured (xyz atlas offset, w
                                      // empty bricks around it, w = 0)
 uniform vec3 cell;                   // sample spacings one brick covers, per axis
 uniform ivec3 grid;                  // bricks per axis
+#ifdef TSP_ADAPTIVE
+uniform sampler3D step_map;          // per step cell: step multiplier, TF row coordinate
+uniform vec3 step_scale;             // sample point → step_map coordinate
+#endif
 const float kOpaque = 0.999;
 const float kNudge = 1e-3;
 const int kClipFlag = 512;           // BrickPages::kClipFlag           // voxels into the volume, to pick the first brick
@@ -81,6 +90,13 @@ float skip_to_kept(float t, float dt) {
   return t >= cur_s ? 0.0 : ceil((cur_s - t) / dt);
 }
 
+// A sample standing for k (≤ 1) of its full segment: opacity 1 − (1 − α)^k, premultiplied.
+vec4 cut_sample(vec4 s, float k) {
+  if (s.a <= 0.0) return s;
+  float a = 1.0 - pow(max(1.0 - s.a, 0.0), k);
+  return vec4(s.rgb * (a / s.a), a);
+}
+
 void main() {
   RaySpan r = ray_span();
   float len = (r.depth_exit - r.depth_entry) / r.cos_theta;
@@ -126,6 +142,7 @@ void main() {
   float m_cur = 1.0;  // the sample step multiplier t_next is aligned to
   vec4 acc = vec4(0.0);
   float u_prev = -1.0;  // tf coordinate half a spacing behind the previous sample (−1: none)
+  bool run_open = false;  // TSP_SEGMENTS: inside a run of full-resolution textured bricks
   bool done = false;    // the ray met the clip surface
   if (clip_on()) {      // the kept intervals, and where the ray first meets the surface
     clip_intervals(entry, r.ray, len);
@@ -159,6 +176,7 @@ void main() {
       t_max = abs((vec3(c) + far_side) * cell - entry) * inv;
       if (t_next < t) t_next += ceil((t - t_next) / (dt * m_cur)) * dt * m_cur;
       u_prev = -1.0;
+      run_open = false;
       continue;
     }
     float t_out = min(min(min(t_max.x, t_max.y), t_max.z), len);
@@ -202,11 +220,84 @@ void main() {
             }
             stretch_end = min(t_out, min(cur_e + 1e-6 * dtm, t_surface));
           }
+#if defined(TSP_ADAPTIVE)
+          // Segment by segment from where the ray enters the brick: a segment starting at b is
+          // m·dt long, m read with its TF row for the cell where it starts, cut exactly at the
+          // brick's exit (or the ray's end) with its opacity corrected to the cut length, and
+          // sampled at its middle.
+          float b = t;
+          vec3 tcb = ((entry + r.ray * b) * scale + page.xyz) * atlas_scale;
+          vec3 q = (entry + r.ray * b) * step_scale;
+          vec3 dq = r.ray * dtm * step_scale;
+          while (b < stretch_end - 1e-4 * dtm) {
+            vec2 st = texture(step_map, q).rg;
+            float k = min(st.x, (stretch_end - b) / dtm);
+            vec4 s = sample_row(tcb + dtc * (0.5 * k), tc_lo, tc_hi, st.y);
+            if (k < st.x && s.a > 0.0) s = cut_sample(s, k / st.x);
+            acc += (1.0 - acc.a) * s;
+            if (acc.a >= kOpaque) break;
+            b += dtm * k;
+            tcb += dtc * k;
+            q += dq * k;
+          }
+          t_next = b;
+          run_open = false;
+#elif defined(TSP_SEGMENTS)
+          // The slice planes' segments [k·spacing, (k + 1)·spacing] in depth, each sampled at
+          // its middle — except where a run of full-resolution textured bricks begins (the
+          // ray's entry, or after an empty, flat or level brick) and ends: there the segment
+          // is cut exactly at the run's boundary, sampled at the middle of what is left, its
+          // opacity corrected to that length. Samples on fixed planes alone miss or add up to
+          // half a spacing at each end of every ray, which dominates their error at coarse
+          // spacings (docs/rendering.md).
+          bool closing = t_out >= len;
+          if (!closing) {  // the run ends here unless the next brick is textured at level 0
+            ivec3 cn = c;
+            if (t_max.x <= t_max.y && t_max.x <= t_max.z)
+              cn.x += dir.x;
+            else if (t_max.y <= t_max.z)
+              cn.y += dir.y;
+            else
+              cn.z += dir.z;
+            closing = any(lessThan(cn, ivec3(0))) || any(greaterThanEqual(cn, grid));
+            if (!closing) {
+              float w = texelFetch(pages, cn, 0).w;
+              closing = w <= 0.5 || ((int(w + 0.5) - 1) & (kClipFlag - 1)) != 0;
+            }
+          }
+          if (!run_open) {  // the first segment, from the brick's entry to the next plane
+            float d = r.depth_entry + t * r.cos_theta;
+            float t_b = ((floor(d / spacing) + 1.0) * spacing - r.depth_entry) / r.cos_theta;
+            if (closing) t_b = min(t_b, t_out);
+            float k = (t_b - t) / dtm;
+            if (k > 1e-4) {
+              vec4 s = sample_point(((entry + r.ray * (0.5 * (t + t_b))) * scale + page.xyz) *
+                                        atlas_scale, tc_lo, tc_hi);
+              acc += (1.0 - acc.a) * cut_sample(s, k);
+            }
+            t_next = t_b + 0.5 * dtm;
+            tc = ((entry + r.ray * t_next) * scale + page.xyz) * atlas_scale;
+            run_open = true;
+          }
+          for (; acc.a < kOpaque && t_next - 0.5 * dtm < t_out; t_next += dtm) {
+            if (t_next >= t_out && !closing) break;  // its middle is in the next brick
+            float k = (t_out - t_next) / dtm + 0.5;  // what is left of the segment
+            vec4 s;
+            if (closing && k < 1.0)
+              s = cut_sample(sample_point(tc + dtc * (0.5 * k - 0.5), tc_lo, tc_hi), k);
+            else
+              s = sample_point(tc, tc_lo, tc_hi);
+            acc += (1.0 - acc.a) * s;
+            tc += dtc;
+          }
+          if (closing) run_open = false;
+#else
           for (; t_next < stretch_end; t_next += dtm) {
             acc += (1.0 - acc.a) * sample_colour(tc, 0.5 * dtc, tc_lo, tc_hi, u_prev);
             if (acc.a >= kOpaque) break;
             tc += dtc;
           }
+#endif
           if (!brick_clip || acc.a >= kOpaque || t_next >= t_out) break;
           if (t_next >= t_surface) {  // the surface before the next sample: opaque, the end
             draw_surface(entry, r.ray, scale, page.xyz, tc_lo, tc_hi, acc);
@@ -215,6 +306,7 @@ void main() {
           }
         }
       } else {
+        run_open = false;
         // Each sample stands for its slab of the ray inside this brick: the first from where the
         // ray entered, the last to where it leaves (one sample mid-way when no plane falls
         // inside), so the lengths add up to the brick's exactly, whatever the step — no gap or
@@ -259,6 +351,7 @@ void main() {
       float a = 1.0 - exp(page.w * (t_out - t) * r.cos_theta);
       acc += (1.0 - acc.a) * vec4(page.rgb * a, a);
       u_prev = -1.0;
+      run_open = false;
       if (t_next < t_out) t_next += ceil((t_out - t_next) / (dt * m_cur)) * dt * m_cur;
     }
     if (done || acc.a >= kOpaque || t_out >= len) break;

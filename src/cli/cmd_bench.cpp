@@ -24,7 +24,7 @@ struct BenchArgs {
   int search_steps = 8, search_iterations = 10, passes = 2, timed_candidates = 3, rounds = 3;
   std::string compositings = "slices,boxes,rays", spacings = "0.5,1,1.5,2,3,4,6,8",
               baseline_spacings = "0.25,0.5,0.75,1,1.5,2,3,4,6,8", compositing = "rays", preintegration = "off",
-              lod_levels = "0";
+              lod_levels = "0", sampling_tols = "0";
   double spacing = tspgl::kDefaultSliceSpacing, reference_spacing = 0.25;
 };
 
@@ -96,6 +96,14 @@ void run(const BenchArgs& a) {
   for (const std::string& l : split(a.lod_levels))
     o.tsp_grid.lod_levels.push_back(int(parse_integer(l, "--lod-levels", 0, 16, "levels 0..16")));
   o.baseline_grid.spacings = parse_spacings(a.baseline_spacings, "--baseline-spacings");
+  o.tsp_grid.sampling_tols.clear();
+  for (const std::string& t : split(a.sampling_tols)) {
+    char* end = nullptr;
+    const double v = std::strtod(t.c_str(), &end);
+    if (t.empty() || *end != '\0' || !(v >= 0) || !std::isfinite(v))
+      throw tsp::UsageError("--sampling-tols " + t + ": expected finite tolerances >= 0, e.g. 0,0.05");
+    o.tsp_grid.sampling_tols.push_back(v);
+  }
   std::vector<bool> pre;
   for (const std::string& p : split(a.preintegration)) {
     if (p != "on" && p != "off")
@@ -166,6 +174,9 @@ const CommandRegistrar reg(45, [](CLI::App& app) {
   c->add_option("--lod-levels", a->lod_levels,
                 "LOD levels the TSP search draws everywhere, e.g. 0,1,2 (default 0: full "
                 "resolution; each adds a search of every compositing and spacing)");
+  c->add_option("--sampling-tols", a->sampling_tols,
+                "Adaptive sampling tolerances the TSP search tries with rays (render "
+                "--sampling-tol), e.g. 0,0.05,0.1 (default 0: off)");
   c->add_option("--preintegration", a->preintegration,
                 "TF lookups the Table-4 search tries, for both renderers: off, on or off,on "
                 "(default off)");

@@ -30,6 +30,7 @@ struct RenderArgs {
               span_step = "middle", preintegrated = "off",
               reuse = "on", dense = "on", skip_transparent = "on";
   double spatial = 0, temporal = 0, spacing = tspgl::kDefaultSliceSpacing;
+  double sampling_tol = 0;
   int passes = 1;
   double texture_budget_mb = double(tspgl::kDefaultTextureBudget) / (1 << 20);
   double ram_budget_mb = double(tspgl::kDefaultBrickBudget) / (1 << 20);
@@ -77,6 +78,7 @@ void run(const RenderArgs& a) {
   o.settings.reuse_image = a.reuse == "on";
   o.settings.dense = a.dense == "on";
   o.settings.skip_transparent = a.skip_transparent == "on";
+  o.settings.sampling_tol = a.sampling_tol;
   if (a.quality != 0 && !a.explicit_knobs.empty())
     throw tsp::UsageError("--quality picks compositing, spacing, tolerances and pre-integration "
                           "itself: drop " + a.explicit_knobs.front());
@@ -253,6 +255,10 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
                 "A coherent node holding a transparent child is drawn as its children, so what "
                 "zero tolerance skips is never drawn: on|off (off: the paper's rule; default on)")
       ->check(CLI::IsMember({"on", "off"}));
+  c->add_option("--sampling-tol", a->sampling_tol,
+                "Adaptive sampling (rays, no probes): each brick is sampled every m x spacing, "
+                "m up to 8, the largest whose step changes the premultiplied TF colour by at "
+                "most this much (e.g. 0.005; default 0: every spacing)");
   c->add_option("--span-step", a->span_step,
                 "Step whose bricks texture a span: middle or first (the paper's; default middle)")
       ->check(CLI::IsMember({"first", "middle"}));
@@ -286,7 +292,7 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
                 "$XDG_CACHE_HOME/tspplay or ~/.cache/tspplay; - for none)");
   c->callback([a, c] {
     for (const char* k : {"--spatial-tol", "--temporal-tol", "--spacing", "--compositing",
-                          "--preintegrated"})
+                          "--preintegrated", "--sampling-tol"})
       if (c->count(k) > 0) a->explicit_knobs.push_back(k);
     run(*a);
   });

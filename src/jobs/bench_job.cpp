@@ -146,6 +146,7 @@ class TfBench {
                    {"spacing", k.spacing},
                    {"tolerance", k.tol},
                    {"preintegrated", k.preintegrated},
+                   {"sampling_tol", k.sampling_tol},
                    {"mean_delta_e", r.mean_de},
                    {"probe_ms", r.ms}});
     return r;
@@ -348,7 +349,10 @@ json run_bench(const BenchOptions& options, const BenchProgress& progress) {
     for (Compositing m : g.compositings) c.push_back(to_string(m));
     json pre = json::array();
     for (bool p : g.preintegration) pre.push_back(p);
-    return json{{"compositings", c}, {"spacings", g.spacings}, {"preintegration", pre}};
+    return json{{"compositings", c},
+                {"spacings", g.spacings},
+                {"preintegration", pre},
+                {"sampling_tols", g.sampling_tols}};
   };
   header["baseline_grid"] = grid_json(o.baseline_grid);
   header["tsp_grid"] = grid_json(o.tsp_grid);

@@ -46,7 +46,8 @@ json knobs_json(const Knobs& k) {
   return {{"compositing", to_string(k.compositing)},
           {"spacing", k.spacing},
           {"tolerance", k.tol},
-          {"preintegrated", k.preintegrated}};
+          {"preintegrated", k.preintegrated},
+          {"sampling_tol", k.sampling_tol}};
 }
 
 json key_of(const CalibrationRequest& r, const tsp::TransferFunction& tf,
@@ -84,6 +85,7 @@ json key_of(const CalibrationRequest& r, const tsp::TransferFunction& tf,
           {"compositings", comps},
           {"spacings", r.grid.spacings},
           {"preintegration", pre},
+          {"sampling_tols", r.grid.sampling_tols},
           {"reference_spacing", r.reference_spacing}};
 }
 
@@ -131,12 +133,14 @@ Calibration calibration_from_json(const json& j, const std::string& what) {
       pt.knobs.spacing = p.at("spacing").get<double>();
       pt.knobs.tol = p.at("tolerance").get<double>();
       pt.knobs.preintegrated = p.at("preintegrated").get<bool>();
+      pt.knobs.sampling_tol = p.value("sampling_tol", 0.0);
       pt.mean_de = p.at("mean_delta_e").get<double>();
       pt.max_step_de = p.at("max_step_delta_e").get<double>();
       pt.ms = p.at("probe_ms").get<double>();
       RenderSettings check;
       check.spacing = pt.knobs.spacing;
       check.tol = {pt.knobs.tol, pt.knobs.tol};
+      check.sampling_tol = pt.knobs.sampling_tol;
       validate(check);  // a bad spacing or tolerance: UsageError, reported as FormatError below
       for (double v : {pt.mean_de, pt.max_step_de, pt.ms})
         if (!(v >= 0) || !std::isfinite(v))

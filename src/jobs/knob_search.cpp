@@ -27,21 +27,27 @@ void apply(const Knobs& k, RenderSettings& settings) {
   settings.spacing = k.spacing;
   settings.tol = {k.tol, k.tol};
   settings.preintegrated = k.preintegrated;
+  settings.sampling_tol = k.baseline ? 0 : k.sampling_tol;
 }
 
 std::vector<Knobs> grid_cells(const KnobGrid& grid, bool baseline) {
   std::vector<Knobs> out;
   const std::vector<int> levels = baseline ? std::vector<int>{0} : grid.lod_levels;
+  const std::vector<double> sampling = baseline ? std::vector<double>{0} : grid.sampling_tols;
   for (int level : levels)
-    for (bool pre : grid.preintegration)
-      for (Compositing c : grid.compositings)
-        for (double s : grid.spacings) {
-          Knobs& k = out.emplace_back();
-          k.baseline = baseline;
-          k.compositing = c;
-          k.spacing = s;
-          k.preintegrated = pre;
-          k.lod_level = level;
+    for (double st : sampling)
+      for (bool pre : grid.preintegration)
+        for (Compositing c : grid.compositings) {
+          if (st > 0 && (pre || c != Compositing::rays)) continue;  // adaptive: rays, point lookup
+          for (double s : grid.spacings) {
+            Knobs& k = out.emplace_back();
+            k.baseline = baseline;
+            k.compositing = c;
+            k.spacing = s;
+            k.preintegrated = pre;
+            k.lod_level = level;
+            k.sampling_tol = st;
+          }
         }
   return out;
 }
@@ -50,6 +56,7 @@ std::string render_options(const Knobs& k, tsp::Metric metric) {
   std::string s = k.baseline ? "--baseline " : "";
   s += "--compositing " + std::string(to_string(k.compositing)) + " --spacing " + exact(k.spacing);
   if (k.preintegrated) s += " --preintegrated on";
+  if (!k.baseline && k.sampling_tol > 0) s += " --sampling-tol " + exact(k.sampling_tol);
   if (!k.baseline && k.lod_level > 0) s += " --lod " + std::to_string(k.lod_level);
   if (!k.baseline)
     s += std::string(" --metric ") + tsp::to_string(metric) + " --spatial-tol " + exact(k.tol) +

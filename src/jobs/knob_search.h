@@ -23,15 +23,16 @@ struct Knobs {
   double tol = 0;                               ///< spatial = temporal tolerance (TSP)
   bool preintegrated = false;                   ///< pre-integrated TF lookup
   int lod_level = 0;  ///< TSP: an LOD level drawn everywhere (render --lod K; 0: full resolution)
+  double sampling_tol = 0;  ///< TSP, rays: adaptive sampling's tolerance (0: off)
 };
 
-/// Sets settings' compositing, spacing, tolerances (spatial = temporal = k.tol) and
-/// pre-integration from k (k.baseline is the caller's to honour). Never throws.
+/// Sets settings' compositing, spacing, tolerances (spatial = temporal = k.tol),
+/// pre-integration and adaptive sampling from k (k.baseline is the caller's to honour). Never throws.
 void apply(const Knobs& k, RenderSettings& settings);
 
 /// The exact `tspplay render` options that draw k (with --metric for the TSP renderer), e.g.
 /// "--compositing rays --spacing 2 --metric approximate --spatial-tol 0.01 --temporal-tol 0.01"
-/// (and "--preintegrated on" when set).
+/// (and "--preintegrated on", "--sampling-tol X" when set).
 /// Numbers are written with 17 significant digits, so they parse back to the same doubles.
 std::string render_options(const Knobs& k, tsp::Metric metric);
 
@@ -57,10 +58,13 @@ struct KnobGrid {
   std::vector<double> spacings{0.5, 1, 1.5, 2, 3, 4};
   std::vector<bool> preintegration{false};  ///< TF lookups tried (point, pre-integrated)
   std::vector<int> lod_levels{0};  ///< TSP only: LOD levels drawn everywhere (0: full resolution)
+  /// TSP only: adaptive sampling tolerances (0: off), tried with rays and the point lookup.
+  std::vector<double> sampling_tols{0};
 };
 
 /// Every cell of grid (pre-integration × compositing × spacing, and for the TSP renderer × LOD
-/// level; tol 0), baseline as given.
+/// level × sampling tolerance — a positive one with rays and the point lookup only; tol 0),
+/// baseline as given.
 std::vector<Knobs> grid_cells(const KnobGrid& grid, bool baseline);
 
 /// For each target: the baseline configurations of grid (every compositing × spacing, each

@@ -62,6 +62,7 @@ json frame_json(const FrameRecord& f) {
           {"fragments", r.fragments},
           {"redrawn_percent", r.redrawn_percent},
           {"dense", r.dense},
+          {"step_multiplier", r.step_multiplier},
           {"steps_merged", {r.spans_lo, r.spans_hi}},
           {"steps_shown", {r.shown_lo, r.shown_hi}},
           {"azimuth_deg", f.azimuth_deg},
@@ -364,6 +365,7 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
     j["preintegrated"] = settings.preintegrated;
     j["reuse"] = settings.reuse_image;
     j["skip_transparent"] = settings.skip_transparent;
+    j["sampling_tol"] = settings.sampling_tol;
     j["lod"] = o.lod == LodMode::off     ? json("off")
                : o.lod == LodMode::fixed ? json(lod_level)
                : o.lod == LodMode::splat ? json("splat:" + json(o.splat_px).dump())

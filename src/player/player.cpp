@@ -313,6 +313,7 @@ void PlayerApp::apply_quality(double de) {
   compositing = best->knobs.compositing;
   spacing = best->knobs.spacing;
   preintegrated = best->knobs.preintegrated;
+  sampling_tol = best->knobs.sampling_tol;
   set_tolerances({best->knobs.tol, best->knobs.tol});
   quality_note = tspgl::render_options(best->knobs, metric) + (cache.empty() ? "" : " (" + cache + ")");
 }
@@ -351,6 +352,7 @@ void PlayerApp::write_stats(const std::string& path) const {
   j["compositing"] = tspgl::to_string(compositing);
   j["spacing"] = spacing;
   j["preintegrated"] = preintegrated;
+  j["sampling_tol"] = sampling_tol;
   j["skip_transparent"] = skip_transparent;
   j["tolerance"] = {tol.spatial, tol.temporal};
   nlohmann::json points = nlohmann::json::array();  // the editor's handles: value, opacity
@@ -450,6 +452,7 @@ void PlayerApp::render_volume() {
   settings.compositing = compositing;
   settings.spacing = spacing;
   settings.preintegrated = preintegrated;
+  settings.sampling_tol = preintegrated ? 0 : sampling_tol;  // the two exclude each other
   settings.skip_transparent = skip_transparent;
   // GL's window coordinates start at the bottom: the view's lower-left corner.
   settings.viewport_origin = {layout.view.x, ctx->height() - layout.view.y - layout.view.h};

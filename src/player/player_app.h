@@ -100,6 +100,7 @@ class PlayerApp {
   tspgl::Compositing compositing = tspgl::Compositing::rays;
   double spacing = tspgl::kDefaultSliceSpacing;
   bool preintegrated = false;
+  double sampling_tol = 0;  ///< adaptive sampling (rays; off with pre-integration; 0: off)
   bool skip_transparent = true;  ///< a coherent node with a transparent child drawn as its children
   float quality = 0;          ///< the quality slider (mean ΔE; 0: the raw knobs)
   std::string quality_note;   ///< what the last quality pick chose

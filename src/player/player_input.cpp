@@ -176,6 +176,9 @@ void PlayerApp::apply(const ScriptAction& a) {
     case Kind::preintegrated:
       preintegrated = a.flag;
       break;
+    case Kind::sampling_tol:
+      sampling_tol = a.value;
+      break;
     case Kind::quality:
       quality = float(a.value);
       apply_quality(a.value);

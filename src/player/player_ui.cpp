@@ -177,6 +177,11 @@ void settings_section(PlayerApp& app) {
   if (ImGui::SliderFloat("spacing (voxels)", &sp, 0.25f, 8.f, "%.2f", ImGuiSliderFlags_Logarithmic))
     app.spacing = std::clamp(double(sp), tspgl::kMinSliceSpacing, tspgl::kMaxSliceSpacing);
   ImGui::Checkbox("pre-integrated TF", &app.preintegrated);
+  // Adaptive sampling: coarser steps in bricks whose colour changes slowly (rays only).
+  float st = float(app.sampling_tol);
+  if (ImGui::SliderFloat("adaptive sampling tol", &st, 0.f, 1.f, st > 0 ? "%.3f" : "off",
+                         ImGuiSliderFlags_Logarithmic))
+    app.sampling_tol = std::max(0.0, double(st));
   ImGui::Checkbox("skip transparent children", &app.skip_transparent);
   // The quality target sets all of the knobs above from a calibration (made once, cached).
   ImGui::SliderFloat("quality (mean dE)", &app.quality, 0.f, 10.f,

@@ -132,6 +132,12 @@ ScriptAction parse_line(const LineParser& p) {
     a.value = p.number(1, "spacing VOXELS");
     if (!(a.value >= kMinSpacing && a.value <= kMaxSpacing))
       p.fail("spacing must be in [1/64, 64] voxels");
+  } else if (cmd == "sampling-tol") {
+    p.expect_args(1, "sampling-tol TOL");
+    a.kind = Kind::sampling_tol;
+    a.value = p.number(1, "sampling-tol TOL");
+    if (!(a.value >= 0) || !std::isfinite(a.value))
+      p.fail("sampling-tol must be a finite colour change >= 0 (0: off)");
   } else if (cmd == "quality") {
     p.expect_args(1, "quality DE");
     a.kind = Kind::quality;
@@ -216,7 +222,7 @@ ScriptAction parse_line(const LineParser& p) {
     p.fail("unknown action '" + cmd +
            "': expected step, play, pause, speed, loop, tf, tolerance, metric, cache, prefetch, "
            "upload-budget, view, zoom, projection, screenshot, screenshot-ui, wait-frames, "
-           "wait-seconds, compositing, spacing, preintegrated, quality, stats, lod, target-fps, "
+           "wait-seconds, compositing, spacing, sampling-tol, preintegrated, quality, stats, lod, target-fps, "
            "show-cut, panels, every-step, log-opacity, open, field, probe, probe-op, "
            "probe-surface, probe-clear, probe-move, record or quit");
   }

@@ -34,6 +34,7 @@ struct ScriptAction {
     wait_seconds,   ///< let `value` seconds pass (frames keep running)
     compositing,    ///< slices, boxes or rays (`text`)
     spacing,        ///< slice spacing `value` voxels
+    sampling_tol,   ///< adaptive sampling's tolerance `value` (0: off)
     preintegrated,  ///< pre-integrated TF on (`flag`) or off
     quality,        ///< quality target mean ΔE `value` (calibrates once; blocks)
     stats,          ///< write the HUD statistics (frame times, fps, last frame) to `text` (JSON)

@@ -32,7 +32,9 @@ FrameReport BaselineRenderer::render(int step, const tsp::Camera& camera,
   const GlApi& gl = compositor_.context().gl();
   FrameReport r;
   r.step = step;
-  compositor_.begin_frame(camera, settings);
+  RenderSettings uniform = settings;
+  uniform.sampling_tol = 0;  // the non-TSP baseline samples every spacing everywhere
+  compositor_.begin_frame(camera, uniform);
 
   // The whole step, assembled from the bricks and uploaded as one texture, every frame.
   tsp::Stopwatch phase;

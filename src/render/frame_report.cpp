@@ -34,6 +34,13 @@ void validate(const RenderSettings& s) {
                          std::pair{"--temporal-tol", s.tol.temporal}})
     if (!(v >= 0) || !std::isfinite(v))
       throw tsp::UsageError(std::string(name) + " " + num(v) + ": expected a finite tolerance >= 0");
+  if (!(s.sampling_tol >= 0) || !std::isfinite(s.sampling_tol))
+    throw tsp::UsageError("--sampling-tol " + num(s.sampling_tol) +
+                          ": expected a finite colour change per step >= 0");
+  if (s.sampling_tol > 0 && s.preintegrated)
+    throw tsp::UsageError("--sampling-tol " + num(s.sampling_tol) +
+                          " with --preintegrated on: adaptive sampling uses the point lookup; "
+                          "choose one");
   if (!(s.render_scale >= kMinRenderScale && s.render_scale <= 1))
     throw tsp::UsageError("render scale " + num(s.render_scale) + ": expected a share in [" +
                           num(kMinRenderScale) + ", 1]");

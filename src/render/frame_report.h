@@ -70,6 +70,11 @@ struct RenderSettings {
   /// the metric's transparency), so what zero tolerance skips is never drawn; false: the
   /// paper's rule (the node drawn whole).
   bool skip_transparent = true;
+  /// Adaptive sampling (rays compositing without probes; tsp/frame/sample_steps.h): each leaf
+  /// brick textured at full resolution is sampled every m·spacing, m the largest of
+  /// tsp::kStepMultipliers whose step changes the premultiplied TF colour by at most this much
+  /// (0: every brick every spacing). Excludes pre-integration.
+  double sampling_tol = 0;
 };
 
 /// Smallest RenderSettings::render_scale.
@@ -96,6 +101,9 @@ struct FrameReport {
   double slicing_ms = 0;    ///< slice polygons and their vertex buffer
   double upload_ms = 0;     ///< brick reads and texture uploads
   double draw_ms = 0;       ///< draw calls and glFinish
+  /// Adaptive sampling: the mean step multiplier over the frame's full-resolution textured
+  /// bricks (1: every spacing).
+  double step_multiplier = 1;
   std::array<double, tsp::kDrawClassCount> class_percent{};  ///< NR, UP, RT, NT, clipped by voxels
   std::int64_t bytes_uploaded = 0;
   std::int64_t textures_resident = 0;

@@ -1,12 +1,14 @@
 #include "render/slice_compositor.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <initializer_list>
 #include <glm/gtc/type_ptr.hpp>
 #include <string>
 
 #include "gl/gl_error.h"
+#include "tsp/frame/sample_steps.h"
 
 namespace tspgl {
 
@@ -16,6 +18,8 @@ constexpr int kTfUnit = 1;      // texture unit of the transfer-function lookup
 constexpr int kPagesUnit = 2;   // texture unit of the ray caster's brick pages
 constexpr int kPreintegratedUnit = 3;  // texture unit of the pre-integrated TF table
 constexpr int kSurfaceTfUnit = 4;      // texture unit of the clip surface's colours
+constexpr int kStepMapUnit = 5;        // texture unit of adaptive sampling's per-brick steps
+constexpr int kTfRowsUnit = 6;         // texture unit of adaptive sampling's TF rows
 // Largest opacity per voxel a flat box is given, so that ln(1 − α) stays finite.
 constexpr float kMaxFlatAlpha = 1.f - 1e-6f;
 
@@ -132,7 +136,7 @@ SliceCompositor::SliceCompositor(GlContext& ctx)
       box_flat_(load_program_with(ctx.gl(), "box.vert", "box_flat.frag", {"box_ray.glsl"})),
       rays_plain_(load_program_with(ctx.gl(), "box.vert", "volume_ray.frag",
                                     {"box_ray.glsl", "sample_tf.glsl", "clip.glsl"},
-                                    "#define TSP_CLIP 0\n")),
+                                    "#define TSP_CLIP 0\n#define TSP_SEGMENTS 1\n")),
       tf_(ctx.gl()),
       surface_tf_(ctx.gl()),
       target_(ctx) {
@@ -154,10 +158,15 @@ SliceCompositor::SliceCompositor(GlContext& ctx)
   for (const Program* p : {&textured_, &box_textured_}) set_units(*p);
   set_units(rays_plain_);
   gl_.GenQueries(1, &fragments_query_);
-  gl_.GenTextures(1, &pages_);
-  gl_.BindTexture(GL_TEXTURE_3D, pages_);
-  gl_.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  gl_.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  for (GLuint* t : {&pages_, &step_map_}) {
+    gl_.GenTextures(1, t);
+    gl_.BindTexture(GL_TEXTURE_3D, *t);
+    gl_.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl_.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  }
+  gl_.BindTexture(GL_TEXTURE_3D, step_map_);
+  for (GLenum w : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+    gl_.TexParameteri(GL_TEXTURE_3D, w, GL_CLAMP_TO_EDGE);
   check_gl(gl_, "setting up the slice compositor");
 }
 
@@ -166,6 +175,7 @@ SliceCompositor::~SliceCompositor() {
   gl_.DeleteVertexArrays(1, &vao_);
   gl_.DeleteBuffers(1, &cube_vbo_);
   gl_.DeleteTextures(1, &pages_);
+  gl_.DeleteTextures(1, &step_map_);
   gl_.DeleteQueries(1, &fragments_query_);
   gl_.DeleteVertexArrays(1, &cube_vao_);
 }
@@ -182,6 +192,8 @@ void SliceCompositor::set_units(const Program& p) {
   gl_.Uniform1i(p.uniform("preintegrated"), kPreintegratedUnit);
   gl_.Uniform1i(p.uniform("pages"), kPagesUnit);
   gl_.Uniform1i(p.uniform("surface_tf"), kSurfaceTfUnit);
+  gl_.Uniform1i(p.uniform("step_map"), kStepMapUnit);
+  gl_.Uniform1i(p.uniform("tf_rows"), kTfRowsUnit);
 }
 
 void SliceCompositor::set_clip(const tsp::ClipRegion& clip, const tsp::TransferFunction* surface,
@@ -200,7 +212,7 @@ void SliceCompositor::set_clip(const tsp::ClipRegion& clip, const tsp::TransferF
                                       cut ? "#define TSP_CLIP 2\n" : "#define TSP_CLIP 1\n"));
     set_units(*variant);
   }
-  rays_ = n > 0 ? &*variant : &rays_plain_;
+  rays_base_ = rays_ = n > 0 ? &*variant : &rays_plain_;
   rays_->use();
   gl_.Uniform1i(rays_->uniform("clip_count"), n);
   surface_on_ = n > 0 && surface;
@@ -247,6 +259,24 @@ void SliceCompositor::set_region(const PixelRect& r, const RenderSettings& setti
 void SliceCompositor::begin_frame(const tsp::Camera& camera, const RenderSettings& settings,
                                   bool keep) {
   ctx_.make_current();
+  // Without probes the caster samples in exact segments (TSP_SEGMENTS); pre-integration and
+  // adaptive sampling have their own variants of it, made on first use.
+  const bool plain = rays_base_ == &rays_plain_;
+  adaptive_ = settings.sampling_tol > 0 && plain;
+  auto variant = [&](std::optional<Program>& p, const char* defines) -> const Program* {
+    if (!p) {
+      p.emplace(load_program_with(gl_, "box.vert", "volume_ray.frag",
+                                  {"box_ray.glsl", "sample_tf.glsl", "clip.glsl"}, defines));
+      set_units(*p);
+    }
+    return &*p;
+  };
+  if (adaptive_)
+    rays_ = variant(rays_adaptive_, "#define TSP_CLIP 0\n#define TSP_SEGMENTS 1\n#define TSP_ADAPTIVE 1\n");
+  else if (plain && settings.preintegrated)
+    rays_ = variant(rays_planes_, "#define TSP_CLIP 0\n");
+  else
+    rays_ = rays_base_;
   const tsp::CameraParams& view = camera.params();
   output_ = {settings.viewport_origin[0], settings.viewport_origin[1], view.width, view.height};
   target_.bind(view.width, view.height, settings.render_scale);
@@ -297,6 +327,7 @@ void SliceCompositor::begin_frame(const tsp::Camera& camera, const RenderSetting
   if (settings.preintegrated) tf_.bind_preintegrated(kPreintegratedUnit, settings.spacing);
   if (surface_on_) surface_tf_.bind_opaque(kSurfaceTfUnit);
   tf_.bind(kTfUnit, settings.spacing);
+  if (adaptive_) tf_.bind_rows(kTfRowsUnit, settings.spacing);
   gl_.ActiveTexture(GL_TEXTURE0 + kVolumeUnit);
   gl_.BeginQuery(GL_SAMPLES_PASSED, fragments_query_);
 }
@@ -404,6 +435,26 @@ void SliceCompositor::set_pages(const BrickPages& pages, tsp::Dims dims, const t
   if (bounds) box = *bounds;
   gl_.Uniform3f(rays_->uniform("box_lo"), float(box.lo[0]), float(box.lo[1]), float(box.lo[2]));
   gl_.Uniform3f(rays_->uniform("box_hi"), float(box.hi[0]), float(box.hi[1]), float(box.hi[2]));
+}
+
+void SliceCompositor::set_step_map(const std::vector<std::uint8_t>& rows, std::array<int, 3> grid,
+                                   std::array<int, 3> cell) {
+  if (!adaptive_) return;
+  assert(rows.size() == std::size_t(grid[0]) * grid[1] * grid[2]);
+  const float count = float(tsp::kStepMultipliers.size());
+  step_texels_.clear();
+  for (std::uint8_t r : rows)
+    step_texels_.insert(step_texels_.end(),
+                        {float(tsp::kStepMultipliers[r]), (float(r) + 0.5f) / count});
+  gl_.ActiveTexture(GL_TEXTURE0 + kStepMapUnit);
+  gl_.BindTexture(GL_TEXTURE_3D, step_map_);
+  gl_.TexImage3D(GL_TEXTURE_3D, 0, GL_RG32F, grid[0], grid[1], grid[2], 0, GL_RG, GL_FLOAT,
+                 step_texels_.data());
+  gl_.ActiveTexture(GL_TEXTURE0 + kVolumeUnit);
+  rays_->use();
+  // Sample point p (voxel units) lies in brick floor(p / cell): coordinate p / (grid · cell).
+  gl_.Uniform3f(rays_->uniform("step_scale"), 1.f / float(grid[0] * cell[0]),
+                1.f / float(grid[1] * cell[1]), 1.f / float(grid[2] * cell[2]));
 }
 
 void SliceCompositor::draw_rays() {

@@ -113,6 +113,13 @@ class SliceCompositor {
   /// With bounds (a union of whole bricks' geometric boxes), the rays are cast through that box
   /// only — what lies outside draws nothing (transparent or clipped bricks).
   void set_pages(const BrickPages& pages, tsp::Dims dims, const tsp::Aabb* bounds = nullptr);
+  /// Adaptive sampling (settings.sampling_tol > 0 at begin_frame, no probes): per cell of a
+  /// grid of cells covering `cell` voxels each (x fastest), its row of tsp::kStepMultipliers, for
+  /// this frame's draw_rays. Ignored when the frame is not adaptive.
+  void set_step_map(const std::vector<std::uint8_t>& rows, std::array<int, 3> grid,
+                    std::array<int, 3> cell);
+  /// True when this frame (since begin_frame) samples adaptively and needs set_step_map.
+  bool adaptive() const { return adaptive_; }
   /// Draws the volume box once, ray casting the pages of the last set_pages (once per frame, or
   /// once per set_region with partial-image reuse).
   void draw_rays();
@@ -131,7 +138,14 @@ class SliceCompositor {
   std::optional<Program> rays_clip_;  ///< the caster with the clip code (made on first use)
   /// The caster for an intersection without a surface: each ray cut to its one kept interval.
   std::optional<Program> rays_cut_;
-  const Program* rays_ = &rays_plain_;  ///< the caster in use
+  std::optional<Program> rays_adaptive_;  ///< the caster with adaptive sampling (first use)
+  /// The caster on the slice planes, for pre-integration (which reads sample pairs on them).
+  std::optional<Program> rays_planes_;
+  const Program* rays_base_ = &rays_plain_;  ///< the caster set_clip chose
+  const Program* rays_ = &rays_plain_;  ///< the caster in use this frame
+  bool adaptive_ = false;               ///< this frame samples adaptively
+  GLuint step_map_ = 0;                 ///< per leaf brick: multiplier, TF row coordinate
+  std::vector<float> step_texels_;
   void set_units(const Program& p);
   bool stencil_ = false;
   GLuint pages_ = 0, fragments_query_ = 0;

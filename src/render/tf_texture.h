@@ -33,6 +33,10 @@ class TfTexture {
   /// to texture unit `unit`, recomputing it first when the TF or spacing changed (O(K³) on the
   /// CPU: tens of ms for K = 256). Throws tsp::GlError.
   void bind_preintegrated(int unit, double spacing);
+  /// Binds the K × R table of adaptive sampling (tsp/frame/sample_steps.h) to texture unit
+  /// `unit`: row r is the lookup of bind() for a spacing of spacing·tsp::kStepMultipliers[r];
+  /// re-uploads first when the TF or spacing changed. Throws tsp::GlError.
+  void bind_rows(int unit, double spacing);
   /// Binds the TF's colours, opaque and not premultiplied (a probe surface's lookup), to
   /// texture unit `unit`, re-uploading first when the TF changed. Throws tsp::GlError.
   void bind_opaque(int unit);
@@ -43,10 +47,11 @@ class TfTexture {
 
  private:
   const GlApi& gl_;
-  GLuint id_ = 0, table_id_ = 0;
+  GLuint id_ = 0, table_id_ = 0, rows_id_ = 0;
   double scale_ = 1, offset_ = 0;
   double spacing_ = -1;             ///< spacing the texture was corrected for (−1: stale)
   double table_spacing_ = -1;       ///< spacing the pre-integrated table was made for
+  double rows_spacing_ = -1;        ///< spacing the adaptive rows were made for
   bool opaque_current_ = false;     ///< the opaque colours are uploaded (bind_opaque)
   tsp::TransferFunction tf_;        ///< the TF as given (uncorrected, not premultiplied)
 };

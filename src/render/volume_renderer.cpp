@@ -46,6 +46,9 @@ VolumeRenderer::~VolumeRenderer() = default;
 
 void VolumeRenderer::set_transfer_function(const tsp::TransferFunction& tf) {
   compositor_->set_transfer_function(tf, tree_.value_range());
+  tf_ = tf;
+  variation_.reset();
+  variations_.clear();
   ++tf_serial_;
 }
 
@@ -82,6 +85,7 @@ VolumeRenderer::ReuseKey VolumeRenderer::reuse_key(const tsp::Camera& camera,
   k.tf_serial = tf_serial_;
   k.clip_serial = clip_serial_;
   k.render_scale = s.render_scale;
+  k.sampling_tol = s.sampling_tol;
   return k;
 }
 
@@ -191,6 +195,50 @@ bool VolumeRenderer::dense_frame(const tsp::FramePlan& plan) {
   }
   // Every leaf brick drawn (a transparent one left out would be sampled here).
   return covered == octree.brick_count();
+}
+
+double VolumeRenderer::set_step_map(const tsp::FramePlan& plan, const RenderSettings& settings) {
+  const tsp::Octree& octree = tree_.octree();
+  if (!variation_) variation_.emplace(tf_, tree_.value_range());
+  // Keys of bricks long gone are not worth keeping: a few steps' worth at most.
+  if (variations_.size() > std::size_t(4 * octree.brick_count())) variations_.clear();
+  const std::array<int, 3> g = tsp::step_grid(octree.dims());
+  cell_variation_.assign(std::size_t(g[0]) * g[1] * g[2], 0.f);
+  cell_drawn_.assign(cell_variation_.size(), 0);
+  for (const tsp::PlannedTexture& pt : plan.textures) {
+    if (pt.deferred || pt.key.level != 0) continue;
+    auto it = variations_.find(pt.key);
+    if (it == variations_.end()) {
+      const tsp::BrickSamples samples = bricks_.get(pt.key.brick, pt.key.t0);
+      it = variations_
+               .emplace(pt.key, variation_->cells(samples->data(),
+                                                  octree.brick_samples(pt.key.brick)))
+               .first;
+    }
+    const tsp::CellVariations& c = it->second;
+    for (int z = 0; z < c.count[2]; ++z)
+      for (int y = 0; y < c.count[1]; ++y)
+        for (int x = 0; x < c.count[0]; ++x) {
+          const std::size_t i =
+              (std::size_t(z + c.first[2]) * std::size_t(g[1]) + std::size_t(y + c.first[1])) *
+                  std::size_t(g[0]) + std::size_t(x + c.first[0]);
+          const float v = c.v[(std::size_t(z) * std::size_t(c.count[1]) + std::size_t(y)) *
+                                  std::size_t(c.count[0]) + std::size_t(x)];
+          cell_variation_[i] = std::max(cell_variation_[i], v);
+          cell_drawn_[i] = 1;
+        }
+  }
+  const std::vector<std::uint8_t> rows =
+      tsp::step_rows(cell_variation_, g, settings.spacing, settings.sampling_tol);
+  compositor_->set_step_map(rows, g, {tsp::kStepCell, tsp::kStepCell, tsp::kStepCell});
+  double sum = 0;
+  int count = 0;
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    if (cell_drawn_[i]) {
+      sum += tsp::kStepMultipliers[rows[i]];
+      ++count;
+    }
+  return count ? sum / count : 1.0;
 }
 
 bool VolumeRenderer::leaf_clipped(int brick) const {
@@ -325,6 +373,8 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
   } else {
     fill_items(plan, metric, camera, settings);
   }
+  if (settings.compositing == Compositing::rays && compositor_->adaptive())
+    r.step_multiplier = set_step_map(plan, settings);
   r.slicing_ms = phase.lap_ms();
   r.polygons = std::int64_t(soup_.size());
 

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <unordered_map>
 #include <vector>
 
 #include "gl/context.h"
@@ -17,6 +18,7 @@
 #include "render/slice_compositor.h"
 #include "tsp/frame/camera.h"
 #include "tsp/frame/frame_plan.h"
+#include "tsp/frame/sample_steps.h"
 #include "tsp/frame/texture_cache.h"
 #include "tsp/metric/frame_metric.h"
 #include "tsp/metric/transfer_function.h"
@@ -107,6 +109,7 @@ class VolumeRenderer {
     std::uint64_t tf_serial = 0;
     std::uint64_t clip_serial = 0;
     double render_scale = 1;
+    double sampling_tol = 0;
     bool operator==(const ReuseKey&) const = default;
   };
   struct Previous {
@@ -134,6 +137,15 @@ class VolumeRenderer {
   bool leaf_clipped(int brick) const;
   // True when plan textures every leaf brick at full resolution (fills dense_keys_).
   bool dense_frame(const tsp::FramePlan& plan);
+  // Adaptive sampling: gives the compositor the step row of every step-grid cell from plan's
+  // level-0 textures (tsp::step_rows) and returns the mean multiplier over the cells they reach.
+  double set_step_map(const tsp::FramePlan& plan, const RenderSettings& settings);
+  tsp::TransferFunction tf_;  // the TF in use (adaptive sampling measures under it)
+  std::optional<tsp::SampleVariation> variation_;  // under tf_ (reset by set_transfer_function)
+  std::unordered_map<tsp::TextureKey, tsp::CellVariations, tsp::TextureKeyHash>
+      variations_;                       // per texture, under tf_
+  std::vector<float> cell_variation_;    // per step-grid cell, this frame
+  std::vector<std::uint8_t> cell_drawn_;  // per step-grid cell: a textured brick reaches it
 };
 
 }  // namespace tspgl

@@ -73,6 +73,10 @@ TEST(PlayerScript, ParsesEveryAction) {
   EXPECT_DOUBLE_EQ(k[3].value, 1.5);
   EXPECT_EQ(k[4].kind, Kind::stats);
   EXPECT_EQ(k[4].text, "s.json");
+  const auto st = parse_script("sampling-tol 0.05\n", "st.txt");
+  ASSERT_EQ(st.size(), 1u);
+  EXPECT_EQ(st[0].kind, Kind::sampling_tol);
+  EXPECT_DOUBLE_EQ(st[0].value, 0.05);
   const auto l = parse_script("lod off\ntarget-fps 25\nshow-cut on\nwait-seconds 0.5\n", "l.txt");
   ASSERT_EQ(l.size(), 4u);
   EXPECT_EQ(l[0].kind, Kind::lod);
@@ -135,6 +139,7 @@ TEST(PlayerScript, ErrorsNameTheLineAndWhatWasExpected) {
   EXPECT_NE(error_of("compositing voxels").find("expected slices, boxes or rays"),
             std::string::npos);
   EXPECT_NE(error_of("spacing 0").find("spacing must be in"), std::string::npos);
+  EXPECT_NE(error_of("sampling-tol -1").find("sampling-tol must be"), std::string::npos);
   EXPECT_NE(error_of("quality 0").find("quality must be"), std::string::npos);
   EXPECT_NE(error_of("target-fps 0").find("target-fps must be 1 to"), std::string::npos);
   EXPECT_NE(error_of("lod maybe").find("expected on or off"), std::string::npos);

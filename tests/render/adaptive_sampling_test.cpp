@@ -1,0 +1,152 @@
+// Adaptive sampling on OSMesa (tsp/frame/sample_steps.h, RenderSettings::sampling_tol): a
+// textured cube of one colour composites to the exact exponential at any step multiplier
+// (steps cut at the ray's end), a smooth ramp sampled every 8 voxels stays on the fine
+// picture, and a sharp feature keeps its bricks at every spacing.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "render/baseline_renderer.h"
+#include "render/volume_renderer.h"
+#include "support/memory_source.h"
+#include "support/paths.h"
+#include "tsp/build/build.h"
+#include "tsp/core/color.h"
+#include "tsp/frame/sample_steps.h"
+#include "tsp/metric/compute_errors.h"
+#include "tsp/report/image_diff.h"
+#include "tsp/store/tsp_file.h"
+
+namespace tspgl {
+namespace {
+
+tsp::TransferFunction tf_of(tsp::Rgba lo, tsp::Rgba hi) {
+  const std::vector<tsp::TfPoint> pts = {{0.0, lo}, {1.0, hi}};
+  return tsp::TransferFunction::from_points({0, 1}, pts);
+}
+
+// One 65³ volume (bricks of 16) and a renderer whose metric is computed under metric_tf — a
+// TF under which the nodes vary, so that they are drawn textured whatever the renderer's TF.
+struct AdaptiveScene {
+  std::unique_ptr<tsp::TspFile> file;
+  std::unique_ptr<GlContext> ctx = create_offscreen_context(160, 120);
+  std::unique_ptr<VolumeRenderer> renderer;
+  std::unique_ptr<BaselineRenderer> baseline;
+  tsp::MetricResult metric;
+  std::unique_ptr<tsp::WholeTreeMetric> nodes;
+  AdaptiveScene(const std::string& name, const std::function<float(int, int, int, int)>& f,
+                const tsp::TransferFunction& tf, const tsp::TransferFunction& metric_tf) {
+    auto src = tsptest::MemorySource::from_function({65, 65, 65}, 1, f);
+    const std::string path = (tsptest::temp_dir() / (name + ".tsp")).string();
+    tsp::BuildOptions o;
+    o.brick_size = 16;
+    o.range = tsp::ValueRange{0, 1};
+    tsp::build_tsp_file(src, path, o);
+    file = tsp::TspFile::open(path);
+    renderer = std::make_unique<VolumeRenderer>(*ctx, *file, tsp::CachePolicy::on);
+    renderer->set_transfer_function(tf);
+    baseline = std::make_unique<BaselineRenderer>(*ctx, *file);
+    baseline->set_transfer_function(tf);
+    metric = tsp::compute_errors(tsp::Metric::reference, file->tree(), metric_tf, file.get(), 0);
+    nodes = std::make_unique<tsp::WholeTreeMetric>(metric);
+  }
+  tsp::Camera camera(double az, double el) const {
+    tsp::CameraParams p;
+    p.azimuth_deg = az;
+    p.elevation_deg = el;
+    p.width = ctx->width();
+    p.height = ctx->height();
+    return tsp::Camera(file->tree().octree().dims(), p);
+  }
+  // The largest step multiplier (a uniform region takes it at any spacing).
+  static double largest_multiplier() { return tsp::kStepMultipliers.back(); }
+  tsp::Image frame(const tsp::Camera& cam, double spacing, double sampling_tol, bool dense,
+                   FrameReport* report = nullptr, bool all_textured = true) {
+    RenderSettings s;
+    s.spacing = spacing;
+    s.sampling_tol = sampling_tol;
+    s.dense = dense;
+    s.reuse_image = false;
+    const FrameReport r = renderer->render(0, cam, s, *nodes);
+    if (all_textured)
+      EXPECT_GT(r.class_percent[std::size_t(tsp::DrawClass::new_texture)] +
+                  r.class_percent[std::size_t(tsp::DrawClass::reused_texture)],
+              99.9);
+    if (report) *report = r;
+    return ctx->read_pixels();
+  }
+  tsp::Image baseline_frame(const tsp::Camera& cam, double spacing) {
+    RenderSettings s;
+    s.spacing = spacing;
+    baseline->render(0, cam, s);
+    return ctx->read_pixels();
+  }
+};
+
+TEST(AdaptiveSampling, OneColourCubeIsTheExponentialAtAnyStep) {
+  // The renderer's TF gives every value one colour, so every cell takes the largest step (8
+  // spacings); along +y through the centre the ray crosses 64
+  // voxels: α = 1 − (1 − α₁)^64 however the steps fall, the last cut at the ray's end.
+  const tsp::Rgba c{0.9f, 0.5f, 0.2f, 0.03f};
+  AdaptiveScene scene("adaptive_cube", [](int, int x, int, int) { return float(x) / 64; },
+                      tf_of(c, c), tf_of({0, 0, 1, 0.01f}, {1, 0, 0, 0.05f}));
+  const double opacity = 1 - std::pow(1 - double(c.a), 64);
+  const tsp::Luv want = tsp::srgb_to_luv(c.r * opacity, c.g * opacity, c.b * opacity);
+  for (bool dense : {true, false}) {
+    for (double spacing : {1.0, 0.75}) {
+      FrameReport r;
+      const tsp::Image img = scene.frame(scene.camera(0, 0), spacing, 1.0, dense, &r);
+      EXPECT_DOUBLE_EQ(r.step_multiplier, scene.largest_multiplier());
+      EXPECT_EQ(r.dense, dense);
+      const std::uint8_t* px = img.at(img.width / 2, img.height / 2);
+      EXPECT_LT(tsp::delta_e_luv(tsp::srgb8_to_luv(px[0], px[1], px[2]), want), 1.0)
+          << "dense " << dense << ", spacing " << spacing << ": got " << int(px[0]) << ","
+          << int(px[1]) << "," << int(px[2]);
+    }
+  }
+}
+
+TEST(AdaptiveSampling, SmoothRampSampledCoarselyStaysOnTheFinePicture) {
+  // A slow ramp through a ramp TF: every brick's colour changes little per voxel, so a loose
+  // tolerance samples it every 8 voxels, and the picture stays on the baseline's at 0.25.
+  const tsp::TransferFunction tf = tf_of({0, 0, 1, 0.01f}, {1, 0.6f, 0, 0.06f});
+  AdaptiveScene scene("adaptive_ramp",
+                      [](int, int x, int y, int z) { return float(x + y + z) / 192; }, tf, tf);
+  const tsp::Camera cam = scene.camera(30, 20);
+  const tsp::Image fine = scene.baseline_frame(cam, 0.25);
+  for (bool dense : {true, false}) {
+    FrameReport r;
+    const tsp::Image off = scene.frame(cam, 1.0, 0.0, dense, &r);
+    EXPECT_DOUBLE_EQ(r.step_multiplier, 1.0);
+    const tsp::Image coarse = scene.frame(cam, 1.0, 0.05, dense, &r);
+    EXPECT_DOUBLE_EQ(r.step_multiplier, scene.largest_multiplier()) << "dense " << dense;
+    const tsp::DiffStats d_off = tsp::diff_images(off, fine), d = tsp::diff_images(coarse, fine);
+    EXPECT_LT(d.mean, 0.5) << "dense " << dense << ": p99 " << d.p99;
+    EXPECT_LT(d.p99, 3.0) << "dense " << dense;
+    EXPECT_LT(d_off.mean, 0.5) << "dense " << dense;
+  }
+}
+
+TEST(AdaptiveSampling, SharpFeatureKeepsItsBricksAtEverySpacing) {
+  // A thin opaque sheet at x = 40 in an otherwise faint, uniform volume: only the bricks the
+  // sheet crosses are sampled every spacing, and the picture stays on the non-adaptive one.
+  const tsp::TransferFunction tf = tf_of({0.2f, 0.2f, 1, 0.005f}, {1, 0.3f, 0, 0.6f});
+  AdaptiveScene scene(
+      "adaptive_sheet",
+      [](int, int x, int y, int z) { return std::abs(x - 40) <= 1 ? 1.f : 0.02f * (y + z) / 128; },
+      tf, tf);
+  const tsp::Camera cam = scene.camera(30, 20);
+  for (bool dense : {true, false}) {
+    FrameReport r;
+    const tsp::Image uniform = scene.frame(cam, 0.5, 0.0, dense, nullptr, false);
+    const tsp::Image adaptive = scene.frame(cam, 0.5, 0.02, dense, &r, false);
+    // The sheet's bricks at 1, the textured rest coarser.
+    EXPECT_GT(r.step_multiplier, 1.5) << "dense " << dense;
+    EXPECT_LT(r.step_multiplier, scene.largest_multiplier()) << "dense " << dense;
+    const tsp::DiffStats d = tsp::diff_images(adaptive, uniform);
+    EXPECT_LT(d.mean, 0.5) << "dense " << dense << ": p99 " << d.p99;
+  }
+}
+
+}  // namespace
+}  // namespace tspgl
