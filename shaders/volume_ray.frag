@@ -14,10 +14,10 @@
 //             each sample's opacity corrected to the length of ray it stands for inside the
 //             brick: α_L = 1 − (1 − α)^(L/spacing) (spec §9, §14).
 // With TSP_SEGMENTS (the caster without probes, point lookup), full-resolution textured bricks
-// are sampled in segments of one spacing from where the ray enters them, each at its middle,
-// the last cut at the brick's exit: exact at the ray's ends instead of on the slice planes.
-// With TSP_ADAPTIVE as well (adaptive sampling), a segment is m spacings long, m read with its
-// TF row from step_map for the cell (kStepCell³ voxels) where it starts.
+// are sampled in the slice planes' segments, each at its middle, the first and last of each run
+// of such bricks cut exactly where the run begins and ends. With TSP_ADAPTIVE as well (adaptive
+// sampling), a segment spans m spacings (to the next boundary of the grid of m spacings), m
+// read with its TF row from step_map for the cell (kStepCell³ voxels) where it starts.
 // It stops once the ray is opaque (early ray termination). With a clip solid (clip.glsl) the
 // textured samples outside the ray's kept intervals are skipped and, with clip_surface, the ray
 // stops opaque where it first meets the solid's surface; the renderer draws every brick the
@@ -220,36 +220,15 @@ void main() {
             }
             stretch_end = min(t_out, min(cur_e + 1e-6 * dtm, t_surface));
           }
-#if defined(TSP_ADAPTIVE)
-          // Segment by segment from where the ray enters the brick: a segment starting at b is
-          // m·dt long, m read with its TF row for the cell where it starts, cut exactly at the
-          // brick's exit (or the ray's end) with its opacity corrected to the cut length, and
-          // sampled at its middle.
-          float b = t;
-          vec3 tcb = ((entry + r.ray * b) * scale + page.xyz) * atlas_scale;
-          vec3 q = (entry + r.ray * b) * step_scale;
-          vec3 dq = r.ray * dtm * step_scale;
-          while (b < stretch_end - 1e-4 * dtm) {
-            vec2 st = texture(step_map, q).rg;
-            float k = min(st.x, (stretch_end - b) / dtm);
-            vec4 s = sample_row(tcb + dtc * (0.5 * k), tc_lo, tc_hi, st.y);
-            if (k < st.x && s.a > 0.0) s = cut_sample(s, k / st.x);
-            acc += (1.0 - acc.a) * s;
-            if (acc.a >= kOpaque) break;
-            b += dtm * k;
-            tcb += dtc * k;
-            q += dq * k;
-          }
-          t_next = b;
-          run_open = false;
-#elif defined(TSP_SEGMENTS)
-          // The slice planes' segments [k·spacing, (k + 1)·spacing] in depth, each sampled at
-          // its middle — except where a run of full-resolution textured bricks begins (the
-          // ray's entry, or after an empty, flat or level brick) and ends: there the segment
-          // is cut exactly at the run's boundary, sampled at the middle of what is left, its
-          // opacity corrected to that length. Samples on fixed planes alone miss or add up to
-          // half a spacing at each end of every ray, which dominates their error at coarse
-          // spacings (docs/rendering.md).
+#if defined(TSP_SEGMENTS)
+          // Segments of the slice planes' grid [k·spacing, (k + 1)·spacing] in depth, each
+          // sampled at its middle — except where a run of full-resolution textured bricks begins
+          // (the ray's entry, or after an empty, flat or level brick) and ends: there the
+          // segment is cut exactly at the run's boundary, sampled at the middle of what is
+          // left, its opacity corrected to that length. Samples on fixed planes alone miss or
+          // add up to half a spacing at each end of every ray, which dominates their error at
+          // coarse spacings (docs/rendering.md). A segment whose middle lies past this brick is
+          // left to the next brick of the run.
           bool closing = t_out >= len;
           if (!closing) {  // the run ends here unless the next brick is textured at level 0
             ivec3 cn = c;
@@ -265,6 +244,40 @@ void main() {
               closing = w <= 0.5 || ((int(w + 0.5) - 1) & (kClipFlag - 1)) != 0;
             }
           }
+#ifdef TSP_ADAPTIVE
+          // Adaptive sampling: a segment starting at b takes the multiplier m of the cell there
+          // and runs to the next boundary of the grid of m spacings (so equal multipliers keep
+          // equal segments); its TF row is corrected for m spacings.
+          if (!run_open) {
+            t_next = t;  // here t_next is where the next segment starts
+            run_open = true;
+          }
+          float b = t_next;
+          float u = (r.depth_entry + b * r.cos_theta) / spacing;  // depth in spacings
+          vec3 p0 = entry + r.ray * b;
+          vec3 q = p0 * step_scale;
+          vec3 dq = r.ray * dtm * step_scale;
+          vec3 tcb = (p0 * scale + page.xyz) * atlas_scale;
+          while (acc.a < kOpaque && b < t_out - 1e-4 * dtm) {
+            vec2 st = texture(step_map, q).rg;
+            float k = (floor(u / st.x + 1e-3) + 1.0) * st.x - u;
+            float room = (t_out - b) / dtm;
+            if (k > room) {
+              if (closing)
+                k = room;
+              else if (0.5 * k >= room)
+                break;  // its middle is in the next brick
+            }
+            vec4 s = sample_row(tcb + dtc * (0.5 * k), tc_lo, tc_hi, st.y);
+            if (k < st.x) s = cut_sample(s, k / st.x);
+            acc += (1.0 - acc.a) * s;
+            b += dtm * k;
+            u += k;
+            tcb += dtc * k;
+            q += dq * k;
+          }
+          t_next = b;
+#else
           if (!run_open) {  // the first segment, from the brick's entry to the next plane
             float d = r.depth_entry + t * r.cos_theta;
             float t_b = ((floor(d / spacing) + 1.0) * spacing - r.depth_entry) / r.cos_theta;
@@ -275,7 +288,7 @@ void main() {
                                         atlas_scale, tc_lo, tc_hi);
               acc += (1.0 - acc.a) * cut_sample(s, k);
             }
-            t_next = t_b + 0.5 * dtm;
+            t_next = t_b + 0.5 * dtm;  // here t_next is the next segment's middle
             tc = ((entry + r.ray * t_next) * scale + page.xyz) * atlas_scale;
             run_open = true;
           }
@@ -290,6 +303,7 @@ void main() {
             acc += (1.0 - acc.a) * s;
             tc += dtc;
           }
+#endif
           if (closing) run_open = false;
 #else
           for (; t_next < stretch_end; t_next += dtm) {

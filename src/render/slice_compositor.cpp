@@ -272,7 +272,8 @@ void SliceCompositor::begin_frame(const tsp::Camera& camera, const RenderSetting
     return &*p;
   };
   if (adaptive_)
-    rays_ = variant(rays_adaptive_, "#define TSP_CLIP 0\n#define TSP_SEGMENTS 1\n#define TSP_ADAPTIVE 1\n");
+    rays_ = variant(rays_adaptive_, "#define TSP_CLIP 0\n#define TSP_SEGMENTS 1\n"
+                                            "#define TSP_ADAPTIVE 1\n");
   else if (plain && settings.preintegrated)
     rays_ = variant(rays_planes_, "#define TSP_CLIP 0\n");
   else

@@ -1,6 +1,6 @@
-// Adaptive sampling on OSMesa (tsp/frame/sample_steps.h, RenderSettings::sampling_tol): a
-// textured cube of one colour composites to the exact exponential at any step multiplier
-// (steps cut at the ray's end), a smooth ramp sampled every 8 voxels stays on the fine
+// Adaptive sampling on OSMesa (tsp/frame/sample_steps.h, RenderSettings::sampling_tol), and the
+// caster's exact segments: a textured cube of one colour composites to the exact exponential at
+// any spacing and step multiplier (segments cut where the ray enters and leaves), a smooth ramp sampled every 8 voxels stays on the fine
 // picture, and a sharp feature keeps its bricks at every spacing.
 #include <gtest/gtest.h>
 
@@ -92,16 +92,21 @@ TEST(AdaptiveSampling, OneColourCubeIsTheExponentialAtAnyStep) {
                       tf_of(c, c), tf_of({0, 0, 1, 0.01f}, {1, 0, 0, 0.05f}));
   const double opacity = 1 - std::pow(1 - double(c.a), 64);
   const tsp::Luv want = tsp::srgb_to_luv(c.r * opacity, c.g * opacity, c.b * opacity);
+  // Without adaptive sampling too: the caster's segments are cut exactly where the ray enters
+  // and leaves, at spacings that do not divide 64 (3, 2.5; samples on the slice planes alone
+  // would add or miss up to half a spacing at each end).
   for (bool dense : {true, false}) {
-    for (double spacing : {1.0, 0.75}) {
-      FrameReport r;
-      const tsp::Image img = scene.frame(scene.camera(0, 0), spacing, 1.0, dense, &r);
-      EXPECT_DOUBLE_EQ(r.step_multiplier, scene.largest_multiplier());
-      EXPECT_EQ(r.dense, dense);
-      const std::uint8_t* px = img.at(img.width / 2, img.height / 2);
-      EXPECT_LT(tsp::delta_e_luv(tsp::srgb8_to_luv(px[0], px[1], px[2]), want), 1.0)
-          << "dense " << dense << ", spacing " << spacing << ": got " << int(px[0]) << ","
-          << int(px[1]) << "," << int(px[2]);
+    for (double tol : {0.0, 1.0}) {
+      for (double spacing : {1.0, 0.75, 2.5, 3.0}) {
+        FrameReport r;
+        const tsp::Image img = scene.frame(scene.camera(0, 0), spacing, tol, dense, &r);
+        EXPECT_DOUBLE_EQ(r.step_multiplier, tol > 0 ? scene.largest_multiplier() : 1.0);
+        EXPECT_EQ(r.dense, dense);
+        const std::uint8_t* px = img.at(img.width / 2, img.height / 2);
+        EXPECT_LT(tsp::delta_e_luv(tsp::srgb8_to_luv(px[0], px[1], px[2]), want), 1.0)
+            << "dense " << dense << ", tol " << tol << ", spacing " << spacing << ": got "
+            << int(px[0]) << "," << int(px[1]) << "," << int(px[2]);
+      }
     }
   }
 }

@@ -130,7 +130,8 @@ std::string error_for(const std::string& from, const std::string& to) {
   const auto at = text.find(from);
   EXPECT_NE(at, std::string::npos) << from;
   text.replace(at, from.size(), to);
-  const fs::path p = fs::temp_directory_path() / "tspplay_bad_mesh.vtu";
+  // In the test's own directory: ctest runs the tests of this file in parallel.
+  const fs::path p = tsptest::temp_dir() / "tspplay_bad_mesh.vtu";
   std::ofstream(p) << text;
   try {
     open_mesh_source(p.string(), "f")->read_step(0);
