@@ -27,7 +27,7 @@ struct RenderArgs {
   int fps = tspgl::kMovieFps;
   bool annotate = false;
   std::string metric = "approximate", cache = "on", compositing = "rays", flat = "exact",
-              span_step = "middle", preintegrated = "off",
+              span_step = "mean", preintegrated = "off",
               reuse = "on", dense = "on", skip_transparent = "on";
   double spatial = 0, temporal = 0, spacing = tspgl::kDefaultSliceSpacing;
   double sampling_tol = 0;
@@ -260,8 +260,9 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
                 "m up to 8, the largest whose step changes the premultiplied TF colour by at "
                 "most this much (e.g. 0.005; default 0: every spacing)");
   c->add_option("--span-step", a->span_step,
-                "Step whose bricks texture a span: middle or first (the paper's; default middle)")
-      ->check(CLI::IsMember({"first", "middle"}));
+                "What textures a span: its middle step, its first (the paper's) or the per-voxel "
+                "mean of its steps (default mean)")
+      ->check(CLI::IsMember({"first", "middle", "mean"}));
   c->add_option("--texture-budget", a->texture_budget_mb, "Texture cache budget in MiB (default 512)");
   c->add_option("--ram-budget", a->ram_budget_mb,
                 "Bricks held in RAM, MiB (default 1024): a file larger than RAM streams through "

@@ -24,8 +24,9 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 // Bumped whenever what a calibration measures changes, so old cache files are recomputed.
-constexpr int kCalibrationVersion = 3;  // 2: the key holds the voxel size; 3: frames skip
-                                         // transparent children (--skip-transparent on)
+constexpr int kCalibrationVersion = 4;  // 2: the key holds the voxel size; 3: frames skip
+                                         // transparent children (--skip-transparent on); 4: rays
+                                         // sample exact segments, spans textured by their mean
 
 std::uint64_t fnv1a(const std::string& s) {
   std::uint64_t h = 1469598103934665603ull;

@@ -284,7 +284,8 @@ void PlayerApp::set_metric(tsp::Metric m) {
     lazy_ = std::make_unique<tsp::LazyErrors>(file->tree(), m, tf);
   else
     reference_version_ = ~std::uint64_t(0);
-  renderer->drop_unreachable(frame_metric(), tol, tsp::SpanStep::middle, {}, skip_transparent);
+  renderer->drop_unreachable(frame_metric(), tol, tspgl::RenderSettings{}.span_step, {},
+                             skip_transparent);
   update_tol_max();
 }
 
@@ -295,7 +296,8 @@ void PlayerApp::update_tol_max() {
 
 void PlayerApp::set_tolerances(tsp::Tolerances t) {
   tol = {std::max(0.0, t.spatial), std::max(0.0, t.temporal)};
-  renderer->drop_unreachable(frame_metric(), tol, tsp::SpanStep::middle, {}, skip_transparent);
+  renderer->drop_unreachable(frame_metric(), tol, tspgl::RenderSettings{}.span_step, {},
+                             skip_transparent);
 }
 
 void PlayerApp::apply_quality(double de) {

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "gl/gl_error.h"
+#include "render/texture_samples.h"
 
 namespace tspgl {
 
@@ -51,7 +52,7 @@ std::array<int, 3> BrickTextures::slot_origin(int slot) const {
 }
 
 void BrickTextures::write(const tsp::TextureKey& key, int slot) {
-  tsp::BrickSamples samples = bricks_.get(key.brick, key.t0);
+  tsp::BrickSamples samples = texture_samples(bricks_, key);
   const tsp::BrickLattice s = bricks_.store().tree().octree().lattice(key.brick);
   const auto o = slot_origin(slot);
   gl_.BindTexture(GL_TEXTURE_3D, atlas_);

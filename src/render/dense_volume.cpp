@@ -3,6 +3,7 @@
 #include <cassert>
 
 #include "gl/gl_error.h"
+#include "render/texture_samples.h"
 
 namespace tspgl {
 
@@ -31,7 +32,7 @@ std::int64_t DenseVolume::update(const std::vector<tsp::TextureKey>& keys) {
     if (k.brick < 0) continue;  // not sampled this frame (clipped away): left as it is
     assert(k.brick == b && k.level == 0);
     if (held_[std::size_t(b)] == k) continue;
-    tsp::BrickSamples samples = bricks_.get(b, k.t0);
+    tsp::BrickSamples samples = texture_samples(bricks_, k);
     const tsp::Box s = o.brick_samples(b);
     if (channels_ == 2) {
       interleave_stencil(samples->data(), std::size_t(s.count()), texels_);

@@ -17,6 +17,13 @@ constexpr std::int64_t kTextured = 1, kFlat = 2, kDeferredFlat = 3;
 
 std::int64_t pack(std::int64_t kind, std::int64_t key) { return (kind << kKindShift) | key; }
 
+// A texture's steps as one number below kKindShift: t0, and t1 + 1 for a span's mean (steps <
+// 2^24 in any tree we can hold).
+constexpr int kStepBits = 24;
+std::int64_t steps_of(const tsp::TextureKey& k) {
+  return std::int64_t(k.t0) | (std::int64_t(k.is_mean() ? k.t1 + 1 : 0) << kStepBits);
+}
+
 // The colour's exact bits, folded into one number (equal colours, equal numbers).
 std::int64_t colour_bits(const tsp::Rgba& c) {
   std::uint64_t h = 1469598103934665603ull;
@@ -59,7 +66,7 @@ BrickIdentities brick_identities(const tsp::TspTree& tree, const tsp::FramePlan&
         id[std::size_t(b)] =
             pt.deferred ? std::array<std::int64_t, 2>{pack(kDeferredFlat, node),
                                                       colour_bits(colour_of(tsp_id))}
-                        : std::array<std::int64_t, 2>{pack(kTextured, pt.key.t0),
+                        : std::array<std::int64_t, 2>{pack(kTextured, steps_of(pt.key)),
                                                       pt.key.brick + page * kPageTagStride};
       });
     }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "render/texture_samples.h"
 #include "tsp/core/stopwatch.h"
 #include "tsp/frame/frame_plan.h"
 #include "tsp/frame/slicer.h"
@@ -109,9 +110,20 @@ std::vector<tsp::BrickKey> VolumeRenderer::bricks_to_upload(int step, const tsp:
                                                             const RenderSettings& settings,
                                                             tsp::FrameMetric& metric,
                                                             tsp::LodStops stops) const {
+  std::vector<tsp::BrickKey> keys;
+  for (const tsp::TextureKey& k : textures_to_upload(step, camera, settings, metric, stops))
+    for (int t = k.t0; t <= (k.is_mean() ? k.t1 : k.t0); ++t) keys.push_back({k.brick, t});
+  return keys;
+}
+
+std::vector<tsp::TextureKey> VolumeRenderer::textures_to_upload(int step,
+                                                                const tsp::Camera& camera,
+                                                                const RenderSettings& settings,
+                                                                tsp::FrameMetric& metric,
+                                                                tsp::LodStops stops) const {
   const tsp::ViewOrder order = view_order(camera);
   const tsp::NodeErrors& errors = metric.errors_for_step(step);
-  std::vector<tsp::BrickKey> keys;
+  std::vector<tsp::TextureKey> keys;
   for (const tsp::Emitted& e :
        tsp::traverse(tree_, step, settings.tol, errors, order, stops, clip_sides_,
                      transparency(settings, metric))) {
@@ -120,10 +132,11 @@ std::vector<tsp::BrickKey> VolumeRenderer::bricks_to_upload(int step, const tsp:
     if (tsp::emitted_shading(tree_, e, metric.class_info(id), settings.tol, stops, clip_surface_) !=
         tsp::Shading::textured)
       continue;
-    for (int brick : tsp::node_bricks(tree_.octree(), e.octree_id, order, stops))
-      if (const int t = tsp::representative_step(e.span, settings.span_step);
-          !textures_.contains(tsp::texture_key(tree_.octree(), brick, t)))
-        keys.push_back({brick, t});
+    for (int brick : tsp::node_bricks(tree_.octree(), e.octree_id, order, stops)) {
+      const tsp::TextureKey k =
+          tsp::span_texture_key(tree_.octree(), brick, e.span, settings.span_step);
+      if (!textures_.contains(k)) keys.push_back(k);
+    }
   }
   return keys;
 }
@@ -209,7 +222,7 @@ double VolumeRenderer::set_step_map(const tsp::FramePlan& plan, const RenderSett
     if (pt.deferred || pt.key.level != 0) continue;
     auto it = variations_.find(pt.key);
     if (it == variations_.end()) {
-      const tsp::BrickSamples samples = bricks_.get(pt.key.brick, pt.key.t0);
+      const tsp::BrickSamples samples = texture_samples(bricks_, pt.key);
       it = variations_
                .emplace(pt.key, variation_->cells(samples->data(),
                                                   octree.brick_samples(pt.key.brick)))
@@ -422,7 +435,8 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
     r.spans_hi = std::max(r.spans_hi, sp.t1);
     for (int i = n.first_texture; i < n.first_texture + n.texture_count; ++i) {
       r.shown_lo = std::min(r.shown_lo, plan.textures[std::size_t(i)].key.t0);
-      r.shown_hi = std::max(r.shown_hi, plan.textures[std::size_t(i)].key.t0);
+      const tsp::TextureKey& k = plan.textures[std::size_t(i)].key;
+      r.shown_hi = std::max(r.shown_hi, k.is_mean() ? k.t1 : k.t0);
     }
   }
   return r;

@@ -66,8 +66,14 @@ class VolumeRenderer {
   /// level bricks. Throws tsp::Error on brick read failures, tsp::GlError on GL failures.
   FrameReport render(int step, const tsp::Camera& camera, const RenderSettings& settings,
                      tsp::FrameMetric& metric, tsp::LodStops stops = {});
-  /// The bricks (brick, span start) step's frame would read and upload under metric: leaf
-  /// bricks of textured nodes whose texture is not resident. For background prefetching.
+  /// The textures step's frame would upload under metric: those of textured nodes not
+  /// resident, in the traversal's order (repeats possible).
+  std::vector<tsp::TextureKey> textures_to_upload(int step, const tsp::Camera& camera,
+                                                  const RenderSettings& settings,
+                                                  tsp::FrameMetric& metric,
+                                                  tsp::LodStops stops = {}) const;
+  /// The brick reads (brick, step) those textures need — one per texture, every step of the
+  /// span for a span's mean. For background prefetching.
   std::vector<tsp::BrickKey> bricks_to_upload(int step, const tsp::Camera& camera,
                                               const RenderSettings& settings,
                                               tsp::FrameMetric& metric,
@@ -76,7 +82,7 @@ class VolumeRenderer {
   /// metric and tol (one traversal per step; skip_transparent as RenderSettings') and returns
   /// how many. TF edits need no call.
   int drop_unreachable(tsp::FrameMetric& metric, const tsp::Tolerances& tol,
-                       tsp::SpanStep span_step = tsp::SpanStep::middle,
+                       tsp::SpanStep span_step = tsp::SpanStep::mean,
                        tsp::LodStops stops = {}, bool skip_transparent = true);
   /// Deletes every cached texture.
   void clear_textures();

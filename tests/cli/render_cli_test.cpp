@@ -333,6 +333,39 @@ TEST(RenderCli, FramesSayWhichStepsATemporalToleranceMerged) {
   EXPECT_TRUE(wider) << merged["frames"].dump();
 }
 
+// --span-step: what textures a merged span. Its mean (the default) shows every step of the span;
+// its first or middle step one step each; frames.json records the rule; other words are refused.
+TEST(RenderCli, SpanStepChoosesWhatTexturesAMergedSpan) {
+  const fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
+  for (const char* rule : {"", "first", "middle", "mean"}) {
+    const std::string name = *rule ? rule : "default";
+    ASSERT_EQ(run_tspplay("render " + q(tsp) + " --tf preset:filled --temporal-tol 10 --size 48x32 " +
+                          (*rule ? std::string("--span-step ") + rule + " " : "") + "-o " +
+                          q(dir / name)).exit_code, 0) << name;
+    const json j = read_json(dir / name / "frames.json");
+    EXPECT_EQ(j["span_step"], *rule ? rule : "mean");
+    bool shows_a_span = false;
+    for (const auto& f : j["frames"]) {
+      const int lo = f["steps_shown"][0].get<int>(), hi = f["steps_shown"][1].get<int>();
+      EXPECT_GE(lo, f["steps_merged"][0].get<int>());
+      EXPECT_LE(hi, f["steps_merged"][1].get<int>());
+      shows_a_span |= hi > lo;
+    }
+    // One step per texture under first and middle: a frame shows several steps only when its
+    // textures come from different spans; under the mean every merged span shows all its steps.
+    if (name == "default" || name == "mean") {
+      EXPECT_TRUE(shows_a_span) << j["frames"].dump();
+    }
+  }
+  EXPECT_NE(tsptest::read_file(dir / "first" / "step_0001.png"),
+            tsptest::read_file(dir / "mean" / "step_0001.png"));
+  const auto bad = run_tspplay("render " + q(tsp) + " --tf preset:filled --span-step last -o " +
+                               q(dir / "bad"));
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.err.find("--span-step"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(dir / "bad"));
+}
+
 
 // Physical proportions: `build --spacing` records the voxel size (info shows it); render shows the
 // volume in those proportions by default — a different picture from `--proportions samples`,

@@ -68,10 +68,11 @@ struct AdaptiveScene {
     s.dense = dense;
     s.reuse_image = false;
     const FrameReport r = renderer->render(0, cam, s, *nodes);
-    if (all_textured)
+    if (all_textured) {
       EXPECT_GT(r.class_percent[std::size_t(tsp::DrawClass::new_texture)] +
-                  r.class_percent[std::size_t(tsp::DrawClass::reused_texture)],
-              99.9);
+                    r.class_percent[std::size_t(tsp::DrawClass::reused_texture)],
+                99.9);
+    }
     if (report) *report = r;
     return ctx->read_pixels();
   }

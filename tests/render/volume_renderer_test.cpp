@@ -709,8 +709,8 @@ TEST(VolumeRenderer, BricksToUploadAreWhatTheFrameReadsAndUploads) {
       const auto keys = scene.renderer->bricks_to_upload(step, cam, s, scene.nodes);
       ASSERT_FALSE(keys.empty());
       std::int64_t bytes = 0;
-      for (const tsp::BrickKey& k : keys)
-        bytes += tsp::texture_bytes(file->tree().octree(), tsp::TextureKey{k.brick, k.step, 0});
+      for (const tsp::TextureKey& k : scene.renderer->textures_to_upload(step, cam, s, scene.nodes))
+        bytes += tsp::texture_bytes(file->tree().octree(), k);
       tsp::BrickCache& bricks = scene.renderer->brick_cache();
       bricks.prefetch(keys);
       const std::int64_t misses = bricks.stats().misses;
@@ -768,7 +768,8 @@ TEST(VolumeRenderer, UploadBudgetDefersTexturesUntilTheFrameCompletes) {
   const tsp::Camera cam = unlimited.camera();
   RenderSettings s;
   const tsp::Image expected = unlimited.tsp_frame(2, cam);
-  const auto n = std::int64_t(limited.renderer->bricks_to_upload(2, cam, s, limited.nodes).size());
+  const auto n =
+      std::int64_t(limited.renderer->textures_to_upload(2, cam, s, limited.nodes).size());
   ASSERT_GT(n, 2);
   s.upload_budget = 1;
   for (std::int64_t f = 1; f <= n; ++f) {

@@ -92,12 +92,23 @@ TextureKey texture_key(const Octree& octree, int brick, int t0) {
                     brick < octree.brick_count() ? 0 : octree.lod_level(octree.stored_brick_node(brick))};
 }
 
-const char* to_string(SpanStep s) { return s == SpanStep::middle ? "middle" : "first"; }
+TextureKey span_texture_key(const Octree& octree, int brick, const Span& span, SpanStep r) {
+  if (r != SpanStep::mean || span.t1 == span.t0)
+    return texture_key(octree, brick, representative_step(span, r));
+  TextureKey k = texture_key(octree, brick, span.t0);
+  k.t1 = span.t1;
+  return k;
+}
+
+const char* to_string(SpanStep s) {
+  return s == SpanStep::middle ? "middle" : s == SpanStep::mean ? "mean" : "first";
+}
 
 SpanStep parse_span_step(const std::string& text, const std::string& option) {
   if (text == "first") return SpanStep::first;
   if (text == "middle") return SpanStep::middle;
-  throw UsageError(option + " " + text + ": expected first or middle");
+  if (text == "mean") return SpanStep::mean;
+  throw UsageError(option + " " + text + ": expected first, middle or mean");
 }
 
 double FramePlan::percent(DrawClass c) const {
@@ -131,7 +142,7 @@ FramePlan plan_frame(const TspTree& tree, int step, std::span<const Emitted> emi
       p.first_texture = int(plan.textures.size());
       bool uploaded = false;
       for (int brick : node_bricks(octree, e.octree_id, view, stops)) {
-        const TextureKey key = texture_key(octree, brick, representative_step(e.span, span_step));
+        const TextureKey key = span_texture_key(octree, brick, e.span, span_step);
         const std::int64_t bytes = texture_bytes(octree, key);
         if (upload_budget > 0 && plan.uploads > 0 && !cache.contains(key) &&
             plan.bytes_uploaded + bytes > upload_budget) {
@@ -176,7 +187,7 @@ TextureKeySet reachable_textures(const TspTree& tree, const NodeErrors& errors,
           Shading::textured)
         continue;
       for (int brick : node_bricks(tree.octree(), e.octree_id, kAnyView, stops))
-        keys.insert(texture_key(tree.octree(), brick, representative_step(e.span, span_step)));
+        keys.insert(span_texture_key(tree.octree(), brick, e.span, span_step));
     }
   }
   return keys;

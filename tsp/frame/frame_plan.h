@@ -33,14 +33,17 @@ const char* to_string(DrawClass c);
 enum class SpanStep {
   first,   ///< t0, the paper's rule
   middle,  ///< ⌊(t0 + t1)/2⌋: at most half the span away from any step it stands for
+  mean,    ///< the per-voxel mean of steps t0..t1, computed when first needed (what the
+           ///< temporal error measures deviation from)
 };
-/// "first" or "middle".
+/// "first", "middle" or "mean".
 const char* to_string(SpanStep s);
-/// Parses "first" or "middle"; throws UsageError naming `option` and the text.
+/// Parses "first", "middle" or "mean"; throws UsageError naming `option` and the text.
 SpanStep parse_span_step(const std::string& text, const std::string& option);
-/// The step whose bricks texture span s under rule r.
+/// The step whose bricks texture span s under rule r (mean: the middle step, which stands for
+/// the span where one step is needed, such as its stencil).
 inline int representative_step(const Span& s, SpanStep r) {
-  return r == SpanStep::middle ? s.t0 + (s.t1 - s.t0) / 2 : s.t0;
+  return r == SpanStep::first ? s.t0 : s.t0 + (s.t1 - s.t0) / 2;
 }
 
 /// How a node is shaded, before the cache decides between RT and NT.
@@ -78,6 +81,10 @@ std::vector<int> leaf_bricks(const Octree& octree, int id, const ViewOrder& view
 std::vector<int> node_bricks(const Octree& octree, int id, const ViewOrder& view, LodStops stops);
 /// The texture key of stored brick `brick` at step t0 (level: the brick's LOD level).
 TextureKey texture_key(const Octree& octree, int brick, int t0);
+/// The key of brick's texture for span under rule r: texture_key(octree, brick,
+/// representative_step(span, r)), or for SpanStep::mean over a span of several steps the key of
+/// its mean (t0, t1 the span's).
+TextureKey span_texture_key(const Octree& octree, int brick, const Span& span, SpanStep r);
 
 /// One emitted node and how to draw it.
 struct PlannedNode {
@@ -119,7 +126,7 @@ struct FramePlan {
 /// Plans the frame of `step` from the traversal's output `emitted` (every span must hold
 /// step): classifies each node, requests the textures of RT/NT nodes from cache inside one
 /// begin_frame()/end_frame(), and counts voxels per class. A node that is textured is drawn by
-/// the textures (brick, representative_step(span, span_step), level) of node_bricks(…, stops)
+/// the textures span_texture_key(brick, span, span_step) of node_bricks(…, stops)
 /// (equal keys hold equal data, whichever span made them), ordered back-to-front by view;
 /// it is NT when any of them is uploaded now (or deferred), RT otherwise. With upload_budget > 0,
 /// a texture not resident whose upload would take the frame's uploads over upload_budget bytes
@@ -133,7 +140,7 @@ struct FramePlan {
 FramePlan plan_frame(const TspTree& tree, int step, std::span<const Emitted> emitted,
                      const NodeInfoFn& info, const Tolerances& tol, const ViewOrder& view,
                      TextureCache& cache, std::int64_t upload_budget = 0,
-                     SpanStep span_step = SpanStep::middle, LodStops stops = {},
+                     SpanStep span_step = SpanStep::mean, LodStops stops = {},
                      bool clip_surface = false);
 
 /// Every texture key some step's frame could draw under errors, info and tol — the set to keep
@@ -141,14 +148,14 @@ FramePlan plan_frame(const TspTree& tree, int step, std::span<const Emitted> emi
 /// Costs one traversal per step.
 TextureKeySet reachable_textures(const TspTree& tree, const NodeErrors& errors,
                                  const NodeInfoFn& info, const Tolerances& tol,
-                                 SpanStep span_step = SpanStep::middle, LodStops stops = {},
+                                 SpanStep span_step = SpanStep::mean, LodStops stops = {},
                                  bool skip_transparent = false);
 /// Same, with the errors and classes of m.
 TextureKeySet reachable_textures(const TspTree& tree, const MetricResult& m, const Tolerances& tol,
-                                 SpanStep span_step = SpanStep::middle, LodStops stops = {});
+                                 SpanStep span_step = SpanStep::mean, LodStops stops = {});
 /// Same, with every node of m made current (FrameMetric::all_errors). Throws what m throws.
 TextureKeySet reachable_textures(const TspTree& tree, FrameMetric& m, const Tolerances& tol,
-                                 SpanStep span_step = SpanStep::middle, LodStops stops = {},
+                                 SpanStep span_step = SpanStep::mean, LodStops stops = {},
                                  bool skip_transparent = false);
 
 }  // namespace tsp

@@ -20,7 +20,8 @@ std::size_t TextureKeyHash::operator()(const TextureKey& k) const {
   // Bricks < 2^32, steps < 2^24, levels < 2^8 in any tree we can hold: pack, then mix.
   std::uint64_t v = (std::uint64_t(std::uint32_t(k.brick)) << 32) ^
                     (std::uint64_t(std::uint32_t(k.t0)) << 8) ^
-                    std::uint64_t(std::uint8_t(k.level));
+                    std::uint64_t(std::uint8_t(k.level)) ^
+                    (std::uint64_t(std::uint32_t(k.t1 + 1)) << 20);
   v ^= v >> 33;
   v *= 0xff51afd7ed558ccdULL;
   v ^= v >> 33;

@@ -12,12 +12,16 @@
 
 namespace tsp {
 
-/// A brick texture: brick index, first step of the span it was made for, LOD level (0 = full
-/// resolution). Textures hold scalars, so no transfer function is part of the key.
+/// A brick texture: brick index, the step whose data it holds, LOD level (0 = full
+/// resolution) and, for a span's temporal mean (SpanStep::mean), the span's last step t1 > t0
+/// (then t0 is its first). Textures hold scalars, so no transfer function is part of the key.
 struct TextureKey {
   int brick = -1;
   int t0 = 0;
   int level = 0;
+  int t1 = -1;  ///< > t0: the mean of steps t0..t1; otherwise step t0 alone
+  /// True when the texture holds a span's mean rather than one step.
+  bool is_mean() const { return t1 > t0; }
   bool operator==(const TextureKey&) const = default;
 };
 
