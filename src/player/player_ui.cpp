@@ -241,11 +241,14 @@ void settings_section(PlayerApp& app) {
 }
 
 void stats_section(PlayerApp& app) {
-  // A temporal tolerance that merged steps says which step's bricks the picture shows.
+  // A temporal tolerance that merged steps says which steps' bricks the picture shows.
   const tspgl::FrameReport& lf = app.last;
   if (app.tol.temporal > 0 && lf.spans_hi > lf.spans_lo) {  // (at 0 only unchanging data merge)
     char note[128];
-    if (lf.shown_lo == lf.shown_hi)
+    if (lf.shows_mean)
+      std::snprintf(note, sizeof note, "temporal tolerance: showing means over steps %d-%d",
+                    lf.spans_lo, lf.spans_hi);
+    else if (lf.shown_lo == lf.shown_hi)
       std::snprintf(note, sizeof note, "temporal tolerance: showing step %d for steps %d-%d",
                     lf.shown_lo, lf.spans_lo, lf.spans_hi);
     else

@@ -94,8 +94,10 @@ struct FrameReport {
   /// The steps the drawn nodes stand for (the union of their time spans): wider than [step,
   /// step] when a temporal tolerance merged steps.
   int spans_lo = 0, spans_hi = 0;
-  /// The steps whose bricks textured them (the spans' representative steps).
+  /// The steps whose bricks textured them (every step of a span textured by its mean).
   int shown_lo = 0, shown_hi = 0;
+  /// Some texture holds a span's mean (--span-step mean) rather than one step.
+  bool shows_mean = false;
   double ms = 0;            ///< whole frame, glFinish included
   double traversal_ms = 0;  ///< traversal and frame plan
   double slicing_ms = 0;    ///< slice polygons and their vertex buffer

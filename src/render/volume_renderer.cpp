@@ -437,6 +437,7 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
       r.shown_lo = std::min(r.shown_lo, plan.textures[std::size_t(i)].key.t0);
       const tsp::TextureKey& k = plan.textures[std::size_t(i)].key;
       r.shown_hi = std::max(r.shown_hi, k.is_mean() ? k.t1 : k.t0);
+      r.shows_mean |= k.is_mean();
     }
   }
   return r;
