@@ -27,7 +27,7 @@ struct RenderArgs {
   int fps = tspgl::kMovieFps;
   bool annotate = false;
   std::string metric = "approximate", cache = "on", compositing = "rays", flat = "exact",
-              span_step = "mean", preintegrated = "off",
+              span_step = "middle", preintegrated = "off",
               reuse = "on", dense = "on", skip_transparent = "on";
   double spatial = 0, temporal = 0, spacing = tspgl::kDefaultSliceSpacing;
   double sampling_tol = 0;
@@ -261,7 +261,7 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
                 "most this much (e.g. 0.005; default 0: every spacing)");
   c->add_option("--span-step", a->span_step,
                 "What textures a span: its middle step, its first (the paper's) or the per-voxel "
-                "mean of its steps (default mean)")
+                "mean of its steps (default middle)")
       ->check(CLI::IsMember({"first", "middle", "mean"}));
   c->add_option("--texture-budget", a->texture_budget_mb, "Texture cache budget in MiB (default 512)");
   c->add_option("--ram-budget", a->ram_budget_mb,

@@ -53,8 +53,8 @@ struct RenderSettings {
   /// Keep the last frame's pixels whose rays meet only bricks drawn as before (same view, TF and
   /// knobs), drawing only the rectangles of the bricks that changed (image_reuse.h). Exact.
   bool reuse_image = true;
-  /// What textures a span longer than one step (its mean by default: docs/rendering.md).
-  tsp::SpanStep span_step = tsp::SpanStep::mean;
+  /// What textures a span longer than one step (its middle step by default: docs/rendering.md).
+  tsp::SpanStep span_step = tsp::SpanStep::middle;
   /// Render-target size as a share of the window's per axis, in [kMinRenderScale, 1]: below 1
   /// the frame is drawn smaller and magnified (the LOD controller's last resort when even the
   /// coarsest cut misses the target). Partial-image reuse is off below 1.

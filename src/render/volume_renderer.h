@@ -82,7 +82,7 @@ class VolumeRenderer {
   /// metric and tol (one traversal per step; skip_transparent as RenderSettings') and returns
   /// how many. TF edits need no call.
   int drop_unreachable(tsp::FrameMetric& metric, const tsp::Tolerances& tol,
-                       tsp::SpanStep span_step = tsp::SpanStep::mean,
+                       tsp::SpanStep span_step = tsp::SpanStep::middle,
                        tsp::LodStops stops = {}, bool skip_transparent = true);
   /// Deletes every cached texture.
   void clear_textures();

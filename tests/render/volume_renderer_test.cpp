@@ -702,9 +702,12 @@ TEST(VolumeRenderer, BricksToUploadAreWhatTheFrameReadsAndUploads) {
   Scene scene(path, tsp::preset_transfer_function("filled", file->tree().value_range()),
               tsp::CachePolicy::on, 64, 48, tsp::Metric::approximate);
   const tsp::Camera cam = scene.camera();
-  for (tsp::Tolerances tol : {tsp::Tolerances{0, 0}, tsp::Tolerances{0.05, 0.05}}) {
+  for (auto [tol, span_step] : {std::pair{tsp::Tolerances{0, 0}, tsp::SpanStep::middle},
+                                std::pair{tsp::Tolerances{0.05, 0.05}, tsp::SpanStep::middle},
+                                std::pair{tsp::Tolerances{0.05, 0.05}, tsp::SpanStep::mean}}) {
     RenderSettings s;
     s.tol = tol;
+    s.span_step = span_step;  // a span's mean reads every step of the span
     for (int step : {1, 4}) {
       const auto keys = scene.renderer->bricks_to_upload(step, cam, s, scene.nodes);
       ASSERT_FALSE(keys.empty());

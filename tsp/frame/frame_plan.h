@@ -140,7 +140,7 @@ struct FramePlan {
 FramePlan plan_frame(const TspTree& tree, int step, std::span<const Emitted> emitted,
                      const NodeInfoFn& info, const Tolerances& tol, const ViewOrder& view,
                      TextureCache& cache, std::int64_t upload_budget = 0,
-                     SpanStep span_step = SpanStep::mean, LodStops stops = {},
+                     SpanStep span_step = SpanStep::middle, LodStops stops = {},
                      bool clip_surface = false);
 
 /// Every texture key some step's frame could draw under errors, info and tol — the set to keep
@@ -148,14 +148,14 @@ FramePlan plan_frame(const TspTree& tree, int step, std::span<const Emitted> emi
 /// Costs one traversal per step.
 TextureKeySet reachable_textures(const TspTree& tree, const NodeErrors& errors,
                                  const NodeInfoFn& info, const Tolerances& tol,
-                                 SpanStep span_step = SpanStep::mean, LodStops stops = {},
+                                 SpanStep span_step = SpanStep::middle, LodStops stops = {},
                                  bool skip_transparent = false);
 /// Same, with the errors and classes of m.
 TextureKeySet reachable_textures(const TspTree& tree, const MetricResult& m, const Tolerances& tol,
-                                 SpanStep span_step = SpanStep::mean, LodStops stops = {});
+                                 SpanStep span_step = SpanStep::middle, LodStops stops = {});
 /// Same, with every node of m made current (FrameMetric::all_errors). Throws what m throws.
 TextureKeySet reachable_textures(const TspTree& tree, FrameMetric& m, const Tolerances& tol,
-                                 SpanStep span_step = SpanStep::mean, LodStops stops = {},
+                                 SpanStep span_step = SpanStep::middle, LodStops stops = {},
                                  bool skip_transparent = false);
 
 }  // namespace tsp

@@ -88,7 +88,7 @@ TEST(FramePlan, HandBuiltFramesGetTheirClassesTexturesAndShares) {
     ASSERT_EQ(p0.textures.size(), 2u);
     EXPECT_EQ(p0.nodes[2].first_texture, 0);
     EXPECT_EQ(p0.nodes[3].first_texture, 1);
-    EXPECT_EQ(p0.textures[0].key, (TextureKey{2, 0, 0, 1}));  // the mean of span [0, 1]
+    EXPECT_EQ(p0.textures[0].key, (TextureKey{2, 0, 0}));  // span [0, 1]'s middle step, 0
     EXPECT_EQ(p0.textures[1].key, (TextureKey{3, 0, 0}));
     EXPECT_TRUE(p0.textures[0].upload && p0.textures[1].upload);
     EXPECT_EQ(p0.textures[0].bytes, 8 * 8 * 8 * 2);

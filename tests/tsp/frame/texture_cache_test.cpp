@@ -237,9 +237,8 @@ std::vector<TextureKey> drawn_textures(const TspTree& tree, const std::vector<Em
       const Box bb = oct.brick_box(b);
       bool inside = true;
       for (int a = 0; a < 3; ++a) inside = inside && bb.lo[a] >= nb.lo[a] && bb.hi[a] <= nb.hi[a];
-      // The default: the span's mean (t1 set only for a span of several steps).
-      if (inside)
-        keys.push_back(TextureKey{b, e.span.t0, 0, e.span.t1 > e.span.t0 ? e.span.t1 : -1});
+      // The default representative step: the span's middle, ⌊(t0 + t1)/2⌋.
+      if (inside) keys.push_back(TextureKey{b, (e.span.t0 + e.span.t1) / 2, 0});
     }
   }
   return keys;
