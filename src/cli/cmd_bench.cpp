@@ -1,6 +1,7 @@
 // tspplay bench run.tsp [--tf ...] -o report/: the paper's Tables 3, 4 and 5 with plots.
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -24,7 +25,7 @@ struct BenchArgs {
   int search_steps = 8, search_iterations = 10, passes = 2, timed_candidates = 3, rounds = 3;
   std::string compositings = "slices,boxes,rays", spacings = "0.5,1,1.5,2,3,4,6,8",
               baseline_spacings = "0.25,0.5,0.75,1,1.5,2,3,4,6,8", compositing = "rays", preintegration = "off",
-              lod_levels = "0", sampling_tols = "0";
+              lod_levels = "0", sampling_tols = "0", tolerance_rules = "equal,temporal";
   double spacing = tspgl::kDefaultSliceSpacing, reference_spacing = 0.25;
 };
 
@@ -104,6 +105,13 @@ void run(const BenchArgs& a) {
       throw tsp::UsageError("--sampling-tols " + t + ": expected finite tolerances >= 0, e.g. 0,0.05");
     o.tsp_grid.sampling_tols.push_back(v);
   }
+  o.tsp_grid.tolerance_rules.clear();
+  for (const std::string& r : split(a.tolerance_rules)) {
+    const tspgl::ToleranceRule rule = tspgl::parse_tolerance_rule(r, "--tolerance-rules");
+    if (std::find(o.tsp_grid.tolerance_rules.begin(), o.tsp_grid.tolerance_rules.end(), rule) ==
+        o.tsp_grid.tolerance_rules.end())
+      o.tsp_grid.tolerance_rules.push_back(rule);
+  }
   std::vector<bool> pre;
   for (const std::string& p : split(a.preintegration)) {
     if (p != "on" && p != "off")
@@ -177,6 +185,10 @@ const CommandRegistrar reg(45, [](CLI::App& app) {
   c->add_option("--sampling-tols", a->sampling_tols,
                 "Adaptive sampling tolerances the TSP search tries with rays (render "
                 "--sampling-tol), e.g. 0,0.05,0.1 (default 0: off)");
+  c->add_option("--tolerance-rules", a->tolerance_rules,
+                "Which tolerances the TSP search's tolerance sets: equal (spatial = temporal), "
+                "temporal (spatial 0), spatial (temporal 0); e.g. equal,temporal,spatial "
+                "(default equal,temporal)");
   c->add_option("--preintegration", a->preintegration,
                 "TF lookups the Table-4 search tries, for both renderers: off, on or off,on "
                 "(default off)");

@@ -145,6 +145,7 @@ class TfBench {
                    {"compositing", to_string(k.compositing)},
                    {"spacing", k.spacing},
                    {"tolerance", k.tol},
+                   {"tolerance_rule", to_string(k.rule)},
                    {"preintegrated", k.preintegrated},
                    {"sampling_tol", k.sampling_tol},
                    {"mean_delta_e", r.mean_de},
@@ -338,7 +339,9 @@ json run_bench(const BenchOptions& options, const BenchProgress& progress) {
   header["targets"] = o.targets;
   header["search_steps"] = sample;
   header["search_iterations"] = o.search_iterations;
-  header["tolerance_rule"] = "spatial = temporal = tolerance";
+  header["tolerance_rule"] =
+      "per tsp_grid.tolerance_rules: equal (spatial = temporal = tolerance), temporal (spatial 0), "
+      "spatial (temporal 0)";
   header["table3_knobs"] = {{"compositing", to_string(o.table3.compositing)},
                             {"spacing", o.table3.spacing}};
   header["reference"] = {{"renderer", "baseline"},
@@ -349,10 +352,13 @@ json run_bench(const BenchOptions& options, const BenchProgress& progress) {
     for (Compositing m : g.compositings) c.push_back(to_string(m));
     json pre = json::array();
     for (bool p : g.preintegration) pre.push_back(p);
+    json rules = json::array();
+    for (ToleranceRule r : g.tolerance_rules) rules.push_back(to_string(r));
     return json{{"compositings", c},
                 {"spacings", g.spacings},
                 {"preintegration", pre},
-                {"sampling_tols", g.sampling_tols}};
+                {"sampling_tols", g.sampling_tols},
+                {"tolerance_rules", rules}};
   };
   header["baseline_grid"] = grid_json(o.baseline_grid);
   header["tsp_grid"] = grid_json(o.tsp_grid);

@@ -104,6 +104,7 @@ void BenchReport::add_best(const std::string& tf, const std::string& renderer,
   r["compositing"] = to_string(k.compositing);
   r["spacing"] = k.spacing;
   r["tolerance"] = k.tol;
+  r["tolerance_rule"] = to_string(k.rule);
   r["mean_delta_e"] = best->probe.mean_de;
   r["probe_ms"] = best->probe.ms;
   r["timing"] = timing_json(*t);

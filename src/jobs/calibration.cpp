@@ -47,6 +47,7 @@ json knobs_json(const Knobs& k) {
   return {{"compositing", to_string(k.compositing)},
           {"spacing", k.spacing},
           {"tolerance", k.tol},
+          {"tolerance_rule", to_string(k.rule)},
           {"preintegrated", k.preintegrated},
           {"sampling_tol", k.sampling_tol}};
 }
@@ -133,6 +134,7 @@ Calibration calibration_from_json(const json& j, const std::string& what) {
       pt.knobs.compositing = parse_compositing(p.at("compositing").get<std::string>(), what);
       pt.knobs.spacing = p.at("spacing").get<double>();
       pt.knobs.tol = p.at("tolerance").get<double>();
+      pt.knobs.rule = parse_tolerance_rule(p.value("tolerance_rule", std::string("equal")), what);
       pt.knobs.preintegrated = p.at("preintegrated").get<bool>();
       pt.knobs.sampling_tol = p.value("sampling_tol", 0.0);
       pt.mean_de = p.at("mean_delta_e").get<double>();

@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <map>
 
+#include "tsp/core/error.h"
+
 namespace tspgl {
 
 namespace {
@@ -22,10 +24,32 @@ void sort_fastest_first(std::vector<KnobCandidate>& v) {
 
 }  // namespace
 
+const char* to_string(ToleranceRule r) {
+  switch (r) {
+    case ToleranceRule::temporal: return "temporal";
+    case ToleranceRule::spatial: return "spatial";
+    case ToleranceRule::equal: break;
+  }
+  return "equal";
+}
+
+ToleranceRule parse_tolerance_rule(const std::string& text, const std::string& option) {
+  for (ToleranceRule r : {ToleranceRule::equal, ToleranceRule::temporal, ToleranceRule::spatial})
+    if (text == to_string(r)) return r;
+  throw tsp::UsageError(option + " " + text + ": expected equal, temporal or spatial");
+}
+
+namespace {
+tsp::Tolerances tolerances(const Knobs& k) {
+  return {k.rule == ToleranceRule::temporal ? 0 : k.tol,
+          k.rule == ToleranceRule::spatial ? 0 : k.tol};
+}
+}  // namespace
+
 void apply(const Knobs& k, RenderSettings& settings) {
   settings.compositing = k.compositing;
   settings.spacing = k.spacing;
-  settings.tol = {k.tol, k.tol};
+  settings.tol = tolerances(k);
   settings.preintegrated = k.preintegrated;
   settings.sampling_tol = k.baseline ? 0 : k.sampling_tol;
 }
@@ -34,21 +58,25 @@ std::vector<Knobs> grid_cells(const KnobGrid& grid, bool baseline) {
   std::vector<Knobs> out;
   const std::vector<int> levels = baseline ? std::vector<int>{0} : grid.lod_levels;
   const std::vector<double> sampling = baseline ? std::vector<double>{0} : grid.sampling_tols;
-  for (int level : levels)
-    for (double st : sampling)
-      for (bool pre : grid.preintegration)
-        for (Compositing c : grid.compositings) {
-          if (st > 0 && (pre || c != Compositing::rays)) continue;  // adaptive: rays, point lookup
-          for (double s : grid.spacings) {
-            Knobs& k = out.emplace_back();
-            k.baseline = baseline;
-            k.compositing = c;
-            k.spacing = s;
-            k.preintegrated = pre;
-            k.lod_level = level;
-            k.sampling_tol = st;
+  const std::vector<ToleranceRule> rules =
+      baseline ? std::vector<ToleranceRule>{ToleranceRule::equal} : grid.tolerance_rules;
+  for (ToleranceRule rule : rules)
+    for (int level : levels)
+      for (double st : sampling)
+        for (bool pre : grid.preintegration)
+          for (Compositing c : grid.compositings) {
+            if (st > 0 && (pre || c != Compositing::rays)) continue;  // adaptive: rays, point lookup
+            for (double s : grid.spacings) {
+              Knobs& k = out.emplace_back();
+              k.baseline = baseline;
+              k.compositing = c;
+              k.spacing = s;
+              k.preintegrated = pre;
+              k.lod_level = level;
+              k.sampling_tol = st;
+              k.rule = rule;
+            }
           }
-        }
   return out;
 }
 
@@ -58,9 +86,11 @@ std::string render_options(const Knobs& k, tsp::Metric metric) {
   if (k.preintegrated) s += " --preintegrated on";
   if (!k.baseline && k.sampling_tol > 0) s += " --sampling-tol " + exact(k.sampling_tol);
   if (!k.baseline && k.lod_level > 0) s += " --lod " + std::to_string(k.lod_level);
-  if (!k.baseline)
-    s += std::string(" --metric ") + tsp::to_string(metric) + " --spatial-tol " + exact(k.tol) +
-         " --temporal-tol " + exact(k.tol);
+  if (!k.baseline) {
+    const tsp::Tolerances t = tolerances(k);
+    s += std::string(" --metric ") + tsp::to_string(metric) + " --spatial-tol " +
+         exact(t.spatial) + " --temporal-tol " + exact(t.temporal);
+  }
   return s;
 }
 
@@ -85,15 +115,29 @@ std::vector<std::vector<KnobCandidate>> search_tsp_knobs(const ProbeKnobs& probe
                                                          const std::vector<double>& targets,
                                                          int iterations) {
   std::vector<std::vector<KnobCandidate>> out(targets.size());
+  // Zero tolerance draws the same picture under every rule: probed once per cell, shared.
+  std::map<std::string, ProbeResult> zeros;
   for (Knobs k : grid_cells(grid, false)) {
     std::map<double, ProbeResult> seen;  // tolerance → probe, for the found tolerances' times
     auto error_at = [&](double tol) {
+      if (auto it = seen.find(tol); it != seen.end()) return it->second.mean_de;
       k.tol = tol;
-      const ProbeResult r = probe(k);
+      ProbeResult r;
+      if (tol == 0) {
+        Knobs z = k;
+        z.rule = ToleranceRule::equal;
+        const std::string key = render_options(z, tsp::Metric::approximate);
+        auto it = zeros.find(key);
+        r = it != zeros.end() ? it->second : (zeros[key] = probe(k));
+      } else {
+        r = probe(k);
+      }
       seen[tol] = r;
       return r.mean_de;
     };
-    error_at(0);  // zero tolerance too: on some data it is the fastest picture (no flat nodes)
+    // Zero tolerance too (search_tolerances starts there): on some data it is the fastest
+    // picture (no flat nodes). Only the first rule's cells offer it as a candidate.
+    const bool offers_zero = k.rule == grid.tolerance_rules.front();
     const std::vector<FoundTolerance> found = search_tolerances(error_at, span, targets, iterations);
     for (std::size_t i = 0; i < found.size(); ++i) {
       // The fastest tolerance probed that met the target: the largest one found, unless a
@@ -102,7 +146,7 @@ std::vector<std::vector<KnobCandidate>> search_tsp_knobs(const ProbeKnobs& probe
       const ProbeResult* best = nullptr;
       double best_tol = 0;
       for (const auto& [tol, r] : seen)
-        if (r.mean_de <= targets[i] && (!best || r.ms < best->ms)) {
+        if ((tol > 0 || offers_zero) && r.mean_de <= targets[i] && (!best || r.ms < best->ms)) {
           best = &r;
           best_tol = tol;
         }

@@ -15,18 +15,30 @@
 
 namespace tspgl {
 
+/// Which tolerances a searched tolerance τ sets (TSP).
+enum class ToleranceRule {
+  equal,     ///< spatial = temporal = τ
+  temporal,  ///< temporal τ, spatial 0: steps merge, nothing is drawn flat
+  spatial,   ///< spatial τ, temporal 0
+};
+/// "equal", "temporal" or "spatial".
+const char* to_string(ToleranceRule r);
+/// Parses one of to_string's words; throws tsp::UsageError naming option and the text.
+ToleranceRule parse_tolerance_rule(const std::string& text, const std::string& option);
+
 /// One configuration of the quality knobs.
 struct Knobs {
   bool baseline = false;                        ///< the non-TSP renderer (tol unused)
   Compositing compositing = Compositing::rays;  ///< how textured boxes are drawn
   double spacing = kDefaultSliceSpacing;        ///< slice spacing in voxels
-  double tol = 0;                               ///< spatial = temporal tolerance (TSP)
+  double tol = 0;                               ///< the tolerance τ (TSP), set per rule
+  ToleranceRule rule = ToleranceRule::equal;    ///< which tolerances τ sets
   bool preintegrated = false;                   ///< pre-integrated TF lookup
   int lod_level = 0;  ///< TSP: an LOD level drawn everywhere (render --lod K; 0: full resolution)
   double sampling_tol = 0;  ///< TSP, rays: adaptive sampling's tolerance (0: off)
 };
 
-/// Sets settings' compositing, spacing, tolerances (spatial = temporal = k.tol),
+/// Sets settings' compositing, spacing, tolerances (k.tol under k.rule),
 /// pre-integration and adaptive sampling from k (k.baseline is the caller's to honour). Never throws.
 void apply(const Knobs& k, RenderSettings& settings);
 
@@ -60,10 +72,13 @@ struct KnobGrid {
   std::vector<int> lod_levels{0};  ///< TSP only: LOD levels drawn everywhere (0: full resolution)
   /// TSP only: adaptive sampling tolerances (0: off), tried with rays and the point lookup.
   std::vector<double> sampling_tols{0};
+  /// TSP only: the tolerance rules searched, each over every other cell.
+  std::vector<ToleranceRule> tolerance_rules{ToleranceRule::equal};
 };
 
 /// Every cell of grid (pre-integration × compositing × spacing, and for the TSP renderer × LOD
-/// level × sampling tolerance — a positive one with rays and the point lookup only; tol 0),
+/// level × sampling tolerance — a positive one with rays and the point lookup only — × tolerance
+/// rule; tol 0),
 /// baseline as given.
 std::vector<Knobs> grid_cells(const KnobGrid& grid, bool baseline);
 

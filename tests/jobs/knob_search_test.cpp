@@ -7,6 +7,8 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "tsp/core/error.h"
+
 namespace tspgl {
 namespace {
 
@@ -83,6 +85,48 @@ TEST(KnobSearch, LodLevelsAreATspKnobNamedInTheRenderOptions) {
   EXPECT_NE(render_options(k, tsp::Metric::approximate).find(" --lod 2"), std::string::npos);
   k.lod_level = 0;
   EXPECT_EQ(render_options(k, tsp::Metric::approximate).find("--lod"), std::string::npos);
+}
+
+// Tolerance rules: each is a TSP cell of its own, named exactly in the render options; zero
+// tolerance (the same picture under every rule) is probed once per cell and offered once; a rule
+// whose tolerance costs less error wins where it reaches further.
+TEST(KnobSearch, ToleranceRulesAreSearchedAndNamedApart) {
+  KnobGrid g{{Compositing::rays}, {1}};
+  g.tolerance_rules = {ToleranceRule::equal, ToleranceRule::temporal};
+  ASSERT_EQ(grid_cells(g, false).size(), 2u);
+  EXPECT_EQ(grid_cells(g, true).size(), 1u);
+  int zero_probes = 0;
+  // Under the temporal rule a tolerance costs a tenth of the error (spatial error is what hurts).
+  auto probe = [&](const Knobs& k) {
+    if (k.tol == 0) ++zero_probes;
+    const double weight = k.rule == ToleranceRule::temporal ? 10 : 100;
+    return ProbeResult{0.4 * k.spacing + weight * k.tol, 10 / k.spacing / (1 + 10 * k.tol)};
+  };
+  const auto found = search_tsp_knobs(probe, g, ErrorSpan{1e-6, 1.0}, {1.0}, 30);
+  EXPECT_EQ(zero_probes, 1);
+  ASSERT_EQ(found[0].size(), 2u);
+  const Knobs& best = found[0][0].knobs;
+  EXPECT_EQ(best.rule, ToleranceRule::temporal);
+  EXPECT_NEAR(best.tol, 0.06, 1e-3);  // 0.4 + 10·τ = 1
+  EXPECT_NEAR(found[0][1].knobs.tol, 0.006, 1e-4);
+  EXPECT_EQ(found[0][1].knobs.rule, ToleranceRule::equal);
+  RenderSettings s;
+  Knobs k;
+  k.tol = 0.5;
+  k.rule = ToleranceRule::temporal;
+  apply(k, s);
+  EXPECT_EQ(s.tol.spatial, 0);
+  EXPECT_EQ(s.tol.temporal, 0.5);
+  EXPECT_NE(render_options(k, tsp::Metric::approximate).find("--spatial-tol 0 --temporal-tol 0.5"),
+            std::string::npos);
+  k.rule = ToleranceRule::spatial;
+  apply(k, s);
+  EXPECT_EQ(s.tol.spatial, 0.5);
+  EXPECT_EQ(s.tol.temporal, 0);
+  EXPECT_NE(render_options(k, tsp::Metric::approximate).find("--spatial-tol 0.5 --temporal-tol 0"),
+            std::string::npos);
+  EXPECT_EQ(parse_tolerance_rule("temporal", "--x"), ToleranceRule::temporal);
+  EXPECT_THROW(parse_tolerance_rule("both", "--x"), tsp::UsageError);
 }
 
 TEST(KnobSearch, ConfigurationsThatMissEveryTargetAreLeftOut) {
