@@ -66,6 +66,8 @@ json key_of(const CalibrationRequest& r, const tsp::TransferFunction& tf,
   for (Compositing c : r.grid.compositings) comps.push_back(to_string(c));
   json pre = json::array();
   for (bool p : r.grid.preintegration) pre.push_back(p);
+  json rules = json::array();
+  for (ToleranceRule t : r.grid.tolerance_rules) rules.push_back(to_string(t));
   const tsp::CameraParams& c = r.camera;
   return {{"version", kCalibrationVersion},
           {"file", canon.string()},
@@ -88,6 +90,7 @@ json key_of(const CalibrationRequest& r, const tsp::TransferFunction& tf,
           {"spacings", r.grid.spacings},
           {"preintegration", pre},
           {"sampling_tols", r.grid.sampling_tols},
+          {"tolerance_rules", rules},
           {"reference_spacing", r.reference_spacing}};
 }
 
@@ -141,9 +144,7 @@ Calibration calibration_from_json(const json& j, const std::string& what) {
       pt.max_step_de = p.at("max_step_delta_e").get<double>();
       pt.ms = p.at("probe_ms").get<double>();
       RenderSettings check;
-      check.spacing = pt.knobs.spacing;
-      check.tol = {pt.knobs.tol, pt.knobs.tol};
-      check.sampling_tol = pt.knobs.sampling_tol;
+      apply(pt.knobs, check);
       validate(check);  // a bad spacing or tolerance: UsageError, reported as FormatError below
       for (double v : {pt.mean_de, pt.max_step_de, pt.ms})
         if (!(v >= 0) || !std::isfinite(v))
@@ -204,6 +205,8 @@ Calibration calibrate(const CalibrationRequest& r, const tsp::BrickStore& bricks
   int done = 0;
   for (const Knobs& cell : cells)
     for (double tol : tols) {
+      // Zero tolerance is the same picture under every rule: calibrated under the first only.
+      if (tol == 0 && cell.rule != r.grid.tolerance_rules.front()) continue;
       Knobs k = cell;
       k.tol = tol;
       const ProbeFrames f = probe.render(k, &metric);

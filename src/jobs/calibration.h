@@ -39,8 +39,14 @@ struct CalibrationRequest {
   tsp::CameraParams camera;
   int steps = 6;                 ///< calibration steps, spread evenly over the file's steps
   int sweep = 11;                ///< positive tolerances per compositing × spacing (log-spaced)
+  /// The knobs swept; tolerance rules equal and temporal (a temporal tolerance alone merges
+  /// steps without drawing nodes flat: on the turbulence the fastest way to ΔE 1).
   KnobGrid grid{{Compositing::slices, Compositing::boxes, Compositing::rays},
-                {0.5, 1, 1.5, 2, 3, 4, 6, 8}};
+                {0.5, 1, 1.5, 2, 3, 4, 6, 8},
+                {false},
+                {0},
+                {0},
+                {ToleranceRule::equal, ToleranceRule::temporal}};
   double reference_spacing = 0.25;
   std::string cache_dir;         ///< "" : default_calibration_dir(); "-": no cache
 };

@@ -316,7 +316,9 @@ void PlayerApp::apply_quality(double de) {
   spacing = best->knobs.spacing;
   preintegrated = best->knobs.preintegrated;
   sampling_tol = best->knobs.sampling_tol;
-  set_tolerances({best->knobs.tol, best->knobs.tol});
+  tspgl::RenderSettings picked;
+  tspgl::apply(best->knobs, picked);  // the tolerances its rule sets
+  set_tolerances(picked.tol);
   quality_note = tspgl::render_options(best->knobs, metric) + (cache.empty() ? "" : " (" + cache + ")");
 }
 
