@@ -1,9 +1,9 @@
 // Table 4's search over every quality knob (docs/bench.md): for each target mean ΔE against the
 // full-quality picture, the configurations that stay within it — the non-TSP baseline over
-// compositing × slice spacing, the TSP renderer over compositing × spacing × tolerance (the
-// fastest tolerance per spacing within the target, from zero and the bisection of
-// tolerance_search.h) — fastest first by the
-// probe's own frame time. Pure logic over a probe callback, so it is tested without GL.
+// compositing × slice spacing, the TSP renderer over compositing × spacing × tolerance rule ×
+// tolerance (the fastest tolerance per cell within the target, from zero and the bisection of
+// tolerance_search.h) — fastest first by the probe's own frame time. Pure logic over a probe
+// callback, so it is tested without GL.
 #pragma once
 #include <functional>
 #include <string>
@@ -88,9 +88,10 @@ std::vector<std::vector<KnobCandidate>> search_baseline_knobs(const ProbeKnobs& 
                                                               const KnobGrid& grid,
                                                               const std::vector<double>& targets);
 
-/// For each target: per compositing × spacing of grid, the fastest TSP configuration probed
-/// within the target — zero tolerance and the tolerances search_tolerances tries (span,
-/// iterations) on its way to the largest one —; fastest probe first. Throws what probe throws.
+/// For each target: per cell of grid (tolerance rules included), the fastest TSP configuration
+/// probed within the target — zero tolerance (probed once for all rules, offered by the first
+/// rule's cells) and the tolerances search_tolerances tries (span, iterations) on its way to the
+/// largest one —; fastest probe first. Throws what probe throws.
 std::vector<std::vector<KnobCandidate>> search_tsp_knobs(const ProbeKnobs& probe,
                                                          const KnobGrid& grid,
                                                          const ErrorSpan& span,
