@@ -41,12 +41,9 @@ struct CalibrationRequest {
   int sweep = 11;                ///< positive tolerances per compositing × spacing (log-spaced)
   /// The knobs swept; tolerance rules equal and temporal (a temporal tolerance alone merges
   /// steps without drawing nodes flat: on the turbulence the fastest way to ΔE 1).
-  KnobGrid grid{{Compositing::slices, Compositing::boxes, Compositing::rays},
-                {0.5, 1, 1.5, 2, 3, 4, 6, 8},
-                {false},
-                {0},
-                {0},
-                {ToleranceRule::equal, ToleranceRule::temporal}};
+  KnobGrid grid{.compositings = {Compositing::slices, Compositing::boxes, Compositing::rays},
+                .spacings = {0.5, 1, 1.5, 2, 3, 4, 6, 8},
+                .tolerance_rules = {ToleranceRule::equal, ToleranceRule::temporal}};
   double reference_spacing = 0.25;
   std::string cache_dir;         ///< "" : default_calibration_dir(); "-": no cache
 };

@@ -115,8 +115,9 @@ std::vector<std::vector<KnobCandidate>> search_tsp_knobs(const ProbeKnobs& probe
                                                          const std::vector<double>& targets,
                                                          int iterations) {
   std::vector<std::vector<KnobCandidate>> out(targets.size());
-  // Zero tolerance draws the same picture under every rule: probed once per cell, shared.
-  std::map<std::string, ProbeResult> zeros;
+  // Zero tolerance draws the same picture under every rule: probed once per cell (its knobs
+  // with the equal rule), shared.
+  std::vector<KnobCandidate> zeros;
   for (Knobs k : grid_cells(grid, false)) {
     std::map<double, ProbeResult> seen;  // tolerance → probe, for the found tolerances' times
     auto error_at = [&](double tol) {
@@ -126,9 +127,9 @@ std::vector<std::vector<KnobCandidate>> search_tsp_knobs(const ProbeKnobs& probe
       if (tol == 0) {
         Knobs z = k;
         z.rule = ToleranceRule::equal;
-        const std::string key = render_options(z, tsp::Metric::approximate);
-        auto it = zeros.find(key);
-        r = it != zeros.end() ? it->second : (zeros[key] = probe(k));
+        auto it = std::find_if(zeros.begin(), zeros.end(),
+                               [&](const KnobCandidate& c) { return c.knobs == z; });
+        r = it != zeros.end() ? it->probe : zeros.emplace_back(KnobCandidate{z, probe(k)}).probe;
       } else {
         r = probe(k);
       }

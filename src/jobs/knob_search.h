@@ -36,6 +36,8 @@ struct Knobs {
   bool preintegrated = false;                   ///< pre-integrated TF lookup
   int lod_level = 0;  ///< TSP: an LOD level drawn everywhere (render --lod K; 0: full resolution)
   double sampling_tol = 0;  ///< TSP, rays: adaptive sampling's tolerance (0: off)
+  /// Every knob equal.
+  bool operator==(const Knobs&) const = default;
 };
 
 /// Sets settings' compositing, spacing, tolerances (k.tol under k.rule),

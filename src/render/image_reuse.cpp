@@ -17,11 +17,11 @@ constexpr std::int64_t kTextured = 1, kFlat = 2, kDeferredFlat = 3;
 
 std::int64_t pack(std::int64_t kind, std::int64_t key) { return (kind << kKindShift) | key; }
 
-// A texture's steps as one number below kKindShift: t0, and t1 + 1 for a span's mean (steps <
-// 2^24 in any tree we can hold).
+// A texture's steps as one number below kKindShift: its first and last step (steps < 2^24 in
+// any tree we can hold).
 constexpr int kStepBits = 24;
 std::int64_t steps_of(const tsp::TextureKey& k) {
-  return std::int64_t(k.t0) | (std::int64_t(k.is_mean() ? k.t1 + 1 : 0) << kStepBits);
+  return std::int64_t(k.t0) | (std::int64_t(k.last_step()) << kStepBits);
 }
 
 // The colour's exact bits, folded into one number (equal colours, equal numbers).

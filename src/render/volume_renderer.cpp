@@ -112,7 +112,7 @@ std::vector<tsp::BrickKey> VolumeRenderer::bricks_to_upload(int step, const tsp:
                                                             tsp::LodStops stops) const {
   std::vector<tsp::BrickKey> keys;
   for (const tsp::TextureKey& k : textures_to_upload(step, camera, settings, metric, stops))
-    for (int t = k.t0; t <= (k.is_mean() ? k.t1 : k.t0); ++t) keys.push_back({k.brick, t});
+    for (int t = k.t0; t <= k.last_step(); ++t) keys.push_back({k.brick, t});
   return keys;
 }
 
@@ -434,9 +434,9 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
     r.spans_lo = std::min(r.spans_lo, sp.t0);
     r.spans_hi = std::max(r.spans_hi, sp.t1);
     for (int i = n.first_texture; i < n.first_texture + n.texture_count; ++i) {
-      r.shown_lo = std::min(r.shown_lo, plan.textures[std::size_t(i)].key.t0);
       const tsp::TextureKey& k = plan.textures[std::size_t(i)].key;
-      r.shown_hi = std::max(r.shown_hi, k.is_mean() ? k.t1 : k.t0);
+      r.shown_lo = std::min(r.shown_lo, k.t0);
+      r.shown_hi = std::max(r.shown_hi, k.last_step());
       r.shows_mean |= k.is_mean();
     }
   }

@@ -110,21 +110,22 @@ TEST(KnobSearch, ToleranceRulesAreSearchedAndNamedApart) {
   EXPECT_NEAR(best.tol, 0.06, 1e-3);  // 0.4 + 10·τ = 1
   EXPECT_NEAR(found[0][1].knobs.tol, 0.006, 1e-4);
   EXPECT_EQ(found[0][1].knobs.rule, ToleranceRule::equal);
-  RenderSettings s;
-  Knobs k;
-  k.tol = 0.5;
-  k.rule = ToleranceRule::temporal;
-  apply(k, s);
-  EXPECT_EQ(s.tol.spatial, 0);
-  EXPECT_EQ(s.tol.temporal, 0.5);
-  EXPECT_NE(render_options(k, tsp::Metric::approximate).find("--spatial-tol 0 --temporal-tol 0.5"),
-            std::string::npos);
-  k.rule = ToleranceRule::spatial;
-  apply(k, s);
-  EXPECT_EQ(s.tol.spatial, 0.5);
-  EXPECT_EQ(s.tol.temporal, 0);
-  EXPECT_NE(render_options(k, tsp::Metric::approximate).find("--spatial-tol 0.5 --temporal-tol 0"),
-            std::string::npos);
+  const struct {
+    ToleranceRule rule;
+    double spatial, temporal;
+    const char* options;
+  } rules[] = {{ToleranceRule::temporal, 0, 0.5, "--spatial-tol 0 --temporal-tol 0.5"},
+               {ToleranceRule::spatial, 0.5, 0, "--spatial-tol 0.5 --temporal-tol 0"}};
+  for (const auto& r : rules) {
+    RenderSettings s;
+    Knobs k;
+    k.tol = 0.5;
+    k.rule = r.rule;
+    apply(k, s);
+    EXPECT_EQ(s.tol.spatial, r.spatial);
+    EXPECT_EQ(s.tol.temporal, r.temporal);
+    EXPECT_NE(render_options(k, tsp::Metric::approximate).find(r.options), std::string::npos);
+  }
   EXPECT_EQ(parse_tolerance_rule("temporal", "--x"), ToleranceRule::temporal);
   EXPECT_THROW(parse_tolerance_rule("both", "--x"), tsp::UsageError);
 }

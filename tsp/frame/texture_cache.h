@@ -22,6 +22,8 @@ struct TextureKey {
   int t1 = -1;  ///< > t0: the mean of steps t0..t1; otherwise step t0 alone
   /// True when the texture holds a span's mean rather than one step.
   bool is_mean() const { return t1 > t0; }
+  /// The last step whose data it holds: t1 for a mean, else t0.
+  int last_step() const { return is_mean() ? t1 : t0; }
   bool operator==(const TextureKey&) const = default;
 };
 
