@@ -38,16 +38,17 @@ void GlContext::finish() {
 }
 
 tsp::Image GlContext::read_pixels() {
-  return read_pixels(0, 0, width(), height());
+  return read_pixels(0, 0, canvas_width(), canvas_height());
 }
 
 tsp::Image GlContext::read_pixels(int x, int y, int w, int h) {
-  assert(x >= 0 && y >= 0 && w > 0 && h > 0 && x + w <= width() && y + h <= height());
+  assert(x >= 0 && y >= 0 && w > 0 && h > 0 && x + w <= canvas_width() &&
+         y + h <= canvas_height());
   tsp::Image img(w, h);
   GLint read_fbo = 0, pack_alignment = 0;
   gl_.GetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read_fbo);
   gl_.GetIntegerv(GL_PACK_ALIGNMENT, &pack_alignment);
-  gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, canvas_.fbo);
   gl_.PixelStorei(GL_PACK_ALIGNMENT, 1);
   std::vector<std::uint8_t> bottom_up(img.rgba.size());
   gl_.ReadPixels(x, y, w, h, GL_RGBA, GL_UNSIGNED_BYTE, bottom_up.data());

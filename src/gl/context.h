@@ -40,11 +40,18 @@ class GlContext {
   const GlApi& gl() const { return gl_; }
   /// Waits until GL has finished all commands. Throws tsp::GlError on a pending GL error.
   void finish();
-  /// Reads the default framebuffer's colour buffer as RGBA8, top row first. Throws tsp::GlError.
+  /// Reads the canvas's colour buffer as RGBA8, top row first. Throws tsp::GlError.
   tsp::Image read_pixels();
   /// Reads the w × h rectangle whose lower-left corner is (x, y) (GL window coordinates) of the
-  /// default framebuffer as RGBA8, top row first; asserts it lies inside. Throws tsp::GlError.
+  /// canvas as RGBA8, top row first; asserts it lies inside. Throws tsp::GlError.
   tsp::Image read_pixels(int x, int y, int w, int h);
+  /// The framebuffer frames are resolved into and read_pixels reads — the canvas: the default
+  /// framebuffer (0), or the OffscreenCanvas in use (gl/offscreen_canvas.h).
+  GLuint canvas_framebuffer() const { return canvas_.fbo; }
+  /// The canvas's width in pixels (the default framebuffer's without an offscreen canvas).
+  int canvas_width() const { return canvas_.fbo ? canvas_.width : width(); }
+  /// The canvas's height in pixels (the default framebuffer's without an offscreen canvas).
+  int canvas_height() const { return canvas_.fbo ? canvas_.height : height(); }
   /// "RENDERER, GL VERSION" of the context, for reports.
   std::string describe() const;
 
@@ -55,7 +62,14 @@ class GlContext {
   void load(GetProcAddress get_proc, const std::string& backend);
 
  private:
+  friend class CanvasScope;
+  /// The canvas: a framebuffer object and its size, or fbo 0 for the default framebuffer.
+  struct Canvas {
+    GLuint fbo = 0;
+    int width = 0, height = 0;
+  };
   GlApi gl_;
+  Canvas canvas_;
 };
 
 /// A headless OSMesa context, OpenGL 3.3 core profile, w × h RGBA8 framebuffer; made current.

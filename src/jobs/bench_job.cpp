@@ -99,11 +99,12 @@ RenderJobOptions with_knobs(RenderJobOptions job, const Knobs& k, tsp::Metric me
 // and Table 4, then plots.
 class TfBench {
  public:
-  TfBench(const BenchOptions& o, const tsp::TspFile& file, const tsp::TransferFunction& tf,
+  TfBench(GlContext& ctx, const BenchOptions& o, const tsp::TspFile& file,
+          const tsp::TransferFunction& tf,
           const std::string& tf_arg, RenderJobOptions job, const std::vector<int>& sample,
           BenchReport& report, const std::function<void(const std::string&)>& tick)
       : o_(o), file_(file), tf_(tf), tf_arg_(tf_arg), tag_(tf_tag(tf_arg)), job_(std::move(job)),
-        sample_(sample), report_(report), tick_(tick), probe_(file, tf, o.camera, sample) {
+        sample_(sample), report_(report), tick_(tick), probe_(ctx, file, tf, o.camera, sample) {
     job_.tf = tf_arg;
   }
 
@@ -366,8 +367,11 @@ json run_bench(const BenchOptions& options, const BenchProgress& progress) {
   header["head_to_head_rounds"] = o.head_to_head_rounds;
   BenchReport report(std::move(header));
 
+  // The probes' pictures: on a canvas of one offscreen context (the head-to-head timings run
+  // render jobs, each on a context of its own).
+  auto ctx = create_offscreen_context(o.camera.width, o.camera.height);
   for (std::size_t k = 0; k < tfs.size(); ++k)
-    TfBench(o, *file, tfs[k], o.tfs[k], base, sample, report, tick).run(dir);
+    TfBench(*ctx, o, *file, tfs[k], o.tfs[k], base, sample, report, tick).run(dir);
   if (progress) progress("done", total, total);
   return report.write(dir.string());
 }

@@ -167,7 +167,7 @@ std::optional<CalibrationPoint> pick_configuration(const Calibration& c, double 
   return best;
 }
 
-Calibration calibrate(const CalibrationRequest& r, const tsp::BrickStore& bricks,
+Calibration calibrate(GlContext& ctx, const CalibrationRequest& r, const tsp::BrickStore& bricks,
                       const tsp::TransferFunction& tf, std::string* cache_file,
                       const CalibrationProgress& progress) {
   const tsp::TspTree& tree = bricks.tree();
@@ -184,7 +184,7 @@ Calibration calibrate(const CalibrationRequest& r, const tsp::BrickStore& bricks
   if (!path.empty())
     if (auto cached = read_cache(path, c.key)) return *cached;
 
-  ImageProbe probe(bricks, tf, r.camera, steps);
+  ImageProbe probe(ctx, bricks, tf, r.camera, steps);
   Knobs ref;
   ref.baseline = true;
   ref.compositing = Compositing::slices;

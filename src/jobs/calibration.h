@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "gl/context.h"
 #include "jobs/knob_search.h"
 #include "tsp/frame/camera.h"
 #include "tsp/metric/metric.h"
@@ -64,11 +65,12 @@ std::string default_calibration_dir();
 using CalibrationProgress = std::function<void(const std::string& phase, int done, int total)>;
 
 /// The calibration for r over bricks (the already opened r.tsp_path) under tf: read from the
-/// cache when one with the same key is there, else made (rendering on an offscreen context) and
-/// written atomically to the cache. `cache_file` is set to the file used ("" without a cache).
+/// cache when one with the same key is there, else made (rendering on an offscreen canvas of
+/// ctx, the caller's current context, whose own framebuffer is left alone) and written
+/// atomically to the cache. `cache_file` is set to the file used ("" without a cache).
 /// Throws tsp::UsageError, tsp::IoError, tsp::FormatError, tsp::GlError; a corrupt cache file
 /// is recomputed, never an error.
-Calibration calibrate(const CalibrationRequest& r, const tsp::BrickStore& bricks,
+Calibration calibrate(GlContext& ctx, const CalibrationRequest& r, const tsp::BrickStore& bricks,
                       const tsp::TransferFunction& tf, std::string* cache_file = nullptr,
                       const CalibrationProgress& progress = {});
 

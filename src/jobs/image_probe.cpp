@@ -4,22 +4,32 @@
 #include <cassert>
 #include <optional>
 
+#include "gl/gl_error.h"
 #include "jobs/render_job.h"
 #include "tsp/lod/lod_cut.h"
 #include "tsp/report/image_diff.h"
 
 namespace tspgl {
 
-ImageProbe::ImageProbe(const tsp::BrickStore& bricks, const tsp::TransferFunction& tf,
-                       const tsp::CameraParams& params, std::vector<int> steps)
+ImageProbe::ImageProbe(GlContext& ctx, const tsp::BrickStore& bricks,
+                       const tsp::TransferFunction& tf, const tsp::CameraParams& params,
+                       std::vector<int> steps)
     : bricks_(bricks),
-      ctx_(create_offscreen_context(params.width, params.height)),
-      renderer_(*ctx_, bricks, tsp::CachePolicy::off),
-      baseline_(*ctx_, bricks),
+      ctx_(ctx),
+      canvas_(ctx, params.width, params.height),
+      renderer_(ctx, bricks, tsp::CachePolicy::off),
+      baseline_(ctx, bricks),
       camera_(bricks.tree().octree().dims(), params),
       steps_(std::move(steps)) {
   renderer_.set_transfer_function(tf);
   baseline_.set_transfer_function(tf);
+}
+
+ImageProbe::~ImageProbe() {
+  try {
+    ctx_.make_current();
+  } catch (const tsp::GlError&) {  // the members' GL deletes then go nowhere, as at exit
+  }
 }
 
 ProbeFrames ImageProbe::render(const Knobs& k, const tsp::MetricResult* metric) {
@@ -36,12 +46,14 @@ ProbeFrames ImageProbe::render(const Knobs& k, const tsp::MetricResult* metric) 
   }
   ProbeFrames out;
   std::vector<double> ms;
+  ctx_.make_current();  // the caller's context (a render job in between may have made its own)
+  const CanvasScope scope(canvas_);
   for (int t : steps_) {
     const FrameReport r = k.baseline ? baseline_.render(t, camera_, s)
                                      : renderer_.render(t, camera_, s, *nodes,
                                                         cut ? cut->stops() : tsp::LodStops{});
     ms.push_back(r.ms);
-    out.images.push_back(ctx_->read_pixels());
+    out.images.push_back(ctx_.read_pixels());
   }
   out.median_ms = median(std::move(ms));
   return out;

@@ -1,10 +1,12 @@
-// The pictures a knob search compares: the search's sample steps rendered into images on one
-// offscreen context, by the TSP renderer or the non-TSP baseline under any knobs.
+// The pictures a knob search compares: the search's sample steps rendered into images on an
+// offscreen canvas of the caller's context (gl/offscreen_canvas.h), by the TSP renderer or the
+// non-TSP baseline under any knobs.
 #pragma once
 #include <memory>
 #include <vector>
 
 #include "gl/context.h"
+#include "gl/offscreen_canvas.h"
 #include "jobs/knob_search.h"
 #include "render/baseline_renderer.h"
 #include "render/volume_renderer.h"
@@ -22,19 +24,27 @@ struct ProbeFrames {
 };
 
 /// Renders fixed steps of one store under one TF (cache off: the pictures do not depend on the
-/// cache, and nothing stale survives a tolerance change). Use from one thread.
+/// cache, and nothing stale survives a tolerance change) in the caller's context, on an
+/// offscreen canvas of the camera's size: the context's own framebuffer and its current state
+/// are left as they were. Use from the context's thread.
 class ImageProbe {
  public:
-  /// An offscreen context of params' size. Throws tsp::GlError, tsp::UsageError (size).
-  ImageProbe(const tsp::BrickStore& bricks, const tsp::TransferFunction& tf,
+  /// Renderers and a canvas of params' size in ctx (current; it must outlive the probe). Throws
+  /// tsp::GlError, tsp::UsageError (size).
+  ImageProbe(GlContext& ctx, const tsp::BrickStore& bricks, const tsp::TransferFunction& tf,
              const tsp::CameraParams& params, std::vector<int> steps);
   /// The steps under knobs k: the baseline when k.baseline, else the TSP renderer under metric
   /// (which must then be non-null). Throws like the renderers' render().
   ProbeFrames render(const Knobs& k, const tsp::MetricResult* metric);
+  /// Frees its GL objects in ctx (made current again first).
+  ~ImageProbe();
+  ImageProbe(const ImageProbe&) = delete;
+  ImageProbe& operator=(const ImageProbe&) = delete;
 
  private:
   const tsp::BrickStore& bricks_;
-  std::unique_ptr<GlContext> ctx_;
+  GlContext& ctx_;
+  OffscreenCanvas canvas_;
   VolumeRenderer renderer_;
   BaselineRenderer baseline_;
   tsp::Camera camera_;

@@ -122,7 +122,7 @@ double median_frame_ms(const RenderJobResult& result, int pass) {
 namespace {
 
 // o with the knobs --quality picks for file under tf; fills the result's quality fields.
-RenderJobOptions with_quality(RenderJobOptions o, const tsp::TspFile& file,
+RenderJobOptions with_quality(GlContext& ctx, RenderJobOptions o, const tsp::TspFile& file,
                               const tsp::TransferFunction& tf, RenderJobResult& result,
                               const CalibrationProgress& progress) {
   CalibrationRequest r;
@@ -131,7 +131,7 @@ RenderJobOptions with_quality(RenderJobOptions o, const tsp::TspFile& file,
   r.metric = o.metric;
   r.camera = o.camera;
   r.cache_dir = o.calibration_dir;
-  const Calibration c = calibrate(r, file, tf, &result.calibration_file, progress);
+  const Calibration c = calibrate(ctx, r, file, tf, &result.calibration_file, progress);
   const auto best = pick_configuration(c, o.quality);
   if (!best) {
     double lowest = 1e300;
@@ -218,8 +218,10 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
   RenderJobResult result;
   if (std::string w = tsp::tf_range_warning(tf, file->metadata().data_range); !w.empty())
     result.warnings.push_back(w);
+  auto ctx = create_offscreen_context(options.camera.width, options.camera.height);
+  result.renderer = ctx->describe();
   const RenderJobOptions o =
-      options.quality != 0 ? with_quality(options, *file, tf, result, calibration_progress)
+      options.quality != 0 ? with_quality(*ctx, options, *file, tf, result, calibration_progress)
                            : options;
   const RenderSettings& settings = o.settings;
 
@@ -234,8 +236,6 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
     metric = tsp::compute_errors(o.metric, tree, tf, file.get(), 0);
     result.metric_ms = watch.ms();
   }
-  auto ctx = create_offscreen_context(o.camera.width, o.camera.height);
-  result.renderer = ctx->describe();
   std::unique_ptr<VolumeRenderer> renderer;
   std::unique_ptr<BaselineRenderer> baseline;
   if (o.baseline)

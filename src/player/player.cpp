@@ -303,10 +303,15 @@ void PlayerApp::set_tolerances(tsp::Tolerances t) {
 void PlayerApp::apply_quality(double de) {
   tspgl::CalibrationRequest r;
   r.tsp_path = options_.tsp_path;
+  r.field = field();  // as render names it: one calibration serves both
   r.metric = metric;
   r.camera = camera;
+  // The view's size as this frame lays it out (camera's is set when the volume is drawn: on the
+  // first frame it is still the default).
+  r.camera.width = std::max(1, layout.view.w);
+  r.camera.height = std::max(1, layout.view.h);
   std::string cache;
-  const tspgl::Calibration c = tspgl::calibrate(r, *file, tf, &cache);
+  const tspgl::Calibration c = tspgl::calibrate(*ctx, r, *file, tf, &cache);
   const auto best = tspgl::pick_configuration(c, de);
   if (!best) {
     quality_note = "nothing calibrated stays within dE " + std::to_string(de);

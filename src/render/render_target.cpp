@@ -34,11 +34,11 @@ void RenderTarget::bind(int width, int height, double scale) {
 
 void RenderTarget::resolve(int x, int y, int w, int h) {
   gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, fbo_);
-  gl_.BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+  gl_.BindFramebuffer(GL_DRAW_FRAMEBUFFER, ctx_.canvas_framebuffer());
   const bool same = width_ == w && height_ == h;
   gl_.BlitFramebuffer(0, 0, width_, height_, x, y, x + w, y + h, GL_COLOR_BUFFER_BIT,
                       same ? GL_NEAREST : GL_LINEAR);
-  gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
+  gl_.BindFramebuffer(GL_FRAMEBUFFER, ctx_.canvas_framebuffer());
 }
 
 }  // namespace tspgl

@@ -7,7 +7,8 @@
 namespace tspgl {
 
 /// An RGBA16 framebuffer the size of a frame (the camera's), copied into a rectangle of a
-/// context's default framebuffer. Use from the context's thread with the context current; not
+/// context's canvas (its default framebuffer, or an
+/// OffscreenCanvas in use). Use from the context's thread with the context current; not
 /// copyable.
 class RenderTarget {
  public:
@@ -22,9 +23,8 @@ class RenderTarget {
   /// binds it and sets the viewport. Throws tsp::GlError when RGBA16 framebuffers are not
   /// supported.
   void bind(int width, int height, double scale = 1);
-  /// Copies it into the rectangle of the context's default framebuffer whose lower-left corner is
-  /// (x, y) and whose size is w × h (magnified with linear filtering when it differs) and binds
-  /// that framebuffer.
+  /// Copies it into the rectangle of the context's canvas whose lower-left corner is (x, y) and
+  /// whose size is w × h (magnified with linear filtering when it differs) and binds the canvas.
   void resolve(int x, int y, int w, int h);
 
  private:

@@ -660,3 +660,47 @@ TEST(Player, ProbesClipAsRenderDoesAndMoveFromTheScript) {
 }
 
 }  // namespace
+
+// The quality slider (script `quality`) calibrates on an offscreen canvas of the window's own
+// context: afterwards the window keeps drawing, a real Tab hides the panels (it used to exit with
+// "the 16-bit render target ... is not supported": the calibration left another context current)
+// and the picture is `render`'s with the knobs the calibration picked.
+TEST(Player, QualitySliderKeepsTheWindowDrawingAndTabWorking) {
+  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  ASSERT_EQ(std::system("command -v xdotool > /dev/null"), 0)
+      << "xdotool missing (scripts/install-deps.sh installs it)";
+  const fs::path tsp = make_tsp(), dir = tsptest::temp_dir(), out = dir / "q.out";
+  const fs::path script = write_script(
+      "step 1\nquality 2\nwait-frames 2\nstats " + (dir / "q.json").string() + "\nscreenshot " +
+      (dir / "q.png").string() + "\nwait-seconds 3\nstats " + (dir / "f.json").string() +
+      "\nscreenshot " + (dir / "f.png").string() + "\nquit\n");
+  // Tab goes in once the first screenshot is written (the calibration is over by then).
+  const std::string cmd =
+      "TSPPLAY_CACHE_DIR=" + q(dir / "cache") + " " + q(tsptest::tspplay_bin()) + " play " +
+      q(tsp) + " --size " + kSize + " --trace --script " + q(script) + " > " + q(out) + " 2>&1 &\n" +
+      "p=$!\n"
+      "w=$(xdotool search --sync --name " + q("tspplay - " + tsp.string()) + " | head -1)\n"
+      "for i in $(seq 1500); do [ -e " + q(dir / "q.png") + " ] && break; sleep 0.2; done\n"
+      "xdotool key --window \"$w\" Tab\n"
+      "wait $p\n";
+  ASSERT_EQ(run_bash(dir / "quality.sh", cmd), 0) << tsptest::read_file(out);
+  const std::string log = tsptest::read_file(out);
+  EXPECT_NE(log.find("trace: panels off"), std::string::npos) << log;
+  const nlohmann::json qj = read_json(dir / "q.json"), fj = read_json(dir / "f.json");
+  const std::string note = qj["quality"];
+  ASSERT_EQ(note.rfind("--compositing", 0), 0u) << note;
+  EXPECT_FALSE(fj["docked"].get<bool>());
+  // After Tab the volume fills the window and still shows the data.
+  const tsp::Image full = tsp::read_png((dir / "f.png").string());
+  ASSERT_EQ(full.width, 128);
+  ASSERT_EQ(full.height, 96);
+  EXPECT_GT(covered(full), 0.02);
+  // ... as `render` draws it with the picked knobs.
+  const std::string options = note.substr(0, note.find(" ("));
+  const fs::path frames = dir / "frames";
+  auto rr = run_tspplay("render " + q(tsp) + " --steps 1 --size " + std::string(kSize) + " " + options + " -o " +
+                        q(frames));
+  ASSERT_EQ(rr.exit_code, 0) << rr.err;
+  EXPECT_LT(tsp::diff_images(full, tsp::read_png((frames / "step_0001.png").string())).mean,
+            kSameFrameDeltaE);
+}
