@@ -8,6 +8,7 @@
 #include "cli/args.h"
 #include "cli/build_runner.h"
 #include "cli/commands.h"
+#include "cli/settings_options.h"
 #include "jobs/play_input.h"
 #include "player/controls.h"
 #include "player/player.h"
@@ -25,6 +26,7 @@ struct PlayArgs {
   std::string field, cache_dir;
   std::string proportions = "physical", scale;
   std::string probe_surface = "on";
+  SettingsOptions settings{tspplayer::default_player_settings()};
 };
 
 void run(PlayArgs a) {
@@ -97,11 +99,9 @@ const CommandRegistrar reg(35, [](CLI::App& app) {
                 "Bricks held in RAM, MiB (default 1024): a file larger than RAM streams through it");
   c->add_option("--texture-budget", a->options.texture_budget_mb,
                 "Textures resident, MiB (default 512)");
-  c->add_option("--upload-budget", a->options.upload_budget_mb,
-                "Texture MiB uploaded per frame; the rest follows in later frames (default 16, "
-                "0: no limit)");
   c->add_option("--lod", a->lod, "Level of detail: on (hold --target-fps while interacting, full "
-                                 "quality when idle) or off (default on)")
+                                 "quality when idle) or off (default on, for interaction; render's is off, for "
+                                 "reproducible frames)")
       ->check(CLI::IsMember({"on", "off"}));
   c->add_option("--lod-fallback", a->lod_fallback,
                 "When even the coarsest cut misses --target-fps: scale (a smaller render target, "
@@ -115,7 +115,16 @@ const CommandRegistrar reg(35, [](CLI::App& app) {
             std::string(std::size_t(std::max(2, 42 - int(std::string(k.input).size()))), ' ') +
             k.action + "\n";
   c->footer(keys);
+  a->settings.add_to(c);
+  set_groups(c, {{"Input/output", {"--field", "--cache-dir", "--tf", "--tf-range", "--step",
+                                   "--screenshot", "--script"}},
+                 {"Camera", {"--size", "--proportions", "--scale"}},
+                 {"LOD", {"--lod", "--lod-fallback", "--target-fps"}},
+                 {"Probes", {"--probe", "--probe-op", "--probe-surface"}},
+                 {"Memory", {"--ram-budget", "--texture-budget"}},
+                 {"Diagnostics", {"--trace", "--frame-delay-ms"}}});
   c->callback([a] {
+    a->options.settings = a->settings.apply();
     a->options.lod = a->lod == "on";
     a->options.splat_fallback = a->lod_fallback == "splats";
     run(*a);

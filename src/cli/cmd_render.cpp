@@ -9,6 +9,7 @@
 
 #include "cli/args.h"
 #include "cli/commands.h"
+#include "cli/settings_options.h"
 #include "jobs/movie.h"
 #include "cli/progress_bar.h"
 #include "jobs/render_job.h"
@@ -20,17 +21,17 @@ namespace {
 
 namespace fs = std::filesystem;
 
+/// Largest --target-fps (as play's).
+constexpr double kMaxTargetFps = 240;
+
 struct RenderArgs {
   std::string field;
   std::string file, tf = "preset:sparse", out, steps, size = "640x480", view = "30,20", movie,
               tf_range;
   int fps = tspgl::kMovieFps;
   bool annotate = false;
-  std::string metric = "approximate", cache = "on", compositing = "rays", flat = "exact",
-              span_step = "middle", preintegrated = "off",
-              reuse = "on", dense = "on", skip_transparent = "on";
-  double spatial = 0, temporal = 0, spacing = tspgl::kDefaultSliceSpacing;
-  double sampling_tol = 0;
+  std::string metric = "approximate", cache = "on";
+  SettingsOptions settings;  ///< every knob of the settings table
   int passes = 1;
   double texture_budget_mb = double(tspgl::kDefaultTextureBudget) / (1 << 20);
   double ram_budget_mb = double(tspgl::kDefaultBrickBudget) / (1 << 20);
@@ -39,14 +40,17 @@ struct RenderArgs {
   std::string calibration_dir, save_tf;
   std::string lod;       ///< off|auto|K|splat:PX ("": off, or auto with --target-ms)
   std::string lod_fallback = "scale";
-  double target_ms = 0, orbit = 0;
+  double target_ms = 0, target_fps = 0, orbit = 0;
   int split_limit = tsp::LodOptions{}.split_limit;
   std::string focus;
   std::string proportions = "physical", scale;
   std::vector<std::string> probes;
   std::string probe_op = "intersect", probe_surface = "off", probe_tf, probe_motion;
-  std::vector<std::string> explicit_knobs;  ///< knob options given with --quality (an error)
 };
+
+/// The knobs --quality picks itself (giving one of them with it is an error).
+constexpr const char* kQualityKnobs[] = {"--spatial-tol", "--temporal-tol", "--spacing",
+                                         "--compositing", "--preintegrated", "--sampling-tol"};
 
 void run(const RenderArgs& a) {
   tspgl::RenderJobOptions o;
@@ -60,7 +64,7 @@ void run(const RenderArgs& a) {
   o.first_step = steps.first;
   o.last_step = steps.last;
   o.step_stride = steps.stride;
-  o.settings.tol = {a.spatial, a.temporal};
+  o.settings = a.settings.apply();
   o.metric = tsp::parse_metric(a.metric);
   o.cache = a.cache == "off" ? tsp::CachePolicy::off : tsp::CachePolicy::on;
   o.baseline = a.baseline;
@@ -70,24 +74,19 @@ void run(const RenderArgs& a) {
   o.camera.elevation_deg = view[1];
   o.camera.projection = a.perspective ? tsp::Projection::perspective : tsp::Projection::orthographic;
   o.passes = a.passes;
-  o.settings.spacing = a.spacing;
-  o.settings.compositing = tspgl::parse_compositing(a.compositing, "--compositing");
-  o.settings.exact_flat = a.flat == "exact";
-  o.settings.span_step = tsp::parse_span_step(a.span_step, "--span-step");
-  o.settings.preintegrated = a.preintegrated == "on";
-  o.settings.reuse_image = a.reuse == "on";
-  o.settings.dense = a.dense == "on";
-  o.settings.skip_transparent = a.skip_transparent == "on";
-  o.settings.sampling_tol = a.sampling_tol;
-  if (a.quality != 0 && !a.explicit_knobs.empty())
-    throw tsp::UsageError("--quality picks compositing, spacing, tolerances and pre-integration "
-                          "itself: drop " + a.explicit_knobs.front());
+  if (a.quality != 0)
+    for (const std::string& given : a.settings.given())
+      for (const char* knob : kQualityKnobs)
+        if (given == knob)
+          throw tsp::UsageError("--quality picks compositing, spacing, tolerances and "
+                                "pre-integration itself: drop " + given);
   if (a.quality != 0 && a.baseline)
     throw tsp::UsageError("--quality is for the TSP renderer: drop --baseline");
   o.quality = a.quality;
   o.calibration_dir = a.calibration_dir;
   o.save_tf = a.save_tf;
-  const std::string lod = a.lod.empty() ? (a.target_ms > 0 ? "auto" : "off") : a.lod;
+  const std::string lod =
+      a.lod.empty() ? (a.target_ms > 0 || a.target_fps > 0 ? "auto" : "off") : a.lod;
   if (lod == "off") {
     o.lod = tspgl::LodMode::off;
   } else if (lod == "auto") {
@@ -101,7 +100,16 @@ void run(const RenderArgs& a) {
     o.lod = tspgl::LodMode::fixed;
     o.lod_level = int(parse_integer(lod, "--lod", 0, 30, "off, auto or a level 0 to 30"));
   }
-  o.target_ms = a.target_ms;
+  if (a.target_fps != 0) {  // the player's unit; --target-ms is the same target as a frame time
+    if (a.target_ms != 0)
+      throw tsp::UsageError("--target-fps and --target-ms set the same target: give one");
+    if (!(a.target_fps >= 1 && a.target_fps <= kMaxTargetFps))
+      throw tsp::UsageError("--target-fps " + std::to_string(a.target_fps) + ": expected 1 to " +
+                            std::to_string(int(kMaxTargetFps)) + " frames per second");
+    o.target_ms = 1000.0 / a.target_fps;
+  } else {
+    o.target_ms = a.target_ms;
+  }
   o.orbit_deg = a.orbit;
   if (a.split_limit < 1) throw tsp::UsageError("--split-limit " + std::to_string(a.split_limit) +
                                                ": expected at least 1 split per frame");
@@ -200,8 +208,6 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
   c->add_option("--fps", a->fps, "Movie frames a second (default 8)");
   c->add_option("--steps", a->steps,
                 "Steps A:B (inclusive), A:, A, or A:B:S for every S-th step (default: all)");
-  c->add_option("--spatial-tol", a->spatial, "Spatial error tolerance (default 0)");
-  c->add_option("--temporal-tol", a->temporal, "Temporal error tolerance (default 0)");
   c->add_option("--metric", a->metric, "scalar|reference|approximate|perceptual (default approximate)")
       ->check(CLI::IsMember({"scalar", "reference", "approximate", "perceptual"}));
   c->add_option("--cache", a->cache, "Texture cache on|off (default on)")
@@ -233,36 +239,6 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
   c->add_option("--scale", a->scale,
                 "SX,SY,SZ: stretch each axis by this factor (e.g. 1,1,20 exaggerates height)");
   c->add_option("--passes", a->passes, "Play the steps this many times (default 1)");
-  c->add_option("--spacing", a->spacing, "Slice spacing in voxels (default 0.5)");
-  c->add_option("--compositing", a->compositing,
-                 "Textured boxes as rays (ray cast, one fragment per pixel) or slices (default rays)")
-      ->check(CLI::IsMember({"rays", "boxes", "slices"}));
-  c->add_option("--flat", a->flat,
-                "Coherent nodes: exact (one box, exact exponential) or slices (default exact)")
-      ->check(CLI::IsMember({"exact", "slices"}));
-  c->add_option("--preintegrated", a->preintegrated,
-                "Pre-integrated TF lookup over sample pairs: on|off (default off)")
-      ->check(CLI::IsMember({"on", "off"}));
-  c->add_option("--reuse", a->reuse,
-                "Partial-image reuse: redraw only where bricks changed since the last frame "
-                "(same view, TF, knobs): on|off (default on)")
-      ->check(CLI::IsMember({"on", "off"}));
-  c->add_option("--dense", a->dense,
-                "Rays: a frame that textures every leaf brick is cast through one whole-volume "
-                "texture instead of the brick grid: on|off (default on)")
-      ->check(CLI::IsMember({"on", "off"}));
-  c->add_option("--skip-transparent", a->skip_transparent,
-                "A coherent node holding a transparent child is drawn as its children, so what "
-                "zero tolerance skips is never drawn: on|off (off: the paper's rule; default on)")
-      ->check(CLI::IsMember({"on", "off"}));
-  c->add_option("--sampling-tol", a->sampling_tol,
-                "Adaptive sampling (rays, no probes): each brick is sampled every m x spacing, "
-                "m up to 8, the largest whose step changes the premultiplied TF colour by at "
-                "most this much (e.g. 0.005; default 0: every spacing)");
-  c->add_option("--span-step", a->span_step,
-                "What textures a span: its middle step, its first (the paper's) or the per-voxel "
-                "mean of its steps (default middle)")
-      ->check(CLI::IsMember({"first", "middle", "mean"}));
   c->add_option("--texture-budget", a->texture_budget_mb, "Texture cache budget in MiB (default 512)");
   c->add_option("--ram-budget", a->ram_budget_mb,
                 "Bricks held in RAM, MiB (default 1024): a file larger than RAM streams through "
@@ -274,15 +250,19 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
                 "Also write the transfer function used (a preset resolved over the data's range) "
                 "as JSON, e.g. for bench/vtk_reference.py");
   c->add_option("--lod", a->lod,
-                "Spatial level of detail: off (full resolution), K (level K everywhere; 0 = full) "
-                "auto (the adaptive cut; default with --target-ms) or splat:PX (every node drawn "
+                "Spatial level of detail: off (full resolution: the default, so frames are "
+                "reproducible; play's default is on, for interaction), K (level K everywhere; 0 = "
+                "full), auto (the adaptive cut; default with --target-fps) or splat:PX (every node drawn "
                 "as one splat of its mean colour and opacity, split while its children project to "
                 "PX pixels or more)");
   c->add_option("--lod-fallback", a->lod_fallback,
-                "--lod auto, when even the coarsest cut misses --target-ms: scale (a smaller "
+                "--lod auto, when even the coarsest cut misses the target: scale (a smaller "
                 "render target, default) or splats (a splat cut whose minimum size adapts)");
+  c->add_option("--target-fps", a->target_fps,
+                "Frames per second --lod auto holds by adapting the cut (as play's --target-fps)");
   c->add_option("--target-ms", a->target_ms,
-                "Frame-time target in ms that --lod auto holds by adapting the cut");
+                "The same target as a frame time in ms (kept for older scripts)")
+      ->group("");  // hidden: one unit per concept in --help
   c->add_option("--orbit", a->orbit, "Advance the azimuth this many degrees every frame");
   c->add_option("--split-limit", a->split_limit,
                 "--lod auto: most node splits per frame (default 8)");
@@ -291,12 +271,18 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
   c->add_option("--calibration-dir", a->calibration_dir,
                 "Where --quality caches calibrations (default $TSPPLAY_CACHE_DIR, "
                 "$XDG_CACHE_HOME/tspplay or ~/.cache/tspplay; - for none)");
-  c->callback([a, c] {
-    for (const char* k : {"--spatial-tol", "--temporal-tol", "--spacing", "--compositing",
-                          "--preintegrated", "--sampling-tol"})
-      if (c->count(k) > 0) a->explicit_knobs.push_back(k);
-    run(*a);
-  });
+  a->settings.add_to(c);
+  set_groups(c, {{"Input/output", {"--field", "--tf", "--output", "--tf-range", "--annotate",
+                                   "--movie", "--fps", "--steps", "--passes", "--save-tf"}},
+                 {"Camera", {"--size", "--view", "--perspective", "--proportions", "--scale",
+                             "--orbit"}},
+                 {"Quality", {"--metric", "--quality", "--calibration-dir"}},
+                 {"LOD", {"--lod", "--lod-fallback", "--target-fps", "--split-limit", "--focus"}},
+                 {"Probes", {"--probe", "--probe-op", "--probe-surface", "--probe-motion",
+                             "--probe-tf"}},
+                 {"Memory", {"--texture-budget", "--ram-budget"}},
+                 {"Diagnostics", {"--baseline", "--cache"}}});
+  c->callback([a] { run(*a); });
 });
 
 }  // namespace

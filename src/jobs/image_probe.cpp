@@ -6,7 +6,7 @@
 
 #include "gl/gl_error.h"
 #include "jobs/render_job.h"
-#include "tsp/lod/lod_cut.h"
+#include "render/frame_driver.h"
 #include "tsp/report/image_diff.h"
 
 namespace tspgl {
@@ -39,20 +39,23 @@ ProbeFrames ImageProbe::render(const Knobs& k, const tsp::MetricResult* metric) 
   std::unique_ptr<tsp::WholeTreeMetric> nodes;
   if (!k.baseline) nodes = std::make_unique<tsp::WholeTreeMetric>(*metric);
   // An LOD level everywhere (render --lod K, clamped to the tree's levels).
-  std::optional<tsp::LodCut> cut;
+  LodSpec lod;
   if (!k.baseline && k.lod_level > 0) {
-    const tsp::Octree& o = bricks_.tree().octree();
-    cut = tsp::LodCut::at_level(o, std::min(k.lod_level, o.max_lod_level()));
+    lod.mode = LodMode::fixed;
+    lod.level = k.lod_level;
   }
+  FrameDriver driver = k.baseline ? FrameDriver(baseline_) : FrameDriver(renderer_, lod);
   ProbeFrames out;
   std::vector<double> ms;
   ctx_.make_current();  // the caller's context (a render job in between may have made its own)
   const CanvasScope scope(canvas_);
   for (int t : steps_) {
-    const FrameReport r = k.baseline ? baseline_.render(t, camera_, s)
-                                     : renderer_.render(t, camera_, s, *nodes,
-                                                        cut ? cut->stops() : tsp::LodStops{});
-    ms.push_back(r.ms);
+    FrameRequest r;
+    r.step = t;
+    r.camera = &camera_;
+    r.settings = s;
+    r.metric = nodes.get();
+    ms.push_back(driver.draw(r).report.ms);
     out.images.push_back(ctx_.read_pixels());
   }
   out.median_ms = median(std::move(ms));

@@ -4,17 +4,12 @@
 #include <cstdio>
 #include <map>
 
+#include "render/settings_table.h"
 #include "tsp/core/error.h"
 
 namespace tspgl {
 
 namespace {
-
-std::string exact(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
 
 void sort_fastest_first(std::vector<KnobCandidate>& v) {
   std::stable_sort(v.begin(), v.end(), [](const KnobCandidate& a, const KnobCandidate& b) {
@@ -81,17 +76,21 @@ std::vector<Knobs> grid_cells(const KnobGrid& grid, bool baseline) {
 }
 
 std::string render_options(const Knobs& k, tsp::Metric metric) {
-  std::string s = k.baseline ? "--baseline " : "";
-  s += "--compositing " + std::string(to_string(k.compositing)) + " --spacing " + exact(k.spacing);
-  if (k.preintegrated) s += " --preintegrated on";
-  if (!k.baseline && k.sampling_tol > 0) s += " --sampling-tol " + exact(k.sampling_tol);
-  if (!k.baseline && k.lod_level > 0) s += " --lod " + std::to_string(k.lod_level);
-  if (!k.baseline) {
-    const tsp::Tolerances t = tolerances(k);
-    s += std::string(" --metric ") + tsp::to_string(metric) + " --spatial-tol " +
-         exact(t.spatial) + " --temporal-tol " + exact(t.temporal);
-  }
-  return s;
+  RenderSettings s;
+  apply(k, s);
+  // "--NAME VALUE" as the settings table writes it (numbers with 17 digits: they parse back).
+  auto opt = [&s](std::string_view name) {
+    return "--" + std::string(name) + " " + get_setting(s, *find_setting(name));
+  };
+  std::string out = k.baseline ? "--baseline " : "";
+  out += opt("compositing") + " " + opt("spacing");
+  if (k.preintegrated) out += " " + opt("preintegrated");
+  if (!k.baseline && k.sampling_tol > 0) out += " " + opt("sampling-tol");
+  if (!k.baseline && k.lod_level > 0) out += " --lod " + std::to_string(k.lod_level);
+  if (!k.baseline)
+    out += std::string(" --metric ") + tsp::to_string(metric) + " " + opt("spatial-tol") + " " +
+           opt("temporal-tol");
+  return out;
 }
 
 std::vector<std::vector<KnobCandidate>> search_baseline_knobs(const ProbeKnobs& probe,

@@ -10,6 +10,7 @@
 
 #include "jobs/annotate.h"
 #include "jobs/calibration.h"
+#include "render/settings_table.h"
 #include "render/baseline_renderer.h"
 #include "render/volume_renderer.h"
 #include "tsp/core/error.h"
@@ -269,17 +270,18 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
     throw tsp::UsageError("--steps: the stride must be 1 or more, got " +
                           std::to_string(o.step_stride));
   const int total = o.passes * ((last - o.first_step) / o.step_stride + 1);
-  // The LOD cut: one level everywhere, or the controller's.
-  std::optional<tsp::LodCut> fixed_cut;
-  std::optional<tsp::LodController> controller;
+  // The frames' driver, with the LOD cut: one level everywhere, the controller's or splats.
   const int lod_level = std::min(o.lod_level, tree.octree().max_lod_level());  // --lod K, clamped
-  if (o.lod == LodMode::fixed) fixed_cut = tsp::LodCut::at_level(tree.octree(), lod_level);
-  if (o.lod == LodMode::adaptive) {
-    tsp::LodOptions lo = o.lod_options;
-    lo.target_ms = o.target_ms;
-    if (lo.texture_budget == 0) lo.texture_budget = o.texture_budget;
-    controller.emplace(tree, lo);
-  }
+  LodSpec lod;
+  lod.mode = o.lod;
+  lod.level = lod_level;
+  lod.splat_px = o.splat_px;
+  lod.options = o.lod_options;
+  lod.options.target_ms = o.target_ms;
+  if (lod.options.texture_budget == 0) lod.options.texture_budget = o.texture_budget;
+  lod.converge = o.target_ms <= 0;  // untimed: a converged cut every frame
+  std::unique_ptr<FrameDriver> driver = baseline ? std::make_unique<FrameDriver>(*baseline)
+                                                 : std::make_unique<FrameDriver>(*renderer, lod);
   int frame_index = 0;
   for (int pass = 1; pass <= o.passes; ++pass) {
     for (int t = o.first_step; t <= last; t += o.step_stride, ++frame_index) {
@@ -291,42 +293,15 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
       if (!file->metadata().times.empty()) rec.time = file->metadata().times[std::size_t(t)];
       const tsp::Camera camera(tree.octree().dims(), params);
       if (moving && !o.probes.empty() && frame_index > 0) set_clip(frame_index);
-      tsp::LodStops stops;
-      tsp::SplatCut splats;
-      bool splat_frame = false;
-      if (o.lod == LodMode::splat) {
-        splats = tsp::splat_cut(tree.octree(), camera, o.splat_px, renderer->clip_sides());
-        stops = splats.stops;
-        tsp::LodFrameStats st;
-        st.cut_size = st.splats = splats.size;
-        st.splat_px = o.splat_px;
-        rec.lod = LodRecord{0, st};
-        splat_frame = true;
-      } else if (fixed_cut) {
-        stops = fixed_cut->stops();
-        rec.lod = LodRecord{0, tsp::cut_stats(*fixed_cut)};
-      } else if (controller) {
-        // Untimed: refine until nothing is left to split (a converged cut every frame).
-        tsp::LodFrameStats st =
-            controller->update(camera, t, tf, settings.spacing, renderer->clip_sides());
-        int splits = st.splits;  // of every round (the loop stops on a round without any)
-        while (o.target_ms <= 0 && st.splits > 0) {
-          st = controller->update(camera, t, tf, settings.spacing, renderer->clip_sides());
-          splits += st.splits;
-        }
-        st.splits = splits;
-        stops = controller->stops();
-        splat_frame = controller->splatting();
-        rec.lod = LodRecord{o.target_ms, st};
-      }
-      RenderSettings frame_settings = settings;
-      // Splats are flat boxes: composited one box each (the cheapest way to draw them measured,
-      // docs/results.md); a clipped frame stays ray cast.
-      if (splat_frame) frame_settings.compositing = Compositing::boxes;
-      if (controller) frame_settings.render_scale = controller->render_scale();
-      rec.report = baseline ? baseline->render(t, camera, frame_settings)
-                            : renderer->render(t, camera, frame_settings, nodes, stops);
-      if (controller) controller->measured(rec.report.ms - rec.report.upload_ms);
+      FrameRequest request;
+      request.step = t;
+      request.camera = &camera;
+      request.settings = settings;
+      request.metric = &nodes;
+      request.tf = &tf;
+      const DrawnFrame drawn = driver->draw(request);
+      rec.report = drawn.report;
+      if (drawn.lod) rec.lod = LodRecord{o.lod == LodMode::adaptive ? o.target_ms : 0, *drawn.lod};
       rec.ram_bytes = (baseline ? baseline->brick_cache() : renderer->brick_cache()).stats().resident_bytes;
       rec.rss_bytes = tsp::resident_bytes();
       result.frames.push_back(rec);
@@ -352,20 +327,11 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
     j["metric"] = o.baseline ? "none" : tsp::to_string(o.metric);
     j["metric_ms"] = result.metric_ms;
     j["cache"] = o.cache == tsp::CachePolicy::on ? "on" : "off";
-    j["spatial_tol"] = settings.tol.spatial;
-    j["temporal_tol"] = settings.tol.temporal;
     j["size"] = {o.camera.width, o.camera.height};
     j["view"] = {o.camera.azimuth_deg, o.camera.elevation_deg};
     j["projection"] = o.camera.projection == tsp::Projection::perspective ? "perspective"
                                                                           : "orthographic";
-    j["spacing"] = settings.spacing;
-    j["compositing"] = to_string(settings.compositing);
-    j["flat"] = settings.exact_flat ? "exact" : "slices";
-    j["span_step"] = tsp::to_string(settings.span_step);
-    j["preintegrated"] = settings.preintegrated;
-    j["reuse"] = settings.reuse_image;
-    j["skip_transparent"] = settings.skip_transparent;
-    j["sampling_tol"] = settings.sampling_tol;
+    j.update(settings_json(settings));  // every knob of the settings table
     j["lod"] = o.lod == LodMode::off     ? json("off")
                : o.lod == LodMode::fixed ? json(lod_level)
                : o.lod == LodMode::splat ? json("splat:" + json(o.splat_px).dump())

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "render/frame_driver.h"
 #include "render/frame_report.h"
 #include "tsp/metric/tf_io.h"
 #include "tsp/clip/probe.h"
@@ -24,8 +25,6 @@ struct FrameRecord;
 /// Called after every frame with its record and pixels (benchmarks comparing pictures).
 using FrameSink = std::function<void(const FrameRecord&, const tsp::Image&)>;
 
-/// --lod: full resolution, one level everywhere, or the controller's adaptive cut.
-enum class LodMode { off, fixed, adaptive, splat };
 
 /// Everything `tspplay render` takes.
 struct RenderJobOptions {

@@ -14,10 +14,7 @@
 #include <thread>
 
 #include "gl/gl_error.h"
-#include "jobs/calibration.h"
 #include "jobs/render_job.h"
-#include "tsp/core/json_text.h"
-#include "tsp/core/memory_use.h"
 #include "tsp/core/temp_output.h"
 #include "player/imgui_gl_load.h"
 #include "player/player_app.h"
@@ -31,20 +28,9 @@ namespace tspplayer {
 
 namespace {
 
-constexpr float kMinToleranceCeiling = 1e-3f;
 constexpr float kKnotEpsilon = 1e-4f;  // slope change that marks a TF knot
 constexpr int kMaxEditorPoints = 24;
 constexpr double kMaxFrameDt = 0.25;  // a stalled frame does not skip many steps at once
-
-// Largest finite error in e: the tolerance sliders' upper end (a tolerance above every error
-// draws the root only).
-float largest_error(const tsp::NodeErrors& e) {
-  float m = 0;
-  for (const auto* v : {&e.spatial, &e.temporal})
-    for (float x : *v)
-      if (std::isfinite(x)) m = std::max(m, x);
-  return std::max(m, kMinToleranceCeiling);
-}
 
 // The TF's knots: the first and last entries and every entry where the table's slope changes, so
 // that rebuilding from them reproduces a piecewise-linear TF (presets, our JSON). A TF with more
@@ -86,6 +72,12 @@ std::vector<tsp::TfPoint> editor_points(const tsp::TransferFunction& tf) {
 
 }  // namespace
 
+tspgl::RenderSettings default_player_settings() {
+  tspgl::RenderSettings s;
+  s.upload_budget = std::int64_t(kDefaultPlayerUploadMib * (1 << 20));
+  return s;
+}
+
 void run_player(const PlayerOptions& options) {
   PlayerApp app(options);
   app.run();
@@ -105,12 +97,8 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
     throw tsp::UsageError("--frame-delay-ms " + std::to_string(options.frame_delay_ms) +
                           ": expected 0.." + std::to_string(int(kMaxFrameDelayMs)));
   frame_delay_ms_ = options.frame_delay_ms;
-  if (!(options.upload_budget_mb >= 0) ||
-      !(options.upload_budget_mb <= double(tspgl::kMaxBudgetBytes >> 20)))
-    throw tsp::UsageError("--upload-budget " + std::to_string(options.upload_budget_mb) +
-                          ": expected 0 (no limit) to " +
-                          std::to_string(tspgl::kMaxBudgetBytes >> 20) + " MiB per frame");
-  upload_budget_mb = options.upload_budget_mb;
+  tspgl::validate(options.settings);
+  settings = options.settings;
   for (auto [value, name] : {std::pair{options.ram_budget_mb, "--ram-budget"},
                              std::pair{options.texture_budget_mb, "--texture-budget"}})
     if (!(value > 0) || !(value <= double(tspgl::kMaxBudgetBytes >> 20)))
@@ -216,6 +204,7 @@ void PlayerApp::make_renderer() {
   prefetcher.reset();
   // The programs are compiled once per window and shared by every renderer made after.
   if (renderer) compositor_ = renderer->compositor();
+  driver_.reset();
   renderer.reset();
   renderer = std::make_unique<tspgl::VolumeRenderer>(
       *ctx, *file, cache_on ? tsp::CachePolicy::on : tsp::CachePolicy::off,
@@ -277,125 +266,6 @@ void PlayerApp::apply_tf_points() {
   set_tf(tsp::TransferFunction::from_points(tf.domain(), sorted, tf.size()), false);
 }
 
-void PlayerApp::set_metric(tsp::Metric m) {
-  if (m == metric) return;
-  metric = m;
-  if (m != tsp::Metric::reference)
-    lazy_ = std::make_unique<tsp::LazyErrors>(file->tree(), m, tf);
-  else
-    reference_version_ = ~std::uint64_t(0);
-  renderer->drop_unreachable(frame_metric(), tol, tspgl::RenderSettings{}.span_step, {},
-                             skip_transparent);
-  update_tol_max();
-}
-
-void PlayerApp::update_tol_max() {
-  tol_max = largest_error(metric == tsp::Metric::reference ? reference_.errors
-                                                           : lazy_->errors_for_step(step));
-}
-
-void PlayerApp::set_tolerances(tsp::Tolerances t) {
-  tol = {std::max(0.0, t.spatial), std::max(0.0, t.temporal)};
-  renderer->drop_unreachable(frame_metric(), tol, tspgl::RenderSettings{}.span_step, {},
-                             skip_transparent);
-}
-
-void PlayerApp::apply_quality(double de) {
-  tspgl::CalibrationRequest r;
-  r.tsp_path = options_.tsp_path;
-  r.field = field();  // as render names it: one calibration serves both
-  r.metric = metric;
-  r.camera = camera;
-  // The view's size as this frame lays it out (camera's is set when the volume is drawn: on the
-  // first frame it is still the default).
-  r.camera.width = std::max(1, layout.view.w);
-  r.camera.height = std::max(1, layout.view.h);
-  std::string cache;
-  const tspgl::Calibration c = tspgl::calibrate(*ctx, r, *file, tf, &cache);
-  const auto best = tspgl::pick_configuration(c, de);
-  if (!best) {
-    quality_note = "nothing calibrated stays within dE " + std::to_string(de);
-    return;
-  }
-  compositing = best->knobs.compositing;
-  spacing = best->knobs.spacing;
-  preintegrated = best->knobs.preintegrated;
-  sampling_tol = best->knobs.sampling_tol;
-  tspgl::RenderSettings picked;
-  tspgl::apply(best->knobs, picked);  // the tolerances its rule sets
-  set_tolerances(picked.tol);
-  quality_note = tspgl::render_options(best->knobs, metric) + (cache.empty() ? "" : " (" + cache + ")");
-}
-
-void PlayerApp::write_stats(const std::string& path) const {
-  nlohmann::json j;
-  std::vector<double> ms;
-  for (const FrameSample& f : history) ms.push_back(f.ms);
-  double sum = 0;
-  for (double v : ms) sum += v;
-  const double mean = ms.empty() ? 0 : sum / double(ms.size());
-  j["window"] = {ctx->width(), ctx->height()};
-  j["view"] = {layout.view.x, layout.view.y, layout.view.w, layout.view.h};
-  j["docked"] = layout.docked;
-  j["file"] = options_.tsp_path;
-  j["field"] = file->fields()[std::size_t(file->field_index())];
-  j["fields"] = file->fields();
-  j["field_switch_ms"] = field_switch_ms;
-  nlohmann::json jp = nlohmann::json::array();
-  for (const tsp::Probe& p : probes) jp.push_back(tsp::to_string(p));
-  j["probes"] = jp;
-  j["probe_op"] = tsp::to_string(probe_op);
-  j["ram_mib"] = double(renderer->brick_cache().stats().resident_bytes) / (1 << 20);
-  j["rss_mib"] = double(tsp::resident_bytes()) / (1 << 20);
-  j["peak_rss_mib"] = double(tsp::peak_resident_bytes()) / (1 << 20);
-  j["step"] = step;
-  j["steps_ready"] = ready;
-  j["every_step"] = every_step;
-  j["recording"] = recording();
-  j["frames"] = ms.size();
-  j["frame_ms"] = ms;
-  j["mean_frame_ms"] = mean;
-  j["fps"] = mean > 0 ? 1000.0 / mean : 0.0;
-  j["render_ms"] = last.ms;
-  j["fragments"] = last.fragments;
-  j["compositing"] = tspgl::to_string(compositing);
-  j["spacing"] = spacing;
-  j["preintegrated"] = preintegrated;
-  j["sampling_tol"] = sampling_tol;
-  j["skip_transparent"] = skip_transparent;
-  j["tolerance"] = {tol.spatial, tol.temporal};
-  nlohmann::json points = nlohmann::json::array();  // the editor's handles: value, opacity
-  for (const tsp::TfPoint& p : tf_points) points.push_back({p.x, p.c.a});
-  j["tf_points"] = points;
-  j["quality"] = quality_note;
-  j["lod"] = {{"on", lod_on},
-              {"target_fps", target_fps},
-              {"refining", refining},
-              {"cut_size", lod_stats.cut_size},
-              {"nodes_per_level", lod_stats.nodes_per_level},
-              {"render_scale", lod_stats.render_scale},
-              {"splats", lod_stats.splats},
-              {"splat_px", lod_stats.splat_px},
-              {"splat_fallback", splat_fallback},
-              {"max_error", lod_stats.max_error},
-              {"full_quality_after_s", full_quality_after_s},
-              // Full quality: no node left whose level differs from full resolution in the
-              // picture (error 0: transparent, uniform or hidden), at full render size.
-              {"full_quality", full_quality()}};
-  j["classes"] = {{"not_rendered", last.class_percent[0]},
-                  {"untextured", last.class_percent[1]},
-                  {"reused_texture", last.class_percent[2]},
-                  {"new_texture", last.class_percent[3]},
-                  {"clipped", last.class_percent[4]}};
-  tsp::write_file_atomically(path, tsp::json_text(j, 2) + "\n");
-}
-
-void PlayerApp::set_cache(bool on, double budget_mb) {
-  cache_on = on;
-  texture_budget_mb = std::max(1.0, budget_mb);
-  make_renderer();
-}
-
 // During playback: the bricks the next kPrefetchSteps frames would upload, in playing order,
 // go to the prefetch thread once per step change (the request replaces the previous one).
 void PlayerApp::request_prefetch(const tsp::Camera& cam, const tspgl::RenderSettings& settings,
@@ -404,10 +274,11 @@ void PlayerApp::request_prefetch(const tsp::Camera& cam, const tspgl::RenderSett
   // Holding still or turning: the bricks the cut's next splits will want, at this step, once per
   // cut change (the RAM cache then serves the split's uploads).
   if (!playing) {
-    if (!lod_ || lod_stats.cut_size == prefetched_cut_) return;
+    const tsp::LodController* lod = driver().controller();
+    if (!lod || lod_stats.cut_size == prefetched_cut_) return;
     prefetched_cut_ = lod_stats.cut_size;
     std::vector<tsp::BrickKey> keys;
-    for (int b : lod_->likely_split_bricks(kPrefetchSplits)) keys.push_back({b, step});
+    for (int b : lod->likely_split_bricks(kPrefetchSplits)) keys.push_back({b, step});
     prefetcher->request(std::move(keys));
     return;
   }
@@ -423,8 +294,8 @@ void PlayerApp::request_prefetch(const tsp::Camera& cam, const tspgl::RenderSett
     std::vector<tsp::BrickKey> more =
         renderer->bricks_to_upload(t, cam, settings, frame_metric(), stops);
     keys.insert(keys.end(), more.begin(), more.end());
-    if (lod_)  // and the cut's likely next splits at that step, after what it will draw
-      for (int b : lod_->likely_split_bricks(kPrefetchSplits)) keys.push_back({b, t});
+    if (const tsp::LodController* lod = driver().controller())  // and its likely next splits
+      for (int b : lod->likely_split_bricks(kPrefetchSplits)) keys.push_back({b, t});
   }
   prefetcher->request(std::move(keys));
 }
@@ -455,16 +326,10 @@ void PlayerApp::render_volume() {
   if (camera.width < 1 || camera.height < 1 || ctx->width() < 1 || ctx->height() < 1)
     return;  // minimised
   const tsp::Camera cam(file->tree().octree().dims(), camera);
-  tspgl::RenderSettings settings;
-  settings.tol = tol;
-  settings.upload_budget = std::int64_t(std::max(0.0, upload_budget_mb) * (1 << 20));
-  settings.compositing = compositing;
-  settings.spacing = spacing;
-  settings.preintegrated = preintegrated;
-  settings.sampling_tol = preintegrated ? 0 : sampling_tol;  // the two exclude each other
-  settings.skip_transparent = skip_transparent;
+  tspgl::RenderSettings fs = settings;
+  if (fs.preintegrated) fs.sampling_tol = 0;  // the two exclude each other
   // GL's window coordinates start at the bottom: the view's lower-left corner.
-  settings.viewport_origin = {layout.view.x, ctx->height() - layout.view.y - layout.view.h};
+  fs.viewport_origin = {layout.view.x, ctx->height() - layout.view.y - layout.view.h};
   if (metric != tsp::Metric::reference) {
     // Evaluate this step's nodes here so the HUD can show the recompute cost; render() then
     // only reads memoised results.
@@ -477,10 +342,25 @@ void PlayerApp::render_volume() {
       metric_evaluations = lazy_->evaluations() - before;
     }
   }
-  const tsp::LodStops stops = update_lod(cam, settings, glfwGetTime());
-  last = renderer->render(step, cam, settings, frame_metric(), stops);
-  request_prefetch(cam, settings, stops);
-  update_ready(cam, settings, stops);
+  const double now = glfwGetTime();
+  tspgl::FrameDriver& d = driver();
+  d.set_lod(lod_spec(now));
+  tspgl::FrameRequest request;
+  request.step = step;
+  request.camera = &cam;
+  request.settings = fs;
+  request.metric = &frame_metric();
+  request.tf = &tf;
+  const tspgl::DrawnFrame drawn = d.draw(request);
+  last = drawn.report;
+  lod_drawn(drawn.lod, now);
+  request_prefetch(cam, drawn.settings, d.current_stops());
+  update_ready(cam, drawn.settings, d.current_stops());
+}
+
+tspgl::FrameDriver& PlayerApp::driver() {
+  if (!driver_) driver_ = std::make_unique<tspgl::FrameDriver>(*renderer);
+  return *driver_;
 }
 
 // A few steps a frame, round robin: how much of what each step's frame would upload is in RAM

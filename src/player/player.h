@@ -6,7 +6,16 @@
 #include <string>
 #include <vector>
 
+#include "render/render_settings.h"
+
 namespace tspplayer {
+
+/// Texture MiB a frame of the player uploads by default: render uploads all a frame needs, the
+/// player spreads a large upload over frames so the window never stalls.
+inline constexpr double kDefaultPlayerUploadMib = 16;
+
+/// The settings the player starts with: render's defaults but kDefaultPlayerUploadMib.
+tspgl::RenderSettings default_player_settings();
 
 /// Everything `tspplay play` takes.
 struct PlayerOptions {
@@ -19,7 +28,8 @@ struct PlayerOptions {
   std::string screenshot;         ///< --screenshot: save the first complete frame here, then exit
   std::string script;             ///< --script: action script (run before --screenshot)
   int width = 960, height = 720;  ///< --size: window size in pixels
-  double upload_budget_mb = 16;   ///< --upload-budget: texture MiB uploaded per frame (0: no limit)
+  /// The render settings table's options (--spacing, --compositing, --upload-budget, ...).
+  tspgl::RenderSettings settings = default_player_settings();
   double ram_budget_mb = 1024;    ///< --ram-budget: bricks held in RAM, MiB
   double texture_budget_mb = 512; ///< --texture-budget: textures resident, MiB
   bool lod = true;                ///< --lod on|off: the adaptive LOD cut

@@ -18,6 +18,7 @@
 #include "player/layout.h"
 #include "player/player.h"
 #include "player/script.h"
+#include "render/frame_driver.h"
 #include "render/volume_renderer.h"
 #include "tsp/clip/probe.h"
 #include "tsp/frame/camera.h"
@@ -96,17 +97,13 @@ class PlayerApp {
   std::string tf_path = "tf.json";      ///< load/save path in the editor
   tsp::Metric metric = tsp::Metric::approximate;
   tsp::CameraParams camera;
-  tsp::Tolerances tol;
-  tspgl::Compositing compositing = tspgl::Compositing::rays;
-  double spacing = tspgl::kDefaultSliceSpacing;
-  bool preintegrated = false;
-  double sampling_tol = 0;  ///< adaptive sampling (rays; off with pre-integration; 0: off)
-  bool skip_transparent = true;  ///< a coherent node with a transparent child drawn as its children
+  /// What frames are drawn with (the settings table's knobs; each frame sets its own render
+  /// scale and viewport, and adaptive sampling is off while pre-integration is on).
+  tspgl::RenderSettings settings;
   float quality = 0;          ///< the quality slider (mean ΔE; 0: the raw knobs)
   std::string quality_note;   ///< what the last quality pick chose
   float tol_max = 1;  ///< upper end of the tolerance sliders (largest error of a step)
   bool cache_on = true;
-  double upload_budget_mb = 16;  ///< texture MiB one frame may upload (0: no limit)
   bool prefetch_on = true;       ///< read the next steps' bricks in the background while playing
   double texture_budget_mb = double(tspgl::kDefaultTextureBudget) / (1 << 20);
   int step = 0;
@@ -147,6 +144,10 @@ class PlayerApp {
   void set_metric(tsp::Metric m);
   /// Changes tolerances and drops textures no frame can use any more.
   void set_tolerances(tsp::Tolerances t);
+  /// Sets the render setting `name` (a row of render/settings_table.h) from text — the one path
+  /// for script lines and panel widgets; tolerances go through set_tolerances. Throws
+  /// tsp::UsageError naming the setting and what it accepts.
+  void set_setting(const std::string& name, const std::string& text);
   /// Picks the fastest calibrated knobs within mean ΔE de for the current TF, metric and view
   /// (calibrating first, blocking, when the cache has none) and applies them; reports in
   /// quality_note. Errors go to status.
@@ -257,9 +258,14 @@ class PlayerApp {
                         tsp::LodStops stops);
   void make_renderer();
   void update_tol_max();
-  // LOD (player_lod.cpp): adapts the cut before render_volume draws, feeds it the frame time.
-  tsp::LodStops update_lod(const tsp::Camera& cam, tspgl::RenderSettings& settings, double now_s);
+  // LOD (player_lod.cpp): the cut this frame asks for (interaction holds the target frame
+  // rate, idle refines to full quality), what the drawn cut did, the frame's time outside
+  // rendering.
+  tspgl::LodSpec lod_spec(double now_s);
+  void lod_drawn(const std::optional<tsp::LodFrameStats>& stats, double now_s);
   void measured_lod(double render_ms, double frame_ms);
+  /// The frame driver of the current renderer (made on first use after a renderer change).
+  tspgl::FrameDriver& driver();
   void draw_cut_overlay(const tsp::Camera& cam);
   void draw_annotations(const tsp::Camera& cam);
 
@@ -299,7 +305,7 @@ class PlayerApp {
   int prefetched_for_ = -1;  ///< step whose successors were last requested
   int prefetched_cut_ = -1;  ///< cut size whose likely splits were last requested
   double start_s_ = 0, last_frame_s_ = 0;
-  std::unique_ptr<tsp::LodController> lod_;
+  std::unique_ptr<tspgl::FrameDriver> driver_;  ///< draws renderer's frames; reset with it
   std::unique_ptr<OpenJob> open_job_;
   std::unique_ptr<tspgl::MovieWriter> recorder_;
   /// Fields shown before and put aside by switch_field, with their renderer (textures and

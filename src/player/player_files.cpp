@@ -1,5 +1,6 @@
 // The player's files: File > Open (a .tsp file at once, any other input built into the cache
-// folder on a thread with progress), recording the volume to a movie, saving the TF.
+// folder on a thread with progress), recording the volume to a movie, saving the TF, the
+// statistics `stats` writes.
 // Our loader (gl/gl_api.h) declares the GL functions; GLFW must not pull in GL/gl.h.
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
@@ -7,10 +8,15 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <nlohmann/json.hpp>
 
 #include "jobs/annotate.h"
 #include "jobs/play_input.h"
 #include "player/player_app.h"
+#include "render/settings_table.h"
+#include "tsp/core/json_text.h"
+#include "tsp/core/memory_use.h"
+#include "tsp/core/temp_output.h"
 #include "tsp/core/error.h"
 #include "tsp/metric/tf_io.h"
 
@@ -109,7 +115,7 @@ void PlayerApp::open_file(const std::string& path) {
   if (renderer) compositor_ = renderer->compositor();
   renderer.reset();
   parked_.clear();
-  lod_.reset();
+  driver_.reset();
   file = std::move(next);
   options_.tsp_path = path;
   const tsp::TspTree& tree = file->tree();
@@ -124,7 +130,7 @@ void PlayerApp::open_file(const std::string& path) {
   step = 0;
   playing = false;
   focus.reset();
-  tol = {0, 0};
+  settings.tol = {0, 0};
   probes.clear();  // (in the old file's physical coordinates)
   probe_selected = -1;
   probes_changed();
@@ -182,7 +188,7 @@ void PlayerApp::switch_field(const std::string& name) {
   } else {
     make_renderer();
   }
-  lod_.reset();
+  driver_.reset();
   ready.assign(std::size_t(steps()), -1.f);
   ready_next_ = 0;
   update_tol_max();
@@ -257,6 +263,65 @@ void PlayerApp::save_tf_as(const std::string& path) {
   } catch (const tsp::Error& e) {
     report(status, e.what());
   }
+}
+
+void PlayerApp::write_stats(const std::string& path) const {
+  nlohmann::json j;
+  std::vector<double> ms;
+  for (const FrameSample& f : history) ms.push_back(f.ms);
+  double sum = 0;
+  for (double v : ms) sum += v;
+  const double mean = ms.empty() ? 0 : sum / double(ms.size());
+  j["window"] = {ctx->width(), ctx->height()};
+  j["view"] = {layout.view.x, layout.view.y, layout.view.w, layout.view.h};
+  j["docked"] = layout.docked;
+  j["file"] = options_.tsp_path;
+  j["field"] = file->fields()[std::size_t(file->field_index())];
+  j["fields"] = file->fields();
+  j["field_switch_ms"] = field_switch_ms;
+  nlohmann::json jp = nlohmann::json::array();
+  for (const tsp::Probe& p : probes) jp.push_back(tsp::to_string(p));
+  j["probes"] = jp;
+  j["probe_op"] = tsp::to_string(probe_op);
+  j["ram_mib"] = double(renderer->brick_cache().stats().resident_bytes) / (1 << 20);
+  j["rss_mib"] = double(tsp::resident_bytes()) / (1 << 20);
+  j["peak_rss_mib"] = double(tsp::peak_resident_bytes()) / (1 << 20);
+  j["step"] = step;
+  j["steps_ready"] = ready;
+  j["every_step"] = every_step;
+  j["recording"] = recording();
+  j["frames"] = ms.size();
+  j["frame_ms"] = ms;
+  j["mean_frame_ms"] = mean;
+  j["fps"] = mean > 0 ? 1000.0 / mean : 0.0;
+  j["render_ms"] = last.ms;
+  j["fragments"] = last.fragments;
+  j.update(tspgl::settings_json(settings));  // every knob of the settings table, as render's
+  j["tolerance"] = {settings.tol.spatial, settings.tol.temporal};
+  nlohmann::json points = nlohmann::json::array();  // the editor's handles: value, opacity
+  for (const tsp::TfPoint& p : tf_points) points.push_back({p.x, p.c.a});
+  j["tf_points"] = points;
+  j["quality"] = quality_note;
+  j["lod"] = {{"on", lod_on},
+              {"target_fps", target_fps},
+              {"refining", refining},
+              {"cut_size", lod_stats.cut_size},
+              {"nodes_per_level", lod_stats.nodes_per_level},
+              {"render_scale", lod_stats.render_scale},
+              {"splats", lod_stats.splats},
+              {"splat_px", lod_stats.splat_px},
+              {"splat_fallback", splat_fallback},
+              {"max_error", lod_stats.max_error},
+              {"full_quality_after_s", full_quality_after_s},
+              // Full quality: no node left whose level differs from full resolution in the
+              // picture (error 0: transparent, uniform or hidden), at full render size.
+              {"full_quality", full_quality()}};
+  j["classes"] = {{"not_rendered", last.class_percent[0]},
+                  {"untextured", last.class_percent[1]},
+                  {"reused_texture", last.class_percent[2]},
+                  {"new_texture", last.class_percent[3]},
+                  {"clipped", last.class_percent[4]}};
+  tsp::write_file_atomically(path, tsp::json_text(j, 2) + "\n");
 }
 
 }  // namespace tspplayer

@@ -143,9 +143,6 @@ void PlayerApp::apply(const ScriptAction& a) {
     case Kind::prefetch:
       prefetch_on = a.flag;
       break;
-    case Kind::upload_budget:
-      upload_budget_mb = a.value;
-      break;
     case Kind::view:
       camera.azimuth_deg = a.value;
       camera.elevation_deg = a.value2;
@@ -167,17 +164,8 @@ void PlayerApp::apply(const ScriptAction& a) {
     case Kind::wait_seconds:
       wait_until_s_ = glfwGetTime() + a.value;
       break;
-    case Kind::compositing:
-      compositing = tspgl::parse_compositing(a.text, "compositing");
-      break;
-    case Kind::spacing:
-      spacing = a.value;
-      break;
-    case Kind::preintegrated:
-      preintegrated = a.flag;
-      break;
-    case Kind::sampling_tol:
-      sampling_tol = a.value;
+    case Kind::setting:
+      set_setting(a.text, a.text2);
       break;
     case Kind::quality:
       quality = float(a.value);
@@ -275,6 +263,7 @@ void PlayerApp::trace_changes() {
   if (!t.first && tf.version() != t.tf_version)
     line("transfer function edited (" + std::to_string(tf.size()) + " entries over [" +
          std::to_string(tf.domain().lo) + ", " + std::to_string(tf.domain().hi) + "])");
+  const tsp::Tolerances& tol = settings.tol;
   if (!t.first && (tol.spatial != t.tol.spatial || tol.temporal != t.tol.temporal))
     line("tolerances spatial " + std::to_string(tol.spatial) + ", temporal " +
          std::to_string(tol.temporal));
@@ -282,7 +271,7 @@ void PlayerApp::trace_changes() {
   if (t.first || playing != t.playing) line(playing ? "playing" : "paused");
   if (!t.first && lod_on != t.lod_on) line(std::string("lod ") + (lod_on ? "on" : "off"));
   if (!t.first && panels != t.panels) line(std::string("panels ") + (panels ? "on" : "off"));
-  t = {step, tf.version(), tol, metric, playing, lod_on, panels, false};
+  t = {step, tf.version(), settings.tol, metric, playing, lod_on, panels, false};
 }
 
 }  // namespace tspplayer

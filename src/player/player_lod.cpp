@@ -26,11 +26,10 @@ constexpr ImU32 kLevelColours[] = {IM_COL32(80, 220, 80, 200), IM_COL32(240, 220
 
 void PlayerApp::set_lod(bool on) {
   lod_on = on;
-  lod_.reset();
+  if (driver_) driver_->set_lod({});  // a new controller when it is turned on again
 }
 
-tsp::LodStops PlayerApp::update_lod(const tsp::Camera& cam, tspgl::RenderSettings& settings,
-                                    double now_s) {
+tspgl::LodSpec PlayerApp::lod_spec(double now_s) {
   // Any change of what is shown counts as interaction.
   const Seen now{camera, step, tf.version(), probe_version, playing};
   const bool changed = playing || !(now == seen_);
@@ -47,15 +46,14 @@ tsp::LodStops PlayerApp::update_lod(const tsp::Camera& cam, tspgl::RenderSetting
   }
   seen_ = now;
   if (!lod_on) {
-    lod_.reset();
-    lod_stats = {};
     refining = false;
     return {};
   }
-  if (!lod_) lod_ = std::make_unique<tsp::LodController>(file->tree(), tsp::LodOptions{});
   // Idle: nothing changed for a while, and for more than one frame (a slow frame alone is not).
   refining = now_s - last_change_s_ >= kIdleDelaySeconds && frames_since_change_ >= kIdleFrames;
-  tsp::LodOptions o = lod_->options();
+  tspgl::LodSpec spec;
+  spec.mode = tspgl::LodMode::adaptive;
+  tsp::LodOptions& o = spec.options;
   o.focus = focus;
   if (refining) {  // full quality: every node with any error, many per frame, no time limit
     o.target_ms = 0;
@@ -65,23 +63,21 @@ tsp::LodStops PlayerApp::update_lod(const tsp::Camera& cam, tspgl::RenderSetting
     const double frame_ms = std::max(1000.0 / std::max(1.f, target_fps),
                                      steady_playback ? 1000.0 / std::max(speed, 1e-3) : 0.0);
     o.target_ms = std::max(kMinRenderMs, frame_ms - overhead_ms_);
-    o.min_error = tsp::LodOptions{}.min_error;
-    o.split_limit = tsp::LodOptions{}.split_limit;
   }
   o.texture_budget = std::int64_t(texture_budget_mb * (1 << 20));
   o.fallback = splat_fallback ? tsp::LodFallback::splats : tsp::LodFallback::scale;
-  lod_->set_options(o);
-  lod_stats = lod_->update(cam, step, tf, settings.spacing, renderer->clip_sides());
+  return spec;
+}
+
+void PlayerApp::lod_drawn(const std::optional<tsp::LodFrameStats>& stats, double now_s) {
+  lod_stats = stats.value_or(tsp::LodFrameStats{});
+  if (!lod_on) return;
   // When the picture got back to full quality after the last change.
   if (full_quality()) {
     if (full_quality_after_s < 0) full_quality_after_s = now_s - last_change_s_;
   } else {
     full_quality_after_s = -1;
   }
-  settings.render_scale = lod_->render_scale();
-  // Splats are flat boxes, cheapest composited one box each (a clipped frame stays ray cast).
-  if (lod_->splatting()) settings.compositing = tspgl::Compositing::boxes;
-  return lod_->stops();
 }
 
 bool PlayerApp::full_quality() const {
@@ -89,8 +85,8 @@ bool PlayerApp::full_quality() const {
 }
 
 void PlayerApp::measured_lod(double render_ms, double frame_ms) {
+  // (The driver gave the controller the render time when it drew the frame.)
   overhead_ms_ += kOverheadSmoothing * (std::max(0.0, frame_ms - render_ms) - overhead_ms_);
-  if (lod_) lod_->measured(render_ms);
 }
 
 void PlayerApp::set_focus_at(double x, double y) {
@@ -177,12 +173,13 @@ void PlayerApp::draw_annotations(const tsp::Camera& cam) {
 }
 
 void PlayerApp::draw_cut_overlay(const tsp::Camera& cam) {
-  if (!show_cut || !lod_) return;
+  const tsp::LodController* lod = driver_ ? driver_->controller() : nullptr;
+  if (!show_cut || !lod) return;
   const WindowRect& v = layout.view;
   ImDrawList* dl = view_draw_list(v);
   const glm::dmat4 vp = cam.view_projection();
   const tsp::Octree& o = file->tree().octree();
-  for (int id : lod_->cut().nodes()) {
+  for (int id : lod->cut().nodes()) {
     const tsp::Aabb box = tsp::geometric_box(o.node(id).box, o.dims());
     ImVec2 p[8];
     bool ok = true;

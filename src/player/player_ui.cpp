@@ -11,6 +11,7 @@
 #include "player/controls.h"
 #include "player/player_app.h"
 #include "player/player_ui.h"
+#include "render/settings_table.h"
 #include "tsp/core/error.h"
 
 namespace tspplayer {
@@ -25,7 +26,6 @@ constexpr float kReadyStripHeight = 5.f;  // the timeline's readiness marks, pix
 constexpr double kBytesPerMiB = 1 << 20;
 constexpr const char* kMetricNames[] = {"scalar", "reference", "approximate", "perceptual"};
 // In tspgl::Compositing order.
-constexpr const char* kCompositingNames[] = {"slices", "boxes", "rays"};
 constexpr const char* kClassNames[] = {"not rendered", "untextured", "reused texture",
                                        "new texture", "clipped"};
 // What a tolerance measures, per metric (tsp::Metric order; docs/metrics.md).
@@ -133,6 +133,61 @@ void timeline_section(PlayerApp& app) {
     ImGui::SetTooltip("green: the step's bricks are in memory (no file read to show it)");
 }
 
+// One widget for a row of the render settings table: a log slider over its panel range (Ctrl +
+// click types any value the table accepts), a checkbox or a combo; changes go through
+// PlayerApp::set_setting, the path script lines take.
+void setting_widget(PlayerApp& app, const tspgl::SettingSpec& spec) {
+  const std::string name(spec.name), now = tspgl::get_setting(app.settings, spec);
+  std::string label = name;
+  for (char& c : label)
+    if (c == '-') c = ' ';
+  std::string next;
+  switch (spec.kind) {
+    case tspgl::SettingKind::number: {
+      if (!spec.unit.empty()) label += " (" + std::string(spec.unit) + ")";
+      float v = float(std::strtod(now.c_str(), nullptr));
+      const bool off_at_zero = spec.lo == 0;
+      if (ImGui::SliderFloat(label.c_str(), &v, float(spec.ui_lo), float(spec.ui_hi),
+                             off_at_zero && v == 0 ? "off" : "%.3g",
+                             ImGuiSliderFlags_Logarithmic)) {
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "%.9g",
+                      std::clamp(double(v), spec.lo, std::min(spec.hi, 1e300)));
+        next = buf;
+      }
+      break;
+    }
+    case tspgl::SettingKind::toggle: {
+      bool on = now == "on";
+      if (ImGui::Checkbox(label.c_str(), &on)) next = on ? "on" : "off";
+      break;
+    }
+    case tspgl::SettingKind::choice: {
+      int k = 0;
+      std::string items;  // ImGui's zero-separated list
+      for (std::size_t i = 0; i < spec.choices.size(); ++i) {
+        if (spec.choices[i] == now) k = int(i);
+        items += std::string(spec.choices[i]) + '\0';
+      }
+      if (ImGui::Combo(label.c_str(), &k, items.c_str())) next = std::string(spec.choices[std::size_t(k)]);
+      break;
+    }
+  }
+  if (next.empty()) return;
+  try {
+    app.set_setting(name, next);
+  } catch (const tsp::Error& e) {
+    app.status = e.what();
+  }
+}
+
+// The widgets of every row of group g but the tolerances (their sliders span the metric's range).
+void setting_widgets(PlayerApp& app, tspgl::SettingGroup g) {
+  for (const tspgl::SettingSpec& spec : tspgl::settings_table())
+    if (spec.group == g && spec.name != "spatial-tol" && spec.name != "temporal-tol")
+      setting_widget(app, spec);
+}
+
 void settings_section(PlayerApp& app) {
   // Widgets end kLabelWidth short of the window's edge: their labels are never clipped.
   ImGui::PushItemWidth(-kLabelWidth);
@@ -156,7 +211,7 @@ void settings_section(PlayerApp& app) {
   else
     ImGui::TextWrapped("live: only the nodes a frame visits are recomputed after a TF edit");
 
-  float s = float(app.tol.spatial), t = float(app.tol.temporal);
+  float s = float(app.settings.tol.spatial), t = float(app.settings.tol.temporal);
   bool changed =
       ImGui::SliderFloat("spatial tol", &s, 0.f, app.tol_max, "%.4g", ImGuiSliderFlags_Logarithmic);
   bool done = ImGui::IsItemDeactivatedAfterEdit();
@@ -167,22 +222,15 @@ void settings_section(PlayerApp& app) {
   ImGui::TextWrapped("%s; 0 = exact", kToleranceUnits[int(app.metric)]);
   ImGui::PopStyleColor();
   // Frames follow the slider at once; unreachable textures are dropped when it is released.
-  if (changed) app.tol = {double(s), double(t)};
-  if (done) app.set_tolerances(app.tol);
+  if (changed) app.settings.tol = {double(s), double(t)};
+  if (done) app.set_tolerances(app.settings.tol);
 
-  int comp = int(app.compositing);
-  if (ImGui::Combo("compositing", &comp, kCompositingNames, IM_ARRAYSIZE(kCompositingNames)))
-    app.compositing = tspgl::Compositing(comp);
-  float sp = float(app.spacing);
-  if (ImGui::SliderFloat("spacing (voxels)", &sp, 0.25f, 8.f, "%.2f", ImGuiSliderFlags_Logarithmic))
-    app.spacing = std::clamp(double(sp), tspgl::kMinSliceSpacing, tspgl::kMaxSliceSpacing);
-  ImGui::Checkbox("pre-integrated TF", &app.preintegrated);
-  // Adaptive sampling: coarser steps in bricks whose colour changes slowly (rays only).
-  float st = float(app.sampling_tol);
-  if (ImGui::SliderFloat("adaptive sampling tol", &st, 0.f, 1.f, st > 0 ? "%.3f" : "off",
-                         ImGuiSliderFlags_Logarithmic))
-    app.sampling_tol = std::max(0.0, double(st));
-  ImGui::Checkbox("skip transparent children", &app.skip_transparent);
+  setting_widgets(app, tspgl::SettingGroup::quality);
+  setting_widgets(app, tspgl::SettingGroup::compositing);
+  if (ImGui::TreeNode("diagnostics (the paper's rules, our optimisations off)")) {
+    setting_widgets(app, tspgl::SettingGroup::diagnostics);
+    ImGui::TreePop();
+  }
   // The quality target sets all of the knobs above from a calibration (made once, cached).
   ImGui::SliderFloat("quality (mean dE)", &app.quality, 0.f, 10.f,
                      app.quality > 0 ? "%.2f" : "off");
@@ -205,10 +253,7 @@ void settings_section(PlayerApp& app) {
     if (ImGui::Checkbox("texture cache", &cache)) app.set_cache(cache, app.texture_budget_mb);
     ImGui::SameLine();
     ImGui::Checkbox("prefetch", &app.prefetch_on);
-    float upload = float(app.upload_budget_mb);
-    if (ImGui::SliderFloat("upload MiB/frame", &upload, 0.f, 256.f,
-                           upload > 0 ? "%.1f" : "no limit", ImGuiSliderFlags_Logarithmic))
-      app.upload_budget_mb = std::max(0.0, double(upload));
+    setting_widgets(app, tspgl::SettingGroup::memory);
     static double budget = -1;
     if (budget < 0) budget = app.texture_budget_mb;
     ImGui::SetNextItemWidth(120);
@@ -243,7 +288,7 @@ void settings_section(PlayerApp& app) {
 void stats_section(PlayerApp& app) {
   // A temporal tolerance that merged steps says which steps' bricks the picture shows.
   const tspgl::FrameReport& lf = app.last;
-  if (app.tol.temporal > 0 && lf.spans_hi > lf.spans_lo) {  // (at 0 only unchanging data merge)
+  if (app.settings.tol.temporal > 0 && lf.spans_hi > lf.spans_lo) {  // (at 0 only unchanging data merge)
     char note[128];
     if (lf.shows_mean)
       std::snprintf(note, sizeof note, "temporal tolerance: showing means over steps %d-%d",
@@ -286,7 +331,7 @@ void stats_section(PlayerApp& app) {
               r.traversal_ms, r.slicing_ms, r.upload_ms, r.draw_ms);
   const double pixels = std::max(1.0, double(app.layout.view.w) * app.layout.view.h);
   ImGui::Text("fragments %.2f M (%.2f per pixel), %s, spacing %.2g", double(r.fragments) / 1e6,
-              double(r.fragments) / pixels, tspgl::to_string(app.compositing), app.spacing);
+              double(r.fragments) / pixels, tspgl::to_string(app.settings.compositing), app.settings.spacing);
   for (int c = 0; c < tsp::kDrawClassCount; ++c)
     ImGui::Text("%-15s %5.1f %%", kClassNames[c], r.class_percent[std::size_t(c)]);
   ImGui::Text("textures %lld resident, %.1f MiB", static_cast<long long>(r.textures_resident),

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <utility>
 
+#include "render/settings_table.h"
 #include "tsp/clip/probe.h"
 #include "tsp/core/error.h"
 
@@ -15,10 +16,8 @@ namespace {
 
 using Kind = ScriptAction::Kind;
 
-// Largest upload budget a script may set (1 TiB, as the renderer accepts).
-constexpr double kMaxUploadBudgetMib = 1 << 20;
-// Spacing and quality limits, as `tspplay render` accepts them (tspscript links no renderer).
-constexpr double kMinSpacing = 1.0 / 64, kMaxSpacing = 64, kMaxQuality = 50;
+// Quality limit, as `tspplay render --quality` accepts it.
+constexpr double kMaxQuality = 50;
 
 struct LineParser {
   const std::string& origin;
@@ -60,7 +59,7 @@ struct LineParser {
 // The actions that take on|off.
 constexpr std::pair<const char*, Kind> kSwitches[] = {
     {"loop", Kind::loop},           {"cache", Kind::cache}, {"prefetch", Kind::prefetch},
-    {"preintegrated", Kind::preintegrated}, {"lod", Kind::lod},     {"show-cut", Kind::show_cut},
+    {"lod", Kind::lod},     {"show-cut", Kind::show_cut},
     {"panels", Kind::panels},       {"every-step", Kind::every_step},
     {"log-opacity", Kind::log_opacity}, {"probe-surface", Kind::probe_surface}};
 
@@ -75,7 +74,19 @@ ScriptAction parse_line(const LineParser& p) {
       a.flag = p.choice(1, "on", "off");
       return a;
     }
-  if (cmd == "step") {
+  if (const tspgl::SettingSpec* spec = tspgl::find_setting(cmd)) {  // the settings table's rows
+    const std::string usage = cmd + (spec->kind == tspgl::SettingKind::number ? " VALUE" : " WORD");
+    p.expect_args(1, usage.c_str());
+    a.kind = Kind::setting;
+    a.text = cmd;
+    a.text2 = p.words[1];
+    tspgl::RenderSettings scratch;  // validated here, once: applying it cannot fail
+    try {
+      tspgl::set_setting(scratch, *spec, a.text2, cmd);
+    } catch (const tsp::UsageError& e) {
+      p.fail(e.what());
+    }
+  } else if (cmd == "step") {
     p.expect_args(1, "step K");
     a.kind = Kind::step;
     a.number = p.integer(1, "step K", 0);
@@ -106,13 +117,6 @@ ScriptAction parse_line(const LineParser& p) {
         a.text != "perceptual")
       p.fail("unknown metric '" + a.text +
              "': expected scalar, reference, approximate or perceptual");
-  } else if (cmd == "upload-budget") {
-    p.expect_args(1, "upload-budget MIB");
-    a.kind = Kind::upload_budget;
-    a.value = p.number(1, "upload-budget MIB");
-    if (!(a.value >= 0) || a.value > kMaxUploadBudgetMib)
-      p.fail("upload-budget must be 0 (no limit) to " + std::to_string(int(kMaxUploadBudgetMib)) +
-             " MiB");
   } else if (cmd == "view") {
     p.expect_args(2, "view AZIMUTH ELEVATION");
     a.kind = Kind::view;
@@ -120,24 +124,6 @@ ScriptAction parse_line(const LineParser& p) {
     a.value2 = p.number(2, "view AZIMUTH ELEVATION");
     if (!std::isfinite(a.value)) p.fail("azimuth must be finite");
     if (!(a.value2 > -90 && a.value2 < 90)) p.fail("elevation must be in (-90, 90) degrees");
-  } else if (cmd == "compositing") {
-    p.expect_args(1, "compositing slices|boxes|rays");
-    a.kind = Kind::compositing;
-    a.text = p.words[1];
-    if (a.text != "slices" && a.text != "boxes" && a.text != "rays")
-      p.fail("unknown compositing '" + a.text + "': expected slices, boxes or rays");
-  } else if (cmd == "spacing") {
-    p.expect_args(1, "spacing VOXELS");
-    a.kind = Kind::spacing;
-    a.value = p.number(1, "spacing VOXELS");
-    if (!(a.value >= kMinSpacing && a.value <= kMaxSpacing))
-      p.fail("spacing must be in [1/64, 64] voxels");
-  } else if (cmd == "sampling-tol") {
-    p.expect_args(1, "sampling-tol TOL");
-    a.kind = Kind::sampling_tol;
-    a.value = p.number(1, "sampling-tol TOL");
-    if (!(a.value >= 0) || !std::isfinite(a.value))
-      p.fail("sampling-tol must be a finite colour change >= 0 (0: off)");
   } else if (cmd == "quality") {
     p.expect_args(1, "quality DE");
     a.kind = Kind::quality;
@@ -219,12 +205,15 @@ ScriptAction parse_line(const LineParser& p) {
     if (a.kind == Kind::record && !p.words[1].ends_with(".mp4") && !p.words[1].ends_with(".gif"))
       p.fail("'" + p.words[1] + "': expected a .mp4 or .gif file name, or stop");
   } else {
+    std::string settings;
+    for (const tspgl::SettingSpec& spec : tspgl::settings_table())
+      settings += std::string(spec.name) + ", ";
     p.fail("unknown action '" + cmd +
            "': expected step, play, pause, speed, loop, tf, tolerance, metric, cache, prefetch, "
-           "upload-budget, view, zoom, projection, screenshot, screenshot-ui, wait-frames, "
-           "wait-seconds, compositing, spacing, sampling-tol, preintegrated, quality, stats, lod, target-fps, "
-           "show-cut, panels, every-step, log-opacity, open, field, probe, probe-op, "
-           "probe-surface, probe-clear, probe-move, record or quit");
+           "view, zoom, projection, screenshot, screenshot-ui, wait-frames, wait-seconds, " +
+           settings +
+           "quality, stats, lod, target-fps, show-cut, panels, every-step, log-opacity, open, "
+           "field, probe, probe-op, probe-surface, probe-clear, probe-move, record or quit");
   }
   return a;
 }

@@ -21,10 +21,10 @@ struct ScriptAction {
     loop,           ///< loop on (`flag`) or off
     tf,             ///< transfer function `text`: a file or preset:NAME
     tolerance,      ///< spatial `value`, temporal `value2`
+    setting,        ///< render setting `text` (a row of render/settings_table.h) set to `text2`
     metric,         ///< metric `text`
     cache,          ///< texture cache on (`flag`) or off
     prefetch,       ///< background brick prefetch on (`flag`) or off
-    upload_budget,  ///< texture MiB per frame `value` (0: no limit)
     view,           ///< azimuth `value`, elevation `value2` (degrees)
     zoom,           ///< zoom `value` (> 0)
     projection,     ///< perspective (`flag`) or orthographic
@@ -32,10 +32,6 @@ struct ScriptAction {
     screenshot_ui,  ///< save the next complete frame with the UI panels to `text`
     wait_frames,    ///< let `number` frames pass
     wait_seconds,   ///< let `value` seconds pass (frames keep running)
-    compositing,    ///< slices, boxes or rays (`text`)
-    spacing,        ///< slice spacing `value` voxels
-    sampling_tol,   ///< adaptive sampling's tolerance `value` (0: off)
-    preintegrated,  ///< pre-integrated TF on (`flag`) or off
     quality,        ///< quality target mean ΔE `value` (calibrates once; blocks)
     stats,          ///< write the HUD statistics (frame times, fps, last frame) to `text` (JSON)
     lod,            ///< the LOD cut on (`flag`) or off

@@ -41,6 +41,8 @@ class VolumeRenderer {
                  std::int64_t texture_budget = kDefaultTextureBudget,
                  std::int64_t brick_budget = kDefaultBrickBudget,
                  std::shared_ptr<SliceCompositor> compositor = nullptr);
+  /// The tree it draws.
+  const tsp::TspTree& tree() const { return tree_; }
   /// The compositor it draws with (to share with another renderer in the same context).
   const std::shared_ptr<SliceCompositor>& compositor() const { return compositor_; }
   ~VolumeRenderer();

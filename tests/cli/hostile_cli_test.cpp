@@ -98,11 +98,11 @@ TEST(HostileCli, NumericOptionsOutsideTheirRangeNameTheLimit) {
   struct Case {
     std::string args, needle;
   };
-  for (const Case& c : {Case{"--spacing 1e-5", "[0.015625, 64] voxels"},
-                        Case{"--spacing 1e-300", "[0.015625, 64] voxels"},
+  for (const Case& c : {Case{"--spacing 1e-5", "[0.015625, 64] (voxels)"},
+                        Case{"--spacing 1e-300", "[0.015625, 64] (voxels)"},
                         Case{"--spacing nan", "--spacing"},
                         Case{"--texture-budget 1e30", "--texture-budget"},
-                        Case{"--spatial-tol inf", "finite tolerance"},
+                        Case{"--spatial-tol inf", "expected a finite number >= 0"},
                         Case{"--passes 0", "--passes 0"}}) {
     auto r = run_tspplay("render " + quote(tsp_path) + " " + c.args + " -o " + quote(dir / "f"));
     EXPECT_EQ(r.exit_code, 2) << c.args << ": " << r.err;

@@ -659,6 +659,32 @@ TEST(Player, ProbesClipAsRenderDoesAndMoveFromTheScript) {
   EXPECT_NE(bad.err.find("actions.txt:1"), std::string::npos) << bad.err;
 }
 
+// One settings table for both commands: the same options on `play` (paused, full quality) and
+// `render` give the same picture — the defaults, slices at spacing 2 with a temporal tolerance,
+// a sphere probe with its surface, rays with pre-integration.
+TEST(Player, PausedPlayerDrawsWhatRenderDrawsForTheSameSettings) {
+  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  const fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
+  const std::vector<std::string> configurations = {
+      "", "--compositing slices --spacing 2 --temporal-tol 0.02",
+      "--probe sphere:15,14,13,9 --probe-surface on", "--compositing rays --preintegrated on"};
+  for (std::size_t k = 0; k < configurations.size(); ++k) {
+    const std::string& o = configurations[k];
+    const fs::path shot = dir / ("p" + std::to_string(k) + ".png"), out = dir / ("r" + std::to_string(k));
+    auto p = run_tspplay("play " + q(tsp) + " --step 2 --size " + kSize + " " + o +
+                         " --screenshot " + q(shot));
+    ASSERT_EQ(p.exit_code, 0) << o << ": " << p.err;
+    auto r = run_tspplay("render " + q(tsp) + " --steps 2 --size " + kSize + " " + o + " -o " +
+                         q(out));
+    ASSERT_EQ(r.exit_code, 0) << o << ": " << r.err;
+    const tsp::Image played = tsp::read_png(shot.string());
+    EXPECT_GT(covered(played), 0.02) << o;
+    EXPECT_LT(tsp::diff_images(played, tsp::read_png((out / "step_0002.png").string())).mean,
+              kSameFrameDeltaE)
+        << o;
+  }
+}
+
 }  // namespace
 
 // The quality slider (script `quality`) calibrates on an offscreen canvas of the window's own

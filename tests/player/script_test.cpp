@@ -47,8 +47,9 @@ TEST(PlayerScript, ParsesEveryAction) {
   EXPECT_TRUE(a[8].flag);
   EXPECT_EQ(a[9].kind, Kind::prefetch);
   EXPECT_FALSE(a[9].flag);
-  EXPECT_EQ(a[10].kind, Kind::upload_budget);
-  EXPECT_DOUBLE_EQ(a[10].value, 16);
+  EXPECT_EQ(a[10].kind, Kind::setting);
+  EXPECT_EQ(a[10].text, "upload-budget");
+  EXPECT_EQ(a[10].text2, "16");
   EXPECT_EQ(a[11].kind, Kind::view);
   EXPECT_DOUBLE_EQ(a[11].value2, -20);
   EXPECT_DOUBLE_EQ(a[12].value, 1.5);
@@ -63,20 +64,30 @@ TEST(PlayerScript, ParsesEveryAction) {
   const auto k = parse_script(
       "compositing boxes\nspacing 2.5\npreintegrated on\nquality 1.5\nstats s.json\n", "k.txt");
   ASSERT_EQ(k.size(), 5u);
-  EXPECT_EQ(k[0].kind, Kind::compositing);
-  EXPECT_EQ(k[0].text, "boxes");
-  EXPECT_EQ(k[1].kind, Kind::spacing);
-  EXPECT_DOUBLE_EQ(k[1].value, 2.5);
-  EXPECT_EQ(k[2].kind, Kind::preintegrated);
-  EXPECT_TRUE(k[2].flag);
+  EXPECT_EQ(k[0].kind, Kind::setting);
+  EXPECT_EQ(k[0].text, "compositing");
+  EXPECT_EQ(k[0].text2, "boxes");
+  EXPECT_EQ(k[1].kind, Kind::setting);
+  EXPECT_EQ(k[1].text, "spacing");
+  EXPECT_EQ(k[1].text2, "2.5");
+  EXPECT_EQ(k[2].kind, Kind::setting);
+  EXPECT_EQ(k[2].text, "preintegrated");
+  EXPECT_EQ(k[2].text2, "on");
   EXPECT_EQ(k[3].kind, Kind::quality);
   EXPECT_DOUBLE_EQ(k[3].value, 1.5);
   EXPECT_EQ(k[4].kind, Kind::stats);
   EXPECT_EQ(k[4].text, "s.json");
   const auto st = parse_script("sampling-tol 0.05\n", "st.txt");
   ASSERT_EQ(st.size(), 1u);
-  EXPECT_EQ(st[0].kind, Kind::sampling_tol);
-  EXPECT_DOUBLE_EQ(st[0].value, 0.05);
+  EXPECT_EQ(st[0].kind, Kind::setting);
+  EXPECT_EQ(st[0].text, "sampling-tol");
+  EXPECT_EQ(st[0].text2, "0.05");
+  // Every row of the settings table is an action, validated by the table when parsed.
+  const auto d = parse_script("span-step mean\nflat slices\nreuse off\ndense off\n"
+                              "skip-transparent off\n", "d.txt");
+  ASSERT_EQ(d.size(), 5u);
+  for (const tspplayer::ScriptAction& x : d) EXPECT_EQ(x.kind, Kind::setting);
+  EXPECT_EQ(d[4].text, "skip-transparent");
   const auto l = parse_script("lod off\ntarget-fps 25\nshow-cut on\nwait-seconds 0.5\n", "l.txt");
   ASSERT_EQ(l.size(), 4u);
   EXPECT_EQ(l[0].kind, Kind::lod);
@@ -132,14 +143,19 @@ TEST(PlayerScript, ErrorsNameTheLineAndWhatWasExpected) {
   EXPECT_NE(error_of("tolerance -1 0").find("finite and not negative"), std::string::npos);
   EXPECT_NE(error_of("view 0 90").find("elevation must be in (-90, 90)"), std::string::npos);
   EXPECT_NE(error_of("zoom -2").find("zoom must be positive"), std::string::npos);
-  EXPECT_NE(error_of("upload-budget -1").find("0 (no limit) to"), std::string::npos);
+  EXPECT_NE(error_of("upload-budget -1").find("expected a number in [0, 1.04858e+06] (MiB)"),
+            std::string::npos);
   EXPECT_NE(error_of("wait-frames -1").find("not an integer >= 0"), std::string::npos);
   EXPECT_NE(error_of("projection iso").find("expected persp or ortho"), std::string::npos);
   EXPECT_NE(error_of("speed 1e999").find("s.txt:1"), std::string::npos);
   EXPECT_NE(error_of("compositing voxels").find("expected slices, boxes or rays"),
             std::string::npos);
-  EXPECT_NE(error_of("spacing 0").find("spacing must be in"), std::string::npos);
-  EXPECT_NE(error_of("sampling-tol -1").find("sampling-tol must be"), std::string::npos);
+  EXPECT_NE(error_of("spacing 0").find("spacing '0': expected a number in [0.015625, 64] (voxels)"),
+            std::string::npos);
+  EXPECT_NE(error_of("sampling-tol -1").find("sampling-tol '-1': expected a finite number >= 0"),
+            std::string::npos);
+  EXPECT_NE(error_of("span-step last").find("expected first, middle or mean"), std::string::npos);
+  EXPECT_NE(error_of("spacing").find("'spacing' takes 1 argument(s)"), std::string::npos);
   EXPECT_NE(error_of("quality 0").find("quality must be"), std::string::npos);
   EXPECT_NE(error_of("target-fps 0").find("target-fps must be 1 to"), std::string::npos);
   EXPECT_NE(error_of("lod maybe").find("expected on or off"), std::string::npos);

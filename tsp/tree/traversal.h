@@ -14,6 +14,8 @@ namespace tsp {
 struct Tolerances {
   double spatial = 0;
   double temporal = 0;
+  /// Both equal.
+  bool operator==(const Tolerances&) const = default;
 };
 
 /// Per-TSP-node errors the traversal compares with the tolerances (any metric).

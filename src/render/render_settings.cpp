@@ -1,4 +1,4 @@
-#include "render/frame_report.h"
+#include "render/render_settings.h"
 
 #include <cmath>
 #include <cstdio>

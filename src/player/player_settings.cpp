@@ -1,0 +1,94 @@
+// The player's render settings and the commands that change them: tolerances, metric, any row
+// of the settings table, the quality target's calibrated knobs, the texture cache.
+#include <algorithm>
+#include <cmath>
+
+#include "jobs/calibration.h"
+#include "player/player_app.h"
+#include "render/settings_table.h"
+#include "tsp/core/error.h"
+
+namespace tspplayer {
+
+namespace {
+
+constexpr float kMinToleranceCeiling = 1e-3f;
+
+// Largest finite error in e: the tolerance sliders' upper end (a tolerance above every error
+// draws the root only).
+float largest_error(const tsp::NodeErrors& e) {
+  float m = 0;
+  for (const auto* v : {&e.spatial, &e.temporal})
+    for (float x : *v)
+      if (std::isfinite(x)) m = std::max(m, x);
+  return std::max(m, kMinToleranceCeiling);
+}
+
+}  // namespace
+
+void PlayerApp::set_metric(tsp::Metric m) {
+  if (m == metric) return;
+  metric = m;
+  if (m != tsp::Metric::reference)
+    lazy_ = std::make_unique<tsp::LazyErrors>(file->tree(), m, tf);
+  else
+    reference_version_ = ~std::uint64_t(0);
+  renderer->drop_unreachable(frame_metric(), settings.tol, settings.span_step, {},
+                             settings.skip_transparent);
+  update_tol_max();
+}
+
+void PlayerApp::update_tol_max() {
+  tol_max = largest_error(metric == tsp::Metric::reference ? reference_.errors
+                                                           : lazy_->errors_for_step(step));
+}
+
+void PlayerApp::set_tolerances(tsp::Tolerances t) {
+  settings.tol = {std::max(0.0, t.spatial), std::max(0.0, t.temporal)};
+  renderer->drop_unreachable(frame_metric(), settings.tol, settings.span_step, {},
+                             settings.skip_transparent);
+}
+
+void PlayerApp::set_setting(const std::string& name, const std::string& text) {
+  const tspgl::SettingSpec* spec = tspgl::find_setting(name);
+  if (!spec) throw tsp::UsageError("no render setting '" + name + "'");
+  tspgl::RenderSettings next = settings;
+  tspgl::set_setting(next, *spec, text, name);
+  if (next.tol != settings.tol || next.span_step != settings.span_step ||
+      next.skip_transparent != settings.skip_transparent) {
+    settings = next;
+    set_tolerances(next.tol);  // what the traversal reaches changed: drop the rest
+  } else {
+    settings = next;
+  }
+}
+
+void PlayerApp::apply_quality(double de) {
+  tspgl::CalibrationRequest r;
+  r.tsp_path = options_.tsp_path;
+  r.field = field();  // as render names it: one calibration serves both
+  r.metric = metric;
+  r.camera = camera;
+  // The view's size as this frame lays it out (camera's is set when the volume is drawn: on the
+  // first frame it is still the default).
+  r.camera.width = std::max(1, layout.view.w);
+  r.camera.height = std::max(1, layout.view.h);
+  std::string cache;
+  const tspgl::Calibration c = tspgl::calibrate(*ctx, r, *file, tf, &cache);
+  const auto best = tspgl::pick_configuration(c, de);
+  if (!best) {
+    quality_note = "nothing calibrated stays within dE " + std::to_string(de);
+    return;
+  }
+  tspgl::apply(best->knobs, settings);  // compositing, spacing, tolerances (by its rule), ...
+  set_tolerances(settings.tol);
+  quality_note = tspgl::render_options(best->knobs, metric) + (cache.empty() ? "" : " (" + cache + ")");
+}
+
+void PlayerApp::set_cache(bool on, double budget_mb) {
+  cache_on = on;
+  texture_budget_mb = std::max(1.0, budget_mb);
+  make_renderer();
+}
+
+}  // namespace tspplayer

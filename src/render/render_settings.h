@@ -1,0 +1,95 @@
+// src/render: drawing frames with GL; may include tsp/, gl/.
+// What a frame is drawn with besides the camera and the metric: one value type shared by the TSP
+// renderer, the baseline, the render and bench jobs and the player. Its user-facing knobs — their
+// names, ranges, units, help and groups — are listed once, in settings_table.h.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <string>
+
+#include "tsp/frame/frame_plan.h"
+#include "tsp/tree/traversal.h"
+
+namespace tspgl {
+
+/// Slice spacing in voxels (half a voxel: Nyquist, spec §7).
+inline constexpr double kDefaultSliceSpacing = 0.5;
+/// Default texture budget of the TSP renderer's cache.
+inline constexpr std::int64_t kDefaultTextureBudget = std::int64_t(512) << 20;
+/// Default RAM budget for bricks read from the .tsp file.
+inline constexpr std::int64_t kDefaultBrickBudget = std::int64_t(1024) << 20;
+/// Slice spacings accepted, in voxels: below 1/64 a frame costs thousands of slices per brick
+/// for no visible gain; above 64 a slice skips whole bricks.
+inline constexpr double kMinSliceSpacing = 1.0 / 64, kMaxSliceSpacing = 64;
+/// Largest texture, brick or upload budget accepted (1 TiB).
+inline constexpr std::int64_t kMaxBudgetBytes = std::int64_t(1) << 40;
+
+/// How a renderer draws textured boxes (bricks, or the baseline's whole volume).
+enum class Compositing {
+  slices,  ///< view-aligned slice polygons, one blended fragment per slice (paper §4.2)
+  boxes,   ///< each brick's box ray cast on its own, one fragment per pixel per brick
+  rays,    ///< the whole volume ray cast in one pass over the brick grid, same slice planes
+};
+
+/// "slices", "boxes" or "rays".
+const char* to_string(Compositing c);
+/// Parses "slices", "boxes" or "rays"; throws tsp::UsageError naming `option` and the text.
+Compositing parse_compositing(const std::string& text, const std::string& option);
+
+/// What a frame is drawn with, besides the camera and the metric.
+struct RenderSettings {
+  tsp::Tolerances tol;                       ///< spatial and temporal tolerances
+  double spacing = kDefaultSliceSpacing;     ///< slice spacing in voxels (> 0)
+  std::array<float, 3> background{0, 0, 0};  ///< opaque background colour
+  /// Texture bytes one frame may upload (0: no limit). At least one texture is uploaded per
+  /// frame; the bricks over the budget are drawn flat in their node's mean colour and uploaded
+  /// by later frames (FrameReport::deferred_textures > 0 until the frame is complete).
+  std::int64_t upload_budget = 0;
+  Compositing compositing = Compositing::rays;  ///< how textured boxes are drawn
+  /// Coherent (flat) nodes drawn as one box composited exactly over each ray's depth through it
+  /// (true), or as flat slices every `spacing` (false: the paper's rule).
+  bool exact_flat = true;
+  /// Textured samples read a pre-integrated TF table over each pair of neighbouring samples
+  /// (tsp::preintegrate) instead of the point lookup.
+  bool preintegrated = false;
+  /// Keep the last frame's pixels whose rays meet only bricks drawn as before (same view, TF and
+  /// knobs), drawing only the rectangles of the bricks that changed (image_reuse.h). Exact.
+  bool reuse_image = true;
+  /// What textures a span longer than one step (its middle step by default: docs/rendering.md).
+  tsp::SpanStep span_step = tsp::SpanStep::middle;
+  /// Render-target size as a share of the window's per axis, in [kMinRenderScale, 1]: below 1
+  /// the frame is drawn smaller and magnified (the LOD controller's last resort when even the
+  /// coarsest cut misses the target). Partial-image reuse is off below 1.
+  double render_scale = 1;
+  /// Where the frame goes in the context's default framebuffer: the lower-left corner (GL window
+  /// coordinates, y up); the frame's size is the camera's. The player docks its panels beside it.
+  std::array<int, 2> viewport_origin{0, 0};
+  /// Rays compositing: a frame that textures every leaf brick at full resolution is ray cast
+  /// through one whole-volume texture (render/dense_volume.h) instead of walking the brick grid
+  /// — the same samples, fewer diverging loops. False: always the brick grid.
+  bool dense = true;
+  /// A coherent node holding a transparent child is drawn as its children (tsp::traverse with
+  /// the metric's transparency), so what zero tolerance skips is never drawn; false: the
+  /// paper's rule (the node drawn whole).
+  bool skip_transparent = true;
+  /// Adaptive sampling (rays compositing without probes; tsp/frame/sample_steps.h): each leaf
+  /// brick textured at full resolution is sampled every m·spacing, m the largest of
+  /// tsp::kStepMultipliers whose step changes the premultiplied TF colour by at most this much
+  /// (0: every brick every spacing). Excludes pre-integration.
+  double sampling_tol = 0;
+  /// Every field equal.
+  bool operator==(const RenderSettings&) const = default;
+};
+
+/// Smallest RenderSettings::render_scale.
+inline constexpr double kMinRenderScale = 0.25;
+
+/// Throws tsp::UsageError naming the setting, its value and the accepted range unless spacing is
+/// in [kMinSliceSpacing, kMaxSliceSpacing], both tolerances are finite and ≥ 0 and the upload
+/// budget is in [0, kMaxBudgetBytes].
+void validate(const RenderSettings& s);
+
+/// Throws tsp::UsageError unless bytes is in [1, kMaxBudgetBytes]; `what` names the option.
+void validate_budget(std::int64_t bytes, const std::string& what);
+
+}  // namespace tspgl
