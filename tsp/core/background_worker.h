@@ -30,7 +30,7 @@ class BackgroundWorker {
   using Job = std::function<void(std::stop_token)>;
   /// Called once, on the worker's thread, right after a job threw: the worker is failed() by
   /// then, holds no lock, and wait() returns only after the hook did. Lets the owner wake its
-  /// own waits that test failed().
+  /// own waits that test failed(). Must not throw.
   using FailureHook = std::function<void()>;
 
   /// An idle worker; no thread until the first submit(). Never throws.
