@@ -122,7 +122,7 @@ void BrickPages::finish() {
 }
 
 std::array<float, 4> flat_colour(const tsp::Rgba& c, double spacing) {
-  const float a = corrected_alpha(c.a, spacing);
+  const float a = tsp::corrected_opacity(c.a, spacing);
   return {c.r * a, c.g * a, c.b * a, a};
 }
 

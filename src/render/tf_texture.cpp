@@ -8,10 +8,6 @@
 
 namespace tspgl {
 
-float corrected_alpha(float alpha, double spacing) {
-  return float(1.0 - std::pow(1.0 - std::clamp(double(alpha), 0.0, 1.0), spacing));
-}
-
 TfTexture::TfTexture(const GlApi& gl) : gl_(gl) {
   gl_.GenTextures(1, &id_);
   gl_.GenTextures(1, &table_id_);
@@ -43,7 +39,7 @@ void TfTexture::bind(int unit, double spacing) {
   std::vector<float> rgba;
   rgba.reserve(std::size_t(tf_.size()) * 4);
   for (const tsp::Rgba& e : tf_.entries()) {
-    const float a = corrected_alpha(e.a, spacing);
+    const float a = tsp::corrected_opacity(e.a, spacing);
     rgba.insert(rgba.end(), {e.r * a, e.g * a, e.b * a, a});
   }
   gl_.TexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
@@ -63,7 +59,7 @@ void TfTexture::bind_rows(int unit, double spacing) {
   rgba.reserve(std::size_t(tf_.size()) * 4 * tsp::kStepMultipliers.size());
   for (double m : tsp::kStepMultipliers)
     for (const tsp::Rgba& e : tf_.entries()) {
-      const float a = corrected_alpha(e.a, spacing * m);
+      const float a = tsp::corrected_opacity(e.a, spacing * m);
       rgba.insert(rgba.end(), {e.r * a, e.g * a, e.b * a, a});
     }
   gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);

@@ -10,10 +10,6 @@
 
 namespace tspgl {
 
-/// Opacity for a slice spacing of `spacing` voxels when the TF's opacity is per voxel (spec §9):
-/// 1 − (1 − α)^spacing, α clamped to [0, 1]. Never throws.
-float corrected_alpha(float alpha, double spacing);
-
 /// One lookup texture of a GL context. Use from the context's thread with it current.
 class TfTexture {
  public:

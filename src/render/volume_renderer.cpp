@@ -62,7 +62,7 @@ void VolumeRenderer::set_clip(const tsp::ClipRegion& clip,
   clip_sides_ = clip_.classify_nodes(tree_.octree(), 1.0);
   // A solid that keeps the whole volume (its root kept, with the margin) clips nothing: the
   // plain caster, without the clip code's cost.
-  if (!clip_sides_.empty() && clip_sides_[0] == std::uint8_t(tsp::ClipSide::kept)) {
+  if (!clip_sides_.empty() && clip_sides_[0] == tsp::ClipSide::kept) {
     clip_sides_.clear();
     clip_surface_ = false;
   }
@@ -256,7 +256,7 @@ double VolumeRenderer::set_step_map(const tsp::FramePlan& plan, const RenderSett
 
 bool VolumeRenderer::leaf_clipped(int brick) const {
   return !clip_sides_.empty() &&
-         clip_sides_[std::size_t(tree_.octree().brick_node(brick))] != std::uint8_t(tsp::ClipSide::kept);
+         clip_sides_[std::size_t(tree_.octree().brick_node(brick))] != tsp::ClipSide::kept;
 }
 
 void VolumeRenderer::fill_pages(const tsp::FramePlan& plan, tsp::FrameMetric& metric) {

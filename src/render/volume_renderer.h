@@ -128,7 +128,7 @@ class VolumeRenderer {
   std::uint64_t tf_serial_ = 0;  // set_transfer_function calls
   tsp::ClipRegion clip_;
   bool clip_surface_ = false;
-  std::vector<std::uint8_t> clip_sides_;  // per octree node (tsp::ClipSide), empty: no clip
+  std::vector<tsp::ClipSide> clip_sides_;  // per octree node, empty: no clip
   std::uint64_t clip_serial_ = 0;         // set_clip calls that changed it
   ReuseKey reuse_key(const tsp::Camera& camera, const RenderSettings& s) const;
   BrickPages pages_;             // rays compositing

@@ -8,11 +8,10 @@
 #include <optional>
 #include <mutex>
 #include <string>
-#include <thread>
 #include <utility>
 
 #include "tsp/build/brick_stats.h"
-#include "tsp/build/receiver_thread.h"
+#include "tsp/core/background_worker.h"
 #include "tsp/core/error.h"
 #include "tsp/core/parallel_for.h"
 #include "tsp/store/tsp_layout.h"
@@ -100,68 +99,54 @@ void add_histogram(std::span<const float> series, std::span<const float> mask, c
 // chunks with filters element by element (measured on the 256³ shock, 2 ranks: 14 ms a round
 // of one brick, 444 ms of two). Workers hand over finished bricks in any order and wait while
 // they are more than `ahead` bricks past the one being written, so at most ahead + 1 bricks
-// wait here.
+// wait here. The writes are one job on a BackgroundWorker.
 class OrderedWrites {
  public:
-  /// Writes rounds 0 … rounds − 1 with writer on a new thread; this rank has `mine` bricks.
+  /// Writes rounds 0 … rounds − 1 with writer on the worker's thread; this rank has `mine`
+  /// bricks. Throws std::system_error when the thread cannot start.
   OrderedWrites(TspWriter& writer, std::int64_t rounds, std::int64_t mine, int first, int stride,
                 std::int64_t ahead)
       : writer_(writer), rounds_(rounds), mine_(mine), first_(first), stride_(stride),
-        ahead_(ahead) {
-    thread_ = std::thread([this] { run(); });
+        ahead_(ahead), worker_([this] {
+          std::lock_guard lock(mutex_);  // put() tests failed() under it: no lost wake-up
+          cv_.notify_all();
+        }) {
+    worker_.submit([this](std::stop_token stop) { run(stop); });
   }
-  /// Stops waiting (after a failure elsewhere) and joins the thread.
-  ~OrderedWrites() {
-    stop();
-    if (thread_.joinable()) thread_.join();
-  }
+  /// Stops waiting (after a failure elsewhere) and joins the thread (the worker's destructor).
+  ~OrderedWrites() = default;
   /// Hands over this rank's k-th brick; blocks while k is too far ahead of the writes. Rethrows
-  /// the writes' exception when they failed.
+  /// the writes' exception when they failed. Thread-safe (the pass's workers call it).
   void put(std::int64_t k, std::vector<std::uint16_t> codes, std::vector<std::uint8_t> inside) {
     std::unique_lock lock(mutex_);
-    cv_.wait(lock, [&] { return k <= next_ + ahead_ || error_ || stopped_; });
-    if (error_) std::rethrow_exception(error_);
+    cv_.wait(lock, worker_.stop_token(),
+             [&] { return k <= next_ + ahead_ || worker_.failed(); });
+    worker_.rethrow_if_failed();
     ready_[k] = {std::move(codes), std::move(inside)};
     cv_.notify_all();
   }
-  /// Waits for every round to be written; rethrows the writes' exception.
-  void finish() {
-    thread_.join();
-    if (error_) std::rethrow_exception(error_);
-  }
-  /// Makes the thread stop at the next brick it waits for. Never throws.
-  void stop() {
-    std::lock_guard lock(mutex_);
-    stopped_ = true;
-    cv_.notify_all();
-  }
+  /// Waits for every round to be written; rethrows the writes' exception. The owner's thread.
+  void finish() { worker_.wait(); }
 
  private:
-  void run() {
-    try {
-      for (std::int64_t k = 0; k < rounds_; ++k) {
-        if (k >= mine_) {
-          writer_.write_no_brick();
-        } else {
-          std::pair<std::vector<std::uint16_t>, std::vector<std::uint8_t>> b;
-          {
-            std::unique_lock lock(mutex_);
-            cv_.wait(lock, [&] { return ready_.count(k) || stopped_; });
-            if (!ready_.count(k)) return;
-            b = std::move(ready_[k]);
-            ready_.erase(k);
-          }
-          const int brick = int(first_ + k * stride_);
-          writer_.write_brick_series(brick, b.first);
-          if (!b.second.empty()) writer_.write_inside_series(brick, b.second);
+  void run(const std::stop_token& stop) {
+    for (std::int64_t k = 0; k < rounds_; ++k) {
+      if (k >= mine_) {
+        writer_.write_no_brick();
+      } else {
+        std::pair<std::vector<std::uint16_t>, std::vector<std::uint8_t>> b;
+        {
+          std::unique_lock lock(mutex_);
+          if (!cv_.wait(lock, stop, [&] { return ready_.count(k) != 0; })) return;  // stopped
+          b = std::move(ready_[k]);
+          ready_.erase(k);
         }
-        std::lock_guard lock(mutex_);
-        next_ = k + 1;
-        cv_.notify_all();
+        const int brick = int(first_ + k * stride_);
+        writer_.write_brick_series(brick, b.first);
+        if (!b.second.empty()) writer_.write_inside_series(brick, b.second);
       }
-    } catch (...) {
       std::lock_guard lock(mutex_);
-      error_ = std::current_exception();
+      next_ = k + 1;
       cv_.notify_all();
     }
   }
@@ -170,12 +155,10 @@ class OrderedWrites {
   int first_, stride_;
   std::int64_t ahead_;
   std::mutex mutex_;
-  std::condition_variable cv_;
+  std::condition_variable_any cv_;  // a brick handed over or written, a failure, or stop
   std::map<std::int64_t, std::pair<std::vector<std::uint16_t>, std::vector<std::uint8_t>>> ready_;
   std::int64_t next_ = 0;  // the brick being written
-  bool stopped_ = false;
-  std::exception_ptr error_;
-  std::thread thread_;
+  BackgroundWorker worker_;  // last: its thread ends before the members above go
 };
 
 // Pass 2: brick-major over the scratch file, on `threads` workers.
@@ -371,9 +354,12 @@ struct BrickPass {
                      std::int64_t(workers.size()));
       ordered = &*writes;
     }
-    ReceiverThread receiver(rank == 0 ? stored - mine : 0, [&](std::int64_t) {
-      absorb(part->receive(), progress, total_bytes);
-    });
+    // Abandoned, not joined, when this process fails: it may wait for bricks never sent.
+    BackgroundWorker receiver({}, WorkerExit::abandon);
+    if (rank == 0 && stored > mine)
+      receiver.submit([&, count = stored - mine](std::stop_token) {
+        for (std::int64_t k = 0; k < count; ++k) absorb(part->receive(), progress, total_bytes);
+      });
     parallel_for(mine, 1, threads, [&](int w, std::int64_t first, std::int64_t last) {
       for (auto k = first; k < last; ++k) {
         const std::int64_t b = rank + k * ranks;
@@ -384,7 +370,7 @@ struct BrickPass {
       }
     });
     if (writes) writes->finish();
-    receiver.finish();
+    receiver.wait();
     for (const Scratch& w : workers)
       for (int i = 0; i < kHistogramBins; ++i) histogram[i] += w.hist[i];
     if (part) part->sum_to_writer(histogram);

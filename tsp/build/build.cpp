@@ -11,9 +11,9 @@
 
 #include "tsp/build/brick_pass.h"
 #include "tsp/build/level_filter.h"
-#include "tsp/build/receiver_thread.h"
 #include "tsp/build/scratch_file.h"
 #include "tsp/build/slab_prefetcher.h"
+#include "tsp/core/background_worker.h"
 #include "tsp/core/error.h"
 #include "tsp/core/file_check.h"
 #include "tsp/core/parallel_for.h"
@@ -109,16 +109,22 @@ InputScan scatter_steps(VolumeSource& source, const Octree& octree, ScratchFile&
   const std::int64_t expected = part ? part->share(n + nl) * (steps - part->share(steps)) *
                                            (stencil.leaves ? 2 : 1)
                                      : 0;
-  detail::ReceiverThread receiver(expected, [&](std::int64_t) {
-    const StepSamples m = part->receive_samples();
-    if (m.brick < 0 || m.brick >= n + nl || !part->owns(m.brick) || m.step < 0 ||
-        m.step >= steps || part->reads(m.step) || (m.stencil && !stencil.leaves) ||
-        std::int64_t(m.samples.size()) != octree.lattice(m.brick).count())
-      throw Error("build: a rank sent samples of brick " + std::to_string(m.brick) + " at step " +
-                  std::to_string(m.step) + " that rank " + std::to_string(rank) +
-                  " does not expect (do all ranks read the same input?)");
-    store(m.brick, m.step, m.stencil, m.samples, m.residual);
-  });
+  // Received on a thread of its own while this process reads; abandoned, not joined, when this
+  // process fails (it may wait for samples never sent: tspplay-mpi then aborts the job).
+  BackgroundWorker receiver({}, WorkerExit::abandon);
+  if (expected > 0)
+    receiver.submit([&](std::stop_token) {
+      for (std::int64_t k = 0; k < expected; ++k) {
+        const StepSamples m = part->receive_samples();
+        if (m.brick < 0 || m.brick >= n + nl || !part->owns(m.brick) || m.step < 0 ||
+            m.step >= steps || part->reads(m.step) || (m.stencil && !stencil.leaves) ||
+            std::int64_t(m.samples.size()) != octree.lattice(m.brick).count())
+          throw Error("build: a rank sent samples of brick " + std::to_string(m.brick) +
+                      " at step " + std::to_string(m.step) + " that rank " +
+                      std::to_string(rank) + " does not expect (do all ranks read the same input?)");
+        store(m.brick, m.step, m.stencil, m.samples, m.residual);
+      }
+    });
   InputScan scan;
   {
     // The reader thread also scans each slab, which balances the threads of this pass.
@@ -229,7 +235,7 @@ InputScan scatter_steps(VolumeSource& source, const Octree& octree, ScratchFile&
       assert(std::all_of(values.begin(), values.end(), [](auto& s) { return s.done(); }));
     }
   }
-  receiver.finish();
+  receiver.wait();
   if (part) part->combine_scan(scan.lo, scan.hi, scan.nonfinite);
   return scan;
 }

@@ -13,18 +13,13 @@ SlabPrefetcher::SlabPrefetcher(VolumeSource& source, int slab_planes, SlabHook o
       on_read_(std::move(on_read)),
       first_(first),
       stride_(stride),
-      whole_(source.has_stencil() || !source.reads_slabs()) {
+      whole_(source.has_stencil() || !source.reads_slabs()),
+      worker_([this] {
+        std::lock_guard lock(mutex_);  // next() tests failed() under it: no lost wake-up
+        cv_.notify_all();
+      }) {
   assert(slab_planes >= 1 && first >= 0 && stride >= 1);
-  thread_ = std::thread([this] { run(); });
-}
-
-SlabPrefetcher::~SlabPrefetcher() {
-  {
-    std::lock_guard lock(mutex_);
-    cancel_ = true;
-  }
-  cv_.notify_all();
-  thread_.join();
+  worker_.submit([this](std::stop_token stop) { run(std::move(stop)); });
 }
 
 // A buffer no slab holds any more (only this list does), or a new one.
@@ -40,7 +35,7 @@ std::shared_ptr<SlabBuffer> SlabPrefetcher::free_buffer() {
   return buffers_.back();
 }
 
-void SlabPrefetcher::run() {
+void SlabPrefetcher::run(std::stop_token stop) {
   const Dims d = source_.dims();
   const std::int64_t plane = std::int64_t(d.x) * d.y;
   const int unit = whole_ ? d.z : slab_planes_;
@@ -48,35 +43,28 @@ void SlabPrefetcher::run() {
     for (int z0 = 0; z0 < d.z; z0 += unit) {
       {
         std::unique_lock lock(mutex_);
-        cv_.wait(lock, [&] { return cancel_ || ready_.empty(); });
-        if (cancel_) return;
+        if (!cv_.wait(lock, stop, [&] { return ready_.empty(); })) return;  // stopped
       }
       const int z1 = std::min(d.z, z0 + unit);
       std::vector<Slab> slabs;
-      try {
-        std::shared_ptr<SlabBuffer> b = free_buffer();
-        b->z0 = z0;
-        b->values.resize(std::size_t((z1 - z0) * plane));
-        if (source_.has_stencil()) {
-          inside_.resize(b->values.size());
-          source_.read_step_inside(t, b->values, inside_);
-          b->mask.resize(inside_.size());
-          std::transform(inside_.begin(), inside_.end(), b->mask.begin(),
-                         [](std::uint8_t i) { return i ? 1.f : 0.f; });
-        } else if (whole_) {
-          source_.read_step(t, b->values);
-        } else {
-          source_.read_slab(t, z0, z1, b->values);
-        }
-        if (on_read_) on_read_(Slab{t, z0, z1, b, plane});
-        for (int s = z0; s < z1; s += slab_planes_)
-          slabs.push_back(Slab{t, s, std::min(z1, s + slab_planes_), b, plane});
-      } catch (...) {
-        std::lock_guard lock(mutex_);
-        error_ = std::current_exception();
-        cv_.notify_all();
-        return;
+      // An exception here ends the job; the worker keeps it for next().
+      std::shared_ptr<SlabBuffer> b = free_buffer();
+      b->z0 = z0;
+      b->values.resize(std::size_t((z1 - z0) * plane));
+      if (source_.has_stencil()) {
+        inside_.resize(b->values.size());
+        source_.read_step_inside(t, b->values, inside_);
+        b->mask.resize(inside_.size());
+        std::transform(inside_.begin(), inside_.end(), b->mask.begin(),
+                       [](std::uint8_t i) { return i ? 1.f : 0.f; });
+      } else if (whole_) {
+        source_.read_step(t, b->values);
+      } else {
+        source_.read_slab(t, z0, z1, b->values);
       }
+      if (on_read_) on_read_(Slab{t, z0, z1, b, plane});
+      for (int s = z0; s < z1; s += slab_planes_)
+        slabs.push_back(Slab{t, s, std::min(z1, s + slab_planes_), b, plane});
       {
         std::lock_guard lock(mutex_);
         ready_.insert(ready_.end(), slabs.begin(), slabs.end());
@@ -87,8 +75,8 @@ void SlabPrefetcher::run() {
 
 Slab SlabPrefetcher::next() {
   std::unique_lock lock(mutex_);
-  cv_.wait(lock, [&] { return !ready_.empty() || error_; });
-  if (ready_.empty()) std::rethrow_exception(error_);
+  cv_.wait(lock, [&] { return !ready_.empty() || worker_.failed(); });
+  if (ready_.empty()) worker_.rethrow_if_failed();
   Slab s = std::move(ready_.front());
   ready_.pop_front();
   if (ready_.empty()) cv_.notify_all();

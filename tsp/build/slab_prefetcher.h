@@ -6,13 +6,13 @@
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
-#include <exception>
 #include <functional>
 #include <memory>
 #include <mutex>
-#include <thread>
+#include <stop_token>
 #include <vector>
 
+#include "tsp/core/background_worker.h"
 #include "tsp/source/volume_source.h"
 
 namespace tsp {
@@ -38,19 +38,20 @@ struct Slab {
 };
 
 /// Double-buffered slab reader: slabs of slab_planes planes (the last of a step may be thinner)
-/// of steps first, first + stride, …, in step then z order. read_step / read_slab are called only
-/// from the prefetch thread. Not thread-safe: one consumer thread calls next().
+/// of steps first, first + stride, …, in step then z order, read by one job on a BackgroundWorker.
+/// read_step / read_slab are called only from the worker's thread. Not thread-safe: one consumer
+/// thread calls next().
 class SlabPrefetcher {
  public:
   /// Called on the prefetch thread with each unit read (a slab, or a whole step as one slab), in
   /// order.
   using SlabHook = std::function<void(const Slab&)>;
-  /// Starts reading on a new thread, running on_read (may be empty) on each unit; errors of
-  /// either are rethrown by next(). Never throws but std::system_error.
+  /// Starts reading on the worker's thread, running on_read (may be empty) on each unit; errors
+  /// of either are rethrown by next(). Never throws but std::system_error.
   SlabPrefetcher(VolumeSource& source, int slab_planes, SlabHook on_read = {}, int first = 0,
                  int stride = 1);
-  /// Stops the thread (after the read in progress) and joins it.
-  ~SlabPrefetcher();
+  /// Stops the reads (after the one in progress) and joins the worker's thread.
+  ~SlabPrefetcher() = default;
   SlabPrefetcher(const SlabPrefetcher&) = delete;
   SlabPrefetcher& operator=(const SlabPrefetcher&) = delete;
   /// Waits for the next slab in order; rethrows the source's or the hook's exception.
@@ -59,7 +60,7 @@ class SlabPrefetcher {
   bool whole_steps() const { return whole_; }
 
  private:
-  void run();
+  void run(std::stop_token stop);
   std::shared_ptr<SlabBuffer> free_buffer();
   VolumeSource& source_;
   int slab_planes_;
@@ -69,11 +70,9 @@ class SlabPrefetcher {
   std::vector<std::shared_ptr<SlabBuffer>> buffers_;  // every buffer made; free when only here
   std::vector<std::uint8_t> inside_;  // a stencil step as read, before it becomes a mask
   std::mutex mutex_;
-  std::condition_variable cv_;
+  std::condition_variable_any cv_;  // a slab is ready or taken, the reads failed, or stop
   std::deque<Slab> ready_;
-  bool cancel_ = false;
-  std::exception_ptr error_;
-  std::thread thread_;
+  BackgroundWorker worker_;  // last: its thread ends before the members above go
 };
 
 }  // namespace tsp

@@ -300,12 +300,11 @@ ClipSide ClipRegion::classify(const Aabb& box, double margin) const {
   return combine(op_, sides);
 }
 
-std::vector<std::uint8_t> ClipRegion::classify_nodes(const Octree& octree, double margin) const {
+std::vector<ClipSide> ClipRegion::classify_nodes(const Octree& octree, double margin) const {
   if (probes_.empty()) return {};
-  std::vector<std::uint8_t> sides(std::size_t(octree.size()));
+  std::vector<ClipSide> sides(std::size_t(octree.size()));
   for (int id = 0; id < octree.size(); ++id)
-    sides[std::size_t(id)] =
-        std::uint8_t(classify(geometric_box(octree.node(id).box, octree.dims()), margin));
+    sides[std::size_t(id)] = classify(geometric_box(octree.node(id).box, octree.dims()), margin);
   return sides;
 }
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "tsp/core/geometry.h"
+#include "tsp/tree/marks.h"
 #include "tsp/tree/octree.h"
 
 namespace tsp {
@@ -44,9 +45,6 @@ const char* to_string(ProbeOp op);
 /// d's share of it. Never throws.
 void move_probe(Probe& p, const std::array<double, 3>& d);
 
-/// Where a box lies with respect to the clip solid.
-enum class ClipSide : std::uint8_t { kept = 0, removed = 1, straddles = 2 };
-
 /// The clip solid: probes in physical coordinates combined by op, over a grid whose voxel (i, j,
 /// k) lies at origin + (i, j, k)·spacing. Empty (no probe): everything is kept.
 class ClipRegion {
@@ -66,14 +64,15 @@ class ClipRegion {
   double distance(const std::array<double, 3>& p) const;
   /// True when sample-coordinate point q stays (distance ≤ 0).
   bool kept(const std::array<double, 3>& q) const;
-  /// Where the sample-coordinate box, grown by margin sample units on every side, lies: wholly
+  /// Where the sample-coordinate box, grown by margin sample units on every side, lies (a
+  /// ClipSide, tsp/tree/marks.h): wholly
   /// kept, wholly removed, or across the surface (conservative: a box reported across may lie
   /// on one side). Never throws.
   ClipSide classify(const Aabb& box, double margin = 0) const;
   /// Per octree node, its ClipSide with a margin (what the traversal and the LOD cut read): the
   /// renderer uses one voxel, so the surface passes through textured bricks only, never along a
   /// face between a kept and a removed one. Empty when not active.
-  std::vector<std::uint8_t> classify_nodes(const Octree& octree, double margin = 0) const;
+  std::vector<ClipSide> classify_nodes(const Octree& octree, double margin = 0) const;
   /// A box (sample coordinates) holding every kept point of the sample-coordinate box domain —
   /// exact for planes, spheres and boxes alone, conservative for their combinations — or an
   /// empty one (lo > hi) when nothing of domain is kept; domain itself when not active. Never

@@ -69,20 +69,20 @@ std::vector<int> leaf_bricks(const Octree& octree, int id, const ViewOrder& view
 }
 
 std::vector<int> node_bricks(const Octree& octree, int id, const ViewOrder& view, LodStops stops) {
-  if (!octree.node(id).is_leaf() && !stops.empty() && stops[std::size_t(id)])
+  if (!octree.node(id).is_leaf() && !stops.empty() && stops[std::size_t(id)] != LodStop::none)
     return {octree.node_brick(id)};
   return leaf_bricks(octree, id, view);
 }
 
 Shading emitted_shading(const TspTree& tree, const Emitted& e, const NodeClassInfo& info,
                         const Tolerances& tol, LodStops stops, bool clip_surface) {
-  if (e.clip == 1) return Shading::none;
+  if (e.clip == ClipSide::removed) return Shading::none;
   Shading s = node_shading(tree, tree.id(e.octree_id, e.time_id), info, tol);
   // A splat (tsp/lod/splat_cut.h): its mean colour and opacity, never a texture.
-  const bool splat = !stops.empty() && stops[std::size_t(e.octree_id)] == kSplatStop;
-  if (s == Shading::textured && e.clip != 2 && splat) s = Shading::flat;
+  const bool splat = !stops.empty() && stops[std::size_t(e.octree_id)] == LodStop::splat;
+  if (s == Shading::textured && e.clip != ClipSide::straddles && splat) s = Shading::flat;
   // Across the clip surface: clipped per sample, which a flat node (drawn whole) cannot be.
-  if (e.clip == 2 && (s == Shading::flat || (clip_surface && s == Shading::none)))
+  if (e.clip == ClipSide::straddles && (s == Shading::flat || (clip_surface && s == Shading::none)))
     s = Shading::textured;
   return s;
 }
@@ -132,7 +132,7 @@ FramePlan plan_frame(const TspTree& tree, int step, std::span<const Emitted> emi
     p.voxels = octree.node(e.octree_id).box.count();
     const Shading shading =
         emitted_shading(tree, e, info(tree.id(e.octree_id, e.time_id)), tol, stops, clip_surface);
-    if (e.clip == 1) {
+    if (e.clip == ClipSide::removed) {
       p.cls = DrawClass::clipped;
     } else if (shading == Shading::none) {
       p.cls = DrawClass::not_rendered;

@@ -62,7 +62,7 @@ Shading shading_of(const NodeClassInfo& info, const Tolerances& tol);
 /// drawn flat (its box would cover the outside): textured instead. Never throws.
 Shading node_shading(const TspTree& tree, int id, const NodeClassInfo& info, const Tolerances& tol);
 /// How emitted node e is drawn (info: its TSP node's class): none when clipped away; else
-/// node_shading, except that a splat (kSplatStop in stops) is drawn flat, never textured, and a
+/// node_shading, except that a splat (LodStop::splat in stops) is drawn flat, never textured, and a
 /// node across the clip surface is textured where it would be flat — or, with clip_surface, not
 /// drawn — since only samples can be clipped. The one rule for planning, uploads and reachability.
 /// Never throws.

@@ -67,7 +67,7 @@ void LodController::evaluate(const Camera& camera, int t, const TransferFunction
       // Culled, transparent or uniform at this step (drawn flat or skipped at any level).
       const bool empty = p.culled || s.empty() || slopes.transparent(s.min, s.max) || s.min == s.max;
       // Clipped away by a probe: drawn nowhere, at no cost.
-      const bool clipped = !clip.empty() && clip[std::size_t(id)] == 1;
+      const bool clipped = !clip.empty() && clip[std::size_t(id)] == ClipSide::removed;
       leaf_sum[std::size_t(id)] =
           clipped ? 0.0 : p.pixel_area * p.depth_voxels / spacing * (empty ? kEmptyCostShare : 1.0);
       area_sum[std::size_t(id)] = p.pixel_area;
@@ -92,7 +92,7 @@ void LodController::evaluate(const Camera& camera, int t, const TransferFunction
     // equal frame time (docs/results.md).
     const double attention =
         options_.focus ? focus_weight(c, focus, diagonal) * view_weight(p, camera) : 1.0;
-    error_[std::size_t(id)] = !clip.empty() && clip[std::size_t(id)] == 1
+    error_[std::size_t(id)] = !clip.empty() && clip[std::size_t(id)] == ClipSide::removed
                                   ? 0.0  // clipped away: no level shows anything of it
                                   : lod_error(tree_, id, t, p, slopes, attention * visibility);
   }

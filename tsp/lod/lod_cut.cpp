@@ -10,8 +10,8 @@ std::int64_t brick_slot_bytes(const Octree& octree) {
 }
 
 LodCut::LodCut(const Octree& octree)
-    : octree_(&octree), in_(std::size_t(octree.size()), 0), size_(1) {
-  in_[0] = 1;
+    : octree_(&octree), in_(std::size_t(octree.size()), LodStop::none), size_(1) {
+  in_[0] = LodStop::cut;
 }
 
 LodCut LodCut::at_level(const Octree& octree, int k) {
@@ -27,7 +27,7 @@ std::vector<int> LodCut::nodes() const {
   std::vector<int> out;
   out.reserve(std::size_t(size_));
   for (int id = 0; id < int(in_.size()); ++id)
-    if (in_[std::size_t(id)]) out.push_back(id);
+    if (contains(id)) out.push_back(id);
   return out;
 }
 
@@ -43,11 +43,11 @@ bool LodCut::can_merge(int id) const {
 
 void LodCut::split(int id) {
   assert(can_split(id));
-  in_[std::size_t(id)] = 0;
+  in_[std::size_t(id)] = LodStop::none;
   --size_;
   for (int c : octree_->node(id).children)
     if (c >= 0) {
-      in_[std::size_t(c)] = 1;
+      in_[std::size_t(c)] = LodStop::cut;
       ++size_;
     }
 }
@@ -56,17 +56,17 @@ void LodCut::merge(int id) {
   assert(can_merge(id));
   for (int c : octree_->node(id).children)
     if (c >= 0) {
-      in_[std::size_t(c)] = 0;
+      in_[std::size_t(c)] = LodStop::none;
       --size_;
     }
-  in_[std::size_t(id)] = 1;
+  in_[std::size_t(id)] = LodStop::cut;
   ++size_;
 }
 
 std::vector<int> LodCut::nodes_per_level() const {
   std::vector<int> n(std::size_t(octree_->max_lod_level() + 1), 0);
   for (int id = 0; id < int(in_.size()); ++id)
-    if (in_[std::size_t(id)]) ++n[std::size_t(octree_->lod_level(id))];
+    if (contains(id)) ++n[std::size_t(octree_->lod_level(id))];
   return n;
 }
 

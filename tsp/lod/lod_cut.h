@@ -9,6 +9,7 @@
 #include <span>
 #include <vector>
 
+#include "tsp/tree/marks.h"
 #include "tsp/tree/octree.h"
 
 namespace tsp {
@@ -26,9 +27,9 @@ class LodCut {
   /// parent's level is above k (the root when k ≥ its level). Asserts k ≥ 0.
   static LodCut at_level(const Octree& octree, int k);
   /// True when node id is in the cut.
-  bool contains(int id) const { return in_[std::size_t(id)] != 0; }
-  /// 1 per octree node in the cut (the traversal's LodStops).
-  std::span<const std::uint8_t> stops() const { return in_; }
+  bool contains(int id) const { return in_[std::size_t(id)] != LodStop::none; }
+  /// The traversal's LodStops: LodStop::cut on the cut's nodes, none elsewhere.
+  LodStops stops() const { return in_; }
   /// The nodes in the cut, in node order.
   std::vector<int> nodes() const;
   /// Number of nodes in the cut.
@@ -51,7 +52,7 @@ class LodCut {
 
  private:
   const Octree* octree_;
-  std::vector<std::uint8_t> in_;
+  std::vector<LodStop> in_;  // per octree node: cut or none
   int size_ = 0;
 };
 

@@ -20,14 +20,14 @@ double extent_of(const NodeProjection& p) {
 // cut splits exactly the nodes whose extent reaches it.
 SplatCut greedy_cut(const Octree& octree, std::span<const NodeProjection> proj, double min_extent,
                     double max_area, int max_nodes, ClipSides clip) {
-  const auto removed = [&](int id) { return !clip.empty() && clip[std::size_t(id)] == 1; };
+  const auto removed = [&](int id) { return !clip.empty() && clip[std::size_t(id)] == ClipSide::removed; };
   const auto area = [&](int id) {
     const NodeProjection& p = proj[std::size_t(id)];
     return p.culled || removed(id) ? 0.0 : p.pixel_area;
   };
   SplatCut cut;
-  cut.stops.assign(std::size_t(octree.size()), 0);
-  cut.stops[0] = kSplatStop;
+  cut.stops.assign(std::size_t(octree.size()), LodStop::none);
+  cut.stops[0] = LodStop::splat;
   cut.size = 1;
   cut.pixel_area = area(0);
   // Splittable cut nodes, largest extent first (ties: the smaller id, so the result is fixed).
@@ -53,10 +53,10 @@ SplatCut greedy_cut(const Octree& octree, std::span<const NodeProjection> proj, 
       }
     if (after > max_area || nodes > max_nodes) break;
     queue.pop();
-    cut.stops[std::size_t(id)] = 0;
+    cut.stops[std::size_t(id)] = LodStop::none;
     for (int c : octree.node(id).children)
       if (c >= 0) {
-        cut.stops[std::size_t(c)] = kSplatStop;
+        cut.stops[std::size_t(c)] = LodStop::splat;
         offer(c);
       }
     cut.size = nodes;

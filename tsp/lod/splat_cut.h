@@ -17,11 +17,11 @@
 
 namespace tsp {
 
-/// One splat cut: LodStops with kSplatStop on its nodes, and what it costs.
+/// One splat cut: LodStops with LodStop::splat on its nodes, and what it costs.
 struct SplatCut {
-  std::vector<std::uint8_t> stops;  ///< one entry per octree node (kSplatStop on the cut)
-  int size = 0;                     ///< nodes in the cut
-  double pixel_area = 0;            ///< Σ of the cut nodes' screen rectangles (culled: 0)
+  std::vector<LodStop> stops;  ///< one entry per octree node (LodStop::splat on the cut)
+  int size = 0;                ///< nodes in the cut
+  double pixel_area = 0;       ///< Σ of the cut nodes' screen rectangles (culled: 0)
   /// The minimum splat size it amounts to: half the largest projected extent among its nodes
   /// that could still split (0 when none can).
   double min_px = 0;
@@ -33,7 +33,7 @@ double projected_extent(const Octree& octree, const Camera& camera, int id);
 
 /// The splat cut for a minimum splat size of min_px pixels: from the root down, a node is split
 /// when it has children and its projected extent is at least 2·min_px (its children then
-/// project to about min_px or more); nodes clip marks removed (ClipSides 1) are never split.
+/// project to about min_px or more); nodes clip marks removed (ClipSide::removed) are never split.
 /// min_px ≤ 0: every leaf. Covers the volume exactly once. Never throws.
 SplatCut splat_cut(const Octree& octree, const Camera& camera, double min_px, ClipSides clip = {});
 

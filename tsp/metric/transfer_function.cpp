@@ -178,9 +178,7 @@ ChangedEntries diff_entries(const TransferFunction& before, const TransferFuncti
 }
 
 float corrected_opacity(float alpha, double spacing) {
-  assert(spacing > 0);
-  if (alpha >= 1) return 1;
-  return float(1.0 - std::pow(1.0 - double(alpha), spacing));
+  return float(1.0 - std::pow(1.0 - std::clamp(double(alpha), 0.0, 1.0), spacing));
 }
 
 std::vector<Rgba> opacity_corrected(const TransferFunction& tf, double spacing) {

@@ -105,8 +105,10 @@ class TransferFunction {
 /// Entries that differ between two tables (every entry when domains or sizes differ).
 ChangedEntries diff_entries(const TransferFunction& before, const TransferFunction& after);
 
-/// Opacity corrected for a sample spacing `spacing` voxels (Δ/Δ₀ with Δ₀ = one voxel):
-/// α' = 1 − (1 − α)^spacing. Asserts spacing > 0.
+/// Opacity corrected for a sample spacing of `spacing` voxels (Δ/Δ₀ with Δ₀ = one voxel) when
+/// the TF's opacity is per voxel (spec §9): α' = 1 − (1 − α)^spacing with α clamped to [0, 1]
+/// (NaN stays NaN). The one correction the renderer uploads (src/render) and the metrics use.
+/// Expects spacing > 0. Never throws.
 float corrected_opacity(float alpha, double spacing);
 
 /// The table with every α corrected for `spacing` voxels between samples (colours unchanged).

@@ -78,15 +78,15 @@ class Walker {
         transparent_(transparent) {}
 
   void visit(int o) {
-    const std::uint8_t side = clip_.empty() ? kKept : clip_[std::size_t(o)];
-    if (side == kRemoved) {  // clipped away: nothing of it is drawn
+    const ClipSide side = clip_.empty() ? ClipSide::kept : clip_[std::size_t(o)];
+    if (side == ClipSide::removed) {  // clipped away: nothing of it is drawn
       emit(o, tree_.time().leaf_of(t_), side);
       return;
     }
     const bool leaf = tree_.octree().node(o).is_leaf();
-    const bool stop = leaf || (!stops_.empty() && stops_[std::size_t(o)] != 0);
+    const bool stop = leaf || (!stops_.empty() && stops_[std::size_t(o)] != LodStop::none);
     // Across the clip surface: drawn only per sample, so never whole above a leaf or cut node.
-    int tau = side == kAcross && !stop ? kFailed : coherent_time_node(o, leaf);
+    int tau = side == ClipSide::straddles && !stop ? kFailed : coherent_time_node(o, leaf);
     if (tau == kFailed && stop && !leaf) tau = coherent_time_node(o, true);
     // Our rule: a coherent node holding a transparent child is drawn as its children, so the
     // transparent part is skipped as at zero tolerance instead of drawn in the node's mean.
@@ -127,11 +127,10 @@ class Walker {
     return false;
   }
 
-  void emit(int o, int tau, std::uint8_t side) {
+  void emit(int o, int tau, ClipSide side) {
     out_.push_back(Emitted{o, tau, tree_.time().span(tau), side});
   }
 
-  static constexpr std::uint8_t kKept = 0, kRemoved = 1, kAcross = 2;
   const TspTree& tree_;
   int t_;
   const Tolerances& tol_;

@@ -6,6 +6,7 @@
 #include <span>
 #include <vector>
 
+#include "tsp/tree/marks.h"
 #include "tsp/tree/tsp_tree.h"
 
 namespace tsp {
@@ -33,9 +34,9 @@ struct Emitted {
   int octree_id = -1;
   int time_id = -1;
   Span span;
-  /// With clip sides: 0 kept whole, 1 clipped away (drawn nowhere), 2 across the clip surface
-  /// (a leaf or LOD cut node; drawn textured and clipped per sample).
-  std::uint8_t clip = 0;
+  /// With clip sides: kept whole, removed (drawn nowhere), or straddles the clip surface (a
+  /// leaf or LOD cut node; drawn textured and clipped per sample).
+  ClipSide clip = ClipSide::kept;
   bool operator==(const Emitted&) const = default;
 };
 
@@ -69,30 +70,17 @@ struct ChildOrder {
 /// f = view.farthest_octant(octree, id), absent ones skipped. Empty for a leaf.
 ChildOrder back_to_front_children(const Octree& octree, int id, const ViewOrder& view);
 
-/// Per octree node, non-zero where the spatial descent stops (the nodes of an LOD cut, tsp/lod):
-/// kCutStop draws the node's brick, kSplatStop draws it as one splat of its mean colour and
-/// opacity (tsp/lod/splat_cut.h); empty: stop at the leaves only.
-using LodStops = std::span<const std::uint8_t>;
-/// LodStops value: the node is in the cut and draws its own (level) brick.
-inline constexpr std::uint8_t kCutStop = 1;
-/// LodStops value: the node is in the cut and is drawn flat, its mean colour and opacity
-/// (a splat), never textured.
-inline constexpr std::uint8_t kSplatStop = 2;
-/// Per octree node, where it lies with respect to a clip solid (tsp/clip's ClipSide: 0 kept,
-/// 1 removed, 2 across); empty: no clipping.
-using ClipSides = std::span<const std::uint8_t>;
-
 /// Per TSP node id, true when the node is transparent under the current TF over its span (the
 /// metric's class). Empty: unknown.
 using TransparentFn = std::function<bool(int tsp_id)>;
 
 /// Traverses the tree for step t and returns the emitted nodes in back-to-front order.
 /// The emitted octree nodes tile the volume exactly once. With stops, a node marked there is
-/// treated as a leaf: emitted with the largest temporally coherent span (or its leaf span) when
+/// treated as a leaf (any LodStop other than none): emitted with the largest temporally coherent span (or its leaf span) when
 /// no coherent span holds it whole. With clip sides, a node clipped away is emitted as such
-/// (clip 1, its time leaf: drawn nowhere, but it tiles the volume like the others), and a node
+/// (ClipSide::removed, its time leaf: drawn nowhere, but it tiles the volume like the others), and a node
 /// across the clip surface is never drawn whole above the leaves or the cut (the descent goes
-/// on; clip 2 at a leaf or cut node). With transparent (issue 9 item 5, our rule), a coherent
+/// on; ClipSide::straddles at a leaf or cut node). With transparent (issue 9 item 5, our rule), a coherent
 /// node above the leaves and the cut that is not transparent itself but has a transparent child
 /// (at the same time node) is not emitted: the descent goes on, so what zero tolerance skips is
 /// never drawn; empty: the paper's rule. Asserts 0 ≤ t < steps, that errors hold tree.size()

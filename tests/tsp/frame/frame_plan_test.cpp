@@ -274,11 +274,11 @@ TEST(FramePlan, SplatStopsAreDrawnFlatWithoutTextures) {
   const Tolerances tol{0, 0.5};  // flat only where the spatial error is exactly 0
   const Octree& o = tree.octree();
   // The root's children are splats (a cut one level down).
-  std::vector<std::uint8_t> stops(std::size_t(o.size()), 0);
+  std::vector<LodStop> stops(std::size_t(o.size()), LodStop::none);
   for (int c : o.node(0).children)
-    if (c >= 0) stops[std::size_t(c)] = kSplatStop;
-  std::vector<std::uint8_t> cut = stops;
-  for (std::uint8_t& s : cut) s = s ? kCutStop : 0;
+    if (c >= 0) stops[std::size_t(c)] = LodStop::splat;
+  std::vector<LodStop> cut = stops;
+  for (LodStop& s : cut) s = s != LodStop::none ? LodStop::cut : LodStop::none;
   int textured_nodes = 0;
   for (int t = 0; t < tree.time().steps(); ++t) {
     TextureCache cache(kUnlimited, CachePolicy::on), cache_cut(kUnlimited, CachePolicy::on);

@@ -218,7 +218,7 @@ TEST(LodController, FallsBackToSplatsWhenEvenTheRootIsTooSlow) {
     if (c.splatting()) {
       EXPECT_EQ(st.splats, [&] {
         int n = 0;
-        for (std::uint8_t s : c.stops()) n += s == kSplatStop;
+        for (LodStop s : c.stops()) n += s == LodStop::splat;
         return n;
       }());
       most_splats = std::max(most_splats, st.splats);
@@ -237,7 +237,7 @@ TEST(LodController, FallsBackToSplatsWhenEvenTheRootIsTooSlow) {
   }
   EXPECT_FALSE(c.splatting());
   EXPECT_GT(c.cut().size(), 1);
-  for (std::uint8_t s : c.stops()) EXPECT_NE(s, kSplatStop);
+  for (LodStop s : c.stops()) EXPECT_NE(s, LodStop::splat);
 }
 
 }  // namespace

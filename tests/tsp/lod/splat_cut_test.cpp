@@ -20,11 +20,11 @@ Camera camera(Dims d, int width = 640, int height = 480) {
 }
 
 // Per leaf brick, how many of itself and its ancestors are in the cut.
-std::vector<int> coverage(const Octree& o, const std::vector<std::uint8_t>& stops) {
+std::vector<int> coverage(const Octree& o, const std::vector<LodStop>& stops) {
   std::vector<int> n(std::size_t(o.brick_count()), 0);
   for (int id = 0; id < o.size(); ++id) {
     if (!o.node(id).is_leaf()) continue;
-    for (int a = id; a >= 0; a = o.node(a).parent) n[std::size_t(o.node(id).brick)] += stops[std::size_t(a)] != 0;
+    for (int a = id; a >= 0; a = o.node(a).parent) n[std::size_t(o.node(id).brick)] += stops[std::size_t(a)] != LodStop::none;
   }
   return n;
 }
@@ -42,14 +42,14 @@ TEST(SplatCut, MatchesItsDefinitionAtEveryMinimumSize) {
     for (int id = 0; id < o.size(); ++id) {
       const double extent = projected_extent(o, cam, id);
       bool ancestor_in_cut = false;
-      for (int a = o.node(id).parent; a >= 0; a = o.node(a).parent) ancestor_in_cut |= cut.stops[std::size_t(a)] != 0;
+      for (int a = o.node(id).parent; a >= 0; a = o.node(a).parent) ancestor_in_cut |= cut.stops[std::size_t(a)] != LodStop::none;
       if (ancestor_in_cut) {
-        EXPECT_EQ(cut.stops[std::size_t(id)], 0);
+        EXPECT_EQ(cut.stops[std::size_t(id)], LodStop::none);
         continue;
       }
       // Reached: in the cut unless split, split exactly when it has children and is large.
       const bool split = !o.node(id).is_leaf() && (min_px <= 0 || extent >= 2 * min_px);
-      EXPECT_EQ(cut.stops[std::size_t(id)], split ? 0 : kSplatStop) << "node " << id;
+      EXPECT_EQ(cut.stops[std::size_t(id)], split ? LodStop::none : LodStop::splat) << "node " << id;
       if (!split) {
         ++size;
         area += project_box(cam, geometric_box(o.node(id).box, o.dims())).pixel_area;
@@ -85,9 +85,9 @@ TEST(SplatCut, WithinABudgetSplitsTheLargestSplatsFirst) {
     double smallest_split = 1e300, largest_open = 0;
     for (int id = 0; id < o.size(); ++id) {
       bool in_or_below = false;  // the node or one of its ancestors is in the cut
-      for (int a = id; a >= 0; a = o.node(a).parent) in_or_below |= cut.stops[std::size_t(a)] != 0;
+      for (int a = id; a >= 0; a = o.node(a).parent) in_or_below |= cut.stops[std::size_t(a)] != LodStop::none;
       if (!in_or_below) smallest_split = std::min(smallest_split, projected_extent(o, cam, id));
-      else if (cut.stops[std::size_t(id)] != 0 && !o.node(id).is_leaf())
+      else if (cut.stops[std::size_t(id)] != LodStop::none && !o.node(id).is_leaf())
         largest_open = std::max(largest_open, projected_extent(o, cam, id));
     }
     if (cut.size > 1) EXPECT_GE(smallest_split, largest_open) << "budget " << share;
@@ -102,11 +102,11 @@ TEST(SplatCut, WithinABudgetSplitsTheLargestSplatsFirst) {
 
 TEST(SplatCut, NodesRemovedByAProbeAreNotSplit) {
   const Octree o({65, 65, 65}, 16);
-  std::vector<std::uint8_t> clip(std::size_t(o.size()), 0);
+  std::vector<ClipSide> clip(std::size_t(o.size()), ClipSide::kept);
   const int removed = o.node(0).children[0];
-  clip[std::size_t(removed)] = 1;  // removed (ClipSide 1): its whole subtree
+  clip[std::size_t(removed)] = ClipSide::removed;  // its whole subtree
   const SplatCut cut = splat_cut(o, camera(o.dims()), 0, clip);
-  EXPECT_EQ(cut.stops[std::size_t(removed)], kSplatStop);
+  EXPECT_EQ(cut.stops[std::size_t(removed)], LodStop::splat);
   for (int k : coverage(o, cut.stops)) EXPECT_EQ(k, 1);
   // The removed node costs no area.
   const SplatCut open = splat_cut(o, camera(o.dims()), 0);

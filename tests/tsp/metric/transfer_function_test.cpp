@@ -119,6 +119,10 @@ TEST(TransferFunction, OpacityCorrection) {
   EXPECT_FLOAT_EQ(corrected_opacity(0.19f, 0.5), 0.1f);  // √0.81 = 0.9
   EXPECT_FLOAT_EQ(corrected_opacity(0.0f, 0.5), 0.0f);
   EXPECT_FLOAT_EQ(corrected_opacity(1.0f, 0.5), 1.0f);
+  // α outside [0, 1] is clamped first (what the renderer uploads).
+  EXPECT_EQ(corrected_opacity(-0.1f, 2.0), 0.0f);
+  EXPECT_EQ(corrected_opacity(1.5f, 2.0), 1.0f);
+  EXPECT_TRUE(std::isnan(corrected_opacity(std::nanf(""), 2.0)));
   TransferFunction tf({0, 1}, 4);
   tf.set_entry(1, {0.2f, 0.4f, 0.6f, 0.5f});
   auto c = opacity_corrected(tf, 2.0);
