@@ -172,14 +172,13 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
   ImGui_ImplOpenGL3_Init("#version 330 core");
   imgui_ = true;
   update_tol_max();
-  start_s_ = last_frame_s_ = glfwGetTime();
+  start_s_ = last_frame_s_ = clock_.seconds();
   initial_camera = camera;
 }
 
 PlayerApp::~PlayerApp() {
   if (open_job_) {  // a File > Open build still running: stop it (it leaves no file)
-    open_job_->cancel = true;
-    open_job_->thread.join();
+    open_job_.reset();
   }
   if (recorder_) {  // the window closed while recording: keep what was recorded
     try {
@@ -342,7 +341,7 @@ void PlayerApp::render_volume() {
       metric_evaluations = lazy_->evaluations() - before;
     }
   }
-  const double now = glfwGetTime();
+  const double now = clock_.seconds();
   tspgl::FrameDriver& d = driver();
   d.set_lod(lod_spec(now));
   tspgl::FrameRequest request;
@@ -415,7 +414,7 @@ void PlayerApp::save_pending_shot() {
 
 void PlayerApp::frame() {
   ctx->poll_events();
-  const double now = glfwGetTime();
+  const double now = clock_.seconds();
   const double dt = now - last_frame_s_;
   last_frame_s_ = now;
   const tsp::Stopwatch t_frame;
@@ -469,7 +468,7 @@ void PlayerApp::frame() {
 
   if (recorder_) record_frame(now);
   if (switch_started_s_ >= 0 && last.complete() && (playing || full_quality())) {
-    field_switch_ms = (glfwGetTime() - switch_started_s_) * 1000;  // the new field's first frame
+    field_switch_ms = (clock_.seconds() - switch_started_s_) * 1000;  // the new field's first frame
     switch_started_s_ = -1;
   }
   if (camera.width > 0 && camera.height > 0) {

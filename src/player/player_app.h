@@ -16,11 +16,14 @@
 #include "gl/context.h"
 #include "jobs/movie.h"
 #include "player/layout.h"
+#include "player/open_job.h"
+#include "player/recorder.h"
 #include "player/player.h"
 #include "player/script.h"
 #include "render/frame_driver.h"
 #include "render/volume_renderer.h"
 #include "tsp/clip/probe.h"
+#include "tsp/core/stopwatch.h"
 #include "tsp/frame/camera.h"
 #include "tsp/lod/lod_controller.h"
 #include "tsp/metric/frame_metric.h"
@@ -57,17 +60,6 @@ inline constexpr int kIdleSplitsPerFrame = 64;
 inline constexpr int kReadyStepsPerFrame = 4;
 /// Frames per second of a recorded movie (frames repeat or drop to keep the wall-clock time).
 inline constexpr int kRecordFps = 25;
-
-/// A build of a File > Open input running on its own thread, with its progress.
-struct OpenJob {
-  std::string input, field;
-  std::thread thread;
-  std::atomic<bool> cancel{false}, done{false};
-  std::atomic<std::int64_t> progress_done{0}, progress_total{0};
-  std::mutex mu;             ///< guards the strings below
-  std::string phase, line;   ///< the build's phase, the last line it said
-  std::string result, error; ///< the .tsp to play, or what went wrong
-};
 
 /// One frame time sample for the HUD.
 struct FrameSample {
@@ -164,6 +156,9 @@ class PlayerApp {
   std::array<float, 2> left_press() const { return left_press_; }
   /// Goes to step t (clamped), pausing playback.
   void go_to(int t);
+  /// Validates and carries out one command (what keys and panels emit, as script lines do);
+  /// errors go to status and stderr.
+  void command(const ScriptAction& a);
   /// Number of steps of the file.
   int steps() const;
   /// The voxel size the view shows: the file's spacing (physical proportions) times the scale.
@@ -270,6 +265,9 @@ class PlayerApp {
   void draw_annotations(const tsp::Camera& cam);
 
   PlayerOptions options_;
+  /// The player's one clock (seconds since it started): frame times, playback, waits, the
+  /// LOD's idle delay, recordings.
+  tsp::Stopwatch clock_;
   /// Key presses and repeats GLFW reported since the last frame, in order (filled by the key
   /// callback during glfwPollEvents on this thread): every tap counts however slow a frame is,
   /// which Dear ImGui 1.86's per-frame key state cannot promise.
@@ -295,7 +293,7 @@ class PlayerApp {
   std::vector<ScriptAction> script_;
   std::size_t script_pos_ = 0;
   int wait_frames_ = 0;
-  double wait_until_s_ = 0;  ///< wait-seconds: the script resumes at this glfwGetTime()
+  double wait_until_s_ = 0;  ///< wait-seconds: the script resumes at this clock_ reading
   std::string pending_shot_;      ///< screenshot to save after the next complete frame
   bool pending_with_ui_ = false;  ///< pending_shot_ includes the UI panels
   bool save_requested_ = false;
@@ -307,7 +305,7 @@ class PlayerApp {
   double start_s_ = 0, last_frame_s_ = 0;
   std::unique_ptr<tspgl::FrameDriver> driver_;  ///< draws renderer's frames; reset with it
   std::unique_ptr<OpenJob> open_job_;
-  std::unique_ptr<tspgl::MovieWriter> recorder_;
+  std::unique_ptr<Recorder> recorder_;
   /// Fields shown before and put aside by switch_field, with their renderer (textures and
   /// bricks) and TF; and the programs every renderer of this window shares.
   struct ParkedField {
@@ -318,7 +316,6 @@ class PlayerApp {
   std::map<std::string, ParkedField> parked_;
   std::shared_ptr<tspgl::SliceCompositor> compositor_;
   double switch_started_s_ = -1;  ///< when the last switch began (−1: reported)
-  double record_start_s_ = 0;
   int ready_next_ = 0;  ///< the next step update_ready checks
   // What changed last (interaction), and the frame's time outside rendering, for the LOD target.
   struct Seen {

@@ -34,7 +34,7 @@ void report(std::string& status, const std::string& what) {
 
 void PlayerApp::open_input(const std::string& input, const std::string& field) {
   if (open_job_) {
-    report(status, "open " + input + ": still opening " + open_job_->input);
+    report(status, "open " + input + ": still opening " + open_job_->input());
     return;
   }
   if (tspgl::is_tsp_file(input)) {
@@ -49,62 +49,29 @@ void PlayerApp::open_input(const std::string& input, const std::string& field) {
     }
     return;
   }
-  // Anything else is built on a thread (the window keeps drawing the current file), then played.
-  auto job = std::make_unique<OpenJob>();
-  job->input = input;
-  job->field = field;
-  OpenJob* j = job.get();
-  const std::string cache_dir = options_.cache_dir;
-  job->thread = std::thread([j, cache_dir] {
-    tspgl::PlayBuildHooks hooks;
-    hooks.say = [j](const std::string& line) {
-      std::printf("%s\n", line.c_str());
-      std::fflush(stdout);
-      std::lock_guard lock(j->mu);
-      j->line = line;
-    };
-    hooks.build = [j](tsp::VolumeSource& source, const std::string& out, tsp::BuildOptions o) {
-      o.progress = [j](const std::string& phase, std::int64_t done, std::int64_t total) {
-        if (j->cancel) throw tsp::Error("cancelled; no file written");
-        {
-          std::lock_guard lock(j->mu);
-          j->phase = phase;
-        }
-        j->progress_done = done;
-        j->progress_total = total;
-      };
-      return tsp::build_tsp_file(source, out, o);
-    };
-    try {
-      const std::string out = tspgl::prepare_play_input(j->input, j->field, cache_dir, hooks);
-      std::lock_guard lock(j->mu);
-      j->result = out;
-    } catch (const std::exception& e) {
-      std::lock_guard lock(j->mu);
-      j->error = e.what();
-    }
-    j->done = true;
-  });
-  open_job_ = std::move(job);
+  // Anything else is built on a worker (the window keeps drawing the current file), then played.
+  open_job_ = std::make_unique<OpenJob>(input, field, options_.cache_dir);
   status = "opening " + input + " ...";
 }
 
 void PlayerApp::cancel_open() {
-  if (open_job_) open_job_->cancel = true;
+  if (open_job_) open_job_->cancel();
 }
 
 void PlayerApp::poll_open() {
-  if (!open_job_ || !open_job_->done) return;
-  open_job_->thread.join();
+  if (!open_job_ || !open_job_->done()) return;
   const std::unique_ptr<OpenJob> job = std::move(open_job_);
-  if (!job->error.empty()) {
-    report(status, "open " + job->input + ": " + job->error);
+  std::string built;
+  try {
+    built = job->result();
+  } catch (const std::exception& e) {
+    report(status, "open " + job->input() + ": " + e.what());
     return;
   }
   try {
-    open_file(job->result);
+    open_file(built);
   } catch (const tsp::Error& e) {
-    report(status, "open " + job->result + ": " + e.what());
+    report(status, "open " + built + ": " + e.what());
   }
 }
 
@@ -168,7 +135,7 @@ void PlayerApp::switch_field(const std::string& name) {
                                               tsp::kDefaultTfEntries,
                                               tsp::parse_tf_range(options_.tf_range));
   }
-  switch_started_s_ = glfwGetTime();
+  switch_started_s_ = clock_.seconds();
   prefetcher.reset();  // it reads into the renderer's brick cache
   const std::string current = field();
   if (renderer) compositor_ = renderer->compositor();
@@ -202,8 +169,8 @@ void PlayerApp::switch_field(const std::string& name) {
 void PlayerApp::start_recording(const std::string& path) {
   if (recorder_) stop_recording();
   try {
-    recorder_ = std::make_unique<tspgl::MovieWriter>(path, layout.view.w, layout.view.h, kRecordFps);
-    record_start_s_ = glfwGetTime();
+    recorder_ = std::make_unique<Recorder>(path, layout.view.w, layout.view.h, kRecordFps,
+                                           clock_.seconds());
     status = "recording " + path;
   } catch (const tsp::Error& e) {
     report(status, std::string("record: ") + e.what());
@@ -211,19 +178,15 @@ void PlayerApp::start_recording(const std::string& path) {
 }
 
 double PlayerApp::recorded_seconds() const {
-  return recorder_ ? double(recorder_->frames()) / kRecordFps : 0.0;
+  return recorder_ ? recorder_->seconds() : 0.0;
 }
 
 void PlayerApp::stop_recording() {
   if (!recorder_) return;
-  const std::unique_ptr<tspgl::MovieWriter> r = std::move(recorder_);
+  const std::unique_ptr<Recorder> r = std::move(recorder_);
   try {
-    r->finish();
-    char line[512];
-    std::snprintf(line, sizeof line, "recorded %s (%lld frames, %.1f s)", r->path().c_str(),
-                  static_cast<long long>(r->frames()), double(r->frames()) / kRecordFps);
-    status = line;
-    std::printf("%s\n", line);
+    status = r->finish(clock_.seconds());
+    std::printf("%s\n", status.c_str());
     std::fflush(stdout);
   } catch (const tsp::Error& e) {
     report(status, std::string("record: ") + e.what());
@@ -241,11 +204,8 @@ void PlayerApp::record_frame(double now_s) {
                           times.empty() ? std::nullopt
                                         : std::optional<double>(times[std::size_t(step)]));
   }
-  const std::int64_t due = std::int64_t(std::floor((now_s - record_start_s_) * kRecordFps)) + 1;
-  const int repeat = int(std::clamp<std::int64_t>(due - recorder_->frames(), 0, kRecordFps * 10));
-  if (repeat == 0) return;
   try {
-    recorder_->write(img, repeat);
+    recorder_->frame(img, now_s);
   } catch (const tsp::UsageError&) {  // the view changed size: keep the movie so far
     stop_recording();
     status += " (stopped: the view changed size)";

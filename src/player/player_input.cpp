@@ -59,47 +59,53 @@ void PlayerApp::trace_tf_canvas(float x, float y, float w, float h) {
   std::fflush(stdout);
 }
 
+void PlayerApp::command(const ScriptAction& a) {
+  try {
+    validate(a);
+    apply(a);
+  } catch (const tsp::Error& e) {
+    status = e.what();
+    std::fprintf(stderr, "tspplay: %s\n", e.what());
+  }
+}
+
 void PlayerApp::apply_key(int key) {
+  using Kind = ScriptAction::Kind;
+  const int last = steps() - 1;
   switch (key) {
     case GLFW_KEY_SPACE:
-      playing = !playing;
+      command(command_of(playing ? Kind::pause : Kind::play));
       break;
     case GLFW_KEY_LEFT:
-      go_to(step - 1);
+      command(step_command(std::max(0, step - 1)));
       break;
     case GLFW_KEY_RIGHT:
-      go_to(step + 1);
+      command(step_command(std::min(last, step + 1)));
       break;
     case GLFW_KEY_HOME:
-      go_to(0);
+      command(step_command(0));
       break;
     case GLFW_KEY_END:
-      go_to(steps() - 1);
+      command(step_command(last));
       break;
-    case GLFW_KEY_S:
+    case GLFW_KEY_S:  // a view-only action: saves a file, changes nothing shown
       request_save();
       break;
     case GLFW_KEY_L:
-      show_cut = !show_cut;
+      command(command_of(Kind::show_cut, !show_cut));
       break;
     case GLFW_KEY_R:
-      camera = initial_camera;
-      if (options_.trace) {
-        std::printf("trace: camera reset\n");
-        std::fflush(stdout);
-      }
+      command(command_of(Kind::reset_camera));
       break;
     case GLFW_KEY_F1:
-    case GLFW_KEY_SLASH:  // '?' on most layouts
+    case GLFW_KEY_SLASH:  // '?' on most layouts: the help overlay (no player state)
       show_help = !show_help;
       break;
     case GLFW_KEY_TAB:
-      panels = !panels;
+      command(command_of(Kind::panels, !panels));
       break;
     case GLFW_KEY_P:
-      camera.projection = camera.projection == tsp::Projection::orthographic
-                              ? tsp::Projection::perspective
-                              : tsp::Projection::orthographic;
+      command(command_of(Kind::projection, camera.projection == tsp::Projection::orthographic));
       break;
     default:
       break;
@@ -162,7 +168,7 @@ void PlayerApp::apply(const ScriptAction& a) {
       wait_frames_ = a.number;
       break;
     case Kind::wait_seconds:
-      wait_until_s_ = glfwGetTime() + a.value;
+      wait_until_s_ = clock_.seconds() + a.value;
       break;
     case Kind::setting:
       set_setting(a.text, a.text2);
@@ -228,6 +234,13 @@ void PlayerApp::apply(const ScriptAction& a) {
     case Kind::record_stop:
       stop_recording();
       break;
+    case Kind::reset_camera:
+      camera = initial_camera;
+      if (options_.trace) {
+        std::printf("trace: camera reset\n");
+        std::fflush(stdout);
+      }
+      break;
     case Kind::quit:
       quit_ = true;
       break;
@@ -242,7 +255,7 @@ void PlayerApp::run_script() {
     --wait_frames_;
     return;
   }
-  if (glfwGetTime() < wait_until_s_) return;
+  if (clock_.seconds() < wait_until_s_) return;
   while (script_pos_ < script_.size() && !quit_) {
     const ScriptAction& a = script_[script_pos_++];
     apply(a);

@@ -4,7 +4,6 @@
 // full render size, so the picture returns to full quality within a few frames.
 #include "player/player_app.h"
 
-#include <GLFW/glfw3.h>
 #include <imgui.h>
 
 #include <algorithm>
@@ -103,7 +102,7 @@ void PlayerApp::set_focus_at(double x, double y) {
   const double s = std::abs(denom) > 1e-12 ? glm::dot(centre - p0, v) / denom : 0.5;
   const glm::dvec3 f = p0 + (p1 - p0) * std::clamp(s, 0.0, 1.0);
   focus = std::array<double, 3>{f.x, f.y, f.z};
-  last_change_s_ = glfwGetTime();
+  last_change_s_ = clock_.seconds();
 }
 
 namespace {

@@ -90,7 +90,8 @@ void menu_bar(PlayerApp& app) {
   if (ImGui::BeginMenu("View")) {
     ImGui::MenuItem("Panels", "Tab", &app.panels);
     ImGui::MenuItem("Outline, axes, step", nullptr, &app.annotations);
-    ImGui::MenuItem("LOD cut", "L", &app.show_cut);
+    if (ImGui::MenuItem("LOD cut", "L", app.show_cut))
+      app.command(command_of(ScriptAction::Kind::show_cut, !app.show_cut));
     bool persp = app.camera.projection == tsp::Projection::perspective;
     if (ImGui::MenuItem("Perspective", "P", &persp))
       app.camera.projection = persp ? tsp::Projection::perspective : tsp::Projection::orthographic;
@@ -203,17 +204,12 @@ void progress_dialog(PlayerApp& app) {
     ImGui::EndPopup();
     return;
   }
-  std::string phase, line;
-  {
-    std::lock_guard lock(job->mu);
-    phase = job->phase;
-    line = job->line;
-  }
-  ImGui::TextWrapped("%s", line.empty() ? ("opening " + job->input).c_str() : line.c_str());
-  const double total = double(job->progress_total), done = double(job->progress_done);
+  const OpenJob::Progress p = job->progress();
+  ImGui::TextWrapped("%s", p.line.empty() ? ("opening " + job->input()).c_str() : p.line.c_str());
+  const double total = double(p.total), done = double(p.done);
   ImGui::ProgressBar(total > 0 ? float(done / total) : 0.f, ImVec2(-1, 0),
-                     phase.empty() ? "starting" : phase.c_str());
-  if (ImGui::Button(job->cancel ? "cancelling ..." : "Cancel")) app.cancel_open();
+                     p.phase.empty() ? "starting" : p.phase.c_str());
+  if (ImGui::Button(job->cancelled() ? "cancelling ..." : "Cancel")) app.cancel_open();
   ImGui::EndPopup();
 }
 

@@ -18,8 +18,6 @@ namespace tspplayer {
 
 namespace {
 
-constexpr float kMaxSpeed = 60.f;  // steps per second
-constexpr float kMinSpeed = 0.25f;
 constexpr float kHudPlotHeight = 60.f;
 constexpr float kLabelWidth = 130.f;  // room for a settings label, pixels
 constexpr float kReadyStripHeight = 5.f;  // the timeline's readiness marks, pixels
@@ -69,27 +67,34 @@ void help(PlayerApp& app) {
 }  // namespace
 
 void timeline_section(PlayerApp& app) {
-  if (ImGui::Button(app.playing ? "Pause" : "Play")) app.playing = !app.playing;
+  using Kind = ScriptAction::Kind;
+  const int last = app.steps() - 1;
+  if (ImGui::Button(app.playing ? "Pause" : "Play"))
+    app.command(command_of(app.playing ? Kind::pause : Kind::play));
   ImGui::SameLine();
-  if (ImGui::Button("|<")) app.go_to(0);
+  if (ImGui::Button("|<")) app.command(step_command(0));
   ImGui::SameLine();
-  if (ImGui::Button("<")) app.go_to(app.step - 1);
+  if (ImGui::Button("<")) app.command(step_command(std::max(0, app.step - 1)));
   ImGui::SameLine();
-  if (ImGui::Button(">")) app.go_to(app.step + 1);
+  if (ImGui::Button(">")) app.command(step_command(std::min(last, app.step + 1)));
   ImGui::SameLine();
-  if (ImGui::Button(">|")) app.go_to(app.steps() - 1);
+  if (ImGui::Button(">|")) app.command(step_command(last));
   ImGui::SameLine();
-  ImGui::Checkbox("loop", &app.loop);
+  if (bool loop = app.loop; ImGui::Checkbox("loop", &loop)) app.command(command_of(Kind::loop, loop));
   ImGui::SameLine();
-  ImGui::Checkbox("every step", &app.every_step);
+  if (bool every = app.every_step; ImGui::Checkbox("every step", &every))
+    app.command(command_of(Kind::every_step, every));
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("show every step while playing, slower than the speed if frames are slow");
   ImGui::SameLine();
   float speed = float(app.speed);
   ImGui::SetNextItemWidth(140);
-  if (ImGui::SliderFloat("steps/s", &speed, kMinSpeed, kMaxSpeed, "%.2f",
-                         ImGuiSliderFlags_Logarithmic))
-    app.speed = std::clamp(double(speed), double(kMinSpeed), double(kMaxSpeed));
+  if (ImGui::SliderFloat("steps/s", &speed, float(kMinSpeed), float(kMaxSpeed), "%.2f",
+                         ImGuiSliderFlags_Logarithmic)) {
+    ScriptAction a = command_of(Kind::speed);
+    a.value = std::clamp(double(speed), kMinSpeed, kMaxSpeed);
+    app.command(a);
+  }
   int step = app.step;
   ImGui::SetNextItemWidth(-1);
   // Dragging the scrubber pauses playback; releasing it resumes if it was playing.
@@ -102,13 +107,14 @@ void timeline_section(PlayerApp& app) {
     std::snprintf(label, sizeof label, "step %%d");
   else
     std::snprintf(label, sizeof label, "step %%d  t = %g", times[std::size_t(app.step)]);
-  if (ImGui::SliderInt("##step", &step, 0, app.steps() - 1, label)) app.go_to(step);
+  if (ImGui::SliderInt("##step", &step, 0, last, label))
+    app.command(step_command(std::clamp(step, 0, last)));
   if (ImGui::IsItemActivated()) {
     resume_after_scrub = was_playing;
-    app.playing = false;
+    app.command(command_of(Kind::pause));
   }
   if (ImGui::IsItemDeactivated() && resume_after_scrub) {
-    app.playing = true;
+    app.command(command_of(Kind::play));
     resume_after_scrub = false;
   }
   // Under the scrubber, each step's readiness: green when its frame reads nothing from the file
@@ -203,7 +209,11 @@ void settings_section(PlayerApp& app) {
   ImGui::Checkbox("outline, axes, step", &app.annotations);
   int m = int(app.metric);
   if (ImGui::Combo("metric", &m, kMetricNames, IM_ARRAYSIZE(kMetricNames)))
-    app.set_metric(tsp::Metric(m));
+    app.command([m] {
+      ScriptAction a = command_of(ScriptAction::Kind::metric);
+      a.text = tsp::to_string(tsp::Metric(m));
+      return a;
+    }());
   if (app.metric == tsp::Metric::reference)
     ImGui::TextWrapped(
         "reference: every voxel is read; computed in full on each TF change "
@@ -242,17 +252,25 @@ void settings_section(PlayerApp& app) {
   if (!app.quality_note.empty()) ImGui::TextWrapped("quality: %s", app.quality_note.c_str());
   // Level of detail: the cut holds the frame rate while anything changes, full quality when idle.
   bool lod = app.lod_on;
-  if (ImGui::Checkbox("level of detail", &lod)) app.set_lod(lod);
+  if (ImGui::Checkbox("level of detail", &lod))
+    app.command(command_of(ScriptAction::Kind::lod, lod));
   ImGui::SameLine();
-  ImGui::Checkbox("show cut (L)", &app.show_cut);
-  ImGui::SliderFloat("target fps", &app.target_fps, 5.f, 120.f, "%.0f");
+  if (bool cut = app.show_cut; ImGui::Checkbox("show cut (L)", &cut))
+    app.command(command_of(ScriptAction::Kind::show_cut, cut));
+  if (float fps = app.target_fps; ImGui::SliderFloat("target fps", &fps, 5.f, 120.f, "%.0f")) {
+    ScriptAction a = command_of(ScriptAction::Kind::target_fps);
+    a.value = std::clamp(double(fps), 1.0, kMaxTargetFps);
+    app.command(a);
+  }
   ImGui::Checkbox("splats when the coarsest cut is too slow", &app.splat_fallback);
 
   if (ImGui::TreeNode("caches and uploads")) {
     bool cache = app.cache_on;
-    if (ImGui::Checkbox("texture cache", &cache)) app.set_cache(cache, app.texture_budget_mb);
+    if (ImGui::Checkbox("texture cache", &cache))
+      app.command(command_of(ScriptAction::Kind::cache, cache));
     ImGui::SameLine();
-    ImGui::Checkbox("prefetch", &app.prefetch_on);
+    if (bool on = app.prefetch_on; ImGui::Checkbox("prefetch", &on))
+      app.command(command_of(ScriptAction::Kind::prefetch, on));
     setting_widgets(app, tspgl::SettingGroup::memory);
     static double budget = -1;
     if (budget < 0) budget = app.texture_budget_mb;

@@ -63,7 +63,7 @@ constexpr std::pair<const char*, Kind> kSwitches[] = {
     {"panels", Kind::panels},       {"every-step", Kind::every_step},
     {"log-opacity", Kind::log_opacity}, {"probe-surface", Kind::probe_surface}};
 
-ScriptAction parse_line(const LineParser& p) {
+ScriptAction parse_words(const LineParser& p) {
   ScriptAction a;
   a.line = p.line;
   const std::string& cmd = p.words[0];
@@ -80,24 +80,20 @@ ScriptAction parse_line(const LineParser& p) {
     a.kind = Kind::setting;
     a.text = cmd;
     a.text2 = p.words[1];
-    tspgl::RenderSettings scratch;  // validated here, once: applying it cannot fail
-    try {
-      tspgl::set_setting(scratch, *spec, a.text2, cmd);
-    } catch (const tsp::UsageError& e) {
-      p.fail(e.what());
-    }
   } else if (cmd == "step") {
     p.expect_args(1, "step K");
     a.kind = Kind::step;
     a.number = p.integer(1, "step K", 0);
-  } else if (cmd == "play" || cmd == "pause" || cmd == "quit") {
+  } else if (cmd == "play" || cmd == "pause" || cmd == "quit" || cmd == "reset-camera") {
     p.expect_args(0, cmd.c_str());
-    a.kind = cmd == "play" ? Kind::play : cmd == "pause" ? Kind::pause : Kind::quit;
+    a.kind = cmd == "play"    ? Kind::play
+             : cmd == "pause" ? Kind::pause
+             : cmd == "quit"  ? Kind::quit
+                              : Kind::reset_camera;
   } else if (cmd == "speed") {
     p.expect_args(1, "speed STEPS_PER_SECOND");
     a.kind = Kind::speed;
     a.value = p.number(1, "speed STEPS_PER_SECOND");
-    if (!(a.value > 0) || !std::isfinite(a.value)) p.fail("speed must be positive and finite");
   } else if (cmd == "tf") {
     p.expect_args(1, "tf FILE|preset:NAME");
     a.kind = Kind::tf;
@@ -107,8 +103,6 @@ ScriptAction parse_line(const LineParser& p) {
     a.kind = Kind::tolerance;
     a.value = p.number(1, "tolerance SPATIAL TEMPORAL");
     a.value2 = p.number(2, "tolerance SPATIAL TEMPORAL");
-    if (!(a.value >= 0) || !(a.value2 >= 0) || !std::isfinite(a.value) || !std::isfinite(a.value2))
-      p.fail("tolerances must be finite and not negative");
   } else if (cmd == "metric") {
     p.expect_args(1, "metric scalar|reference|approximate|perceptual");
     a.kind = Kind::metric;
@@ -122,13 +116,10 @@ ScriptAction parse_line(const LineParser& p) {
     a.kind = Kind::view;
     a.value = p.number(1, "view AZIMUTH ELEVATION");
     a.value2 = p.number(2, "view AZIMUTH ELEVATION");
-    if (!std::isfinite(a.value)) p.fail("azimuth must be finite");
-    if (!(a.value2 > -90 && a.value2 < 90)) p.fail("elevation must be in (-90, 90) degrees");
   } else if (cmd == "quality") {
     p.expect_args(1, "quality DE");
     a.kind = Kind::quality;
     a.value = p.number(1, "quality DE");
-    if (!(a.value > 0) || a.value > kMaxQuality) p.fail("quality must be a mean dE in (0, 50]");
   } else if (cmd == "stats") {
     p.expect_args(1, "stats FILE.json");
     a.kind = Kind::stats;
@@ -137,7 +128,6 @@ ScriptAction parse_line(const LineParser& p) {
     p.expect_args(1, "zoom FACTOR");
     a.kind = Kind::zoom;
     a.value = p.number(1, "zoom FACTOR");
-    if (!(a.value > 0) || !std::isfinite(a.value)) p.fail("zoom must be positive and finite");
   } else if (cmd == "projection") {
     p.expect_args(1, "projection ortho|persp");
     a.kind = Kind::projection;
@@ -154,14 +144,10 @@ ScriptAction parse_line(const LineParser& p) {
     p.expect_args(1, "wait-seconds S");
     a.kind = Kind::wait_seconds;
     a.value = p.number(1, "wait-seconds S");
-    if (!(a.value >= 0) || a.value > kMaxWaitSeconds)
-      p.fail("wait-seconds must be 0 to " + std::to_string(int(kMaxWaitSeconds)) + " seconds");
   } else if (cmd == "target-fps") {
     p.expect_args(1, "target-fps FPS");
     a.kind = Kind::target_fps;
     a.value = p.number(1, "target-fps FPS");
-    if (!(a.value >= 1 && a.value <= kMaxTargetFps))
-      p.fail("target-fps must be 1 to " + std::to_string(int(kMaxTargetFps)) + " frames per second");
   } else if (cmd == "open") {
     if (p.words.size() != 2 && p.words.size() != 3)
       p.fail("'open' takes 1 or 2 arguments: expected 'open PATH [FIELD]', found " +
@@ -192,8 +178,6 @@ ScriptAction parse_line(const LineParser& p) {
     a.value = p.number(2, "probe-move N DX DY DZ");
     a.value2 = p.number(3, "probe-move N DX DY DZ");
     a.value3 = p.number(4, "probe-move N DX DY DZ");
-    if (!std::isfinite(a.value) || !std::isfinite(a.value2) || !std::isfinite(a.value3))
-      p.fail("probe-move: the displacement must be finite");
   } else if (cmd == "field") {
     p.expect_args(1, "field NAME");
     a.kind = Kind::field;
@@ -213,12 +197,85 @@ ScriptAction parse_line(const LineParser& p) {
            "view, zoom, projection, screenshot, screenshot-ui, wait-frames, wait-seconds, " +
            settings +
            "quality, stats, lod, target-fps, show-cut, panels, every-step, log-opacity, open, "
-           "field, probe, probe-op, probe-surface, probe-clear, probe-move, record or quit");
+           "field, probe, probe-op, probe-surface, probe-clear, probe-move, record, "
+           "reset-camera or quit");
+  }
+  return a;
+}
+
+// A line's action, its values checked by validate() (the one check keys and panels share).
+ScriptAction parse_line(const LineParser& p) {
+  const ScriptAction a = parse_words(p);
+  try {
+    validate(a);
+  } catch (const tsp::UsageError& e) {
+    p.fail(e.what());
   }
   return a;
 }
 
 }  // namespace
+
+ScriptAction command_of(ScriptAction::Kind kind, bool flag) {
+  ScriptAction a;
+  a.kind = kind;
+  a.flag = flag;
+  return a;
+}
+
+ScriptAction step_command(int t) {
+  ScriptAction a;
+  a.kind = ScriptAction::Kind::step;
+  a.number = t;
+  return a;
+}
+
+void validate(const ScriptAction& a) {
+  auto fail = [](const std::string& what) { throw tsp::UsageError(what); };
+  switch (a.kind) {
+    case Kind::speed:
+      if (!(a.value >= kMinSpeed && a.value <= kMaxSpeed))
+        fail("speed must be positive: " + std::to_string(kMinSpeed).substr(0, 4) + " to " +
+             std::to_string(int(kMaxSpeed)) + " steps per second");
+      break;
+    case Kind::tolerance:
+      if (!(a.value >= 0) || !(a.value2 >= 0) || !std::isfinite(a.value) || !std::isfinite(a.value2))
+        fail("tolerances must be finite and not negative");
+      break;
+    case Kind::view:
+      if (!std::isfinite(a.value)) fail("azimuth must be finite");
+      if (!(a.value2 > -90 && a.value2 < 90)) fail("elevation must be in (-90, 90) degrees");
+      break;
+    case Kind::quality:
+      if (!(a.value > 0) || a.value > kMaxQuality) fail("quality must be a mean dE in (0, 50]");
+      break;
+    case Kind::zoom:
+      if (!(a.value > 0) || !std::isfinite(a.value)) fail("zoom must be positive and finite");
+      break;
+    case Kind::wait_seconds:
+      if (!(a.value >= 0) || a.value > kMaxWaitSeconds)
+        fail("wait-seconds must be 0 to " + std::to_string(int(kMaxWaitSeconds)) + " seconds");
+      break;
+    case Kind::target_fps:
+      if (!(a.value >= 1 && a.value <= kMaxTargetFps))
+        fail("target-fps must be 1 to " + std::to_string(int(kMaxTargetFps)) +
+             " frames per second");
+      break;
+    case Kind::probe_move:
+      if (!std::isfinite(a.value) || !std::isfinite(a.value2) || !std::isfinite(a.value3))
+        fail("probe-move: the displacement must be finite");
+      break;
+    case Kind::setting: {
+      const tspgl::SettingSpec* spec = tspgl::find_setting(a.text);
+      if (!spec) fail("no render setting '" + a.text + "'");
+      tspgl::RenderSettings scratch;
+      tspgl::set_setting(scratch, *spec, a.text2, a.text);
+      break;
+    }
+    default:
+      break;
+  }
+}
 
 std::vector<ScriptAction> parse_script(const std::string& text, const std::string& origin) {
   std::vector<ScriptAction> actions;

@@ -10,8 +10,11 @@ namespace tspplayer {
 inline constexpr double kMaxWaitSeconds = 600;
 /// Largest target-fps.
 inline constexpr double kMaxTargetFps = 240;
+/// Playback speeds accepted, steps per second (the panel's slider spans them too).
+inline constexpr double kMinSpeed = 0.25, kMaxSpeed = 60;
 
-/// One scripted action.
+/// One player command: a script line, a key or a panel widget makes one, validate() checks it,
+/// PlayerApp::apply carries it out — the one path by which the player's state changes.
 struct ScriptAction {
   enum class Kind {
     step,           ///< go to step `number` (pauses playback)
@@ -49,6 +52,7 @@ struct ScriptAction {
     probe_move,     ///< move probe `number` (1-based) by `value`, `value2`, `value3` (physical)
     record,         ///< start recording a movie to `text` (.mp4 or .gif)
     record_stop,    ///< stop recording and write the movie (waits for the encoder)
+    reset_camera,   ///< the camera back to where it started (key R)
     quit            ///< close the player
   };
   Kind kind = Kind::quit;
@@ -58,6 +62,16 @@ struct ScriptAction {
   std::string text, text2;
   int line = 0;  ///< 1-based line in the script, for messages
 };
+
+/// A command of kind `kind` with flag `flag` (play, pause, loop, panels, ...). Never throws.
+ScriptAction command_of(ScriptAction::Kind kind, bool flag = false);
+/// The command "go to step t". Never throws.
+ScriptAction step_command(int t);
+
+/// Checks an action's values (speed, tolerances, view, zoom, waits, targets, render settings)
+/// whoever made it — a script line, a key or a panel: the one validation of player commands.
+/// Throws tsp::UsageError naming the action and what it accepts.
+void validate(const ScriptAction& a);
 
 /// Parses script text; origin names it in messages. Blank lines and lines starting with '#' are
 /// skipped. Throws tsp::FormatError naming origin, the line and what was expected.

@@ -185,3 +185,32 @@ TEST(PlayerScript, LoadsAFileAndNamesAMissingOne) {
 }
 
 }  // namespace
+
+namespace {
+
+// Keys and panels make commands too; one validate() checks them, with the script's messages.
+TEST(PlayerScript, CommandsFromKeysAndPanelsAreValidatedByTheSameRules) {
+  using tspplayer::command_of;
+  using tspplayer::ScriptAction;
+  using tspplayer::validate;
+  ScriptAction speed = command_of(ScriptAction::Kind::speed);
+  speed.value = 100;
+  EXPECT_THROW(validate(speed), tsp::UsageError);
+  speed.value = 5;
+  EXPECT_NO_THROW(validate(speed));
+  ScriptAction spacing = command_of(ScriptAction::Kind::setting);
+  spacing.text = "spacing";
+  spacing.text2 = "0";
+  const std::string from_panel =
+      tsptest::error_of<tsp::UsageError>([&] { validate(spacing); });
+  const std::string from_script = tsptest::error_of<tsp::FormatError>(
+      [] { tspplayer::parse_script("spacing 0\n", "s.txt"); });
+  EXPECT_NE(from_panel, "");
+  EXPECT_EQ(from_script, "s.txt:1: " + from_panel);
+  EXPECT_EQ(tspplayer::step_command(7).number, 7);
+  EXPECT_TRUE(command_of(ScriptAction::Kind::loop, true).flag);
+  EXPECT_EQ(tspplayer::parse_script("reset-camera\n", "r.txt")[0].kind,
+            ScriptAction::Kind::reset_camera);
+}
+
+}  // namespace
