@@ -7,11 +7,14 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "jobs/image_probe.h"
+#include "jobs/render_job.h"
 #include "tsp/core/error.h"
 #include "tsp/core/json_text.h"
+#include "tsp/core/stopwatch.h"
 #include "tsp/core/temp_output.h"
 #include "tsp/metric/compute_errors.h"
 #include "tsp/report/image_diff.h"
@@ -167,70 +170,115 @@ std::optional<CalibrationPoint> pick_configuration(const Calibration& c, double 
   return best;
 }
 
+Calibrator::Calibrator(GlContext& ctx, const CalibrationRequest& r,
+                       const tsp::BrickStore& bricks, const tsp::TransferFunction& tf)
+    : ctx_(ctx), request_(r), bricks_(bricks), tf_(tf) {
+  steps_ = search_step_sample(0, bricks.tree().time().steps() - 1, std::max(1, r.steps));
+  calibration_.key = key_of(r, tf, steps_);
+  const std::string dir = r.cache_dir.empty() ? default_calibration_dir() : r.cache_dir;
+  if (dir != "-" && !dir.empty())
+    cache_file_ = (fs::path(dir) / ("calibration-" + hex(fnv1a(tsp::json_text(calibration_.key))) +
+                                    ".json")).string();
+  if (!cache_file_.empty())
+    if (auto cached = read_cache(cache_file_, calibration_.key)) {
+      calibration_ = std::move(*cached);
+      done_ = true;
+      return;
+    }
+  probe_ = std::make_unique<ImageProbe>(ctx_, bricks_, tf_, r.camera, steps_);
+}
+
+Calibrator::~Calibrator() = default;
+
+int Calibrator::probes_total() const {
+  if (metric_) return int(queue_.size());
+  const std::size_t cells = grid_cells(request_.grid, false).size();
+  return int(cells * std::size_t(request_.sweep + 1));
+}
+
+void Calibrator::plan() {
+  metric_ = std::make_unique<tsp::MetricResult>(
+      tsp::compute_errors(request_.metric, bricks_.tree(), tf_, &bricks_, 0));
+  // Tolerances: 0 and `sweep` log-spaced values up to the largest node error.
+  const ErrorSpan span = error_span(*metric_);
+  std::vector<double> tols{0};
+  const int sweep = request_.sweep;
+  if (span.largest > 0 && sweep > 0) {
+    const double lo =
+        std::max(span.smallest_positive, span.largest * std::pow(10.0, -kSweepDecades));
+    for (int i = 0; i < sweep; ++i)
+      tols.push_back(sweep == 1 ? span.largest
+                                : lo * std::pow(span.largest / lo, double(i) / (sweep - 1)));
+  }
+  for (const Knobs& cell : grid_cells(request_.grid, false))
+    for (double tol : tols) {
+      // Zero tolerance is the same picture under every rule: calibrated under the first only.
+      if (tol == 0 && cell.rule != request_.grid.tolerance_rules.front()) continue;
+      Knobs k = cell;
+      k.tol = tol;
+      queue_.push_back(k);
+    }
+}
+
+void Calibrator::finish() {
+  done_ = true;
+  probe_.reset();
+  if (cache_file_.empty()) return;
+  const fs::path path(cache_file_);
+  std::error_code ec;
+  fs::create_directories(path.parent_path(), ec);
+  if (ec)
+    throw tsp::IoError(path.parent_path().string() +
+                       ": cannot create the calibration cache directory: " + ec.message());
+  tsp::write_file_atomically(path.string(), tsp::json_text(to_json(calibration_), 1) + "\n");
+}
+
+bool Calibrator::advance(double budget_ms, const CalibrationProgress& progress) {
+  const tsp::Stopwatch watch;
+  while (!done_) {
+    if (reference_.size() < steps_.size()) {  // the full-quality pictures first
+      Knobs ref;
+      ref.baseline = true;
+      ref.compositing = Compositing::slices;
+      ref.spacing = request_.reference_spacing;
+      reference_.push_back(probe_->render_step(ref, nullptr, reference_.size()).first);
+    } else if (!metric_) {
+      plan();
+    } else if (next_ < queue_.size()) {
+      const Knobs& k = queue_[next_];
+      auto [image, ms] = probe_->render_step(k, metric_.get(), step_);
+      const double de = tsp::diff_images(image, reference_[step_]).mean;
+      current_.mean_de += de / double(steps_.size());
+      current_.max_step_de = std::max(current_.max_step_de, de);
+      current_ms_.push_back(ms);
+      if (++step_ == steps_.size()) {
+        current_.knobs = k;
+        current_.ms = median(std::move(current_ms_));
+        calibration_.points.push_back(current_);
+        current_ = {};
+        current_ms_.clear();
+        step_ = 0;
+        ++next_;
+        if (progress)
+          progress("calibrating " + render_options(k, request_.metric), probes_done(),
+                   probes_total());
+      }
+    } else {
+      finish();
+    }
+    if (watch.ms() >= budget_ms) break;
+  }
+  return done_;
+}
+
 Calibration calibrate(GlContext& ctx, const CalibrationRequest& r, const tsp::BrickStore& bricks,
                       const tsp::TransferFunction& tf, std::string* cache_file,
                       const CalibrationProgress& progress) {
-  const tsp::TspTree& tree = bricks.tree();
-  const std::vector<int> steps =
-      search_step_sample(0, tree.time().steps() - 1, std::max(1, r.steps));
-  Calibration c;
-  c.key = key_of(r, tf, steps);
-
-  fs::path path;
-  const std::string dir = r.cache_dir.empty() ? default_calibration_dir() : r.cache_dir;
-  if (dir != "-" && !dir.empty())
-    path = fs::path(dir) / ("calibration-" + hex(fnv1a(tsp::json_text(c.key))) + ".json");
-  if (cache_file) *cache_file = path.string();
-  if (!path.empty())
-    if (auto cached = read_cache(path, c.key)) return *cached;
-
-  ImageProbe probe(ctx, bricks, tf, r.camera, steps);
-  Knobs ref;
-  ref.baseline = true;
-  ref.compositing = Compositing::slices;
-  ref.spacing = r.reference_spacing;
-  const std::vector<tsp::Image> reference = probe.render(ref, nullptr).images;
-  const tsp::MetricResult metric = tsp::compute_errors(r.metric, tree, tf, &bricks, 0);
-  // Tolerances: 0 and `sweep` log-spaced values up to the largest node error.
-  const ErrorSpan span = error_span(metric);
-  std::vector<double> tols{0};
-  if (span.largest > 0 && r.sweep > 0) {
-    const double lo = std::max(span.smallest_positive, span.largest * std::pow(10.0, -kSweepDecades));
-    for (int i = 0; i < r.sweep; ++i)
-      tols.push_back(r.sweep == 1 ? span.largest
-                                  : lo * std::pow(span.largest / lo, double(i) / (r.sweep - 1)));
+  Calibrator c(ctx, r, bricks, tf);
+  if (cache_file) *cache_file = c.cache_file();
+  while (!c.advance(std::numeric_limits<double>::infinity(), progress)) {
   }
-  const std::vector<Knobs> cells = grid_cells(r.grid, false);
-  const int total = int(cells.size() * tols.size());
-  int done = 0;
-  for (const Knobs& cell : cells)
-    for (double tol : tols) {
-      // Zero tolerance is the same picture under every rule: calibrated under the first only.
-      if (tol == 0 && cell.rule != r.grid.tolerance_rules.front()) continue;
-      Knobs k = cell;
-      k.tol = tol;
-      const ProbeFrames f = probe.render(k, &metric);
-      CalibrationPoint p;
-      p.knobs = k;
-      p.ms = f.median_ms;
-      for (std::size_t i = 0; i < f.images.size(); ++i) {
-        const double de = tsp::diff_images(f.images[i], reference[i]).mean;
-        p.mean_de += de / double(f.images.size());
-        p.max_step_de = std::max(p.max_step_de, de);
-      }
-      c.points.push_back(p);
-      if (progress) progress("calibrating " + render_options(k, r.metric), ++done, total);
-    }
-
-  if (!path.empty()) {
-    std::error_code ec;
-    fs::create_directories(path.parent_path(), ec);
-    if (ec)
-      throw tsp::IoError(path.parent_path().string() +
-                         ": cannot create the calibration cache directory: " + ec.message());
-    tsp::write_file_atomically(path.string(), tsp::json_text(to_json(c), 1) + "\n");
-  }
-  return c;
+  return c.calibration();
 }
 
 }  // namespace tspgl

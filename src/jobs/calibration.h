@@ -5,6 +5,7 @@
 // (docs/rendering.md, "Quality target").
 #pragma once
 #include <functional>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -64,12 +65,64 @@ std::string default_calibration_dir();
 /// Progress: a phase text, probes done, probes planned (an upper bound).
 using CalibrationProgress = std::function<void(const std::string& phase, int done, int total)>;
 
-/// The calibration for r over bricks (the already opened r.tsp_path) under tf: read from the
-/// cache when one with the same key is there, else made (rendering on an offscreen canvas of
-/// ctx, the caller's current context, whose own framebuffer is left alone) and written
-/// atomically to the cache. `cache_file` is set to the file used ("" without a cache).
-/// Throws tsp::UsageError, tsp::IoError, tsp::FormatError, tsp::GlError; a corrupt cache file
-/// is recomputed, never an error.
+class ImageProbe;
+
+/// A calibration made a piece at a time, so a window can spread it over its frames and keep
+/// drawing: each advance() renders for about a time budget (at least one frame: a reference
+/// step, or one step of one configuration), on an offscreen canvas of ctx — the caller's
+/// current context, whose own framebuffer is left alone. Reads the cache first; writes it,
+/// atomically, when done. Use from ctx's thread.
+class Calibrator {
+ public:
+  /// Starts the calibration for r over bricks (the already opened r.tsp_path) under tf (copied;
+  /// bricks and ctx must outlive it); done() at once when the cache has it. Throws
+  /// tsp::UsageError, tsp::GlError; a corrupt cache file is recomputed, never an error.
+  Calibrator(GlContext& ctx, const CalibrationRequest& r, const tsp::BrickStore& bricks,
+             const tsp::TransferFunction& tf);
+  ~Calibrator();
+  Calibrator(const Calibrator&) = delete;
+  Calibrator& operator=(const Calibrator&) = delete;
+
+  /// Renders for about budget_ms (at least one frame; the metric is computed in one go), calling
+  /// progress after each configuration; returns done(). Throws tsp::IoError (cache folder),
+  /// tsp::FormatError, tsp::GlError, tsp::Error on brick reads.
+  bool advance(double budget_ms, const CalibrationProgress& progress = {});
+  /// True once every configuration was probed (or the cache had them).
+  bool done() const { return done_; }
+  /// Configurations probed so far, and how many there are (an upper bound before the metric is
+  /// known).
+  int probes_done() const { return int(calibration_.points.size()); }
+  /// See probes_done().
+  int probes_total() const;
+  /// The calibration (complete once done()).
+  const Calibration& calibration() const { return calibration_; }
+  /// The cache file ("" without a cache).
+  const std::string& cache_file() const { return cache_file_; }
+
+ private:
+  GlContext& ctx_;
+  CalibrationRequest request_;
+  const tsp::BrickStore& bricks_;
+  tsp::TransferFunction tf_;
+  std::vector<int> steps_;
+  Calibration calibration_;
+  std::string cache_file_;
+  bool done_ = false;
+  std::unique_ptr<ImageProbe> probe_;
+  std::vector<tsp::Image> reference_;
+  std::unique_ptr<tsp::MetricResult> metric_;
+  std::vector<Knobs> queue_;       // the configurations, in probing order
+  std::size_t next_ = 0;           // the configuration being probed
+  std::size_t step_ = 0;           // its next step
+  CalibrationPoint current_;       // what its steps measured so far
+  std::vector<double> current_ms_;
+  void plan();    // the metric and the queue of configurations
+  void finish();  // writes the cache
+};
+
+/// The calibration for r over bricks (the already opened r.tsp_path) under tf, made in one go
+/// (Calibrator advanced without a budget). `cache_file` is set to the file used ("" without a
+/// cache). Throws like Calibrator.
 Calibration calibrate(GlContext& ctx, const CalibrationRequest& r, const tsp::BrickStore& bricks,
                       const tsp::TransferFunction& tf, std::string* cache_file = nullptr,
                       const CalibrationProgress& progress = {});

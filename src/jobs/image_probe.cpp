@@ -28,12 +28,19 @@ ImageProbe::ImageProbe(GlContext& ctx, const tsp::BrickStore& bricks,
 ImageProbe::~ImageProbe() {
   try {
     ctx_.make_current();
+    // Nothing of ours stays bound: a program deleted while current lives on until unbound, and
+    // a window's UI back end that saved it as "current" would restore a name that is gone.
+    ctx_.gl().UseProgram(0);
+    ctx_.gl().BindVertexArray(0);
   } catch (const tsp::GlError&) {  // the members' GL deletes then go nowhere, as at exit
   }
 }
 
-ProbeFrames ImageProbe::render(const Knobs& k, const tsp::MetricResult* metric) {
+std::pair<tsp::Image, double> ImageProbe::render_step(const Knobs& k,
+                                                      const tsp::MetricResult* metric,
+                                                      std::size_t i) {
   assert(k.baseline || metric);
+  assert(i < steps_.size());
   RenderSettings s;
   apply(k, s);
   std::unique_ptr<tsp::WholeTreeMetric> nodes;
@@ -45,18 +52,24 @@ ProbeFrames ImageProbe::render(const Knobs& k, const tsp::MetricResult* metric) 
     lod.level = k.lod_level;
   }
   FrameDriver driver = k.baseline ? FrameDriver(baseline_) : FrameDriver(renderer_, lod);
-  ProbeFrames out;
-  std::vector<double> ms;
   ctx_.make_current();  // the caller's context (a render job in between may have made its own)
   const CanvasScope scope(canvas_);
-  for (int t : steps_) {
-    FrameRequest r;
-    r.step = t;
-    r.camera = &camera_;
-    r.settings = s;
-    r.metric = nodes.get();
-    ms.push_back(driver.draw(r).report.ms);
-    out.images.push_back(ctx_.read_pixels());
+  FrameRequest r;
+  r.step = steps_[i];
+  r.camera = &camera_;
+  r.settings = s;
+  r.metric = nodes.get();
+  const double ms = driver.draw(r).report.ms;
+  return {ctx_.read_pixels(), ms};
+}
+
+ProbeFrames ImageProbe::render(const Knobs& k, const tsp::MetricResult* metric) {
+  ProbeFrames out;
+  std::vector<double> ms;
+  for (std::size_t i = 0; i < steps_.size(); ++i) {
+    auto [image, frame_ms] = render_step(k, metric, i);
+    out.images.push_back(std::move(image));
+    ms.push_back(frame_ms);
   }
   out.median_ms = median(std::move(ms));
   return out;

@@ -3,6 +3,7 @@
 // non-TSP baseline under any knobs.
 #pragma once
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "gl/context.h"
@@ -36,6 +37,12 @@ class ImageProbe {
   /// The steps under knobs k: the baseline when k.baseline, else the TSP renderer under metric
   /// (which must then be non-null). Throws like the renderers' render().
   ProbeFrames render(const Knobs& k, const tsp::MetricResult* metric);
+  /// The i-th of the steps under knobs k, and its frame time in ms (render() one step at a
+  /// time, for a caller that spreads a calibration over its own frames). Throws like render().
+  std::pair<tsp::Image, double> render_step(const Knobs& k, const tsp::MetricResult* metric,
+                                            std::size_t i);
+  /// Number of steps it renders.
+  std::size_t steps() const { return steps_.size(); }
   /// Frees its GL objects in ctx (made current again first).
   ~ImageProbe();
   ImageProbe(const ImageProbe&) = delete;

@@ -444,6 +444,7 @@ void PlayerApp::frame() {
   }
   apply_probes();
   render_volume();
+  advance_calibration();
   if (frame_delay_ms_ > 0)
     std::this_thread::sleep_for(std::chrono::duration<double, std::milli>(frame_delay_ms_));
 

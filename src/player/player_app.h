@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "gl/context.h"
+#include "jobs/calibration.h"
 #include "jobs/movie.h"
 #include "player/layout.h"
 #include "player/open_job.h"
@@ -58,6 +59,9 @@ inline constexpr int kIdleFrames = 2;
 inline constexpr int kIdleSplitsPerFrame = 64;
 /// Steps whose readiness (bricks in RAM or textures) is re-checked per frame, for the timeline.
 inline constexpr int kReadyStepsPerFrame = 4;
+/// Milliseconds of each frame the quality calibration may use (the window keeps ≥ 10 frames/s
+/// on top of its own frame time).
+inline constexpr double kCalibrationSliceMs = 40;
 /// Frames per second of a recorded movie (frames repeat or drop to keep the wall-clock time).
 inline constexpr int kRecordFps = 25;
 
@@ -141,9 +145,12 @@ class PlayerApp {
   /// tsp::UsageError naming the setting and what it accepts.
   void set_setting(const std::string& name, const std::string& text);
   /// Picks the fastest calibrated knobs within mean ΔE de for the current TF, metric and view
-  /// (calibrating first, blocking, when the cache has none) and applies them; reports in
-  /// quality_note. Errors go to status.
+  /// and applies them; reports in quality_note. Without a cached calibration it calibrates
+  /// first, a slice of each frame (the window keeps drawing; calibrating() meanwhile). Errors
+  /// go to status.
   void apply_quality(double de);
+  /// The calibration in progress, if any (for its progress bar).
+  const tspgl::Calibrator* calibrating() const { return calibrator_.get(); }
   /// Writes the HUD's statistics as JSON to path (atomically). Throws tsp::IoError.
   void write_stats(const std::string& path) const;
   /// Recreates the renderer for a cache policy or budget change.
@@ -220,6 +227,7 @@ class PlayerApp {
 
  private:
   void frame();
+  void advance_calibration();  // one slice of the quality calibration, applied when done
   void advance_playback(double dt);
   void handle_input();
   void run_script();
@@ -305,6 +313,12 @@ class PlayerApp {
   double start_s_ = 0, last_frame_s_ = 0;
   std::unique_ptr<tspgl::FrameDriver> driver_;  ///< draws renderer's frames; reset with it
   std::unique_ptr<OpenJob> open_job_;
+  std::unique_ptr<tspgl::Calibrator> calibrator_;  ///< the quality slider's, while it runs
+  double calibrating_de_ = 0;                       ///< its target
+  std::uint64_t calibrating_tf_ = 0;                ///< the TF version it calibrates
+  double calibration_started_s_ = 0;
+  double calibration_s_ = -1;           ///< how long the last calibration took (−1: none)
+  int frames_while_calibrating_ = 0;    ///< window frames drawn while it ran
   std::unique_ptr<Recorder> recorder_;
   /// Fields shown before and put aside by switch_field, with their renderer (textures and
   /// bricks) and TF; and the programs every renderer of this window shares.

@@ -262,6 +262,9 @@ void PlayerApp::write_stats(const std::string& path) const {
   for (const tsp::TfPoint& p : tf_points) points.push_back({p.x, p.c.a});
   j["tf_points"] = points;
   j["quality"] = quality_note;
+  j["calibration"] = {{"running", calibrator_ != nullptr},
+                      {"seconds", calibration_s_},
+                      {"frames_while_calibrating", frames_while_calibrating_}};
   j["lod"] = {{"on", lod_on},
               {"target_fps", target_fps},
               {"refining", refining},

@@ -250,7 +250,8 @@ void PlayerApp::apply(const ScriptAction& a) {
 // Runs actions until one needs frames to pass: a screenshot (saved after this frame's render),
 // wait-frames or quit.
 void PlayerApp::run_script() {
-  if (!pending_shot_.empty() || open_job_) return;  // (an open waits for its build)
+  // An open waits for its build, a quality target for its calibration.
+  if (!pending_shot_.empty() || open_job_ || calibrator_) return;
   if (wait_frames_ > 0) {
     --wait_frames_;
     return;

@@ -73,15 +73,48 @@ void PlayerApp::apply_quality(double de) {
   // first frame it is still the default).
   r.camera.width = std::max(1, layout.view.w);
   r.camera.height = std::max(1, layout.view.h);
-  std::string cache;
-  const tspgl::Calibration c = tspgl::calibrate(*ctx, r, *file, tf, &cache);
-  const auto best = tspgl::pick_configuration(c, de);
+  calibrator_.reset();
+  try {
+    calibrator_ = std::make_unique<tspgl::Calibrator>(*ctx, r, *file, tf);
+  } catch (const tsp::Error& e) {
+    status = std::string("quality: ") + e.what();
+    return;
+  }
+  calibrating_de_ = de;
+  calibrating_tf_ = tf.version();
+  calibration_started_s_ = clock_.seconds();
+  frames_while_calibrating_ = 0;
+  quality_note = "calibrating (once per tree, TF, metric and view; the window keeps playing)";
+  advance_calibration();  // a cached calibration applies at once
+}
+
+void PlayerApp::advance_calibration() {
+  if (!calibrator_) return;
+  if (calibrating_tf_ != tf.version()) {  // the TF changed: calibrate for the new one
+    apply_quality(calibrating_de_);
+    return;
+  }
+  try {
+    if (!calibrator_->advance(kCalibrationSliceMs)) {
+      ++frames_while_calibrating_;
+      return;
+    }
+  } catch (const tsp::Error& e) {
+    calibrator_.reset();
+    status = std::string("quality: ") + e.what();
+    quality_note.clear();
+    return;
+  }
+  const std::unique_ptr<tspgl::Calibrator> c = std::move(calibrator_);
+  calibration_s_ = clock_.seconds() - calibration_started_s_;
+  const auto best = tspgl::pick_configuration(c->calibration(), calibrating_de_);
   if (!best) {
-    quality_note = "nothing calibrated stays within dE " + std::to_string(de);
+    quality_note = "nothing calibrated stays within dE " + std::to_string(calibrating_de_);
     return;
   }
   tspgl::apply(best->knobs, settings);  // compositing, spacing, tolerances (by its rule), ...
   set_tolerances(settings.tol);
+  const std::string& cache = c->cache_file();
   quality_note = tspgl::render_options(best->knobs, metric) + (cache.empty() ? "" : " (" + cache + ")");
 }
 

@@ -139,9 +139,12 @@ void timeline_section(PlayerApp& app) {
     ImGui::SetTooltip("green: the step's bricks are in memory (no file read to show it)");
 }
 
+// Units longer than this go in the widget's tooltip, not its label (the panel is narrow).
+constexpr std::size_t kMaxUnitInLabel = 6;
+
 // One widget for a row of the render settings table: a log slider over its panel range (Ctrl +
-// click types any value the table accepts), a checkbox or a combo; changes go through
-// PlayerApp::set_setting, the path script lines take.
+// click types any value the table accepts), a checkbox or a combo; a change is a `setting`
+// command, as a script line makes.
 void setting_widget(PlayerApp& app, const tspgl::SettingSpec& spec) {
   const std::string name(spec.name), now = tspgl::get_setting(app.settings, spec);
   std::string label = name;
@@ -150,7 +153,8 @@ void setting_widget(PlayerApp& app, const tspgl::SettingSpec& spec) {
   std::string next;
   switch (spec.kind) {
     case tspgl::SettingKind::number: {
-      if (!spec.unit.empty()) label += " (" + std::string(spec.unit) + ")";
+      if (!spec.unit.empty() && spec.unit.size() <= kMaxUnitInLabel)
+        label += " (" + std::string(spec.unit) + ")";
       float v = float(std::strtod(now.c_str(), nullptr));
       const bool off_at_zero = spec.lo == 0;
       if (ImGui::SliderFloat(label.c_str(), &v, float(spec.ui_lo), float(spec.ui_hi),
@@ -179,12 +183,14 @@ void setting_widget(PlayerApp& app, const tspgl::SettingSpec& spec) {
       break;
     }
   }
+  if (ImGui::IsItemHovered())  // the table's help, as render --help says it
+    ImGui::SetTooltip("%s%s%s", std::string(spec.help).c_str(), spec.unit.empty() ? "" : "; in ",
+                      std::string(spec.unit).c_str());
   if (next.empty()) return;
-  try {
-    app.set_setting(name, next);
-  } catch (const tsp::Error& e) {
-    app.status = e.what();
-  }
+  ScriptAction a = command_of(ScriptAction::Kind::setting);
+  a.text = name;
+  a.text2 = next;
+  app.command(a);
 }
 
 // The widgets of every row of group g but the tolerances (their sliders span the metric's range).
@@ -245,9 +251,15 @@ void settings_section(PlayerApp& app) {
   ImGui::SliderFloat("quality (mean dE)", &app.quality, 0.f, 10.f,
                      app.quality > 0 ? "%.2f" : "off");
   if (ImGui::IsItemDeactivatedAfterEdit() && app.quality > 0) {
-    app.status = "calibrating (once per tree, TF, metric and view) ...";
-    app.apply_quality(app.quality);
-    app.status.clear();
+    ScriptAction a = command_of(ScriptAction::Kind::quality);
+    a.value = app.quality;
+    app.command(a);
+  }
+  if (const tspgl::Calibrator* c = app.calibrating()) {  // runs a slice of each frame
+    const int total = std::max(1, c->probes_total());
+    char text[64];
+    std::snprintf(text, sizeof text, "calibrating %d / %d", c->probes_done(), total);
+    ImGui::ProgressBar(float(c->probes_done()) / float(total), ImVec2(-1, 0), text);
   }
   if (!app.quality_note.empty()) ImGui::TextWrapped("quality: %s", app.quality_note.c_str());
   // Level of detail: the cut holds the frame rate while anything changes, full quality when idle.

@@ -688,7 +688,7 @@ TEST(Player, PausedPlayerDrawsWhatRenderDrawsForTheSameSettings) {
 }  // namespace
 
 // The quality slider (script `quality`) calibrates on an offscreen canvas of the window's own
-// context: afterwards the window keeps drawing, a real Tab hides the panels (it used to exit with
+// context, a slice of each frame: the window draws while it calibrates, afterwards it keeps drawing, a real Tab hides the panels (it used to exit with
 // "the 16-bit render target ... is not supported": the calibration left another context current)
 // and the picture is `render`'s with the knobs the calibration picked.
 TEST(Player, QualitySliderKeepsTheWindowDrawingAndTabWorking) {
@@ -715,6 +715,9 @@ TEST(Player, QualitySliderKeepsTheWindowDrawingAndTabWorking) {
   const nlohmann::json qj = read_json(dir / "q.json"), fj = read_json(dir / "f.json");
   const std::string note = qj["quality"];
   ASSERT_EQ(note.rfind("--compositing", 0), 0u) << note;
+  // The calibration ran a slice of each frame: the window kept drawing meanwhile.
+  EXPECT_FALSE(qj["calibration"]["running"].get<bool>());
+  EXPECT_GT(qj["calibration"]["frames_while_calibrating"].get<int>(), 10);
   EXPECT_FALSE(fj["docked"].get<bool>());
   // After Tab the volume fills the window and still shows the data.
   const tsp::Image full = tsp::read_png((dir / "f.png").string());
