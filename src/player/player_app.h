@@ -16,6 +16,7 @@
 #include "gl/context.h"
 #include "jobs/calibration.h"
 #include "jobs/movie.h"
+#include "player/field_shelf.h"
 #include "player/layout.h"
 #include "player/open_job.h"
 #include "player/recorder.h"
@@ -320,14 +321,8 @@ class PlayerApp {
   double calibration_s_ = -1;           ///< how long the last calibration took (−1: none)
   int frames_while_calibrating_ = 0;    ///< window frames drawn while it ran
   std::unique_ptr<Recorder> recorder_;
-  /// Fields shown before and put aside by switch_field, with their renderer (textures and
-  /// bricks) and TF; and the programs every renderer of this window shares.
-  struct ParkedField {
-    std::unique_ptr<tsp::TspFile> file;
-    std::unique_ptr<tspgl::VolumeRenderer> renderer;
-    tsp::TransferFunction tf;
-  };
-  std::map<std::string, ParkedField> parked_;
+  FieldShelf parked_;  ///< fields switched away from, kept with their renderers
+  /// The programs every renderer of this window shares.
   std::shared_ptr<tspgl::SliceCompositor> compositor_;
   double switch_started_s_ = -1;  ///< when the last switch began (−1: reported)
   int ready_next_ = 0;  ///< the next step update_ready checks

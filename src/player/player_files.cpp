@@ -119,10 +119,9 @@ void PlayerApp::open_file(const std::string& path) {
 
 void PlayerApp::switch_field(const std::string& name) {
   if (name == field()) return;
-  ParkedField next;
-  if (auto it = parked_.find(name); it != parked_.end()) {
-    next = std::move(it->second);
-    parked_.erase(it);
+  FieldShelf::Field next;
+  if (std::optional<FieldShelf::Field> parked = parked_.take(name)) {
+    next = std::move(*parked);
   } else {
     try {
       next.file = tsp::TspFile::open(options_.tsp_path, name);
@@ -139,7 +138,7 @@ void PlayerApp::switch_field(const std::string& name) {
   prefetcher.reset();  // it reads into the renderer's brick cache
   const std::string current = field();
   if (renderer) compositor_ = renderer->compositor();
-  parked_[current] = ParkedField{std::move(file), std::move(renderer), tf};
+  parked_.park(current, {std::move(file), std::move(renderer), tf});
   file = std::move(next.file);
   tf = next.tf;
   lazy_ = std::make_unique<tsp::LazyErrors>(file->tree(), metric, tf);
