@@ -31,6 +31,9 @@ class GlContext {
   virtual void swap_buffers() {}
   /// Processes pending window events (windows); nothing offscreen.
   virtual void poll_events() {}
+  /// Sleeps until a window event arrives or timeout_s passes, then processes the events
+  /// (windows); returns at once offscreen.
+  virtual void wait_events(double timeout_s) { (void)timeout_s; }
   /// Whether the user asked to close the window; always false offscreen.
   virtual bool should_close() const { return false; }
   /// The GLFWwindow* of a window context (for Dear ImGui's GLFW back end); null offscreen.

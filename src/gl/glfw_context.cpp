@@ -88,6 +88,7 @@ class GlfwContext final : public GlContext {
   GetProcAddress proc_address_function() const override { return &glfwGetProcAddress; }
   void swap_buffers() override { glfwSwapBuffers(window_); }
   void poll_events() override { glfwPollEvents(); }
+  void wait_events(double timeout_s) override { glfwWaitEventsTimeout(timeout_s); }
   bool should_close() const override { return glfwWindowShouldClose(window_); }
   void* native_window() const override { return window_; }
 

@@ -151,20 +151,43 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
   // Our key callback first: ImGui's back end keeps it and calls it before its own.
   GLFWwindow* window = static_cast<GLFWwindow*>(ctx->native_window());
   glfwSetWindowUserPointer(window, this);
+  // Every callback counts an event: an idle window draws again only after one (run()).
+  auto app_of = [](GLFWwindow* w) { return static_cast<PlayerApp*>(glfwGetWindowUserPointer(w)); };
   glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int) {
-    if (action == GLFW_PRESS || action == GLFW_REPEAT)
-      static_cast<PlayerApp*>(glfwGetWindowUserPointer(w))->key_queue_.push_back(key);
+    auto* app = static_cast<PlayerApp*>(glfwGetWindowUserPointer(w));
+    ++app->events_;
+    if (action == GLFW_PRESS || action == GLFW_REPEAT) app->key_queue_.push_back(key);
   });
   // The cursor as motion events report it, in order (glfwGetCursorPos asks X for the pointer
   // now, after every queued event): so a press knows where it happened.
   glfwSetCursorPosCallback(window, [](GLFWwindow* w, double x, double y) {
-    static_cast<PlayerApp*>(glfwGetWindowUserPointer(w))->cursor_ = {float(x), float(y)};
+    auto* app = static_cast<PlayerApp*>(glfwGetWindowUserPointer(w));
+    ++app->events_;
+    app->cursor_ = {float(x), float(y)};
   });
   glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int button, int action, int) {
-    if (button != GLFW_MOUSE_BUTTON_LEFT || action != GLFW_PRESS) return;
     auto* app = static_cast<PlayerApp*>(glfwGetWindowUserPointer(w));
+    ++app->events_;
+    if (button != GLFW_MOUSE_BUTTON_LEFT || action != GLFW_PRESS) return;
     app->left_press_ = app->cursor_;
   });
+  (void)app_of;
+  glfwSetScrollCallback(window, [](GLFWwindow* w, double, double) {
+    ++static_cast<PlayerApp*>(glfwGetWindowUserPointer(w))->events_;
+  });
+  glfwSetCharCallback(window, [](GLFWwindow* w, unsigned) {
+    ++static_cast<PlayerApp*>(glfwGetWindowUserPointer(w))->events_;
+  });
+  glfwSetWindowFocusCallback(window, [](GLFWwindow* w, int) {
+    ++static_cast<PlayerApp*>(glfwGetWindowUserPointer(w))->events_;
+  });
+  glfwSetFramebufferSizeCallback(window, [](GLFWwindow* w, int, int) {
+    ++static_cast<PlayerApp*>(glfwGetWindowUserPointer(w))->events_;
+  });
+  glfwSetWindowRefreshCallback(window, [](GLFWwindow* w) {  // uncovered: draw it again
+    ++static_cast<PlayerApp*>(glfwGetWindowUserPointer(w))->events_;
+  });
+  glfwSwapInterval(1);  // vsync where the display has it (a virtual one has none)
   ImGui_ImplGlfw_InitForOpenGL(window, true);
   if (const char* missing = tsp_imgui_gl_load(ctx->proc_address_function()))
     throw tsp::GlError(std::string("the GL entry point ") + missing +
@@ -414,6 +437,14 @@ void PlayerApp::save_pending_shot() {
 
 void PlayerApp::frame() {
   ctx->poll_events();
+  // An input event: Dear ImGui needs a few frames to settle (hover, popups, animations).
+  if (events_ != events_seen_) {
+    events_seen_ = events_;
+    settle_frames_ = kSettleFrames;
+  } else if (settle_frames_ > 0) {
+    --settle_frames_;
+  }
+  ++frames_drawn_;
   const double now = clock_.seconds();
   const double dt = now - last_frame_s_;
   last_frame_s_ = now;
@@ -492,9 +523,29 @@ void PlayerApp::frame() {
     history.pop_front();
 }
 
+bool PlayerApp::busy() const {
+  const bool script_running = script_pos_ < script_.size() || wait_frames_ > 0;
+  return quit_ || playing || settle_frames_ > 0 || script_running || !pending_shot_.empty() ||
+         save_requested_ || calibrator_ || open_job_ || recorder_ || !last.complete() ||
+         (lod_on && !full_quality()) || switch_started_s_ >= 0;
+}
+
 void PlayerApp::run() {
   int frames = 0;
-  for (; !quit_ && !ctx->should_close(); ++frames) frame();
+  while (!quit_ && !ctx->should_close()) {
+    // Nothing to show that is not shown already: sleep until an event (or a timeout, for the
+    // window's own timers), and draw only when something came.
+    if (!busy()) {
+      const std::uint64_t before = events_;
+      ctx->wait_events(kIdleWaitSeconds);
+      if (events_ == before && !busy()) {
+        ++idle_waits_;
+        continue;
+      }
+    }
+    frame();
+    ++frames;
+  }
   const tsp::BrickCacheStats b = renderer->brick_cache().stats();
   std::printf("played %d frames; bricks: %lld hits, %lld misses, %lld prefetched\n", frames,
               static_cast<long long>(b.hits), static_cast<long long>(b.misses),

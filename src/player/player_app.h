@@ -63,6 +63,10 @@ inline constexpr int kReadyStepsPerFrame = 4;
 /// Milliseconds of each frame the quality calibration may use (the window keeps ≥ 10 frames/s
 /// on top of its own frame time).
 inline constexpr double kCalibrationSliceMs = 40;
+/// Frames drawn after the last input event (Dear ImGui's hover and popups settle).
+inline constexpr int kSettleFrames = 3;
+/// Longest sleep of an idle window before it looks at its state again.
+inline constexpr double kIdleWaitSeconds = 0.5;
 /// Frames per second of a recorded movie (frames repeat or drop to keep the wall-clock time).
 inline constexpr int kRecordFps = 25;
 
@@ -228,6 +232,9 @@ class PlayerApp {
 
  private:
   void frame();
+  /// True while something is to be drawn that is not on screen yet (playing, a script, the LOD
+  /// refinement, uploads, calibration, an open, a recording, input settling).
+  bool busy() const;
   void advance_calibration();  // one slice of the quality calibration, applied when done
   void advance_playback(double dt);
   void handle_input();
@@ -281,6 +288,11 @@ class PlayerApp {
   /// callback during glfwPollEvents on this thread): every tap counts however slow a frame is,
   /// which Dear ImGui 1.86's per-frame key state cannot promise.
   std::vector<int> key_queue_;
+  std::uint64_t events_ = 0;       ///< window events so far (every GLFW callback counts one)
+  std::uint64_t events_seen_ = 0;  ///< events_ at the last frame
+  int settle_frames_ = 0;          ///< frames still drawn after the last event
+  std::int64_t frames_drawn_ = 0;  ///< frames drawn since the start
+  std::int64_t idle_waits_ = 0;    ///< waits that ended with nothing to draw
   std::array<float, 2> left_press_{-1, -1};
   std::array<float, 2> cursor_{-1, -1};  ///< the last motion event's position
   std::array<float, 4> traced_canvas_{-1, -1, -1, -1};  ///< the last traced TF canvas rect

@@ -261,6 +261,9 @@ void PlayerApp::write_stats(const std::string& path) const {
   for (const tsp::TfPoint& p : tf_points) points.push_back({p.x, p.c.a});
   j["tf_points"] = points;
   j["quality"] = quality_note;
+  j["frames_drawn"] = frames_drawn_;
+  j["idle_waits"] = idle_waits_;
+  j["cpu_seconds"] = tsp::cpu_seconds();
   j["calibration"] = {{"running", calibrator_ != nullptr},
                       {"seconds", calibration_s_},
                       {"frames_while_calibrating", frames_while_calibrating_}};

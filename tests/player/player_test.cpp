@@ -685,6 +685,43 @@ TEST(Player, PausedPlayerDrawsWhatRenderDrawsForTheSameSettings) {
   }
 }
 
+// Renders on demand: a window with nothing to change sleeps in its event wait (a generous bound
+// on its CPU share while idle, measured from /proc, not timed), and a key wakes it at once.
+TEST(Player, IdleWindowSleepsAndAKeyWakesIt) {
+  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  ASSERT_EQ(std::system("command -v xdotool > /dev/null"), 0)
+      << "xdotool missing (scripts/install-deps.sh installs it)";
+  const fs::path tsp = make_tsp(), dir = tsptest::temp_dir(), out = dir / "idle.out";
+  // The script ends without quit: the window stays open, idle.
+  const fs::path script = write_script("step 1\nwait-frames 3\nstats " + (dir / "ready.json").string() + "\n");
+  const std::string cmd =
+      q(tsptest::tspplay_bin()) + " play " + q(tsp) + " --size 320x240 --trace --script " +
+      q(script) + " > " + q(out) + " 2>&1 &\n" +
+      "p=$!\n"
+      "w=$(xdotool search --sync --name " + q("tspplay - " + tsp.string()) + " | head -1)\n"
+      "for i in $(seq 300); do [ -e " + q(dir / "ready.json") + " ] && break; sleep 0.1; done\n"
+      "sleep 1\n"  // the LOD refinement and the last UI frames settle
+      "a=$(awk '{print $14+$15}' /proc/$p/stat)\n"
+      "sleep 3\n"
+      "b=$(awk '{print $14+$15}' /proc/$p/stat)\n"
+      "echo \"idle_ticks $((b - a)) $(getconf CLK_TCK)\" > " + q(dir / "cpu.txt") + "\n"
+      "xdotool key --window \"$w\" Right\n"
+      "for i in $(seq 100); do grep -q 'trace: step 2' " + q(out) + " && break; sleep 0.1; done\n"
+      "kill $p; wait $p; true\n";
+  ASSERT_EQ(run_bash(dir / "idle.sh", cmd), 0);
+  std::ifstream cpu(dir / "cpu.txt");
+  std::string word;
+  long ticks = -1, per_second = 0;
+  cpu >> word >> ticks >> per_second;
+  ASSERT_EQ(word, "idle_ticks");
+  ASSERT_GT(per_second, 0);
+  // The target is under 5 % of a core; the bound leaves room for a loaded test machine. A window
+  // that drew continuously used 90-140 %.
+  EXPECT_LT(double(ticks) / double(per_second) / 3.0, 0.25) << ticks << " ticks in 3 s";
+  EXPECT_NE(tsptest::read_file(out).find("trace: step 2"), std::string::npos)
+      << tsptest::read_file(out);
+}
+
 }  // namespace
 
 // The quality slider (script `quality`) calibrates on an offscreen canvas of the window's own

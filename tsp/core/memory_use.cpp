@@ -1,5 +1,7 @@
 #include "tsp/core/memory_use.h"
 
+#include <sys/resource.h>
+
 #include <cstdio>
 #include <cstring>
 
@@ -28,5 +30,12 @@ std::int64_t status_kib(const char* name) {
 
 std::int64_t resident_bytes() { return status_kib("VmRSS"); }
 std::int64_t peak_resident_bytes() { return status_kib("VmHWM"); }
+
+double cpu_seconds() {
+  rusage u{};
+  if (getrusage(RUSAGE_SELF, &u) != 0) return 0;
+  auto s = [](const timeval& t) { return double(t.tv_sec) + double(t.tv_usec) * 1e-6; };
+  return s(u.ru_utime) + s(u.ru_stime);
+}
 
 }  // namespace tsp
