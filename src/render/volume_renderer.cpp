@@ -90,6 +90,21 @@ VolumeRenderer::ReuseKey VolumeRenderer::reuse_key(const tsp::Camera& camera,
   return k;
 }
 
+tsp::TraversalQuery VolumeRenderer::traversal(int step, const RenderSettings& s,
+                                              tsp::FrameMetric& metric,
+                                              const tsp::NodeErrors& errors,
+                                              const tsp::ViewOrder& order,
+                                              tsp::LodStops stops) const {
+  return {.tree = tree_,
+          .step = step,
+          .tol = s.tol,
+          .errors = errors,
+          .view = order,
+          .stops = stops,
+          .clip = clip_sides_,
+          .transparent = transparency(s, metric)};
+}
+
 void VolumeRenderer::clear_textures() {
   previous_.reset();
   textures_.clear();
@@ -98,10 +113,10 @@ void VolumeRenderer::clear_textures() {
 }
 
 int VolumeRenderer::drop_unreachable(tsp::FrameMetric& metric, const tsp::Tolerances& tol,
-                                     tsp::SpanStep span_step, tsp::LodStops stops,
-                                     bool skip_transparent) {
+                                     bool skip_transparent, tsp::SpanStep span_step,
+                                     tsp::LodStops stops) {
   const auto dropped = cache_.drop_unreachable(
-      tsp::reachable_textures(tree_, metric, tol, span_step, stops, skip_transparent));
+      tsp::reachable_textures(tree_, metric, tol, skip_transparent, span_step, stops));
   for (const tsp::TextureKey& k : dropped) textures_.erase(k);
   return int(dropped.size());
 }
@@ -125,8 +140,7 @@ std::vector<tsp::TextureKey> VolumeRenderer::textures_to_upload(int step,
   const tsp::NodeErrors& errors = metric.errors_for_step(step);
   std::vector<tsp::TextureKey> keys;
   for (const tsp::Emitted& e :
-       tsp::traverse(tree_, step, settings.tol, errors, order, stops, clip_sides_,
-                     transparency(settings, metric))) {
+       tsp::traverse(traversal(step, settings, metric, errors, order, stops))) {
     const int id = tree_.id(e.octree_id, e.time_id);
     // Clipped away, skipped, flat or a splat: no brick.
     if (tsp::emitted_shading(tree_, e, metric.class_info(id), settings.tol, stops, clip_surface_) !=
@@ -315,11 +329,18 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
   // mean_colour below only read memoised results.
   const tsp::NodeErrors& errors = metric.errors_for_step(step);
   const std::vector<tsp::Emitted> emitted =
-      tsp::traverse(tree_, step, settings.tol, errors, order, stops, clip_sides_,
-                    transparency(settings, metric));
-  const tsp::FramePlan plan = tsp::plan_frame(tree_, step, emitted, tsp::node_info(metric),
-                                              settings.tol, order, cache_, settings.upload_budget,
-                                              settings.span_step, stops, clip_surface_);
+      tsp::traverse(traversal(step, settings, metric, errors, order, stops));
+  const tsp::FramePlan plan = tsp::plan_frame({.tree = tree_,
+                                               .step = step,
+                                               .emitted = emitted,
+                                               .info = tsp::node_info(metric),
+                                               .tol = settings.tol,
+                                               .view = order,
+                                               .upload_budget = settings.upload_budget,
+                                               .span_step = settings.span_step,
+                                               .stops = stops,
+                                               .clip_surface = clip_surface_},
+                                              cache_);
   // Ray casting a level brick, each leaf page below it keeps the full-resolution traversal's
   // shading: skipped when transparent, flat when coherent (fill_pages).
   level_pages_.clear();
@@ -329,8 +350,7 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
   if (settings.compositing == Compositing::rays && level_textures) {
     leaf_shading_.assign(std::size_t(octree.brick_count()), {});
     for (const tsp::Emitted& e :
-         tsp::traverse(tree_, step, settings.tol, errors, order, {}, clip_sides_,
-                       transparency(settings, metric))) {
+         tsp::traverse(traversal(step, settings, metric, errors, order, {}))) {
       const int id = tree_.id(e.octree_id, e.time_id);
       // As plan_frame: clipped away → nothing; across the clip surface → sampled.
       const LeafShading ls{

@@ -81,11 +81,11 @@ class VolumeRenderer {
                                               tsp::FrameMetric& metric,
                                               tsp::LodStops stops = {}) const;
   /// After a tolerance (or metric) change: deletes the textures no frame can draw any more under
-  /// metric and tol (one traversal per step; skip_transparent as RenderSettings') and returns
-  /// how many. TF edits need no call.
-  int drop_unreachable(tsp::FrameMetric& metric, const tsp::Tolerances& tol,
-                       tsp::SpanStep span_step = tsp::SpanStep::middle,
-                       tsp::LodStops stops = {}, bool skip_transparent = true);
+  /// metric and tol (one traversal per step; skip_transparent: RenderSettings::skip_transparent
+  /// of the frames to come) and returns how many. TF edits need no call. Throws what metric
+  /// throws.
+  int drop_unreachable(tsp::FrameMetric& metric, const tsp::Tolerances& tol, bool skip_transparent,
+                       tsp::SpanStep span_step = tsp::SpanStep::middle, tsp::LodStops stops = {});
   /// Deletes every cached texture.
   void clear_textures();
 
@@ -131,6 +131,11 @@ class VolumeRenderer {
   std::vector<tsp::ClipSide> clip_sides_;  // per octree node, empty: no clip
   std::uint64_t clip_serial_ = 0;         // set_clip calls that changed it
   ReuseKey reuse_key(const tsp::Camera& camera, const RenderSettings& s) const;
+  // The traversal of step under s with errors (metric's for step), the clip sides in use and,
+  // with s.skip_transparent, metric's transparency; stops: the LOD cut (empty: none).
+  tsp::TraversalQuery traversal(int step, const RenderSettings& s, tsp::FrameMetric& metric,
+                                const tsp::NodeErrors& errors, const tsp::ViewOrder& order,
+                                tsp::LodStops stops) const;
   BrickPages pages_;             // rays compositing
   struct LeafShading {
     tsp::Shading shading = tsp::Shading::none;
