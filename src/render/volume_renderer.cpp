@@ -312,74 +312,81 @@ void VolumeRenderer::fill_pages(const tsp::FramePlan& plan, tsp::FrameMetric& me
   pages_.finish();
 }
 
-FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
-                                   const RenderSettings& requested, tsp::FrameMetric& metric,
-                                   tsp::LodStops stops) {
-  const tsp::Stopwatch frame;
+VolumeRenderer::Frame VolumeRenderer::plan(int step, const tsp::Camera& camera,
+                                           const RenderSettings& requested,
+                                           tsp::FrameMetric& metric, tsp::LodStops stops) {
+  Frame f;
   // Probes clip per sample in the one-pass ray caster: frames with probes are ray cast.
-  RenderSettings settings = requested;
-  if (!clip_sides_.empty()) settings.compositing = Compositing::rays;
-  const tsp::Octree& octree = tree_.octree();
-  FrameReport r;
-  r.step = step;
-
-  tsp::Stopwatch phase;
+  f.settings = requested;
+  if (!clip_sides_.empty()) f.settings.compositing = Compositing::rays;
   const tsp::ViewOrder order = view_order(camera);
   // errors_for_step makes every node this step's traversal can reach current, so class_info and
   // mean_colour below only read memoised results.
   const tsp::NodeErrors& errors = metric.errors_for_step(step);
   const std::vector<tsp::Emitted> emitted =
-      tsp::traverse(traversal(step, settings, metric, errors, order, stops));
-  const tsp::FramePlan plan = tsp::plan_frame({.tree = tree_,
-                                               .step = step,
-                                               .emitted = emitted,
-                                               .info = tsp::node_info(metric),
-                                               .tol = settings.tol,
-                                               .view = order,
-                                               .upload_budget = settings.upload_budget,
-                                               .span_step = settings.span_step,
-                                               .stops = stops,
-                                               .clip_surface = clip_surface_},
-                                              cache_);
+      tsp::traverse(traversal(step, f.settings, metric, errors, order, stops));
+  f.plan = tsp::plan_frame({.tree = tree_,
+                            .step = step,
+                            .emitted = emitted,
+                            .info = tsp::node_info(metric),
+                            .tol = f.settings.tol,
+                            .view = order,
+                            .upload_budget = f.settings.upload_budget,
+                            .span_step = f.settings.span_step,
+                            .stops = stops,
+                            .clip_surface = clip_surface_},
+                           cache_);
+  shade_leaves(traversal(step, f.settings, metric, errors, order, {}), f, metric);
+  decide_reuse(f, camera, metric);
+  return f;
+}
+
+void VolumeRenderer::shade_leaves(const tsp::TraversalQuery& full, const Frame& f,
+                                  tsp::FrameMetric& metric) {
   // Ray casting a level brick, each leaf page below it keeps the full-resolution traversal's
   // shading: skipped when transparent, flat when coherent (fill_pages).
   level_pages_.clear();
   const bool level_textures =
-      std::any_of(plan.textures.begin(), plan.textures.end(),
+      std::any_of(f.plan.textures.begin(), f.plan.textures.end(),
                   [](const tsp::PlannedTexture& pt) { return pt.key.level > 0; });
-  if (settings.compositing == Compositing::rays && level_textures) {
-    leaf_shading_.assign(std::size_t(octree.brick_count()), {});
-    for (const tsp::Emitted& e :
-         tsp::traverse(traversal(step, settings, metric, errors, order, {}))) {
-      const int id = tree_.id(e.octree_id, e.time_id);
-      // As plan_frame: clipped away → nothing; across the clip surface → sampled.
-      const LeafShading ls{
-          tsp::emitted_shading(tree_, e, metric.class_info(id), settings.tol, {}, clip_surface_), id};
-      octree.for_each_brick(e.octree_id, [&](int b) { leaf_shading_[std::size_t(b)] = ls; });
-    }
-    for (const LeafShading& ls : leaf_shading_)
-      level_pages_.push_back(std::int64_t(ls.tsp_id + 1) * kShadingCount + int(ls.shading));
+  if (f.settings.compositing != Compositing::rays || !level_textures) return;
+  const tsp::Octree& octree = tree_.octree();
+  leaf_shading_.assign(std::size_t(octree.brick_count()), {});
+  for (const tsp::Emitted& e : tsp::traverse(full)) {
+    const int id = tree_.id(e.octree_id, e.time_id);
+    // As plan_frame: clipped away → nothing; across the clip surface → sampled.
+    const LeafShading ls{
+        tsp::emitted_shading(tree_, e, metric.class_info(id), full.tol, {}, clip_surface_), id};
+    octree.for_each_brick(e.octree_id, [&](int b) { leaf_shading_[std::size_t(b)] = ls; });
   }
+  for (const LeafShading& ls : leaf_shading_)
+    level_pages_.push_back(std::int64_t(ls.tsp_id + 1) * kShadingCount + int(ls.shading));
+}
+
+void VolumeRenderer::decide_reuse(Frame& f, const tsp::Camera& camera, tsp::FrameMetric& metric) {
   // Partial-image reuse: with the same view, TF and knobs as the last frame, only the screen
   // rectangles of the bricks drawn differently are drawn again.
-  BrickIdentities ids = brick_identities(
-      tree_, plan, [&](int id) { return metric.mean_colour(id); }, level_pages_);
-  const ReuseKey key = reuse_key(camera, settings);
-  const bool reuse =
-      settings.reuse_image && settings.render_scale == 1 && previous_ && previous_->key == key;
-  std::vector<PixelRect> rects;
-  if (reuse) rects = dirty_rects(tree_, camera, previous_->ids, ids);
+  f.ids = brick_identities(
+      tree_, f.plan, [&](int id) { return metric.mean_colour(id); }, level_pages_);
+  f.key = reuse_key(camera, f.settings);
+  f.reuse = f.settings.reuse_image && f.settings.render_scale == 1 && previous_ &&
+            previous_->key == f.key;
+  if (f.reuse) f.rects = dirty_rects(tree_, camera, previous_->ids, f.ids);
   previous_.reset();  // valid again only once this frame is complete
-  r.traversal_ms = phase.lap_ms();
-  compositor_->begin_frame(camera, settings, reuse);
+}
 
+void VolumeRenderer::upload(const Frame& f, FrameReport& r) {
   // Uploads first (growing the atlas moves every slot), then the draw list or the brick pages.
-  for (const tsp::TextureKey& k : plan.evict_before) textures_.erase(k);
-  for (const tsp::PlannedTexture& pt : plan.textures)
+  for (const tsp::TextureKey& k : f.plan.evict_before) textures_.erase(k);
+  for (const tsp::PlannedTexture& pt : f.plan.textures)
     if (!pt.deferred && pt.upload) textures_.upload(pt.key);
-  r.upload_ms = phase.lap_ms();
+  r.dense = f.settings.compositing == Compositing::rays && f.settings.dense && dense_frame(f.plan);
+  // Every leaf brick textured at full resolution from one step: the whole volume as one page.
+  if (r.dense) dense_.update(dense_keys_);
+}
 
-  r.dense = settings.compositing == Compositing::rays && settings.dense && dense_frame(plan);
+tsp::Aabb VolumeRenderer::drawn_bounds(const tsp::FramePlan& plan) const {
+  const tsp::Octree& octree = tree_.octree();
   // The rays go through the bounds of what is drawn: transparent and clipped bricks around it
   // cost no fragments and no leaps.
   tsp::Aabb drawn = tsp::empty_aabb();
@@ -390,38 +397,44 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
   // without a surface to draw: the caster finds the surface where a ray enters the solid after
   // its start, which a ray starting on it would miss.
   if (!clip_sides_.empty() && !clip_surface_ && !tsp::is_empty(drawn)) drawn = clip_.bound(drawn);
-  const bool nothing_drawn = tsp::is_empty(drawn);
+  return drawn;
+}
+
+void VolumeRenderer::compose(const Frame& f, const tsp::Camera& camera, tsp::FrameMetric& metric,
+                             FrameReport& r) {
+  const tsp::Octree& octree = tree_.octree();
+  const bool rays = f.settings.compositing == Compositing::rays;
+  const tsp::Aabb drawn = drawn_bounds(f.plan);
+  const tsp::Aabb* bounds = tsp::is_empty(drawn) ? nullptr : &drawn;
   if (r.dense) {
-    // Every leaf brick textured at full resolution from one step: the whole volume as one page.
-    dense_.update(dense_keys_);
-    r.upload_ms += phase.lap_ms();
     pages_.reset({1, 1, 1}, {std::max(octree.dims().x - 1, 1), std::max(octree.dims().y - 1, 1),
                              std::max(octree.dims().z - 1, 1)});
     pages_.set_textured(0, dense_.slot(), !clip_sides_.empty());
     pages_.finish();
-    compositor_->set_pages(pages_, octree.dims(), nothing_drawn ? nullptr : &drawn);
-  } else if (settings.compositing == Compositing::rays) {
-    fill_pages(plan, metric);
-    compositor_->set_pages(pages_, octree.dims(), nothing_drawn ? nullptr : &drawn);
+    compositor_->set_pages(pages_, octree.dims(), bounds);
+  } else if (rays) {
+    fill_pages(f.plan, metric);
+    compositor_->set_pages(pages_, octree.dims(), bounds);
   } else {
-    fill_items(plan, metric, camera, settings);
+    fill_items(f.plan, metric, camera, f.settings);
   }
-  if (settings.compositing == Compositing::rays && compositor_->adaptive())
-    r.step_multiplier = set_step_map(plan, settings);
-  r.slicing_ms = phase.lap_ms();
+  if (rays && compositor_->adaptive()) r.step_multiplier = set_step_map(f.plan, f.settings);
   r.polygons = std::int64_t(soup_.size());
+}
 
+void VolumeRenderer::draw(Frame& f, const tsp::Camera& camera, FrameReport& r) {
+  const RenderSettings& settings = f.settings;
   auto draw_all = [&] {
     if (settings.compositing == Compositing::rays)
       compositor_->draw_rays();
     else
       compositor_->draw(items_);
   };
-  if (!reuse) {
+  if (!f.reuse) {
     draw_all();
   } else {
     std::int64_t area = 0;
-    for (const PixelRect& rect : rects) {
+    for (const PixelRect& rect : f.rects) {
       compositor_->set_region(rect, settings);
       draw_all();
       area += rect.area();
@@ -434,12 +447,12 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
     r.boxes = 1;
   else
     for (const DrawItem& it : items_) r.boxes += it.as_box;
-  for (const tsp::TextureKey& k : plan.release_after) textures_.erase(k);
+  for (const tsp::TextureKey& k : f.plan.release_after) textures_.erase(k);
   r.fragments = compositor_->end_frame();
-  previous_ = Previous{key, std::move(ids)};
-  r.draw_ms = phase.lap_ms();
-  r.ms = frame.ms();
+  previous_ = Previous{f.key, std::move(f.ids)};
+}
 
+void VolumeRenderer::report(const tsp::FramePlan& plan, FrameReport& r) const {
   for (int c = 0; c < tsp::kDrawClassCount; ++c)
     r.class_percent[std::size_t(c)] = plan.percent(tsp::DrawClass(c));
   r.bytes_uploaded = plan.bytes_uploaded;
@@ -447,7 +460,7 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
   r.texture_bytes = plan.texture_bytes;
   r.deferred_textures = plan.deferred;
   // Which steps the picture stands for, and which steps' bricks it shows.
-  r.spans_lo = r.spans_hi = r.shown_lo = r.shown_hi = step;
+  r.spans_lo = r.spans_hi = r.shown_lo = r.shown_hi = plan.step;
   for (const tsp::PlannedNode& n : plan.nodes) {
     if (n.cls == tsp::DrawClass::not_rendered) continue;
     const tsp::Span sp = tree_.time().span(n.node.time_id);
@@ -460,6 +473,26 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
       r.shows_mean |= k.is_mean();
     }
   }
+}
+
+FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
+                                   const RenderSettings& requested, tsp::FrameMetric& metric,
+                                   tsp::LodStops stops) {
+  const tsp::Stopwatch frame;
+  FrameReport r;
+  r.step = step;
+  tsp::Stopwatch phase;
+  Frame f = plan(step, camera, requested, metric, stops);
+  r.traversal_ms = phase.lap_ms();
+  compositor_->begin_frame(camera, f.settings, f.reuse);
+  upload(f, r);
+  r.upload_ms = phase.lap_ms();
+  compose(f, camera, metric, r);
+  r.slicing_ms = phase.lap_ms();
+  draw(f, camera, r);
+  r.draw_ms = phase.lap_ms();
+  r.ms = frame.ms();
+  report(f.plan, r);
   return r;
 }
 

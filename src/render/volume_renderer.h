@@ -143,6 +143,36 @@ class VolumeRenderer {
   };
   std::vector<LeafShading> leaf_shading_;  // per leaf brick, full resolution (LOD frames)
   std::vector<std::int64_t> level_pages_;  // leaf_shading_ as identity tags (image reuse)
+  // One frame between the stages of render(): plan → upload → compose → draw → report.
+  struct Frame {
+    RenderSettings settings;  // as requested; ray cast where probes clip
+    tsp::FramePlan plan;
+    ReuseKey key;                  // what it is drawn with (partial-image reuse)
+    BrickIdentities ids;           // what each brick shows
+    bool reuse = false;            // only rects are drawn again
+    std::vector<PixelRect> rects;  // the screen rectangles that changed
+  };
+  // Traversal and frame plan (the cache decides), the leaves' shading under level bricks and
+  // the reuse decision.
+  Frame plan(int step, const tsp::Camera& camera, const RenderSettings& requested,
+             tsp::FrameMetric& metric, tsp::LodStops stops);
+  // Ray casting level bricks: every leaf page's full-resolution shading under full, the
+  // traversal without the LOD cut (leaf_shading_, level_pages_); clears level_pages_ otherwise.
+  void shade_leaves(const tsp::TraversalQuery& full, const Frame& f, tsp::FrameMetric& metric);
+  // Compares f with the last complete frame (f.key, f.ids, f.reuse, f.rects); forgets it.
+  void decide_reuse(Frame& f, const tsp::Camera& camera, tsp::FrameMetric& metric);
+  // Deletes and uploads f's textures; a dense frame's whole-volume texture too (r.dense).
+  void upload(const Frame& f, FrameReport& r);
+  // What the rays cross: the bounds of the drawn nodes (within the clip solid's, without a
+  // surface); empty when nothing is drawn.
+  tsp::Aabb drawn_bounds(const tsp::FramePlan& plan) const;
+  // The brick pages (rays) or the draw list (slices, boxes), and adaptive sampling's step map.
+  void compose(const Frame& f, const tsp::Camera& camera, tsp::FrameMetric& metric, FrameReport& r);
+  // Draws (only f.rects when reusing), deletes the plan's release_after, ends the frame and
+  // keeps it for reuse.
+  void draw(Frame& f, const tsp::Camera& camera, FrameReport& r);
+  // The plan's class shares, texture counts and the steps the picture stands for and shows.
+  void report(const tsp::FramePlan& plan, FrameReport& r) const;
   void fill_items(const tsp::FramePlan& plan, tsp::FrameMetric& metric, const tsp::Camera& camera,
                   const RenderSettings& settings);
   void fill_pages(const tsp::FramePlan& plan, tsp::FrameMetric& metric);
