@@ -49,7 +49,7 @@ void VolumeRenderer::set_transfer_function(const tsp::TransferFunction& tf) {
   compositor_->set_transfer_function(tf, tree_.value_range());
   tf_ = tf;
   variation_.reset();
-  variations_.clear();
+  textures_.forget_variations();
   ++tf_serial_;
 }
 
@@ -227,22 +227,16 @@ bool VolumeRenderer::dense_frame(const tsp::FramePlan& plan) {
 double VolumeRenderer::set_step_map(const tsp::FramePlan& plan, const RenderSettings& settings) {
   const tsp::Octree& octree = tree_.octree();
   if (!variation_) variation_.emplace(tf_, tree_.value_range());
-  // Keys of bricks long gone are not worth keeping: a few steps' worth at most.
-  if (variations_.size() > std::size_t(4 * octree.brick_count())) variations_.clear();
   const std::array<int, 3> g = tsp::step_grid(octree.dims());
   cell_variation_.assign(std::size_t(g[0]) * g[1] * g[2], 0.f);
   cell_drawn_.assign(cell_variation_.size(), 0);
   for (const tsp::PlannedTexture& pt : plan.textures) {
     if (pt.deferred || pt.key.level != 0) continue;
-    auto it = variations_.find(pt.key);
-    if (it == variations_.end()) {
+    // Kept with the texture, and evicted with it.
+    const tsp::CellVariations& c = textures_.variations(pt.key, [&] {
       const tsp::BrickSamples samples = texture_samples(bricks_, pt.key);
-      it = variations_
-               .emplace(pt.key, variation_->cells(samples->data(),
-                                                  octree.brick_samples(pt.key.brick)))
-               .first;
-    }
-    const tsp::CellVariations& c = it->second;
+      return variation_->cells(samples->data(), octree.brick_samples(pt.key.brick));
+    });
     for (int z = 0; z < c.count[2]; ++z)
       for (int y = 0; y < c.count[1]; ++y)
         for (int x = 0; x < c.count[0]; ++x) {

@@ -7,7 +7,6 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
-#include <unordered_map>
 #include <vector>
 
 #include "gl/context.h"
@@ -95,6 +94,8 @@ class VolumeRenderer {
   tsp::TextureCache& texture_cache() { return cache_; }
   /// Number of GL brick textures alive.
   int texture_count() const { return textures_.size(); }
+  /// The GL brick textures and what is kept with each (adaptive sampling's variations).
+  const BrickTextures& textures() const { return textures_; }
 
  private:
   const tsp::TspTree& tree_;
@@ -185,8 +186,6 @@ class VolumeRenderer {
   double set_step_map(const tsp::FramePlan& plan, const RenderSettings& settings);
   tsp::TransferFunction tf_;  // the TF in use (adaptive sampling measures under it)
   std::optional<tsp::SampleVariation> variation_;  // under tf_ (reset by set_transfer_function)
-  std::unordered_map<tsp::TextureKey, tsp::CellVariations, tsp::TextureKeyHash>
-      variations_;                       // per texture, under tf_
   std::vector<float> cell_variation_;    // per step-grid cell, this frame
   std::vector<std::uint8_t> cell_drawn_;  // per step-grid cell: a textured brick reaches it
 };
