@@ -33,8 +33,8 @@ void PlayerApp::set_metric(tsp::Metric m) {
     lazy_ = std::make_unique<tsp::LazyErrors>(file->tree(), m, tf);
   else
     reference_version_ = ~std::uint64_t(0);
-  renderer->drop_unreachable(frame_metric(), settings.tol, settings.span_step, {},
-                             settings.skip_transparent);
+  renderer->drop_unreachable(frame_metric(), settings.tol, settings.skip_transparent,
+                             settings.span_step);
   update_tol_max();
 }
 
@@ -45,8 +45,8 @@ void PlayerApp::update_tol_max() {
 
 void PlayerApp::set_tolerances(tsp::Tolerances t) {
   settings.tol = {std::max(0.0, t.spatial), std::max(0.0, t.temporal)};
-  renderer->drop_unreachable(frame_metric(), settings.tol, settings.span_step, {},
-                             settings.skip_transparent);
+  renderer->drop_unreachable(frame_metric(), settings.tol, settings.skip_transparent,
+                             settings.span_step);
 }
 
 void PlayerApp::set_setting(const std::string& name, const std::string& text) {

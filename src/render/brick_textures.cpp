@@ -130,11 +130,21 @@ void BrickTextures::erase(const tsp::TextureKey& key) {
   if (it == slots_.end()) return;
   free_.push_back(it->second);
   slots_.erase(it);
+  variations_.erase(key);
 }
 
 void BrickTextures::clear() {
   for (const auto& [key, slot] : slots_) free_.push_back(slot);
   slots_.clear();
+  variations_.clear();
+}
+
+const tsp::CellVariations& BrickTextures::variations(
+    const tsp::TextureKey& key, const std::function<tsp::CellVariations()>& make) {
+  assert(contains(key) && "variations of a texture not resident");
+  auto it = variations_.find(key);
+  if (it == variations_.end()) it = variations_.emplace(key, make()).first;
+  return it->second;
 }
 
 }  // namespace tspgl

@@ -2,13 +2,17 @@
 // and the baseline's whole volume), and the GL side of the TextureCache policy — every resident
 // TextureKey owns one slot of a single 3-D atlas texture, filled from the RAM brick cache. One
 // atlas lets a ray caster walk from brick to brick in one pass; slicing samples the same slots.
+// What the renderer derives from a resident texture's samples (adaptive sampling's cell
+// variations) lives here too, and leaves with the slot: one eviction rule.
 #pragma once
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <unordered_map>
 #include <vector>
 
 #include "gl/gl_api.h"
+#include "tsp/frame/sample_steps.h"
 #include "tsp/frame/texture_cache.h"
 #include "tsp/store/brick_cache.h"
 
@@ -53,10 +57,19 @@ class BrickTextures {
   BrickSlot at(const tsp::TextureKey& key) const;
   /// True when key has a slot.
   bool contains(const tsp::TextureKey& key) const { return slots_.contains(key); }
-  /// Frees key's slot, if any.
+  /// Frees key's slot, if any, and forgets its variations.
   void erase(const tsp::TextureKey& key);
-  /// Frees every slot (keeps the atlas).
+  /// Frees every slot (keeps the atlas) and forgets every variations.
   void clear();
+  /// Adaptive sampling's cell variations of resident key: made by make() on first use and kept
+  /// until key's slot is freed (erase, clear) or forget_variations(). Asserts key is resident;
+  /// throws what make throws.
+  const tsp::CellVariations& variations(const tsp::TextureKey& key,
+                                        const std::function<tsp::CellVariations()>& make);
+  /// Forgets every key's variations (a new transfer function); keeps the slots.
+  void forget_variations() { variations_.clear(); }
+  /// Number of resident keys whose variations are kept (never more than size()).
+  int variations_count() const { return int(variations_.size()); }
   /// Number of resident keys.
   int size() const { return int(slots_.size()); }
   /// Slots the atlas holds now.
@@ -72,6 +85,8 @@ class BrickTextures {
   GLuint atlas_ = 0;
   std::vector<int> free_;      ///< free slot indices (popped from the back)
   std::unordered_map<tsp::TextureKey, int, tsp::TextureKeyHash> slots_;
+  std::unordered_map<tsp::TextureKey, tsp::CellVariations, tsp::TextureKeyHash>
+      variations_;  ///< per resident key, under the caller's TF
   void grow(int min_capacity);
   void write(const tsp::TextureKey& key, int slot);
   std::array<int, 3> slot_origin(int slot) const;

@@ -49,7 +49,7 @@ void VolumeRenderer::set_transfer_function(const tsp::TransferFunction& tf) {
   compositor_->set_transfer_function(tf, tree_.value_range());
   tf_ = tf;
   variation_.reset();
-  variations_.clear();
+  textures_.forget_variations();
   ++tf_serial_;
 }
 
@@ -90,6 +90,21 @@ VolumeRenderer::ReuseKey VolumeRenderer::reuse_key(const tsp::Camera& camera,
   return k;
 }
 
+tsp::TraversalQuery VolumeRenderer::traversal(int step, const RenderSettings& s,
+                                              tsp::FrameMetric& metric,
+                                              const tsp::NodeErrors& errors,
+                                              const tsp::ViewOrder& order,
+                                              tsp::LodStops stops) const {
+  return {.tree = tree_,
+          .step = step,
+          .tol = s.tol,
+          .errors = errors,
+          .view = order,
+          .stops = stops,
+          .clip = clip_sides_,
+          .transparent = transparency(s, metric)};
+}
+
 void VolumeRenderer::clear_textures() {
   previous_.reset();
   textures_.clear();
@@ -98,10 +113,10 @@ void VolumeRenderer::clear_textures() {
 }
 
 int VolumeRenderer::drop_unreachable(tsp::FrameMetric& metric, const tsp::Tolerances& tol,
-                                     tsp::SpanStep span_step, tsp::LodStops stops,
-                                     bool skip_transparent) {
+                                     bool skip_transparent, tsp::SpanStep span_step,
+                                     tsp::LodStops stops) {
   const auto dropped = cache_.drop_unreachable(
-      tsp::reachable_textures(tree_, metric, tol, span_step, stops, skip_transparent));
+      tsp::reachable_textures(tree_, metric, tol, skip_transparent, span_step, stops));
   for (const tsp::TextureKey& k : dropped) textures_.erase(k);
   return int(dropped.size());
 }
@@ -125,8 +140,7 @@ std::vector<tsp::TextureKey> VolumeRenderer::textures_to_upload(int step,
   const tsp::NodeErrors& errors = metric.errors_for_step(step);
   std::vector<tsp::TextureKey> keys;
   for (const tsp::Emitted& e :
-       tsp::traverse(tree_, step, settings.tol, errors, order, stops, clip_sides_,
-                     transparency(settings, metric))) {
+       tsp::traverse(traversal(step, settings, metric, errors, order, stops))) {
     const int id = tree_.id(e.octree_id, e.time_id);
     // Clipped away, skipped, flat or a splat: no brick.
     if (tsp::emitted_shading(tree_, e, metric.class_info(id), settings.tol, stops, clip_surface_) !=
@@ -213,22 +227,16 @@ bool VolumeRenderer::dense_frame(const tsp::FramePlan& plan) {
 double VolumeRenderer::set_step_map(const tsp::FramePlan& plan, const RenderSettings& settings) {
   const tsp::Octree& octree = tree_.octree();
   if (!variation_) variation_.emplace(tf_, tree_.value_range());
-  // Keys of bricks long gone are not worth keeping: a few steps' worth at most.
-  if (variations_.size() > std::size_t(4 * octree.brick_count())) variations_.clear();
   const std::array<int, 3> g = tsp::step_grid(octree.dims());
   cell_variation_.assign(std::size_t(g[0]) * g[1] * g[2], 0.f);
   cell_drawn_.assign(cell_variation_.size(), 0);
   for (const tsp::PlannedTexture& pt : plan.textures) {
     if (pt.deferred || pt.key.level != 0) continue;
-    auto it = variations_.find(pt.key);
-    if (it == variations_.end()) {
+    // Kept with the texture, and evicted with it.
+    const tsp::CellVariations& c = textures_.variations(pt.key, [&] {
       const tsp::BrickSamples samples = texture_samples(bricks_, pt.key);
-      it = variations_
-               .emplace(pt.key, variation_->cells(samples->data(),
-                                                  octree.brick_samples(pt.key.brick)))
-               .first;
-    }
-    const tsp::CellVariations& c = it->second;
+      return variation_->cells(samples->data(), octree.brick_samples(pt.key.brick));
+    });
     for (int z = 0; z < c.count[2]; ++z)
       for (int y = 0; y < c.count[1]; ++y)
         for (int x = 0; x < c.count[0]; ++x) {
@@ -298,68 +306,81 @@ void VolumeRenderer::fill_pages(const tsp::FramePlan& plan, tsp::FrameMetric& me
   pages_.finish();
 }
 
-FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
-                                   const RenderSettings& requested, tsp::FrameMetric& metric,
-                                   tsp::LodStops stops) {
-  const tsp::Stopwatch frame;
+VolumeRenderer::Frame VolumeRenderer::plan(int step, const tsp::Camera& camera,
+                                           const RenderSettings& requested,
+                                           tsp::FrameMetric& metric, tsp::LodStops stops) {
+  Frame f;
   // Probes clip per sample in the one-pass ray caster: frames with probes are ray cast.
-  RenderSettings settings = requested;
-  if (!clip_sides_.empty()) settings.compositing = Compositing::rays;
-  const tsp::Octree& octree = tree_.octree();
-  FrameReport r;
-  r.step = step;
-
-  tsp::Stopwatch phase;
+  f.settings = requested;
+  if (!clip_sides_.empty()) f.settings.compositing = Compositing::rays;
   const tsp::ViewOrder order = view_order(camera);
   // errors_for_step makes every node this step's traversal can reach current, so class_info and
   // mean_colour below only read memoised results.
   const tsp::NodeErrors& errors = metric.errors_for_step(step);
   const std::vector<tsp::Emitted> emitted =
-      tsp::traverse(tree_, step, settings.tol, errors, order, stops, clip_sides_,
-                    transparency(settings, metric));
-  const tsp::FramePlan plan = tsp::plan_frame(tree_, step, emitted, tsp::node_info(metric),
-                                              settings.tol, order, cache_, settings.upload_budget,
-                                              settings.span_step, stops, clip_surface_);
+      tsp::traverse(traversal(step, f.settings, metric, errors, order, stops));
+  f.plan = tsp::plan_frame({.tree = tree_,
+                            .step = step,
+                            .emitted = emitted,
+                            .info = tsp::node_info(metric),
+                            .tol = f.settings.tol,
+                            .view = order,
+                            .upload_budget = f.settings.upload_budget,
+                            .span_step = f.settings.span_step,
+                            .stops = stops,
+                            .clip_surface = clip_surface_},
+                           cache_);
+  shade_leaves(traversal(step, f.settings, metric, errors, order, {}), f, metric);
+  decide_reuse(f, camera, metric);
+  return f;
+}
+
+void VolumeRenderer::shade_leaves(const tsp::TraversalQuery& full, const Frame& f,
+                                  tsp::FrameMetric& metric) {
   // Ray casting a level brick, each leaf page below it keeps the full-resolution traversal's
   // shading: skipped when transparent, flat when coherent (fill_pages).
   level_pages_.clear();
   const bool level_textures =
-      std::any_of(plan.textures.begin(), plan.textures.end(),
+      std::any_of(f.plan.textures.begin(), f.plan.textures.end(),
                   [](const tsp::PlannedTexture& pt) { return pt.key.level > 0; });
-  if (settings.compositing == Compositing::rays && level_textures) {
-    leaf_shading_.assign(std::size_t(octree.brick_count()), {});
-    for (const tsp::Emitted& e :
-         tsp::traverse(tree_, step, settings.tol, errors, order, {}, clip_sides_,
-                       transparency(settings, metric))) {
-      const int id = tree_.id(e.octree_id, e.time_id);
-      // As plan_frame: clipped away → nothing; across the clip surface → sampled.
-      const LeafShading ls{
-          tsp::emitted_shading(tree_, e, metric.class_info(id), settings.tol, {}, clip_surface_), id};
-      octree.for_each_brick(e.octree_id, [&](int b) { leaf_shading_[std::size_t(b)] = ls; });
-    }
-    for (const LeafShading& ls : leaf_shading_)
-      level_pages_.push_back(std::int64_t(ls.tsp_id + 1) * kShadingCount + int(ls.shading));
+  if (f.settings.compositing != Compositing::rays || !level_textures) return;
+  const tsp::Octree& octree = tree_.octree();
+  leaf_shading_.assign(std::size_t(octree.brick_count()), {});
+  for (const tsp::Emitted& e : tsp::traverse(full)) {
+    const int id = tree_.id(e.octree_id, e.time_id);
+    // As plan_frame: clipped away → nothing; across the clip surface → sampled.
+    const LeafShading ls{
+        tsp::emitted_shading(tree_, e, metric.class_info(id), full.tol, {}, clip_surface_), id};
+    octree.for_each_brick(e.octree_id, [&](int b) { leaf_shading_[std::size_t(b)] = ls; });
   }
+  for (const LeafShading& ls : leaf_shading_)
+    level_pages_.push_back(std::int64_t(ls.tsp_id + 1) * kShadingCount + int(ls.shading));
+}
+
+void VolumeRenderer::decide_reuse(Frame& f, const tsp::Camera& camera, tsp::FrameMetric& metric) {
   // Partial-image reuse: with the same view, TF and knobs as the last frame, only the screen
   // rectangles of the bricks drawn differently are drawn again.
-  BrickIdentities ids = brick_identities(
-      tree_, plan, [&](int id) { return metric.mean_colour(id); }, level_pages_);
-  const ReuseKey key = reuse_key(camera, settings);
-  const bool reuse =
-      settings.reuse_image && settings.render_scale == 1 && previous_ && previous_->key == key;
-  std::vector<PixelRect> rects;
-  if (reuse) rects = dirty_rects(tree_, camera, previous_->ids, ids);
+  f.ids = brick_identities(
+      tree_, f.plan, [&](int id) { return metric.mean_colour(id); }, level_pages_);
+  f.key = reuse_key(camera, f.settings);
+  f.reuse = f.settings.reuse_image && f.settings.render_scale == 1 && previous_ &&
+            previous_->key == f.key;
+  if (f.reuse) f.rects = dirty_rects(tree_, camera, previous_->ids, f.ids);
   previous_.reset();  // valid again only once this frame is complete
-  r.traversal_ms = phase.lap_ms();
-  compositor_->begin_frame(camera, settings, reuse);
+}
 
+void VolumeRenderer::upload(const Frame& f, FrameReport& r) {
   // Uploads first (growing the atlas moves every slot), then the draw list or the brick pages.
-  for (const tsp::TextureKey& k : plan.evict_before) textures_.erase(k);
-  for (const tsp::PlannedTexture& pt : plan.textures)
+  for (const tsp::TextureKey& k : f.plan.evict_before) textures_.erase(k);
+  for (const tsp::PlannedTexture& pt : f.plan.textures)
     if (!pt.deferred && pt.upload) textures_.upload(pt.key);
-  r.upload_ms = phase.lap_ms();
+  r.dense = f.settings.compositing == Compositing::rays && f.settings.dense && dense_frame(f.plan);
+  // Every leaf brick textured at full resolution from one step: the whole volume as one page.
+  if (r.dense) dense_.update(dense_keys_);
+}
 
-  r.dense = settings.compositing == Compositing::rays && settings.dense && dense_frame(plan);
+tsp::Aabb VolumeRenderer::drawn_bounds(const tsp::FramePlan& plan) const {
+  const tsp::Octree& octree = tree_.octree();
   // The rays go through the bounds of what is drawn: transparent and clipped bricks around it
   // cost no fragments and no leaps.
   tsp::Aabb drawn = tsp::empty_aabb();
@@ -370,38 +391,44 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
   // without a surface to draw: the caster finds the surface where a ray enters the solid after
   // its start, which a ray starting on it would miss.
   if (!clip_sides_.empty() && !clip_surface_ && !tsp::is_empty(drawn)) drawn = clip_.bound(drawn);
-  const bool nothing_drawn = tsp::is_empty(drawn);
+  return drawn;
+}
+
+void VolumeRenderer::compose(const Frame& f, const tsp::Camera& camera, tsp::FrameMetric& metric,
+                             FrameReport& r) {
+  const tsp::Octree& octree = tree_.octree();
+  const bool rays = f.settings.compositing == Compositing::rays;
+  const tsp::Aabb drawn = drawn_bounds(f.plan);
+  const tsp::Aabb* bounds = tsp::is_empty(drawn) ? nullptr : &drawn;
   if (r.dense) {
-    // Every leaf brick textured at full resolution from one step: the whole volume as one page.
-    dense_.update(dense_keys_);
-    r.upload_ms += phase.lap_ms();
     pages_.reset({1, 1, 1}, {std::max(octree.dims().x - 1, 1), std::max(octree.dims().y - 1, 1),
                              std::max(octree.dims().z - 1, 1)});
     pages_.set_textured(0, dense_.slot(), !clip_sides_.empty());
     pages_.finish();
-    compositor_->set_pages(pages_, octree.dims(), nothing_drawn ? nullptr : &drawn);
-  } else if (settings.compositing == Compositing::rays) {
-    fill_pages(plan, metric);
-    compositor_->set_pages(pages_, octree.dims(), nothing_drawn ? nullptr : &drawn);
+    compositor_->set_pages(pages_, octree.dims(), bounds);
+  } else if (rays) {
+    fill_pages(f.plan, metric);
+    compositor_->set_pages(pages_, octree.dims(), bounds);
   } else {
-    fill_items(plan, metric, camera, settings);
+    fill_items(f.plan, metric, camera, f.settings);
   }
-  if (settings.compositing == Compositing::rays && compositor_->adaptive())
-    r.step_multiplier = set_step_map(plan, settings);
-  r.slicing_ms = phase.lap_ms();
+  if (rays && compositor_->adaptive()) r.step_multiplier = set_step_map(f.plan, f.settings);
   r.polygons = std::int64_t(soup_.size());
+}
 
+void VolumeRenderer::draw(Frame& f, const tsp::Camera& camera, FrameReport& r) {
+  const RenderSettings& settings = f.settings;
   auto draw_all = [&] {
     if (settings.compositing == Compositing::rays)
       compositor_->draw_rays();
     else
       compositor_->draw(items_);
   };
-  if (!reuse) {
+  if (!f.reuse) {
     draw_all();
   } else {
     std::int64_t area = 0;
-    for (const PixelRect& rect : rects) {
+    for (const PixelRect& rect : f.rects) {
       compositor_->set_region(rect, settings);
       draw_all();
       area += rect.area();
@@ -414,12 +441,12 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
     r.boxes = 1;
   else
     for (const DrawItem& it : items_) r.boxes += it.as_box;
-  for (const tsp::TextureKey& k : plan.release_after) textures_.erase(k);
+  for (const tsp::TextureKey& k : f.plan.release_after) textures_.erase(k);
   r.fragments = compositor_->end_frame();
-  previous_ = Previous{key, std::move(ids)};
-  r.draw_ms = phase.lap_ms();
-  r.ms = frame.ms();
+  previous_ = Previous{f.key, std::move(f.ids)};
+}
 
+void VolumeRenderer::report(const tsp::FramePlan& plan, FrameReport& r) const {
   for (int c = 0; c < tsp::kDrawClassCount; ++c)
     r.class_percent[std::size_t(c)] = plan.percent(tsp::DrawClass(c));
   r.bytes_uploaded = plan.bytes_uploaded;
@@ -427,7 +454,7 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
   r.texture_bytes = plan.texture_bytes;
   r.deferred_textures = plan.deferred;
   // Which steps the picture stands for, and which steps' bricks it shows.
-  r.spans_lo = r.spans_hi = r.shown_lo = r.shown_hi = step;
+  r.spans_lo = r.spans_hi = r.shown_lo = r.shown_hi = plan.step;
   for (const tsp::PlannedNode& n : plan.nodes) {
     if (n.cls == tsp::DrawClass::not_rendered) continue;
     const tsp::Span sp = tree_.time().span(n.node.time_id);
@@ -440,6 +467,26 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
       r.shows_mean |= k.is_mean();
     }
   }
+}
+
+FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
+                                   const RenderSettings& requested, tsp::FrameMetric& metric,
+                                   tsp::LodStops stops) {
+  const tsp::Stopwatch frame;
+  FrameReport r;
+  r.step = step;
+  tsp::Stopwatch phase;
+  Frame f = plan(step, camera, requested, metric, stops);
+  r.traversal_ms = phase.lap_ms();
+  compositor_->begin_frame(camera, f.settings, f.reuse);
+  upload(f, r);
+  r.upload_ms = phase.lap_ms();
+  compose(f, camera, metric, r);
+  r.slicing_ms = phase.lap_ms();
+  draw(f, camera, r);
+  r.draw_ms = phase.lap_ms();
+  r.ms = frame.ms();
+  report(f.plan, r);
   return r;
 }
 

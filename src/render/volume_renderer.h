@@ -7,7 +7,6 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
-#include <unordered_map>
 #include <vector>
 
 #include "gl/context.h"
@@ -81,11 +80,11 @@ class VolumeRenderer {
                                               tsp::FrameMetric& metric,
                                               tsp::LodStops stops = {}) const;
   /// After a tolerance (or metric) change: deletes the textures no frame can draw any more under
-  /// metric and tol (one traversal per step; skip_transparent as RenderSettings') and returns
-  /// how many. TF edits need no call.
-  int drop_unreachable(tsp::FrameMetric& metric, const tsp::Tolerances& tol,
-                       tsp::SpanStep span_step = tsp::SpanStep::middle,
-                       tsp::LodStops stops = {}, bool skip_transparent = true);
+  /// metric and tol (one traversal per step; skip_transparent: RenderSettings::skip_transparent
+  /// of the frames to come) and returns how many. TF edits need no call. Throws what metric
+  /// throws.
+  int drop_unreachable(tsp::FrameMetric& metric, const tsp::Tolerances& tol, bool skip_transparent,
+                       tsp::SpanStep span_step = tsp::SpanStep::middle, tsp::LodStops stops = {});
   /// Deletes every cached texture.
   void clear_textures();
 
@@ -95,6 +94,8 @@ class VolumeRenderer {
   tsp::TextureCache& texture_cache() { return cache_; }
   /// Number of GL brick textures alive.
   int texture_count() const { return textures_.size(); }
+  /// The GL brick textures and what is kept with each (adaptive sampling's variations).
+  const BrickTextures& textures() const { return textures_; }
 
  private:
   const tsp::TspTree& tree_;
@@ -131,6 +132,11 @@ class VolumeRenderer {
   std::vector<tsp::ClipSide> clip_sides_;  // per octree node, empty: no clip
   std::uint64_t clip_serial_ = 0;         // set_clip calls that changed it
   ReuseKey reuse_key(const tsp::Camera& camera, const RenderSettings& s) const;
+  // The traversal of step under s with errors (metric's for step), the clip sides in use and,
+  // with s.skip_transparent, metric's transparency; stops: the LOD cut (empty: none).
+  tsp::TraversalQuery traversal(int step, const RenderSettings& s, tsp::FrameMetric& metric,
+                                const tsp::NodeErrors& errors, const tsp::ViewOrder& order,
+                                tsp::LodStops stops) const;
   BrickPages pages_;             // rays compositing
   struct LeafShading {
     tsp::Shading shading = tsp::Shading::none;
@@ -138,6 +144,36 @@ class VolumeRenderer {
   };
   std::vector<LeafShading> leaf_shading_;  // per leaf brick, full resolution (LOD frames)
   std::vector<std::int64_t> level_pages_;  // leaf_shading_ as identity tags (image reuse)
+  // One frame between the stages of render(): plan → upload → compose → draw → report.
+  struct Frame {
+    RenderSettings settings;  // as requested; ray cast where probes clip
+    tsp::FramePlan plan;
+    ReuseKey key;                  // what it is drawn with (partial-image reuse)
+    BrickIdentities ids;           // what each brick shows
+    bool reuse = false;            // only rects are drawn again
+    std::vector<PixelRect> rects;  // the screen rectangles that changed
+  };
+  // Traversal and frame plan (the cache decides), the leaves' shading under level bricks and
+  // the reuse decision.
+  Frame plan(int step, const tsp::Camera& camera, const RenderSettings& requested,
+             tsp::FrameMetric& metric, tsp::LodStops stops);
+  // Ray casting level bricks: every leaf page's full-resolution shading under full, the
+  // traversal without the LOD cut (leaf_shading_, level_pages_); clears level_pages_ otherwise.
+  void shade_leaves(const tsp::TraversalQuery& full, const Frame& f, tsp::FrameMetric& metric);
+  // Compares f with the last complete frame (f.key, f.ids, f.reuse, f.rects); forgets it.
+  void decide_reuse(Frame& f, const tsp::Camera& camera, tsp::FrameMetric& metric);
+  // Deletes and uploads f's textures; a dense frame's whole-volume texture too (r.dense).
+  void upload(const Frame& f, FrameReport& r);
+  // What the rays cross: the bounds of the drawn nodes (within the clip solid's, without a
+  // surface); empty when nothing is drawn.
+  tsp::Aabb drawn_bounds(const tsp::FramePlan& plan) const;
+  // The brick pages (rays) or the draw list (slices, boxes), and adaptive sampling's step map.
+  void compose(const Frame& f, const tsp::Camera& camera, tsp::FrameMetric& metric, FrameReport& r);
+  // Draws (only f.rects when reusing), deletes the plan's release_after, ends the frame and
+  // keeps it for reuse.
+  void draw(Frame& f, const tsp::Camera& camera, FrameReport& r);
+  // The plan's class shares, texture counts and the steps the picture stands for and shows.
+  void report(const tsp::FramePlan& plan, FrameReport& r) const;
   void fill_items(const tsp::FramePlan& plan, tsp::FrameMetric& metric, const tsp::Camera& camera,
                   const RenderSettings& settings);
   void fill_pages(const tsp::FramePlan& plan, tsp::FrameMetric& metric);
@@ -150,8 +186,6 @@ class VolumeRenderer {
   double set_step_map(const tsp::FramePlan& plan, const RenderSettings& settings);
   tsp::TransferFunction tf_;  // the TF in use (adaptive sampling measures under it)
   std::optional<tsp::SampleVariation> variation_;  // under tf_ (reset by set_transfer_function)
-  std::unordered_map<tsp::TextureKey, tsp::CellVariations, tsp::TextureKeyHash>
-      variations_;                       // per texture, under tf_
   std::vector<float> cell_variation_;    // per step-grid cell, this frame
   std::vector<std::uint8_t> cell_drawn_;  // per step-grid cell: a textured brick reaches it
 };

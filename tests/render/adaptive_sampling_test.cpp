@@ -154,5 +154,62 @@ TEST(AdaptiveSampling, SharpFeatureKeepsItsBricksAtEverySpacing) {
   }
 }
 
+TEST(AdaptiveSampling, CellVariationsLeaveWithTheirTextures) {
+  const tsp::TransferFunction tf = tf_of({0, 0, 1, 0.01f}, {1, 0.6f, 0, 0.06f});
+  AdaptiveScene scene(
+      "adaptive_evict", [](int, int x, int y, int z) { return float(x + y + z) / 192; }, tf, tf);
+  {
+    // BrickTextures keeps a texture's variations until its slot is freed.
+    tsp::BrickCache bricks(*scene.file, kDefaultBrickBudget);
+    BrickTextures textures(scene.ctx->gl(), bricks);
+    int made = 0;
+    const auto make = [&] {
+      ++made;
+      return tsp::CellVariations{};
+    };
+    const tsp::TextureKey a{0, 0}, b{1, 0};
+    textures.upload(a);
+    textures.upload(b);
+    textures.variations(a, make);
+    textures.variations(a, make);
+    textures.variations(b, make);
+    EXPECT_EQ(made, 2);
+    EXPECT_EQ(textures.variations_count(), 2);
+    textures.erase(a);
+    EXPECT_EQ(textures.variations_count(), 1);
+    textures.upload(a);
+    textures.variations(a, make);
+    EXPECT_EQ(made, 3) << "made again once its texture is back";
+    textures.forget_variations();  // a new TF
+    EXPECT_EQ(textures.variations_count(), 0);
+    EXPECT_EQ(textures.size(), 2);
+    textures.variations(b, make);
+    textures.clear();
+    EXPECT_EQ(textures.variations_count(), 0);
+  }
+  // Through the renderer: frames that texture every brick under a budget of a few bricks keep
+  // the variations of the resident textures only.
+  constexpr int kBudgetBricks = 8;
+  const tsp::Octree& octree = scene.file->tree().octree();
+  const std::int64_t brick_bytes = 2 * octree.max_brick_samples()[0] *
+                                   std::int64_t(octree.max_brick_samples()[1]) *
+                                   octree.max_brick_samples()[2];
+  VolumeRenderer small(*scene.ctx, *scene.file, tsp::CachePolicy::on, kBudgetBricks * brick_bytes);
+  small.set_transfer_function(tf);
+  RenderSettings s;
+  s.sampling_tol = 0.05;
+  s.dense = false;
+  s.reuse_image = false;
+  for (double az : {0.0, 90.0, 200.0}) {
+    const FrameReport r = small.render(0, scene.camera(az, 20), s, *scene.nodes);
+    EXPECT_GT(r.step_multiplier, 1.0);
+    EXPECT_LT(small.texture_count(), octree.brick_count());
+    EXPECT_GT(small.textures().variations_count(), 0);
+    EXPECT_LE(small.textures().variations_count(), small.texture_count()) << "azimuth " << az;
+  }
+  small.clear_textures();
+  EXPECT_EQ(small.textures().variations_count(), 0);
+}
+
 }  // namespace
 }  // namespace tspgl

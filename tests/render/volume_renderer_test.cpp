@@ -605,10 +605,10 @@ TEST(VolumeRenderer, ToleranceChangeDropsUnreachableTexturesAndKeepsThePicture) 
   float max_es = 0;
   for (float e : scene.metric.errors.spatial) max_es = std::max(max_es, e);
   const tsp::Tolerances loose{double(max_es) + 1, 1e9};
-  EXPECT_EQ(scene.renderer->drop_unreachable(scene.nodes, loose), before);
+  EXPECT_EQ(scene.renderer->drop_unreachable(scene.nodes, loose, true), before);
   EXPECT_EQ(scene.renderer->texture_count(), 0);
   // Back at zero tolerance nothing is reachable-but-missing: frames render as before.
-  EXPECT_EQ(scene.renderer->drop_unreachable(scene.nodes, {}), 0);
+  EXPECT_EQ(scene.renderer->drop_unreachable(scene.nodes, {}, true), 0);
   tsp::Image again = scene.tsp_frame(3, cam);
   expect_close("tolerance_round_trip", again, scene.baseline_frame(3, cam), 0.5, 3.0);
 }
@@ -630,8 +630,11 @@ TEST(VolumeRenderer, ClassSharesSumTo100AndMatchTheTraversal) {
       for (double p : r.class_percent) sum += p;
       EXPECT_NEAR(sum, 100.0, 1e-9);
       // NR and UP from the traversal's own output, counted independently.
-      auto emitted = tsp::traverse(tree, step, tol, scene.metric.errors,
-                                   tsp::ViewOrder::orthographic(cam.direction()));
+      auto emitted = tsp::traverse({.tree = tree,
+                                    .step = step,
+                                    .tol = tol,
+                                    .errors = scene.metric.errors,
+                                    .view = tsp::ViewOrder::orthographic(cam.direction())});
       double nr = 0, up = 0, total = double(tree.octree().dims().count());
       for (const auto& e : emitted) {
         const int id = tree.id(e.octree_id, e.time_id);
@@ -685,11 +688,11 @@ TEST(VolumeRenderer, LazyErrorsRenderLikeTheWholeTreeMetricAcrossATfEdit) {
   compare("after the edit");
   // Through the live metric: drop_unreachable agrees with the whole-tree metric's, and above
   // every error everything is flat, so no texture stays.
-  EXPECT_EQ(live.drop_unreachable(lazy, {0, 0}),
-            whole.renderer->drop_unreachable(whole.nodes, {0, 0}));
+  EXPECT_EQ(live.drop_unreachable(lazy, {0, 0}, true),
+            whole.renderer->drop_unreachable(whole.nodes, {0, 0}, true));
   const int before = live.texture_count();
   ASSERT_GT(before, 0);
-  EXPECT_EQ(live.drop_unreachable(lazy, {1e9, 1e9}), before);
+  EXPECT_EQ(live.drop_unreachable(lazy, {1e9, 1e9}, true), before);
   EXPECT_EQ(live.texture_count(), 0);
 }
 

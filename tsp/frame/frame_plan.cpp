@@ -116,22 +116,24 @@ double FramePlan::percent(DrawClass c) const {
   return 100.0 * double(class_voxels[int(c)]) / double(total_voxels);
 }
 
-FramePlan plan_frame(const TspTree& tree, int step, std::span<const Emitted> emitted,
-                     const NodeInfoFn& info, const Tolerances& tol, const ViewOrder& view,
-                     TextureCache& cache, std::int64_t upload_budget, SpanStep span_step,
-                     LodStops stops, bool clip_surface) {
+FramePlan plan_frame(const FramePlanQuery& q, TextureCache& cache) {
+  const TspTree& tree = q.tree;
+  const int step = q.step;
+  const Tolerances& tol = q.tol;
+  const LodStops stops = q.stops;
+  const std::int64_t upload_budget = q.upload_budget;
   const Octree& octree = tree.octree();
   FramePlan plan;
   plan.step = step;
-  plan.nodes.reserve(emitted.size());
+  plan.nodes.reserve(q.emitted.size());
   cache.begin_frame();
-  for (const Emitted& e : emitted) {
+  for (const Emitted& e : q.emitted) {
     assert(e.span.contains(step) && "emitted span must hold the frame's step");
     PlannedNode p;
     p.node = e;
     p.voxels = octree.node(e.octree_id).box.count();
-    const Shading shading =
-        emitted_shading(tree, e, info(tree.id(e.octree_id, e.time_id)), tol, stops, clip_surface);
+    const Shading shading = emitted_shading(tree, e, q.info(tree.id(e.octree_id, e.time_id)), tol,
+                                            stops, q.clip_surface);
     if (e.clip == ClipSide::removed) {
       p.cls = DrawClass::clipped;
     } else if (shading == Shading::none) {
@@ -141,8 +143,8 @@ FramePlan plan_frame(const TspTree& tree, int step, std::span<const Emitted> emi
     } else {
       p.first_texture = int(plan.textures.size());
       bool uploaded = false;
-      for (int brick : node_bricks(octree, e.octree_id, view, stops)) {
-        const TextureKey key = span_texture_key(octree, brick, e.span, span_step);
+      for (int brick : node_bricks(octree, e.octree_id, q.view, stops)) {
+        const TextureKey key = span_texture_key(octree, brick, e.span, q.span_step);
         const std::int64_t bytes = texture_bytes(octree, key);
         if (upload_budget > 0 && plan.uploads > 0 && !cache.contains(key) &&
             plan.bytes_uploaded + bytes > upload_budget) {
@@ -177,12 +179,19 @@ FramePlan plan_frame(const TspTree& tree, int step, std::span<const Emitted> emi
 
 TextureKeySet reachable_textures(const TspTree& tree, const NodeErrors& errors,
                                  const NodeInfoFn& info, const Tolerances& tol,
-                                 SpanStep span_step, LodStops stops, bool skip_transparent) {
+                                 bool skip_transparent, SpanStep span_step, LodStops stops) {
   TextureKeySet keys;
   TransparentFn transparent;
   if (skip_transparent) transparent = [&info](int id) { return info(id).transparent; };
   for (int t = 0; t < tree.time().steps(); ++t) {
-    for (const Emitted& e : traverse(tree, t, tol, errors, kAnyView, stops, {}, transparent)) {
+    const TraversalQuery query{.tree = tree,
+                               .step = t,
+                               .tol = tol,
+                               .errors = errors,
+                               .view = kAnyView,
+                               .stops = stops,
+                               .transparent = transparent};
+    for (const Emitted& e : traverse(query)) {
       if (emitted_shading(tree, e, info(tree.id(e.octree_id, e.time_id)), tol, stops) !=
           Shading::textured)
         continue;
@@ -193,15 +202,15 @@ TextureKeySet reachable_textures(const TspTree& tree, const NodeErrors& errors,
   return keys;
 }
 
-TextureKeySet reachable_textures(const TspTree& tree, const MetricResult& m,
-                                 const Tolerances& tol, SpanStep span_step, LodStops stops) {
-  return reachable_textures(tree, m.errors, node_info(m), tol, span_step, stops);
+TextureKeySet reachable_textures(const TspTree& tree, const MetricResult& m, const Tolerances& tol,
+                                 bool skip_transparent, SpanStep span_step, LodStops stops) {
+  return reachable_textures(tree, m.errors, node_info(m), tol, skip_transparent, span_step, stops);
 }
 
 TextureKeySet reachable_textures(const TspTree& tree, FrameMetric& m, const Tolerances& tol,
-                                 SpanStep span_step, LodStops stops, bool skip_transparent) {
+                                 bool skip_transparent, SpanStep span_step, LodStops stops) {
   const NodeErrors& errors = m.all_errors();
-  return reachable_textures(tree, errors, node_info(m), tol, span_step, stops, skip_transparent);
+  return reachable_textures(tree, errors, node_info(m), tol, skip_transparent, span_step, stops);
 }
 
 }  // namespace tsp

@@ -123,7 +123,23 @@ struct FramePlan {
   double percent(DrawClass c) const;
 };
 
-/// Plans the frame of `step` from the traversal's output `emitted` (every span must hold
+/// What one frame plan reads besides the cache: the tree, the step, the traversal's output for
+/// it, the node classes, the tolerances, the view and the knobs. tree, emitted and what info
+/// reads must outlive the call.
+struct FramePlanQuery {
+  const TspTree& tree;                    ///< the tree the traversal walked
+  int step = 0;                           ///< the frame's step
+  std::span<const Emitted> emitted;       ///< traverse()'s output for step (every span holds it)
+  NodeInfoFn info;                        ///< each TSP node's class
+  Tolerances tol;                         ///< the traversal's tolerances
+  ViewOrder view;                         ///< orders an internal node's leaf bricks
+  std::int64_t upload_budget = 0;         ///< bytes uploaded per frame at most; 0: no limit
+  SpanStep span_step = SpanStep::middle;  ///< which step's data textures a span
+  LodStops stops = {};                    ///< the LOD cut the traversal used (empty: none)
+  bool clip_surface = false;              ///< the clip surface shows the data on it
+};
+
+/// Plans the frame of q.step from the traversal's output q.emitted (every span must hold
 /// step): classifies each node, requests the textures of RT/NT nodes from cache inside one
 /// begin_frame()/end_frame(), and counts voxels per class. A node that is textured is drawn by
 /// the textures span_texture_key(brick, span, span_step) of node_bricks(…, stops)
@@ -136,26 +152,24 @@ struct FramePlan {
 /// traversal clipped away (Emitted::clip 1) is class clipped and uploads nothing; one across
 /// the clip surface (clip 2) is textured where it would be flat — and, with clip_surface (the
 /// surface shows the data on it), where it would be transparent too. Asserts the cache has no
-/// open frame.
-FramePlan plan_frame(const TspTree& tree, int step, std::span<const Emitted> emitted,
-                     const NodeInfoFn& info, const Tolerances& tol, const ViewOrder& view,
-                     TextureCache& cache, std::int64_t upload_budget = 0,
-                     SpanStep span_step = SpanStep::middle, LodStops stops = {},
-                     bool clip_surface = false);
+/// open frame; throws what q.info throws.
+FramePlan plan_frame(const FramePlanQuery& q, TextureCache& cache);
 
 /// Every texture key some step's frame could draw under errors, info and tol — the set to keep
-/// with TextureCache::drop_unreachable after a tolerance change (stops: the LOD cut in use).
-/// Costs one traversal per step.
+/// with TextureCache::drop_unreachable after a tolerance change (stops: the LOD cut in use;
+/// skip_transparent: the traversal's transparency rule, as RenderSettings::skip_transparent).
+/// Costs one traversal per step. Throws what info throws.
 TextureKeySet reachable_textures(const TspTree& tree, const NodeErrors& errors,
                                  const NodeInfoFn& info, const Tolerances& tol,
-                                 SpanStep span_step = SpanStep::middle, LodStops stops = {},
-                                 bool skip_transparent = false);
+                                 bool skip_transparent, SpanStep span_step = SpanStep::middle,
+                                 LodStops stops = {});
 /// Same, with the errors and classes of m.
 TextureKeySet reachable_textures(const TspTree& tree, const MetricResult& m, const Tolerances& tol,
-                                 SpanStep span_step = SpanStep::middle, LodStops stops = {});
+                                 bool skip_transparent, SpanStep span_step = SpanStep::middle,
+                                 LodStops stops = {});
 /// Same, with every node of m made current (FrameMetric::all_errors). Throws what m throws.
 TextureKeySet reachable_textures(const TspTree& tree, FrameMetric& m, const Tolerances& tol,
-                                 SpanStep span_step = SpanStep::middle, LodStops stops = {},
-                                 bool skip_transparent = false);
+                                 bool skip_transparent, SpanStep span_step = SpanStep::middle,
+                                 LodStops stops = {});
 
 }  // namespace tsp

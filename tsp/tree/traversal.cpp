@@ -144,14 +144,13 @@ class Walker {
 
 }  // namespace
 
-std::vector<Emitted> traverse(const TspTree& tree, int t, const Tolerances& tol,
-                              const NodeErrors& errors, const ViewOrder& view, LodStops stops,
-                              ClipSides clip, const TransparentFn& transparent) {
-  assert(t >= 0 && t < tree.time().steps());
-  assert(int(errors.spatial.size()) == tree.size() && int(errors.temporal.size()) == tree.size());
-  assert(stops.empty() || int(stops.size()) == tree.octree().size());
-  assert(clip.empty() || int(clip.size()) == tree.octree().size());
-  Walker walker(tree, t, tol, errors, view, stops, clip, transparent);
+std::vector<Emitted> traverse(const TraversalQuery& q) {
+  assert(q.step >= 0 && q.step < q.tree.time().steps());
+  assert(int(q.errors.spatial.size()) == q.tree.size() &&
+         int(q.errors.temporal.size()) == q.tree.size());
+  assert(q.stops.empty() || int(q.stops.size()) == q.tree.octree().size());
+  assert(q.clip.empty() || int(q.clip.size()) == q.tree.octree().size());
+  Walker walker(q.tree, q.step, q.tol, q.errors, q.view, q.stops, q.clip, q.transparent);
   walker.visit(0);
   return walker.take();
 }

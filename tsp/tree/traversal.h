@@ -74,20 +74,31 @@ ChildOrder back_to_front_children(const Octree& octree, int id, const ViewOrder&
 /// metric's class). Empty: unknown.
 using TransparentFn = std::function<bool(int tsp_id)>;
 
-/// Traverses the tree for step t and returns the emitted nodes in back-to-front order.
+/// What one traversal reads: the tree, the step, the tolerances, the errors table, the view and
+/// the optional per-node marks. tree and errors are referenced and must outlive the call.
+struct TraversalQuery {
+  const TspTree& tree;             ///< the tree to walk
+  int step = 0;                    ///< the current step t, 0 ≤ t < steps
+  Tolerances tol;                  ///< compared with each node's errors
+  const NodeErrors& errors;        ///< e_s and e_t per TSP node id (tree.size() entries each)
+  ViewOrder view;                  ///< the children's back-to-front order
+  LodStops stops = {};             ///< empty, or per octree node: end the descent there (LOD cut)
+  ClipSides clip = {};             ///< empty, or per octree node: its side of the clip surface
+  TransparentFn transparent = {};  ///< empty: the paper's rule; else our rule (below)
+};
+
+/// Traverses q.tree for step q.step and returns the emitted nodes in back-to-front order.
 /// The emitted octree nodes tile the volume exactly once. With stops, a node marked there is
-/// treated as a leaf (any LodStop other than none): emitted with the largest temporally coherent span (or its leaf span) when
-/// no coherent span holds it whole. With clip sides, a node clipped away is emitted as such
-/// (ClipSide::removed, its time leaf: drawn nowhere, but it tiles the volume like the others), and a node
-/// across the clip surface is never drawn whole above the leaves or the cut (the descent goes
-/// on; ClipSide::straddles at a leaf or cut node). With transparent (issue 9 item 5, our rule), a coherent
-/// node above the leaves and the cut that is not transparent itself but has a transparent child
-/// (at the same time node) is not emitted: the descent goes on, so what zero tolerance skips is
-/// never drawn; empty: the paper's rule. Asserts 0 ≤ t < steps, that errors hold tree.size()
-/// entries each, and that stops and clip are empty or have one entry per octree node.
-std::vector<Emitted> traverse(const TspTree& tree, int t, const Tolerances& tol,
-                              const NodeErrors& errors, const ViewOrder& view,
-                              LodStops stops = {}, ClipSides clip = {},
-                              const TransparentFn& transparent = {});
+/// treated as a leaf (any LodStop other than none): emitted with the largest temporally coherent
+/// span (or its leaf span) when no coherent span holds it whole. With clip sides, a node clipped
+/// away is emitted as such (ClipSide::removed, its time leaf: drawn nowhere, but it tiles the
+/// volume like the others), and a node across the clip surface is never drawn whole above the
+/// leaves or the cut (the descent goes on; ClipSide::straddles at a leaf or cut node). With
+/// transparent (issue 9 item 5, our rule), a coherent node above the leaves and the cut that is not
+/// transparent itself but has a transparent child (at the same time node) is not emitted: the
+/// descent goes on, so what zero tolerance skips is never drawn; empty: the paper's rule. Asserts 0
+/// ≤ step < steps, that errors hold tree.size() entries each, and that stops and clip are empty or
+/// have one entry per octree node. Never throws.
+std::vector<Emitted> traverse(const TraversalQuery& q);
 
 }  // namespace tsp

@@ -74,7 +74,13 @@ TEST(FramePlan, HandBuiltFramesGetTheirClassesTexturesAndShares) {
   const Tolerances tol{0.1, 0.1};
   for (CachePolicy policy : {CachePolicy::on, CachePolicy::off}) {
     TextureCache cache(kUnlimited, policy);
-    const FramePlan p0 = plan_frame(hc.tree, 0, hc.frame(0), hc.fn(), tol, kView, cache);
+    const FramePlan p0 = plan_frame({.tree = hc.tree,
+                                     .step = 0,
+                                     .emitted = hc.frame(0),
+                                     .info = hc.fn(),
+                                     .tol = tol,
+                                     .view = kView},
+                                    cache);
     ASSERT_EQ(p0.nodes.size(), 4u);
     EXPECT_EQ(p0.step, 0);
     EXPECT_EQ(p0.nodes[0].cls, DrawClass::not_rendered);
@@ -102,7 +108,13 @@ TEST(FramePlan, HandBuiltFramesGetTheirClassesTexturesAndShares) {
     EXPECT_DOUBLE_EQ(p0.percent(DrawClass::new_texture), 100.0 * 960 / 1800);
 
     // Step 1: brick 2's span [0, 1] texture is reused; brick 3 needs the one of [1, 1].
-    const FramePlan p1 = plan_frame(hc.tree, 1, hc.frame(1), hc.fn(), tol, kView, cache);
+    const FramePlan p1 = plan_frame({.tree = hc.tree,
+                                     .step = 1,
+                                     .emitted = hc.frame(1),
+                                     .info = hc.fn(),
+                                     .tol = tol,
+                                     .view = kView},
+                                    cache);
     EXPECT_EQ(p1.nodes[2].cls, DrawClass::reused_texture);
     EXPECT_EQ(p1.nodes[3].cls, DrawClass::new_texture);
     EXPECT_EQ(p1.textures[1].key, (TextureKey{3, 1, 0}));
@@ -133,7 +145,9 @@ TEST(FramePlan, TexturedInternalNodeIsDrawnByItsLeafBricksBackToFront) {
   EXPECT_EQ(leaf_bricks(hc.tree.octree(), 0, down), (std::vector<int>{0, 1, 2, 3}));
   EXPECT_EQ(leaf_bricks(hc.tree.octree(), hc.leaf(2), down), (std::vector<int>{2}));
 
-  const FramePlan a = plan_frame(hc.tree, 1, root, hc.fn(), tol, up, cache);
+  const FramePlan a = plan_frame(
+      {.tree = hc.tree, .step = 1, .emitted = root, .info = hc.fn(), .tol = tol, .view = up},
+      cache);
   ASSERT_EQ(a.nodes.size(), 1u);
   EXPECT_EQ(a.nodes[0].cls, DrawClass::new_texture);
   EXPECT_EQ(a.nodes[0].voxels, 1800);
@@ -147,13 +161,17 @@ TEST(FramePlan, TexturedInternalNodeIsDrawnByItsLeafBricksBackToFront) {
   EXPECT_EQ(bricks, (std::vector<int>{3, 2, 1, 0}));
   EXPECT_DOUBLE_EQ(a.percent(DrawClass::new_texture), 100.0);
 
-  const FramePlan b = plan_frame(hc.tree, 0, root, hc.fn(), tol, down, cache);
+  const FramePlan b = plan_frame(
+      {.tree = hc.tree, .step = 0, .emitted = root, .info = hc.fn(), .tol = tol, .view = down},
+      cache);
   EXPECT_EQ(b.nodes[0].cls, DrawClass::reused_texture);
   EXPECT_EQ(b.uploads, 0);
 
   // One of the four textures gone: the node is NT, uploading only that one.
   cache.drop_unreachable([](const TextureKey& k) { return k.brick != 1; });
-  const FramePlan c = plan_frame(hc.tree, 0, root, hc.fn(), tol, down, cache);
+  const FramePlan c = plan_frame(
+      {.tree = hc.tree, .step = 0, .emitted = root, .info = hc.fn(), .tol = tol, .view = down},
+      cache);
   EXPECT_EQ(c.nodes[0].cls, DrawClass::new_texture);
   EXPECT_EQ(c.uploads, 1);
   EXPECT_TRUE(c.textures[1].upload);
@@ -170,8 +188,11 @@ TEST(FramePlan, SharesSumTo100AndMatchTheTraversalsOutput) {
     const MetricResult m = tsptest::random_metric(tree, rng, 0.2f);
     const Tolerances tol{round % 5 == 0 ? 0.0 : tol_u(rng), tol_u(rng)};
     const int t = int(rng() % 7);
-    const std::vector<Emitted> out = traverse(tree, t, tol, m.errors, kView);
-    const FramePlan plan = plan_frame(tree, t, out, node_info(m), tol, kView, cache);
+    const std::vector<Emitted> out =
+        traverse({.tree = tree, .step = t, .tol = tol, .errors = m.errors, .view = kView});
+    const FramePlan plan = plan_frame(
+        {.tree = tree, .step = t, .emitted = out, .info = node_info(m), .tol = tol, .view = kView},
+        cache);
     ASSERT_EQ(plan.nodes.size(), out.size());
     std::array<std::int64_t, kDrawClassCount> want{};
     std::int64_t uploads = 0;
@@ -231,8 +252,11 @@ TEST(FramePlan, ZeroSpatialToleranceDrawsFlatOnlyWhereTheErrorIsExactlyZero) {
   TextureCache cache(kUnlimited, CachePolicy::off);
   int flat = 0, textured = 0;
   for (int t = 0; t < 4; ++t) {
-    const auto out = traverse(tree, t, tol, m.errors, kView);
-    const FramePlan plan = plan_frame(tree, t, out, node_info(m), tol, kView, cache);
+    const auto out =
+        traverse({.tree = tree, .step = t, .tol = tol, .errors = m.errors, .view = kView});
+    const FramePlan plan = plan_frame(
+        {.tree = tree, .step = t, .emitted = out, .info = node_info(m), .tol = tol, .view = kView},
+        cache);
     for (const PlannedNode& p : plan.nodes) {
       const int id = tree.id(p.node.octree_id, p.node.time_id);
       if (m.transparent[id]) continue;
@@ -254,14 +278,21 @@ TEST(FramePlan, ReachableTexturesAreTheUnionOfEveryStepsTextures) {
     TextureCache cache(kUnlimited, CachePolicy::on);
     TextureKeySet drawn;
     for (int t = 0; t < tree.time().steps(); ++t) {
-      const FramePlan plan = plan_frame(tree, t, traverse(tree, t, tol, m.errors, kView),
-                                        node_info(m), tol, kView, cache);
+      const FramePlan plan = plan_frame(
+          {.tree = tree,
+           .step = t,
+           .emitted =
+               traverse({.tree = tree, .step = t, .tol = tol, .errors = m.errors, .view = kView}),
+           .info = node_info(m),
+           .tol = tol,
+           .view = kView},
+          cache);
       for (const PlannedTexture& pt : plan.textures) drawn.insert(pt.key);
     }
-    EXPECT_EQ(reachable_textures(tree, m, tol), drawn);
+    EXPECT_EQ(reachable_textures(tree, m, tol, false), drawn);
     EXPECT_EQ(std::int64_t(drawn.size()), cache.stats().resident_count);
     // Keeping the reachable set of these tolerances drops nothing.
-    EXPECT_TRUE(cache.drop_unreachable(reachable_textures(tree, m, tol)).empty());
+    EXPECT_TRUE(cache.drop_unreachable(reachable_textures(tree, m, tol, false)).empty());
   }
 }
 
@@ -282,10 +313,36 @@ TEST(FramePlan, SplatStopsAreDrawnFlatWithoutTextures) {
   int textured_nodes = 0;
   for (int t = 0; t < tree.time().steps(); ++t) {
     TextureCache cache(kUnlimited, CachePolicy::on), cache_cut(kUnlimited, CachePolicy::on);
-    const FramePlan splats = plan_frame(tree, t, traverse(tree, t, tol, m.errors, kView, stops),
-                                        node_info(m), tol, kView, cache, 0, SpanStep::middle, stops);
-    const FramePlan textured = plan_frame(tree, t, traverse(tree, t, tol, m.errors, kView, cut),
-                                          node_info(m), tol, kView, cache_cut, 0, SpanStep::middle, cut);
+    const FramePlan splats = plan_frame({.tree = tree,
+                                         .step = t,
+                                         .emitted = traverse({.tree = tree,
+                                                              .step = t,
+                                                              .tol = tol,
+                                                              .errors = m.errors,
+                                                              .view = kView,
+                                                              .stops = stops}),
+                                         .info = node_info(m),
+                                         .tol = tol,
+                                         .view = kView,
+                                         .upload_budget = 0,
+                                         .span_step = SpanStep::middle,
+                                         .stops = stops},
+                                        cache);
+    const FramePlan textured = plan_frame({.tree = tree,
+                                           .step = t,
+                                           .emitted = traverse({.tree = tree,
+                                                                .step = t,
+                                                                .tol = tol,
+                                                                .errors = m.errors,
+                                                                .view = kView,
+                                                                .stops = cut}),
+                                           .info = node_info(m),
+                                           .tol = tol,
+                                           .view = kView,
+                                           .upload_budget = 0,
+                                           .span_step = SpanStep::middle,
+                                           .stops = cut},
+                                          cache_cut);
     ASSERT_EQ(splats.nodes.size(), textured.nodes.size());
     EXPECT_TRUE(splats.textures.empty());
     textured_nodes += int(textured.textures.size());
@@ -299,7 +356,7 @@ TEST(FramePlan, SplatStopsAreDrawnFlatWithoutTextures) {
     }
   }
   EXPECT_GT(textured_nodes, 0);  // the same cut, not splats, textures some nodes
-  EXPECT_TRUE(reachable_textures(tree, m, tol, SpanStep::middle, stops).empty());
+  EXPECT_TRUE(reachable_textures(tree, m, tol, false, SpanStep::middle, stops).empty());
 }
 
 // The upload budget is an input of the plan: the first upload always goes ahead, the textures
@@ -309,7 +366,14 @@ TEST(FramePlan, UploadBudgetDefersTexturesWithoutEnteringTheCache) {
   const Tolerances tol{0.1, 0.1};
   TextureCache cache(kUnlimited, CachePolicy::on);
   // Budget below one texture (1024 bytes): one upload per frame.
-  const FramePlan p0 = plan_frame(hc.tree, 0, hc.frame(0), hc.fn(), tol, kView, cache, 1);
+  const FramePlan p0 = plan_frame({.tree = hc.tree,
+                                   .step = 0,
+                                   .emitted = hc.frame(0),
+                                   .info = hc.fn(),
+                                   .tol = tol,
+                                   .view = kView,
+                                   .upload_budget = 1},
+                                  cache);
   ASSERT_EQ(p0.textures.size(), 2u);
   EXPECT_TRUE(p0.textures[0].upload);
   EXPECT_FALSE(p0.textures[0].deferred);
@@ -324,15 +388,40 @@ TEST(FramePlan, UploadBudgetDefersTexturesWithoutEnteringTheCache) {
   EXPECT_EQ(p0.nodes[3].cls, DrawClass::new_texture);
   EXPECT_TRUE(p0.evict_before.empty());
   // The same frame again: the first texture is resident, the second is uploaded now.
-  const FramePlan again = plan_frame(hc.tree, 0, hc.frame(0), hc.fn(), tol, kView, cache, 1);
+  const FramePlan again = plan_frame({.tree = hc.tree,
+                                      .step = 0,
+                                      .emitted = hc.frame(0),
+                                      .info = hc.fn(),
+                                      .tol = tol,
+                                      .view = kView,
+                                      .upload_budget = 1},
+                                     cache);
   EXPECT_FALSE(again.textures[0].upload);
   EXPECT_TRUE(again.textures[1].upload);
   EXPECT_EQ(again.deferred, 0);
   EXPECT_EQ(again.textures_resident, 2);
   // A budget that holds both defers nothing; no budget (0) neither.
   TextureCache roomy(kUnlimited, CachePolicy::on), unlimited(kUnlimited, CachePolicy::on);
-  EXPECT_EQ(plan_frame(hc.tree, 0, hc.frame(0), hc.fn(), tol, kView, roomy, 2048).deferred, 0);
-  EXPECT_EQ(plan_frame(hc.tree, 0, hc.frame(0), hc.fn(), tol, kView, unlimited, 0).deferred, 0);
+  EXPECT_EQ(plan_frame({.tree = hc.tree,
+                        .step = 0,
+                        .emitted = hc.frame(0),
+                        .info = hc.fn(),
+                        .tol = tol,
+                        .view = kView,
+                        .upload_budget = 2048},
+                       roomy)
+                .deferred,
+            0);
+  EXPECT_EQ(plan_frame({.tree = hc.tree,
+                        .step = 0,
+                        .emitted = hc.frame(0),
+                        .info = hc.fn(),
+                        .tol = tol,
+                        .view = kView,
+                        .upload_budget = 0},
+                       unlimited)
+                .deferred,
+            0);
 }
 
 // A whole-tree metric and the live LazyErrors serve frames the same classes and colours.
@@ -349,10 +438,28 @@ TEST(FramePlan, WholeTreeAndLiveMetricsPlanTheSameFrames) {
   const Tolerances tol{0.05, 0.05};
   for (int t = 0; t < 5; ++t) {
     TextureCache a(kUnlimited, CachePolicy::off), b(kUnlimited, CachePolicy::off);
-    const FramePlan pa = plan_frame(tree, t, traverse(tree, t, tol, whole.errors_for_step(t), kView),
-                                    node_info(whole), tol, kView, a);
-    const FramePlan pb = plan_frame(tree, t, traverse(tree, t, tol, live.errors_for_step(t), kView),
-                                    node_info(live), tol, kView, b);
+    const FramePlan pa = plan_frame({.tree = tree,
+                                     .step = t,
+                                     .emitted = traverse({.tree = tree,
+                                                          .step = t,
+                                                          .tol = tol,
+                                                          .errors = whole.errors_for_step(t),
+                                                          .view = kView}),
+                                     .info = node_info(whole),
+                                     .tol = tol,
+                                     .view = kView},
+                                    a);
+    const FramePlan pb = plan_frame({.tree = tree,
+                                     .step = t,
+                                     .emitted = traverse({.tree = tree,
+                                                          .step = t,
+                                                          .tol = tol,
+                                                          .errors = live.errors_for_step(t),
+                                                          .view = kView}),
+                                     .info = node_info(live),
+                                     .tol = tol,
+                                     .view = kView},
+                                    b);
     ASSERT_EQ(pa.nodes.size(), pb.nodes.size());
     EXPECT_EQ(pa.class_voxels, pb.class_voxels);
     for (const PlannedNode& n : pb.nodes) {
@@ -362,7 +469,8 @@ TEST(FramePlan, WholeTreeAndLiveMetricsPlanTheSameFrames) {
       EXPECT_FLOAT_EQ(x.a, y.a);
     }
   }
-  EXPECT_EQ(reachable_textures(tree, whole, tol), reachable_textures(tree, live, tol));
+  EXPECT_EQ(reachable_textures(tree, whole, tol, false),
+            reachable_textures(tree, live, tol, false));
 }
 
 }  // namespace

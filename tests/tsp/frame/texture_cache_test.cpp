@@ -317,8 +317,13 @@ std::set<std::tuple<int, int, int>> resident_of(const TextureCache& c) {
 TextureKeySet brute_reachable(const TspTree& tree, const MetricResult& m, const Tolerances& tol) {
   TextureKeySet keys;
   for (int t = 0; t < tree.time().steps(); ++t)
-    for (const TextureKey& k : drawn_textures(
-             tree, traverse(tree, t, tol, m.errors, ViewOrder::orthographic({1, 0, 0})), m, tol))
+    for (const TextureKey& k : drawn_textures(tree,
+                                              traverse({.tree = tree,
+                                              .step = t,
+                                              .tol = tol,
+                                              .errors = m.errors,
+                                              .view = ViewOrder::orthographic({1, 0, 0})}),
+                                              m, tol))
       keys.insert(k);
   return keys;
 }
@@ -349,7 +354,7 @@ TEST(TextureCache, HitsAndMissesEqualABruteForceModelOverRandomTraversals) {
           } else if (what == 1 && policy == CachePolicy::on) {
             tol = Tolerances{tol_u(rng), tol_u(rng)};  // tolerance edit: drop unreachable
             const TextureKeySet keep = brute_reachable(tree, m, tol);
-            cache.drop_unreachable(reachable_textures(tree, m, tol));
+            cache.drop_unreachable(reachable_textures(tree, m, tol, false));
             model.keep_only(keep);
             ASSERT_EQ(resident_of(cache), model.resident());
             std::erase_if(ever, [&](const TextureKey& k) { return !keep.count(k); });
@@ -358,8 +363,15 @@ TEST(TextureCache, HitsAndMissesEqualABruteForceModelOverRandomTraversals) {
           }
           const ViewOrder view = ViewOrder::orthographic(
               {double(dir_u(rng)) + 0.5, double(dir_u(rng)) + 0.25, double(dir_u(rng)) - 0.5});
-          const std::vector<Emitted> out = traverse(tree, t, tol, m.errors, view);
-          const FramePlan plan = plan_frame(tree, t, out, node_info(m), tol, view, cache);
+          const std::vector<Emitted> out =
+              traverse({.tree = tree, .step = t, .tol = tol, .errors = m.errors, .view = view});
+          const FramePlan plan = plan_frame({.tree = tree,
+                                             .step = t,
+                                             .emitted = out,
+                                             .info = node_info(m),
+                                             .tol = tol,
+                                             .view = view},
+                                            cache);
           const std::vector<TextureKey> drawn = drawn_textures(tree, out, m, tol);
           // Same keys, in the plan's order (which is back-to-front, the brute force's is not).
           std::vector<TextureKey> planned;
@@ -408,8 +420,15 @@ TEST(TextureCache, TransferFunctionEditInvalidatesNoTexture) {
   const ViewOrder view = ViewOrder::orthographic({0.3, -0.2, 1});
   TextureCache cache(kUnlimited, CachePolicy::on);
   const MetricResult before = compute_errors(Metric::approximate, tree, tf, nullptr, 1);
-  const FramePlan first = plan_frame(tree, 2, traverse(tree, 2, tol, before.errors, view),
-                                     node_info(before), tol, view, cache);
+  const FramePlan first = plan_frame(
+      {.tree = tree,
+       .step = 2,
+       .emitted =
+           traverse({.tree = tree, .step = 2, .tol = tol, .errors = before.errors, .view = view}),
+       .info = node_info(before),
+       .tol = tol,
+       .view = view},
+      cache);
   ASSERT_GT(first.uploads, 0);
   const auto resident = resident_of(cache);
   // Edit: every entry changes colour and opacity (none becomes fully transparent).
@@ -418,8 +437,15 @@ TEST(TextureCache, TransferFunctionEditInvalidatesNoTexture) {
     tf.set_entry(j, Rgba{c.g, c.b, c.r, std::max(0.01f, c.a * 0.5f)});
   }
   const MetricResult after = compute_errors(Metric::approximate, tree, tf, nullptr, 1);
-  const FramePlan second = plan_frame(tree, 2, traverse(tree, 2, tol, after.errors, view),
-                                      node_info(after), tol, view, cache);
+  const FramePlan second = plan_frame(
+      {.tree = tree,
+       .step = 2,
+       .emitted =
+           traverse({.tree = tree, .step = 2, .tol = tol, .errors = after.errors, .view = view}),
+       .info = node_info(after),
+       .tol = tol,
+       .view = view},
+      cache);
   EXPECT_TRUE(second.evict_before.empty());
   EXPECT_TRUE(second.release_after.empty());
   for (const PlannedTexture& p : second.textures)

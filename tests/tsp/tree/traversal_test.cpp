@@ -183,7 +183,7 @@ TEST(Traverse, AllCoherentEmitsOnlyTheRootOverAllSteps) {
     TspTree tree(g.dims, g.steps, g.brick);
     NodeErrors e = filled(tree, 0, 0);
     for (int t = 0; t < g.steps; ++t) {
-      auto out = traverse(tree, t, {0, 0}, e, kAnyView);
+      auto out = traverse({.tree = tree, .step = t, .tol = {0, 0}, .errors = e, .view = kAnyView});
       ASSERT_EQ(out.size(), 1u) << name(g);
       EXPECT_EQ(out[0], (Emitted{0, 0, Span{0, g.steps - 1}})) << name(g);
     }
@@ -195,7 +195,8 @@ TEST(Traverse, NothingCoherentEmitsEveryLeafBrickAtItsStep) {
     TspTree tree(g.dims, g.steps, g.brick);
     NodeErrors e = filled(tree, kHuge, kHuge);
     for (int t = 0; t < g.steps; ++t) {
-      auto out = traverse(tree, t, {0.5, 0.5}, e, kAnyView);
+      auto out =
+          traverse({.tree = tree, .step = t, .tol = {0.5, 0.5}, .errors = e, .view = kAnyView});
       ASSERT_EQ(int(out.size()), tree.octree().brick_count()) << name(g);
       std::set<int> bricks;
       for (const Emitted& em : out) {
@@ -218,7 +219,7 @@ TEST(Traverse, TemporalOnlyCoherenceGivesLeavesWithLargestCoherentSpans) {
     for (float& v : e.temporal) v = u(rng);
     const Tolerances tol{0.5, 0.6};
     for (int t = 0; t < g.steps; ++t) {
-      auto out = traverse(tree, t, tol, e, kAnyView);
+      auto out = traverse({.tree = tree, .step = t, .tol = tol, .errors = e, .view = kAnyView});
       ASSERT_EQ(int(out.size()), tree.octree().brick_count()) << name(g);
       for (const Emitted& em : out) {
         ASSERT_TRUE(tree.octree().node(em.octree_id).is_leaf());
@@ -264,17 +265,26 @@ TEST(Traverse, MixedCaseWorkedOutByHand) {
 
   const ViewOrder pp = ViewOrder::orthographic({1, 1, 1});
   for (int t : {0, 1})
-    EXPECT_EQ(traverse(tree, t, tol, e, pp), (std::vector<Emitted>{{0, 1, {0, 1}}}));
+    EXPECT_EQ(traverse({.tree = tree, .step = t, .tol = tol, .errors = e, .view = pp}),
+              (std::vector<Emitted>{{0, 1, {0, 1}}}));
   // Looking towards +x +y: octant 3 (upper x, upper y) is farthest, then 2, 1, 0.
-  EXPECT_EQ(traverse(tree, 2, tol, e, pp),
+  EXPECT_EQ(traverse({.tree = tree, .step = 2, .tol = tol, .errors = e, .view = pp}),
             (std::vector<Emitted>{{4, 5, {2, 2}}, {3, 5, {2, 2}}, {2, 2, {2, 3}}, {1, 0, {0, 3}}}));
-  EXPECT_EQ(traverse(tree, 3, tol, e, pp),
+  EXPECT_EQ(traverse({.tree = tree, .step = 3, .tol = tol, .errors = e, .view = pp}),
             (std::vector<Emitted>{{4, 6, {3, 3}}, {3, 6, {3, 3}}, {2, 2, {2, 3}}, {1, 0, {0, 3}}}));
   // Looking towards −x +y: farthest is octant 2 (lower x, upper y), then 3, 0, 1.
-  EXPECT_EQ(traverse(tree, 2, tol, e, ViewOrder::orthographic({-1, 1, 0})),
+  EXPECT_EQ(traverse({.tree = tree,
+                      .step = 2,
+                      .tol = tol,
+                      .errors = e,
+                      .view = ViewOrder::orthographic({-1, 1, 0})}),
             (std::vector<Emitted>{{3, 5, {2, 2}}, {4, 5, {2, 2}}, {1, 0, {0, 3}}, {2, 2, {2, 3}}}));
   // Eye at x = 5 (upper x half; split plane x = 3), y = 1 (lower y): lower x, upper y farthest.
-  EXPECT_EQ(traverse(tree, 2, tol, e, ViewOrder::perspective({5, 1, -10})),
+  EXPECT_EQ(traverse({.tree = tree,
+                      .step = 2,
+                      .tol = tol,
+                      .errors = e,
+                      .view = ViewOrder::perspective({5, 1, -10})}),
             (std::vector<Emitted>{{3, 5, {2, 2}}, {4, 5, {2, 2}}, {1, 0, {0, 3}}, {2, 2, {2, 3}}}));
 }
 
@@ -292,7 +302,7 @@ TEST(Traverse, RandomErrorsTileTheVolumeOnceAndFollowTheRule) {
       for (int t = 0; t < g.steps; ++t) {
         const std::string ctx =
             name(g) + " trial " + std::to_string(trial) + " t=" + std::to_string(t);
-        auto out = traverse(tree, t, tol, e, kAnyView);
+        auto out = traverse({.tree = tree, .step = t, .tol = tol, .errors = e, .view = kAnyView});
         expect_tiles_once(tree, out, ctx);
         expect_follows_rule(tree, t, tol, e, out, ctx);
         mixed += levels_of(tree, out) >= 2;
@@ -330,8 +340,14 @@ TEST(Traverse, CoherentNodesWithTransparentChildrenAreDrawnAsTheirChildren) {
       const Tolerances tol{0.3 + 0.6 * u(rng), 0.3 + 0.6 * u(rng)};
       for (int t = 0; t < g.steps; ++t) {
         const std::string ctx = name(g) + " trial " + std::to_string(trial) + " t=" + std::to_string(t);
-        const auto paper = traverse(tree, t, tol, e, kAnyView);
-        const auto ours = traverse(tree, t, tol, e, kAnyView, {}, {}, is_transparent);
+        const auto paper =
+            traverse({.tree = tree, .step = t, .tol = tol, .errors = e, .view = kAnyView});
+        const auto ours = traverse({.tree = tree,
+                                    .step = t,
+                                    .tol = tol,
+                                    .errors = e,
+                                    .view = kAnyView,
+                                    .transparent = is_transparent});
         expect_tiles_once(tree, ours, ctx);
         for (const Emitted& x : ours) {
           const OctreeNode& n = o.node(x.octree_id);
@@ -346,7 +362,12 @@ TEST(Traverse, CoherentNodesWithTransparentChildrenAreDrawnAsTheirChildren) {
                   << ctx << ": node " << x.octree_id << " drawn whole over a transparent child";
         }
         descended += ours.size() > paper.size();
-        const auto same = traverse(tree, t, tol, e, kAnyView, {}, {}, nothing);
+        const auto same = traverse({.tree = tree,
+                                    .step = t,
+                                    .tol = tol,
+                                    .errors = e,
+                                    .view = kAnyView,
+                                    .transparent = nothing});
         ASSERT_EQ(same.size(), paper.size()) << ctx;
         for (std::size_t k = 0; k < same.size(); ++k) {
           EXPECT_EQ(same[k].octree_id, paper[k].octree_id) << ctx;
@@ -438,7 +459,8 @@ void check_orders(const TspTree& tree, const NodeErrors& e, const Tolerances& to
                   const std::vector<Viewer>& views, const std::string& ctx) {
   for (const Viewer& view : views) {
     for (int t = 0; t < tree.time().steps(); ++t) {
-      auto out = traverse(tree, t, tol, e, make_view(view));
+      auto out =
+          traverse({.tree = tree, .step = t, .tol = tol, .errors = e, .view = make_view(view)});
       EXPECT_EQ(order_violation(boxes_of(tree, out), view), "")
           << ctx << " " << describe(view) << " t=" << t;
     }
@@ -463,7 +485,11 @@ TEST(BackToFront, MixedSizesOrthographicAndPerspective) {
       NodeErrors e = random_errors(tree, rng, true);
       const Tolerances tol{u(rng), u(rng)};
       for (int t = 0; t < 2; ++t)
-        mixed += levels_of(tree, traverse(tree, t, tol, e, kAnyView)) >= 2;
+        mixed +=
+            levels_of(
+                tree,
+                traverse({.tree = tree, .step = t, .tol = tol, .errors = e, .view = kAnyView})) >=
+            2;
       check_orders(tree, e, tol, orthographic_viewers(rng), name(g));
       check_orders(tree, e, tol, perspective_viewers(g.dims, rng), name(g));
     }
@@ -488,7 +514,9 @@ TEST(BackToFront, CheckerRejectsReversedOrders) {
   std::vector<Viewer> views = orthographic_viewers(rng);
   for (const Viewer& v : perspective_viewers(tree.octree().dims(), rng)) views.push_back(v);
   for (const Viewer& view : views) {
-    std::vector<Box> boxes = boxes_of(tree, traverse(tree, 0, {0, 0}, e, make_view(view)));
+    std::vector<Box> boxes = boxes_of(
+        tree,
+        traverse({.tree = tree, .step = 0, .tol = {0, 0}, .errors = e, .view = make_view(view)}));
     ASSERT_EQ(order_violation(boxes, view), "");
     std::reverse(boxes.begin(), boxes.end());
     EXPECT_NE(order_violation(boxes, view), "") << describe(view);
@@ -504,8 +532,11 @@ TEST(BackToFront, CheckerRejectsReversedOrders) {
   EXPECT_EQ(order_violation({lo, hi}, Viewer{true, {4, 2, 2}}), "");  // eye on the shared face
   // A wrong order (one fixed order for every view) also fails for some view.
   int failures = 0;
-  const auto fixed =
-      boxes_of(tree, traverse(tree, 0, {0, 0}, e, ViewOrder::orthographic({1, 1, 1})));
+  const auto fixed = boxes_of(tree, traverse({.tree = tree,
+                                              .step = 0,
+                                              .tol = {0, 0},
+                                              .errors = e,
+                                              .view = ViewOrder::orthographic({1, 1, 1})}));
   for (const Viewer& view : views) failures += order_violation(fixed, view).empty() ? 0 : 1;
   EXPECT_GT(failures, 0);
 }
