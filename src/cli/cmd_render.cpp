@@ -29,13 +29,13 @@ struct RenderArgs {
   std::string file, tf = "preset:sparse", out, steps, size = "640x480", view = "30,20", movie,
               tf_range;
   int fps = tspgl::kMovieFps;
-  bool annotate = false;
+  std::string annotate = "off";
   std::string metric = "approximate", cache = "on";
   SettingsOptions settings;  ///< every knob of the settings table
   int passes = 1;
   double texture_budget_mb = double(tspgl::kDefaultTextureBudget) / (1 << 20);
   double ram_budget_mb = double(tspgl::kDefaultBrickBudget) / (1 << 20);
-  bool baseline = false, perspective = false;
+  std::string baseline = "off", perspective = "off";
   double quality = 0;
   std::string calibration_dir, save_tf;
   std::string lod;       ///< off|auto|K|splat:PX ("": off, or auto with --target-ms)
@@ -58,7 +58,7 @@ void run(const RenderArgs& a) {
   o.field = a.field;
   o.tf = a.tf;
   o.tf_range = tsp::parse_tf_range(a.tf_range);
-  o.annotate = a.annotate;
+  o.annotate = a.annotate == "on";
   o.out_dir = a.out;
   const StepRange steps = parse_steps(a.steps);
   o.first_step = steps.first;
@@ -67,12 +67,13 @@ void run(const RenderArgs& a) {
   o.settings = a.settings.apply();
   o.metric = tsp::parse_metric(a.metric);
   o.cache = a.cache == "off" ? tsp::CachePolicy::off : tsp::CachePolicy::on;
-  o.baseline = a.baseline;
+  o.baseline = a.baseline == "on";
   std::tie(o.camera.width, o.camera.height) = parse_size(a.size);
   auto view = tsp::parse_view_angles(a.view);
   o.camera.azimuth_deg = view[0];
   o.camera.elevation_deg = view[1];
-  o.camera.projection = a.perspective ? tsp::Projection::perspective : tsp::Projection::orthographic;
+  o.camera.projection =
+      a.perspective == "on" ? tsp::Projection::perspective : tsp::Projection::orthographic;
   o.passes = a.passes;
   if (a.quality != 0)
     for (const std::string& given : a.settings.given())
@@ -80,7 +81,7 @@ void run(const RenderArgs& a) {
         if (given == knob)
           throw tsp::UsageError("--quality picks compositing, spacing, tolerances and "
                                 "pre-integration itself: drop " + given);
-  if (a.quality != 0 && a.baseline)
+  if (a.quality != 0 && o.baseline)
     throw tsp::UsageError("--quality is for the TSP renderer: drop --baseline");
   o.quality = a.quality;
   o.calibration_dir = a.calibration_dir;
@@ -200,7 +201,7 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
   c->add_option("--tf-range", a->tf_range,
                 "Where the TF sits over the data: auto (presets and normalised [0,1] maps "
                 "stretched over the data, other files as written), data, file or LO:HI");
-  c->add_flag("--annotate", a->annotate,
+  on_off_option(c, "--annotate", a->annotate,
               "Draw the outline box, an axes triad, a colour legend with ticks and the step (and "
               "time) into every frame (and so into --movie)");
   c->add_option("--movie", a->movie,
@@ -212,10 +213,10 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
       ->check(CLI::IsMember({"scalar", "reference", "approximate", "perceptual"}));
   c->add_option("--cache", a->cache, "Texture cache on|off (default on)")
       ->check(CLI::IsMember({"on", "off"}));
-  c->add_flag("--baseline", a->baseline, "Render without the TSP tree (the non-TSP reference)");
+  on_off_option(c, "--baseline", a->baseline, "Render without the TSP tree (the non-TSP reference)");
   c->add_option("--size", a->size, "Image size WxH (default 640x480)");
   c->add_option("--view", a->view, "Azimuth,elevation in degrees (default 30,20)");
-  c->add_flag("--perspective", a->perspective, "Perspective projection (default orthographic)");
+  on_off_option(c, "--perspective", a->perspective, "Perspective projection (off: orthographic)");
   c->add_option("--proportions", a->proportions,
                 "physical (default: the file's voxel spacing shapes the view) or samples (cubic "
                 "voxels)");

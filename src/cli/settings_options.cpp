@@ -41,6 +41,14 @@ std::vector<std::string> SettingsOptions::given() const {
   return out;
 }
 
+CLI::Option* on_off_option(CLI::App* c, const std::string& name, std::string& value,
+                           const std::string& help) {
+  return c->add_option(name, value, help + ": on|off, alone: on (default " + value + ")")
+      ->expected(0, 1)
+      ->default_str("on")
+      ->check(CLI::IsMember({"on", "off"}));
+}
+
 void set_groups(CLI::App* c,
                 const std::vector<std::pair<std::string, std::vector<std::string>>>& groups) {
   for (const auto& [group, names] : groups)

@@ -30,6 +30,11 @@ class SettingsOptions {
   std::vector<std::pair<std::string, CLI::Option*>> options_;
 };
 
+/// Adds a switch `--NAME [on|off]` to c storing "on" or "off" in value (given alone it means
+/// on; its default is value's initial text, shown in the help). Never throws.
+CLI::Option* on_off_option(CLI::App* c, const std::string& name, std::string& value,
+                           const std::string& help);
+
 /// Puts each named option of c ("--size", by its long name) under its group's heading in
 /// --help; asserts every name is an option of c. Never throws.
 void set_groups(CLI::App* c,
