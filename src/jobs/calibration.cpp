@@ -13,6 +13,7 @@
 #include "jobs/image_probe.h"
 #include "jobs/render_job.h"
 #include "tsp/core/error.h"
+#include "tsp/core/json_read.h"
 #include "tsp/core/json_text.h"
 #include "tsp/core/stopwatch.h"
 #include "tsp/core/temp_output.h"
@@ -101,7 +102,8 @@ std::optional<Calibration> read_cache(const fs::path& file, const json& key) {
   std::ifstream in(file);
   if (!in) return std::nullopt;
   try {
-    Calibration c = calibration_from_json(json::parse(in), file.string());
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    Calibration c = calibration_from_json(tsp::parse_json(text, file.string()), file.string());
     if (c.key != key) return std::nullopt;
     return c;
   } catch (const std::exception&) {

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "tsp/core/error.h"
+#include "tsp/core/json_read.h"
 #include "tsp/core/file_check.h"
 #include "tsp/core/temp_output.h"
 #include "tsp/core/json_text.h"
@@ -236,12 +237,7 @@ TransferFunction parse_document(const json& doc, const std::string& origin, int 
 
 TransferFunction parse_transfer_function(const std::string& text, const std::string& origin,
                                          int entries) {
-  json doc;
-  try {
-    doc = json::parse(text);
-  } catch (const json::exception& e) {  // syntax, and numbers beyond the double range
-    throw FormatError(origin + ": not valid JSON: " + e.what());
-  }
+  const json doc = parse_json(text, origin);
   try {
     return parse_document(doc, origin, entries);
   } catch (const json::exception& e) {

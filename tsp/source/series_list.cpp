@@ -9,6 +9,7 @@
 #include <pugixml.hpp>
 
 #include "tsp/core/error.h"
+#include "tsp/core/json_read.h"
 
 namespace tsp::io {
 namespace {
@@ -77,12 +78,8 @@ std::vector<StepFile> read_pvd(const std::string& path) {
 std::vector<StepFile> read_file_series(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw IoError(path + ": cannot be opened for reading");
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception& e) {
-    throw FormatError(path + ": not valid JSON (" + e.what() + ")");
-  }
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  nlohmann::json j = parse_json(text, path);
   if (!j.is_object() || !j.contains("file-series-version") || !j["file-series-version"].is_string())
     throw FormatError(path + ": no \"file-series-version\" string, expected \"1.0\"");
   std::string version = j["file-series-version"];
