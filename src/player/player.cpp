@@ -92,26 +92,26 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
   if (options.step < 0 || options.step >= tree.time().steps())
     throw tsp::UsageError("--step " + std::to_string(options.step) + ": " + options.tsp_path +
                           " has steps 0.." + std::to_string(tree.time().steps() - 1));
-  step = options.step;
+  state.step = options.step;
   if (!(options.frame_delay_ms >= 0 && options.frame_delay_ms <= kMaxFrameDelayMs))
     throw tsp::UsageError("--frame-delay-ms " + std::to_string(options.frame_delay_ms) +
                           ": expected 0.." + std::to_string(int(kMaxFrameDelayMs)));
   frame_delay_ms_ = options.frame_delay_ms;
   tspgl::validate(options.settings);
-  settings = options.settings;
+  state.settings = options.settings;
   for (auto [value, name] : {std::pair{options.ram_budget_mb, "--ram-budget"},
                              std::pair{options.texture_budget_mb, "--texture-budget"}})
     if (!(value > 0) || !(value <= double(tspgl::kMaxBudgetBytes >> 20)))
       throw tsp::UsageError(std::string(name) + " " + std::to_string(value) +
                             ": expected a budget in (0, " +
                             std::to_string(tspgl::kMaxBudgetBytes >> 20) + "] MiB");
-  texture_budget_mb = options.texture_budget_mb;
+  state.texture_budget_mb = options.texture_budget_mb;
   if (!(options.target_fps >= 1 && options.target_fps <= kMaxTargetFps))
     throw tsp::UsageError("--target-fps " + std::to_string(options.target_fps) + ": expected 1 to " +
                           std::to_string(int(kMaxTargetFps)) + " frames per second");
-  lod_on = options.lod;
-  target_fps = float(options.target_fps);
-  splat_fallback = options.splat_fallback;
+  state.lod_on = options.lod;
+  state.target_fps = float(options.target_fps);
+  state.splat_fallback = options.splat_fallback;
   if (!options.script.empty()) script_ = load_script(options.script);
   if (!options.screenshot.empty()) {
     ScriptAction shot;
@@ -126,19 +126,19 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
     std::fprintf(stderr, "tspplay: warning: %s\n", w.c_str());
     status = w;
   }
-  lazy_ = std::make_unique<tsp::LazyErrors>(tree, metric, tf);
+  lazy_ = std::make_unique<tsp::LazyErrors>(tree, state.metric, tf);
   set_tf(tf, true);
   ready.assign(std::size_t(tree.time().steps()), -1.f);
   for (double k : options.scale)
     if (!(k > 0) || !(k <= tspgl::kMaxScale))
       throw tsp::UsageError("--scale: expected three factors in (0, " +
                             std::to_string(int(tspgl::kMaxScale)) + "], found " + std::to_string(k));
-  camera.voxel_size = voxel_size();
-  for (const std::string& text : options.probes) probes.push_back(tsp::parse_probe(text));
-  probe_op = tsp::parse_probe_op(options.probe_op);
-  probe_surface = options.probe_surface;
-  (void)tsp::ClipRegion(probes, probe_op, file->metadata().origin, file->metadata().spacing);
-  if (!probes.empty()) probe_selected = 0;
+  state.camera.voxel_size = voxel_size();
+  for (const std::string& text : options.probes) state.probes.push_back(tsp::parse_probe(text));
+  state.probe_op = tsp::parse_probe_op(options.probe_op);
+  state.probe_surface = options.probe_surface;
+  (void)tsp::ClipRegion(state.probes, state.probe_op, file->metadata().origin, file->metadata().spacing);
+  if (!state.probes.empty()) probe_selected = 0;
 
   ctx = tspgl::create_window_context(options.width, options.height, "tspplay - " + options.tsp_path,
                                      true);
@@ -196,7 +196,7 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
   imgui_ = true;
   update_tol_max();
   start_s_ = last_frame_s_ = clock_.seconds();
-  initial_camera = camera;
+  initial_camera = state.camera;
 }
 
 PlayerApp::~PlayerApp() {
@@ -229,8 +229,8 @@ void PlayerApp::make_renderer() {
   driver_.reset();
   renderer.reset();
   renderer = std::make_unique<tspgl::VolumeRenderer>(
-      *ctx, *file, cache_on ? tsp::CachePolicy::on : tsp::CachePolicy::off,
-      std::int64_t(texture_budget_mb * (1 << 20)), std::int64_t(options_.ram_budget_mb * (1 << 20)),
+      *ctx, *file, state.cache_on ? tsp::CachePolicy::on : tsp::CachePolicy::off,
+      std::int64_t(state.texture_budget_mb * (1 << 20)), std::int64_t(options_.ram_budget_mb * (1 << 20)),
       compositor_);
   renderer->set_transfer_function(tf);
   prefetcher = std::make_unique<tsp::BrickPrefetcher>(renderer->brick_cache());
@@ -246,7 +246,7 @@ std::array<double, 3> PlayerApp::voxel_size() const {
 
 void PlayerApp::set_scale(const std::array<double, 3>& scale) {
   options_.scale = scale;
-  camera.voxel_size = initial_camera.voxel_size = voxel_size();
+  state.camera.voxel_size = initial_camera.voxel_size = voxel_size();
 }
 
 int PlayerApp::steps() const {
@@ -254,8 +254,8 @@ int PlayerApp::steps() const {
 }
 
 void PlayerApp::go_to(int t) {
-  playing = false;
-  step = std::clamp(t, 0, steps() - 1);
+  state.playing = false;
+  state.step = std::clamp(t, 0, steps() - 1);
 }
 
 void PlayerApp::set_tf(const tsp::TransferFunction& next, bool resample_points) {
@@ -290,31 +290,31 @@ void PlayerApp::apply_tf_points() {
 
 // During playback: the bricks the next kPrefetchSteps frames would upload, in playing order,
 // go to the prefetch thread once per step change (the request replaces the previous one).
-void PlayerApp::request_prefetch(const tsp::Camera& cam, const tspgl::RenderSettings& settings,
+void PlayerApp::request_prefetch(const tsp::Camera& cam, const tspgl::RenderSettings& frame_settings,
                                  tsp::LodStops stops) {
-  if (!prefetch_on) return;
+  if (!state.prefetch_on) return;
   // Holding still or turning: the bricks the cut's next splits will want, at this step, once per
   // cut change (the RAM cache then serves the split's uploads).
-  if (!playing) {
+  if (!state.playing) {
     const tsp::LodController* lod = driver().controller();
     if (!lod || lod_stats.cut_size == prefetched_cut_) return;
     prefetched_cut_ = lod_stats.cut_size;
     std::vector<tsp::BrickKey> keys;
-    for (int b : lod->likely_split_bricks(kPrefetchSplits)) keys.push_back({b, step});
+    for (int b : lod->likely_split_bricks(kPrefetchSplits)) keys.push_back({b, state.step});
     prefetcher->request(std::move(keys));
     return;
   }
-  if (prefetched_for_ == step) return;
-  prefetched_for_ = step;
+  if (prefetched_for_ == state.step) return;
+  prefetched_for_ = state.step;
   std::vector<tsp::BrickKey> keys;
   for (int k = 1; k <= kPrefetchSteps; ++k) {
-    int t = step + k;
+    int t = state.step + k;
     if (t >= steps()) {
-      if (!loop) break;
+      if (!state.loop) break;
       t %= steps();
     }
     std::vector<tsp::BrickKey> more =
-        renderer->bricks_to_upload(t, cam, settings, frame_metric(), stops);
+        renderer->bricks_to_upload(t, cam, frame_settings, frame_metric(), stops);
     keys.insert(keys.end(), more.begin(), more.end());
     if (const tsp::LodController* lod = driver().controller())  // and its likely next splits
       for (int b : lod->likely_split_bricks(kPrefetchSplits)) keys.push_back({b, t});
@@ -327,7 +327,7 @@ void PlayerApp::request_save() {
 }
 
 tsp::FrameMetric& PlayerApp::frame_metric() {
-  if (metric != tsp::Metric::reference) return *lazy_;
+  if (state.metric != tsp::Metric::reference) return *lazy_;
   refresh_reference();
   return reference_nodes_;
 }
@@ -343,21 +343,21 @@ void PlayerApp::refresh_reference() {
 }
 
 void PlayerApp::render_volume() {
-  camera.width = layout.view.w;
-  camera.height = layout.view.h;
-  if (camera.width < 1 || camera.height < 1 || ctx->width() < 1 || ctx->height() < 1)
+  state.camera.width = layout.view.w;
+  state.camera.height = layout.view.h;
+  if (state.camera.width < 1 || state.camera.height < 1 || ctx->width() < 1 || ctx->height() < 1)
     return;  // minimised
-  const tsp::Camera cam(file->tree().octree().dims(), camera);
-  tspgl::RenderSettings fs = settings;
+  const tsp::Camera cam(file->tree().octree().dims(), state.camera);
+  tspgl::RenderSettings fs = state.settings;
   if (fs.preintegrated) fs.sampling_tol = 0;  // the two exclude each other
   // GL's window coordinates start at the bottom: the view's lower-left corner.
   fs.viewport_origin = {layout.view.x, ctx->height() - layout.view.y - layout.view.h};
-  if (metric != tsp::Metric::reference) {
+  if (state.metric != tsp::Metric::reference) {
     // Evaluate this step's nodes here so the HUD can show the recompute cost; render() then
     // only reads memoised results.
     const std::int64_t before = lazy_->evaluations();
     const tsp::Stopwatch t0;
-    lazy_->errors_for_step(step);
+    lazy_->errors_for_step(state.step);
     const double ms = t0.ms();
     if (lazy_->evaluations() > before) {
       metric_ms = ms;
@@ -368,7 +368,7 @@ void PlayerApp::render_volume() {
   tspgl::FrameDriver& d = driver();
   d.set_lod(lod_spec(now));
   tspgl::FrameRequest request;
-  request.step = step;
+  request.step = state.step;
   request.camera = &cam;
   request.settings = fs;
   request.metric = &frame_metric();
@@ -387,14 +387,14 @@ tspgl::FrameDriver& PlayerApp::driver() {
 
 // A few steps a frame, round robin: how much of what each step's frame would upload is in RAM
 // already (1 when its textures are all resident).
-void PlayerApp::update_ready(const tsp::Camera& cam, const tspgl::RenderSettings& settings,
+void PlayerApp::update_ready(const tsp::Camera& cam, const tspgl::RenderSettings& frame_settings,
                              tsp::LodStops stops) {
   const int n = steps();
   for (int k = 0; k < std::min(n, kReadyStepsPerFrame); ++k) {
     const int t = ready_next_;
     ready_next_ = (ready_next_ + 1) % n;
     const std::vector<tsp::BrickKey> keys =
-        renderer->bricks_to_upload(t, cam, settings, frame_metric(), stops);
+        renderer->bricks_to_upload(t, cam, frame_settings, frame_metric(), stops);
     int in_ram = 0;
     for (const tsp::BrickKey& key : keys) in_ram += renderer->brick_cache().contains(key.brick, key.step);
     ready[std::size_t(t)] = keys.empty() ? 1.f : float(in_ram) / float(keys.size());
@@ -407,21 +407,21 @@ tsp::Image PlayerApp::read_view() {
 }
 
 void PlayerApp::advance_playback(double dt) {
-  if (!playing) {
+  if (!state.playing) {
     play_accum_ = 0;
     return;
   }
-  play_accum_ += std::min(dt, kMaxFrameDt) * speed;
+  play_accum_ += std::min(dt, kMaxFrameDt) * state.speed;
   // Every step: at most one step a frame, however slow the frames (no step is skipped).
-  if (every_step) play_accum_ = std::min(play_accum_, 1.0);
+  if (state.every_step) play_accum_ = std::min(play_accum_, 1.0);
   while (play_accum_ >= 1) {
     play_accum_ -= 1;
-    if (step + 1 < steps()) {
-      ++step;
-    } else if (loop) {
-      step = 0;
+    if (state.step + 1 < steps()) {
+      ++state.step;
+    } else if (state.loop) {
+      state.step = 0;
     } else {
-      playing = false;
+      state.playing = false;
       play_accum_ = 0;
       break;
     }
@@ -430,7 +430,7 @@ void PlayerApp::advance_playback(double dt) {
 
 void PlayerApp::save_pending_shot() {
   tsp::write_png(pending_shot_, pending_with_ui_ ? ctx->read_pixels() : read_view());
-  std::printf("saved %s (step %d)\n", pending_shot_.c_str(), step);
+  std::printf("saved %s (step %d)\n", pending_shot_.c_str(), state.step);
   std::fflush(stdout);
   pending_shot_.clear();
 }
@@ -455,7 +455,7 @@ void PlayerApp::frame() {
   ImGui::NewFrame();
   // The volume's rectangle: beside the docked panels, or the whole window (again below, after
   // keys and script actions that may show or hide the panels).
-  layout = compute_layout(ctx->width(), ctx->height(), panels, int(ImGui::GetFrameHeight()));
+  layout = compute_layout(ctx->width(), ctx->height(), state.panels, int(ImGui::GetFrameHeight()));
   poll_open();
   run_script();
   if (quit_) {
@@ -465,7 +465,7 @@ void PlayerApp::frame() {
   handle_input();
   advance_playback(dt);
   if (options_.trace) trace_changes();
-  layout = compute_layout(ctx->width(), ctx->height(), panels, int(ImGui::GetFrameHeight()));
+  layout = compute_layout(ctx->width(), ctx->height(), state.panels, int(ImGui::GetFrameHeight()));
   if (layout.docked) {  // what the volume does not cover is the panels' background
     const tspgl::GlApi& gl = ctx->gl();
     gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -482,13 +482,13 @@ void PlayerApp::frame() {
   // Screenshots hold the volume only (read before the UI is drawn).
   // A screenshot waits for the first complete frame (no texture left for later frames).
   // With the LOD cut it also waits for full quality (the idle refinement), unless playing.
-  const bool full = playing || full_quality();
+  const bool full = state.playing || full_quality();
   const bool shot_now = !pending_shot_.empty() && last.complete() && full;
   if (shot_now && !pending_with_ui_) save_pending_shot();
   if (save_requested_) {
     save_requested_ = false;
     char name[64];
-    std::snprintf(name, sizeof name, "tspplay_step_%04d.png", step);
+    std::snprintf(name, sizeof name, "tspplay_step_%04d.png", state.step);
     try {
       tsp::write_png(name, read_view());
       status = std::string("saved ") + name;
@@ -499,15 +499,15 @@ void PlayerApp::frame() {
   }
 
   if (recorder_) record_frame(now);
-  if (switch_started_s_ >= 0 && last.complete() && (playing || full_quality())) {
+  if (switch_started_s_ >= 0 && last.complete() && (state.playing || full_quality())) {
     field_switch_ms = (clock_.seconds() - switch_started_s_) * 1000;  // the new field's first frame
     switch_started_s_ = -1;
   }
-  if (camera.width > 0 && camera.height > 0) {
-    const tsp::Camera cam(file->tree().octree().dims(), camera);
+  if (state.camera.width > 0 && state.camera.height > 0) {
+    const tsp::Camera cam(file->tree().octree().dims(), state.camera);
     draw_cut_overlay(cam);
     draw_annotations(cam);
-    if (panels) draw_probe_overlay(cam);
+    if (state.panels) draw_probe_overlay(cam);
   }
   draw_ui();
   ImGui::Render();
@@ -525,9 +525,9 @@ void PlayerApp::frame() {
 
 bool PlayerApp::busy() const {
   const bool script_running = script_pos_ < script_.size() || wait_frames_ > 0;
-  return quit_ || playing || settle_frames_ > 0 || script_running || !pending_shot_.empty() ||
+  return quit_ || state.playing || settle_frames_ > 0 || script_running || !pending_shot_.empty() ||
          save_requested_ || calibrator_ || open_job_ || recorder_ || !last.complete() ||
-         (lod_on && !full_quality()) || switch_started_s_ >= 0;
+         (state.lod_on && !full_quality()) || switch_started_s_ >= 0;
 }
 
 void PlayerApp::run() {

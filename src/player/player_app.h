@@ -21,6 +21,7 @@
 #include "player/open_job.h"
 #include "player/recorder.h"
 #include "player/player.h"
+#include "player/player_state.h"
 #include "player/script.h"
 #include "render/frame_driver.h"
 #include "render/volume_renderer.h"
@@ -46,8 +47,6 @@ inline constexpr int kPrefetchSteps = 2;
 /// Split candidates of the LOD cut whose children's bricks are prefetched.
 inline constexpr int kPrefetchSplits = 4;
 
-/// Target frames per second while interacting (the LOD cut holds it).
-inline constexpr double kDefaultTargetFps = 30;
 /// Largest --frame-delay-ms (a test's slow machine).
 inline constexpr double kMaxFrameDelayMs = 2000;
 
@@ -87,7 +86,10 @@ class PlayerApp {
   /// Runs frames until the window closes or the script/screenshot ends it.
   void run();
 
-  // ---- state the UI reads and edits (player_ui.cpp) ----
+  /// What is shown and how: changed by commands (apply, command, the set_* below).
+  PlayerState state;
+
+  // ---- what the frames use (player_ui.cpp reads it) ----
   std::unique_ptr<tsp::TspFile> file;
   std::unique_ptr<tspgl::GlContext> ctx;
   std::unique_ptr<tspgl::VolumeRenderer> renderer;  ///< draws `file` (the shown field)
@@ -96,34 +98,14 @@ class PlayerApp {
   tsp::TransferFunction tf;
   std::vector<tsp::TfPoint> tf_points;  ///< the editor's control points
   std::string tf_path = "tf.json";      ///< load/save path in the editor
-  tsp::Metric metric = tsp::Metric::approximate;
-  tsp::CameraParams camera;
-  /// What frames are drawn with (the settings table's knobs; each frame sets its own render
-  /// scale and viewport, and adaptive sampling is off while pre-integration is on).
-  tspgl::RenderSettings settings;
-  float quality = 0;          ///< the quality slider (mean ΔE; 0: the raw knobs)
   std::string quality_note;   ///< what the last quality pick chose
   float tol_max = 1;  ///< upper end of the tolerance sliders (largest error of a step)
-  bool cache_on = true;
-  bool prefetch_on = true;       ///< read the next steps' bricks in the background while playing
-  double texture_budget_mb = double(tspgl::kDefaultTextureBudget) / (1 << 20);
-  int step = 0;
-  bool playing = false, loop = true;
-  bool every_step = false;  ///< playback shows every step (slower than real time if need be)
-  bool panels = true;       ///< the UI panels (Tab); hidden: the volume fills the window
-  bool log_opacity = false; ///< the TF editor's opacity axis on a log scale
   Layout layout;            ///< this frame's layout (the volume's rectangle, docked panels)
   /// Per step: the share of the bricks its frame would read that are in RAM or textures
   /// (−1: not checked yet), for the timeline's marks.
   std::vector<float> ready;
-  double speed = 5;    ///< steps per second
   std::string status;  ///< last message shown in the UI (saved files, errors)
-  bool lod_on = true;                   ///< the adaptive LOD cut (off: full resolution always)
-  float target_fps = float(kDefaultTargetFps);  ///< held while interacting
-  bool show_cut = false;                ///< outline the cut's nodes, coloured by level (key L)
-  bool splat_fallback = false;          ///< splats (not a smaller target) below the coarsest cut
   bool show_help = false;               ///< the controls overlay (F1 or ?)
-  bool annotations = true;              ///< outline box, axes triad, step/time over the volume
   tsp::CameraParams initial_camera;     ///< what R resets the camera to
   std::optional<std::array<double, 3>> focus;  ///< LOD centre of attention (double-click)
 
@@ -191,9 +173,6 @@ class PlayerApp {
   void set_focus_at(double x, double y);
 
   // ---- clip probes (player_probes.cpp) ----
-  std::vector<tsp::Probe> probes;  ///< in physical coordinates
-  tsp::ProbeOp probe_op = tsp::ProbeOp::intersect;
-  bool probe_surface = true;       ///< draw the clip surface (the data on the probe)
   int probe_selected = -1;         ///< the probe the gizmo moves (−1: none)
   std::uint64_t probe_version = 0; ///< bumped on every probe change (interaction for the LOD)
   /// Adds a probe (selected); errors (more than ClipRegion::kMaxProbes) go to status.
@@ -249,7 +228,7 @@ class PlayerApp {
   void open_file(const std::string& path);
   void poll_open();                  // a finished File > Open build: play it or report
   void record_frame(double now_s);   // appends this frame to the movie while recording
-  void update_ready(const tsp::Camera& cam, const tspgl::RenderSettings& settings,
+  void update_ready(const tsp::Camera& cam, const tspgl::RenderSettings& frame_settings,
                     tsp::LodStops stops);
   // Probes (player_probes.cpp): hands them to the renderer when they changed; moves the
   // selected one with the mouse (ctrl: drag moves, wheel resizes; alt: drag turns) and returns
@@ -265,7 +244,7 @@ class PlayerApp {
   void refresh_reference();
   /// The current metric as frames read it (the reference metric brought up to date first).
   tsp::FrameMetric& frame_metric();
-  void request_prefetch(const tsp::Camera& cam, const tspgl::RenderSettings& settings,
+  void request_prefetch(const tsp::Camera& cam, const tspgl::RenderSettings& frame_settings,
                         tsp::LodStops stops);
   void make_renderer();
   void update_tol_max();

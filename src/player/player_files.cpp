@@ -91,24 +91,24 @@ void PlayerApp::open_file(const std::string& path) {
   tsp::TransferFunction fresh = tsp::transfer_function_from_arg(
       options_.tf, tree.value_range(), tsp::kDefaultTfEntries, tsp::parse_tf_range(options_.tf_range));
   tf = fresh;
-  lazy_ = std::make_unique<tsp::LazyErrors>(tree, metric, tf);
+  lazy_ = std::make_unique<tsp::LazyErrors>(tree, state.metric, tf);
   reference_version_ = ~std::uint64_t(0);
   set_tf(tf, true);
-  step = 0;
-  playing = false;
+  state.step = 0;
+  state.playing = false;
   focus.reset();
-  settings.tol = {0, 0};
-  probes.clear();  // (in the old file's physical coordinates)
+  state.settings.tol = {0, 0};
+  state.probes.clear();  // (in the old file's physical coordinates)
   probe_selected = -1;
   probes_changed();
-  quality = 0;
+  state.quality = 0;
   quality_note.clear();
   history.clear();
   ready.assign(std::size_t(tree.time().steps()), -1.f);
   ready_next_ = 0;
-  camera = tsp::CameraParams{};
-  camera.voxel_size = voxel_size();
-  initial_camera = camera;
+  state.camera = tsp::CameraParams{};
+  state.camera.voxel_size = voxel_size();
+  initial_camera = state.camera;
   make_renderer();
   update_tol_max();
   glfwSetWindowTitle(static_cast<GLFWwindow*>(ctx->native_window()), ("tspplay - " + path).c_str());
@@ -141,7 +141,7 @@ void PlayerApp::switch_field(const std::string& name) {
   parked_.park(current, {std::move(file), std::move(renderer), tf});
   file = std::move(next.file);
   tf = next.tf;
-  lazy_ = std::make_unique<tsp::LazyErrors>(file->tree(), metric, tf);
+  lazy_ = std::make_unique<tsp::LazyErrors>(file->tree(), state.metric, tf);
   reference_version_ = ~std::uint64_t(0);
   tf_points.clear();
   set_tf(tf, true);
@@ -196,12 +196,12 @@ void PlayerApp::stop_recording() {
 // repeated or skipped so that the movie keeps the wall-clock time of what was played.
 void PlayerApp::record_frame(double now_s) {
   tsp::Image img = read_view();
-  if (annotations) {
+  if (state.annotations) {
     const auto& times = file->metadata().times;
-    tspgl::annotate_frame(img, tsp::Camera(file->tree().octree().dims(), camera),
-                          file->tree().octree().dims(), tf, step,
+    tspgl::annotate_frame(img, tsp::Camera(file->tree().octree().dims(), state.camera),
+                          file->tree().octree().dims(), tf, state.step,
                           times.empty() ? std::nullopt
-                                        : std::optional<double>(times[std::size_t(step)]));
+                                        : std::optional<double>(times[std::size_t(state.step)]));
   }
   try {
     recorder_->frame(img, now_s);
@@ -239,15 +239,15 @@ void PlayerApp::write_stats(const std::string& path) const {
   j["fields"] = file->fields();
   j["field_switch_ms"] = field_switch_ms;
   nlohmann::json jp = nlohmann::json::array();
-  for (const tsp::Probe& p : probes) jp.push_back(tsp::to_string(p));
+  for (const tsp::Probe& p : state.probes) jp.push_back(tsp::to_string(p));
   j["probes"] = jp;
-  j["probe_op"] = tsp::to_string(probe_op);
+  j["probe_op"] = tsp::to_string(state.probe_op);
   j["ram_mib"] = double(renderer->brick_cache().stats().resident_bytes) / (1 << 20);
   j["rss_mib"] = double(tsp::resident_bytes()) / (1 << 20);
   j["peak_rss_mib"] = double(tsp::peak_resident_bytes()) / (1 << 20);
-  j["step"] = step;
+  j["step"] = state.step;
   j["steps_ready"] = ready;
-  j["every_step"] = every_step;
+  j["every_step"] = state.every_step;
   j["recording"] = recording();
   j["frames"] = ms.size();
   j["frame_ms"] = ms;
@@ -255,8 +255,8 @@ void PlayerApp::write_stats(const std::string& path) const {
   j["fps"] = mean > 0 ? 1000.0 / mean : 0.0;
   j["render_ms"] = last.ms;
   j["fragments"] = last.fragments;
-  j.update(tspgl::settings_json(settings));  // every knob of the settings table, as render's
-  j["tolerance"] = {settings.tol.spatial, settings.tol.temporal};
+  j.update(tspgl::settings_json(state.settings));  // every knob of the settings table, as render's
+  j["tolerance"] = {state.settings.tol.spatial, state.settings.tol.temporal};
   nlohmann::json points = nlohmann::json::array();  // the editor's handles: value, opacity
   for (const tsp::TfPoint& p : tf_points) points.push_back({p.x, p.c.a});
   j["tf_points"] = points;
@@ -267,15 +267,15 @@ void PlayerApp::write_stats(const std::string& path) const {
   j["calibration"] = {{"running", calibrator_ != nullptr},
                       {"seconds", calibration_s_},
                       {"frames_while_calibrating", frames_while_calibrating_}};
-  j["lod"] = {{"on", lod_on},
-              {"target_fps", target_fps},
+  j["lod"] = {{"on", state.lod_on},
+              {"target_fps", state.target_fps},
               {"refining", refining},
               {"cut_size", lod_stats.cut_size},
               {"nodes_per_level", lod_stats.nodes_per_level},
               {"render_scale", lod_stats.render_scale},
               {"splats", lod_stats.splats},
               {"splat_px", lod_stats.splat_px},
-              {"splat_fallback", splat_fallback},
+              {"splat_fallback", state.splat_fallback},
               {"max_error", lod_stats.max_error},
               {"full_quality_after_s", full_quality_after_s},
               // Full quality: no node left whose level differs from full resolution in the

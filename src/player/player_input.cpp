@@ -23,20 +23,20 @@ constexpr double kMaxElevation = 89;
 
 void PlayerApp::handle_input() {
   const ImGuiIO& io = ImGui::GetIO();
-  const bool gizmo = !io.WantCaptureMouse && camera.width > 0 && camera.height > 0 &&
-                     probe_gizmo(tsp::Camera(file->tree().octree().dims(), camera));
+  const bool gizmo = !io.WantCaptureMouse && state.camera.width > 0 && state.camera.height > 0 &&
+                     probe_gizmo(tsp::Camera(file->tree().octree().dims(), state.camera));
   if (!io.WantCaptureMouse && !gizmo) {
     const bool pan = io.MouseDown[1] || io.MouseDown[2] || (io.MouseDown[0] && io.KeyShift);
     if (pan) {
-      const double scale = 2.0 / (camera.zoom * std::max(1, std::min(camera.width, camera.height)));
-      camera.pan[0] -= io.MouseDelta.x * scale;
-      camera.pan[1] += io.MouseDelta.y * scale;
+      const double scale = 2.0 / (state.camera.zoom * std::max(1, std::min(state.camera.width, state.camera.height)));
+      state.camera.pan[0] -= io.MouseDelta.x * scale;
+      state.camera.pan[1] += io.MouseDelta.y * scale;
     } else if (io.MouseDown[0]) {
-      camera.azimuth_deg -= io.MouseDelta.x * kOrbitDegPerPixel;
-      camera.elevation_deg = std::clamp(camera.elevation_deg + io.MouseDelta.y * kOrbitDegPerPixel,
+      state.camera.azimuth_deg -= io.MouseDelta.x * kOrbitDegPerPixel;
+      state.camera.elevation_deg = std::clamp(state.camera.elevation_deg + io.MouseDelta.y * kOrbitDegPerPixel,
                                         -kMaxElevation, kMaxElevation);
     }
-    if (io.MouseWheel != 0) camera.zoom *= std::pow(kZoomPerWheelStep, io.MouseWheel);
+    if (io.MouseWheel != 0) state.camera.zoom *= std::pow(kZoomPerWheelStep, io.MouseWheel);
     if (io.MouseDoubleClicked[0])
       set_focus_at(io.MousePos.x - layout.view.x, io.MousePos.y - layout.view.y);
   }
@@ -74,13 +74,13 @@ void PlayerApp::apply_key(int key) {
   const int last = steps() - 1;
   switch (key) {
     case GLFW_KEY_SPACE:
-      command(command_of(playing ? Kind::pause : Kind::play));
+      command(command_of(state.playing ? Kind::pause : Kind::play));
       break;
     case GLFW_KEY_LEFT:
-      command(step_command(std::max(0, step - 1)));
+      command(step_command(std::max(0, state.step - 1)));
       break;
     case GLFW_KEY_RIGHT:
-      command(step_command(std::min(last, step + 1)));
+      command(step_command(std::min(last, state.step + 1)));
       break;
     case GLFW_KEY_HOME:
       command(step_command(0));
@@ -92,7 +92,7 @@ void PlayerApp::apply_key(int key) {
       request_save();
       break;
     case GLFW_KEY_L:
-      command(command_of(Kind::show_cut, !show_cut));
+      command(command_of(Kind::show_cut, !state.show_cut));
       break;
     case GLFW_KEY_R:
       command(command_of(Kind::reset_camera));
@@ -102,10 +102,10 @@ void PlayerApp::apply_key(int key) {
       show_help = !show_help;
       break;
     case GLFW_KEY_TAB:
-      command(command_of(Kind::panels, !panels));
+      command(command_of(Kind::panels, !state.panels));
       break;
     case GLFW_KEY_P:
-      command(command_of(Kind::projection, camera.projection == tsp::Projection::orthographic));
+      command(command_of(Kind::projection, state.camera.projection == tsp::Projection::orthographic));
       break;
     default:
       break;
@@ -123,16 +123,16 @@ void PlayerApp::apply(const ScriptAction& a) {
       go_to(a.number);
       break;
     case Kind::play:
-      playing = true;
+      state.playing = true;
       break;
     case Kind::pause:
-      playing = false;
+      state.playing = false;
       break;
     case Kind::speed:
-      speed = a.value;
+      state.speed = a.value;
       break;
     case Kind::loop:
-      loop = a.flag;
+      state.loop = a.flag;
       break;
     case Kind::tf:
       set_tf(tsp::transfer_function_from_arg(a.text, file->tree().value_range(), tf.size()), true);
@@ -144,20 +144,20 @@ void PlayerApp::apply(const ScriptAction& a) {
       set_metric(tsp::parse_metric(a.text));
       break;
     case Kind::cache:
-      set_cache(a.flag, texture_budget_mb);
+      set_cache(a.flag, state.texture_budget_mb);
       break;
     case Kind::prefetch:
-      prefetch_on = a.flag;
+      state.prefetch_on = a.flag;
       break;
     case Kind::view:
-      camera.azimuth_deg = a.value;
-      camera.elevation_deg = a.value2;
+      state.camera.azimuth_deg = a.value;
+      state.camera.elevation_deg = a.value2;
       break;
     case Kind::zoom:
-      camera.zoom = a.value;
+      state.camera.zoom = a.value;
       break;
     case Kind::projection:
-      camera.projection = a.flag ? tsp::Projection::perspective : tsp::Projection::orthographic;
+      state.camera.projection = a.flag ? tsp::Projection::perspective : tsp::Projection::orthographic;
       break;
     case Kind::screenshot:
     case Kind::screenshot_ui:
@@ -174,7 +174,7 @@ void PlayerApp::apply(const ScriptAction& a) {
       set_setting(a.text, a.text2);
       break;
     case Kind::quality:
-      quality = float(a.value);
+      state.quality = float(a.value);
       apply_quality(a.value);
       break;
     case Kind::stats:
@@ -184,19 +184,19 @@ void PlayerApp::apply(const ScriptAction& a) {
       set_lod(a.flag);
       break;
     case Kind::target_fps:
-      target_fps = float(a.value);
+      state.target_fps = float(a.value);
       break;
     case Kind::show_cut:
-      show_cut = a.flag;
+      state.show_cut = a.flag;
       break;
     case Kind::panels:
-      panels = a.flag;
+      state.panels = a.flag;
       break;
     case Kind::every_step:
-      every_step = a.flag;
+      state.every_step = a.flag;
       break;
     case Kind::log_opacity:
-      log_opacity = a.flag;
+      state.log_opacity = a.flag;
       break;
     case Kind::open:
       open_input(a.text, a.text2);
@@ -208,24 +208,24 @@ void PlayerApp::apply(const ScriptAction& a) {
       add_probe(tsp::parse_probe(a.text));
       break;
     case Kind::probe_op:
-      probe_op = tsp::parse_probe_op(a.text);
+      state.probe_op = tsp::parse_probe_op(a.text);
       probes_changed();
       break;
     case Kind::probe_surface:
-      probe_surface = a.flag;
+      state.probe_surface = a.flag;
       probes_changed();
       break;
     case Kind::probe_clear:
-      probes.clear();
+      state.probes.clear();
       probe_selected = -1;
       probes_changed();
       break;
     case Kind::probe_move:
-      if (a.number < 1 || a.number > int(probes.size()))
+      if (a.number < 1 || a.number > int(state.probes.size()))
         throw tsp::UsageError(options_.script + ":" + std::to_string(a.line) + ": probe " +
                               std::to_string(a.number) + ": there are " +
-                              std::to_string(probes.size()) + " probes");
-      tsp::move_probe(probes[std::size_t(a.number - 1)], {a.value, a.value2, a.value3});
+                              std::to_string(state.probes.size()) + " probes");
+      tsp::move_probe(state.probes[std::size_t(a.number - 1)], {a.value, a.value2, a.value3});
       probes_changed();
       break;
     case Kind::record:
@@ -235,7 +235,7 @@ void PlayerApp::apply(const ScriptAction& a) {
       stop_recording();
       break;
     case Kind::reset_camera:
-      camera = initial_camera;
+      state.camera = initial_camera;
       if (options_.trace) {
         std::printf("trace: camera reset\n");
         std::fflush(stdout);
@@ -273,19 +273,19 @@ void PlayerApp::trace_changes() {
     std::printf("trace: %s\n", s.c_str());
     std::fflush(stdout);
   };
-  if (t.first || step != t.step) line("step " + std::to_string(step));
+  if (t.first || state.step != t.step) line("step " + std::to_string(state.step));
   if (!t.first && tf.version() != t.tf_version)
     line("transfer function edited (" + std::to_string(tf.size()) + " entries over [" +
          std::to_string(tf.domain().lo) + ", " + std::to_string(tf.domain().hi) + "])");
-  const tsp::Tolerances& tol = settings.tol;
+  const tsp::Tolerances& tol = state.settings.tol;
   if (!t.first && (tol.spatial != t.tol.spatial || tol.temporal != t.tol.temporal))
     line("tolerances spatial " + std::to_string(tol.spatial) + ", temporal " +
          std::to_string(tol.temporal));
-  if (!t.first && metric != t.metric) line(std::string("metric ") + tsp::to_string(metric));
-  if (t.first || playing != t.playing) line(playing ? "playing" : "paused");
-  if (!t.first && lod_on != t.lod_on) line(std::string("lod ") + (lod_on ? "on" : "off"));
-  if (!t.first && panels != t.panels) line(std::string("panels ") + (panels ? "on" : "off"));
-  t = {step, tf.version(), settings.tol, metric, playing, lod_on, panels, false};
+  if (!t.first && state.metric != t.metric) line(std::string("metric ") + tsp::to_string(state.metric));
+  if (t.first || state.playing != t.playing) line(state.playing ? "playing" : "paused");
+  if (!t.first && state.lod_on != t.lod_on) line(std::string("lod ") + (state.lod_on ? "on" : "off"));
+  if (!t.first && state.panels != t.panels) line(std::string("panels ") + (state.panels ? "on" : "off"));
+  t = {state.step, tf.version(), state.settings.tol, state.metric, state.playing, state.lod_on, state.panels, false};
 }
 
 }  // namespace tspplayer

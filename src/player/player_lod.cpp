@@ -24,18 +24,18 @@ constexpr ImU32 kLevelColours[] = {IM_COL32(80, 220, 80, 200), IM_COL32(240, 220
 }  // namespace
 
 void PlayerApp::set_lod(bool on) {
-  lod_on = on;
+  state.lod_on = on;
   if (driver_) driver_->set_lod({});  // a new controller when it is turned on again
 }
 
 tspgl::LodSpec PlayerApp::lod_spec(double now_s) {
   // Any change of what is shown counts as interaction.
-  const Seen now{camera, step, tf.version(), probe_version, playing};
-  const bool changed = playing || !(now == seen_);
+  const Seen now{state.camera, state.step, tf.version(), probe_version, state.playing};
+  const bool changed = state.playing || !(now == seen_);
   // Playing with the view and the TF still, a frame per step is enough: the frame time may
   // follow the playback speed (5 steps/s: 200 ms) rather than the interactive target.
   const bool steady_playback =
-      playing && now.camera == seen_.camera && now.tf_version == seen_.tf_version &&
+      state.playing && now.camera == seen_.camera && now.tf_version == seen_.tf_version &&
       now.probe_version == seen_.probe_version;
   if (changed) {
     last_change_s_ = now_s;
@@ -44,7 +44,7 @@ tspgl::LodSpec PlayerApp::lod_spec(double now_s) {
     ++frames_since_change_;
   }
   seen_ = now;
-  if (!lod_on) {
+  if (!state.lod_on) {
     refining = false;
     return {};
   }
@@ -59,18 +59,18 @@ tspgl::LodSpec PlayerApp::lod_spec(double now_s) {
     o.min_error = 0;
     o.split_limit = kIdleSplitsPerFrame;
   } else {
-    const double frame_ms = std::max(1000.0 / std::max(1.f, target_fps),
-                                     steady_playback ? 1000.0 / std::max(speed, 1e-3) : 0.0);
+    const double frame_ms = std::max(1000.0 / std::max(1.f, state.target_fps),
+                                     steady_playback ? 1000.0 / std::max(state.speed, 1e-3) : 0.0);
     o.target_ms = std::max(kMinRenderMs, frame_ms - overhead_ms_);
   }
-  o.texture_budget = std::int64_t(texture_budget_mb * (1 << 20));
-  o.fallback = splat_fallback ? tsp::LodFallback::splats : tsp::LodFallback::scale;
+  o.texture_budget = std::int64_t(state.texture_budget_mb * (1 << 20));
+  o.fallback = state.splat_fallback ? tsp::LodFallback::splats : tsp::LodFallback::scale;
   return spec;
 }
 
 void PlayerApp::lod_drawn(const std::optional<tsp::LodFrameStats>& stats, double now_s) {
   lod_stats = stats.value_or(tsp::LodFrameStats{});
-  if (!lod_on) return;
+  if (!state.lod_on) return;
   // When the picture got back to full quality after the last change.
   if (full_quality()) {
     if (full_quality_after_s < 0) full_quality_after_s = now_s - last_change_s_;
@@ -80,7 +80,7 @@ void PlayerApp::lod_drawn(const std::optional<tsp::LodFrameStats>& stats, double
 }
 
 bool PlayerApp::full_quality() const {
-  return !lod_on || (refining && lod_stats.max_error == 0 && lod_stats.render_scale == 1);
+  return !state.lod_on || (refining && lod_stats.max_error == 0 && lod_stats.render_scale == 1);
 }
 
 void PlayerApp::measured_lod(double render_ms, double frame_ms) {
@@ -89,9 +89,9 @@ void PlayerApp::measured_lod(double render_ms, double frame_ms) {
 }
 
 void PlayerApp::set_focus_at(double x, double y) {
-  const tsp::Camera cam(file->tree().octree().dims(), camera);
+  const tsp::Camera cam(file->tree().octree().dims(), state.camera);
   const glm::dmat4 inv = glm::inverse(cam.view_projection());
-  const double nx = 2 * x / std::max(1, camera.width) - 1, ny = 1 - 2 * y / std::max(1, camera.height);
+  const double nx = 2 * x / std::max(1, state.camera.width) - 1, ny = 1 - 2 * y / std::max(1, state.camera.height);
   const glm::dvec4 a = inv * glm::dvec4(nx, ny, -1, 1), b = inv * glm::dvec4(nx, ny, 1, 1);
   const glm::dvec3 p0 = glm::dvec3(a) / a.w, p1 = glm::dvec3(b) / b.w;
   const tsp::Dims d = file->tree().octree().dims();
@@ -129,7 +129,7 @@ ImDrawList* view_draw_list(const WindowRect& v) {
 }  // namespace
 
 void PlayerApp::draw_annotations(const tsp::Camera& cam) {
-  if (!annotations) return;
+  if (!state.annotations) return;
   const WindowRect& v = layout.view;
   ImDrawList* dl = view_draw_list(v);
   // Crisp one-pixel lines in exactly the outline colour (as render --annotate draws them).
@@ -163,9 +163,9 @@ void PlayerApp::draw_annotations(const tsp::Camera& cam) {
   const auto& times = file->metadata().times;
   char label[96];
   if (times.empty())
-    std::snprintf(label, sizeof label, "step %d", step);
+    std::snprintf(label, sizeof label, "step %d", state.step);
   else
-    std::snprintf(label, sizeof label, "step %d   t = %g", step, times[std::size_t(step)]);
+    std::snprintf(label, sizeof label, "step %d   t = %g", state.step, times[std::size_t(state.step)]);
   dl->AddText(ImVec2(float(v.x) + float(v.w) * 0.5f - 40, float(v.y) + 8),
               IM_COL32(235, 235, 235, 255), label);
   dl->PopClipRect();
@@ -173,7 +173,7 @@ void PlayerApp::draw_annotations(const tsp::Camera& cam) {
 
 void PlayerApp::draw_cut_overlay(const tsp::Camera& cam) {
   const tsp::LodController* lod = driver_ ? driver_->controller() : nullptr;
-  if (!show_cut || !lod) return;
+  if (!state.show_cut || !lod) return;
   const WindowRect& v = layout.view;
   ImDrawList* dl = view_draw_list(v);
   const glm::dmat4 vp = cam.view_projection();

@@ -88,18 +88,18 @@ void menu_bar(PlayerApp& app) {
     ImGui::EndMenu();
   }
   if (ImGui::BeginMenu("View")) {
-    ImGui::MenuItem("Panels", "Tab", &app.panels);
-    ImGui::MenuItem("Outline, axes, step", nullptr, &app.annotations);
-    if (ImGui::MenuItem("LOD cut", "L", app.show_cut))
-      app.command(command_of(ScriptAction::Kind::show_cut, !app.show_cut));
-    bool persp = app.camera.projection == tsp::Projection::perspective;
+    ImGui::MenuItem("Panels", "Tab", &app.state.panels);
+    ImGui::MenuItem("Outline, axes, step", nullptr, &app.state.annotations);
+    if (ImGui::MenuItem("LOD cut", "L", app.state.show_cut))
+      app.command(command_of(ScriptAction::Kind::show_cut, !app.state.show_cut));
+    bool persp = app.state.camera.projection == tsp::Projection::perspective;
     if (ImGui::MenuItem("Perspective", "P", &persp))
-      app.camera.projection = persp ? tsp::Projection::perspective : tsp::Projection::orthographic;
+      app.state.camera.projection = persp ? tsp::Projection::perspective : tsp::Projection::orthographic;
     if (ImGui::MenuItem("Reset camera", "R")) {
-      const int w = app.camera.width, h = app.camera.height;
-      app.camera = app.initial_camera;
-      app.camera.width = w;
-      app.camera.height = h;
+      const int w = app.state.camera.width, h = app.state.camera.height;
+      app.state.camera = app.initial_camera;
+      app.state.camera.width = w;
+      app.state.camera.height = h;
     }
     ImGui::MenuItem("Controls", "F1", &app.show_help);
     ImGui::EndMenu();

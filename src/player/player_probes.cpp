@@ -103,25 +103,25 @@ tsp::Probe PlayerApp::default_probe(tsp::Probe::Kind kind) const {
 }
 
 void PlayerApp::add_probe(const tsp::Probe& p) {
-  if (int(probes.size()) >= tsp::ClipRegion::kMaxProbes) {
+  if (int(state.probes.size()) >= tsp::ClipRegion::kMaxProbes) {
     status = "at most " + std::to_string(tsp::ClipRegion::kMaxProbes) + " probes";
     return;
   }
-  probes.push_back(p);
-  probe_selected = int(probes.size()) - 1;
+  state.probes.push_back(p);
+  probe_selected = int(state.probes.size()) - 1;
   probes_changed();
 }
 
 void PlayerApp::apply_probes() {
   if (probe_version == applied_probe_version_ && tf.version() == applied_probe_tf_) return;
   try {
-    const tsp::ClipRegion clip(probes, probe_op, file->metadata().origin, file->metadata().spacing);
-    renderer->set_clip(clip, probe_surface && !probes.empty()
+    const tsp::ClipRegion clip(state.probes, state.probe_op, file->metadata().origin, file->metadata().spacing);
+    renderer->set_clip(clip, state.probe_surface && !state.probes.empty()
                                  ? std::optional<tsp::TransferFunction>(tf)
                                  : std::nullopt);
   } catch (const tsp::Error& e) {  // (the UI keeps values valid; a script may not)
     status = e.what();
-    probes.clear();
+    state.probes.clear();
     renderer->set_clip(tsp::ClipRegion{}, std::nullopt);
   }
   applied_probe_version_ = probe_version;
@@ -130,9 +130,9 @@ void PlayerApp::apply_probes() {
 
 bool PlayerApp::probe_gizmo(const tsp::Camera& cam) {
   const ImGuiIO& io = ImGui::GetIO();
-  if (probe_selected < 0 || probe_selected >= int(probes.size()) || !(io.KeyCtrl || io.KeyAlt))
+  if (probe_selected < 0 || probe_selected >= int(state.probes.size()) || !(io.KeyCtrl || io.KeyAlt))
     return false;
-  tsp::Probe& p = probes[std::size_t(probe_selected)];
+  tsp::Probe& p = state.probes[std::size_t(probe_selected)];
   const Grid grid = grid_of(*file);
   const auto [lo, hi] = volume_box(*file, grid);
   const glm::dvec3 vc = 0.5 * (lo + hi);
@@ -176,14 +176,14 @@ bool PlayerApp::probe_gizmo(const tsp::Camera& cam) {
 }
 
 void PlayerApp::draw_probe_overlay(const tsp::Camera& cam) {
-  if (probes.empty()) return;
+  if (state.probes.empty()) return;
   const Grid grid = grid_of(*file);
   const WindowRect& v = layout.view;
   ImDrawList* dl = ImGui::GetBackgroundDrawList();
   dl->PushClipRect(ImVec2(float(v.x), float(v.y)), ImVec2(float(v.x + v.w), float(v.y + v.h)), false);
   const auto [lo, hi] = volume_box(*file, grid);
-  for (std::size_t i = 0; i < probes.size(); ++i) {
-    const tsp::Probe& p = probes[i];
+  for (std::size_t i = 0; i < state.probes.size(); ++i) {
+    const tsp::Probe& p = state.probes[i];
     const ImU32 col = int(i) == probe_selected ? kSelectedColour : kProbeColour;
     if (p.kind == tsp::Probe::Kind::sphere) {
       ImVec2 c, e;
@@ -238,14 +238,14 @@ void PlayerApp::draw_probe_overlay(const tsp::Camera& cam) {
 }
 
 void probes_section(PlayerApp& app) {
-  int op = int(app.probe_op);
+  int op = int(app.state.probe_op);
   ImGui::SetNextItemWidth(120);
   if (ImGui::Combo("combine", &op, kOpNames, IM_ARRAYSIZE(kOpNames))) {
-    app.probe_op = tsp::ProbeOp(op);
+    app.state.probe_op = tsp::ProbeOp(op);
     app.probes_changed();
   }
   ImGui::SameLine();
-  if (ImGui::Checkbox("surface", &app.probe_surface)) app.probes_changed();
+  if (ImGui::Checkbox("surface", &app.state.probe_surface)) app.probes_changed();
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("draw the probe's surface opaque, coloured by the data through the TF");
   for (int k = 0; k < 3; ++k) {
@@ -254,8 +254,8 @@ void probes_section(PlayerApp& app) {
       app.add_probe(app.default_probe(tsp::Probe::Kind(k)));
   }
   int remove = -1;
-  for (std::size_t i = 0; i < app.probes.size(); ++i) {
-    tsp::Probe& p = app.probes[i];
+  for (std::size_t i = 0; i < app.state.probes.size(); ++i) {
+    tsp::Probe& p = app.state.probes[i];
     ImGui::PushID(int(i));
     char title[32];
     std::snprintf(title, sizeof title, "%zu: %s", i + 1, kKindNames[int(p.kind)]);
@@ -263,7 +263,7 @@ void probes_section(PlayerApp& app) {
     bool edited = false;
     float c[3] = {float(p.centre[0]), float(p.centre[1]), float(p.centre[2])};
     float r = float(p.radius);
-    const float step = 0.005f * float(std::max({std::fabs(c[0]), std::fabs(c[1]), std::fabs(c[2]), 1.f}));
+    const float drag_step = 0.005f * float(std::max({std::fabs(c[0]), std::fabs(c[1]), std::fabs(c[2]), 1.f}));
     if (p.kind == tsp::Probe::Kind::plane) {
       if (ImGui::DragFloat3("normal", c, 0.01f)) {
         const double n = std::hypot(c[0], c[1], c[2]);
@@ -272,21 +272,21 @@ void probes_section(PlayerApp& app) {
           edited = true;
         }
       }
-      edited |= ImGui::DragFloat("offset", &r, step);
+      edited |= ImGui::DragFloat("offset", &r, drag_step);
       p.radius = r;
     } else {
-      if (ImGui::DragFloat3("centre", c, step)) {
+      if (ImGui::DragFloat3("centre", c, drag_step)) {
         p.centre = {c[0], c[1], c[2]};
         edited = true;
       }
-      if (p.kind == tsp::Probe::Kind::sphere && ImGui::DragFloat("radius", &r, step, 1e-6f, 1e9f)) {
+      if (p.kind == tsp::Probe::Kind::sphere && ImGui::DragFloat("radius", &r, drag_step, 1e-6f, 1e9f)) {
         p.radius = std::max(1e-6, double(r));
         edited = true;
       }
       if (p.kind == tsp::Probe::Kind::box) {
         float h[3] = {float(p.size[0]), float(p.size[1]), float(p.size[2])};
         float t[3] = {float(p.angles[0]), float(p.angles[1]), float(p.angles[2])};
-        if (ImGui::DragFloat3("half size", h, step, 1e-6f, 1e9f)) {
+        if (ImGui::DragFloat3("half size", h, drag_step, 1e-6f, 1e9f)) {
           p.size = {std::max(1e-6, double(h[0])), std::max(1e-6, double(h[1])), std::max(1e-6, double(h[2]))};
           edited = true;
         }
@@ -304,11 +304,11 @@ void probes_section(PlayerApp& app) {
     ImGui::PopID();
   }
   if (remove >= 0) {
-    app.probes.erase(app.probes.begin() + remove);
-    app.probe_selected = app.probes.empty() ? -1 : 0;
+    app.state.probes.erase(app.state.probes.begin() + remove);
+    app.probe_selected = app.state.probes.empty() ? -1 : 0;
     app.probes_changed();
   }
-  if (!app.probes.empty()) {
+  if (!app.state.probes.empty()) {
     ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
     ImGui::TextWrapped("selected probe: ctrl+drag moves it, ctrl+wheel resizes (a plane: moves it "
                        "along its normal), alt+drag turns a plane or a box");

@@ -27,39 +27,39 @@ float largest_error(const tsp::NodeErrors& e) {
 }  // namespace
 
 void PlayerApp::set_metric(tsp::Metric m) {
-  if (m == metric) return;
-  metric = m;
+  if (m == state.metric) return;
+  state.metric = m;
   if (m != tsp::Metric::reference)
     lazy_ = std::make_unique<tsp::LazyErrors>(file->tree(), m, tf);
   else
     reference_version_ = ~std::uint64_t(0);
-  renderer->drop_unreachable(frame_metric(), settings.tol, settings.skip_transparent,
-                             settings.span_step);
+  renderer->drop_unreachable(frame_metric(), state.settings.tol, state.settings.skip_transparent,
+                             state.settings.span_step);
   update_tol_max();
 }
 
 void PlayerApp::update_tol_max() {
-  tol_max = largest_error(metric == tsp::Metric::reference ? reference_.errors
-                                                           : lazy_->errors_for_step(step));
+  tol_max = largest_error(state.metric == tsp::Metric::reference ? reference_.errors
+                                                           : lazy_->errors_for_step(state.step));
 }
 
 void PlayerApp::set_tolerances(tsp::Tolerances t) {
-  settings.tol = {std::max(0.0, t.spatial), std::max(0.0, t.temporal)};
-  renderer->drop_unreachable(frame_metric(), settings.tol, settings.skip_transparent,
-                             settings.span_step);
+  state.settings.tol = {std::max(0.0, t.spatial), std::max(0.0, t.temporal)};
+  renderer->drop_unreachable(frame_metric(), state.settings.tol, state.settings.skip_transparent,
+                             state.settings.span_step);
 }
 
 void PlayerApp::set_setting(const std::string& name, const std::string& text) {
   const tspgl::SettingSpec* spec = tspgl::find_setting(name);
   if (!spec) throw tsp::UsageError("no render setting '" + name + "'");
-  tspgl::RenderSettings next = settings;
+  tspgl::RenderSettings next = state.settings;
   tspgl::set_setting(next, *spec, text, name);
-  if (next.tol != settings.tol || next.span_step != settings.span_step ||
-      next.skip_transparent != settings.skip_transparent) {
-    settings = next;
+  if (next.tol != state.settings.tol || next.span_step != state.settings.span_step ||
+      next.skip_transparent != state.settings.skip_transparent) {
+    state.settings = next;
     set_tolerances(next.tol);  // what the traversal reaches changed: drop the rest
   } else {
-    settings = next;
+    state.settings = next;
   }
 }
 
@@ -67,8 +67,8 @@ void PlayerApp::apply_quality(double de) {
   tspgl::CalibrationRequest r;
   r.tsp_path = options_.tsp_path;
   r.field = field();  // as render names it: one calibration serves both
-  r.metric = metric;
-  r.camera = camera;
+  r.metric = state.metric;
+  r.camera = state.camera;
   // The view's size as this frame lays it out (camera's is set when the volume is drawn: on the
   // first frame it is still the default).
   r.camera.width = std::max(1, layout.view.w);
@@ -112,15 +112,15 @@ void PlayerApp::advance_calibration() {
     quality_note = "nothing calibrated stays within dE " + std::to_string(calibrating_de_);
     return;
   }
-  tspgl::apply(best->knobs, settings);  // compositing, spacing, tolerances (by its rule), ...
-  set_tolerances(settings.tol);
+  tspgl::apply(best->knobs, state.settings);  // compositing, spacing, tolerances (by its rule), ...
+  set_tolerances(state.settings.tol);
   const std::string& cache = c->cache_file();
-  quality_note = tspgl::render_options(best->knobs, metric) + (cache.empty() ? "" : " (" + cache + ")");
+  quality_note = tspgl::render_options(best->knobs, state.metric) + (cache.empty() ? "" : " (" + cache + ")");
 }
 
 void PlayerApp::set_cache(bool on, double budget_mb) {
-  cache_on = on;
-  texture_budget_mb = std::max(1.0, budget_mb);
+  state.cache_on = on;
+  state.texture_budget_mb = std::max(1.0, budget_mb);
   make_renderer();
 }
 

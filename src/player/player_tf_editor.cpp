@@ -30,7 +30,7 @@ void tf_section(PlayerApp& app) {
   const float width = ImGui::GetContentRegionAvail().x;
   ImDrawList* dl = ImGui::GetWindowDrawList();
   const tsp::ValueRange d = app.tf.domain();
-  const bool log_axis = app.log_opacity;
+  const bool log_axis = app.state.log_opacity;
   // Opacity a at its height on the canvas (0 at the bottom).
   auto y_of = [&](double a) {
     return origin.y + kHistogramHeight * float(1 - opacity_to_axis(a, log_axis));
@@ -133,7 +133,7 @@ void tf_section(PlayerApp& app) {
   }
   ImGui::Text("domain %.4g .. %.4g", d.lo, d.hi);
   ImGui::SameLine();
-  ImGui::Checkbox("log opacity", &app.log_opacity);
+  ImGui::Checkbox("log opacity", &app.state.log_opacity);
   ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
   ImGui::TextWrapped("drag a point; double-click adds, right-click removes");
   ImGui::PopStyleColor();

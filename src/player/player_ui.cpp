@@ -69,25 +69,25 @@ void help(PlayerApp& app) {
 void timeline_section(PlayerApp& app) {
   using Kind = ScriptAction::Kind;
   const int last = app.steps() - 1;
-  if (ImGui::Button(app.playing ? "Pause" : "Play"))
-    app.command(command_of(app.playing ? Kind::pause : Kind::play));
+  if (ImGui::Button(app.state.playing ? "Pause" : "Play"))
+    app.command(command_of(app.state.playing ? Kind::pause : Kind::play));
   ImGui::SameLine();
   if (ImGui::Button("|<")) app.command(step_command(0));
   ImGui::SameLine();
-  if (ImGui::Button("<")) app.command(step_command(std::max(0, app.step - 1)));
+  if (ImGui::Button("<")) app.command(step_command(std::max(0, app.state.step - 1)));
   ImGui::SameLine();
-  if (ImGui::Button(">")) app.command(step_command(std::min(last, app.step + 1)));
+  if (ImGui::Button(">")) app.command(step_command(std::min(last, app.state.step + 1)));
   ImGui::SameLine();
   if (ImGui::Button(">|")) app.command(step_command(last));
   ImGui::SameLine();
-  if (bool loop = app.loop; ImGui::Checkbox("loop", &loop)) app.command(command_of(Kind::loop, loop));
+  if (bool loop = app.state.loop; ImGui::Checkbox("loop", &loop)) app.command(command_of(Kind::loop, loop));
   ImGui::SameLine();
-  if (bool every = app.every_step; ImGui::Checkbox("every step", &every))
+  if (bool every = app.state.every_step; ImGui::Checkbox("every step", &every))
     app.command(command_of(Kind::every_step, every));
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("show every step while playing, slower than the speed if frames are slow");
   ImGui::SameLine();
-  float speed = float(app.speed);
+  float speed = float(app.state.speed);
   ImGui::SetNextItemWidth(140);
   if (ImGui::SliderFloat("steps/s", &speed, float(kMinSpeed), float(kMaxSpeed), "%.2f",
                          ImGuiSliderFlags_Logarithmic)) {
@@ -95,18 +95,18 @@ void timeline_section(PlayerApp& app) {
     a.value = std::clamp(double(speed), kMinSpeed, kMaxSpeed);
     app.command(a);
   }
-  int step = app.step;
+  int step = app.state.step;
   ImGui::SetNextItemWidth(-1);
   // Dragging the scrubber pauses playback; releasing it resumes if it was playing.
   static bool resume_after_scrub = false;
-  const bool was_playing = app.playing;
+  const bool was_playing = app.state.playing;
   // The step with its physical time when the file has times ("step 3  t = 0.15").
   const auto& times = app.file->metadata().times;
   char label[64];
   if (times.empty())
     std::snprintf(label, sizeof label, "step %%d");
   else
-    std::snprintf(label, sizeof label, "step %%d  t = %g", times[std::size_t(app.step)]);
+    std::snprintf(label, sizeof label, "step %%d  t = %g", times[std::size_t(app.state.step)]);
   if (ImGui::SliderInt("##step", &step, 0, last, label))
     app.command(step_command(std::clamp(step, 0, last)));
   if (ImGui::IsItemActivated()) {
@@ -146,7 +146,7 @@ constexpr std::size_t kMaxUnitInLabel = 6;
 // click types any value the table accepts), a checkbox or a combo; a change is a `setting`
 // command, as a script line makes.
 void setting_widget(PlayerApp& app, const tspgl::SettingSpec& spec) {
-  const std::string name(spec.name), now = tspgl::get_setting(app.settings, spec);
+  const std::string name(spec.name), now = tspgl::get_setting(app.state.settings, spec);
   std::string label = name;
   for (char& c : label)
     if (c == '-') c = ' ';
@@ -212,22 +212,22 @@ void settings_section(PlayerApp& app) {
       ImGui::EndCombo();
     }
   }
-  ImGui::Checkbox("outline, axes, step", &app.annotations);
-  int m = int(app.metric);
+  ImGui::Checkbox("outline, axes, step", &app.state.annotations);
+  int m = int(app.state.metric);
   if (ImGui::Combo("metric", &m, kMetricNames, IM_ARRAYSIZE(kMetricNames)))
     app.command([m] {
       ScriptAction a = command_of(ScriptAction::Kind::metric);
       a.text = tsp::to_string(tsp::Metric(m));
       return a;
     }());
-  if (app.metric == tsp::Metric::reference)
+  if (app.state.metric == tsp::Metric::reference)
     ImGui::TextWrapped(
         "reference: every voxel is read; computed in full on each TF change "
         "(the window waits)");
   else
     ImGui::TextWrapped("live: only the nodes a frame visits are recomputed after a TF edit");
 
-  float s = float(app.settings.tol.spatial), t = float(app.settings.tol.temporal);
+  float s = float(app.state.settings.tol.spatial), t = float(app.state.settings.tol.temporal);
   bool changed =
       ImGui::SliderFloat("spatial tol", &s, 0.f, app.tol_max, "%.4g", ImGuiSliderFlags_Logarithmic);
   bool done = ImGui::IsItemDeactivatedAfterEdit();
@@ -235,11 +235,11 @@ void settings_section(PlayerApp& app) {
                                 ImGuiSliderFlags_Logarithmic);
   done |= ImGui::IsItemDeactivatedAfterEdit();
   ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
-  ImGui::TextWrapped("%s; 0 = exact", kToleranceUnits[int(app.metric)]);
+  ImGui::TextWrapped("%s; 0 = exact", kToleranceUnits[int(app.state.metric)]);
   ImGui::PopStyleColor();
   // Frames follow the slider at once; unreachable textures are dropped when it is released.
-  if (changed) app.settings.tol = {double(s), double(t)};
-  if (done) app.set_tolerances(app.settings.tol);
+  if (changed) app.state.settings.tol = {double(s), double(t)};
+  if (done) app.set_tolerances(app.state.settings.tol);
 
   setting_widgets(app, tspgl::SettingGroup::quality);
   setting_widgets(app, tspgl::SettingGroup::compositing);
@@ -248,11 +248,11 @@ void settings_section(PlayerApp& app) {
     ImGui::TreePop();
   }
   // The quality target sets all of the knobs above from a calibration (made once, cached).
-  ImGui::SliderFloat("quality (mean dE)", &app.quality, 0.f, 10.f,
-                     app.quality > 0 ? "%.2f" : "off");
-  if (ImGui::IsItemDeactivatedAfterEdit() && app.quality > 0) {
+  ImGui::SliderFloat("quality (mean dE)", &app.state.quality, 0.f, 10.f,
+                     app.state.quality > 0 ? "%.2f" : "off");
+  if (ImGui::IsItemDeactivatedAfterEdit() && app.state.quality > 0) {
     ScriptAction a = command_of(ScriptAction::Kind::quality);
-    a.value = app.quality;
+    a.value = app.state.quality;
     app.command(a);
   }
   if (const tspgl::Calibrator* c = app.calibrating()) {  // runs a slice of each frame
@@ -263,32 +263,32 @@ void settings_section(PlayerApp& app) {
   }
   if (!app.quality_note.empty()) ImGui::TextWrapped("quality: %s", app.quality_note.c_str());
   // Level of detail: the cut holds the frame rate while anything changes, full quality when idle.
-  bool lod = app.lod_on;
+  bool lod = app.state.lod_on;
   if (ImGui::Checkbox("level of detail", &lod))
     app.command(command_of(ScriptAction::Kind::lod, lod));
   ImGui::SameLine();
-  if (bool cut = app.show_cut; ImGui::Checkbox("show cut (L)", &cut))
+  if (bool cut = app.state.show_cut; ImGui::Checkbox("show cut (L)", &cut))
     app.command(command_of(ScriptAction::Kind::show_cut, cut));
-  if (float fps = app.target_fps; ImGui::SliderFloat("target fps", &fps, 5.f, 120.f, "%.0f")) {
+  if (float fps = app.state.target_fps; ImGui::SliderFloat("target fps", &fps, 5.f, 120.f, "%.0f")) {
     ScriptAction a = command_of(ScriptAction::Kind::target_fps);
     a.value = std::clamp(double(fps), 1.0, kMaxTargetFps);
     app.command(a);
   }
-  ImGui::Checkbox("splats when the coarsest cut is too slow", &app.splat_fallback);
+  ImGui::Checkbox("splats when the coarsest cut is too slow", &app.state.splat_fallback);
 
   if (ImGui::TreeNode("caches and uploads")) {
-    bool cache = app.cache_on;
+    bool cache = app.state.cache_on;
     if (ImGui::Checkbox("texture cache", &cache))
       app.command(command_of(ScriptAction::Kind::cache, cache));
     ImGui::SameLine();
-    if (bool on = app.prefetch_on; ImGui::Checkbox("prefetch", &on))
+    if (bool on = app.state.prefetch_on; ImGui::Checkbox("prefetch", &on))
       app.command(command_of(ScriptAction::Kind::prefetch, on));
     setting_widgets(app, tspgl::SettingGroup::memory);
     static double budget = -1;
-    if (budget < 0) budget = app.texture_budget_mb;
+    if (budget < 0) budget = app.state.texture_budget_mb;
     ImGui::SetNextItemWidth(120);
     ImGui::InputDouble("budget MiB", &budget, 16, 128, "%.0f");
-    if (ImGui::IsItemDeactivatedAfterEdit()) app.set_cache(app.cache_on, budget);
+    if (ImGui::IsItemDeactivatedAfterEdit()) app.set_cache(app.state.cache_on, budget);
     ImGui::TreePop();
   }
 
@@ -298,18 +298,18 @@ void settings_section(PlayerApp& app) {
                         ImGuiSliderFlags_Logarithmic))
     app.set_scale({std::clamp(double(scale[0]), 0.05, 100.0), std::clamp(double(scale[1]), 0.05, 100.0),
                    std::clamp(double(scale[2]), 0.05, 100.0)});
-  int proj = app.camera.projection == tsp::Projection::perspective;
+  int proj = app.state.camera.projection == tsp::Projection::perspective;
   ImGui::RadioButton("orthographic", &proj, 0);
   ImGui::SameLine();
   ImGui::RadioButton("perspective", &proj, 1);
-  app.camera.projection = proj ? tsp::Projection::perspective : tsp::Projection::orthographic;
+  app.state.camera.projection = proj ? tsp::Projection::perspective : tsp::Projection::orthographic;
   if (ImGui::Button("save PNG (S)")) app.request_save();
   ImGui::SameLine();
   if (ImGui::Button("reset view (R)")) {
-    const int w = app.camera.width, h = app.camera.height;
-    app.camera = app.initial_camera;
-    app.camera.width = w;
-    app.camera.height = h;
+    const int w = app.state.camera.width, h = app.state.camera.height;
+    app.state.camera = app.initial_camera;
+    app.state.camera.width = w;
+    app.state.camera.height = h;
   }
   if (!app.status.empty()) ImGui::TextWrapped("%s", app.status.c_str());
   ImGui::PopItemWidth();
@@ -318,7 +318,7 @@ void settings_section(PlayerApp& app) {
 void stats_section(PlayerApp& app) {
   // A temporal tolerance that merged steps says which steps' bricks the picture shows.
   const tspgl::FrameReport& lf = app.last;
-  if (app.settings.tol.temporal > 0 && lf.spans_hi > lf.spans_lo) {  // (at 0 only unchanging data merge)
+  if (app.state.settings.tol.temporal > 0 && lf.spans_hi > lf.spans_lo) {  // (at 0 only unchanging data merge)
     char note[128];
     if (lf.shows_mean)
       std::snprintf(note, sizeof note, "temporal tolerance: showing means over steps %d-%d",
@@ -345,7 +345,7 @@ void stats_section(PlayerApp& app) {
                      *std::max_element(ms.begin(), ms.end()) * 1.1f,
                      ImVec2(ImGui::GetContentRegionAvail().x, kHudPlotHeight));
   const tspgl::FrameReport& r = app.last;
-  if (app.lod_on) {
+  if (app.state.lod_on) {
     std::string levels;
     for (std::size_t k = 0; k < app.lod_stats.nodes_per_level.size(); ++k)
       levels += (k ? " " : "") + std::to_string(app.lod_stats.nodes_per_level[k]);
@@ -361,7 +361,7 @@ void stats_section(PlayerApp& app) {
               r.traversal_ms, r.slicing_ms, r.upload_ms, r.draw_ms);
   const double pixels = std::max(1.0, double(app.layout.view.w) * app.layout.view.h);
   ImGui::Text("fragments %.2f M (%.2f per pixel), %s, spacing %.2g", double(r.fragments) / 1e6,
-              double(r.fragments) / pixels, tspgl::to_string(app.settings.compositing), app.settings.spacing);
+              double(r.fragments) / pixels, tspgl::to_string(app.state.settings.compositing), app.state.settings.spacing);
   for (int c = 0; c < tsp::kDrawClassCount; ++c)
     ImGui::Text("%-15s %5.1f %%", kClassNames[c], r.class_percent[std::size_t(c)]);
   ImGui::Text("textures %lld resident, %.1f MiB", static_cast<long long>(r.textures_resident),
@@ -381,7 +381,7 @@ void stats_section(PlayerApp& app) {
 }
 
 void PlayerApp::draw_ui() {
-  if (panels) {
+  if (state.panels) {
     menu_and_dialogs(*this);
     if (layout.docked) {
       // One side panel of collapsible sections beside the volume, the timeline under it.
@@ -391,7 +391,7 @@ void PlayerApp::draw_ui() {
         settings_section(*this);
       if (ImGui::CollapsingHeader("Transfer function", ImGuiTreeNodeFlags_DefaultOpen))
         tf_section(*this);
-      if (ImGui::CollapsingHeader("Probes", probes.empty() ? 0 : ImGuiTreeNodeFlags_DefaultOpen))
+      if (ImGui::CollapsingHeader("Probes", state.probes.empty() ? 0 : ImGuiTreeNodeFlags_DefaultOpen))
         probes_section(*this);
       if (ImGui::CollapsingHeader("Statistics", ImGuiTreeNodeFlags_DefaultOpen))
         stats_section(*this);
