@@ -27,6 +27,7 @@ struct PlayArgs {
   std::string proportions = "physical", scale;
   std::string probe_surface = "on";
   SettingsOptions settings{tspplayer::default_player_settings()};
+  std::string playback = "quality";
 };
 
 void run(PlayArgs a) {
@@ -107,6 +108,16 @@ const CommandRegistrar reg(35, [](CLI::App& app) {
                 "When even the coarsest cut misses --target-fps: scale (a smaller render target, "
                 "default) or splats (each node of a coarse cut one splat of its mean colour)")
       ->check(CLI::IsMember({"scale", "splats"}));
+  c->add_option("--speed", a->options.speed,
+                "Playback speed, steps per second (default 24, a movie's rate; 0.25 to 60)");
+  c->add_option("--quality", a->options.quality,
+                "Mean dE target against the full-quality picture: the fastest calibrated knobs "
+                "within it (calibrated in the window, a slice of each frame; cached with render's)");
+  c->add_option("--playback", a->playback,
+                "With --quality, what gives while playing when frames are slow: quality (keep "
+                "the calibrated knobs at full resolution, steps show later; default) or rate "
+                "(the LOD cut holds --target-fps)")
+      ->check(CLI::IsMember({"quality", "rate"}));
   c->add_option("--target-fps", a->options.target_fps,
                 "Frames per second the LOD cut holds while interacting (default 30)");
   std::string keys = "\nControls (also F1 or ? in the player):\n";
@@ -119,12 +130,14 @@ const CommandRegistrar reg(35, [](CLI::App& app) {
   set_groups(c, {{"Input/output", {"--field", "--cache-dir", "--tf", "--tf-range", "--step",
                                    "--screenshot", "--script"}},
                  {"Camera", {"--size", "--proportions", "--scale"}},
+                 {"Playback", {"--speed", "--quality", "--playback"}},
                  {"LOD", {"--lod", "--lod-fallback", "--target-fps"}},
                  {"Probes", {"--probe", "--probe-op", "--probe-surface"}},
                  {"Memory", {"--ram-budget", "--texture-budget"}},
                  {"Diagnostics", {"--trace", "--frame-delay-ms"}}});
   c->callback([a] {
     a->options.settings = a->settings.apply();
+    a->options.keep_quality = a->playback == "quality";
     a->options.lod = a->lod == "on";
     a->options.splat_fallback = a->lod_fallback == "splats";
     run(*a);

@@ -111,6 +111,18 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
                           std::to_string(int(kMaxTargetFps)) + " frames per second");
   state.lod_on = options.lod;
   state.target_fps = float(options.target_fps);
+  if (!(options.speed >= kMinSpeed && options.speed <= kMaxSpeed))
+    throw tsp::UsageError("--speed " + std::to_string(options.speed) + ": expected " +
+                          std::to_string(kMinSpeed).substr(0, 4) + " to " +
+                          std::to_string(int(kMaxSpeed)) + " steps per second");
+  state.speed = options.speed;
+  if (options.quality != 0 && !(options.quality > 0 && options.quality <= tspgl::kMaxQualityDe))
+    throw tsp::UsageError("--quality " + std::to_string(options.quality) +
+                          ": expected a mean dE in (0, " +
+                          std::to_string(int(tspgl::kMaxQualityDe)) + "]");
+  state.quality = float(options.quality);
+  pending_quality_ = options.quality;  // calibrated once the first frame has laid out the view
+  state.keep_quality = options.keep_quality;
   state.splat_fallback = options.splat_fallback;
   if (!options.script.empty()) script_ = load_script(options.script);
   if (!options.screenshot.empty()) {
@@ -466,6 +478,10 @@ void PlayerApp::frame() {
   advance_playback(dt);
   if (options_.trace) trace_changes();
   layout = compute_layout(ctx->width(), ctx->height(), state.panels, int(ImGui::GetFrameHeight()));
+  if (pending_quality_ > 0) {  // --quality: the view's size is known now
+    apply_quality(pending_quality_);
+    pending_quality_ = 0;
+  }
   if (layout.docked) {  // what the volume does not cover is the panels' background
     const tspgl::GlApi& gl = ctx->gl();
     gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -475,6 +491,12 @@ void PlayerApp::frame() {
   }
   apply_probes();
   render_volume();
+  if (state.step != last_shown_step_) {  // playback's real rate: distinct steps drawn
+    last_shown_step_ = state.step;
+    shown_at_s_.push_back(now);
+  }
+  while (!shown_at_s_.empty() && shown_at_s_.front() < now - kShownWindowSeconds)
+    shown_at_s_.pop_front();
   advance_calibration();
   if (frame_delay_ms_ > 0)
     std::this_thread::sleep_for(std::chrono::duration<double, std::milli>(frame_delay_ms_));
@@ -521,6 +543,11 @@ void PlayerApp::frame() {
   history.push_back({now - start_s_, t_frame.ms()});
   while (!history.empty() && history.front().at_s < now - start_s_ - kFrameHistorySeconds)
     history.pop_front();
+}
+
+double PlayerApp::steps_shown_per_s() const {
+  const double span = std::min(kShownWindowSeconds, clock_.seconds() - start_s_);
+  return span > 0 ? double(shown_at_s_.size()) / span : 0.0;
 }
 
 bool PlayerApp::busy() const {

@@ -34,6 +34,9 @@ struct PlayerOptions {
   double texture_budget_mb = 512; ///< --texture-budget: textures resident, MiB
   bool lod = true;                ///< --lod on|off: the adaptive LOD cut
   double target_fps = 30;         ///< --target-fps: held while interacting, in [1, 240]
+  double speed = 24;              ///< --speed: playback, steps per second (a movie's rate)
+  double quality = 0;             ///< --quality: mean ΔE target (0: none), calibrated at start
+  bool keep_quality = true;       ///< --playback quality|rate: what gives while playing
   bool splat_fallback = false;    ///< --lod-fallback splats: splats when even the coarsest cut is slow
   bool trace = false;             ///< --trace: one stdout line per applied change
   double frame_delay_ms = 0;      ///< --frame-delay-ms: a slow machine, for tests (0..2000)

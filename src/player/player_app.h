@@ -62,6 +62,8 @@ inline constexpr int kReadyStepsPerFrame = 4;
 /// Milliseconds of each frame the quality calibration may use (the window keeps ≥ 10 frames/s
 /// on top of its own frame time).
 inline constexpr double kCalibrationSliceMs = 40;
+/// Seconds over which the steps shown per second are counted.
+inline constexpr double kShownWindowSeconds = 2;
 /// Frames drawn after the last input event (Dear ImGui's hover and popups settle).
 inline constexpr int kSettleFrames = 3;
 /// Longest sleep of an idle window before it looks at its state again.
@@ -136,6 +138,8 @@ class PlayerApp {
   /// first, a slice of each frame (the window keeps drawing; calibrating() meanwhile). Errors
   /// go to status.
   void apply_quality(double de);
+  /// Distinct steps drawn per second over the last 2 s (playback's real rate).
+  double steps_shown_per_s() const;
   /// The calibration in progress, if any (for its progress bar).
   const tspgl::Calibrator* calibrating() const { return calibrator_.get(); }
   /// Writes the HUD's statistics as JSON to path (atomically). Throws tsp::IoError.
@@ -310,6 +314,10 @@ class PlayerApp {
   std::uint64_t calibrating_tf_ = 0;                ///< the TF version it calibrates
   double calibration_started_s_ = 0;
   double calibration_s_ = -1;           ///< how long the last calibration took (−1: none)
+  bool quality_applied_ = false;        ///< the settings are a quality target's calibrated knobs
+  double pending_quality_ = 0;          ///< --quality, applied on the first frame
+  std::deque<double> shown_at_s_;       ///< when each newly shown step was drawn (last 2 s)
+  int last_shown_step_ = -1;
   int frames_while_calibrating_ = 0;    ///< window frames drawn while it ran
   std::unique_ptr<Recorder> recorder_;
   FieldShelf parked_;  ///< fields switched away from, kept with their renderers

@@ -262,6 +262,10 @@ void PlayerApp::write_stats(const std::string& path) const {
   j["tf_points"] = points;
   j["quality"] = quality_note;
   j["frames_drawn"] = frames_drawn_;
+  j["playback"] = {{"speed", state.speed},
+                   {"keep", state.keep_quality ? "quality" : "rate"},
+                   {"quality_applied", quality_applied_},
+                   {"steps_shown_per_s", steps_shown_per_s()}};
   j["idle_waits"] = idle_waits_;
   j["cpu_seconds"] = tsp::cpu_seconds();
   j["calibration"] = {{"running", calibrator_ != nullptr},

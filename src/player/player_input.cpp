@@ -138,6 +138,7 @@ void PlayerApp::apply(const ScriptAction& a) {
       set_tf(tsp::transfer_function_from_arg(a.text, file->tree().value_range(), tf.size()), true);
       break;
     case Kind::tolerance:
+      quality_applied_ = false;
       set_tolerances({a.value, a.value2});
       break;
     case Kind::metric:
@@ -171,6 +172,7 @@ void PlayerApp::apply(const ScriptAction& a) {
       wait_until_s_ = clock_.seconds() + a.value;
       break;
     case Kind::setting:
+      quality_applied_ = false;  // the user's own knobs from now on
       set_setting(a.text, a.text2);
       break;
     case Kind::quality:
@@ -234,6 +236,9 @@ void PlayerApp::apply(const ScriptAction& a) {
     case Kind::record_stop:
       stop_recording();
       break;
+    case Kind::playback:
+      state.keep_quality = a.flag;
+      break;
     case Kind::reset_camera:
       state.camera = initial_camera;
       if (options_.trace) {
@@ -264,6 +269,7 @@ void PlayerApp::run_script() {
     if (a.kind == ScriptAction::Kind::screenshot || a.kind == ScriptAction::Kind::screenshot_ui ||
         a.kind == ScriptAction::Kind::wait_frames || a.kind == ScriptAction::Kind::wait_seconds)
       break;
+    if (open_job_ || calibrator_) break;  // the next actions wait for the build or calibration
   }
 }
 

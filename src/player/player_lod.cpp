@@ -48,6 +48,12 @@ tspgl::LodSpec PlayerApp::lod_spec(double now_s) {
     refining = false;
     return {};
   }
+  // Playing with calibrated knobs and "keep quality": the frame is the calibrated one at full
+  // resolution, never a time-only cut (steps show later when frames are slow).
+  if (state.playing && state.keep_quality && quality_applied_) {
+    refining = false;
+    return {};
+  }
   // Idle: nothing changed for a while, and for more than one frame (a slow frame alone is not).
   refining = now_s - last_change_s_ >= kIdleDelaySeconds && frames_since_change_ >= kIdleFrames;
   tspgl::LodSpec spec;

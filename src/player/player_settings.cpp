@@ -2,6 +2,7 @@
 // of the settings table, the quality target's calibrated knobs, the texture cache.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "jobs/calibration.h"
 #include "player/player_app.h"
@@ -108,11 +109,21 @@ void PlayerApp::advance_calibration() {
   const std::unique_ptr<tspgl::Calibrator> c = std::move(calibrator_);
   calibration_s_ = clock_.seconds() - calibration_started_s_;
   const auto best = tspgl::pick_configuration(c->calibration(), calibrating_de_);
-  if (!best) {
-    quality_note = "nothing calibrated stays within dE " + std::to_string(calibrating_de_);
+  if (!best) {  // say what would work, as render --quality does
+    double lowest = 1e300;
+    for (const tspgl::CalibrationPoint& p : c->calibration().points)
+      lowest = std::min(lowest, p.max_step_de);
+    char note[256];
+    std::snprintf(note, sizeof note,
+                  "nothing calibrated stays within dE %g (with a %g margin) on every calibration "
+                  "step; the closest reaches %.3g, so %.3g is the least target that works",
+                  calibrating_de_, tspgl::kQualityMargin, lowest,
+                  lowest / tspgl::kQualityMargin);
+    quality_note = note;
     return;
   }
   tspgl::apply(best->knobs, state.settings);  // compositing, spacing, tolerances (by its rule), ...
+  quality_applied_ = true;
   set_tolerances(state.settings.tol);
   const std::string& cache = c->cache_file();
   quality_note = tspgl::render_options(best->knobs, state.metric) + (cache.empty() ? "" : " (" + cache + ")");

@@ -25,6 +25,9 @@ struct PlayerState {
   tspgl::RenderSettings settings;                 ///< the settings table's knobs
   tsp::Metric metric = tsp::Metric::approximate;  ///< the error metric frames read
   float quality = 0;        ///< the quality slider (mean ΔE; 0: the raw knobs)
+  /// While playing with a quality target: true keeps the calibrated knobs at full resolution
+  /// (steps show later when frames are slow), false keeps the rate (the LOD cut coarsens).
+  bool keep_quality = true;
   bool lod_on = true;       ///< the adaptive LOD cut (off: full resolution always)
   float target_fps = float(kDefaultTargetFps);  ///< held while interacting
   bool show_cut = false;       ///< outline the cut's nodes, coloured by level (key L)

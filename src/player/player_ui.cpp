@@ -95,6 +95,10 @@ void timeline_section(PlayerApp& app) {
     a.value = std::clamp(double(speed), kMinSpeed, kMaxSpeed);
     app.command(a);
   }
+  if (app.state.playing) {  // the rate the window reaches: distinct steps drawn per second
+    ImGui::SameLine();
+    ImGui::Text("%.1f shown/s", app.steps_shown_per_s());
+  }
   int step = app.state.step;
   ImGui::SetNextItemWidth(-1);
   // Dragging the scrubber pauses playback; releasing it resumes if it was playing.
@@ -243,7 +247,8 @@ void settings_section(PlayerApp& app) {
 
   setting_widgets(app, tspgl::SettingGroup::quality);
   setting_widgets(app, tspgl::SettingGroup::compositing);
-  if (ImGui::TreeNode("diagnostics (the paper's rules, our optimisations off)")) {
+  if (ImGui::TreeNode("diagnostics")) {
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("the paper's rules, our optimisations off");
     setting_widgets(app, tspgl::SettingGroup::diagnostics);
     ImGui::TreePop();
   }
@@ -262,6 +267,17 @@ void settings_section(PlayerApp& app) {
     ImGui::ProgressBar(float(c->probes_done()) / float(total), ImVec2(-1, 0), text);
   }
   if (!app.quality_note.empty()) ImGui::TextWrapped("quality: %s", app.quality_note.c_str());
+  // While playing with calibrated knobs: which gives when frames are slower than the speed
+  // (shown with a quality target only: without one playback keeps the rate).
+  if (app.state.quality > 0) {
+    ImGui::TextUnformatted("while playing, keep:");
+    ImGui::SameLine();
+    if (ImGui::RadioButton("quality", app.state.keep_quality))
+      app.command(command_of(ScriptAction::Kind::playback, true));
+    ImGui::SameLine();
+    if (ImGui::RadioButton("rate", !app.state.keep_quality))
+      app.command(command_of(ScriptAction::Kind::playback, false));
+  }
   // Level of detail: the cut holds the frame rate while anything changes, full quality when idle.
   bool lod = app.state.lod_on;
   if (ImGui::Checkbox("level of detail", &lod))

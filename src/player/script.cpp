@@ -90,6 +90,10 @@ ScriptAction parse_words(const LineParser& p) {
              : cmd == "pause" ? Kind::pause
              : cmd == "quit"  ? Kind::quit
                               : Kind::reset_camera;
+  } else if (cmd == "playback") {
+    p.expect_args(1, "playback quality|rate");
+    a.kind = Kind::playback;
+    a.flag = p.choice(1, "quality", "rate");
   } else if (cmd == "speed") {
     p.expect_args(1, "speed STEPS_PER_SECOND");
     a.kind = Kind::speed;
@@ -198,7 +202,7 @@ ScriptAction parse_words(const LineParser& p) {
            settings +
            "quality, stats, lod, target-fps, show-cut, panels, every-step, log-opacity, open, "
            "field, probe, probe-op, probe-surface, probe-clear, probe-move, record, "
-           "reset-camera or quit");
+           "reset-camera, playback or quit");
   }
   return a;
 }

@@ -53,6 +53,7 @@ struct ScriptAction {
     record,         ///< start recording a movie to `text` (.mp4 or .gif)
     record_stop,    ///< stop recording and write the movie (waits for the encoder)
     reset_camera,   ///< the camera back to where it started (key R)
+    playback,       ///< while playing with a quality target, keep quality (`flag`) or the rate
     quit            ///< close the player
   };
   Kind kind = Kind::quit;

@@ -722,6 +722,41 @@ TEST(Player, IdleWindowSleepsAndAKeyWakesIt) {
       << tsptest::read_file(out);
 }
 
+// Playing with a quality target keeps the calibrated knobs at full resolution (by default,
+// "keep quality"): a frame shown while playing — at a frame-rate target no software renderer
+// reaches, which makes the time-only LOD cut coarse — is within the target of the full-quality
+// picture of its step; with "playback rate" the LOD cut takes over again.
+TEST(Player, PlayingWithAQualityTargetShowsCalibratedFramesNotPlaceholders) {
+  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  const fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
+  ::setenv("TSPPLAY_CACHE_DIR", (dir / "cache").string().c_str(), 1);  // the child inherits it
+  auto run = [&](const std::string& playback, const std::string& tag) {
+    const fs::path script = write_script(
+        "target-fps 240\nquality 2\nplayback " + playback + "\nplay\nwait-seconds 1\n"
+        "screenshot " + (dir / (tag + ".png")).string() + "\nstats " +
+        (dir / (tag + ".json")).string() + "\nquit\n");
+    auto r = run_tspplay("play " + q(tsp) + " --size " + kSize + " --speed 24 --script " +
+                         q(script));
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return r.out;
+  };
+  const std::string out = run("quality", "q");
+  const nlohmann::json j = read_json(dir / "q.json");
+  EXPECT_EQ(j["playback"]["keep"], "quality");
+  EXPECT_TRUE(j["playback"]["quality_applied"].get<bool>());
+  EXPECT_EQ(j["lod"]["cut_size"].get<int>(), 0) << "no time-only cut while keeping quality";
+  // The step the screenshot shows, from "saved PATH (step N)".
+  const std::size_t at = out.find("q.png (step ");
+  ASSERT_NE(at, std::string::npos) << out;
+  const int shown = std::stoi(out.substr(at + std::string("q.png (step ").size()));
+  EXPECT_LT(tsp::diff_images(tsp::read_png((dir / "q.png").string()), render_step(tsp, shown)).mean,
+            2.0);
+  run("rate", "r");
+  const nlohmann::json jr = read_json(dir / "r.json");
+  EXPECT_EQ(jr["playback"]["keep"], "rate");
+  EXPECT_GT(jr["lod"]["cut_size"].get<int>(), 0) << "keeping the rate: the LOD cut is back";
+}
+
 }  // namespace
 
 // The quality slider (script `quality`) calibrates on an offscreen canvas of the window's own
@@ -734,7 +769,8 @@ TEST(Player, QualitySliderKeepsTheWindowDrawingAndTabWorking) {
       << "xdotool missing (scripts/install-deps.sh installs it)";
   const fs::path tsp = make_tsp(), dir = tsptest::temp_dir(), out = dir / "q.out";
   const fs::path script = write_script(
-      "step 1\nquality 2\nwait-frames 2\nstats " + (dir / "q.json").string() + "\nscreenshot " +
+      "step 1\nquality 2\nstats " + (dir / "q0.json").string() + "\nwait-frames 2\nstats " +
+      (dir / "q.json").string() + "\nscreenshot " +
       (dir / "q.png").string() + "\nwait-seconds 3\nstats " + (dir / "f.json").string() +
       "\nscreenshot " + (dir / "f.png").string() + "\nquit\n");
   // Tab goes in once the first screenshot is written (the calibration is over by then).
@@ -752,6 +788,8 @@ TEST(Player, QualitySliderKeepsTheWindowDrawingAndTabWorking) {
   const nlohmann::json qj = read_json(dir / "q.json"), fj = read_json(dir / "f.json");
   const std::string note = qj["quality"];
   ASSERT_EQ(note.rfind("--compositing", 0), 0u) << note;
+  // The action after `quality` waited for the calibration to end.
+  EXPECT_FALSE(read_json(dir / "q0.json")["calibration"]["running"].get<bool>());
   // The calibration ran a slice of each frame: the window kept drawing meanwhile.
   EXPECT_FALSE(qj["calibration"]["running"].get<bool>());
   EXPECT_GT(qj["calibration"]["frames_while_calibrating"].get<int>(), 10);
