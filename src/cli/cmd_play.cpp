@@ -94,7 +94,9 @@ const CommandRegistrar reg(35, [](CLI::App& app) {
   c->add_option("--probe-op", a->options.probe_op, "intersect (default), union or subtract")
       ->check(CLI::IsMember({"intersect", "union", "subtract"}));
   c->add_option("--probe-surface", a->probe_surface,
-                "on (default): the probe's surface shows the data; off: pure clipping")
+                "on (default, so a probe placed in the window shows what it cuts; render's "
+                "default is off, pure clipping): the probe's surface shows the data; off: pure "
+                "clipping")
       ->check(CLI::IsMember({"on", "off"}));
   c->add_option("--ram-budget", a->options.ram_budget_mb,
                 "Bricks held in RAM, MiB (default 1024): a file larger than RAM streams through it");
