@@ -387,6 +387,7 @@ void PlayerApp::render_volume() {
   request.tf = &tf;
   const tspgl::DrawnFrame drawn = d.draw(request);
   last = drawn.report;
+  if (last.redrawn_percent > 0) picture_fragments_ = last.fragments;
   lod_drawn(drawn.lod, now);
   request_prefetch(cam, drawn.settings, d.current_stops());
   update_ready(cam, drawn.settings, d.current_stops());

@@ -138,6 +138,9 @@ class PlayerApp {
   /// first, a slice of each frame (the window keeps drawing; calibrating() meanwhile). Errors
   /// go to status.
   void apply_quality(double de);
+  /// Fragments of the picture on screen: the last frame that drew any (a frame that reused the
+  /// whole image draws none).
+  std::int64_t picture_fragments() const { return picture_fragments_; }
   /// Distinct steps drawn per second over the last 2 s (playback's real rate).
   double steps_shown_per_s() const;
   /// The calibration in progress, if any (for its progress bar).
@@ -318,6 +321,7 @@ class PlayerApp {
   double pending_quality_ = 0;          ///< --quality, applied on the first frame
   std::deque<double> shown_at_s_;       ///< when each newly shown step was drawn (last 2 s)
   int last_shown_step_ = -1;
+  std::int64_t picture_fragments_ = 0;  ///< see picture_fragments()
   int frames_while_calibrating_ = 0;    ///< window frames drawn while it ran
   std::unique_ptr<Recorder> recorder_;
   FieldShelf parked_;  ///< fields switched away from, kept with their renderers

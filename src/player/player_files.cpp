@@ -254,7 +254,9 @@ void PlayerApp::write_stats(const std::string& path) const {
   j["mean_frame_ms"] = mean;
   j["fps"] = mean > 0 ? 1000.0 / mean : 0.0;
   j["render_ms"] = last.ms;
-  j["fragments"] = last.fragments;
+  j["fragments"] = last.fragments;          // drawn by the last frame (0 when it reused the image)
+  j["picture_fragments"] = picture_fragments_;  // of the frame that drew the picture shown
+  j["redrawn_percent"] = last.redrawn_percent;
   j.update(tspgl::settings_json(state.settings));  // every knob of the settings table, as render's
   j["tolerance"] = {state.settings.tol.spatial, state.settings.tol.temporal};
   nlohmann::json points = nlohmann::json::array();  // the editor's handles: value, opacity

@@ -376,8 +376,12 @@ void stats_section(PlayerApp& app) {
   ImGui::Text("render %.1f ms: traversal %.1f, slicing %.1f,\n  upload %.1f, draw %.1f", r.ms,
               r.traversal_ms, r.slicing_ms, r.upload_ms, r.draw_ms);
   const double pixels = std::max(1.0, double(app.layout.view.w) * app.layout.view.h);
-  ImGui::Text("fragments %.2f M (%.2f per pixel), %s, spacing %.2g", double(r.fragments) / 1e6,
-              double(r.fragments) / pixels, tspgl::to_string(app.state.settings.compositing), app.state.settings.spacing);
+  // The picture's fragments: those of the frame that last drew it (a frame that reused the whole
+  // image draws none, and said 0 for a picture that plainly shows).
+  const double fragments = double(app.picture_fragments());
+  ImGui::Text("fragments %.2f M (%.2f per pixel)%s, %s, spacing %.2g", fragments / 1e6,
+              fragments / pixels, r.redrawn_percent == 0 ? ", image reused" : "",
+              tspgl::to_string(app.state.settings.compositing), app.state.settings.spacing);
   for (int c = 0; c < tsp::kDrawClassCount; ++c)
     ImGui::Text("%-15s %5.1f %%", kClassNames[c], r.class_percent[std::size_t(c)]);
   ImGui::Text("textures %lld resident, %.1f MiB", static_cast<long long>(r.textures_resident),

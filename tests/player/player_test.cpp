@@ -272,6 +272,8 @@ TEST(Player, ScriptedKnobsMatchRenderAndStatsReportThem) {
   for (const char* k : {"\"fps\"", "\"fragments\"", "\"compositing\": \"slices\"",
                         "\"spacing\": 2.0", "\"preintegrated\": true", "\"frame_ms\""})
     EXPECT_NE(text.find(k), std::string::npos) << k << " in " << text;
+  // The picture on screen drew fragments, even when the last frame reused the whole image.
+  EXPECT_GT(nlohmann::json::parse(text)["picture_fragments"].get<long long>(), 0) << text;
 }
 
 std::string read_text(const fs::path& p) {
