@@ -362,6 +362,9 @@ void PlayerApp::render_volume() {
   const tsp::Camera cam(file->tree().octree().dims(), state.camera);
   tspgl::RenderSettings fs = state.settings;
   if (fs.preintegrated) fs.sampling_tol = 0;  // the two exclude each other
+  // Playing, a step's frame uploads all it needs: shown late when its bricks are late, never
+  // with holes of bricks left for later frames (the upload budget keeps interaction smooth).
+  if (state.playing) fs.upload_budget = 0;
   // GL's window coordinates start at the bottom: the view's lower-left corner.
   fs.viewport_origin = {layout.view.x, ctx->height() - layout.view.y - layout.view.h};
   if (state.metric != tsp::Metric::reference) {

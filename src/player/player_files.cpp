@@ -257,6 +257,7 @@ void PlayerApp::write_stats(const std::string& path) const {
   j["fragments"] = last.fragments;          // drawn by the last frame (0 when it reused the image)
   j["picture_fragments"] = picture_fragments_;  // of the frame that drew the picture shown
   j["redrawn_percent"] = last.redrawn_percent;
+  j["deferred_textures"] = last.deferred_textures;  // left for later frames (upload budget)
   j.update(tspgl::settings_json(state.settings));  // every knob of the settings table, as render's
   j["tolerance"] = {state.settings.tol.spatial, state.settings.tol.temporal};
   nlohmann::json points = nlohmann::json::array();  // the editor's handles: value, opacity

@@ -759,6 +759,26 @@ TEST(Player, PlayingWithAQualityTargetShowsCalibratedFramesNotPlaceholders) {
   EXPECT_GT(jr["lod"]["cut_size"].get<int>(), 0) << "keeping the rate: the LOD cut is back";
 }
 
+// A step shown while playing is complete, however small the upload budget (which spreads uploads
+// over frames while interacting): late rather than with holes of bricks left for later frames.
+TEST(Player, StepsShownWhilePlayingHaveNoHolesUnderAnUploadBudget) {
+  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  const fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
+  const fs::path script = write_script("lod off\ncache off\nplay\nwait-seconds 0.5\nstats " +
+                                       (dir / "p.json").string() + "\nscreenshot " +
+                                       (dir / "p.png").string() + "\nquit\n");
+  auto r = run_tspplay("play " + q(tsp) + " --size " + kSize +
+                       " --upload-budget 0.001 --speed 24 --script " + q(script));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::size_t at = r.out.find("p.png (step ");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  const int shown = std::stoi(r.out.substr(at + std::string("p.png (step ").size()));
+  EXPECT_LT(tsp::diff_images(tsp::read_png((dir / "p.png").string()), render_step(tsp, shown)).mean,
+            kSameFrameDeltaE);
+  // The frame drawn just before (playing, every texture uploaded anew): nothing left for later.
+  EXPECT_EQ(read_json(dir / "p.json")["deferred_textures"].get<long long>(), 0);
+}
+
 }  // namespace
 
 // The quality slider (script `quality`) calibrates on an offscreen canvas of the window's own
