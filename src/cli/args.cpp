@@ -1,5 +1,7 @@
 #include "cli/args.h"
 
+#include <cmath>
+
 #include <cstdlib>
 
 #include "tsp/core/error.h"
@@ -44,6 +46,9 @@ std::array<double, 3> parse_triple(const std::string& text, const std::string& o
     } catch (const tsp::UsageError&) {
       throw tsp::UsageError(option + " '" + text + "': expected " + expected);
     }
+    if (!std::isfinite(v[std::size_t(k)]))  // nan, inf: no triple of ours means them
+      throw tsp::UsageError(option + " '" + text + "': expected " + expected +
+                            ", three finite numbers");
     start = comma + 1;
   }
   return v;

@@ -67,7 +67,10 @@ void check_options(const BenchOptions& o) {
   if (o.search_steps < 1) throw tsp::UsageError("--search-steps must be at least 1");
   if (o.search_iterations < 0) throw tsp::UsageError("--search-iterations must not be negative");
   if (o.passes < 1) throw tsp::UsageError("--passes must be at least 1");
-  if (o.head_to_head_rounds < 1) throw tsp::UsageError("--rounds must be at least 1");
+  if (o.head_to_head_rounds < 1 || o.head_to_head_rounds > kMaxRounds)
+    throw tsp::UsageError("--rounds " + std::to_string(o.head_to_head_rounds) +
+                          ": expected 1 to " + std::to_string(kMaxRounds) +
+                          " head-to-head rounds");
   for (const KnobGrid* g : {&o.baseline_grid, &o.tsp_grid}) {
     if (g->compositings.empty() || g->spacings.empty())
       throw tsp::UsageError("bench: the knob search needs at least one compositing and spacing");

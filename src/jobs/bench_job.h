@@ -16,6 +16,9 @@
 
 namespace tspgl {
 
+/// Most head-to-head rounds a bench may time (each round renders every winner again).
+inline constexpr int kMaxRounds = 100;
+
 /// Everything `tspplay bench` takes.
 struct BenchOptions {
   std::string tsp_path;                           ///< the .tsp file

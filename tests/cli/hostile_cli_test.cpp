@@ -103,7 +103,9 @@ TEST(HostileCli, NumericOptionsOutsideTheirRangeNameTheLimit) {
                         Case{"--spacing nan", "--spacing"},
                         Case{"--texture-budget 1e30", "--texture-budget"},
                         Case{"--spatial-tol inf", "expected a finite number >= 0"},
-                        Case{"--passes 0", "--passes 0"}}) {
+                        Case{"--passes 0", "--passes 0"},
+                        Case{"--lod auto --focus nan,1,1", "three finite numbers"},
+                        Case{"--scale 1,inf,1", "three finite numbers"}}) {
     auto r = run_tspplay("render " + quote(tsp_path) + " " + c.args + " -o " + quote(dir / "f"));
     EXPECT_EQ(r.exit_code, 2) << c.args << ": " << r.err;
     EXPECT_NE(r.err.find(c.needle), std::string::npos) << c.args << ": " << r.err;
@@ -119,6 +121,27 @@ TEST(HostileCli, NumericOptionsOutsideTheirRangeNameTheLimit) {
 
 // A build killed with SIGKILL leaves its temporary behind; the next build of the same output
 // removes it (its writer's lock is gone) and leaves exactly the finished file.
+// bench --rounds has an upper bound (a huge count ran for ever), and a player script's field that
+// the file does not have is an error naming the fields it has (it exited 0).
+TEST(HostileCli, BenchRoundsAndScriptFieldsAreChecked) {
+  const auto dir = tsptest::temp_dir();
+  write_raw_series(dir, "v", 2, [](int t, int i) { return float(t * i); });
+  const auto tsp_path = dir / "v.tsp";
+  ASSERT_EQ(run_tspplay("build " + quote(dir / "v_%04d.raw") + " --raw-dims 4,4,4 -o " +
+                        quote(tsp_path)).exit_code, 0);
+  auto b = run_tspplay("bench " + quote(tsp_path) + " --rounds 1000000000 -o " + quote(dir / "b"));
+  EXPECT_EQ(b.exit_code, 2) << b.err;
+  EXPECT_NE(b.err.find("--rounds 1000000000: expected 1 to 100"), std::string::npos) << b.err;
+  EXPECT_FALSE(fs::exists(dir / "b" / "report.json"));
+  const auto script = dir / "field.txt";
+  std::ofstream(script) << "field nosuchfield\nquit\n";
+  auto p = run_tspplay("play " + quote(tsp_path) + " --size 32x24 --script " + quote(script));
+  if (p.err.find("no display") != std::string::npos || p.err.find("GLFW") != std::string::npos)
+    GTEST_SKIP() << "no display (run under xvfb-run): " << p.err;
+  EXPECT_EQ(p.exit_code, 2) << p.err;
+  EXPECT_NE(p.err.find("field.txt:1: field 'nosuchfield'"), std::string::npos) << p.err;
+}
+
 TEST(HostileCli, KilledBuildLeavesNothingAfterTheNextBuild) {
   const auto dir = tsptest::temp_dir();
   const auto h5 = dir / "big.h5";
