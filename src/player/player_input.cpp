@@ -210,7 +210,8 @@ void PlayerApp::apply(const ScriptAction& a) {
         for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
         throw tsp::UsageError((a.line > 0 ? options_.script + ":" + std::to_string(a.line) + ": "
                                           : std::string()) +
-                              "field '" + a.text + "': " + options_.tsp_path + " has " + list);
+                              "field '" + a.text + "': " + options_.tsp_path + " holds the field(s) " +
+                              list);
       }
       switch_field(a.text);
       break;
