@@ -6,7 +6,6 @@
 
 #include "gl/gl_error.h"
 #include "jobs/render_job.h"
-#include "render/frame_driver.h"
 #include "tsp/report/image_diff.h"
 
 namespace tspgl {
@@ -41,26 +40,34 @@ std::pair<tsp::Image, double> ImageProbe::render_step(const Knobs& k,
                                                       std::size_t i) {
   assert(k.baseline || metric);
   assert(i < steps_.size());
-  RenderSettings s;
-  apply(k, s);
-  std::unique_ptr<tsp::WholeTreeMetric> nodes;
-  if (!k.baseline) nodes = std::make_unique<tsp::WholeTreeMetric>(*metric);
+  Drawing& d = drawing_for(k, metric);
+  ctx_.make_current();  // the caller's context (a render job in between may have made its own)
+  const CanvasScope scope(canvas_);
+  FrameRequest r;
+  r.step = steps_[i];
+  r.camera = &camera_;
+  apply(k, r.settings);
+  r.metric = d.nodes.get();
+  const double ms = d.driver->draw(r).report.ms;
+  return {ctx_.read_pixels(), ms};
+}
+
+ImageProbe::Drawing& ImageProbe::drawing_for(const Knobs& k, const tsp::MetricResult* metric) {
+  if (drawing_ && drawing_->knobs == k && drawing_->metric == metric) return *drawing_;
+  Drawing d;
+  d.knobs = k;
+  d.metric = metric;
+  if (!k.baseline) d.nodes = std::make_unique<tsp::WholeTreeMetric>(*metric);
   // An LOD level everywhere (render --lod K, clamped to the tree's levels).
   LodSpec lod;
   if (!k.baseline && k.lod_level > 0) {
     lod.mode = LodMode::fixed;
     lod.level = k.lod_level;
   }
-  FrameDriver driver = k.baseline ? FrameDriver(baseline_) : FrameDriver(renderer_, lod);
-  ctx_.make_current();  // the caller's context (a render job in between may have made its own)
-  const CanvasScope scope(canvas_);
-  FrameRequest r;
-  r.step = steps_[i];
-  r.camera = &camera_;
-  r.settings = s;
-  r.metric = nodes.get();
-  const double ms = driver.draw(r).report.ms;
-  return {ctx_.read_pixels(), ms};
+  d.driver = k.baseline ? std::make_unique<FrameDriver>(baseline_)
+                        : std::make_unique<FrameDriver>(renderer_, lod);
+  drawing_ = std::move(d);
+  return *drawing_;
 }
 
 ProbeFrames ImageProbe::render(const Knobs& k, const tsp::MetricResult* metric) {

@@ -3,6 +3,7 @@
 // non-TSP baseline under any knobs.
 #pragma once
 #include <memory>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -10,6 +11,7 @@
 #include "gl/offscreen_canvas.h"
 #include "jobs/knob_search.h"
 #include "render/baseline_renderer.h"
+#include "render/frame_driver.h"
 #include "render/volume_renderer.h"
 #include "tsp/frame/camera.h"
 #include "tsp/metric/metric.h"
@@ -56,6 +58,15 @@ class ImageProbe {
   BaselineRenderer baseline_;
   tsp::Camera camera_;
   std::vector<int> steps_;
+  // The driver of the knobs and metric last drawn: made once per configuration, not per step.
+  struct Drawing {
+    Knobs knobs;
+    const tsp::MetricResult* metric = nullptr;
+    std::unique_ptr<tsp::WholeTreeMetric> nodes;
+    std::unique_ptr<FrameDriver> driver;
+  };
+  std::optional<Drawing> drawing_;
+  Drawing& drawing_for(const Knobs& k, const tsp::MetricResult* metric);
 };
 
 /// Mean over the pairs of images of their mean per-pixel ΔE (0 for none). Throws

@@ -164,7 +164,6 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
   GLFWwindow* window = static_cast<GLFWwindow*>(ctx->native_window());
   glfwSetWindowUserPointer(window, this);
   // Every callback counts an event: an idle window draws again only after one (run()).
-  auto app_of = [](GLFWwindow* w) { return static_cast<PlayerApp*>(glfwGetWindowUserPointer(w)); };
   glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int) {
     auto* app = static_cast<PlayerApp*>(glfwGetWindowUserPointer(w));
     ++app->events_;
@@ -183,7 +182,6 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
     if (button != GLFW_MOUSE_BUTTON_LEFT || action != GLFW_PRESS) return;
     app->left_press_ = app->cursor_;
   });
-  (void)app_of;
   glfwSetScrollCallback(window, [](GLFWwindow* w, double, double) {
     ++static_cast<PlayerApp*>(glfwGetWindowUserPointer(w))->events_;
   });

@@ -209,7 +209,8 @@ class PlayerApp {
   /// The file being played.
   const std::string& tsp_path() const { return options_.tsp_path; }
   /// Shows another field of the file (its own TF, kept per field; its bricks stream in through
-  /// its own caches, kept while another field is shown). Errors go to status.
+  /// its own caches, kept while another field is shown). Throws tsp::UsageError for a field
+  /// the file does not have, tsp::Error when it cannot be opened; nothing changes then.
   void switch_field(const std::string& name);
   /// The shown field's name.
   const std::string& field() const { return file->fields()[std::size_t(file->field_index())]; }

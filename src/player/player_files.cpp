@@ -119,16 +119,18 @@ void PlayerApp::open_file(const std::string& path) {
 
 void PlayerApp::switch_field(const std::string& name) {
   if (name == field()) return;
+  const std::vector<std::string>& names = file->fields();
+  if (std::find(names.begin(), names.end(), name) == names.end()) {
+    std::string list;
+    for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
+    throw tsp::UsageError("field '" + name + "': " + options_.tsp_path + " holds the field(s) " +
+                          list);
+  }
   FieldShelf::Field next;
   if (std::optional<FieldShelf::Field> parked = parked_.take(name)) {
     next = std::move(*parked);
   } else {
-    try {
-      next.file = tsp::TspFile::open(options_.tsp_path, name);
-    } catch (const tsp::Error& e) {
-      report(status, e.what());
-      return;
-    }
+    next.file = tsp::TspFile::open(options_.tsp_path, name);  // throws: nothing changed
     // The TF the player was started with, fitted to this field's data.
     next.tf = tsp::transfer_function_from_arg(options_.tf, next.file->tree().value_range(),
                                               tsp::kDefaultTfEntries,

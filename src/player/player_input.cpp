@@ -203,19 +203,14 @@ void PlayerApp::apply(const ScriptAction& a) {
     case Kind::open:
       open_input(a.text, a.text2);
       break;
-    case Kind::field: {
-      const std::vector<std::string>& names = file->fields();
-      if (std::find(names.begin(), names.end(), a.text) == names.end()) {
-        std::string list;
-        for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
-        throw tsp::UsageError((a.line > 0 ? options_.script + ":" + std::to_string(a.line) + ": "
-                                          : std::string()) +
-                              "field '" + a.text + "': " + options_.tsp_path + " holds the field(s) " +
-                              list);
+    case Kind::field:
+      try {
+        switch_field(a.text);
+      } catch (const tsp::UsageError& e) {  // a script line says where
+        if (a.line <= 0) throw;
+        throw tsp::UsageError(options_.script + ":" + std::to_string(a.line) + ": " + e.what());
       }
-      switch_field(a.text);
       break;
-    }
     case Kind::probe:
       add_probe(tsp::parse_probe(a.text));
       break;

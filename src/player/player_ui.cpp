@@ -212,7 +212,11 @@ void settings_section(PlayerApp& app) {
     const int current = app.file->field_index();
     if (ImGui::BeginCombo("field", fields[std::size_t(current)].c_str())) {
       for (std::size_t k = 0; k < fields.size(); ++k)
-        if (ImGui::Selectable(fields[k].c_str(), int(k) == current)) app.switch_field(fields[k]);
+        if (ImGui::Selectable(fields[k].c_str(), int(k) == current)) {
+          ScriptAction a = command_of(ScriptAction::Kind::field);
+          a.text = fields[k];
+          app.command(a);
+        }
       ImGui::EndCombo();
     }
   }

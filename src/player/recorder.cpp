@@ -15,28 +15,22 @@ Recorder::Recorder(const std::filesystem::path& path, int width, int height, int
                    double start_s)
     : movie_(path, width, height, fps), fps_(fps), start_s_(start_s) {}
 
-void Recorder::write_until(const tsp::Image& image, double now_s) {
-  const std::int64_t missing = frames_due(start_s_, now_s, fps_) - movie_.frames();
+void Recorder::pad_to(const tsp::Image& image, std::int64_t total) {
   const std::int64_t cap = std::int64_t(kMaxRepeatSeconds * fps_);
-  const int repeat = int(std::clamp<std::int64_t>(missing, 0, cap));
+  const int repeat = int(std::clamp<std::int64_t>(total - movie_.frames(), 0, cap));
   if (repeat > 0) movie_.write(image, repeat);
 }
 
 void Recorder::frame(const tsp::Image& image, double now_s) {
-  write_until(image, now_s);
+  pad_to(image, frames_due(start_s_, now_s, fps_));
   last_ = image;
 }
 
 std::string Recorder::finish(double now_s) {
   // The last frame stays on screen until the stop, so it lasts until then in the movie too: the
   // movie holds round(elapsed × fps) frames, as long as the recording.
-  if (last_) {
-    const std::int64_t total =
-        std::max<std::int64_t>(1, std::llround(std::max(0.0, now_s - start_s_) * fps_));
-    const std::int64_t cap = std::int64_t(kMaxRepeatSeconds * fps_);
-    const std::int64_t missing = std::min(total - movie_.frames(), cap);
-    if (missing > 0) movie_.write(*last_, int(missing));
-  }
+  if (last_)
+    pad_to(*last_, std::max<std::int64_t>(1, std::llround(std::max(0.0, now_s - start_s_) * fps_)));
   movie_.finish();
   char line[512];
   std::snprintf(line, sizeof line, "recorded %s (%lld frames, %.1f s)", path().c_str(),

@@ -44,7 +44,8 @@ class Recorder {
   int fps_;
   double start_s_;
   std::optional<tsp::Image> last_;
-  void write_until(const tsp::Image& image, double now_s);
+  // Appends image until the movie holds `total` frames (at most kMaxRepeatSeconds of copies).
+  void pad_to(const tsp::Image& image, std::int64_t total);
 };
 
 }  // namespace tspplayer
