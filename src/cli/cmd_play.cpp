@@ -113,12 +113,13 @@ const CommandRegistrar reg(35, [](CLI::App& app) {
   c->add_option("--speed", a->options.speed,
                 "Playback speed, steps per second (default 24, a movie's rate; 0.25 to 60)");
   c->add_option("--quality", a->options.quality,
-                "Mean dE target against the full-quality picture: the fastest calibrated knobs "
-                "within it (calibrated in the window, a slice of each frame; cached with render's)");
+                "While playing: mean dE target against the full-quality picture (default 1; "
+                "0: off, the LOD cut holds the rate). Each frame draws the cheapest-needed rung "
+                "of a ladder (spacing, render scale, LOD level) tuned in the window when "
+                "playing starts; paused frames are full quality");
   c->add_option("--playback", a->playback,
-                "With --quality, what gives while playing when frames are slow: quality (keep "
-                "the calibrated knobs at full resolution, steps show later; default) or rate "
-                "(the LOD cut holds --target-fps)")
+                "With --quality, what gives while playing when no rung both fits the speed and "
+                "keeps the target: quality (steps show later; default) or rate (a coarser rung)")
       ->check(CLI::IsMember({"quality", "rate"}));
   c->add_option("--target-fps", a->options.target_fps,
                 "Frames per second the LOD cut holds while interacting (default 30)");

@@ -39,33 +39,51 @@ std::pair<tsp::Image, double> ImageProbe::render_step(const Knobs& k,
                                                       const tsp::MetricResult* metric,
                                                       std::size_t i) {
   assert(k.baseline || metric);
+  RenderSettings s;
+  apply(k, s);
+  return draw(drawing_for(k.baseline, k.baseline ? 0 : k.lod_level, metric, nullptr), s, i);
+}
+
+std::pair<tsp::Image, double> ImageProbe::render_step(const RenderSettings& s, int lod_level,
+                                                      tsp::FrameMetric& nodes, std::size_t i) {
+  RenderSettings own = s;
+  own.viewport_origin = {0, 0};
+  return draw(drawing_for(false, lod_level, nullptr, &nodes), own, i);
+}
+
+std::pair<tsp::Image, double> ImageProbe::draw(Drawing& d, const RenderSettings& s, std::size_t i) {
   assert(i < steps_.size());
-  Drawing& d = drawing_for(k, metric);
   ctx_.make_current();  // the caller's context (a render job in between may have made its own)
   const CanvasScope scope(canvas_);
   FrameRequest r;
   r.step = steps_[i];
   r.camera = &camera_;
-  apply(k, r.settings);
-  r.metric = d.nodes.get();
+  r.settings = s;
+  r.metric = d.frame_metric();
   const double ms = d.driver->draw(r).report.ms;
   return {ctx_.read_pixels(), ms};
 }
 
-ImageProbe::Drawing& ImageProbe::drawing_for(const Knobs& k, const tsp::MetricResult* metric) {
-  if (drawing_ && drawing_->knobs == k && drawing_->metric == metric) return *drawing_;
+ImageProbe::Drawing& ImageProbe::drawing_for(bool baseline, int lod_level,
+                                             const tsp::MetricResult* metric,
+                                             tsp::FrameMetric* external) {
+  if (drawing_ && drawing_->baseline == baseline && drawing_->lod_level == lod_level &&
+      drawing_->metric == metric && drawing_->external == external)
+    return *drawing_;
   Drawing d;
-  d.knobs = k;
+  d.baseline = baseline;
+  d.lod_level = lod_level;
   d.metric = metric;
-  if (!k.baseline) d.nodes = std::make_unique<tsp::WholeTreeMetric>(*metric);
+  d.external = external;
+  if (!baseline && !external) d.nodes = std::make_unique<tsp::WholeTreeMetric>(*metric);
   // An LOD level everywhere (render --lod K, clamped to the tree's levels).
   LodSpec lod;
-  if (!k.baseline && k.lod_level > 0) {
+  if (!baseline && lod_level > 0) {
     lod.mode = LodMode::fixed;
-    lod.level = k.lod_level;
+    lod.level = lod_level;
   }
-  d.driver = k.baseline ? std::make_unique<FrameDriver>(baseline_)
-                        : std::make_unique<FrameDriver>(renderer_, lod);
+  d.driver = baseline ? std::make_unique<FrameDriver>(baseline_)
+                      : std::make_unique<FrameDriver>(renderer_, lod);
   drawing_ = std::move(d);
   return *drawing_;
 }

@@ -43,6 +43,11 @@ class ImageProbe {
   /// time, for a caller that spreads a calibration over its own frames). Throws like render().
   std::pair<tsp::Image, double> render_step(const Knobs& k, const tsp::MetricResult* metric,
                                             std::size_t i);
+  /// The i-th of the steps drawn by the TSP renderer with settings s (their viewport origin
+  /// ignored) at LOD level lod_level everywhere (0: full resolution) under nodes (e.g. a
+  /// player's live metric), and its frame time in ms. Throws like render().
+  std::pair<tsp::Image, double> render_step(const RenderSettings& s, int lod_level,
+                                            tsp::FrameMetric& nodes, std::size_t i);
   /// Number of steps it renders.
   std::size_t steps() const { return steps_.size(); }
   /// Frees its GL objects in ctx (made current again first).
@@ -58,15 +63,21 @@ class ImageProbe {
   BaselineRenderer baseline_;
   tsp::Camera camera_;
   std::vector<int> steps_;
-  // The driver of the knobs and metric last drawn: made once per configuration, not per step.
+  // The driver of the renderer, LOD level and metric last drawn: made once per configuration,
+  // not per step.
   struct Drawing {
-    Knobs knobs;
-    const tsp::MetricResult* metric = nullptr;
+    bool baseline = false;
+    int lod_level = 0;
+    const tsp::MetricResult* metric = nullptr;  // the whole-tree metric nodes serve, if any
+    tsp::FrameMetric* external = nullptr;       // else the caller's node metric
     std::unique_ptr<tsp::WholeTreeMetric> nodes;
     std::unique_ptr<FrameDriver> driver;
+    tsp::FrameMetric* frame_metric() { return external ? external : nodes.get(); }
   };
   std::optional<Drawing> drawing_;
-  Drawing& drawing_for(const Knobs& k, const tsp::MetricResult* metric);
+  Drawing& drawing_for(bool baseline, int lod_level, const tsp::MetricResult* metric,
+                       tsp::FrameMetric* external);
+  std::pair<tsp::Image, double> draw(Drawing& d, const RenderSettings& s, std::size_t i);
 };
 
 /// Mean over the pairs of images of their mean per-pixel ΔE (0 for none). Throws

@@ -30,7 +30,6 @@ namespace {
 
 constexpr float kKnotEpsilon = 1e-4f;  // slope change that marks a TF knot
 constexpr int kMaxEditorPoints = 24;
-constexpr double kMaxFrameDt = 0.25;  // a stalled frame does not skip many steps at once
 
 // The TF's knots: the first and last entries and every entry where the table's slope changes, so
 // that rebuilding from them reproduces a piecewise-linear TF (presets, our JSON). A TF with more
@@ -116,12 +115,11 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
                           std::to_string(kMinSpeed).substr(0, 4) + " to " +
                           std::to_string(int(kMaxSpeed)) + " steps per second");
   state.speed = options.speed;
-  if (options.quality != 0 && !(options.quality > 0 && options.quality <= tspgl::kMaxQualityDe))
+  if (!(options.quality >= 0 && options.quality <= tspgl::kMaxQualityDe))
     throw tsp::UsageError("--quality " + std::to_string(options.quality) +
-                          ": expected a mean dE in (0, " +
-                          std::to_string(int(tspgl::kMaxQualityDe)) + "]");
-  state.quality = float(options.quality);
-  pending_quality_ = options.quality;  // calibrated once the first frame has laid out the view
+                          ": expected a mean dE in [0, " +
+                          std::to_string(int(tspgl::kMaxQualityDe)) + "] (0: off)");
+  state.quality = float(options.quality);  // tuned when playing starts
   state.keep_quality = options.keep_quality;
   state.splat_fallback = options.splat_fallback;
   if (!options.script.empty()) script_ = load_script(options.script);
@@ -298,8 +296,8 @@ void PlayerApp::apply_tf_points() {
   set_tf(tsp::TransferFunction::from_points(tf.domain(), sorted, tf.size()), false);
 }
 
-// During playback: the bricks the next kPrefetchSteps frames would upload, in playing order,
-// go to the prefetch thread once per step change (the request replaces the previous one).
+// During playback: the bricks the frames of the next kPrefetchSeconds would upload, in playing
+// order, go to the prefetch thread once per step change (the request replaces the previous one).
 void PlayerApp::request_prefetch(const tsp::Camera& cam, const tspgl::RenderSettings& frame_settings,
                                  tsp::LodStops stops) {
   if (!state.prefetch_on) return;
@@ -317,7 +315,9 @@ void PlayerApp::request_prefetch(const tsp::Camera& cam, const tspgl::RenderSett
   if (prefetched_for_ == state.step) return;
   prefetched_for_ = state.step;
   std::vector<tsp::BrickKey> keys;
-  for (int k = 1; k <= kPrefetchSteps; ++k) {
+  const int ahead = std::clamp(int(std::ceil(state.speed * kPrefetchSeconds)), kMinPrefetchSteps,
+                              kMaxPrefetchSteps);
+  for (int k = 1; k <= ahead; ++k) {
     int t = state.step + k;
     if (t >= steps()) {
       if (!state.loop) break;
@@ -378,6 +378,9 @@ void PlayerApp::render_volume() {
     }
   }
   const double now = clock_.seconds();
+  choose_rung(now);
+  const bool rung = playing_rung();  // playing at a quality target: the tuned rung's frame
+  if (rung) fs = tspgl::rung_settings(fs, tuned_[std::size_t(rung_.index)].rung);
   tspgl::FrameDriver& d = driver();
   d.set_lod(lod_spec(now));
   tspgl::FrameRequest request;
@@ -388,6 +391,7 @@ void PlayerApp::render_volume() {
   request.tf = &tf;
   const tspgl::DrawnFrame drawn = d.draw(request);
   last = drawn.report;
+  if (rung) measured_rung(last.ms);
   if (last.redrawn_percent > 0) picture_fragments_ = last.fragments;
   lod_drawn(drawn.lod, now);
   request_prefetch(cam, drawn.settings, d.current_stops());
@@ -418,28 +422,6 @@ void PlayerApp::update_ready(const tsp::Camera& cam, const tspgl::RenderSettings
 tsp::Image PlayerApp::read_view() {
   const WindowRect& v = layout.view;
   return ctx->read_pixels(v.x, ctx->height() - v.y - v.h, v.w, v.h);
-}
-
-void PlayerApp::advance_playback(double dt) {
-  if (!state.playing) {
-    play_accum_ = 0;
-    return;
-  }
-  play_accum_ += std::min(dt, kMaxFrameDt) * state.speed;
-  // Every step: at most one step a frame, however slow the frames (no step is skipped).
-  if (state.every_step) play_accum_ = std::min(play_accum_, 1.0);
-  while (play_accum_ >= 1) {
-    play_accum_ -= 1;
-    if (state.step + 1 < steps()) {
-      ++state.step;
-    } else if (state.loop) {
-      state.step = 0;
-    } else {
-      state.playing = false;
-      play_accum_ = 0;
-      break;
-    }
-  }
 }
 
 void PlayerApp::save_pending_shot() {
@@ -480,10 +462,6 @@ void PlayerApp::frame() {
   advance_playback(dt);
   if (options_.trace) trace_changes();
   layout = compute_layout(ctx->width(), ctx->height(), state.panels, int(ImGui::GetFrameHeight()));
-  if (pending_quality_ > 0) {  // --quality: the view's size is known now
-    apply_quality(pending_quality_);
-    pending_quality_ = 0;
-  }
   if (layout.docked) {  // what the volume does not cover is the panels' background
     const tspgl::GlApi& gl = ctx->gl();
     gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -499,7 +477,7 @@ void PlayerApp::frame() {
   }
   while (!shown_at_s_.empty() && shown_at_s_.front() < now - kShownWindowSeconds)
     shown_at_s_.pop_front();
-  advance_calibration();
+  advance_tuning();
   if (frame_delay_ms_ > 0)
     std::this_thread::sleep_for(std::chrono::duration<double, std::milli>(frame_delay_ms_));
 
@@ -547,15 +525,10 @@ void PlayerApp::frame() {
     history.pop_front();
 }
 
-double PlayerApp::steps_shown_per_s() const {
-  const double span = std::min(kShownWindowSeconds, clock_.seconds() - start_s_);
-  return span > 0 ? double(shown_at_s_.size()) / span : 0.0;
-}
-
 bool PlayerApp::busy() const {
   const bool script_running = script_pos_ < script_.size() || wait_frames_ > 0;
   return quit_ || state.playing || settle_frames_ > 0 || script_running || !pending_shot_.empty() ||
-         save_requested_ || calibrator_ || open_job_ || recorder_ || !last.complete() ||
+         save_requested_ || tuner_ || open_job_ || recorder_ || !last.complete() ||
          (state.lod_on && !full_quality()) || switch_started_s_ >= 0;
 }
 

@@ -10,6 +10,9 @@
 
 namespace tspplayer {
 
+/// Default quality target while playing: mean ΔE 1 against the full-quality picture.
+inline constexpr double kDefaultPlayingQuality = 1;
+
 /// Texture MiB a frame of the player uploads by default: render uploads all a frame needs, the
 /// player spreads a large upload over frames so the window never stalls.
 inline constexpr double kDefaultPlayerUploadMib = 16;
@@ -35,7 +38,9 @@ struct PlayerOptions {
   bool lod = true;                ///< --lod on|off: the adaptive LOD cut
   double target_fps = 30;         ///< --target-fps: held while interacting, in [1, 240]
   double speed = 24;              ///< --speed: playback, steps per second (a movie's rate)
-  double quality = 0;             ///< --quality: mean ΔE target (0: none), calibrated at start
+  /// --quality: mean ΔE target while playing (0: none, the LOD cut holds the rate), tuned when
+  /// playing starts.
+  double quality = kDefaultPlayingQuality;
   bool keep_quality = true;       ///< --playback quality|rate: what gives while playing
   bool splat_fallback = false;    ///< --lod-fallback splats: splats when even the coarsest cut is slow
   bool trace = false;             ///< --trace: one stdout line per applied change

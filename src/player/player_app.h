@@ -15,6 +15,8 @@
 
 #include "gl/context.h"
 #include "jobs/calibration.h"
+#include "jobs/playback_tuner.h"
+#include <nlohmann/json.hpp>
 #include "jobs/movie.h"
 #include "player/field_shelf.h"
 #include "player/layout.h"
@@ -42,8 +44,11 @@ namespace tspplayer {
 inline constexpr double kFrameHistorySeconds = 5.0;
 /// Control points the TF editor samples from a TF without few clear knots.
 inline constexpr int kEditorPoints = 9;
-/// Steps ahead whose bricks are read in the background during playback.
-inline constexpr int kPrefetchSteps = 2;
+/// Playback prefetches the bricks of the steps it will show in the next kPrefetchSeconds (at
+/// least kMinPrefetchSteps, at most kMaxPrefetchSteps): more steps ahead at a higher speed.
+inline constexpr double kPrefetchSeconds = 0.25;
+/// See kPrefetchSeconds.
+inline constexpr int kMinPrefetchSteps = 2, kMaxPrefetchSteps = 16;
 /// Split candidates of the LOD cut whose children's bricks are prefetched.
 inline constexpr int kPrefetchSplits = 4;
 
@@ -59,9 +64,16 @@ inline constexpr int kIdleFrames = 2;
 inline constexpr int kIdleSplitsPerFrame = 64;
 /// Steps whose readiness (bricks in RAM or textures) is re-checked per frame, for the timeline.
 inline constexpr int kReadyStepsPerFrame = 4;
-/// Milliseconds of each frame the quality calibration may use (the window keeps ≥ 10 frames/s
-/// on top of its own frame time).
+/// Milliseconds of each frame the playback tuning may use (the window keeps ≥ 10 frames/s on
+/// top of its own frame time).
 inline constexpr double kCalibrationSliceMs = 40;
+/// Smoothing, per frame, of the ratio of the window's render time to the probe's for a rung.
+inline constexpr double kTimeRatioSmoothing = 0.2;
+/// A rung costlier than the one playing is taken only when predicted within this share of the
+/// step period, and kRungHoldSeconds after the last change (no flapping between two rungs).
+inline constexpr double kRungHeadroom = 0.85;
+/// See kRungHeadroom.
+inline constexpr double kRungHoldSeconds = 1;
 /// Seconds over which the steps shown per second are counted.
 inline constexpr double kShownWindowSeconds = 2;
 /// Frames drawn after the last input event (Dear ImGui's hover and popups settle).
@@ -133,18 +145,26 @@ class PlayerApp {
   /// for script lines and panel widgets; tolerances go through set_tolerances. Throws
   /// tsp::UsageError naming the setting and what it accepts.
   void set_setting(const std::string& name, const std::string& text);
-  /// Picks the fastest calibrated knobs within mean ΔE de for the current TF, metric and view
-  /// and applies them; reports in quality_note. Without a cached calibration it calibrates
-  /// first, a slice of each frame (the window keeps drawing; calibrating() meanwhile). Errors
-  /// go to status.
+  /// Sets the quality target while playing (mean ΔE against full quality; 0: none, the LOD cut
+  /// holds the frame rate as when interacting) and tunes playback for it if not tuned yet for
+  /// this file, field, TF, metric, settings and view size (tuning() meanwhile). Errors go to
+  /// status.
   void apply_quality(double de);
   /// Fragments of the picture on screen: the last frame that drew any (a frame that reused the
   /// whole image draws none).
   std::int64_t picture_fragments() const { return picture_fragments_; }
   /// Distinct steps drawn per second over the last 2 s (playback's real rate).
   double steps_shown_per_s() const;
-  /// The calibration in progress, if any (for its progress bar).
-  const tspgl::Calibrator* calibrating() const { return calibrator_.get(); }
+  /// The playback tuning in progress, if any (for its progress bar).
+  const tspgl::PlaybackTuner* tuning() const { return tuner_.get(); }
+  /// The rung playing draws (meaningful while playing_rung()).
+  const tspgl::RungChoice& rung_choice() const { return rung_; }
+  /// The tuned ladder (empty before the first tuning ends).
+  const std::vector<tspgl::TunedRung>& tuned_rungs() const { return tuned_; }
+  /// True when frames are drawn with a tuned rung: playing with a quality target, tuned.
+  bool playing_rung() const { return state.playing && state.quality > 0 && !tuned_.empty(); }
+  /// What playback does, as JSON: speed, target, the rung played and why, the tuned ladder.
+  nlohmann::json playback_json() const;
   /// Writes the HUD's statistics as JSON to path (atomically). Throws tsp::IoError.
   void write_stats(const std::string& path) const;
   /// Recreates the renderer for a cache policy or budget change.
@@ -222,7 +242,10 @@ class PlayerApp {
   /// True while something is to be drawn that is not on screen yet (playing, a script, the LOD
   /// refinement, uploads, calibration, an open, a recording, input settling).
   bool busy() const;
-  void advance_calibration();  // one slice of the quality calibration, applied when done
+  void start_tuning();    // a new tuning for what is shown (errors to status)
+  void advance_tuning();  // one slice of the playback tuning; (re)starts it when out of date
+  void choose_rung(double now_s);  // the rung the next playing frame draws
+  void measured_rung(double render_ms);  // the window's time for the rung it drew
   void advance_playback(double dt);
   void handle_input();
   void run_script();
@@ -313,17 +336,37 @@ class PlayerApp {
   double start_s_ = 0, last_frame_s_ = 0;
   std::unique_ptr<tspgl::FrameDriver> driver_;  ///< draws renderer's frames; reset with it
   std::unique_ptr<OpenJob> open_job_;
-  std::unique_ptr<tspgl::Calibrator> calibrator_;  ///< the quality slider's, while it runs
-  double calibrating_de_ = 0;                       ///< its target
-  std::uint64_t calibrating_tf_ = 0;                ///< the TF version it calibrates
-  double calibration_started_s_ = 0;
-  double calibration_s_ = -1;           ///< how long the last calibration took (−1: none)
-  bool quality_applied_ = false;        ///< the settings are a quality target's calibrated knobs
-  double pending_quality_ = 0;          ///< --quality, applied on the first frame
+  /// What a tuning was made for: a change of any re-tunes (the camera's direction does not).
+  struct TuneKey {
+    const void* file = nullptr;
+    std::string field;
+    std::uint64_t tf_version = 0;
+    tsp::Metric metric = tsp::Metric::approximate;
+    tspgl::RenderSettings settings;
+    int width = 0, height = 0;
+    bool operator==(const TuneKey&) const = default;
+  };
+  TuneKey tune_key() const;
+  std::unique_ptr<tspgl::PlaybackTuner> tuner_;  ///< probing the ladder, while it runs
+  TuneKey tuning_for_, tuned_for_;              ///< what the running / last tuning is for
+  std::vector<tspgl::TunedRung> tuned_;         ///< the last complete tuning's rungs
+  tspgl::RungChoice rung_;                      ///< the rung playing draws
+  std::vector<std::int64_t> rung_frames_;       ///< frames drawn per rung while playing
+  double time_ratio_ = 1;        ///< window render time / probe time, smoothed
+  double rung_changed_s_ = -1e9; ///< when the rung last changed
+  /// What the rung was chosen for: a change of any re-chooses at once.
+  struct RungFor {
+    double quality = 0, speed = 0;
+    bool keep_quality = true;
+    bool operator==(const RungFor&) const = default;
+  };
+  RungFor rung_for_;
+  double tuning_started_s_ = 0;
+  double tuning_s_ = -1;                ///< how long the last tuning took (−1: none)
   std::deque<double> shown_at_s_;       ///< when each newly shown step was drawn (last 2 s)
   int last_shown_step_ = -1;
   std::int64_t picture_fragments_ = 0;  ///< see picture_fragments()
-  int frames_while_calibrating_ = 0;    ///< window frames drawn while it ran
+  int frames_while_tuning_ = 0;         ///< window frames drawn while it ran
   std::unique_ptr<Recorder> recorder_;
   FieldShelf parked_;  ///< fields switched away from, kept with their renderers
   /// The programs every renderer of this window shares.

@@ -101,7 +101,6 @@ void PlayerApp::open_file(const std::string& path) {
   state.probes.clear();  // (in the old file's physical coordinates)
   probe_selected = -1;
   probes_changed();
-  state.quality = 0;
   quality_note.clear();
   history.clear();
   ready.assign(std::size_t(tree.time().steps()), -1.f);
@@ -267,15 +266,14 @@ void PlayerApp::write_stats(const std::string& path) const {
   j["tf_points"] = points;
   j["quality"] = quality_note;
   j["frames_drawn"] = frames_drawn_;
-  j["playback"] = {{"speed", state.speed},
-                   {"keep", state.keep_quality ? "quality" : "rate"},
-                   {"quality_applied", quality_applied_},
-                   {"steps_shown_per_s", steps_shown_per_s()}};
+  j["playback"] = playback_json();
   j["idle_waits"] = idle_waits_;
   j["cpu_seconds"] = tsp::cpu_seconds();
-  j["calibration"] = {{"running", calibrator_ != nullptr},
-                      {"seconds", calibration_s_},
-                      {"frames_while_calibrating", frames_while_calibrating_}};
+  j["tuning"] = {{"running", tuner_ != nullptr},
+                 {"pictures_done", tuner_ ? tuner_->pictures_done() : 0},
+                 {"pictures_total", tuner_ ? tuner_->pictures_total() : 0},
+                 {"seconds", tuning_s_},
+                 {"frames_while_tuning", frames_while_tuning_}};
   j["lod"] = {{"on", state.lod_on},
               {"target_fps", state.target_fps},
               {"refining", refining},

@@ -138,7 +138,6 @@ void PlayerApp::apply(const ScriptAction& a) {
       set_tf(tsp::transfer_function_from_arg(a.text, file->tree().value_range(), tf.size()), true);
       break;
     case Kind::tolerance:
-      quality_applied_ = false;
       set_tolerances({a.value, a.value2});
       break;
     case Kind::metric:
@@ -172,11 +171,9 @@ void PlayerApp::apply(const ScriptAction& a) {
       wait_until_s_ = clock_.seconds() + a.value;
       break;
     case Kind::setting:
-      quality_applied_ = false;  // the user's own knobs from now on
       set_setting(a.text, a.text2);
       break;
     case Kind::quality:
-      state.quality = float(a.value);
       apply_quality(a.value);
       break;
     case Kind::stats:
@@ -260,8 +257,8 @@ void PlayerApp::apply(const ScriptAction& a) {
 // Runs actions until one needs frames to pass: a screenshot (saved after this frame's render),
 // wait-frames or quit.
 void PlayerApp::run_script() {
-  // An open waits for its build, a quality target for its calibration.
-  if (!pending_shot_.empty() || open_job_ || calibrator_) return;
+  // An open waits for its build, a quality target for its playback tuning.
+  if (!pending_shot_.empty() || open_job_ || tuner_) return;
   if (wait_frames_ > 0) {
     --wait_frames_;
     return;
@@ -274,7 +271,7 @@ void PlayerApp::run_script() {
     if (a.kind == ScriptAction::Kind::screenshot || a.kind == ScriptAction::Kind::screenshot_ui ||
         a.kind == ScriptAction::Kind::wait_frames || a.kind == ScriptAction::Kind::wait_seconds)
       break;
-    if (open_job_ || calibrator_) break;  // the next actions wait for the build or calibration
+    if (open_job_ || tuner_) break;  // the next actions wait for the build or the tuning
   }
 }
 

@@ -48,11 +48,16 @@ tspgl::LodSpec PlayerApp::lod_spec(double now_s) {
     refining = false;
     return {};
   }
-  // Playing with calibrated knobs and "keep quality": the frame is the calibrated one at full
-  // resolution, never a time-only cut (steps show later when frames are slow).
-  if (state.playing && state.keep_quality && quality_applied_) {
+  // Playing at a quality target: the tuned rung's LOD level everywhere (or full resolution),
+  // never a time-only cut; before the tuning ends, full quality (steps shown late).
+  if (state.playing && state.quality > 0) {
     refining = false;
-    return {};
+    tspgl::LodSpec spec;
+    if (playing_rung() && tuned_[std::size_t(rung_.index)].rung.lod_level > 0) {
+      spec.mode = tspgl::LodMode::fixed;
+      spec.level = tuned_[std::size_t(rung_.index)].rung.lod_level;
+    }
+    return spec;
   }
   // Idle: nothing changed for a while, and for more than one frame (a slow frame alone is not).
   refining = now_s - last_change_s_ >= kIdleDelaySeconds && frames_since_change_ >= kIdleFrames;

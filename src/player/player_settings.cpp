@@ -1,10 +1,9 @@
 // The player's render settings and the commands that change them: tolerances, metric, any row
-// of the settings table, the quality target's calibrated knobs, the texture cache.
+// of the settings table, the texture cache.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 
-#include "jobs/calibration.h"
 #include "player/player_app.h"
 #include "render/settings_table.h"
 #include "tsp/core/error.h"
@@ -62,71 +61,6 @@ void PlayerApp::set_setting(const std::string& name, const std::string& text) {
   } else {
     state.settings = next;
   }
-}
-
-void PlayerApp::apply_quality(double de) {
-  tspgl::CalibrationRequest r;
-  r.tsp_path = options_.tsp_path;
-  r.field = field();  // as render names it: one calibration serves both
-  r.metric = state.metric;
-  r.camera = state.camera;
-  // The view's size as this frame lays it out (camera's is set when the volume is drawn: on the
-  // first frame it is still the default).
-  r.camera.width = std::max(1, layout.view.w);
-  r.camera.height = std::max(1, layout.view.h);
-  calibrator_.reset();
-  try {
-    calibrator_ = std::make_unique<tspgl::Calibrator>(*ctx, r, *file, tf);
-  } catch (const tsp::Error& e) {
-    status = std::string("quality: ") + e.what();
-    return;
-  }
-  calibrating_de_ = de;
-  calibrating_tf_ = tf.version();
-  calibration_started_s_ = clock_.seconds();
-  frames_while_calibrating_ = 0;
-  quality_note = "calibrating (once per tree, TF, metric and view; the window keeps playing)";
-  advance_calibration();  // a cached calibration applies at once
-}
-
-void PlayerApp::advance_calibration() {
-  if (!calibrator_) return;
-  if (calibrating_tf_ != tf.version()) {  // the TF changed: calibrate for the new one
-    apply_quality(calibrating_de_);
-    return;
-  }
-  try {
-    if (!calibrator_->advance(kCalibrationSliceMs)) {
-      ++frames_while_calibrating_;
-      return;
-    }
-  } catch (const tsp::Error& e) {
-    calibrator_.reset();
-    status = std::string("quality: ") + e.what();
-    quality_note.clear();
-    return;
-  }
-  const std::unique_ptr<tspgl::Calibrator> c = std::move(calibrator_);
-  calibration_s_ = clock_.seconds() - calibration_started_s_;
-  const auto best = tspgl::pick_configuration(c->calibration(), calibrating_de_);
-  if (!best) {  // say what would work, as render --quality does
-    double lowest = 1e300;
-    for (const tspgl::CalibrationPoint& p : c->calibration().points)
-      lowest = std::min(lowest, p.max_step_de);
-    char note[256];
-    std::snprintf(note, sizeof note,
-                  "nothing calibrated stays within dE %g (with a %g margin) on every calibration "
-                  "step; the closest reaches %.3g, so %.3g is the least target that works",
-                  calibrating_de_, tspgl::kQualityMargin, lowest,
-                  lowest / tspgl::kQualityMargin);
-    quality_note = note;
-    return;
-  }
-  tspgl::apply(best->knobs, state.settings);  // compositing, spacing, tolerances (by its rule), ...
-  quality_applied_ = true;
-  set_tolerances(state.settings.tol);
-  const std::string& cache = c->cache_file();
-  quality_note = tspgl::render_options(best->knobs, state.metric) + (cache.empty() ? "" : " (" + cache + ")");
 }
 
 void PlayerApp::set_cache(bool on, double budget_mb) {

@@ -4,6 +4,7 @@
 #pragma once
 #include <vector>
 
+#include "player/player.h"
 #include "render/render_settings.h"
 #include "tsp/clip/probe.h"
 #include "tsp/frame/camera.h"
@@ -24,9 +25,11 @@ struct PlayerState {
   tsp::CameraParams camera;                       ///< the view
   tspgl::RenderSettings settings;                 ///< the settings table's knobs
   tsp::Metric metric = tsp::Metric::approximate;  ///< the error metric frames read
-  float quality = 0;        ///< the quality slider (mean ΔE; 0: the raw knobs)
-  /// While playing with a quality target: true keeps the calibrated knobs at full resolution
-  /// (steps show later when frames are slow), false keeps the rate (the LOD cut coarsens).
+  /// While playing: the mean ΔE target against full quality the tuned rung keeps (0: none, the
+  /// LOD cut holds the frame rate).
+  float quality = float(kDefaultPlayingQuality);
+  /// While playing with a quality target, when no rung both fits the step period and keeps the
+  /// target: true keeps the target (steps show later), false the rate (a coarser rung).
   bool keep_quality = true;
   bool lod_on = true;       ///< the adaptive LOD cut (off: full resolution always)
   float target_fps = float(kDefaultTargetFps);  ///< held while interacting

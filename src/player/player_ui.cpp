@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <string>
 
 #include "player/controls.h"
 #include "player/player_app.h"
@@ -17,6 +18,22 @@
 namespace tspplayer {
 
 namespace {
+
+// What playback draws and which of rate and quality gives, for the transport line.
+std::string playback_text(const PlayerApp& app) {
+  if (app.state.quality <= 0) return "(LOD cut holds the rate)";
+  if (app.tuning()) return "(full quality while tuning)";
+  if (!app.playing_rung()) return "";
+  const tspgl::TunedRung& t = app.tuned_rungs()[std::size_t(app.rung_choice().index)];
+  char text[160];
+  if (!app.rung_choice().within_quality)
+    std::snprintf(text, sizeof text, "%s, dE %.2f: keeping rate, quality gives", t.rung.name, t.mean_de);
+  else if (!app.rung_choice().fits_rate)
+    std::snprintf(text, sizeof text, "%s, dE %.2f: keeping quality, steps late", t.rung.name, t.mean_de);
+  else
+    std::snprintf(text, sizeof text, "%s, dE %.2f", t.rung.name, t.mean_de);
+  return text;
+}
 
 constexpr float kHudPlotHeight = 60.f;
 constexpr float kLabelWidth = 130.f;  // room for a settings label, pixels
@@ -98,6 +115,8 @@ void timeline_section(PlayerApp& app) {
   if (app.state.playing) {  // the rate the window reaches: distinct steps drawn per second
     ImGui::SameLine();
     ImGui::Text("%.1f shown/s", app.steps_shown_per_s());
+    ImGui::SameLine();
+    ImGui::TextUnformatted(playback_text(app).c_str());
   }
   int step = app.state.step;
   ImGui::SetNextItemWidth(-1);
@@ -256,23 +275,24 @@ void settings_section(PlayerApp& app) {
     setting_widgets(app, tspgl::SettingGroup::diagnostics);
     ImGui::TreePop();
   }
-  // The quality target sets all of the knobs above from a calibration (made once, cached).
-  ImGui::SliderFloat("quality (mean dE)", &app.state.quality, 0.f, 10.f,
-                     app.state.quality > 0 ? "%.2f" : "off");
-  if (ImGui::IsItemDeactivatedAfterEdit() && app.state.quality > 0) {
+  // While playing, the quality target picks the rung of the tuned ladder (the knobs above made
+  // cheaper: spacing, render scale, LOD level) that fits the speed within the target.
+  float quality = app.state.quality;
+  ImGui::SliderFloat("playing quality (mean dE)", &quality, 0.f, 10.f, quality > 0 ? "%.2f" : "off");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("while playing: mean dE against the full-quality picture (paused: always "
+                      "full quality); off: the LOD cut holds the frame rate");
+  if (ImGui::IsItemDeactivatedAfterEdit()) {
     ScriptAction a = command_of(ScriptAction::Kind::quality);
-    a.value = app.state.quality;
+    a.value = quality;
     app.command(a);
   }
-  if (const tspgl::Calibrator* c = app.calibrating()) {  // runs a slice of each frame
-    const int total = std::max(1, c->probes_total());
+  if (const tspgl::PlaybackTuner* t = app.tuning()) {  // runs a slice of each frame
+    const int total = std::max(1, t->pictures_total());
     char text[64];
-    std::snprintf(text, sizeof text, "calibrating %d / %d", c->probes_done(), total);
-    ImGui::ProgressBar(float(c->probes_done()) / float(total), ImVec2(-1, 0), text);
+    std::snprintf(text, sizeof text, "tuning playback %d / %d", t->pictures_done(), total);
+    ImGui::ProgressBar(float(t->pictures_done()) / float(total), ImVec2(-1, 0), text);
   }
-  if (!app.quality_note.empty()) ImGui::TextWrapped("quality: %s", app.quality_note.c_str());
-  // While playing with calibrated knobs: which gives when frames are slower than the speed
-  // (shown with a quality target only: without one playback keeps the rate).
   if (app.state.quality > 0) {
     ImGui::TextUnformatted("while playing, keep:");
     ImGui::SameLine();

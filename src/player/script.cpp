@@ -251,7 +251,8 @@ void validate(const ScriptAction& a) {
       if (!(a.value2 > -90 && a.value2 < 90)) fail("elevation must be in (-90, 90) degrees");
       break;
     case Kind::quality:
-      if (!(a.value > 0) || a.value > kMaxQuality) fail("quality must be a mean dE in (0, 50]");
+      if (!(a.value >= 0) || a.value > kMaxQuality)
+        fail("quality must be a mean dE in [0, 50] (0: off)");
       break;
     case Kind::zoom:
       if (!(a.value > 0) || !std::isfinite(a.value)) fail("zoom must be positive and finite");

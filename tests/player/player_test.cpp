@@ -3,6 +3,8 @@
 // same view and size), a TF edit changes the picture; bad scripts and steps are clear errors.
 #include <gtest/gtest.h>
 
+#include "jobs/playback_tuner.h"
+
 #include <cstdlib>
 
 #include <filesystem>
@@ -724,40 +726,65 @@ TEST(Player, IdleWindowSleepsAndAKeyWakesIt) {
       << tsptest::read_file(out);
 }
 
-// Playing with a quality target keeps the calibrated knobs at full resolution (by default,
-// "keep quality"): a frame shown while playing — at a frame-rate target no software renderer
-// reaches, which makes the time-only LOD cut coarse — is within the target of the full-quality
-// picture of its step; with "playback rate" the LOD cut takes over again.
-TEST(Player, PlayingWithAQualityTargetShowsCalibratedFramesNotPlaceholders) {
+// Playing at a quality target draws the tuned rung that fits the step period within the target
+// — never the time-only LOD cut, which a 240 fps target makes coarse: a frame shown while
+// playing is within the target of `render`'s full-quality picture of its step. When no rung
+// fits the period (each frame held 100 ms, at 24 steps/s), "keep quality" plays the fastest rung
+// within the target and "keep rate" the fastest rung of all; quality 0 brings the LOD cut back.
+TEST(Player, PlayingAtAQualityTargetDrawsTheTunedRungWithinTheTarget) {
   if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
   const fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
-  ::setenv("TSPPLAY_CACHE_DIR", (dir / "cache").string().c_str(), 1);  // the child inherits it
-  auto run = [&](const std::string& playback, const std::string& tag) {
+  auto run = [&](const std::string& head, const std::string& tag, const std::string& extra) {
     const fs::path script = write_script(
-        "target-fps 240\nquality 2\nplayback " + playback + "\nplay\nwait-seconds 1\n"
-        "screenshot " + (dir / (tag + ".png")).string() + "\nstats " +
-        (dir / (tag + ".json")).string() + "\nquit\n");
-    auto r = run_tspplay("play " + q(tsp) + " --size " + kSize + " --speed 24 --script " +
-                         q(script));
+        "target-fps 240\n" + head + "\nplay\nwait-seconds 1\nscreenshot " +
+        (dir / (tag + ".png")).string() + "\nstats " + (dir / (tag + ".json")).string() +
+        "\nquit\n");
+    auto r = run_tspplay("play " + q(tsp) + " --size " + kSize + " --speed 24 " + extra +
+                         " --script " + q(script));
     EXPECT_EQ(r.exit_code, 0) << r.err;
     return r.out;
   };
-  const std::string out = run("quality", "q");
+  const std::string out = run("quality 2\nplayback quality", "q", "");
   const nlohmann::json j = read_json(dir / "q.json");
-  EXPECT_EQ(j["playback"]["keep"], "quality");
-  EXPECT_TRUE(j["playback"]["quality_applied"].get<bool>());
-  EXPECT_EQ(j["lod"]["cut_size"].get<int>(), 0) << "no time-only cut while keeping quality";
+  const nlohmann::json& p = j["playback"];
+  EXPECT_EQ(p["keep"], "quality");
+  ASSERT_TRUE(p["tuned"].get<bool>()) << p;
+  ASSERT_TRUE(p.contains("rung")) << p;
+  EXPECT_TRUE(p["rung"]["within_quality"].get<bool>()) << p;
+  EXPECT_LE(p["rung"]["predicted_max_step_de"].get<double>(), 0.8 * 2) << p;
+  EXPECT_EQ(p["ladder"].size(), tspgl::playback_rungs().size());
+  EXPECT_EQ(p["ladder"][0]["mean_de"].get<double>(), 0) << "full quality against itself";
+  EXPECT_GT(p["steps_shown_per_s"].get<double>(), 0);
   // The step the screenshot shows, from "saved PATH (step N)".
   const std::size_t at = out.find("q.png (step ");
   ASSERT_NE(at, std::string::npos) << out;
   const int shown = std::stoi(out.substr(at + std::string("q.png (step ").size()));
   EXPECT_LT(tsp::diff_images(tsp::read_png((dir / "q.png").string()), render_step(tsp, shown)).mean,
             2.0);
-  run("rate", "r");
-  const nlohmann::json jr = read_json(dir / "r.json");
-  EXPECT_EQ(jr["playback"]["keep"], "rate");
-  EXPECT_GT(jr["lod"]["cut_size"].get<int>(), 0) << "keeping the rate: the LOD cut is back";
-  ::unsetenv("TSPPLAY_CACHE_DIR");  // the other tests of this process keep their own cache
+
+  // Nothing fits 41.7 ms when every frame takes 100 ms more.
+  run("quality 2\nplayback quality", "slow_q", "--frame-delay-ms 100");
+  const nlohmann::json sq = read_json(dir / "slow_q.json")["playback"];
+  ASSERT_TRUE(sq.contains("rung")) << sq;
+  EXPECT_FALSE(sq["rung"]["fits_rate"].get<bool>()) << sq;
+  EXPECT_TRUE(sq["rung"]["within_quality"].get<bool>()) << sq;
+  run("quality 0.01\nplayback rate", "slow_r", "--frame-delay-ms 100");
+  const nlohmann::json sr = read_json(dir / "slow_r.json")["playback"];
+  ASSERT_TRUE(sr.contains("rung")) << sr;
+  EXPECT_FALSE(sr["rung"]["fits_rate"].get<bool>()) << sr;
+  double fastest = 1e300;
+  std::string fastest_name;
+  for (const auto& r : sr["ladder"])
+    if (r["probe_ms"].get<double>() < fastest) {
+      fastest = r["probe_ms"].get<double>();
+      fastest_name = r["name"];
+    }
+  EXPECT_EQ(sr["rung"]["name"], fastest_name) << "keeping the rate: the fastest rung" << sr;
+
+  run("quality 0", "off", "");
+  const nlohmann::json off = read_json(dir / "off.json");
+  EXPECT_FALSE(off["playback"].contains("rung"));
+  EXPECT_GT(off["lod"]["cut_size"].get<int>(), 0) << "no target: the LOD cut holds the rate";
 }
 
 // A step shown while playing is complete, however small the upload budget (which spreads uploads
@@ -765,7 +792,8 @@ TEST(Player, PlayingWithAQualityTargetShowsCalibratedFramesNotPlaceholders) {
 TEST(Player, StepsShownWhilePlayingHaveNoHolesUnderAnUploadBudget) {
   if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
   const fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
-  const fs::path script = write_script("lod off\ncache off\nplay\nwait-seconds 0.5\nstats " +
+  // (No quality target: every frame at full quality, the picture `render` draws.)
+  const fs::path script = write_script("lod off\nquality 0\ncache off\nplay\nwait-seconds 0.5\nstats " +
                                        (dir / "p.json").string() + "\nscreenshot " +
                                        (dir / "p.png").string() + "\nquit\n");
   auto r = run_tspplay("play " + q(tsp) + " --size " + kSize +
@@ -782,10 +810,11 @@ TEST(Player, StepsShownWhilePlayingHaveNoHolesUnderAnUploadBudget) {
 
 }  // namespace
 
-// The quality slider (script `quality`) calibrates on an offscreen canvas of the window's own
-// context, a slice of each frame: the window draws while it calibrates, afterwards it keeps drawing, a real Tab hides the panels (it used to exit with
-// "the 16-bit render target ... is not supported": the calibration left another context current)
-// and the picture is `render`'s with the knobs the calibration picked.
+// The quality slider (script `quality`) tunes playback on an offscreen canvas of the window's own
+// context, a slice of each frame: the window draws while it tunes, afterwards it keeps drawing, a
+// real Tab hides the panels (it used to exit with "the 16-bit render target ... is not
+// supported" when a calibration left another context current) and the paused picture is
+// `render`'s full-quality one.
 TEST(Player, QualitySliderKeepsTheWindowDrawingAndTabWorking) {
   if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
   ASSERT_EQ(std::system("command -v xdotool > /dev/null"), 0)
@@ -796,9 +825,9 @@ TEST(Player, QualitySliderKeepsTheWindowDrawingAndTabWorking) {
       (dir / "q.json").string() + "\nscreenshot " +
       (dir / "q.png").string() + "\nwait-seconds 3\nstats " + (dir / "f.json").string() +
       "\nscreenshot " + (dir / "f.png").string() + "\nquit\n");
-  // Tab goes in once the first screenshot is written (the calibration is over by then).
+  // Tab goes in once the first screenshot is written (the tuning is over by then).
   const std::string cmd =
-      "TSPPLAY_CACHE_DIR=" + q(dir / "cache") + " " + q(tsptest::tspplay_bin()) + " play " +
+      q(tsptest::tspplay_bin()) + " play " +
       q(tsp) + " --size " + kSize + " --trace --script " + q(script) + " > " + q(out) + " 2>&1 &\n" +
       "p=$!\n"
       "w=$(xdotool search --sync --name " + q("tspplay - " + tsp.string()) + " | head -1)\n"
@@ -808,26 +837,20 @@ TEST(Player, QualitySliderKeepsTheWindowDrawingAndTabWorking) {
   ASSERT_EQ(run_bash(dir / "quality.sh", cmd), 0) << tsptest::read_file(out);
   const std::string log = tsptest::read_file(out);
   EXPECT_NE(log.find("trace: panels off"), std::string::npos) << log;
-  const nlohmann::json qj = read_json(dir / "q.json"), fj = read_json(dir / "f.json");
-  const std::string note = qj["quality"];
-  ASSERT_EQ(note.rfind("--compositing", 0), 0u) << note;
-  // The action after `quality` waited for the calibration to end.
-  EXPECT_FALSE(read_json(dir / "q0.json")["calibration"]["running"].get<bool>());
-  // The calibration ran a slice of each frame: the window kept drawing meanwhile.
-  EXPECT_FALSE(qj["calibration"]["running"].get<bool>());
-  EXPECT_GT(qj["calibration"]["frames_while_calibrating"].get<int>(), 10);
+  const nlohmann::json q0 = read_json(dir / "q0.json"), qj = read_json(dir / "q.json"),
+                       fj = read_json(dir / "f.json");
+  // The action after `quality` waited for the tuning to end, which ran a slice of each frame:
+  // the window kept drawing meanwhile.
+  EXPECT_FALSE(q0["tuning"]["running"].get<bool>());
+  EXPECT_TRUE(q0["playback"]["tuned"].get<bool>());
+  EXPECT_GE(q0["tuning"]["frames_while_tuning"].get<int>(), 1) << q0["tuning"];
+  EXPECT_EQ(q0["playback"]["quality"].get<double>(), 2);
+  EXPECT_GT(fj["frames_drawn"].get<int>(), qj["frames_drawn"].get<int>());
   EXPECT_FALSE(fj["docked"].get<bool>());
-  // After Tab the volume fills the window and still shows the data.
+  // After Tab the volume fills the window and shows the data as `render` draws it.
   const tsp::Image full = tsp::read_png((dir / "f.png").string());
   ASSERT_EQ(full.width, 128);
   ASSERT_EQ(full.height, 96);
   EXPECT_GT(covered(full), 0.02);
-  // ... as `render` draws it with the picked knobs.
-  const std::string options = note.substr(0, note.find(" ("));
-  const fs::path frames = dir / "frames";
-  auto rr = run_tspplay("render " + q(tsp) + " --steps 1 --size " + std::string(kSize) + " " + options + " -o " +
-                        q(frames));
-  ASSERT_EQ(rr.exit_code, 0) << rr.err;
-  EXPECT_LT(tsp::diff_images(full, tsp::read_png((frames / "step_0001.png").string())).mean,
-            kSameFrameDeltaE);
+  EXPECT_LT(tsp::diff_images(full, render_step(tsp, 1)).mean, kSameFrameDeltaE);
 }

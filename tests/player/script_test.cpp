@@ -156,7 +156,7 @@ TEST(PlayerScript, ErrorsNameTheLineAndWhatWasExpected) {
             std::string::npos);
   EXPECT_NE(error_of("span-step last").find("expected first, middle or mean"), std::string::npos);
   EXPECT_NE(error_of("spacing").find("'spacing' takes 1 argument(s)"), std::string::npos);
-  EXPECT_NE(error_of("quality 0").find("quality must be"), std::string::npos);
+  EXPECT_NE(error_of("quality -1").find("quality must be a mean dE in [0, 50]"), std::string::npos);
   EXPECT_NE(error_of("target-fps 0").find("target-fps must be 1 to"), std::string::npos);
   EXPECT_NE(error_of("lod maybe").find("expected on or off"), std::string::npos);
   EXPECT_NE(error_of("wait-seconds -1").find("wait-seconds must be"), std::string::npos);

@@ -1,0 +1,177 @@
+// Playback (docs/player.md, "Playing at a quality target"): steps advance at the speed; with a
+// quality target each playing frame draws the rung of the tuned ladder (jobs/playback_tuner.h)
+// that fits the step period within the target — the ladder probed a slice of each frame against
+// the full-quality picture at this view's size, re-tuned when the file, field, TF, metric,
+// settings or view size change; the window's measured time per rung corrects the probe's.
+#include <algorithm>
+#include <cstdio>
+
+#include "player/player_app.h"
+#include "tsp/core/error.h"
+
+namespace tspplayer {
+
+namespace {
+// The ratio of window to probe time is kept within these bounds (one odd frame cannot swing it).
+constexpr double kMinTimeRatio = 0.25, kMaxTimeRatio = 8;
+constexpr double kMaxFrameDt = 0.25;  // a stalled frame does not skip many steps at once
+}  // namespace
+
+void PlayerApp::advance_playback(double dt) {
+  if (!state.playing) {
+    play_accum_ = 0;
+    return;
+  }
+  play_accum_ += std::min(dt, kMaxFrameDt) * state.speed;
+  // Every step: at most one step a frame, however slow the frames (no step is skipped).
+  if (state.every_step) play_accum_ = std::min(play_accum_, 1.0);
+  while (play_accum_ >= 1) {
+    play_accum_ -= 1;
+    if (state.step + 1 < steps()) {
+      ++state.step;
+    } else if (state.loop) {
+      state.step = 0;
+    } else {
+      state.playing = false;
+      play_accum_ = 0;
+      break;
+    }
+  }
+}
+
+double PlayerApp::steps_shown_per_s() const {
+  const double span = std::min(kShownWindowSeconds, clock_.seconds() - start_s_);
+  return span > 0 ? double(shown_at_s_.size()) / span : 0.0;
+}
+
+PlayerApp::TuneKey PlayerApp::tune_key() const {
+  TuneKey k;
+  k.file = file.get();
+  k.field = field();
+  k.tf_version = tf.version();
+  k.metric = state.metric;
+  k.settings = state.settings;
+  k.width = std::max(1, layout.view.w);
+  k.height = std::max(1, layout.view.h);
+  return k;
+}
+
+void PlayerApp::apply_quality(double de) {
+  state.quality = float(de);
+  if (de > 0 && !tuner_ && !(tuned_for_ == tune_key() && !tuned_.empty())) start_tuning();
+  advance_tuning();  // (a slice now: a script's next action waits for the rest)
+}
+
+void PlayerApp::start_tuning() {
+  const TuneKey key = tune_key();
+  tsp::CameraParams view = state.camera;
+  view.width = key.width;
+  view.height = key.height;
+  tuner_.reset();
+  try {
+    tuner_ = std::make_unique<tspgl::PlaybackTuner>(*ctx, *file, tf, frame_metric(), view,
+                                                    state.settings);
+  } catch (const tsp::Error& e) {
+    status = std::string("playback tuning: ") + e.what();
+    return;
+  }
+  tuning_for_ = key;
+  tuning_started_s_ = clock_.seconds();
+  frames_while_tuning_ = 0;
+}
+
+void PlayerApp::advance_tuning() {
+  if (state.quality <= 0) {
+    tuner_.reset();
+    return;
+  }
+  const TuneKey key = tune_key();
+  if (tuner_ && !(tuning_for_ == key)) start_tuning();  // out of date: again, for what is shown
+  // Tuned when playing (a still window never pays for it) or when the target is set.
+  if (!tuner_ && state.playing && (tuned_.empty() || !(tuned_for_ == key))) start_tuning();
+  if (!tuner_) return;
+  try {
+    if (!tuner_->advance(kCalibrationSliceMs)) {
+      ++frames_while_tuning_;
+      return;
+    }
+  } catch (const tsp::Error& e) {
+    tuner_.reset();
+    status = std::string("playback tuning: ") + e.what();
+    return;
+  }
+  tuned_ = tuner_->tuned();
+  tuned_for_ = tuning_for_;
+  tuner_.reset();
+  tuning_s_ = clock_.seconds() - tuning_started_s_;
+  rung_frames_.assign(tuned_.size(), 0);
+  rung_ = {};
+  rung_for_ = {};
+}
+
+void PlayerApp::choose_rung(double now_s) {
+  if (!playing_rung()) return;
+  const double period_ms = 1000.0 / std::max(state.speed, 1e-3);
+  const tspgl::RungChoice next = tspgl::choose_rung(tuned_, period_ms, time_ratio_, overhead_ms_,
+                                                    state.quality, state.keep_quality);
+  // A new target, speed or rule applies at once; otherwise a cheaper rung at once (the rate or
+  // the quality is being missed) and a costlier one with headroom, not straight after a change.
+  const RungFor asked{state.quality, state.speed, state.keep_quality};
+  const bool costlier = tuned_[std::size_t(next.index)].ms > tuned_[std::size_t(rung_.index)].ms;
+  if (!(asked == rung_for_) || !costlier ||
+      (next.predicted_ms <= kRungHeadroom * period_ms && now_s - rung_changed_s_ >= kRungHoldSeconds)) {
+    if (next.index != rung_.index) rung_changed_s_ = now_s;
+    rung_ = next;
+    rung_for_ = asked;
+    return;
+  }
+  // The same rung: its prediction with the current ratio.
+  const tspgl::TunedRung& t = tuned_[std::size_t(rung_.index)];
+  rung_.predicted_ms = t.ms * time_ratio_ + overhead_ms_;
+  rung_.fits_rate = rung_.predicted_ms <= period_ms;
+  rung_.within_quality = t.max_step_de <= tspgl::kPlaybackQualityMargin * state.quality;
+}
+
+void PlayerApp::measured_rung(double render_ms) {
+  if (!playing_rung() || rung_.index >= int(tuned_.size())) return;
+  ++rung_frames_[std::size_t(rung_.index)];
+  const double probe_ms = tuned_[std::size_t(rung_.index)].ms;
+  if (probe_ms <= 0 || render_ms <= 0) return;
+  const double ratio = std::clamp(render_ms / probe_ms, kMinTimeRatio, kMaxTimeRatio);
+  time_ratio_ += kTimeRatioSmoothing * (ratio - time_ratio_);
+}
+
+nlohmann::json PlayerApp::playback_json() const {
+  nlohmann::json j = {{"speed", state.speed},
+                      {"quality", state.quality},
+                      {"keep", state.keep_quality ? "quality" : "rate"},
+                      {"playing", state.playing},
+                      {"steps_shown_per_s", steps_shown_per_s()},
+                      {"tuned", !tuned_.empty()},
+                      {"time_ratio", time_ratio_}};
+  if (playing_rung()) {
+    const tspgl::TunedRung& t = tuned_[std::size_t(rung_.index)];
+    const tspgl::RenderSettings s = tspgl::rung_settings(state.settings, t.rung);
+    j["rung"] = {{"name", t.rung.name},
+                 {"spacing", s.spacing},
+                 {"render_scale", s.render_scale},
+                 {"lod_level", t.rung.lod_level},
+                 {"predicted_de", t.mean_de},
+                 {"predicted_max_step_de", t.max_step_de},
+                 {"predicted_ms", rung_.predicted_ms},
+                 {"period_ms", 1000.0 / std::max(state.speed, 1e-3)},
+                 {"fits_rate", rung_.fits_rate},
+                 {"within_quality", rung_.within_quality}};
+  }
+  nlohmann::json ladder = nlohmann::json::array();
+  for (std::size_t i = 0; i < tuned_.size(); ++i)
+    ladder.push_back({{"name", tuned_[i].rung.name},
+                      {"mean_de", tuned_[i].mean_de},
+                      {"max_step_de", tuned_[i].max_step_de},
+                      {"probe_ms", tuned_[i].ms},
+                      {"frames", i < rung_frames_.size() ? rung_frames_[i] : 0}});
+  j["ladder"] = ladder;
+  return j;
+}
+
+}  // namespace tspplayer
