@@ -63,7 +63,7 @@ RungChoice choose_rung(const std::vector<TunedRung>& tuned, double period_ms, do
   const auto predicted = [&](const TunedRung& t) { return t.ms * time_ratio + overhead_ms; };
   const auto fits = [&](const TunedRung& t) { return predicted(t) <= period_ms; };
   const auto within = [&](const TunedRung& t) {
-    return t.max_step_de <= kPlaybackQualityMargin * target_de;
+    return t.mean_de <= kPlaybackQualityMargin * target_de;
   };
   // Best of those passing `keep`: least ΔE (then fastest), or fastest.
   const auto best = [&](auto keep, bool by_quality) {

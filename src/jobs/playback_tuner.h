@@ -51,13 +51,13 @@ struct RungChoice {
   double predicted_ms = 0;     ///< its frame time as the window would draw it
 };
 
-/// Share of the quality target a rung's worst probe step may use (the steps played differ from
-/// the probed ones).
+/// Share of the quality target a rung's mean ΔE over the probe steps may use (the steps played
+/// differ from the probed ones).
 inline constexpr double kPlaybackQualityMargin = 0.8;
 
 /// The rung to play from tuned (non-empty, tuned[0] full quality): a rung fits when ms ×
-/// time_ratio + overhead_ms ≤ period_ms, and is within quality when its max_step_de ≤
-/// kPlaybackQualityMargin · target_de. Of the rungs that do both, the one with the least ΔE
+/// time_ratio + overhead_ms ≤ period_ms, and is within quality when its mean_de ≤
+/// kPlaybackQualityMargin · target_de (the target is a mean over the frames shown). Of the rungs that do both, the one with the least ΔE
 /// (then the fastest); else keep_quality: the fastest within quality (steps shown late), or
 /// keep rate: of the rungs that fit the least ΔE, else the fastest. Never throws.
 RungChoice choose_rung(const std::vector<TunedRung>& tuned, double period_ms, double time_ratio,

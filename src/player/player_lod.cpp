@@ -8,6 +8,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
 #include <glm/glm.hpp>
 
 namespace tspplayer {
@@ -17,6 +19,11 @@ namespace {
 constexpr double kOverheadSmoothing = 0.2;
 // The render share of the frame may not drop below this many milliseconds.
 constexpr double kMinRenderMs = 2;
+// The live colour legend: its height as a share of the view's (at least kMinLegendPx), its bar's
+// width, its distance from the view's right edge (room for the tick labels), and its ticks.
+constexpr float kLegendHeightShare = 0.4f, kMinLegendPx = 60, kLegendWidthPx = 14,
+                kLegendRightPx = 80;
+constexpr int kLegendTicks = 5;
 // Colours of the cut overlay by LOD level (level 0 first), RGBA.
 constexpr ImU32 kLevelColours[] = {IM_COL32(80, 220, 80, 200), IM_COL32(240, 220, 60, 200),
                                    IM_COL32(250, 140, 40, 200), IM_COL32(240, 60, 60, 200),
@@ -137,6 +144,33 @@ ImDrawList* view_draw_list(const WindowRect& v) {
   return dl;
 }
 
+// The colour legend at the view's right edge, as render --annotate draws it: the TF's colours
+// (opaque), low at the bottom, kLegendTicks value ticks, the field's name above.
+void draw_legend(ImDrawList* dl, const WindowRect& v, const tsp::TransferFunction& tf,
+                 const std::string& field) {
+  const float h = std::max(kMinLegendPx, float(v.h) * kLegendHeightShare);
+  const float x0 = float(v.x + v.w) - kLegendRightPx, y0 = float(v.y) + (float(v.h) - h) * 0.5f;
+  const tsp::ValueRange dom = tf.domain();
+  for (int r = 0; r < int(h); ++r) {
+    const double value = dom.hi - (dom.hi - dom.lo) * r / std::max(1.0, double(h) - 1);
+    const tsp::Rgba c = tf.lookup(value);
+    const auto u8 = [](float x) { return int(std::clamp(x, 0.f, 1.f) * 255 + 0.5f); };
+    dl->AddRectFilled(ImVec2(x0, y0 + float(r)), ImVec2(x0 + kLegendWidthPx, y0 + float(r) + 1),
+                      IM_COL32(u8(c.r), u8(c.g), u8(c.b), 255));
+  }
+  const ImU32 text = IM_COL32(235, 235, 235, 255);
+  dl->AddRect(ImVec2(x0 - 1, y0 - 1), ImVec2(x0 + kLegendWidthPx + 1, y0 + h + 1), text);
+  for (int k = 0; k < kLegendTicks; ++k) {
+    const float y = y0 + (h - 1) * float(k) / float(kLegendTicks - 1);
+    const double value = dom.hi - (dom.hi - dom.lo) * k / (kLegendTicks - 1);
+    char tick[32];
+    std::snprintf(tick, sizeof tick, "%.4g", value);
+    dl->AddLine(ImVec2(x0 + kLegendWidthPx, y), ImVec2(x0 + kLegendWidthPx + 4, y), text);
+    dl->AddText(ImVec2(x0 + kLegendWidthPx + 6, y - 7), text, tick);
+  }
+  if (!field.empty()) dl->AddText(ImVec2(x0 - 4, y0 - 20), text, field.c_str());
+}
+
 }  // namespace
 
 void PlayerApp::draw_annotations(const tsp::Camera& cam) {
@@ -179,6 +213,7 @@ void PlayerApp::draw_annotations(const tsp::Camera& cam) {
     std::snprintf(label, sizeof label, "step %d   t = %g", state.step, times[std::size_t(state.step)]);
   dl->AddText(ImVec2(float(v.x) + float(v.w) * 0.5f - 40, float(v.y) + 8),
               IM_COL32(235, 235, 235, 255), label);
+  draw_legend(dl, v, tf, field());
   dl->PopClipRect();
 }
 

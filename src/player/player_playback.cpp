@@ -129,7 +129,7 @@ void PlayerApp::choose_rung(double now_s) {
   const tspgl::TunedRung& t = tuned_[std::size_t(rung_.index)];
   rung_.predicted_ms = t.ms * time_ratio_ + overhead_ms_;
   rung_.fits_rate = rung_.predicted_ms <= period_ms;
-  rung_.within_quality = t.max_step_de <= tspgl::kPlaybackQualityMargin * state.quality;
+  rung_.within_quality = t.mean_de <= tspgl::kPlaybackQualityMargin * state.quality;
 }
 
 void PlayerApp::measured_rung(double render_ms) {
