@@ -33,6 +33,15 @@ struct Rung {
 /// The ladder, full quality first, then roughly by falling cost. Never throws.
 const std::vector<Rung>& playback_rungs();
 
+/// The rung played before the first tuning ends (spacing ×2, scale 0.5: mean ΔE 0.14–0.37 on
+/// the shock, the turbulence and the plume at 1280×800, an eighth of full quality's cost).
+inline constexpr std::size_t kProvisionalRung = 5;
+
+/// The most pixels a tuning's probe pictures have: a larger view is probed at its aspect, scaled
+/// down to this (ΔE and the cost ratios between rungs change little; the window's measured time
+/// corrects the probe's), so a tuning at 1280×800 costs a quarter.
+inline constexpr int kMaxTunePixels = 640 * 400;
+
 /// The user's settings s as rung r draws them. Never throws.
 RenderSettings rung_settings(const RenderSettings& s, const Rung& r);
 

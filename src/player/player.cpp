@@ -380,7 +380,7 @@ void PlayerApp::render_volume() {
   const double now = clock_.seconds();
   choose_rung(now);
   const bool rung = playing_rung();  // playing at a quality target: the tuned rung's frame
-  if (rung) fs = tspgl::rung_settings(fs, tuned_[std::size_t(rung_.index)].rung);
+  if (const tspgl::Rung* r = rung_drawn()) fs = tspgl::rung_settings(fs, *r);
   tspgl::FrameDriver& d = driver();
   d.set_lod(lod_spec(now));
   tspgl::FrameRequest request;

@@ -163,6 +163,9 @@ class PlayerApp {
   const std::vector<tspgl::TunedRung>& tuned_rungs() const { return tuned_; }
   /// True when frames are drawn with a tuned rung: playing with a quality target, tuned.
   bool playing_rung() const { return state.playing && state.quality > 0 && !tuned_.empty(); }
+  /// The rung a playing frame draws with a quality target: the chosen one, or before the first
+  /// tuning ends tspgl::kProvisionalRung; null when not playing or without a target.
+  const tspgl::Rung* rung_drawn() const;
   /// What playback does, as JSON: speed, target, the rung played and why, the tuned ladder.
   nlohmann::json playback_json() const;
   /// Writes the HUD's statistics as JSON to path (atomically). Throws tsp::IoError.

@@ -56,13 +56,13 @@ tspgl::LodSpec PlayerApp::lod_spec(double now_s) {
     return {};
   }
   // Playing at a quality target: the tuned rung's LOD level everywhere (or full resolution),
-  // never a time-only cut; before the tuning ends, full quality (steps shown late).
+  // never a time-only cut (before the first tuning ends, the provisional rung).
   if (state.playing && state.quality > 0) {
     refining = false;
     tspgl::LodSpec spec;
-    if (playing_rung() && tuned_[std::size_t(rung_.index)].rung.lod_level > 0) {
+    if (const tspgl::Rung* r = rung_drawn(); r && r->lod_level > 0) {
       spec.mode = tspgl::LodMode::fixed;
-      spec.level = tuned_[std::size_t(rung_.index)].rung.lod_level;
+      spec.level = r->lod_level;
     }
     return spec;
   }

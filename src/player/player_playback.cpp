@@ -4,6 +4,7 @@
 // the full-quality picture at this view's size, re-tuned when the file, field, TF, metric,
 // settings or view size change; the window's measured time per rung corrects the probe's.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "player/player_app.h"
@@ -56,6 +57,12 @@ PlayerApp::TuneKey PlayerApp::tune_key() const {
   return k;
 }
 
+const tspgl::Rung* PlayerApp::rung_drawn() const {
+  if (!state.playing || state.quality <= 0) return nullptr;
+  if (tuned_.empty()) return &tspgl::playback_rungs()[tspgl::kProvisionalRung];
+  return &tuned_[std::size_t(rung_.index)].rung;
+}
+
 void PlayerApp::apply_quality(double de) {
   state.quality = float(de);
   if (de > 0 && !tuner_ && !(tuned_for_ == tune_key() && !tuned_.empty())) start_tuning();
@@ -64,9 +71,12 @@ void PlayerApp::apply_quality(double de) {
 
 void PlayerApp::start_tuning() {
   const TuneKey key = tune_key();
+  // The view's aspect at no more than kMaxTunePixels.
+  const double shrink =
+      std::min(1.0, std::sqrt(double(tspgl::kMaxTunePixels) / (double(key.width) * key.height)));
   tsp::CameraParams view = state.camera;
-  view.width = key.width;
-  view.height = key.height;
+  view.width = std::max(1, int(std::lround(key.width * shrink)));
+  view.height = std::max(1, int(std::lround(key.height * shrink)));
   tuner_.reset();
   try {
     tuner_ = std::make_unique<tspgl::PlaybackTuner>(*ctx, *file, tf, frame_metric(), view,

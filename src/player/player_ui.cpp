@@ -22,7 +22,7 @@ namespace {
 // What playback draws and which of rate and quality gives, for the transport line.
 std::string playback_text(const PlayerApp& app) {
   if (app.state.quality <= 0) return "(LOD cut holds the rate)";
-  if (app.tuning()) return "(full quality while tuning)";
+  if (app.tuning() && app.tuned_rungs().empty()) return "(spacing x2, scale 0.5 while tuning)";
   if (!app.playing_rung()) return "";
   const tspgl::TunedRung& t = app.tuned_rungs()[std::size_t(app.rung_choice().index)];
   char text[160];

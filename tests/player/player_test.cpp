@@ -151,7 +151,8 @@ TEST(Player, QuickKeyTapsAreNotLostWhenFramesAreSlow) {
 
 // Real X mouse events (xdotool) at two frames a second: press on the TF editor's last handle
 // (top right of the canvas, opacity 1) and drag it at once down to mid-height and left (press
-// and first moves fall into one frame), release: the point moves with the mouse.
+// and first moves fall into one frame), release: the point moves with the mouse. (800 tall: the
+// canvas wholly inside the window below the Settings panel's rows.)
 TEST(Player, DraggingATransferFunctionHandleMovesIt) {
   if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
   ASSERT_EQ(std::system("command -v xdotool > /dev/null"), 0)
@@ -163,7 +164,7 @@ TEST(Player, DraggingATransferFunctionHandleMovesIt) {
                     << ", 0, 0, 1, 0], [" << r.hi << ", 1, 0, 0, 1]]}";
   fs::path script = write_script("wait-seconds 7\nstats " + stats.string() + "\nquit\n");
   const std::string cmd =
-      "(" + q(tsptest::tspplay_bin()) + " play " + q(tsp) + " --size 800x600 --trace " +
+      "(" + q(tsptest::tspplay_bin()) + " play " + q(tsp) + " --size 800x800 --trace " +
       "--frame-delay-ms 500 --tf " + q(tf) + " --script " + q(script) + " > " + q(out) +
       " 2>&1 &\n" +
       "for i in $(seq 50); do grep -q 'tf canvas' " + q(out) + " && break; sleep 0.1; done\n"
