@@ -87,7 +87,13 @@ OutputFolder::OutputFolder(const std::string& dir, BelongsToSet belongs)
   if (!fs::is_directory(parent_of(p), ec))
     throw IoError(dir + ": directory " + parent_of(p).string() + " does not exist");
   struct stat st {};
-  const bool exists = ::stat(p.c_str(), &st) == 0;
+  bool exists = ::stat(p.c_str(), &st) == 0;
+  if (!exists) {  // made empty now, so that outputs inside it (a movie) have their folder
+    if (::mkdir(p.c_str(), 0777) != 0 && errno != EEXIST)
+      throw IoError(dir + ": cannot create the output folder (" + std::strerror(errno) + ")");
+    created_ = true;
+    exists = ::stat(p.c_str(), &st) == 0;
+  }
   if (exists && !S_ISDIR(st.st_mode))
     throw IoError(dir + ": exists and is not a folder; the output folder of frames must be a "
                         "folder or a new name");
@@ -152,6 +158,7 @@ OutputFolder::OutputFolder(const std::string& dir, BelongsToSet belongs)
 
 OutputFolder::~OutputFolder() {
   if (!committed_ && !tmp_.empty()) remove_tree(tmp_);
+  if (!committed_ && created_) ::rmdir(final_.c_str());  // only if still empty
   if (lock_fd_ >= 0) ::close(lock_fd_);
 }
 

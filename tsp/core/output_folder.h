@@ -17,12 +17,14 @@ using BelongsToSet = std::function<bool(const std::string& name)>;
 class OutputFolder {
  public:
   /// Checks dir and prepares `.NAME.tmp-XXXXXX` beside it (a link to a folder: its target is
-  /// replaced, the link kept). Throws IoError when dir's parent does not exist, dir exists and is
+  /// replaced, the link kept). A dir that does not exist is made empty (so that outputs inside it
+  /// have their folder) and removed again, if still empty, unless committed. Throws IoError when dir's parent does not exist, dir exists and is
   /// not a folder, it holds an entry that is not a regular file or link outside the set, or the
   /// temporary folder cannot be made; UsageError when an entry of the set is a guarded input
   /// (InputGuard) or dir holds the current working directory.
   OutputFolder(const std::string& dir, BelongsToSet belongs);
-  /// Removes the temporary folder unless committed (the old folder is untouched).
+  /// Removes the temporary folder unless committed (the old folder is untouched, a folder this
+  /// made is removed when empty).
   ~OutputFolder();
   OutputFolder(const OutputFolder&) = delete;
   OutputFolder& operator=(const OutputFolder&) = delete;
@@ -40,6 +42,7 @@ class OutputFolder {
   std::string tmp_;     ///< the new set's folder
   BelongsToSet belongs_;
   int lock_fd_ = -1;    ///< locks tmp_'s marker file while this writer lives
+  bool created_ = false;  ///< final_ did not exist: made empty, removed again unless committed
   bool committed_ = false;
 };
 

@@ -91,10 +91,15 @@ TEST(TempOutput, NothingIsCommittedAfterAnInterruption) {
 TEST(OutputFolder, TheSetIsReplacedAsAWholeAndOtherFilesKept) {
   const fs::path dir = tsptest::temp_dir(), out = dir / "frames";
   {
-    OutputFolder f(out.string(), frame_set);  // a new folder appears only on commit
+    OutputFolder f(out.string(), frame_set);  // a new folder is empty until the commit
+    write(fs::path(f.tmp()) / "f0", "a0");
+    EXPECT_TRUE(fs::is_empty(out));
+  }
+  EXPECT_FALSE(fs::exists(out));  // and gone again without one
+  {
+    OutputFolder f(out.string(), frame_set);
     write(fs::path(f.tmp()) / "f0", "a0");
     write(fs::path(f.tmp()) / "f1", "a1");
-    EXPECT_FALSE(fs::exists(out));
     f.commit();
   }
   write(out / "notes", "mine");
