@@ -208,6 +208,13 @@ TEST(HostileOutput, AFailedMovieOrRenderKeepsTheOldMovieAndFrames) {
   const auto j = nlohmann::json::parse(tsptest::read_file(out / "frames.json"));
   EXPECT_EQ(j["frames"].size(), 2u);
   EXPECT_TRUE(temporaries(dir).empty());
+  // A movie inside a new output folder lands there beside the frames.
+  r = run_with(good, "render " + quote(tsp) + " --steps 0 --size 16x12 -o " + quote(dir / "in") +
+                         " --movie " + quote(dir / "in" / "m.gif"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(tsptest::read_file(dir / "in" / "m.gif"), "GIF89a-new");
+  EXPECT_TRUE(fs::exists(dir / "in" / "step_0000.png"));
+  EXPECT_TRUE(temporaries(dir / "in").empty());
 }
 
 // Issue 28 item 5: SIGINT (or SIGTERM) killed render by the signal, leaving partial frames and
