@@ -87,13 +87,7 @@ OutputFolder::OutputFolder(const std::string& dir, BelongsToSet belongs)
   if (!fs::is_directory(parent_of(p), ec))
     throw IoError(dir + ": directory " + parent_of(p).string() + " does not exist");
   struct stat st {};
-  bool exists = ::stat(p.c_str(), &st) == 0;
-  if (!exists) {  // made empty now, so that outputs inside it (a movie) have their folder
-    if (::mkdir(p.c_str(), 0777) != 0 && errno != EEXIST)
-      throw IoError(dir + ": cannot create the output folder (" + std::strerror(errno) + ")");
-    created_ = true;
-    exists = ::stat(p.c_str(), &st) == 0;
-  }
+  const bool exists = ::stat(p.c_str(), &st) == 0;
   if (exists && !S_ISDIR(st.st_mode))
     throw IoError(dir + ": exists and is not a folder; the output folder of frames must be a "
                         "folder or a new name");
@@ -153,6 +147,15 @@ OutputFolder::OutputFolder(const std::string& dir, BelongsToSet belongs)
     }
     lock_fd_ = fd;
     tmp_ = tmp;
+  }
+  if (!exists) {  // made empty now, so that outputs inside it (a movie) have their folder
+    if (::mkdir(p.c_str(), 0777) != 0 && errno != EEXIST) {
+      const int err = errno;
+      remove_tree(tmp_);
+      ::close(lock_fd_);
+      throw IoError(dir + ": cannot create the output folder (" + std::strerror(err) + ")");
+    }
+    created_ = true;
   }
 }
 
