@@ -5,6 +5,7 @@
 
 #include "cli/commands.h"
 #include "tsp/core/error.h"
+#include "tsp/core/interrupt.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"tspplay " TSPPLAY_VERSION " - play time-varying volume data with TSP trees"};
@@ -26,8 +27,12 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
+  // SIGINT/SIGTERM end every command the same way: a message, temporaries removed, exit 1, old
+  // outputs intact (tsp/core/interrupt.h).
+  const tsp::InterruptScope interrupts;
   try {
     app.parse(argc, argv);
+    tsp::throw_if_interrupted();  // a command with nothing left to stop still says so
   } catch (const CLI::ParseError& e) {
     // --help and --version exit 0; every other parse error is a usage error (exit 2).
     int code = app.exit(e);

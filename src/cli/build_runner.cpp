@@ -1,40 +1,18 @@
 #include "cli/build_runner.h"
 
-#include <csignal>
 #include <cstdio>
 
 #include "cli/progress_bar.h"
 #include "tsp/core/error.h"
+#include "tsp/core/interrupt.h"
 #include "tsp/store/tsp_file.h"
 
 namespace tspcli {
 namespace {
 
-// Set by SIGINT/SIGTERM; the progress callback turns it into an exception, so the build unwinds
-// and removes its temporary file instead of leaving it behind.
-volatile std::sig_atomic_t g_interrupted = 0;
-
 // The partition of tspplay-mpi's build (set once by its main); null in tspplay.
 tsp::BuildPartition* g_partition = nullptr;
 int g_partition_threads = 0;  // worker threads per process when --threads is not given
-extern "C" void on_interrupt(int) { g_interrupted = 1; }
-
-// Installs the interrupt handlers for its lifetime.
-class InterruptScope {
- public:
-  InterruptScope()
-      : old_int_(std::signal(SIGINT, on_interrupt)), old_term_(std::signal(SIGTERM, on_interrupt)) {}
-  ~InterruptScope() {
-    std::signal(SIGINT, old_int_);
-    std::signal(SIGTERM, old_term_);
-  }
-  InterruptScope(const InterruptScope&) = delete;
-  InterruptScope& operator=(const InterruptScope&) = delete;
-
- private:
-  void (*old_int_)(int);
-  void (*old_term_)(int);
-};
 
 }  // namespace
 
@@ -49,10 +27,11 @@ auto run_with_progress(tsp::BuildOptions options, const Build& build) {
   const bool writer = build_writes_output();  // other ranks show no bar
   options.progress = [&bar, writer](const std::string& phase, std::int64_t done,
                                     std::int64_t total) {
-    if (g_interrupted) throw tsp::Error("interrupted; no output written");
+    // SIGINT/SIGTERM: the build unwinds and removes its temporary file.
+    tsp::throw_if_interrupted();
     if (writer) bar.update(phase, done, total);
   };
-  InterruptScope scope;
+  const tsp::InterruptScope scope;  // main's, or tspplay-mpi's when it has none
   try {
     auto r = build(options);
     bar.finish();

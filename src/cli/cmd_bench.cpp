@@ -13,6 +13,7 @@
 #include "cli/commands.h"
 #include "jobs/bench_job.h"
 #include "tsp/core/error.h"
+#include "tsp/core/temp_output.h"
 
 namespace tspcli {
 namespace {
@@ -55,6 +56,9 @@ double parse_target(const std::string& text) {
 }
 
 void run(const BenchArgs& a) {
+  std::vector<std::string> inputs = a.tfs;  // the report never replaces the file or a TF
+  inputs.push_back(a.file);
+  const tsp::InputGuard guard(inputs);
   tspgl::BenchOptions o;
   o.tsp_path = a.file;
   o.field = a.field;

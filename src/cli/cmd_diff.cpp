@@ -7,6 +7,7 @@
 
 #include "cli/commands.h"
 #include "tsp/core/json_text.h"
+#include "tsp/core/temp_output.h"
 #include "tsp/report/image.h"
 #include "tsp/report/image_diff.h"
 
@@ -27,6 +28,8 @@ const CommandRegistrar reg(60, [](CLI::App& app) {
   c->add_option("-o,--output", a->out,
                 "Write a grey difference image (white = ΔE ≥ 10) to this PNG");
   c->callback([a] {
+    const tsp::InputGuard inputs({a->a, a->b});  // -o must not replace either image
+    if (!a->out.empty()) tsp::check_output_path(a->out);  // before any work
     const tsp::Image ia = tsp::read_png(a->a), ib = tsp::read_png(a->b);
     tsp::Image diff;
     const tsp::DiffStats s = tsp::diff_images(ia, ib, a->out.empty() ? nullptr : &diff, a->a, a->b);

@@ -14,6 +14,7 @@
 #include "player/player.h"
 #include "tsp/build/build.h"
 #include "tsp/core/error.h"
+#include "tsp/core/temp_output.h"
 
 namespace tspcli {
 namespace {
@@ -52,6 +53,9 @@ void run(PlayArgs a) {
     print_build_summary(out, r);
     return r;
   };
+  // The played file, its TF and script are never replaced by a screenshot, stats or recording.
+  const tsp::InputGuard inputs({a.options.tsp_path, a.options.tf, a.options.script});
+  if (!a.options.screenshot.empty()) tsp::check_output_path(a.options.screenshot);
   const bool tsp = tspgl::is_tsp_file(a.options.tsp_path);
   a.options.tsp_path = tspgl::prepare_play_input(a.options.tsp_path, a.field, a.cache_dir, hooks);
   a.options.field = tsp ? a.field : "";  // a .tsp: the field shown first; an input: the one built

@@ -14,7 +14,6 @@
 #include "cli/progress_bar.h"
 #include "jobs/render_job.h"
 #include "tsp/core/error.h"
-#include "tsp/core/file_check.h"
 
 namespace tspcli {
 namespace {
@@ -144,11 +143,12 @@ void run(const RenderArgs& a) {
     tspgl::check_movie_name(a.movie, "--movie");
     if (a.fps < 1 || a.fps > 120)
       throw tsp::UsageError("--fps " + std::to_string(a.fps) + ": expected 1..120");
-    tsp::require_not_an_input(a.movie, {a.file, a.tf});
     if (!tspgl::find_on_path("ffmpeg"))
       throw tsp::IoError("--movie " + a.movie +
                          ": ffmpeg is not on PATH (apt-get install ffmpeg; scripts/install-deps.sh "
                          "installs it)");
+    o.movie = a.movie;
+    o.fps = a.fps;
   }
 
   ProgressBar bar;
@@ -181,14 +181,9 @@ void run(const RenderArgs& a) {
                 " (last pass mean); metric %.1f ms\n",
                 nr / n, up / n, rt / n, nt / n, result.metric_ms);
   if (!o.out_dir.empty()) std::printf("wrote %s/frames.json\n", o.out_dir.c_str());
-  if (!a.movie.empty()) {
-    std::vector<fs::path> frames;  // the last pass's frames, in the order rendered
-    const int last_pass = result.frames.empty() ? 0 : result.frames.back().pass;
-    for (const auto& f : result.frames)
-      if (f.pass == last_pass) frames.push_back(tspgl::step_png(a.out, f.report.step));
-    tspgl::encode_movie(frames, a.movie, a.fps);
-    std::printf("wrote %s (%zu frames, %d a second)\n", a.movie.c_str(), frames.size(), a.fps);
-  }
+  if (!a.movie.empty())
+    std::printf("wrote %s (%zu frames, %d a second)\n", a.movie.c_str(),
+                result.frames.size() / std::size_t(o.passes), a.fps);
 }
 
 const CommandRegistrar reg(30, [](CLI::App& app) {

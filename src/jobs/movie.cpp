@@ -3,6 +3,8 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
@@ -13,6 +15,7 @@
 #include <cstdlib>
 
 #include "tsp/core/error.h"
+#include "tsp/core/interrupt.h"
 #include "tsp/core/temp_output.h"
 
 extern char** environ;
@@ -35,8 +38,45 @@ void add_output(std::vector<std::string>& args, const fs::path& out, const std::
   args.push_back(tmp);
 }
 
-// Starts args[0] with args; stdin_fd ≥ 0 becomes its standard input. Throws tsp::IoError.
-pid_t spawn(std::vector<std::string> args, int stdin_fd, int close_fd) {
+/// Most characters of ffmpeg's error output quoted in a message.
+constexpr std::size_t kMaxQuotedError = 200;
+
+// An anonymous file for ffmpeg's standard error (never blocks ffmpeg, whatever it writes).
+int error_file(const fs::path& out) {
+  const int fd = memfd_create("ffmpeg-errors", MFD_CLOEXEC);
+  if (fd < 0) throw tsp::IoError(out.string() + ": cannot capture the movie encoder's errors");
+  return fd;
+}
+
+// The first line of what ffmpeg wrote to fd (at most kMaxQuotedError characters); "" for none.
+std::string first_error(int fd) {
+  char buf[kMaxQuotedError + 1];
+  const ssize_t n = pread(fd, buf, kMaxQuotedError, 0);
+  if (n <= 0) return "";
+  std::string text(buf, std::size_t(n));
+  const std::size_t start = text.find_first_not_of(" \r\n");
+  if (start == std::string::npos) return "";
+  text = text.substr(start);
+  return text.substr(0, text.find_first_of("\r\n"));
+}
+
+// Throws tsp::Interrupted after SIGINT/SIGTERM, tsp::IoError when ffmpeg failed: exit status ≠
+// 0, an error it reported on errors_fd (at -loglevel error it reports only errors, and some, such
+// as a full disk, with exit status 0) or an empty output file.
+void check_encoder(int status, int errors_fd, const std::string& tmp, const std::string& what) {
+  tsp::throw_if_interrupted();
+  const std::string error = first_error(errors_fd);
+  struct stat st {};
+  const bool empty = ::stat(tmp.c_str(), &st) != 0 || st.st_size == 0;
+  if (status == 0 && error.empty() && !empty) return;
+  throw tsp::IoError(what + " (ffmpeg exit status " + std::to_string(status) +
+                     (error.empty() ? (empty ? ", no output" : "") : ": " + error) +
+                     "); the existing movie, if any, is left as it was");
+}
+
+// Starts args[0] with args; stdin_fd ≥ 0 becomes its standard input, errors_fd its standard
+// error. Throws tsp::IoError.
+pid_t spawn(std::vector<std::string> args, int stdin_fd, int close_fd, int errors_fd) {
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
@@ -47,6 +87,7 @@ pid_t spawn(std::vector<std::string> args, int stdin_fd, int close_fd) {
     posix_spawn_file_actions_addclose(&actions, stdin_fd);
   }
   if (close_fd >= 0) posix_spawn_file_actions_addclose(&actions, close_fd);
+  if (errors_fd >= 0) posix_spawn_file_actions_adddup2(&actions, errors_fd, STDERR_FILENO);
   pid_t pid = 0;
   const int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
@@ -54,8 +95,10 @@ pid_t spawn(std::vector<std::string> args, int stdin_fd, int close_fd) {
   return pid;
 }
 
-// Waits for pid; returns its exit status (−1 when it did not exit normally). Throws tsp::IoError.
+// Waits for pid; returns its exit status (−1 when it did not exit normally). SIGINT/SIGTERM stop
+// it meanwhile. Throws tsp::IoError.
 int wait_for(pid_t pid, const std::string& what) {
+  const tsp::StopChildOnInterrupt stop(pid);
   int status = 0;
   while (waitpid(pid, &status, 0) < 0)
     if (errno != EINTR) throw tsp::IoError(what + ": lost the movie encoder");
@@ -95,12 +138,10 @@ void check_movie_name(const fs::path& out, const std::string& what) {
     throw tsp::UsageError(what + " " + out.string() + ": expected a .mp4 or .gif file name");
 }
 
-bool encode_movie(const std::vector<fs::path>& frames, const fs::path& out, int fps) {
-  const auto found = find_on_path("ffmpeg");
-  if (!found) return false;
-  const fs::path ffmpeg = *found;
+void encode_movie_into(const std::vector<fs::path>& frames, tsp::TempOutput& tmp,
+                       const fs::path& out, int fps) {
+  const fs::path ffmpeg = require_ffmpeg(out);
   if (frames.empty()) throw tsp::IoError(out.string() + ": no frames to encode");
-  tsp::TempOutput tmp(out.string());
   // The frames under consecutive names (strided steps, any file names): symbolic links in a
   // private folder beside the movie, removed however this ends.
   std::string pattern = (fs::path(tmp.dir()) / ".frames.XXXXXX").string();
@@ -109,9 +150,11 @@ bool encode_movie(const std::vector<fs::path>& frames, const fs::path& out, int 
   const fs::path links = pattern;
   struct Cleanup {
     fs::path p;
+    int fd = -1;
     ~Cleanup() {
       std::error_code ec;
       fs::remove_all(p, ec);
+      if (fd >= 0) close(fd);
     }
   } cleanup{links};
   for (std::size_t i = 0; i < frames.size(); ++i) {
@@ -121,16 +164,21 @@ bool encode_movie(const std::vector<fs::path>& frames, const fs::path& out, int 
     fs::create_symlink(fs::absolute(frames[i]), links / name, ec);
     if (ec) throw tsp::IoError(out.string() + ": cannot link frame " + frames[i].string());
   }
-  std::vector<std::string> args = {ffmpeg.string(), "-nostdin", "-loglevel", "error", "-y",
-                                   "-framerate", std::to_string(fps), "-start_number", "0", "-i",
-                                   (links / "frame_%05d.png").string()};
+  std::vector<std::string> args = {ffmpeg.string(), "-nostdin", "-xerror", "-loglevel", "error",
+                                   "-y", "-framerate", std::to_string(fps), "-start_number", "0",
+                                   "-i", (links / "frame_%05d.png").string()};
   add_output(args, out, tmp.tmp());
-  const int status = wait_for(spawn(args, -1, -1), ffmpeg.string());
-  if (status != 0)
-    throw tsp::IoError(out.string() + ": ffmpeg failed to encode " +
-                       std::to_string(frames.size()) + " frames from " +
-                       frames.front().parent_path().string() + " (exit status " +
-                       std::to_string(status) + ")");
+  cleanup.fd = error_file(out);
+  const int status = wait_for(spawn(args, -1, -1, cleanup.fd), ffmpeg.string());
+  check_encoder(status, cleanup.fd, tmp.tmp(),
+                out.string() + ": ffmpeg failed to encode " + std::to_string(frames.size()) +
+                    " frames");
+}
+
+bool encode_movie(const std::vector<fs::path>& frames, const fs::path& out, int fps) {
+  if (!find_on_path("ffmpeg")) return false;
+  tsp::TempOutput tmp(out.string());
+  encode_movie_into(frames, tmp, out, fps);
   tmp.commit();
   return true;
 }
@@ -145,13 +193,15 @@ MovieWriter::MovieWriter(const fs::path& out, int width, int height, int fps)
   int fds[2];
   if (pipe2(fds, O_CLOEXEC) != 0)
     throw tsp::IoError(out.string() + ": cannot open a pipe to the movie encoder");
-  std::vector<std::string> args = {ffmpeg.string(), "-loglevel", "error", "-y", "-f", "rawvideo",
+  std::vector<std::string> args = {ffmpeg.string(), "-xerror", "-loglevel", "error", "-y",
+                                   "-f", "rawvideo",
                                    "-pix_fmt", "rgba", "-s",
                                    std::to_string(width) + "x" + std::to_string(height),
                                    "-framerate", std::to_string(fps), "-i", "-"};
   add_output(args, out, tmp_->tmp());
   try {
-    pid_ = spawn(args, fds[0], fds[1]);
+    errors_ = error_file(out);
+    pid_ = spawn(args, fds[0], fds[1], errors_);
   } catch (...) {
     close(fds[0]);
     close(fds[1]);
@@ -169,6 +219,7 @@ MovieWriter::~MovieWriter() {
     while (waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
     }
   }
+  if (errors_ >= 0) close(errors_);
   // tmp_ removes the unfinished output.
 }
 
@@ -221,9 +272,9 @@ void MovieWriter::finish() {
   pipe_ = -1;
   const int status = wait_for(pid_, out_.string());
   pid_ = -1;
-  if (status != 0 || frames_ == 0)
-    throw tsp::IoError(out_.string() + ": ffmpeg failed to encode " + std::to_string(frames_) +
-                       " frames (exit status " + std::to_string(status) + ")");
+  if (frames_ == 0) throw tsp::IoError(out_.string() + ": no frames to encode");
+  check_encoder(status, errors_, tmp_->tmp(),
+                out_.string() + ": ffmpeg failed to encode " + std::to_string(frames_) + " frames");
   tmp_->commit();
 }
 

@@ -10,14 +10,16 @@
 
 #include "jobs/annotate.h"
 #include "jobs/calibration.h"
+#include "jobs/movie.h"
 #include "render/settings_table.h"
 #include "render/baseline_renderer.h"
 #include "render/volume_renderer.h"
 #include "tsp/core/error.h"
-#include "tsp/core/file_check.h"
+#include "tsp/core/interrupt.h"
 #include "tsp/core/json_text.h"
 #include "tsp/core/memory_use.h"
 #include "tsp/core/stopwatch.h"
+#include "tsp/core/output_folder.h"
 #include "tsp/core/temp_output.h"
 #include "tsp/metric/compute_errors.h"
 #include "tsp/metric/tf_io.h"
@@ -74,6 +76,18 @@ json frame_json(const FrameRecord& f) {
 }
 
 }  // namespace
+
+bool is_frame_set_name(const std::string& name) {
+  if (name == "frames.json") return true;
+  constexpr std::size_t kDigits = 4;  // step_%04d.png: four digits or more
+  const std::string head = "step_", tail = ".png";
+  if (name.size() < head.size() + kDigits + tail.size() || name.rfind(head, 0) != 0 ||
+      name.compare(name.size() - tail.size(), tail.size(), tail) != 0)
+    return false;
+  for (std::size_t i = head.size(); i < name.size() - tail.size(); ++i)
+    if (name[i] < '0' || name[i] > '9') return false;
+  return true;
+}
 
 std::string step_png(const fs::path& dir, int step) {
   char name[32];
@@ -212,9 +226,19 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
   const int last = checked_last_step(tree, options.first_step, options.last_step, options.tsp_path);
   const tsp::TransferFunction tf = tsp::transfer_function_from_arg(
       options.tf, tree.value_range(), tsp::kDefaultTfEntries, options.tf_range);
+  // Every output is checked before any work and replaced only when the whole job succeeded.
+  const tsp::InputGuard inputs({options.tsp_path, options.tf, options.probe_tf});
+  std::optional<tsp::OutputFolder> folder;
+  if (!options.out_dir.empty()) folder.emplace(options.out_dir, is_frame_set_name);
+  std::optional<tsp::TempOutput> saved_tf, movie;
   if (!options.save_tf.empty()) {
-    tsp::require_not_an_input(options.save_tf, {options.tsp_path, options.tf});
-    tsp::save_transfer_function(tf, options.save_tf);
+    saved_tf.emplace(options.save_tf);
+    tsp::save_transfer_function(tf, saved_tf->tmp());
+  }
+  if (!options.movie.empty()) {
+    if (options.out_dir.empty()) throw tsp::UsageError("--movie needs -o, the frames' folder");
+    check_movie_name(options.movie, "--movie");
+    movie.emplace(options.movie);
   }
   RenderJobResult result;
   if (std::string w = tsp::tf_range_warning(tf, file->metadata().data_range); !w.empty())
@@ -226,10 +250,7 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
                            : options;
   const RenderSettings& settings = o.settings;
 
-  fs::path dir;
-  if (!o.out_dir.empty()) {
-    dir = make_output_dir(o.out_dir);
-  }
+  const fs::path dir = folder ? fs::path(folder->tmp()) : fs::path();
 
   tsp::MetricResult metric;
   if (!o.baseline) {
@@ -285,6 +306,7 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
   int frame_index = 0;
   for (int pass = 1; pass <= o.passes; ++pass) {
     for (int t = o.first_step; t <= last; t += o.step_stride, ++frame_index) {
+      tsp::throw_if_interrupted();
       FrameRecord rec;
       rec.pass = pass;
       tsp::CameraParams params = o.camera;
@@ -348,6 +370,15 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
     j["median_ms"] = median_frame_ms(result, o.passes);
     tsp::write_file_atomically((dir / "frames.json").string(), tsp::json_text(j, 2) + "\n");
   }
+  if (movie) {  // the last pass's frames, in the order rendered
+    std::vector<fs::path> frames;
+    for (const FrameRecord& f : result.frames)
+      if (f.pass == o.passes) frames.push_back(step_png(dir, f.report.step));
+    encode_movie_into(frames, *movie, o.movie, o.fps);
+  }
+  if (saved_tf) saved_tf->commit();
+  if (folder) folder->commit();
+  if (movie) movie->commit();
   return result;
 }
 

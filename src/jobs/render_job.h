@@ -33,7 +33,11 @@ struct RenderJobOptions {
   std::string tf = "preset:sparse";           ///< --tf: a file or preset:NAME
   tsp::TfRangeChoice tf_range;                ///< --tf-range: where the TF sits over the data
   bool annotate = false;                      ///< --annotate: outline, axes, legend, step/time
-  std::string out_dir;                        ///< frames/ (created); empty: no files written
+  std::string out_dir;                        ///< frames/: replaced as a whole when the job
+                                              ///< succeeded (tsp::OutputFolder); empty: none
+  std::string movie;                          ///< --movie out.mp4|out.gif from out_dir's frames
+                                              ///< ("": none); needs ffmpeg on PATH
+  int fps = 8;                                ///< --fps of the movie
   int first_step = 0, last_step = -1;         ///< inclusive; −1: the last step
   int step_stride = 1;                        ///< every step_stride-th step from first_step
   tsp::Metric metric = tsp::Metric::approximate;
@@ -60,7 +64,8 @@ struct RenderJobOptions {
   /// calibration (calibration.h) instead of those in settings; 0: off.
   double quality = 0;
   std::string calibration_dir;                ///< --calibration-dir ("": the default; "-": none)
-  std::string save_tf;                        ///< --save-tf: write the TF used here (JSON)
+  std::string save_tf;                        ///< --save-tf: write the TF used here (JSON),
+                                              ///< replaced only when the whole job succeeded
   LodMode lod = LodMode::off;                 ///< --lod off|K|auto
   int lod_level = 0;                          ///< --lod K
   double splat_px = 0;                        ///< --lod splat:PX, the minimum splat size
@@ -126,10 +131,14 @@ RenderJobResult run_render_job(
 /// returns last. Throws tsp::UsageError naming the file and its steps.
 int checked_last_step(const tsp::TspTree& tree, int first, int last, const std::string& path);
 
+/// Whether name belongs to a render's frame set (step_NNNN.png, frames.json): what replacing the
+/// output folder drops; other files there are kept. Never throws.
+bool is_frame_set_name(const std::string& name);
+
 /// The PNG path of step under dir: dir/step_NNNN.png. Never throws.
 std::string step_png(const std::filesystem::path& dir, int step);
 
-/// Makes the output folder out (render -o, bench -o) if it is not there; its parent must exist.
+/// Makes the output folder out (bench -o) if it is not there; its parent must exist.
 /// Throws tsp::IoError naming the missing parent or the folder that cannot be made.
 std::filesystem::path make_output_dir(const std::string& out);
 

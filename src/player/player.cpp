@@ -19,6 +19,7 @@
 #include "player/imgui_gl_load.h"
 #include "player/player_app.h"
 #include "tsp/core/error.h"
+#include "tsp/core/interrupt.h"
 #include "tsp/core/stopwatch.h"
 #include "tsp/metric/compute_errors.h"
 #include "tsp/metric/tf_io.h"
@@ -535,6 +536,7 @@ bool PlayerApp::busy() const {
 void PlayerApp::run() {
   int frames = 0;
   while (!quit_ && !ctx->should_close()) {
+    tsp::throw_if_interrupted();  // SIGINT/SIGTERM: unwind; a recording in progress is dropped
     // Nothing to show that is not shown already: sleep until an event (or a timeout, for the
     // window's own timers), and draw only when something came.
     if (!busy()) {

@@ -15,7 +15,6 @@
 #include "tsp/build/slab_prefetcher.h"
 #include "tsp/core/background_worker.h"
 #include "tsp/core/error.h"
-#include "tsp/core/file_check.h"
 #include "tsp/core/parallel_for.h"
 #include "tsp/core/stopwatch.h"
 #include "tsp/core/temp_output.h"
@@ -324,6 +323,13 @@ BuildReport build_field(VolumeSource& source, const TempOutput* out,
   const Dims dims = source.dims();
   const int steps = source.steps();
   if (steps < 1) throw FormatError(source.describe() + ": no time steps");
+  // The .tsp reader refuses non-finite times: refuse them here, naming the input, before any
+  // work (a build that wrote them would replace a good output with one nothing can read).
+  const std::vector<double> times = source.times();
+  for (std::size_t t = 0; t < times.size(); ++t)
+    if (!std::isfinite(times[t]))
+      throw FormatError(source.describe() + ": the time of step " + std::to_string(t) + " is " +
+                        std::to_string(times[t]) + "; step times must be finite numbers");
   TspTree tree(dims, steps, options.brick_size);
   const Octree& o = tree.octree();
 
@@ -403,7 +409,7 @@ BuildReport build_field(VolumeSource& source, const TempOutput* out,
 BuildReport build_tsp_file(VolumeSource& source, const std::string& out_path,
                            const BuildOptions& options) {
   check_options(out_path, options);
-  require_not_an_input(out_path, source.files());
+  const InputGuard inputs(source.files());
   std::optional<TempOutput> out;
   if (!writes_nothing(options)) out.emplace(out_path);
   BuildReport r =
@@ -427,13 +433,14 @@ std::vector<BuildReport> build_tsp_fields(const FieldSourceFn& open_field,
         throw UsageError("--field: the field '" + fields[i] + "' is named twice");
   }
   std::vector<BuildReport> reports;
+  InputGuard inputs;
   std::optional<TempOutput> out;
   Dims dims0;
   int steps0 = 0;
   for (std::size_t k = 0; k < fields.size(); ++k) {
     std::unique_ptr<VolumeSource> source = open_field(fields[k]);
     if (k == 0) {
-      require_not_an_input(out_path, source->files());
+      for (const std::string& f : source->files()) inputs.add(f);
       if (!writes_nothing(options)) out.emplace(out_path);
       dims0 = source->dims();
       steps0 = source->steps();

@@ -23,17 +23,4 @@ void require_regular_file(const std::string& path, const std::string& what) {
     throw IoError(path + ": " + what + " is not a regular file (a FIFO, socket or device)");
 }
 
-bool same_file(const std::string& a, const std::string& b) {
-  struct stat sa {}, sb {};
-  if (::stat(a.c_str(), &sa) != 0 || ::stat(b.c_str(), &sb) != 0) return false;
-  return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
-}
-
-void require_not_an_input(const std::string& output, const std::vector<std::string>& inputs) {
-  for (const std::string& in : inputs)
-    if (same_file(output, in))
-      throw UsageError(output + ": the output is the input file " + in +
-                       "; writing it would destroy the input (choose another output name)");
-}
-
 }  // namespace tsp

@@ -10,26 +10,98 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
 
 #include "tsp/core/error.h"
+#include "tsp/core/interrupt.h"
 
 namespace tsp {
 
 namespace fs = std::filesystem;
 
-namespace {
-
-// Takes an exclusive open-file-description lock on fd without waiting; true when taken.
+namespace detail {
 bool try_lock(int fd) {
   struct flock fl {};
   fl.l_type = F_WRLCK;
   fl.l_whence = SEEK_SET;
   return ::fcntl(fd, F_OFD_SETLK, &fl) == 0;
 }
+}  // namespace detail
+
+namespace {
+
+using detail::try_lock;
 
 std::string temp_prefix(const fs::path& out) { return "." + out.filename().string() + ".tmp-"; }
 
+// The guarded inputs of every live InputGuard (one entry per guard and path).
+struct GuardedInput {
+  dev_t dev;
+  ino_t ino;
+  std::string path;
+};
+std::mutex g_inputs_mutex;
+std::vector<GuardedInput>& guarded_inputs() {
+  static std::vector<GuardedInput> inputs;
+  return inputs;
+}
+
+// What a non-regular file is, for messages.
+const char* file_kind(mode_t mode) {
+  if (S_ISDIR(mode)) return "a directory";
+  if (S_ISFIFO(mode)) return "a FIFO";
+  if (S_ISSOCK(mode)) return "a socket";
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  return "not a regular file";
+}
+
 }  // namespace
+
+InputGuard::InputGuard(const std::vector<std::string>& paths) {
+  for (const std::string& p : paths) add(p);
+}
+
+InputGuard::~InputGuard() {
+  std::lock_guard<std::mutex> lock(g_inputs_mutex);
+  auto& inputs = guarded_inputs();
+  for (const auto& [dev, ino] : ids_)
+    for (auto it = inputs.begin(); it != inputs.end(); ++it)
+      if (it->dev == dev && it->ino == ino) {
+        inputs.erase(it);
+        break;
+      }
+}
+
+void InputGuard::add(const std::string& path) {
+  struct stat st {};
+  if (path.empty() || ::stat(path.c_str(), &st) != 0) return;  // not there: nothing to protect
+  std::lock_guard<std::mutex> lock(g_inputs_mutex);
+  guarded_inputs().push_back({st.st_dev, st.st_ino, path});
+  ids_.emplace_back(st.st_dev, st.st_ino);
+}
+
+std::string guarded_input_at(const std::string& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) return "";
+  std::lock_guard<std::mutex> lock(g_inputs_mutex);
+  for (const GuardedInput& in : guarded_inputs())
+    if (in.dev == st.st_dev && in.ino == st.st_ino) return in.path;
+  return "";
+}
+
+void check_output_path(const std::string& path) {
+  if (const std::string in = guarded_input_at(path); !in.empty())
+    throw UsageError(path + ": the output is the input file " + in +
+                     "; writing it would destroy the input (choose another output name)");
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) return;  // a new file (or a dangling link: replaced)
+  if (S_ISDIR(st.st_mode)) throw IoError(path + ": is a directory, expected a file name");
+  if (!S_ISREG(st.st_mode))
+    throw IoError(path + ": is " + file_kind(st.st_mode) +
+                  ", not a regular file; tspplay writes outputs only as regular files (it would "
+                  "replace it): write to a file name instead");
+}
 
 std::string output_directory(const std::string& out_path) {
   const fs::path dir = fs::path(out_path).parent_path();
@@ -55,15 +127,20 @@ int remove_stale_temporaries(const std::string& out_path) {
   return removed;
 }
 
-TempOutput::TempOutput(const std::string& out_path) : final_(out_path) {
-  fs::path p(out_path);
-  fs::path dir = output_directory(out_path);
+TempOutput::TempOutput(const std::string& out_path) : shown_(out_path), final_(out_path) {
+  check_output_path(out_path);
   std::error_code ec;
-  if (fs::is_directory(p, ec)) throw IoError(out_path + ": is a directory, expected a file name");
+  // A link to an existing file: the file is replaced and the link kept.
+  if (fs::is_symlink(out_path, ec) && fs::exists(out_path, ec)) {
+    const fs::path target = fs::canonical(out_path, ec);
+    if (!ec) final_ = target.string();
+  }
+  fs::path p(final_);
+  fs::path dir = output_directory(final_);
   if (!fs::is_directory(dir, ec))
     throw IoError(out_path + ": directory " + dir.string() + " does not exist");
   dir_ = dir.string();
-  remove_stale_temporaries(out_path);
+  remove_stale_temporaries(final_);
   // The file is created under a name no sweeper looks at, locked, and only then linked under
   // its `.tmp-` name, so no other build ever sees it unlocked.
   for (int attempt = 0; tmp_.empty(); ++attempt) {
@@ -100,9 +177,11 @@ TempOutput::~TempOutput() {
 }
 
 void TempOutput::commit() {
+  throw_if_interrupted();
+  check_output_path(final_);  // nothing put a device or FIFO there meanwhile
   if (std::rename(tmp_.c_str(), final_.c_str()) != 0)
-    throw IoError(final_ + ": cannot rename the finished file into place (" + std::strerror(errno) +
-                  ")");
+    throw IoError(shown_ + ": cannot rename the finished file into place (" +
+                  std::strerror(errno) + ")");
   committed_ = true;
 }
 

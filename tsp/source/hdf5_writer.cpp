@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "tsp/core/error.h"
+#include "tsp/core/interrupt.h"
 #include "tsp/core/temp_output.h"
 #include "tsp/hdf5/hdf5_handle.h"
 
@@ -132,6 +133,7 @@ void write_file(VolumeSource& source, const fs::path& tmp, const fs::path& shown
   const hsize_t one_step[4] = {1, hsize_t(d.z), hsize_t(d.y), hsize_t(d.x)};
   h5::Handle mem = checked(H5Screate_simple(4, one_step, nullptr), shown, "make a dataspace");
   for (int t = 0; t < steps; ++t) {
+    throw_if_interrupted();  // SIGINT/SIGTERM: the temporary file is removed
     source.read_step(t, buf);
     const hsize_t start[4] = {hsize_t(t), 0, 0, 0};
     check(H5Sselect_hyperslab(space.get(), H5S_SELECT_SET, start, nullptr, one_step, nullptr),
