@@ -37,6 +37,7 @@ void run(PlayArgs a) {
   a.options.width = int(parse_integer(a.size.substr(0, x), "--size", 1, 8192, "WxH, 1..8192"));
   a.options.height = int(parse_integer(a.size.substr(x + 1), "--size", 1, 8192, "WxH, 1..8192"));
   a.options.cache_dir = a.cache_dir;
+  a.options.allow_external = a.allow_external;
   if (a.proportions != "physical" && a.proportions != "samples")
     throw tsp::UsageError("--proportions '" + a.proportions + "': expected physical or samples");
   a.options.physical_proportions = a.proportions == "physical";

@@ -478,18 +478,27 @@ TEST(Player, OpenNeverAbortsAndReportsEveryFailure) {
   ASSERT_EQ(run_tspplay("generate vortex -o " + q(h5) + " --dims 20,18,16 --steps 3").exit_code, 0);
   std::ofstream(dir / "bad.vtu") << "<VTKFile type=\"UnstructuredGrid\"><Unstructured";
   ASSERT_EQ(mkfifo((dir / "pipe.h5").c_str(), 0600), 0);
-  // An HDF5 file whose only dataset is stored in /etc/passwd: refused without --allow-external.
-  {
+  // HDF5 files whose only dataset is stored in another file (/etc/passwd; 64 floats of ours):
+  // refused without --allow-external.
+  auto write_external = [](const fs::path& path, const std::string& external) {
     const hsize_t dims[3] = {4, 4, 4};
-    hid_t f = H5Fcreate((dir / "ext.h5").c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    hid_t f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
     hid_t space = H5Screate_simple(3, dims, nullptr);
     hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
-    H5Pset_external(dcpl, "/etc/passwd", 0, 256);
+    H5Pset_external(dcpl, external.c_str(), 0, 256);
     H5Dclose(H5Dcreate2(f, "d", H5T_IEEE_F32LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT));
     H5Pclose(dcpl);
     H5Sclose(space);
     H5Fclose(f);
+  };
+  write_external(dir / "ext.h5", "/etc/passwd");
+  {
+    std::vector<float> v(64);
+    for (int i = 0; i < 64; ++i) v[std::size_t(i)] = float(i);
+    std::ofstream(dir / "raw.bin", std::ios::binary)
+        .write(reinterpret_cast<const char*>(v.data()), 256);
   }
+  write_external(dir / "ext_ok.h5", (dir / "raw.bin").string());
   const std::vector<std::string> bad = {(dir / "missing.h5").string(), "/dev/zero",
                                         (dir / "pipe.h5").string(), (dir / "bad.vtu").string(),
                                         (dir / "ext.h5").string()};
@@ -511,6 +520,14 @@ TEST(Player, OpenNeverAbortsAndReportsEveryFailure) {
   EXPECT_NE(built.find((dir / "cache" / "builds").string()), std::string::npos) << built;
   EXPECT_EQ(read_json(dir / "built.json")["steps_ready"].size(), 3u);  // the input's 3 steps
   EXPECT_NE(r.err.find("open " + (dir / "last.h5").string() + ": "), std::string::npos) << r.err;
+  // With --allow-external, File > Open builds such a file.
+  r = run_tspplay("play " + q(tsp) + " --size " + kSize + " --allow-external --cache-dir " +
+                  q(dir / "cache") + " --script " +
+                  q(write_script("open " + (dir / "ext_ok.h5").string() + "\nwait-frames 1\nstats " +
+                                 (dir / "ext.json").string() + "\nquit\n")));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string ext_built = read_json(dir / "ext.json")["file"];
+  EXPECT_NE(ext_built.find("ext_ok.h5-"), std::string::npos) << ext_built << r.err;
 }
 
 // The record button's script action: the volume as played, with its annotations, in real time
