@@ -21,6 +21,7 @@ struct BuildArgs {
   int brick = 0;  // 0: tsp::default_brick_size of the grid
   int threads = 0;
   bool big_endian = false;
+  bool allow_external = false;
   int resolution = 0;
   double voxel_size = 0;
   std::string cell_data = "constant";
@@ -47,6 +48,7 @@ void run_build(const BuildArgs& a) {
                 : a.raw_type == "u16" ? tsp::RawType::u16
                                       : tsp::RawType::f32;
   so.raw_big_endian = a.big_endian;
+  so.allow_external = a.allow_external;
 
   tsp::BuildOptions bo;
   bo.brick_size = a.brick;
@@ -142,6 +144,9 @@ const CommandRegistrar reg(10, [](CLI::App& app) {
   c->add_option("--raw-type", a->raw_type, "Raw input: element type u8|u16|f32")
       ->check(CLI::IsMember({"u8", "u16", "f32"}));
   c->add_flag("--big-endian", a->big_endian, "Raw input: big-endian samples");
+  c->add_flag("--allow-external", a->allow_external,
+              "HDF5 input: read its external links, external raw storage and virtual datasets "
+              "(other files it names; refused by default)");
   c->add_option("--compress", a->compress,
                 "Brick chunks: none (default), deflate (level 4) or deflate:L, L 1..9 (byte "
                 "shuffle + deflate; smaller files, slower builds; for playback from slow disks)");

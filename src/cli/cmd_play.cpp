@@ -29,6 +29,7 @@ struct PlayArgs {
   std::string probe_surface = "on";
   SettingsOptions settings{tspplayer::default_player_settings()};
   std::string playback = "quality";
+  bool allow_external = false;
 };
 
 void run(PlayArgs a) {
@@ -37,6 +38,7 @@ void run(PlayArgs a) {
   a.options.width = int(parse_integer(a.size.substr(0, x), "--size", 1, 8192, "WxH, 1..8192"));
   a.options.height = int(parse_integer(a.size.substr(x + 1), "--size", 1, 8192, "WxH, 1..8192"));
   a.options.cache_dir = a.cache_dir;
+  a.options.allow_external = a.allow_external;
   if (a.proportions != "physical" && a.proportions != "samples")
     throw tsp::UsageError("--proportions '" + a.proportions + "': expected physical or samples");
   a.options.physical_proportions = a.proportions == "physical";
@@ -57,7 +59,8 @@ void run(PlayArgs a) {
   const tsp::InputGuard inputs({a.options.tsp_path, a.options.tf, a.options.script});
   if (!a.options.screenshot.empty()) tsp::check_output_path(a.options.screenshot);
   const bool tsp = tspgl::is_tsp_file(a.options.tsp_path);
-  a.options.tsp_path = tspgl::prepare_play_input(a.options.tsp_path, a.field, a.cache_dir, hooks);
+  a.options.tsp_path = tspgl::prepare_play_input(a.options.tsp_path, a.field, a.cache_dir, hooks,
+                                                 a.allow_external);
   a.options.field = tsp ? a.field : "";  // a .tsp: the field shown first; an input: the one built
   tspplayer::run_player(a.options);
 }
@@ -73,6 +76,9 @@ const CommandRegistrar reg(35, [](CLI::App& app) {
   c->add_option("--field", a->field,
                 "A .tsp with several fields: the one shown first; any other input: the field to "
                 "build (as for build --field)");
+  c->add_flag("--allow-external", a->allow_external,
+              "HDF5 input to build: read its external links, external raw storage and virtual "
+              "datasets (other files it names; refused by default)");
   c->add_option("--cache-dir", a->cache_dir,
                 "Raw input: the cache folder (default $TSPPLAY_CACHE_DIR, $XDG_CACHE_HOME/tspplay "
                 "or ~/.cache/tspplay; builds go to its builds/)");

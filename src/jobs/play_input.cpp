@@ -53,7 +53,8 @@ std::string play_cache_path(const std::string& input, const std::string& field,
 }
 
 std::string prepare_play_input(const std::string& input, const std::string& field,
-                               const std::string& cache_dir, const PlayBuildHooks& hooks) {
+                               const std::string& cache_dir, const PlayBuildHooks& hooks,
+                               bool allow_external) {
   if (is_tsp_file(input)) return input;  // (a field then picks one of its fields)
   const std::string out = play_cache_path(input, field, cache_dir);
   if (is_tsp_file(out)) {
@@ -66,6 +67,7 @@ std::string prepare_play_input(const std::string& input, const std::string& fiel
   if (ec) throw tsp::IoError(builds.string() + ": cannot create the build cache: " + ec.message());
   tsp::SourceOptions so;
   so.field = field;
+  so.allow_external = allow_external;
   auto source = tsp::open_input(input, so, tsp::VoxelizeOptions{});
   hooks.say("play: " + input + " is not a .tsp file; building it into " + out +
             " (reused next time)");

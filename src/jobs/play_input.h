@@ -28,9 +28,10 @@ struct PlayBuildHooks {
 
 /// The .tsp file to play for input: input itself when it is a .tsp file (field then names one
 /// of its fields, for the player), else play_cache_path's file, built from field with build's
-/// defaults unless it exists.
-/// Throws what opening or building the input throws.
+/// defaults unless it exists; allow_external: an HDF5 input's external links and storage are
+/// read (`--allow-external`), else refused. Throws what opening or building the input throws.
 std::string prepare_play_input(const std::string& input, const std::string& field,
-                               const std::string& cache_dir, const PlayBuildHooks& hooks);
+                               const std::string& cache_dir, const PlayBuildHooks& hooks,
+                               bool allow_external = false);
 
 }  // namespace tspgl

@@ -8,9 +8,10 @@
 
 namespace tspplayer {
 
-OpenJob::OpenJob(std::string input, std::string field, std::string cache_dir)
+OpenJob::OpenJob(std::string input, std::string field, std::string cache_dir,
+                 bool allow_external)
     : input_(std::move(input)), field_(std::move(field)) {
-  worker_.submit([this, cache_dir = std::move(cache_dir)](std::stop_token stop) {
+  worker_.submit([this, cache_dir = std::move(cache_dir), allow_external](std::stop_token stop) {
     struct Done {  // marks the job ended however it ends
       std::atomic<bool>& done;
       ~Done() { done = true; }
@@ -33,7 +34,7 @@ OpenJob::OpenJob(std::string input, std::string field, std::string cache_dir)
       };
       return tsp::build_tsp_file(source, out, o);
     };
-    std::string out = tspgl::prepare_play_input(input_, field_, cache_dir, hooks);
+    std::string out = tspgl::prepare_play_input(input_, field_, cache_dir, hooks, allow_external);
     std::lock_guard lock(mu_);
     result_ = std::move(out);
   });

@@ -16,9 +16,9 @@ namespace tspplayer {
 class OpenJob {
  public:
   /// Starts building input (its field `field`, "" for the input's own choice) into cache_dir
-  /// ("" for the default cache folder) on a worker thread. Throws std::system_error when no
-  /// thread can start.
-  OpenJob(std::string input, std::string field, std::string cache_dir);
+  /// ("" for the default cache folder) on a worker thread; allow_external: an HDF5 input may
+  /// read other files (`--allow-external`). Throws std::system_error when no thread can start.
+  OpenJob(std::string input, std::string field, std::string cache_dir, bool allow_external);
   /// Cancels a running build and waits for it to stop (it leaves no file). Never throws.
   ~OpenJob();
   OpenJob(const OpenJob&) = delete;

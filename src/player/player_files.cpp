@@ -30,27 +30,44 @@ void report(std::string& status, const std::string& what) {
   std::fprintf(stderr, "tspplay: %s\n", what.c_str());
 }
 
+// A File > Open that failed: reported as above and, with --trace, as a trace line; the player
+// keeps the file it plays.
+void open_failed(std::string& status, bool trace, const std::string& input, const std::string& why) {
+  report(status, "open " + input + ": " + why);
+  if (trace) {
+    std::printf("trace: open %s failed: %s\n", input.c_str(), why.c_str());
+    std::fflush(stdout);
+  }
+}
+
 }  // namespace
 
 void PlayerApp::open_input(const std::string& input, const std::string& field) {
   if (open_job_) {
-    report(status, "open " + input + ": still opening " + open_job_->input());
+    open_failed(status, options_.trace, input, "still opening " + open_job_->input());
     return;
   }
   if (tspgl::is_tsp_file(input)) {
     if (!field.empty()) {
-      report(status, "open " + input + ": a .tsp file has its field already (" + field + ")");
+      open_failed(status, options_.trace, input, "a .tsp file has its field already (" + field + ")");
       return;
     }
     try {
       open_file(input);
     } catch (const tsp::Error& e) {
-      report(status, "open " + input + ": " + e.what());
+      open_failed(status, options_.trace, input, e.what());
     }
     return;
   }
-  // Anything else is built on a worker (the window keeps drawing the current file), then played.
-  open_job_ = std::make_unique<OpenJob>(input, field, options_.cache_dir);
+  // Anything else is built on a worker (the window keeps drawing the current file), then played;
+  // whatever is wrong with it (missing, a device, bad contents) is the job's error, reported by
+  // poll_open.
+  try {
+    open_job_ = std::make_unique<OpenJob>(input, field, options_.cache_dir, options_.allow_external);
+  } catch (const std::exception& e) {  // no thread could start
+    open_failed(status, options_.trace, input, e.what());
+    return;
+  }
   status = "opening " + input + " ...";
 }
 
@@ -65,13 +82,13 @@ void PlayerApp::poll_open() {
   try {
     built = job->result();
   } catch (const std::exception& e) {
-    report(status, "open " + job->input() + ": " + e.what());
+    open_failed(status, options_.trace, job->input(), e.what());
     return;
   }
   try {
     open_file(built);
   } catch (const tsp::Error& e) {
-    report(status, "open " + built + ": " + e.what());
+    open_failed(status, options_.trace, built, e.what());
   }
 }
 

@@ -426,7 +426,6 @@ void stats_section(PlayerApp& app) {
 
 void PlayerApp::draw_ui() {
   if (state.panels) {
-    menu_and_dialogs(*this);
     if (layout.docked) {
       // One side panel of collapsible sections beside the volume, the timeline under it.
       place(layout.side);
@@ -481,6 +480,11 @@ void PlayerApp::draw_ui() {
     }
   }
   help(*this);
+  // Last, after every window that may appear this frame: Dear ImGui 1.86 aborts ("ImGui::Begin:
+  // Assertion `blocking_modal != NULL'") when a window appears after a modal begun for the first
+  // time in the same frame — File > Open's progress dialog opened in the first frames, before
+  // the panels had appeared (issue 28).
+  if (state.panels) menu_and_dialogs(*this);
 }
 
 }  // namespace tspplayer

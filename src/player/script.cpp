@@ -2,13 +2,13 @@
 
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <sstream>
 #include <utility>
 
 #include "render/settings_table.h"
 #include "tsp/clip/probe.h"
 #include "tsp/core/error.h"
+#include "tsp/core/input_file.h"
 
 namespace tspplayer {
 
@@ -299,11 +299,7 @@ std::vector<ScriptAction> parse_script(const std::string& text, const std::strin
 }
 
 std::vector<ScriptAction> load_script(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw tsp::IoError(path + ": cannot read the player script");
-  std::stringstream text;
-  text << in.rdbuf();
-  return parse_script(text.str(), path);
+  return parse_script(tsp::read_input_file(path, "player script"), path);
 }
 
 }  // namespace tspplayer

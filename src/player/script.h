@@ -77,7 +77,8 @@ void validate(const ScriptAction& a);
 /// Parses script text; origin names it in messages. Blank lines and lines starting with '#' are
 /// skipped. Throws tsp::FormatError naming origin, the line and what was expected.
 std::vector<ScriptAction> parse_script(const std::string& text, const std::string& origin);
-/// Reads and parses a script file. Throws tsp::IoError when unreadable, else like parse_script.
+/// Reads (through tsp::read_input_file: a regular file of at most 64 MiB) and parses a script
+/// file. Throws tsp::IoError when it is not such a file or unreadable, else like parse_script.
 std::vector<ScriptAction> load_script(const std::string& path);
 
 }  // namespace tspplayer

@@ -2,6 +2,8 @@
 // --script: the volume shows, scrubbing to step k shows step k (against `tspplay render` of the
 // same view and size), a TF edit changes the picture; bad scripts and steps are clear errors.
 #include <gtest/gtest.h>
+#include <hdf5.h>
+#include <sys/stat.h>
 
 #include "jobs/playback_tuner.h"
 
@@ -467,6 +469,68 @@ TEST(Player, OpenSwitchesToAnotherFileAndBuildsARawInputFirst) {
   // A missing input is reported (stderr and the status line) and the player keeps playing.
   EXPECT_NE(r.err.find("missing.h5"), std::string::npos) << r.err;
   EXPECT_EQ(read_json(dir / "c.json")["file"], built);
+}
+
+// File > Open (script `open`) never aborts (issue 28 item 7): a missing path, a device, a FIFO,
+// a bad .vtu and an HDF5 file refused for its external storage are each reported on stderr (and
+// in the trace) while the old file keeps playing; a valid input that needs building is built
+// and played; `open X` right before `quit` still reports X's failure.
+TEST(Player, OpenNeverAbortsAndReportsEveryFailure) {
+  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  const fs::path dir = tsptest::temp_dir(), tsp = make_tsp(), h5 = dir / "raw.h5";
+  ASSERT_EQ(run_tspplay("generate vortex -o " + q(h5) + " --dims 20,18,16 --steps 3").exit_code, 0);
+  std::ofstream(dir / "bad.vtu") << "<VTKFile type=\"UnstructuredGrid\"><Unstructured";
+  ASSERT_EQ(mkfifo((dir / "pipe.h5").c_str(), 0600), 0);
+  // HDF5 files whose only dataset is stored in another file (/etc/passwd; 64 floats of ours):
+  // refused without --allow-external.
+  auto write_external = [](const fs::path& path, const std::string& external) {
+    const hsize_t dims[3] = {4, 4, 4};
+    hid_t f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    hid_t space = H5Screate_simple(3, dims, nullptr);
+    hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+    H5Pset_external(dcpl, external.c_str(), 0, 256);
+    H5Dclose(H5Dcreate2(f, "d", H5T_IEEE_F32LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT));
+    H5Pclose(dcpl);
+    H5Sclose(space);
+    H5Fclose(f);
+  };
+  write_external(dir / "ext.h5", "/etc/passwd");
+  {
+    std::vector<float> v(64);
+    for (int i = 0; i < 64; ++i) v[std::size_t(i)] = float(i);
+    std::ofstream(dir / "raw.bin", std::ios::binary)
+        .write(reinterpret_cast<const char*>(v.data()), 256);
+  }
+  write_external(dir / "ext_ok.h5", (dir / "raw.bin").string());
+  const std::vector<std::string> bad = {(dir / "missing.h5").string(), "/dev/zero",
+                                        (dir / "pipe.h5").string(), (dir / "bad.vtu").string(),
+                                        (dir / "ext.h5").string()};
+  std::string text;
+  for (std::size_t i = 0; i < bad.size(); ++i)
+    text += "open " + bad[i] + "\nwait-frames 1\nstats " + (dir / ("bad" + std::to_string(i) + ".json")).string() + "\n";
+  text += "open " + h5.string() + "\nwait-frames 1\nstats " + (dir / "built.json").string() +
+          "\nopen " + (dir / "last.h5").string() + "\nquit\n";
+  auto r = run_tspplay("play " + q(tsp) + " --size " + kSize + " --trace --cache-dir " +
+                       q(dir / "cache") + " --script " + q(write_script(text)));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (std::size_t i = 0; i < bad.size(); ++i) {
+    EXPECT_NE(r.err.find("open " + bad[i] + ": "), std::string::npos) << bad[i] << "\n" << r.err;
+    EXPECT_NE(r.out.find("trace: open " + bad[i] + " failed: "), std::string::npos) << r.out;
+    EXPECT_EQ(read_json(dir / ("bad" + std::to_string(i) + ".json"))["file"], tsp.string());
+  }
+  EXPECT_NE(r.err.find("--allow-external"), std::string::npos) << r.err;
+  const std::string built = read_json(dir / "built.json")["file"];
+  EXPECT_NE(built.find((dir / "cache" / "builds").string()), std::string::npos) << built;
+  EXPECT_EQ(read_json(dir / "built.json")["steps_ready"].size(), 3u);  // the input's 3 steps
+  EXPECT_NE(r.err.find("open " + (dir / "last.h5").string() + ": "), std::string::npos) << r.err;
+  // With --allow-external, File > Open builds such a file.
+  r = run_tspplay("play " + q(tsp) + " --size " + kSize + " --allow-external --cache-dir " +
+                  q(dir / "cache") + " --script " +
+                  q(write_script("open " + (dir / "ext_ok.h5").string() + "\nwait-frames 1\nstats " +
+                                 (dir / "ext.json").string() + "\nquit\n")));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string ext_built = read_json(dir / "ext.json")["file"];
+  EXPECT_NE(ext_built.find("ext_ok.h5-"), std::string::npos) << ext_built << r.err;
 }
 
 // The record button's script action: the volume as played, with its annotations, in real time

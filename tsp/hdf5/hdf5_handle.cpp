@@ -24,7 +24,7 @@ void Handle::reset() {
 
 void silence_errors() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
 
-Handle open_file_readonly(const std::string& path) {
+Handle open_file_readonly(const std::string& path, External external) {
   silence_errors();
   require_regular_file(path, "file");
   htri_t is_h5 = H5Fis_hdf5(path.c_str());
@@ -32,7 +32,9 @@ Handle open_file_readonly(const std::string& path) {
   if (is_h5 == 0) throw FormatError(path + ": not an HDF5 file (no HDF5 signature)");
   hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   if (f < 0) throw FormatError(path + ": HDF5 file cannot be opened (truncated or corrupt?)");
-  return Handle(f);
+  Handle file(f);
+  check_external(file.get(), path, external);
+  return file;
 }
 
 bool exists(hid_t loc, const std::string& name) {

@@ -8,6 +8,8 @@
 #include <utility>
 #include <vector>
 
+#include "tsp/hdf5/hdf5_external.h"
+
 namespace tsp::h5 {
 
 /// Owns one HDF5 identifier (file, group, dataset, dataspace, type, property list, attribute).
@@ -46,8 +48,10 @@ void silence_errors();
 /// Names of the datasets directly in group (empty when the group is absent). Never throws.
 std::vector<std::string> datasets_in(hid_t loc, const std::string& group);
 
-/// Opens an existing file read-only; throws IoError (missing, unreadable) or FormatError (not HDF5).
-Handle open_file_readonly(const std::string& path);
+/// Opens an existing regular file read-only and checks what it reads outside itself
+/// (check_external with external); throws IoError (missing, not a regular file, unreadable),
+/// FormatError (not HDF5) or UsageError (refused external links or storage).
+Handle open_file_readonly(const std::string& path, External external = External::refuse);
 
 /// True when `name` (an absolute or relative path like "/a/b") exists below loc, all links resolved.
 bool exists(hid_t loc, const std::string& name);

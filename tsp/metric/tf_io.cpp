@@ -10,7 +10,7 @@
 
 #include "tsp/core/error.h"
 #include "tsp/core/json_read.h"
-#include "tsp/core/file_check.h"
+#include "tsp/core/input_file.h"
 #include "tsp/core/temp_output.h"
 #include "tsp/core/json_text.h"
 
@@ -56,6 +56,8 @@ TransferFunction parse_ours(const json& doc, const std::string& origin, int entr
   const ValueRange domain{number(range[0], origin, "range[0]"),
                           number(range[1], origin, "range[1]")};
   if (!(domain.lo < domain.hi)) fail(origin, "range", "expected lo < hi, found " + json_text(range));
+  if (!std::isfinite(domain.width()))
+    fail(origin, "range", "expected a finite width hi - lo, found " + json_text(range));
   const json& pts = require(doc, "points", origin);
   if (!pts.is_array() || pts.empty())
     fail(origin, "points", "expected a non-empty list of [x, r, g, b, a]");
@@ -114,6 +116,9 @@ TransferFunction parse_paraview(const json& preset, const std::string& origin, i
   const ValueRange domain{lo_it->x, hi_it->x};
   if (!(domain.lo < domain.hi))
     fail(origin, "RGBPoints", "all points lie at x = " + std::to_string(domain.lo));
+  if (!std::isfinite(domain.width()))
+    fail(origin, "RGBPoints", "the points span more than the double range (x from " +
+                                  std::to_string(domain.lo) + " to " + std::to_string(domain.hi) + ")");
   // ParaView's default opacity when a preset carries none: a ramp from 0 to 1 over the domain.
   std::vector<std::pair<double, double>> opacity = {{domain.lo, 0.0}, {domain.hi, 1.0}};
   if (auto it = preset.find("Points"); it != preset.end()) {
@@ -136,13 +141,7 @@ TransferFunction parse_paraview(const json& preset, const std::string& origin, i
 }
 
 std::string slurp(const std::string& path) {
-  require_regular_file(path, "transfer function file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw IoError(path + ": cannot open transfer function file");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) throw IoError(path + ": read error");
-  return ss.str();
+  return read_input_file(path, "transfer function file");
 }
 
 struct PresetKnot {
@@ -312,15 +311,19 @@ TfRangeChoice parse_tf_range(const std::string& text) {
   }
   if (!ok || !std::isfinite(lo) || !std::isfinite(hi) || !(lo < hi))
     throw UsageError("--tf-range '" + text + "': expected auto, data, file or LO:HI with LO < HI");
+  if (!std::isfinite(hi - lo))
+    throw UsageError("--tf-range '" + text + "': HI - LO is beyond the double range; expected a "
+                     "range of finite width");
   c.mode = TfRangeChoice::Mode::explicit_range;
   c.range = {lo, hi};
   return c;
 }
 
 TransferFunction rescaled(const TransferFunction& tf, ValueRange to) {
-  if (!std::isfinite(to.lo) || !std::isfinite(to.hi) || !(to.lo < to.hi))
+  if (!std::isfinite(to.lo) || !std::isfinite(to.hi) || !(to.lo < to.hi) ||
+      !std::isfinite(to.hi - to.lo))
     throw UsageError("transfer function range [" + std::to_string(to.lo) + ", " +
-                     std::to_string(to.hi) + "]: expected finite lo < hi");
+                     std::to_string(to.hi) + "]: expected finite lo < hi and a finite width");
   const ValueRange from = tf.domain();
   std::vector<TfPoint> pts;
   for (int j = 0; j < tf.size(); ++j) {

@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "tsp/core/error.h"
+#include "tsp/core/input_file.h"
 #include "tsp/core/temp_output.h"
 
 namespace tsp {
@@ -44,19 +45,16 @@ Image::Image(int w, int h) : width(w), height(h) {
 }
 
 Image read_png(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec))
-    throw IoError(path + ": is a directory, expected a PNG file");
-  FilePtr f(std::fopen(path.c_str(), "rb"));
-  if (!f) throw IoError(path + ": cannot open (" + std::strerror(errno) + ")");
+  const std::string bytes = read_input_file(path, "PNG image", kMaxPngFileBytes);
   PngImage p;
-  if (!png_image_begin_read_from_stdio(&p.img, f.get()))
+  if (!png_image_begin_read_from_memory(&p.img, bytes.data(), bytes.size()))
     throw FormatError(path + ": not a readable PNG file (libpng: " + p.img.message + ")");
+  // The decoded size, checked before anything is allocated for it.
   const std::int64_t pixels = std::int64_t(p.img.width) * p.img.height;
   if (pixels > kMaxPngPixels)
     throw FormatError(path + ": PNG of " + std::to_string(p.img.width) + "x" +
                       std::to_string(p.img.height) + " pixels, expected at most " +
-                      std::to_string(kMaxPngPixels) + " pixels");
+                      std::to_string(kMaxPngPixels) + " pixels (8192x8192)");
   p.img.format = PNG_FORMAT_RGBA;
   Image out(int(p.img.width), int(p.img.height));
   if (!png_image_finish_read(&p.img, nullptr, out.rgba.data(), 0, nullptr))

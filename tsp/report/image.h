@@ -26,12 +26,16 @@ struct Image {
   std::int64_t pixels() const { return std::int64_t(width) * height; }
 };
 
-/// Largest image read_png accepts (pixels), so a hostile header cannot ask for unbounded memory.
-inline constexpr std::int64_t kMaxPngPixels = std::int64_t(1) << 28;
+/// Largest image read_png accepts (pixels): 8192 x 8192, the largest `render --size`, so a hostile
+/// header cannot ask for more than 256 MiB of RGBA.
+inline constexpr std::int64_t kMaxPngPixels = std::int64_t(8192) * 8192;
+/// Largest PNG file read_png reads (bytes): more than any 8192 x 8192 RGBA image compresses to.
+inline constexpr std::int64_t kMaxPngFileBytes = std::int64_t(512) << 20;
 
 /// Reads a PNG of any colour type and bit depth as 8-bit RGBA (missing alpha = 255; 8-bit sRGB
 /// files, which write_png produces, are read exactly). Throws IoError when the file cannot be
-/// opened, FormatError when it is not a PNG, is truncated or corrupt, or is too large.
+/// opened or is not a regular file of at most kMaxPngFileBytes (tsp::read_input_file),
+/// FormatError when it is not a PNG, is truncated or corrupt, or holds more than kMaxPngPixels.
 Image read_png(const std::string& path);
 
 /// Writes img as an 8-bit RGBA PNG marked sRGB, atomically (temporary file, then rename).

@@ -83,6 +83,9 @@ struct Packing {
           throw FormatError(where + ": attribute " + name + " has " + std::to_string(v->size()) +
                             " values, expected 1");
         dst = (*v)[0];
+        if (!std::isfinite(dst))
+          throw FormatError(where + ": attribute " + name + " is " + std::to_string(dst) +
+                            ", expected a finite number");
       }
     };
     single("scale_factor", p.scale);
@@ -443,7 +446,8 @@ std::unique_ptr<VolumeSource> open_hdf5_source(const std::string& path,
     throw FormatError(path +
                       ": NetCDF classic (version 3) file, expected NetCDF-4/HDF5; convert "
                       "it with `nccopy -k nc4 in.nc out.nc`");
-  Handle file = h5::open_file_readonly(path);
+  Handle file = h5::open_file_readonly(
+      path, options.allow_external ? h5::External::allow : h5::External::refuse);
   if (is_vtkhdf(file.get())) return open_vtkhdf_source(path, std::move(file), options);
 
   std::string field = options.field;

@@ -96,8 +96,9 @@ std::unique_ptr<MeshSource> open_vtu_steps(const std::string& input,
   for (const io::StepFile& s : steps) {
     try {
       require_regular_file(s.file, "step file");
+      if (io::has_suffix(s.file, ".vtm")) io::vtm_volume_block(s.file);  // its block, too
     } catch (const IoError& e) {
-      throw IoError(input + ": " + e.what());
+      throw IoError(s.file == input ? std::string(e.what()) : input + ": " + e.what());
     }
   }
   io::VtuFile first(VtuSeriesSource::volume_file(steps[0].file));
@@ -119,9 +120,13 @@ std::vector<io::StepFile> listed_steps(const std::string& input) {
   return {{input, 0}};
 }
 
+h5::External external_policy(bool allow) {
+  return allow ? h5::External::allow : h5::External::refuse;
+}
+
 }  // namespace
 
-bool is_mesh_input(const std::string& input) {
+bool is_mesh_input(const std::string& input, bool allow_external) {
   try {
     if (io::has_suffix(input, ".vtu") || io::has_suffix(input, ".vtm") || io::has_suffix(input, ".vtu.series") ||
         io::has_suffix(input, ".vtm.series"))
@@ -132,23 +137,26 @@ bool is_mesh_input(const std::string& input) {
     }
     if (!is_hdf5_name(input)) return false;
     std::error_code ec;
-    if (std::filesystem::exists(input, ec)) return io::is_vtkhdf_unstructured(input);
+    if (std::filesystem::exists(input, ec))
+      return io::is_vtkhdf_unstructured(input, external_policy(allow_external));
     if (!io::is_file_pattern(input)) return false;
     std::vector<std::string> files = io::expand_file_pattern(input);
-    return !files.empty() && io::is_vtkhdf_unstructured(files[0]);
+    return !files.empty() &&
+           io::is_vtkhdf_unstructured(files[0], external_policy(allow_external));
   } catch (const std::exception&) {
     return false;
   }
 }
 
-std::unique_ptr<MeshSource> open_mesh_source(const std::string& input, const std::string& field) {
+std::unique_ptr<MeshSource> open_mesh_source(const std::string& input, const std::string& field,
+                                             bool allow_external) {
   const FieldSpec spec = FieldSpec::parse(field);
   std::vector<io::StepFile> steps = listed_steps(input);
   if (steps.size() == 1 && steps[0].file == input) require_regular_file(input, "input");
   if (!steps.empty() && is_hdf5_name(steps[0].file)) {
     std::vector<std::string> files;
     for (const io::StepFile& s : steps) files.push_back(s.file);
-    return io::open_vtkhdf_mesh_source(input, files, spec);
+    return io::open_vtkhdf_mesh_source(input, files, spec, external_policy(allow_external));
   }
   const bool named = io::has_suffix(input, ".pvd") || io::has_suffix(input, ".series");
   return open_vtu_steps(input, std::move(steps), spec, named);

@@ -4,11 +4,12 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <pugixml.hpp>
 
 #include "tsp/core/error.h"
+#include "tsp/core/file_check.h"
+#include "tsp/core/input_file.h"
 #include "tsp/core/json_read.h"
 
 namespace tsp::io {
@@ -18,9 +19,8 @@ namespace fs = std::filesystem;
 
 pugi::xml_node load_vtk_xml(pugi::xml_document& doc, const std::string& path,
                             const std::string& type) {
-  std::ifstream probe(path);
-  if (!probe) throw IoError(path + ": cannot be opened for reading");
-  pugi::xml_parse_result res = doc.load_file(path.c_str());
+  const std::string text = read_input_file(path, "list file");
+  pugi::xml_parse_result res = doc.load_buffer(text.data(), text.size());
   if (!res)
     throw FormatError(path + ": not well-formed XML (" + res.description() + " at byte " +
                       std::to_string(res.offset) + ")");
@@ -76,9 +76,7 @@ std::vector<StepFile> read_pvd(const std::string& path) {
 }
 
 std::vector<StepFile> read_file_series(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw IoError(path + ": cannot be opened for reading");
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string text = read_input_file(path, "list file");
   nlohmann::json j = parse_json(text, path);
   if (!j.is_object() || !j.contains("file-series-version") || !j["file-series-version"].is_string())
     throw FormatError(path + ": no \"file-series-version\" string, expected \"1.0\"");
@@ -126,8 +124,19 @@ std::string vtm_volume_block(const std::string& path) {
     if (name == "internal" && !file.empty()) internal = file;
     if (has_suffix(file, ".vtu")) volumes.push_back(file);
   }
-  if (!internal.empty()) return resolve_relative(path, internal);
-  if (volumes.size() == 1) return resolve_relative(path, volumes[0]);
+  // The block is read later through the input gate; checked here too, so that the error names
+  // the .vtm that points at it.
+  const auto checked = [&](const std::string& block) {
+    const std::string file = resolve_relative(path, block);
+    try {
+      require_regular_file(file, "volume block");
+    } catch (const IoError& e) {
+      throw IoError(path + ": " + e.what());
+    }
+    return file;
+  };
+  if (!internal.empty()) return checked(internal);
+  if (volumes.size() == 1) return checked(volumes[0]);
   std::string list;
   for (std::size_t i = 0; i < names.size(); ++i) list += (i ? ", " : "") + names[i];
   throw FormatError(path + ": no DataSet named \"internal\" and " +

@@ -25,7 +25,8 @@ std::vector<StepFile> read_file_series(const std::string& path);
 void order_steps(const std::string& list, std::vector<StepFile>& steps);
 
 /// The .vtu a .vtm multiblock file names for its volume: the DataSet called "internal" (at any
-/// depth), else the only .vtu DataSet. Throws FormatError naming the file and the blocks found.
+/// depth), else the only .vtu DataSet. Throws FormatError naming the file and the blocks found,
+/// IoError when the .vtm or the block is not a regular file (a FIFO, a device, missing).
 std::string vtm_volume_block(const std::string& path);
 
 /// True when s ends with suffix, ignoring ASCII case (".VTU" is ".vtu"). Never throws.

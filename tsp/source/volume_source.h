@@ -76,6 +76,8 @@ struct SourceOptions {
   std::optional<Dims> raw_dims;         ///< raw series: grid size (required for raw input)
   RawType raw_type = RawType::f32;      ///< raw series: element type
   bool raw_big_endian = false;          ///< raw series: byte order
+  bool allow_external = false;  ///< HDF5: read external links, external storage and virtual
+                                ///< datasets (h5::check_external; `--allow-external`)
 };
 
 }  // namespace tsp

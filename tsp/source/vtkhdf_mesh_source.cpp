@@ -14,10 +14,12 @@
 
 #include <algorithm>
 #include <cassert>
+#include <cmath>
 #include <mutex>
 #include <optional>
 
 #include "tsp/core/error.h"
+#include "tsp/core/file_check.h"
 #include "tsp/hdf5/hdf5_handle.h"
 #include "tsp/hdf5/hdf5_lock.h"
 #include "tsp/hdf5/hdf5_values.h"
@@ -29,6 +31,8 @@ namespace {
 using h5::Handle;
 
 constexpr const char* kRoot = "/VTKHDF";
+// VTKHDF major versions read (as for image data).
+constexpr int kMaxMajorVersion = 2;
 
 // A dataset's shape; throws FormatError when it cannot be opened.
 std::vector<hsize_t> shape_of(hid_t file, const std::string& name, const std::string& where) {
@@ -92,17 +96,51 @@ std::int64_t entry(hid_t file, const std::string& name, std::int64_t index,
 
 
 // Where step t's rows start in each table (all 0 and one partition for a static file).
+// /VTKHDF's Version, when the file has one: major 1 or 2, as for image data. Throws FormatError.
+void check_version(hid_t file, const std::string& path) {
+  Handle root(H5Gopen2(file, kRoot, H5P_DEFAULT));
+  if (!root) return;  // (resolve says what is missing)
+  auto version = numeric_attribute(root.get(), "Version", path + ", /VTKHDF");
+  if (!version) return;  // version 1 files may have none
+  if (version->size() != 2)
+    throw FormatError(path + ", /VTKHDF: attribute Version is not [major, minor]");
+  const double major = (*version)[0];
+  if (!(major >= 1 && major <= kMaxMajorVersion))
+    throw FormatError(path + ", /VTKHDF: VTKHDF major version " +
+                      (std::fabs(major) < 1e9 ? std::to_string(std::llround(major)) : "out of range") +
+                      ", expected 1 or 2");
+}
+
+// Step times: finite and strictly increasing, as .pvd and .series lists must be. Throws
+// FormatError naming where and the first bad entry.
+void check_times(const std::vector<double>& times, const std::string& where) {
+  for (std::size_t i = 0; i < times.size(); ++i) {
+    if (!std::isfinite(times[i]))
+      throw FormatError(where + ": time of step " + std::to_string(i) + " is not a finite number");
+    if (i > 0 && !(times[i] > times[i - 1]))
+      throw FormatError(where + ": time of step " + std::to_string(i) + " (" +
+                        std::to_string(times[i]) + ") is not after step " + std::to_string(i - 1) +
+                        "'s (" + std::to_string(times[i - 1]) +
+                        "); times must increase from step to step");
+  }
+}
+
 struct StepRows {
   std::int64_t part = 0, parts = 1, points = 0, cells = 0, conn = 0, data = 0;
 };
 
 class VtkhdfMeshSource final : public MeshSource {
  public:
-  VtkhdfMeshSource(std::string input, std::vector<std::string> files, FieldSpec field)
-      : input_(std::move(input)), files_(std::move(files)), field_(std::move(field)) {
+  VtkhdfMeshSource(std::string input, std::vector<std::string> files, FieldSpec field,
+                   h5::External external)
+      : input_(std::move(input)),
+        files_(std::move(files)),
+        field_(std::move(field)),
+        external_(external) {
     std::lock_guard lock(hdf5_mutex());
     h5::silence_errors();
-    Handle f = h5::open_file_readonly(files_[0]);
+    Handle f = h5::open_file_readonly(files_[0], external_);
+    check_version(f.get(), files_[0]);
     resolve(f.get(), files_[0]);
     transient_ = files_.size() == 1 && h5::exists(f.get(), "/VTKHDF/Steps");
     steps_ = int(files_.size());
@@ -116,6 +154,7 @@ class VtkhdfMeshSource final : public MeshSource {
         int cols = 1;
         times_ = read_rows<double>(f.get(), "/VTKHDF/Steps/Values", 0, steps_, cols,
                                    H5T_NATIVE_DOUBLE, false, files_[0]);
+        check_times(times_, files_[0] + ", /VTKHDF/Steps/Values");
       }
     }
   }
@@ -132,7 +171,7 @@ class VtkhdfMeshSource final : public MeshSource {
     assert(t >= 0 && t < steps_);
     std::lock_guard lock(hdf5_mutex());
     const std::string& path = transient_ ? files_[0] : files_[std::size_t(t)];
-    Handle f = h5::open_file_readonly(path);
+    Handle f = h5::open_file_readonly(path, external_);
     const std::string where = path + (transient_ ? ", step " + std::to_string(t) : "");
     StepRows rows = step_rows(f.get(), t, where);
     Mesh m;
@@ -216,6 +255,7 @@ class VtkhdfMeshSource final : public MeshSource {
   bool transient_ = false;
   int steps_ = 1;
   std::vector<double> times_;
+  h5::External external_;
 };
 
 void VtkhdfMeshSource::resolve(hid_t file, const std::string& path) {
@@ -269,12 +309,13 @@ StepRows VtkhdfMeshSource::step_rows(hid_t file, int t, const std::string& where
 
 }  // namespace
 
-bool is_vtkhdf_unstructured(const std::string& path) {
+bool is_vtkhdf_unstructured(const std::string& path, h5::External external) {
   try {
     std::lock_guard lock(hdf5_mutex());
     h5::silence_errors();
+    require_regular_file(path, "input");  // before H5Fis_hdf5 opens it: a FIFO would block
     if (H5Fis_hdf5(path.c_str()) <= 0) return false;
-    Handle f = h5::open_file_readonly(path);
+    Handle f = h5::open_file_readonly(path, external);
     if (!h5::exists(f.get(), kRoot)) return false;
     Handle root(H5Gopen2(f.get(), kRoot, H5P_DEFAULT));
     auto type = string_attribute(root.get(), "Type", path);
@@ -287,13 +328,19 @@ bool is_vtkhdf_unstructured(const std::string& path) {
 
 std::unique_ptr<MeshSource> open_vtkhdf_mesh_source(const std::string& input,
                                                     const std::vector<std::string>& files,
-                                                    const FieldSpec& field) {
+                                                    const FieldSpec& field,
+                                                    h5::External external) {
   if (files.empty()) throw IoError(input + ": no files match");
-  for (const std::string& f : files)
-    if (!is_vtkhdf_unstructured(f))
+  for (const std::string& f : files) {
+    {  // a refused external link or storage says so (the probe below only says "not VTKHDF")
+      std::lock_guard lock(hdf5_mutex());
+      h5::open_file_readonly(f, external);
+    }
+    if (!is_vtkhdf_unstructured(f, external))
       throw FormatError(f + ": not a VTKHDF UnstructuredGrid file (no /VTKHDF group of Type "
                         "UnstructuredGrid)");
-  return std::make_unique<VtkhdfMeshSource>(input, files, field);
+  }
+  return std::make_unique<VtkhdfMeshSource>(input, files, field, external);
 }
 
 }  // namespace tsp::io

@@ -49,7 +49,18 @@ class VoxelizedSource final : public VolumeSource {
       mesh.values = cell_values_to_points(mesh);
       mesh.cell_values = false;
     }
-    voxelize(mesh, grid_, out, inside, options_.sample);
+    VoxelizeStats stats;
+    try {
+      stats = voxelize(mesh, grid_, out, inside, options_.sample);
+    } catch (const FormatError& e) {
+      throw FormatError(source_->describe() + ", step " + std::to_string(t) + ": " + e.what());
+    }
+    if (stats.inside == 0)
+      throw FormatError(source_->describe() + ", step " + std::to_string(t) + ": no voxel of the " +
+                        to_string(grid_.dims) + " grid lies inside any of its " +
+                        std::to_string(mesh.cell_count()) +
+                        " cells (cells without volume, or smaller than a voxel: try a finer "
+                        "--resolution)");
   }
 
  private:
@@ -145,6 +156,11 @@ std::unique_ptr<VolumeSource> voxelized_source(std::unique_ptr<MeshSource> sourc
   for (int a = 0; a < 3; ++a) longest = std::max(longest, all.hi[a] - all.lo[a]);
   if (!(longest > 0))
     throw FormatError(source->describe() + ": the mesh has no extent (all points coincide)");
+  for (int a = 0; a < 3; ++a)
+    if (!(all.hi[a] - all.lo[a] > 0))
+      throw FormatError(source->describe() + ": the mesh is flat (every point has " +
+                        std::string(1, char('x' + a)) + " = " + std::to_string(all.lo[a]) +
+                        "): a surface has no inside to voxelize, expected cells with volume");
   const VoxelGrid grid = choose_grid(all, cell_size, options);
   return std::make_unique<VoxelizedSource>(std::move(source), grid, options, std::move(first));
 }

@@ -40,7 +40,9 @@ VoxelGrid choose_grid(const Aabb& bounds, double cell_size, const VoxelizeOption
 double median_cell_size(const TetMesh& mesh);
 
 /// Wraps source (reading every step's bounds now to fix the grid). Throws what the source
-/// throws, UsageError on bad options, FormatError when the meshes have no extent at all.
+/// throws, UsageError on bad options, FormatError when the meshes have no extent or are flat
+/// along an axis. Its read_step throws FormatError naming the step when voxelize() refuses the
+/// work (kVisitsPerItem) or no voxel lies inside any cell.
 std::unique_ptr<VolumeSource> voxelized_source(std::unique_ptr<MeshSource> source,
                                                const VoxelizeOptions& options);
 

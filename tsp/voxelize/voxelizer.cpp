@@ -1,12 +1,14 @@
 #include "tsp/voxelize/voxelizer.h"
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <cassert>
 #include <cmath>
 #include <limits>
 #include <vector>
 
+#include "tsp/core/error.h"
 #include "tsp/core/parallel_for.h"
 #include "tsp/voxelize/mat3.h"
 #include "tsp/voxelize/scan_convert.h"
@@ -98,6 +100,10 @@ struct Voxelizer {
   // How far a voxel's sub-samples reach from its centre (the scan voxelizer's K > 1): cells
   // are binned to the voxels whose sub-samples, not only centres, they may hold.
   std::array<double, 3> margin{0, 0, 0};
+  // The visits binned so far over all workers, and the most allowed (kVisitsPerItem).
+  std::int64_t budget = 0;
+  mutable std::atomic<std::int64_t> visits{0};
+  bool over_budget() const { return visits.load(std::memory_order_relaxed) > budget; }
 
   Vec3 tet_point(std::int64_t p) const {
     const double* x = tets.points.data() + 3 * p;
@@ -115,6 +121,7 @@ struct Voxelizer {
   void bin(Item item, const int lo[3], const int hi[3], const std::array<Vec3, 4>* tet,
            std::vector<std::vector<Item>>& bins, VoxelizeStats& st) const {
     const auto& ts = tiles.size;
+    std::int64_t item_visits = 0;
     for (int tz = lo[2] / ts[2]; tz <= hi[2] / ts[2]; ++tz)
       for (int ty = lo[1] / ts[1]; ty <= hi[1] / ts[1]; ++ty)
         for (int tx = lo[0] / ts[0]; tx <= hi[0] / ts[0]; ++tx) {
@@ -133,15 +140,21 @@ struct Voxelizer {
             if (!tet_box_overlap(*tet, box)) continue;
           }
           ++st.tile_entries;
+          std::int64_t n = 1;
+          for (int a = 0; a < 3; ++a)
+            n *= std::min(hi[a], tl[a] * ts[a] + ts[a] - 1) - std::max(lo[a], tl[a] * ts[a]) + 1;
+          item_visits += n;
           bins[std::size_t(tx + tiles.n[0] * (ty + tiles.n[1] * tz))].push_back(item);
         }
+    st.visits += item_visits;
+    visits.fetch_add(item_visits, std::memory_order_relaxed);
   }
 
   // Bins the cells [first, last) (tetrahedra [tet_first, …) belong to them in order).
   void bin_cells(std::int64_t first, std::int64_t last, std::int64_t tet_first,
                  std::vector<std::vector<Item>>& bins, VoxelizeStats& st) const {
     std::int64_t t = tet_first;
-    for (std::int64_t c = first; c < last; ++c) {
+    for (std::int64_t c = first; c < last && !over_budget(); ++c) {
       if (whole_hex && is_hexahedral(mesh.types[std::size_t(c)])) {
         std::int64_t g[8];
         hex_points(c, g);
@@ -362,7 +375,7 @@ VoxelizeStats voxelize(const Mesh& mesh, const VoxelGrid& grid, std::span<float>
   const bool whole_hex = !scan && options.hex == HexSampling::isoparametric;
   const bool all_hex = whole_hex && std::all_of(mesh.types.begin(), mesh.types.end(), is_hexahedral);
   const TetMesh tets = all_hex ? TetMesh{} : tetrahedralize(mesh, whole_hex);
-  Voxelizer vx{mesh, tets, grid, values, inside, whole_hex, {}, {}};
+  Voxelizer vx{mesh, tets, grid, values, inside, whole_hex, {}, {}, 0, {}};
   if (scan)
     for (int a = 0; a < 3; ++a)
       vx.margin[std::size_t(a)] = (0.5 - 0.5 / options.antialias) * grid.spacing[std::size_t(a)];
@@ -370,6 +383,7 @@ VoxelizeStats voxelize(const Mesh& mesh, const VoxelGrid& grid, std::span<float>
   VoxelizeStats stats;
   stats.tets = std::int64_t(tets.tets.size());
   for (CellType t : mesh.types) stats.hexahedra += whole_hex && is_hexahedral(t);
+  vx.budget = std::max(kMinVisitBudget, kVisitsPerItem * (d.count() + stats.tets + stats.hexahedra));
 
   // Bin, in parallel over contiguous blocks of cells; read in block order, every tile's bins list
   // its cells (and a cell's tetrahedra) in index order.
@@ -394,7 +408,15 @@ VoxelizeStats voxelize(const Mesh& mesh, const VoxelGrid& grid, std::span<float>
   for (const VoxelizeStats& s : block_stats) {
     stats.tile_tests += s.tile_tests;
     stats.tile_entries += s.tile_entries;
+    stats.visits += s.visits;
   }
+  if (vx.over_budget())
+    throw FormatError(
+        "the cells' bounding boxes cover more than " + std::to_string(vx.budget) +
+        " voxels in all (" + std::to_string(kVisitsPerItem) + " per voxel of the " +
+        to_string(d) + " grid and per cell's tetrahedron; stopped after " +
+        std::to_string(vx.visits.load()) + "): cells overlap far more than a mesh that tiles "
+        "space (many copies of large cells?); refused rather than voxelized for hours");
 
   // Sample: tiles in parallel; in each, cells in index order, the first containing one wins.
   std::vector<std::int64_t> inside_count(std::size_t(vx.tiles.count()), 0);

@@ -42,6 +42,14 @@ enum class VoxelizerKind {
 /// Largest anti-aliasing factor of the scan voxelizer (K³ sub-samples fit a 64-bit mask).
 inline constexpr int kMaxAntialias = 4;
 
+/// The work voxelize() accepts: every tetrahedron (or whole hexahedron) visits the voxels of its
+/// bounding box, and the visits of one step may total at most kVisitsPerItem × (voxels + cells'
+/// tetrahedra and hexahedra), and never less than kMinVisitBudget. Meshes whose cells tile
+/// space make a few visits per voxel and per tetrahedron; a mesh of many overlapping large cells
+/// (50,000 copies of one cell spanning the domain) makes thousands and is refused.
+inline constexpr std::int64_t kVisitsPerItem = 64;
+inline constexpr std::int64_t kMinVisitBudget = std::int64_t(1) << 30;
+
 /// How voxelize() samples.
 struct SampleOptions {
   VoxelizerKind kind = VoxelizerKind::locate;
@@ -58,12 +66,14 @@ struct VoxelizeStats {
   std::int64_t tile_tests = 0;    ///< tet–tile pairs tested by the separating-axis test
   std::int64_t tile_entries = 0;  ///< cell–tile pairs binned (the bins' total size)
   std::int64_t inside = 0;        ///< voxels inside the mesh
+  std::int64_t visits = 0;        ///< voxels of the cells' bounding boxes, summed over cells
 };
 
 /// Samples mesh (validated by check_mesh) on grid into values (dims.count() floats, x fastest)
 /// and inside (1 = inside the mesh, 0 = outside), padding outside voxels as described above
-/// (all 0 when nothing is inside). Never throws (asserts on sizes and an antialias factor
-/// outside 1..kMaxAntialias).
+/// (all 0 when nothing is inside). Throws FormatError (naming no file; the caller adds it) when
+/// the cells' bounding boxes would make more visits than the budget above allows, before any
+/// voxel is sampled. Asserts on sizes and an antialias factor outside 1..kMaxAntialias.
 VoxelizeStats voxelize(const Mesh& mesh, const VoxelGrid& grid, std::span<float> values,
                        std::span<std::uint8_t> inside, const SampleOptions& options = {});
 

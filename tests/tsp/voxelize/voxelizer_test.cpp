@@ -313,5 +313,39 @@ TEST(VoxelGridRule, ResolutionVoxelSizeAndMedianCellSize) {
   EXPECT_NEAR(median_cell_size(tetrahedralize(m)), 0.25, 1e-12);
 }
 
+// The work bound (issue 28): whole hexahedra visit exactly the voxels of their boxes — one
+// unit-cube hexahedron on a 9³ grid, 9³ visits per copy — and copies beyond the budget,
+// kVisitsPerItem × (voxels + hexahedra) but at least kMinVisitBudget, are refused before any
+// voxel is sampled.
+TEST(Voxelizer, CellsOverlappingFarBeyondTheBudgetAreRefused) {
+  const Mesh one = jittered_box(1, 0, [](double, double, double) { return true; },
+                                [](double, double, double) { return 1.f; });
+  auto copies = [&](std::int64_t n) {
+    Mesh m = one;
+    m.connectivity.clear();
+    m.offsets = {0};
+    m.types.clear();
+    for (std::int64_t c = 0; c < n; ++c) {
+      m.connectivity.insert(m.connectivity.end(), one.connectivity.begin(), one.connectivity.end());
+      m.offsets.push_back(std::int64_t(m.connectivity.size()));
+      m.types.push_back(CellType::hexahedron);
+    }
+    return m;
+  };
+  const VoxelGrid g = unit_grid(9);
+  std::vector<float> v(std::size_t(g.dims.count()));
+  std::vector<std::uint8_t> in(v.size());
+  SampleOptions so;
+  so.threads = 2;
+  const VoxelizeStats st = voxelize(copies(3), g, v, in, so);
+  EXPECT_EQ(st.visits, 3 * 729);
+  EXPECT_EQ(st.inside, 729);
+  // kMinVisitBudget / 729 copies fit (the budget's other term is smaller here); one more is
+  // refused.
+  const std::int64_t fit = kMinVisitBudget / 729;
+  ASSERT_LT(kVisitsPerItem * (729 + fit + 1), kMinVisitBudget);
+  EXPECT_THROW(voxelize(copies(fit + 1), g, v, in, so), FormatError);
+}
+
 }  // namespace
 }  // namespace tsp

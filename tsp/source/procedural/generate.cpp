@@ -65,6 +65,18 @@ std::unique_ptr<GeneratedSource> make_generated_source(const std::string& name,
   if (steps < 1 || steps > kMaxGeneratedSteps)
     throw UsageError("dataset '" + name + "': steps " + std::to_string(steps) +
                      ", expected a count in [1, " + std::to_string(kMaxGeneratedSteps) + "]");
+  // Products in 64 bits (each factor is at most 2048 or 4096), before anything is allocated.
+  const std::int64_t step_samples = dims.count();
+  if (step_samples > kMaxGeneratedStepSamples)
+    throw UsageError("dataset '" + name + "': dims " + to_string(dims) + " make " +
+                     std::to_string(step_samples) + " samples per step, more than the " +
+                     std::to_string(kMaxGeneratedStepSamples) +
+                     " (4 GiB of float32, e.g. 1024x1024x1024) a step may hold in memory");
+  if (step_samples * steps > kMaxGeneratedSamples)
+    throw UsageError("dataset '" + name + "': dims " + to_string(dims) + " x " +
+                     std::to_string(steps) + " steps make " + std::to_string(step_samples * steps) +
+                     " samples, more than the " + std::to_string(kMaxGeneratedSamples) +
+                     " (256 GiB of float32) generate writes");
   return entry->make(dims, steps, options.seed, options.threads);
 }
 

@@ -18,6 +18,10 @@ inline constexpr int kGeneratorVersion = 1;
 /// Largest grid edge and step count accepted by the generator.
 inline constexpr int kMaxGeneratedEdge = 2048;
 inline constexpr int kMaxGeneratedSteps = 4096;
+/// Largest step the generator makes (samples; one step is held in memory as float32: 4 GiB).
+inline constexpr std::int64_t kMaxGeneratedStepSamples = std::int64_t(1) << 30;
+/// Largest dataset the generator writes (samples over all steps: 256 GiB of float32).
+inline constexpr std::int64_t kMaxGeneratedSamples = std::int64_t(1) << 36;
 /// Seed used when none is given.
 inline constexpr std::uint64_t kDefaultSeed = 1;
 
@@ -41,7 +45,8 @@ struct GenerateOptions {
 };
 
 /// Makes the named built-in dataset. Throws UsageError for an unknown name (listing the known ones)
-/// or dims/steps outside [1, kMaxGeneratedEdge] / [1, kMaxGeneratedSteps].
+/// or dims/steps outside [1, kMaxGeneratedEdge] / [1, kMaxGeneratedSteps], a step of more than
+/// kMaxGeneratedStepSamples or a dataset of more than kMaxGeneratedSamples samples.
 std::unique_ptr<GeneratedSource> make_generated_source(const std::string& name,
                                                        const GenerateOptions& options = {});
 

@@ -4,10 +4,10 @@
 #include <cctype>
 #include <charconv>
 #include <cstring>
-#include <fstream>
 #include <limits>
 
 #include "tsp/core/error.h"
+#include "tsp/core/input_file.h"
 
 namespace tsp::io {
 namespace {
@@ -39,16 +39,13 @@ std::size_t find_appended_start(const std::string& content, const std::string& p
 }
 
 std::string read_whole(const std::string& path, bool header_only) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw IoError(path + ": cannot be opened for reading");
+  InputFile in(path, "VTK file");
   std::string content;
   std::string chunk(kReadChunk, '\0');
-  while (in) {
-    in.read(chunk.data(), std::streamsize(chunk.size()));
-    content.append(chunk.data(), std::size_t(in.gcount()));
+  while (const std::size_t got = in.read(chunk.data(), chunk.size())) {
+    content.append(chunk.data(), got);
     if (header_only && find_appended_start(content, path, false) != std::string::npos) break;
   }
-  if (in.bad()) throw IoError(path + ": read error");
   return content;
 }
 
