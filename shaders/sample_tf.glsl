@@ -4,13 +4,43 @@
 // with use_preintegrated, the pre-integrated segment between the half-way points to the
 // neighbouring samples instead. With use_stencil the texture's second channel holds the
 // stencil (1 inside the data): a sample where its trilinear blend is below ½ lies outside the
-// mesh and is never drawn.
+// mesh and is never drawn. With use_shading, every sample that is not transparent is lit
+// (shade(): Blinn–Phong with a headlight, the gradient by central differences).
 uniform sampler3D volume;            // the brick atlas (or the baseline's whole volume)
 uniform sampler1D transfer_function;
 uniform sampler2D preintegrated;     // segment colour over (front, back) tf coordinates
 uniform vec2 tf_map;                 // tf coordinate = normalised scalar · tf_map.x + tf_map.y
 uniform int use_preintegrated;
 uniform int use_stencil;
+uniform int use_shading;
+uniform vec4 phong;                  // ambient, diffuse, specular, specular power
+uniform vec3 light_dir;              // unit, towards the viewer (the headlight), world axes
+uniform vec3 inv_voxel;              // 1 / the world size of a voxel per axis
+const float kFlatGradient = 1e-3;    // value range per voxel below which lighting fades out
+
+// Blinn–Phong with a headlight (light and view along the central ray, so the half vector is the
+// light): c lit by the normal from the scalar's central differences one texel either side of
+// tc (clamped to the brick's box: one-sided on its faces), taken to world axes. Two-sided:
+// |n·l|. Where the gradient vanishes (uniform data) the sample stays unlit, like a flat node.
+// Specular light is white, weighted by the sample's opacity (premultiplied).
+vec4 shade(vec4 c, vec3 tc, vec3 lo, vec3 hi) {
+  if (use_shading == 0 || c.a <= 0.0) return c;
+  vec3 d = 1.0 / vec3(textureSize(volume, 0));
+  vec3 hi_x = clamp(tc + vec3(d.x, 0.0, 0.0), lo, hi), lo_x = clamp(tc - vec3(d.x, 0.0, 0.0), lo, hi);
+  vec3 hi_y = clamp(tc + vec3(0.0, d.y, 0.0), lo, hi), lo_y = clamp(tc - vec3(0.0, d.y, 0.0), lo, hi);
+  vec3 hi_z = clamp(tc + vec3(0.0, 0.0, d.z), lo, hi), lo_z = clamp(tc - vec3(0.0, 0.0, d.z), lo, hi);
+  // Differences over what the clamp left of the two texels' span (one-sided on a face).
+  vec3 span = max(vec3(hi_x.x - lo_x.x, hi_y.y - lo_y.y, hi_z.z - lo_z.z), 1e-3 * d);
+  vec3 g = vec3(texture(volume, hi_x).r - texture(volume, lo_x).r,
+                texture(volume, hi_y).r - texture(volume, lo_y).r,
+                texture(volume, hi_z).r - texture(volume, lo_z).r) / span * d * inv_voxel;
+  float len = length(g);
+  float ndl = abs(dot(g, light_dir)) / max(len, 1e-30);
+  vec3 lit = c.rgb * (phong.x + phong.y * ndl) + phong.z * pow(ndl, phong.w) * c.a;
+  // Uniform data has no normal: there the sample keeps its colour, as flat nodes do; lighting
+  // fades in up to a change of kFlatGradient of the value range per voxel.
+  return vec4(mix(c.rgb, lit, smoothstep(0.0, kFlatGradient, len)), c.a);
+}
 
 float tf_coord(vec3 tc, vec3 lo, vec3 hi) {
   return texture(volume, clamp(tc, lo, hi)).r * tf_map.x + tf_map.y;
@@ -23,18 +53,34 @@ vec4 sample_colour(vec3 tc, vec3 half_step, vec3 lo, vec3 hi, inout float u_fron
     u_front = -1.0;
     return vec4(0.0);
   }
-  if (use_preintegrated == 0) return texture(transfer_function, tf_coord(tc, lo, hi));
+  if (use_preintegrated == 0)
+    return shade(texture(transfer_function, tf_coord(tc, lo, hi)), tc, lo, hi);
   if (u_front < 0.0) u_front = tf_coord(tc - half_step, lo, hi);
   float u_back = tf_coord(tc + half_step, lo, hi);
   vec4 c = texture(preintegrated, vec2(u_front, u_back));
   u_front = u_back;
-  return c;
+  return shade(c, tc, lo, hi);
 }
 
 // The point lookup alone (the caster's segment loop, built without pre-integration).
 vec4 sample_point(vec3 tc, vec3 lo, vec3 hi) {
   if (use_stencil != 0 && texture(volume, clamp(tc, lo, hi)).g < 0.5) return vec4(0.0);
-  return texture(transfer_function, tf_coord(tc, lo, hi));
+  return shade(texture(transfer_function, tf_coord(tc, lo, hi)), tc, lo, hi);
+}
+
+// The pre-integrated segment (the caster's segment loop with pre-integration) from tc_front to
+// tc_back, tc its middle (stencil and shading): the table entry for the tf coordinates at its
+// ends. u_front carries the front end's from the previous segment of a run (< 0: read it).
+vec4 sample_segment(vec3 tc, vec3 tc_front, vec3 tc_back, vec3 lo, vec3 hi, inout float u_front) {
+  if (use_stencil != 0 && texture(volume, clamp(tc, lo, hi)).g < 0.5) {
+    u_front = -1.0;
+    return vec4(0.0);
+  }
+  if (u_front < 0.0) u_front = tf_coord(tc_front, lo, hi);
+  float u_back = tf_coord(tc_back, lo, hi);
+  vec4 c = texture(preintegrated, vec2(u_front, u_back));
+  u_front = u_back;
+  return shade(c, tc, lo, hi);
 }
 
 #ifdef TSP_ADAPTIVE
@@ -43,6 +89,6 @@ vec4 sample_point(vec3 tc, vec3 lo, vec3 hi) {
 uniform sampler2D tf_rows;
 vec4 sample_row(vec3 tc, vec3 lo, vec3 hi, float row) {
   if (use_stencil != 0 && texture(volume, clamp(tc, lo, hi)).g < 0.5) return vec4(0.0);
-  return texture(tf_rows, vec2(tf_coord(tc, lo, hi), row));
+  return shade(texture(tf_rows, vec2(tf_coord(tc, lo, hi), row)), tc, lo, hi);
 }
 #endif

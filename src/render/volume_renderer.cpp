@@ -81,6 +81,7 @@ VolumeRenderer::ReuseKey VolumeRenderer::reuse_key(const tsp::Camera& camera,
   k.compositing = s.compositing;
   k.exact_flat = s.exact_flat;
   k.preintegrated = s.preintegrated;
+  k.shade = s.shade;
   k.skip_transparent = s.skip_transparent;
   k.background = s.background;
   k.tf_serial = tf_serial_;
