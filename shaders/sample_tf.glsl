@@ -20,20 +20,42 @@ const float kFlatGradient = 1e-3;    // value range per voxel below which lighti
 
 // Blinn–Phong with a headlight (light and view along the central ray, so the half vector is the
 // light): c lit by the normal from the scalar's central differences one texel either side of
-// tc (clamped to the brick's box: one-sided on its faces), taken to world axes. Two-sided:
+// tc (in the brick's box; beyond its faces from the neighbour brick in the one-pass caster, else
+// one-sided), taken to world axes. Two-sided:
 // |n·l|. Where the gradient vanishes (uniform data) the sample stays unlit, like a flat node.
 // Specular light is white, weighted by the sample's opacity (premultiplied).
+#ifdef TSP_CLIP
+// The one-pass caster (TSP_CLIP is defined in every variant of it) reads a tap beyond its
+// brick's face from the neighbour brick through the brick pages (volume_ray.frag); false when
+// the neighbour holds no level-0 texture there.
+bool neighbour_tap(vec3 q, int axis, vec3 lo, vec3 hi, out float v);
+#endif
+
+// One tap of the central differences: the scalar one texel from tc along `axis` (q) and where
+// along that axis it was read — q itself, or clamped onto the brick's face when the texel lies
+// beyond it and no neighbour supplies it (then the difference is one-sided).
+vec2 gradient_tap(vec3 q, int axis, vec3 lo, vec3 hi) {
+#ifdef TSP_CLIP
+  float v;
+  if ((q[axis] < lo[axis] || q[axis] > hi[axis]) && neighbour_tap(q, axis, lo, hi, v))
+    return vec2(v, q[axis]);
+#endif
+  vec3 c = clamp(q, lo, hi);
+  return vec2(texture(volume, c).r, c[axis]);
+}
+
 vec4 shade(vec4 c, vec3 tc, vec3 lo, vec3 hi) {
   if (use_shading == 0 || c.a <= 0.0) return c;
   vec3 d = 1.0 / vec3(textureSize(volume, 0));
-  vec3 hi_x = clamp(tc + vec3(d.x, 0.0, 0.0), lo, hi), lo_x = clamp(tc - vec3(d.x, 0.0, 0.0), lo, hi);
-  vec3 hi_y = clamp(tc + vec3(0.0, d.y, 0.0), lo, hi), lo_y = clamp(tc - vec3(0.0, d.y, 0.0), lo, hi);
-  vec3 hi_z = clamp(tc + vec3(0.0, 0.0, d.z), lo, hi), lo_z = clamp(tc - vec3(0.0, 0.0, d.z), lo, hi);
-  // Differences over what the clamp left of the two texels' span (one-sided on a face).
-  vec3 span = max(vec3(hi_x.x - lo_x.x, hi_y.y - lo_y.y, hi_z.z - lo_z.z), 1e-3 * d);
-  vec3 g = vec3(texture(volume, hi_x).r - texture(volume, lo_x).r,
-                texture(volume, hi_y).r - texture(volume, lo_y).r,
-                texture(volume, hi_z).r - texture(volume, lo_z).r) / span * d * inv_voxel;
+  vec3 g;
+  for (int a = 0; a < 3; ++a) {
+    vec3 e = vec3(0.0);
+    e[a] = d[a];
+    vec2 f = gradient_tap(tc + e, a, lo, hi), b = gradient_tap(tc - e, a, lo, hi);
+    // The difference over the span between the two taps (one-sided on a face): per texel.
+    g[a] = (f.x - b.x) / max(f.y - b.y, 1e-3 * d[a]) * d[a];
+  }
+  g *= inv_voxel;
   float len = length(g);
   float ndl = abs(dot(g, light_dir)) / max(len, 1e-30);
   vec3 lit = c.rgb * (phong.x + phong.y * ndl) + phong.z * pow(ndl, phong.w) * c.a;

@@ -91,6 +91,29 @@ float skip_to_kept(float t, float dt) {
   return t >= cur_s ? 0.0 : ceil((cur_s - t) / dt);
 }
 
+// The brick the caster is in (for neighbour_tap): its grid index and page, and whether it is a
+// level-0 texture (level bricks keep one-sided differences on their faces).
+ivec3 g_brick = ivec3(0);
+vec4 g_page = vec4(0.0);
+bool g_level0 = false;
+
+// A gradient tap beyond the current brick's face along `axis` (sample_tf.glsl): read from the
+// neighbour brick across that face when it is a level-0 texture, clamped to its own box.
+bool neighbour_tap(vec3 q, int axis, vec3 lo, vec3 hi, out float v) {
+  v = 0.0;
+  if (!g_level0) return false;
+  ivec3 cn = g_brick;
+  cn[axis] += q[axis] > hi[axis] ? 1 : -1;
+  if (cn[axis] < 0 || cn[axis] >= grid[axis]) return false;
+  vec4 pn = texelFetch(pages, cn, 0);
+  if (pn.w <= 0.5 || ((int(pn.w + 0.5) - 1) & (kClipFlag - 1)) != 0) return false;
+  vec3 p = q / atlas_scale - g_page.xyz;  // sample coordinates (level 0: one texel a sample)
+  vec3 lo_n = vec3(cn) * cell;
+  v = texture(volume, clamp((p + pn.xyz) * atlas_scale, (lo_n + pn.xyz) * atlas_scale,
+                            (min(lo_n + cell, box_hi) + pn.xyz) * atlas_scale)).r;
+  return true;
+}
+
 // A sample standing for k (≤ 1) of its full segment: opacity 1 − (1 − α)^k, premultiplied.
 vec4 cut_sample(vec4 s, float k) {
   if (s.a <= 0.0) return s;
@@ -186,6 +209,9 @@ void main() {
       // Only bricks the clip surface may cross test their samples against the solid.
       bool brick_clip = clip_on() && code >= kClipFlag;
       code &= kClipFlag - 1;
+      g_brick = c;
+      g_page = page;
+      g_level0 = code == 0;
       ivec3 lv = ivec3(code & 7, (code >> 3) & 7, (code >> 6) & 7);
       vec3 scale = 1.0 / vec3(ivec3(1) << lv);
       float m = float(1 << max(lv.x, max(lv.y, lv.z)));

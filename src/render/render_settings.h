@@ -57,7 +57,9 @@ struct RenderSettings {
   /// (tsp::preintegrate) instead of the point lookup.
   bool preintegrated = false;
   /// Textured samples lit by a headlight (Blinn–Phong, kAmbient … kSpecularPower; the normal
-  /// from central differences of the scalar). Flat nodes stay unlit.
+  /// from central differences of the scalar, one-sided on brick faces). Uniform data and flat
+  /// nodes stay unlit. Off by default until brick faces get central differences too: the brick
+  /// grid and the whole-volume paths (dense, baseline) differ there (docs/rendering.md).
   bool shade = false;
   /// Keep the last frame's pixels whose rays meet only bricks drawn as before (same view, TF and
   /// knobs), drawing only the rectangles of the bricks that changed (image_reuse.h). Exact.
