@@ -12,6 +12,7 @@ dependencies) and a display (run under `xvfb-run -a -s "-screen 0 1280x1024x24"`
 
     xvfb-run -a /usr/bin/python3 bench/vtk_reference.py DATA.h5 FIELD TF.json OUT_DIR \
         [--steps A:B] [--size 640x480] [--view 30,20] [--spacing 0.5] [--mapper cpu|gpu|both]
+        [--shade on|off]
 
 With --search 1,3 it judges VTK as tspplay's bench judges our renderers (docs/bench.md): the
 reference is VTK's own CPU caster at 0.25-voxel sample distance; every mapper × --spacings value
@@ -23,7 +24,8 @@ the ratios printed and written to OUT_DIR/vtk_search.json.
 
 TF.json is tspplay's own format (e.g. the demo's sparse_tf.json or `tspplay` presets saved with
 save_transfer_function); its points become VTK's colour and opacity functions. Opacity is per
-unit distance of one voxel in both (spec §9), the sample distance is --spacing voxels, shading off,
+unit distance of one voxel in both (spec §9), the sample distance is --spacing voxels, shading off
+(--shade on: VTK's default lighting, to compare with `tspplay render --shade on`),
 trilinear interpolation, orthographic camera fitted as tsp/frame/camera.cpp fits it.
 """
 import argparse
@@ -71,7 +73,7 @@ def load_tf(path):
     return colour, opacity
 
 
-def make_pipeline(kind, colour, opacity, dims, az, el, width, height):
+def make_pipeline(kind, colour, opacity, dims, az, el, width, height, shade=False):
     win = vtk.vtkRenderWindow()
     win.SetOffScreenRendering(1)
     win.SetSize(width, height)
@@ -83,7 +85,12 @@ def make_pipeline(kind, colour, opacity, dims, az, el, width, height):
     prop.SetScalarOpacity(opacity)
     prop.SetScalarOpacityUnitDistance(1.0)
     prop.SetInterpolationTypeToLinear()
-    prop.ShadeOff()
+    # Shading on: VTK's default coefficients (ambient 0.1, diffuse 0.7, specular 0.2, power 10)
+    # and its default light, a headlight — what `tspplay render --shade on` draws.
+    if shade:
+        prop.ShadeOn()
+    else:
+        prop.ShadeOff()
     mapper = (vtk.vtkFixedPointVolumeRayCastMapper() if kind == "cpu"
               else vtk.vtkOpenGLGPUVolumeRayCastMapper())
     mapper.SetAutoAdjustSampleDistances(0)
@@ -215,6 +222,8 @@ def main():
     p.add_argument("--view", default="30,20")
     p.add_argument("--spacing", type=float, default=0.5)
     p.add_argument("--mapper", default="both", choices=["cpu", "gpu", "both"])
+    p.add_argument("--shade", default="off", choices=["on", "off"],
+                   help="light the volume (VTK's default coefficients and headlight)")
     p.add_argument("--search", default="", help="target mean dE values, e.g. 1,3")
     p.add_argument("--spacings", default="0.25,0.5,1,1.5,2,3,4,6,8")
     p.add_argument("--tspplay", default=os.path.join(os.path.dirname(os.path.abspath(__file__)),
@@ -242,7 +251,8 @@ def main():
         return 0
     results = {}
     for kind in (["cpu", "gpu"] if a.mapper == "both" else [a.mapper]):
-        win, mapper = make_pipeline(kind, colour, opacity, (nx, ny, nz), az, el, width, height)
+        win, mapper = make_pipeline(kind, colour, opacity, (nx, ny, nz), az, el, width, height,
+                                    a.shade == "on")
         times = render_series(win, mapper, series, a.field, (nx, ny, nz), a.spacing,
                               os.path.join(a.out, kind), first)
         steady = times[1:] if len(times) > 1 else times

@@ -4,13 +4,65 @@
 // with use_preintegrated, the pre-integrated segment between the half-way points to the
 // neighbouring samples instead. With use_stencil the texture's second channel holds the
 // stencil (1 inside the data): a sample where its trilinear blend is below ½ lies outside the
-// mesh and is never drawn.
+// mesh and is never drawn. With use_shading, every sample that is not transparent is lit
+// (shade(): Blinn–Phong with a headlight, the gradient by central differences).
 uniform sampler3D volume;            // the brick atlas (or the baseline's whole volume)
 uniform sampler1D transfer_function;
 uniform sampler2D preintegrated;     // segment colour over (front, back) tf coordinates
 uniform vec2 tf_map;                 // tf coordinate = normalised scalar · tf_map.x + tf_map.y
 uniform int use_preintegrated;
 uniform int use_stencil;
+uniform int use_shading;
+uniform vec4 phong;                  // ambient, diffuse, specular, specular power
+uniform vec3 light_dir;              // unit, towards the viewer (the headlight), world axes
+uniform vec3 inv_voxel;              // 1 / the world size of a voxel per axis
+const float kFlatGradient = 1e-3;    // value range per voxel below which lighting fades out
+
+// Blinn–Phong with a headlight (light and view along the central ray, so the half vector is the
+// light): c lit by the normal from the scalar's central differences one texel either side of
+// tc (in the brick's box; beyond its faces from the neighbour brick in the one-pass caster, else
+// one-sided), taken to world axes. Two-sided:
+// |n·l|. Where the gradient vanishes (uniform data) the sample stays unlit, like a flat node.
+// Specular light is white, weighted by the sample's opacity (premultiplied).
+#ifdef TSP_CLIP
+// The one-pass caster (TSP_CLIP is defined in every variant of it) reads a tap beyond its
+// brick's face from the neighbour brick through the brick pages (volume_ray.frag); false when
+// the neighbour holds no level-0 texture there.
+bool neighbour_tap(vec3 q, int axis, vec3 lo, vec3 hi, out float v);
+#endif
+
+// One tap of the central differences: the scalar one texel from tc along `axis` (q) and where
+// along that axis it was read — q itself, or clamped onto the brick's face when the texel lies
+// beyond it and no neighbour supplies it (then the difference is one-sided).
+vec2 gradient_tap(vec3 q, int axis, vec3 lo, vec3 hi) {
+#ifdef TSP_CLIP
+  float v;
+  if ((q[axis] < lo[axis] || q[axis] > hi[axis]) && neighbour_tap(q, axis, lo, hi, v))
+    return vec2(v, q[axis]);
+#endif
+  vec3 c = clamp(q, lo, hi);
+  return vec2(texture(volume, c).r, c[axis]);
+}
+
+vec4 shade(vec4 c, vec3 tc, vec3 lo, vec3 hi) {
+  if (use_shading == 0 || c.a <= 0.0) return c;
+  vec3 d = 1.0 / vec3(textureSize(volume, 0));
+  vec3 g;
+  for (int a = 0; a < 3; ++a) {
+    vec3 e = vec3(0.0);
+    e[a] = d[a];
+    vec2 f = gradient_tap(tc + e, a, lo, hi), b = gradient_tap(tc - e, a, lo, hi);
+    // The difference over the span between the two taps (one-sided on a face): per texel.
+    g[a] = (f.x - b.x) / max(f.y - b.y, 1e-3 * d[a]) * d[a];
+  }
+  g *= inv_voxel;
+  float len = length(g);
+  float ndl = abs(dot(g, light_dir)) / max(len, 1e-30);
+  vec3 lit = c.rgb * (phong.x + phong.y * ndl) + phong.z * pow(ndl, phong.w) * c.a;
+  // Uniform data has no normal: there the sample keeps its colour, as flat nodes do; lighting
+  // fades in up to a change of kFlatGradient of the value range per voxel.
+  return vec4(mix(c.rgb, lit, smoothstep(0.0, kFlatGradient, len)), c.a);
+}
 
 float tf_coord(vec3 tc, vec3 lo, vec3 hi) {
   return texture(volume, clamp(tc, lo, hi)).r * tf_map.x + tf_map.y;
@@ -23,18 +75,34 @@ vec4 sample_colour(vec3 tc, vec3 half_step, vec3 lo, vec3 hi, inout float u_fron
     u_front = -1.0;
     return vec4(0.0);
   }
-  if (use_preintegrated == 0) return texture(transfer_function, tf_coord(tc, lo, hi));
+  if (use_preintegrated == 0)
+    return shade(texture(transfer_function, tf_coord(tc, lo, hi)), tc, lo, hi);
   if (u_front < 0.0) u_front = tf_coord(tc - half_step, lo, hi);
   float u_back = tf_coord(tc + half_step, lo, hi);
   vec4 c = texture(preintegrated, vec2(u_front, u_back));
   u_front = u_back;
-  return c;
+  return shade(c, tc, lo, hi);
 }
 
 // The point lookup alone (the caster's segment loop, built without pre-integration).
 vec4 sample_point(vec3 tc, vec3 lo, vec3 hi) {
   if (use_stencil != 0 && texture(volume, clamp(tc, lo, hi)).g < 0.5) return vec4(0.0);
-  return texture(transfer_function, tf_coord(tc, lo, hi));
+  return shade(texture(transfer_function, tf_coord(tc, lo, hi)), tc, lo, hi);
+}
+
+// The pre-integrated segment (the caster's segment loop with pre-integration) from tc_front to
+// tc_back, tc its middle (stencil and shading): the table entry for the tf coordinates at its
+// ends. u_front carries the front end's from the previous segment of a run (< 0: read it).
+vec4 sample_segment(vec3 tc, vec3 tc_front, vec3 tc_back, vec3 lo, vec3 hi, inout float u_front) {
+  if (use_stencil != 0 && texture(volume, clamp(tc, lo, hi)).g < 0.5) {
+    u_front = -1.0;
+    return vec4(0.0);
+  }
+  if (u_front < 0.0) u_front = tf_coord(tc_front, lo, hi);
+  float u_back = tf_coord(tc_back, lo, hi);
+  vec4 c = texture(preintegrated, vec2(u_front, u_back));
+  u_front = u_back;
+  return shade(c, tc, lo, hi);
 }
 
 #ifdef TSP_ADAPTIVE
@@ -43,6 +111,6 @@ vec4 sample_point(vec3 tc, vec3 lo, vec3 hi) {
 uniform sampler2D tf_rows;
 vec4 sample_row(vec3 tc, vec3 lo, vec3 hi, float row) {
   if (use_stencil != 0 && texture(volume, clamp(tc, lo, hi)).g < 0.5) return vec4(0.0);
-  return texture(tf_rows, vec2(tf_coord(tc, lo, hi), row));
+  return shade(texture(tf_rows, vec2(tf_coord(tc, lo, hi), row)), tc, lo, hi);
 }
 #endif

@@ -13,9 +13,10 @@
 //             at 1/f and samples every m·spacing, m = the largest f, on planes (k + ½)·m·spacing,
 //             each sample's opacity corrected to the length of ray it stands for inside the
 //             brick: α_L = 1 − (1 − α)^(L/spacing) (spec §9, §14).
-// With TSP_SEGMENTS (the caster without probes, point lookup), full-resolution textured bricks
-// are sampled in the slice planes' segments, each at its middle, the first and last of each run
-// of such bricks cut exactly where the run begins and ends. With TSP_ADAPTIVE as well (adaptive
+// With TSP_SEGMENTS (the caster without probes), full-resolution textured bricks are sampled in
+// the slice planes' segments, each at its middle, the first and last of each run of such bricks
+// cut exactly where the run begins and ends; with TSP_PREINT as well, each segment reads the
+// pre-integrated table at the scalars of its two ends instead of the point lookup. With TSP_ADAPTIVE as well (adaptive
 // sampling), a segment spans m spacings (to the next boundary of the grid of m spacings), m
 // read with its TF row from step_map for the cell (kStepCell³ voxels) where it starts.
 // It stops once the ray is opaque (early ray termination). With a clip solid (clip.glsl) the
@@ -88,6 +89,29 @@ float skip_to_kept(float t, float dt) {
   }
   if (t > cur_e) return -1.0;
   return t >= cur_s ? 0.0 : ceil((cur_s - t) / dt);
+}
+
+// The brick the caster is in (for neighbour_tap): its grid index and page, and whether it is a
+// level-0 texture (level bricks keep one-sided differences on their faces).
+ivec3 g_brick = ivec3(0);
+vec4 g_page = vec4(0.0);
+bool g_level0 = false;
+
+// A gradient tap beyond the current brick's face along `axis` (sample_tf.glsl): read from the
+// neighbour brick across that face when it is a level-0 texture, clamped to its own box.
+bool neighbour_tap(vec3 q, int axis, vec3 lo, vec3 hi, out float v) {
+  v = 0.0;
+  if (!g_level0) return false;
+  ivec3 cn = g_brick;
+  cn[axis] += q[axis] > hi[axis] ? 1 : -1;
+  if (cn[axis] < 0 || cn[axis] >= grid[axis]) return false;
+  vec4 pn = texelFetch(pages, cn, 0);
+  if (pn.w <= 0.5 || ((int(pn.w + 0.5) - 1) & (kClipFlag - 1)) != 0) return false;
+  vec3 p = q / atlas_scale - g_page.xyz;  // sample coordinates (level 0: one texel a sample)
+  vec3 lo_n = vec3(cn) * cell;
+  v = texture(volume, clamp((p + pn.xyz) * atlas_scale, (lo_n + pn.xyz) * atlas_scale,
+                            (min(lo_n + cell, box_hi) + pn.xyz) * atlas_scale)).r;
+  return true;
 }
 
 // A sample standing for k (≤ 1) of its full segment: opacity 1 − (1 − α)^k, premultiplied.
@@ -185,6 +209,9 @@ void main() {
       // Only bricks the clip surface may cross test their samples against the solid.
       bool brick_clip = clip_on() && code >= kClipFlag;
       code &= kClipFlag - 1;
+      g_brick = c;
+      g_page = page;
+      g_level0 = code == 0;
       ivec3 lv = ivec3(code & 7, (code >> 3) & 7, (code >> 6) & 7);
       vec3 scale = 1.0 / vec3(ivec3(1) << lv);
       float m = float(1 << max(lv.x, max(lv.y, lv.z)));
@@ -283,9 +310,16 @@ void main() {
             float t_b = ((floor(d / spacing) + 1.0) * spacing - r.depth_entry) / r.cos_theta;
             if (closing) t_b = min(t_b, t_out);
             float k = (t_b - t) / dtm;
+            u_prev = -1.0;
             if (k > 1e-4) {
-              vec4 s = sample_point(((entry + r.ray * (0.5 * (t + t_b))) * scale + page.xyz) *
-                                        atlas_scale, tc_lo, tc_hi);
+              vec3 tcm = ((entry + r.ray * (0.5 * (t + t_b))) * scale + page.xyz) * atlas_scale;
+#ifdef TSP_PREINT
+              vec3 tcf = ((entry + r.ray * t) * scale + page.xyz) * atlas_scale;
+              vec3 tcb = ((entry + r.ray * t_b) * scale + page.xyz) * atlas_scale;
+              vec4 s = sample_segment(tcm, tcf, tcb, tc_lo, tc_hi, u_prev);
+#else
+              vec4 s = sample_point(tcm, tc_lo, tc_hi);
+#endif
               acc += (1.0 - acc.a) * cut_sample(s, k);
             }
             t_next = t_b + 0.5 * dtm;  // here t_next is the next segment's middle
@@ -296,10 +330,21 @@ void main() {
             if (t_next >= t_out && !closing) break;  // its middle is in the next brick
             float k = (t_out - t_next) / dtm + 0.5;  // what is left of the segment
             vec4 s;
+#ifdef TSP_PREINT
+            // Pre-integrated: the segment's colour from the scalars at its two ends (the front
+            // carried from the previous segment); a cut one reads the table for a whole segment
+            // and corrects its opacity to the length.
+            if (closing && k < 1.0)
+              s = cut_sample(sample_segment(tc + dtc * (0.5 * k - 0.5), tc - 0.5 * dtc,
+                                            tc + dtc * (k - 0.5), tc_lo, tc_hi, u_prev), k);
+            else
+              s = sample_segment(tc, tc - 0.5 * dtc, tc + 0.5 * dtc, tc_lo, tc_hi, u_prev);
+#else
             if (closing && k < 1.0)
               s = cut_sample(sample_point(tc + dtc * (0.5 * k - 0.5), tc_lo, tc_hi), k);
             else
               s = sample_point(tc, tc_lo, tc_hi);
+#endif
             acc += (1.0 - acc.a) * s;
             tc += dtc;
           }

@@ -24,6 +24,10 @@ inline constexpr double kMinSliceSpacing = 1.0 / 64, kMaxSliceSpacing = 64;
 /// Largest texture, brick or upload budget accepted (1 TiB).
 inline constexpr std::int64_t kMaxBudgetBytes = std::int64_t(1) << 40;
 
+/// Lighting (RenderSettings::shade): Blinn–Phong coefficients, vtkVolumeProperty's defaults
+/// (Ambient 0.1, Diffuse 0.7, Specular 0.2, SpecularPower 10).
+inline constexpr double kAmbient = 0.1, kDiffuse = 0.7, kSpecular = 0.2, kSpecularPower = 10;
+
 /// How a renderer draws textured boxes (bricks, or the baseline's whole volume).
 enum class Compositing {
   slices,  ///< view-aligned slice polygons, one blended fragment per slice (paper §4.2)
@@ -52,6 +56,11 @@ struct RenderSettings {
   /// Textured samples read a pre-integrated TF table over each pair of neighbouring samples
   /// (tsp::preintegrate) instead of the point lookup.
   bool preintegrated = false;
+  /// Textured samples lit by a headlight (Blinn–Phong, kAmbient … kSpecularPower; the normal
+  /// from central differences of the scalar, one-sided on brick faces). Uniform data and flat
+  /// nodes stay unlit. Off by default until brick faces get central differences too: the brick
+  /// grid and the whole-volume paths (dense, baseline) differ there (docs/rendering.md).
+  bool shade = false;
   /// Keep the last frame's pixels whose rays meet only bricks drawn as before (same view, TF and
   /// knobs), drawing only the rectangles of the bricks that changed (image_reuse.h). Exact.
   bool reuse_image = true;

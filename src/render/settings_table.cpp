@@ -85,6 +85,12 @@ std::vector<SettingSpec> make_table() {
                .help = "Pre-integrated TF lookup over each pair of neighbouring samples",
                .get = [](const RenderSettings& s) { return on_off(s.preintegrated); },
                .set = [](RenderSettings& s, double v) { s.preintegrated = v != 0; }});
+  t.push_back({.name = "shade", .kind = K::toggle, .group = G::compositing, .unit = {}, .lo = 0, .hi = 0,
+               .choices = kToggle,
+               .help = "Light the volume: Blinn-Phong with a headlight (VTK's ambient 0.1, "
+                       "diffuse 0.7, specular 0.2, power 10), normals from the scalar's gradient",
+               .get = [](const RenderSettings& s) { return on_off(s.shade); },
+               .set = [](RenderSettings& s, double v) { s.shade = v != 0; }});
   t.push_back({.name = "upload-budget", .kind = K::number, .group = G::memory, .unit = "MiB",
                .lo = 0, .hi = double(kMaxBudgetBytes) / kBytesPerMib, .choices = {}, .ui_lo = 0, .ui_hi = 256,
                .help = "Texture MiB one frame may upload (0: no limit); bricks over it are drawn "

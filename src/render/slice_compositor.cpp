@@ -259,8 +259,9 @@ void SliceCompositor::set_region(const PixelRect& r, const RenderSettings& setti
 void SliceCompositor::begin_frame(const tsp::Camera& camera, const RenderSettings& settings,
                                   bool keep) {
   ctx_.make_current();
-  // Without probes the caster samples in exact segments (TSP_SEGMENTS); pre-integration and
-  // adaptive sampling have their own variants of it, made on first use.
+  // Without probes the caster samples in exact segments (TSP_SEGMENTS); pre-integration (the
+  // table read at each segment's two ends) and adaptive sampling have their own variants of
+  // it, made on first use.
   const bool plain = rays_base_ == &rays_plain_;
   adaptive_ = settings.sampling_tol > 0 && plain;
   auto variant = [&](std::optional<Program>& p, const char* defines) -> const Program* {
@@ -275,7 +276,8 @@ void SliceCompositor::begin_frame(const tsp::Camera& camera, const RenderSetting
     rays_ = variant(rays_adaptive_, "#define TSP_CLIP 0\n#define TSP_SEGMENTS 1\n"
                                             "#define TSP_ADAPTIVE 1\n");
   else if (plain && settings.preintegrated)
-    rays_ = variant(rays_planes_, "#define TSP_CLIP 0\n");
+    rays_ = variant(rays_preint_, "#define TSP_CLIP 0\n#define TSP_SEGMENTS 1\n"
+                                  "#define TSP_PREINT 1\n");
   else
     rays_ = rays_base_;
   const tsp::CameraParams& view = camera.params();
@@ -315,10 +317,25 @@ void SliceCompositor::begin_frame(const tsp::Camera& camera, const RenderSetting
     p->use();
     gl_.Uniform1f(p->uniform("spacing"), float(settings.spacing));
   }
+  // The headlight: towards the viewer along the central ray, in world axes (the sample grid
+  // stretched by the voxel size), where the shader takes the gradient too.
+  // Voxel sizes normalised so the smallest is 1: the shader's gradients are per voxel.
+  std::array<double, 3> voxel = view.voxel_size;
+  const double smallest = std::min({voxel[0], voxel[1], voxel[2]});
+  for (double& v : voxel) v /= smallest;
+  std::array<double, 3> light{-ray[0] * voxel[0], -ray[1] * voxel[1], -ray[2] * voxel[2]};
+  const double light_norm = std::hypot(light[0], light[1], light[2]);
+  for (double& l : light) l /= light_norm;
   for (const Program* p : std::initializer_list<const Program*>{&textured_, &box_textured_, rays_}) {
     p->use();
     gl_.Uniform1i(p->uniform("use_preintegrated"), settings.preintegrated ? 1 : 0);
     gl_.Uniform1i(p->uniform("use_stencil"), stencil_ ? 1 : 0);
+    gl_.Uniform1i(p->uniform("use_shading"), settings.shade ? 1 : 0);
+    gl_.Uniform4f(p->uniform("phong"), float(kAmbient), float(kDiffuse), float(kSpecular),
+                  float(kSpecularPower));
+    gl_.Uniform3f(p->uniform("light_dir"), float(light[0]), float(light[1]), float(light[2]));
+    gl_.Uniform3f(p->uniform("inv_voxel"), float(1 / voxel[0]), float(1 / voxel[1]),
+                  float(1 / voxel[2]));
   }
   // The back sample of a slice lies where the (central) ray meets the next plane, one spacing
   // along it.

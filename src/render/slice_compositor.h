@@ -139,8 +139,8 @@ class SliceCompositor {
   /// The caster for an intersection without a surface: each ray cut to its one kept interval.
   std::optional<Program> rays_cut_;
   std::optional<Program> rays_adaptive_;  ///< the caster with adaptive sampling (first use)
-  /// The caster on the slice planes, for pre-integration (which reads sample pairs on them).
-  std::optional<Program> rays_planes_;
+  /// The caster in exact segments with pre-integration (each segment's two ends).
+  std::optional<Program> rays_preint_;
   const Program* rays_base_ = &rays_plain_;  ///< the caster set_clip chose
   const Program* rays_ = &rays_plain_;  ///< the caster in use this frame
   bool adaptive_ = false;               ///< this frame samples adaptively

@@ -81,6 +81,7 @@ VolumeRenderer::ReuseKey VolumeRenderer::reuse_key(const tsp::Camera& camera,
   k.compositing = s.compositing;
   k.exact_flat = s.exact_flat;
   k.preintegrated = s.preintegrated;
+  k.shade = s.shade;
   k.skip_transparent = s.skip_transparent;
   k.background = s.background;
   k.tf_serial = tf_serial_;
@@ -365,7 +366,30 @@ void VolumeRenderer::decide_reuse(Frame& f, const tsp::Camera& camera, tsp::Fram
   f.key = reuse_key(camera, f.settings);
   f.reuse = f.settings.reuse_image && f.settings.render_scale == 1 && previous_ &&
             previous_->key == f.key;
-  if (f.reuse) f.rects = dirty_rects(tree_, camera, previous_->ids, f.ids);
+  if (f.reuse) {
+    BrickIdentities before = previous_->ids;
+    if (f.settings.shade) {
+      // Lit samples take their gradients one texel across brick faces (the caster reads the
+      // neighbour brick there), so a brick beside one that changed is drawn again too.
+      const tsp::Octree& octree = tree_.octree();
+      const std::array<int, 3> g = octree.brick_grid();
+      std::vector<char> beside(before.size(), 0);
+      for (int b = 0; b < octree.brick_count(); ++b) {
+        if (before[std::size_t(b)] == f.ids[std::size_t(b)]) continue;
+        const std::array<int, 3> c = octree.brick_coord(b);
+        for (int a = 0; a < 3; ++a)
+          for (int d : {-1, 1}) {
+            std::array<int, 3> n = c;
+            n[std::size_t(a)] += d;
+            if (n[std::size_t(a)] < 0 || n[std::size_t(a)] >= g[std::size_t(a)]) continue;
+            beside[std::size_t(n[0] + g[0] * (n[1] + g[1] * n[2]))] = 1;
+          }
+      }
+      for (std::size_t b = 0; b < beside.size(); ++b)
+        if (beside[b]) before[b] = {~f.ids[b][0], f.ids[b][1]};  // differs: drawn again
+    }
+    f.rects = dirty_rects(tree_, camera, before, f.ids);
+  }
   previous_.reset();  // valid again only once this frame is complete
 }
 

@@ -113,7 +113,7 @@ class VolumeRenderer {
     int width = 0, height = 0;
     double spacing = 0;
     Compositing compositing = Compositing::rays;
-    bool exact_flat = true, preintegrated = false, skip_transparent = true;
+    bool exact_flat = true, preintegrated = false, shade = false, skip_transparent = true;
     std::array<float, 3> background{};
     std::uint64_t tf_serial = 0;
     std::uint64_t clip_serial = 0;
