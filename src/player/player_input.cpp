@@ -124,6 +124,7 @@ void PlayerApp::apply(const ScriptAction& a) {
       break;
     case Kind::play:
       state.playing = true;
+      advance_tuning();  // tuned at once if it must be: a script's next action waits for it
       break;
     case Kind::pause:
       state.playing = false;

@@ -540,7 +540,8 @@ TEST(Player, RecordWritesAMovieOfWhatIsPlayed) {
   ASSERT_EQ(std::system("command -v ffprobe > /dev/null"), 0)
       << "ffmpeg missing (scripts/install-deps.sh installs it)";
   fs::path tsp = make_tsp(), dir = tsptest::temp_dir(), movie = dir / "rec.mp4";
-  fs::path script = write_script("wait-frames 2\nrecord " + movie.string() +
+  // (The first 'play' tunes playback and the script waits for it: tuned before recording.)
+  fs::path script = write_script("wait-frames 2\nplay\npause\nrecord " + movie.string() +
                                  "\nplay\nwait-seconds 1.2\nrecord stop\nstats " +
                                  (dir / "s.json").string() + "\nquit\n");
   auto r = run_tspplay("play " + q(tsp) + " --size " + kSize + " --script " + q(script));
