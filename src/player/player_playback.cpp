@@ -16,6 +16,10 @@ namespace {
 // The ratio of window to probe time is kept within these bounds (one odd frame cannot swing it).
 constexpr double kMinTimeRatio = 0.25, kMaxTimeRatio = 8;
 constexpr double kMaxFrameDt = 0.25;  // a stalled frame does not skip many steps at once
+// A frame shows the next step, not the one the clock has reached, while the clock is at most this
+// many steps ahead: one slow frame among fast ones is caught up by the next frames instead of
+// skipping a step; frames slower than the steps skip steps to keep time.
+constexpr double kMaxStepBacklog = 2;
 }  // namespace
 
 void PlayerApp::advance_playback(double dt) {
@@ -26,8 +30,17 @@ void PlayerApp::advance_playback(double dt) {
   play_accum_ += std::min(dt, kMaxFrameDt) * state.speed;
   // Every step: at most one step a frame, however slow the frames (no step is skipped).
   if (state.every_step) play_accum_ = std::min(play_accum_, 1.0);
-  while (play_accum_ >= 1) {
+  int advance = 0;
+  if (play_accum_ >= 1) {
+    advance = 1;
     play_accum_ -= 1;
+  }
+  if (play_accum_ > kMaxStepBacklog) {
+    const int skip = int(play_accum_ - kMaxStepBacklog);
+    advance += skip;
+    play_accum_ -= skip;
+  }
+  for (; advance > 0; --advance) {
     if (state.step + 1 < steps()) {
       ++state.step;
     } else if (state.loop) {

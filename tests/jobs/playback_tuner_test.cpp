@@ -37,9 +37,9 @@ TEST(PlaybackTuner, EverythingFitsPlaysFullQuality) {
 }
 
 TEST(PlaybackTuner, PicksTheLeastErrorThatFitsThePeriodWithinTheTarget) {
-  // 41.7 ms (24 steps/s): a (40 ms, dE 0.3) fits; the target 1 × margin 0.8 allows a and b.
+  // 41.7 ms (24 steps/s): a (40 ms, dE 0.3) fits; the target 1 × margin 0.9 allows a and b.
   EXPECT_EQ(choose_rung(ladder(), 41.7, 1, 0, 1, true).index, 1);
-  // 35 ms: only b (30 ms, 0.7 ≤ 0.8) fits within the target.
+  // 35 ms: only b (30 ms, 0.7 ≤ 0.9) fits within the target.
   EXPECT_EQ(choose_rung(ladder(), 35, 1, 0, 1, true).index, 2);
   // The window's time: twice the probe's plus 5 ms of UI: a takes 85, b 65, c 45, d 21.
   const RungChoice c = choose_rung(ladder(), 70, 2, 5, 1, true);

@@ -817,7 +817,7 @@ TEST(Player, PlayingAtAQualityTargetDrawsTheTunedRungWithinTheTarget) {
   ASSERT_TRUE(p["tuned"].get<bool>()) << p;
   ASSERT_TRUE(p.contains("rung")) << p;
   EXPECT_TRUE(p["rung"]["within_quality"].get<bool>()) << p;
-  EXPECT_LE(p["rung"]["predicted_de"].get<double>(), 0.8 * 2) << p;
+  EXPECT_LE(p["rung"]["predicted_de"].get<double>(), tspgl::kPlaybackQualityMargin * 2) << p;
   EXPECT_EQ(p["ladder"].size(), tspgl::playback_rungs().size());
   EXPECT_EQ(p["ladder"][0]["mean_de"].get<double>(), 0) << "full quality against itself";
   EXPECT_GT(p["steps_shown_per_s"].get<double>(), 0);
