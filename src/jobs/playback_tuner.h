@@ -33,9 +33,10 @@ struct Rung {
 /// The ladder, full quality first, then roughly by falling cost. Never throws.
 const std::vector<Rung>& playback_rungs();
 
-/// The rung played before the first tuning ends (spacing ×2, scale 0.5: mean ΔE 0.14–0.37 on
-/// the shock, the turbulence and the plume at 1280×800, an eighth of full quality's cost).
-inline constexpr std::size_t kProvisionalRung = 5;
+/// The rung played before the first tuning ends (spacing ×4, scale 0.35: mean ΔE 0.4 with a
+/// filled map, 1.2 with a sparse one, on the turbulence; a sixteenth of full quality's cost, so
+/// the window keeps its frame rate while the tuning's pictures share its frames).
+inline constexpr std::size_t kProvisionalRung = 8;
 
 /// The most pixels a tuning's probe pictures have: a larger view is probed at its aspect, scaled
 /// down to this (ΔE and the cost ratios between rungs change little; the window's measured time

@@ -527,7 +527,10 @@ void PlayerApp::frame() {
 }
 
 bool PlayerApp::busy() const {
-  const bool script_running = script_pos_ < script_.size() || wait_frames_ > 0;
+  // A script waiting out wait-seconds is not busy: the window sleeps as when idle, waking for
+  // the script's clock (run() waits at most until wait_until_s_).
+  const bool script_running =
+      (script_pos_ < script_.size() && clock_.seconds() >= wait_until_s_) || wait_frames_ > 0;
   return quit_ || state.playing || settle_frames_ > 0 || script_running || !pending_shot_.empty() ||
          save_requested_ || tuner_ || open_job_ || recorder_ || !last.complete() ||
          (state.lod_on && !full_quality()) || switch_started_s_ >= 0;
@@ -541,7 +544,8 @@ void PlayerApp::run() {
     // window's own timers), and draw only when something came.
     if (!busy()) {
       const std::uint64_t before = events_;
-      ctx->wait_events(kIdleWaitSeconds);
+      const double to_script = wait_until_s_ - clock_.seconds();
+      ctx->wait_events(to_script > 0 ? std::min(kIdleWaitSeconds, to_script) : kIdleWaitSeconds);
       if (events_ == before && !busy()) {
         ++idle_waits_;
         continue;

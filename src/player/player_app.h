@@ -66,7 +66,7 @@ inline constexpr int kIdleSplitsPerFrame = 64;
 inline constexpr int kReadyStepsPerFrame = 4;
 /// Milliseconds of each frame the playback tuning may use (the window keeps ≥ 10 frames/s on
 /// top of its own frame time).
-inline constexpr double kCalibrationSliceMs = 40;
+inline constexpr double kCalibrationSliceMs = 15;
 /// Smoothing, per frame, of the ratio of the window's render time to the probe's for a rung.
 inline constexpr double kTimeRatioSmoothing = 0.2;
 /// A rung costlier than the one playing is taken only when predicted within this share of the

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <span>
 #include <vector>
 
@@ -23,14 +24,15 @@ std::string size_text(const Image& img) {
   return std::to_string(img.width) + "x" + std::to_string(img.height);
 }
 
-// L*u*v* of pixels [first, first + n) of img, composited over black.
-void to_luv(const Image& img, std::size_t first, std::size_t n, std::vector<double>& rgb,
+// L*u*v* of the pixels of img at the indices idx, composited over black.
+void to_luv(const Image& img, const std::vector<std::size_t>& idx, std::vector<double>& rgb,
             std::vector<double>& xyz, std::vector<Luv>& out) {
+  const std::size_t n = idx.size();
   rgb.resize(3 * n);
   xyz.resize(3 * n);
   out.resize(n);
-  const std::uint8_t* p = img.rgba.data() + 4 * first;
-  for (std::size_t k = 0; k < n; ++k, p += 4) {
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::uint8_t* p = img.rgba.data() + 4 * idx[k];
     const double alpha = p[3] / kMax8;
     for (int c = 0; c < 3; ++c) rgb[3 * k + c] = p[c] / kMax8 * alpha;
   }
@@ -52,15 +54,25 @@ DiffStats diff_images(const Image& a, const Image& b, Image* diff_image, const s
   s.pixels = a.pixels();
   if (diff_image) *diff_image = Image(a.width, a.height);
   const std::size_t n = std::size_t(s.pixels);
-  std::vector<double> de(n);
+  std::vector<double> de(n, 0.0);
   std::vector<double> rgb, xyz;
   std::vector<Luv> la, lb;
-  for (std::size_t first = 0; first < n; first += kChunk) {
-    const std::size_t m = std::min(kChunk, n - first);
-    to_luv(a, first, m, rgb, xyz, la);
-    to_luv(b, first, m, rgb, xyz, lb);
-    for (std::size_t k = 0; k < m; ++k) de[first + k] = delta_e_luv(la[k], lb[k]);
+  std::vector<std::size_t> idx;
+  idx.reserve(kChunk);
+  // Byte-identical pixels differ by exactly 0: only the others are converted (most of a
+  // picture's background, and of two pictures that differ in places, costs nothing).
+  const auto flush = [&] {
+    to_luv(a, idx, rgb, xyz, la);
+    to_luv(b, idx, rgb, xyz, lb);
+    for (std::size_t k = 0; k < idx.size(); ++k) de[idx[k]] = delta_e_luv(la[k], lb[k]);
+    idx.clear();
+  };
+  for (std::size_t k = 0; k < n; ++k) {
+    if (std::memcmp(a.rgba.data() + 4 * k, b.rgba.data() + 4 * k, 4) == 0) continue;
+    idx.push_back(k);
+    if (idx.size() == kChunk) flush();
   }
+  if (!idx.empty()) flush();
   if (n == 0) return s;
   double sum = 0;
   for (std::size_t k = 0; k < n; ++k) {
