@@ -1,5 +1,6 @@
 #include "jobs/play_input.h"
 
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <mutex>
@@ -33,6 +34,19 @@ bool is_tsp_file(const std::string& path) {
   if (H5Fis_hdf5(path.c_str()) <= 0) return false;
   tsp::h5::Handle f(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
   return f && H5Aexists(f.get(), "format") > 0;
+}
+
+bool has_input_extension(const std::string& name) {
+  std::string lower = name;
+  for (char& c : lower) c = char(std::tolower(static_cast<unsigned char>(c)));
+  static constexpr const char* kSuffixes[] = {
+      ".tsp", ".h5",  ".hdf5", ".hdf", ".he5",        ".nc",         ".nc4",        ".vtkhdf",
+      ".vti", ".vtu", ".vtm",  ".pvd", ".vti.series", ".vtu.series", ".vtm.series", ".raw"};
+  for (const char* s : kSuffixes) {
+    const std::size_t n = std::char_traits<char>::length(s);
+    if (lower.size() > n && lower.compare(lower.size() - n, n, s) == 0) return true;
+  }
+  return false;
 }
 
 std::string play_cache_path(const std::string& input, const std::string& field,

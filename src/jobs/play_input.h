@@ -12,6 +12,12 @@ namespace tspgl {
 /// its name. Never throws.
 bool is_tsp_file(const std::string& path);
 
+/// True when name (a file name or path) ends like a kind of file play reads: .tsp, HDF5 / NetCDF-4
+/// / VTKHDF (.h5 .hdf5 .hdf .he5 .nc .nc4 .vtkhdf), VTK (.vti .vtu .vtm .pvd and their .series)
+/// or .raw, in any letter case. File > Open lists these unless "all files" is chosen (a file of
+/// another name may still be read: HDF5 is recognised by its signature). Never throws.
+bool has_input_extension(const std::string& name);
+
 /// Where input (with field) is built for playing: `DIR/builds/NAME-HASH.tsp` under cache_dir (""
 /// : default_calibration_dir()), the hash over the input's absolute path, size, modification
 /// time and the field. Throws tsp::UsageError when there is no cache folder.

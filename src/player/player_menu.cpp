@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "jobs/play_input.h"
 #include "player/player_app.h"
 #include "player/player_ui.h"
 
@@ -54,6 +55,7 @@ struct Listing {
 
 struct MenuState {
   bool want_open = false, want_tf = false, want_record = false;
+  bool all_files = false;  // the open dialog lists every file, not only the kinds play reads
   char open_path[kPathChars] = "";
   char field[128] = "";
   char tf_path[kPathChars] = "";
@@ -145,6 +147,7 @@ void open_dialog(PlayerApp& app) {
   if (!s.listing.error.empty()) ImGui::TextColored(ImVec4(1, 0.5f, 0.4f, 1), "%s", s.listing.error.c_str());
   const auto entries = s.listing.entries;  // (a click may re-read the listing)
   for (const auto& [name, is_dir] : entries) {
+    if (!is_dir && !s.all_files && !tspgl::has_input_extension(name)) continue;
     const fs::path full = s.listing.dir / name;
     if (ImGui::Selectable((name + (is_dir ? "/" : "")).c_str(), full.string() == s.open_path,
                           ImGuiSelectableFlags_AllowDoubleClick)) {
@@ -158,6 +161,11 @@ void open_dialog(PlayerApp& app) {
     }
   }
   ImGui::EndChild();
+  int shown = s.all_files ? 1 : 0;
+  ImGui::SetNextItemWidth(320);
+  if (ImGui::Combo("##kinds", &shown,
+                   "Inputs play reads (.tsp .h5 .nc .vti .vtu .vtm .pvd .series .raw)\0All files\0"))
+    s.all_files = shown == 1;
   ImGui::SetNextItemWidth(-60);
   ImGui::InputText("path", s.open_path, sizeof s.open_path);
   ImGui::SetNextItemWidth(200);
