@@ -1,6 +1,7 @@
 #include "tsp/source/hdf5_source.h"
 
 #include <cassert>
+#include <cctype>
 #include <climits>
 #include <cmath>
 #include <cstdio>
@@ -19,6 +20,8 @@
 namespace tsp::io {
 namespace {
 
+constexpr ssize_t kMaxNameChars = 4096;  // an object path longer than this is not a scale's
+
 using h5::Handle;
 
 std::string shape_text(const std::vector<hsize_t>& shape) {
@@ -32,7 +35,10 @@ std::string shape_text(const std::vector<hsize_t>& shape) {
 struct Candidate {
   std::string path;
   std::vector<hsize_t> shape;
+  bool map_over_time = false;  // 3-D with time first: a 2-D field over time, not playable
 };
+
+bool is_map_over_time(hid_t ds, const std::vector<hsize_t>& shape);
 
 herr_t collect_candidate(hid_t group, const char* name, const H5L_info_t*, void* data) {
   auto* out = static_cast<std::vector<Candidate>*>(data);
@@ -41,7 +47,8 @@ herr_t collect_candidate(hid_t group, const char* name, const H5L_info_t*, void*
   Handle obj(H5Oopen(group, name, H5P_DEFAULT));
   if (!obj || H5Iget_type(obj.get()) != H5I_DATASET) return 0;
   std::vector<hsize_t> shape = h5::dataset_shape(obj.get());
-  if (shape.size() == 3 || shape.size() == 4) out->push_back({"/" + std::string(name), shape});
+  if (shape.size() == 3 || shape.size() == 4)
+    out->push_back({"/" + std::string(name), shape, is_map_over_time(obj.get(), shape)});
   return 0;
 }
 
@@ -51,11 +58,18 @@ std::vector<Candidate> list_candidates(hid_t file) {
   return found;
 }
 
+// c without the 2-D fields over time.
+std::vector<Candidate> playable(std::vector<Candidate> c) {
+  std::erase_if(c, [](const Candidate& x) { return x.map_over_time; });
+  return c;
+}
+
 std::string candidates_text(const std::vector<Candidate>& c) {
   if (c.empty()) return "none (no 3-D or 4-D dataset in the file)";
   std::string s;
   for (std::size_t i = 0; i < c.size(); ++i)
-    s += (i ? ", " : "") + c[i].path + " (" + shape_text(c[i].shape) + ")";
+    s += (i ? ", " : "") + c[i].path + " (" + shape_text(c[i].shape) +
+         (c[i].map_over_time ? ", 2-D over time: not playable" : "") + ")";
   return s;
 }
 
@@ -118,36 +132,66 @@ struct Packing {
 // The values of the dimension scale (coordinate variable) attached to dimension `dim` of ds
 // through its DIMENSION_LIST attribute, when it is a 1-D numeric dataset of `length` values;
 // nullopt otherwise. Never throws (a scale it cannot read is ignored).
-std::optional<std::vector<double>> scale_values(hid_t ds, int dim, hsize_t length) {
-  if (H5Aexists(ds, "DIMENSION_LIST") <= 0) return std::nullopt;
+// The dimension scale dataset attached to dimension `dim` of ds through its DIMENSION_LIST
+// attribute (NetCDF-4 writes one per dimension, named after it); an empty handle when there is
+// none. Never throws.
+Handle dimension_scale(hid_t ds, int dim) {
+  if (H5Aexists(ds, "DIMENSION_LIST") <= 0) return Handle();
   Handle attr(H5Aopen(ds, "DIMENSION_LIST", H5P_DEFAULT));
   Handle space(H5Aget_space(attr.get()));
-  if (!attr || !space || H5Sget_simple_extent_ndims(space.get()) != 1) return std::nullopt;
+  if (!attr || !space || H5Sget_simple_extent_ndims(space.get()) != 1) return Handle();
   hsize_t n = 0;
   H5Sget_simple_extent_dims(space.get(), &n, nullptr);
-  if (dim < 0 || hsize_t(dim) >= n) return std::nullopt;
+  if (dim < 0 || hsize_t(dim) >= n) return Handle();
   Handle vlen(H5Tvlen_create(H5T_STD_REF_OBJ));
   std::vector<hvl_t> lists(static_cast<std::size_t>(n));
-  if (H5Aread(attr.get(), vlen.get(), lists.data()) < 0) return std::nullopt;
-  std::optional<std::vector<double>> values;
+  if (H5Aread(attr.get(), vlen.get(), lists.data()) < 0) return Handle();
+  Handle scale;
   const hvl_t& l = lists[std::size_t(dim)];
   if (l.len >= 1 && l.p) {
     hobj_ref_t ref = static_cast<const hobj_ref_t*>(l.p)[0];
-    Handle scale(H5Rdereference2(ds, H5P_DEFAULT, H5R_OBJECT, &ref));
-    if (scale && H5Iget_type(scale.get()) == H5I_DATASET) {
-      const std::vector<hsize_t> shape = h5::dataset_shape(scale.get());
-      Handle type(H5Dget_type(scale.get()));
-      const H5T_class_t cls = H5Tget_class(type.get());
-      if (shape.size() == 1 && shape[0] == length && (cls == H5T_FLOAT || cls == H5T_INTEGER) &&
-          is_standard_numeric_type(type.get())) {
-        std::vector<double> x(static_cast<std::size_t>(length));
-        if (H5Dread(scale.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, x.data()) >= 0)
-          values = std::move(x);
-      }
-    }
+    scale = Handle(H5Rdereference2(ds, H5P_DEFAULT, H5R_OBJECT, &ref));
+    if (scale && H5Iget_type(scale.get()) != H5I_DATASET) scale = Handle();
   }
   H5Dvlen_reclaim(vlen.get(), space.get(), H5P_DEFAULT, lists.data());
-  return values;
+  return scale;
+}
+
+// The name of dimension `dim` of ds: its dimension scale's name without the path ("" when it
+// has none). Never throws.
+std::string dimension_name(hid_t ds, int dim) {
+  const Handle scale = dimension_scale(ds, dim);
+  if (!scale) return "";
+  const ssize_t n = H5Iget_name(scale.get(), nullptr, 0);
+  if (n <= 0 || n > kMaxNameChars) return "";
+  std::string name(std::size_t(n) + 1, '\0');
+  H5Iget_name(scale.get(), name.data(), name.size());
+  name.resize(std::size_t(n));
+  return name.substr(name.rfind('/') + 1);
+}
+
+// A 3-D dataset whose first dimension is time (its scale named Time, time or t, as NetCDF-4
+// writes WRF's and CF's): a 2-D field over time, a map, not a volume. Never throws.
+bool is_map_over_time(hid_t ds, const std::vector<hsize_t>& shape) {
+  if (shape.size() != 3) return false;
+  std::string name = dimension_name(ds, 0);
+  for (char& c : name) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return name == "time" || name == "t";
+}
+
+std::optional<std::vector<double>> scale_values(hid_t ds, int dim, hsize_t length) {
+  const Handle scale = dimension_scale(ds, dim);
+  if (!scale) return std::nullopt;
+  const std::vector<hsize_t> shape = h5::dataset_shape(scale.get());
+  Handle type(H5Dget_type(scale.get()));
+  const H5T_class_t cls = H5Tget_class(type.get());
+  if (shape.size() != 1 || shape[0] != length || (cls != H5T_FLOAT && cls != H5T_INTEGER) ||
+      !is_standard_numeric_type(type.get()))
+    return std::nullopt;
+  std::vector<double> x(static_cast<std::size_t>(length));
+  if (H5Dread(scale.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, x.data()) < 0)
+    return std::nullopt;
+  return x;
 }
 
 // Where the grid lies in space from the dataset's NetCDF-4 / HDF5 dimension scales (coordinate
@@ -353,6 +397,13 @@ std::unique_ptr<VolumeSource> open_dataset(const std::string& path, Handle file,
   if (shape.size() != 3 && shape.size() != 4)
     throw FormatError(where + ": has rank " + std::to_string(shape.size()) + " (shape " +
                       shape_text(shape) + "), expected 3-D (Z,Y,X) or 4-D (T,Z,Y,X)");
+  if (is_map_over_time(ds.get(), shape))
+    throw FormatError(where + ": is a 2-D field over time (" + dimension_name(ds.get(), 0) + " " +
+                      std::to_string(shape[0]) + " x " + dimension_name(ds.get(), 1) + " " +
+                      std::to_string(shape[1]) + " x " + dimension_name(ds.get(), 2) + " " +
+                      std::to_string(shape[2]) +
+                      "): a map, not a volume; tspplay plays 3-D fields (4-D over time); "
+                      "this file's: " + candidates_text(playable(list_candidates(file.get()))));
   require_numeric_dataset(ds.get(), where);
   Packing::of(ds.get(), where);  // fail now, not at the first step, on bad packing attributes
   std::vector<StepRef> steps;
@@ -454,7 +505,8 @@ std::unique_ptr<VolumeSource> open_hdf5_source(const std::string& path,
   if (field.empty()) {
     std::vector<Candidate> all = list_candidates(file.get());
     std::vector<Candidate> four, three;
-    for (const Candidate& c : all) (c.shape.size() == 4 ? four : three).push_back(c);
+    for (const Candidate& c : all)
+      if (!c.map_over_time) (c.shape.size() == 4 ? four : three).push_back(c);
     if (four.size() == 1) {
       field = four[0].path;
     } else if (four.empty() && three.size() == 1) {

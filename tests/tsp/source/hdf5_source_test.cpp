@@ -110,6 +110,33 @@ TEST(Hdf5Source, WrongRankNamesShapeAndExpectation) {
   EXPECT_NE(msg.find("expected 3-D"), std::string::npos) << msg;
 }
 
+// A 3-D dataset whose first dimension is time (NetCDF-4's scale named Time, as WRF's T2, HGT,
+// PSFC): a 2-D field over time is refused by name and shape, marked among the candidates, and
+// not taken as the default; a plain 3-D dataset (no time dimension) is still one volume.
+TEST(Hdf5Source, TwoDFieldsOverTimeAreRefusedAndMarked) {
+  const std::string file = h5_fixture("map_over_time.nc");
+  const std::string msg = error_of<FormatError>([&] { open(file, "T2"); });
+  EXPECT_NE(msg.find("/T2"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("2-D field over time (Time 3 x south_north 4 x west_east 5)"), std::string::npos)
+      << msg;
+  EXPECT_NE(msg.find("this file's: /T (3x2x4x5), /slab (3x4x5)"), std::string::npos) << msg;
+  // Listed as candidates (a misspelt field), the map is marked.
+  const std::string any = error_of<FormatError>([&] { open(file, "T3"); });
+  EXPECT_NE(any.find("/T2 (3x4x5, 2-D over time: not playable)"), std::string::npos) << any;
+  // Without --field the only 4-D dataset is the default; the slab and the map are not counted.
+  auto s = open(file, "");
+  EXPECT_EQ(s->steps(), 3);
+  EXPECT_EQ(s->dims(), (Dims{5, 4, 2}));
+  auto slab = open(file, "slab");
+  EXPECT_EQ(slab->steps(), 1);
+  EXPECT_EQ(slab->dims(), (Dims{5, 4, 3}));
+  // The real WRF output's T2 (4 times of 48 x 48), which built as 48x48x4 voxels before.
+  const auto wrf = tsptest::shared_data_dir() / "wrf-katrina" / "ci_test_file.nc";
+  if (!fs::exists(wrf)) GTEST_SKIP() << "shared data absent: " << wrf;
+  const std::string w = error_of<FormatError>([&] { open(wrf.string(), "T2"); });
+  EXPECT_NE(w.find("(Time 4 x south_north 48 x west_east 48)"), std::string::npos) << w;
+}
+
 TEST(Hdf5Source, NonNumericPackingAttributeIsAFormatError) {
   std::string msg = error_of<FormatError>([] { open(h5_fixture("bad_types.h5"), "bad_scale"); });
   EXPECT_NE(msg.find("scale_factor"), std::string::npos) << msg;
