@@ -8,6 +8,7 @@
 #include "cli/args.h"
 #include "cli/build_runner.h"
 #include "cli/commands.h"
+#include "cli/input_options.h"
 #include "tsp/build/build.h"
 #include "tsp/core/error.h"
 #include "tsp/voxelize/open_input.h"
@@ -17,16 +18,10 @@ namespace tspcli {
 namespace {
 
 struct BuildArgs {
-  std::string input, output, field, range, raw_dims, raw_type = "f32";
+  std::string input, output, field, range;
+  InputArgs in;   // how the input is read (shared with play)
   int brick = 0;  // 0: tsp::default_brick_size of the grid
   int threads = 0;
-  bool big_endian = false;
-  bool allow_external = false;
-  int resolution = 0;
-  double voxel_size = 0;
-  std::string cell_data = "constant";
-  std::string voxelizer = "locate", hex = "isoparametric";
-  int antialias = 1;
   std::string spacing, origin;
   std::string compress = "none";
 };
@@ -41,14 +36,7 @@ int deflate_level(const std::string& s) {
 }
 
 void run_build(const BuildArgs& a) {
-  tsp::SourceOptions so;
-  so.field = a.field;
-  if (!a.raw_dims.empty()) so.raw_dims = parse_dims(a.raw_dims, "--raw-dims", 1 << 20, false);
-  so.raw_type = a.raw_type == "u8"    ? tsp::RawType::u8
-                : a.raw_type == "u16" ? tsp::RawType::u16
-                                      : tsp::RawType::f32;
-  so.raw_big_endian = a.big_endian;
-  so.allow_external = a.allow_external;
+  const tsp::SourceOptions so = source_options(a.in, a.field);
 
   tsp::BuildOptions bo;
   bo.brick_size = a.brick;
@@ -58,17 +46,7 @@ void run_build(const BuildArgs& a) {
   if (!a.range.empty()) bo.range = parse_range(a.range, "--range");
   if (!a.spacing.empty()) bo.spacing = parse_triple(a.spacing, "--spacing", "DX,DY,DZ");
   if (!a.origin.empty()) bo.origin = parse_triple(a.origin, "--origin", "X,Y,Z");
-  tsp::VoxelizeOptions vo;
-  vo.resolution = a.resolution;
-  vo.voxel_size = a.voxel_size;
-  vo.cell_data = a.cell_data == "points" ? tsp::CellDataMode::points : tsp::CellDataMode::constant;
-  vo.sample.threads = a.threads;
-  vo.sample.kind = a.voxelizer == "scan" ? tsp::VoxelizerKind::scan : tsp::VoxelizerKind::locate;
-  vo.sample.hex = a.hex == "tetrahedra" ? tsp::HexSampling::tetrahedra : tsp::HexSampling::isoparametric;
-  vo.sample.antialias = a.antialias;
-  if (a.antialias != 1 && a.voxelizer != "scan")
-    throw tsp::UsageError("--antialias " + std::to_string(a.antialias) +
-                          " needs --voxelizer scan (the locating voxelizer samples voxel centres)");
+  const tsp::VoxelizeOptions vo = voxelize_options(a.in, a.threads);
   // --field A,B,C: several fields, one tree each, in one file.
   std::vector<std::string> fields;
   for (std::size_t p = 0; a.field.find(',') != std::string::npos && p <= a.field.size();) {
@@ -116,23 +94,7 @@ const CommandRegistrar reg(10, [](CLI::App& app) {
   c->add_option("--field", a->field,
                 "Field (dataset/variable/array) to read; meshes: NAME, NAME:mag or NAME:x|y|z; "
                 "A,B,C: several fields, one tree each, in one file (render/play --field picks one)");
-  c->add_option("--resolution", a->resolution,
-                "Meshes: samples on the longest edge (default: from the median cell size, 16..256)");
-  c->add_option("--voxel-size", a->voxel_size, "Meshes: voxel edge in the mesh's units");
-  c->add_option("--cell-data", a->cell_data,
-                "Meshes, cell data: constant per cell, or averaged to the points then interpolated")
-      ->check(CLI::IsMember({"constant", "points"}));
-  c->add_option("--voxelizer", a->voxelizer,
-                "Meshes: locate (voxel centres located in cells; default) or scan (tetrahedra "
-                "scan-converted, with --antialias)")
-      ->check(CLI::IsMember({"locate", "scan"}));
-  c->add_option("--antialias", a->antialias,
-                "Meshes, --voxelizer scan: K x K x K sub-samples per voxel, 1..4 (default 1)")
-      ->check(CLI::Range(1, tsp::kMaxAntialias));
-  c->add_option("--hex", a->hex,
-                "Meshes, locate: hexahedra sampled whole by their trilinear map (isoparametric, "
-                "as VTK) or through tetrahedra")
-      ->check(CLI::IsMember({"isoparametric", "tetrahedra"}));
+  add_input_options(c, a->in);
   c->add_option("--brick", a->brick, "Brick edge in samples, a power of two 8..64 (default: the one nearest a quarter of "
                 "the longest grid edge, in [8, 64]: 16 for 64^3, 32 for 128^3)");
   c->add_option("--range", a->range, "Quantization range LO:HI (default: the data's range)");
@@ -140,13 +102,6 @@ const CommandRegistrar reg(10, [](CLI::App& app) {
                 "DX,DY,DZ: the physical voxel size, instead of what the input says (render and "
                 "play show the volume in these proportions)");
   c->add_option("--origin", a->origin, "X,Y,Z: the physical position of voxel (0,0,0)");
-  c->add_option("--raw-dims", a->raw_dims, "Raw input: grid size X,Y,Z");
-  c->add_option("--raw-type", a->raw_type, "Raw input: element type u8|u16|f32")
-      ->check(CLI::IsMember({"u8", "u16", "f32"}));
-  c->add_flag("--big-endian", a->big_endian, "Raw input: big-endian samples");
-  c->add_flag("--allow-external", a->allow_external,
-              "HDF5 input: read its external links, external raw storage and virtual datasets "
-              "(other files it names; refused by default)");
   c->add_option("--compress", a->compress,
                 "Brick chunks: none (default), deflate (level 4) or deflate:L, L 1..9 (byte "
                 "shuffle + deflate; smaller files, slower builds; for playback from slow disks)");

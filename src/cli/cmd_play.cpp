@@ -4,10 +4,12 @@
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "cli/args.h"
 #include "cli/build_runner.h"
 #include "cli/commands.h"
+#include "cli/input_options.h"
 #include "cli/settings_options.h"
 #include "jobs/play_input.h"
 #include "player/controls.h"
@@ -29,7 +31,7 @@ struct PlayArgs {
   std::string probe_surface = "on";
   SettingsOptions settings{tspplayer::default_player_settings()};
   std::string playback = "quality";
-  bool allow_external = false;
+  InputArgs in;  // how an input that is not a .tsp is read (as for build)
 };
 
 void run(PlayArgs a) {
@@ -38,7 +40,9 @@ void run(PlayArgs a) {
   a.options.width = int(parse_integer(a.size.substr(0, x), "--size", 1, 8192, "WxH, 1..8192"));
   a.options.height = int(parse_integer(a.size.substr(x + 1), "--size", 1, 8192, "WxH, 1..8192"));
   a.options.cache_dir = a.cache_dir;
-  a.options.allow_external = a.allow_external;
+  a.options.input.source = source_options(a.in, "");
+  a.options.input.voxelize = voxelize_options(a.in, 0);
+  a.options.input.key = input_key(a.in);
   if (a.proportions != "physical" && a.proportions != "samples")
     throw tsp::UsageError("--proportions '" + a.proportions + "': expected physical or samples");
   a.options.physical_proportions = a.proportions == "physical";
@@ -55,12 +59,19 @@ void run(PlayArgs a) {
     print_build_summary(out, r);
     return r;
   };
+  hooks.build_fields = [](const tsp::FieldSourceFn& open_field,
+                          const std::vector<std::string>& fields, const std::string& out,
+                          tsp::BuildOptions o) {
+    const std::vector<tsp::BuildReport> r = build_fields_with_progress(open_field, fields, out, o);
+    print_build_summary(out, r.front());
+  };
   // The played file, its TF and script are never replaced by a screenshot, stats or recording.
   const tsp::InputGuard inputs({a.options.tsp_path, a.options.tf, a.options.script});
   if (!a.options.screenshot.empty()) tsp::check_output_path(a.options.screenshot);
   const bool tsp = tspgl::is_tsp_file(a.options.tsp_path);
-  a.options.tsp_path = tspgl::prepare_play_input(a.options.tsp_path, a.field, a.cache_dir, hooks,
-                                                 a.allow_external);
+  tspgl::PlayInputOptions input = a.options.input;
+  input.field = a.field;
+  a.options.tsp_path = tspgl::prepare_play_input(a.options.tsp_path, input, a.cache_dir, hooks);
   a.options.field = tsp ? a.field : "";  // a .tsp: the field shown first; an input: the one built
   tspplayer::run_player(a.options);
 }
@@ -75,10 +86,8 @@ const CommandRegistrar reg(35, [](CLI::App& app) {
       ->required();
   c->add_option("--field", a->field,
                 "A .tsp with several fields: the one shown first; any other input: the field to "
-                "build (as for build --field)");
-  c->add_flag("--allow-external", a->allow_external,
-              "HDF5 input to build: read its external links, external raw storage and virtual "
-              "datasets (other files it names; refused by default)");
+                "build, or A,B,C: several, one tree each, the first shown (as for build --field)");
+  add_input_options(c, a->in);
   c->add_option("--cache-dir", a->cache_dir,
                 "Raw input: the cache folder (default $TSPPLAY_CACHE_DIR, $XDG_CACHE_HOME/tspplay "
                 "or ~/.cache/tspplay; builds go to its builds/)");
@@ -142,6 +151,9 @@ const CommandRegistrar reg(35, [](CLI::App& app) {
   a->settings.add_to(c);
   set_groups(c, {{"Input/output", {"--field", "--cache-dir", "--tf", "--tf-range", "--step",
                                    "--screenshot", "--script"}},
+                 {"Input to build (not a .tsp; as for build)",
+                  {"--raw-dims", "--raw-type", "--big-endian", "--allow-external", "--resolution",
+                   "--voxel-size", "--cell-data", "--voxelizer", "--antialias", "--hex"}},
                  {"Camera", {"--size", "--proportions", "--scale"}},
                  {"Playback", {"--speed", "--quality", "--playback"}},
                  {"LOD", {"--lod", "--lod-fallback", "--target-fps"}},

@@ -3,6 +3,7 @@
 #include <cctype>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <mutex>
 
 #include "jobs/calibration.h"
@@ -49,11 +50,11 @@ bool has_input_extension(const std::string& name) {
   return false;
 }
 
-std::string play_cache_path(const std::string& input, const std::string& field,
+std::string play_cache_path(const std::string& input, const PlayInputOptions& o,
                             const std::string& cache_dir) {
   std::error_code ec;
   const fs::path abs = fs::absolute(input, ec);
-  std::string key = abs.string() + "|" + field;
+  std::string key = abs.string() + "|" + o.field + o.key;
   if (fs::is_regular_file(input, ec))  // (a pattern names no one file: its path alone)
     key += "|" + std::to_string(fs::file_size(input, ec)) + "|" +
            std::to_string(fs::last_write_time(input, ec).time_since_epoch().count());
@@ -66,11 +67,10 @@ std::string play_cache_path(const std::string& input, const std::string& field,
   return (fs::path(dir) / "builds" / (abs.filename().string() + "-" + hash + ".tsp")).string();
 }
 
-std::string prepare_play_input(const std::string& input, const std::string& field,
-                               const std::string& cache_dir, const PlayBuildHooks& hooks,
-                               bool allow_external) {
+std::string prepare_play_input(const std::string& input, const PlayInputOptions& o,
+                               const std::string& cache_dir, const PlayBuildHooks& hooks) {
   if (is_tsp_file(input)) return input;  // (a field then picks one of its fields)
-  const std::string out = play_cache_path(input, field, cache_dir);
+  const std::string out = play_cache_path(input, o, cache_dir);
   if (is_tsp_file(out)) {
     hooks.say("play: " + input + " is not a .tsp file; playing " + out + ", built from it earlier");
     return out;
@@ -79,16 +79,34 @@ std::string prepare_play_input(const std::string& input, const std::string& fiel
   const fs::path builds = fs::path(out).parent_path();
   fs::create_directories(builds, ec);
   if (ec) throw tsp::IoError(builds.string() + ": cannot create the build cache: " + ec.message());
-  tsp::SourceOptions so;
-  so.field = field;
-  so.allow_external = allow_external;
-  auto source = tsp::open_input(input, so, tsp::VoxelizeOptions{});
+  const auto open_field = [&](const std::string& field) {
+    tsp::SourceOptions so = o.source;
+    so.field = field;
+    return tsp::open_input(input, so, o.voxelize);
+  };
+  // --field A,B,C: several fields, one tree each (the first shown), as `build` does.
+  std::vector<std::string> fields;
+  for (std::size_t p = 0; o.field.find(',') != std::string::npos && p <= o.field.size();) {
+    std::size_t c = o.field.find(',', p);
+    if (c == std::string::npos) c = o.field.size();
+    fields.push_back(o.field.substr(p, c - p));
+    p = c + 1;
+  }
+  std::unique_ptr<tsp::VolumeSource> first = open_field(fields.empty() ? o.field : fields[0]);
   hooks.say("play: " + input + " is not a .tsp file; building it into " + out +
             " (reused next time)");
   tsp::BuildOptions bo;
-  bo.field_name = field;
-  bo.brick_size = tsp::default_brick_size(source->dims());
-  hooks.build(*source, out, bo);
+  bo.field_name = o.field;
+  bo.brick_size = tsp::default_brick_size(first->dims());
+  bo.threads = o.voxelize.sample.threads;
+  if (fields.empty()) {
+    hooks.build(*first, out, bo);
+    return out;
+  }
+  auto open_with_first = [&](const std::string& field) {
+    return first ? std::move(first) : open_field(field);
+  };
+  hooks.build_fields(open_with_first, fields, out, bo);
   return out;
 }
 

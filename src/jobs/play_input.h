@@ -3,8 +3,11 @@
 #pragma once
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "tsp/build/build.h"
+#include "tsp/source/volume_source.h"
+#include "tsp/voxelize/voxelized_source.h"
 
 namespace tspgl {
 
@@ -18,10 +21,19 @@ bool is_tsp_file(const std::string& path);
 /// another name may still be read: HDF5 is recognised by its signature). Never throws.
 bool has_input_extension(const std::string& name);
 
-/// Where input (with field) is built for playing: `DIR/builds/NAME-HASH.tsp` under cache_dir (""
+/// How an input that is not a .tsp file is read and built for playing: the same options as
+/// `build` (src/cli/input_options.h).
+struct PlayInputOptions {
+  std::string field;              ///< the field to build, or A,B,C: several, the first shown
+  tsp::SourceOptions source;      ///< how the input is read (its field is set per field)
+  tsp::VoxelizeOptions voxelize;  ///< meshes: how they are voxelized
+  std::string key;                ///< the options that change the build, as text (cache key)
+};
+
+/// Where input is built for playing with o: `DIR/builds/NAME-HASH.tsp` under cache_dir (""
 /// : default_calibration_dir()), the hash over the input's absolute path, size, modification
-/// time and the field. Throws tsp::UsageError when there is no cache folder.
-std::string play_cache_path(const std::string& input, const std::string& field,
+/// time, the field and o.key. Throws tsp::UsageError when there is no cache folder.
+std::string play_cache_path(const std::string& input, const PlayInputOptions& o,
                             const std::string& cache_dir);
 
 /// How a build for playing reports: `say` gets one line of text, `build` runs the build (a
@@ -30,14 +42,17 @@ struct PlayBuildHooks {
   std::function<void(const std::string&)> say;
   std::function<tsp::BuildReport(tsp::VolumeSource&, const std::string& out, tsp::BuildOptions)>
       build;
+  /// Several fields into one file (as `build --field A,B,C`).
+  std::function<void(const tsp::FieldSourceFn&, const std::vector<std::string>& fields,
+                     const std::string& out, tsp::BuildOptions)>
+      build_fields;
 };
 
-/// The .tsp file to play for input: input itself when it is a .tsp file (field then names one
-/// of its fields, for the player), else play_cache_path's file, built from field with build's
-/// defaults unless it exists; allow_external: an HDF5 input's external links and storage are
-/// read (`--allow-external`), else refused. Throws what opening or building the input throws.
-std::string prepare_play_input(const std::string& input, const std::string& field,
-                               const std::string& cache_dir, const PlayBuildHooks& hooks,
-                               bool allow_external = false);
+/// The .tsp file to play for input: input itself when it is a .tsp file (o.field then names one
+/// of its fields, for the player), else play_cache_path's file, built with o (one field, or
+/// several into one file) and build's defaults unless it exists. Throws what opening or
+/// building the input throws.
+std::string prepare_play_input(const std::string& input, const PlayInputOptions& o,
+                               const std::string& cache_dir, const PlayBuildHooks& hooks);
 
 }  // namespace tspgl

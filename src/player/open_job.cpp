@@ -1,6 +1,7 @@
 #include "player/open_job.h"
 
 #include <cstdio>
+#include <vector>
 
 #include "jobs/play_input.h"
 #include "tsp/build/build.h"
@@ -8,10 +9,9 @@
 
 namespace tspplayer {
 
-OpenJob::OpenJob(std::string input, std::string field, std::string cache_dir,
-                 bool allow_external)
-    : input_(std::move(input)), field_(std::move(field)) {
-  worker_.submit([this, cache_dir = std::move(cache_dir), allow_external](std::stop_token stop) {
+OpenJob::OpenJob(std::string input, tspgl::PlayInputOptions o, std::string cache_dir)
+    : input_(std::move(input)), field_(o.field) {
+  worker_.submit([this, o = std::move(o), cache_dir = std::move(cache_dir)](std::stop_token stop) {
     struct Done {  // marks the job ended however it ends
       std::atomic<bool>& done;
       ~Done() { done = true; }
@@ -23,18 +23,26 @@ OpenJob::OpenJob(std::string input, std::string field, std::string cache_dir,
       std::lock_guard lock(mu_);
       progress_.line = line;
     };
-    hooks.build = [this, stop](tsp::VolumeSource& source, const std::string& out,
-                               tsp::BuildOptions o) {
-      o.progress = [this, stop](const std::string& phase, std::int64_t done, std::int64_t total) {
-        if (stop.stop_requested()) throw tsp::Error("cancelled; no file written");
-        std::lock_guard lock(mu_);
-        progress_.phase = phase;
-        progress_.done = done;
-        progress_.total = total;
-      };
-      return tsp::build_tsp_file(source, out, o);
+    const auto report = [this, stop](const std::string& phase, std::int64_t done,
+                                     std::int64_t total) {
+      if (stop.stop_requested()) throw tsp::Error("cancelled; no file written");
+      std::lock_guard lock(mu_);
+      progress_.phase = phase;
+      progress_.done = done;
+      progress_.total = total;
     };
-    std::string out = tspgl::prepare_play_input(input_, field_, cache_dir, hooks, allow_external);
+    hooks.build = [report](tsp::VolumeSource& source, const std::string& out,
+                           tsp::BuildOptions b) {
+      b.progress = report;
+      return tsp::build_tsp_file(source, out, b);
+    };
+    hooks.build_fields = [report](const tsp::FieldSourceFn& open_field,
+                                  const std::vector<std::string>& fields, const std::string& out,
+                                  tsp::BuildOptions b) {
+      b.progress = report;
+      tsp::build_tsp_fields(open_field, fields, out, b);
+    };
+    std::string out = tspgl::prepare_play_input(input_, o, cache_dir, hooks);
     std::lock_guard lock(mu_);
     result_ = std::move(out);
   });

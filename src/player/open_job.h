@@ -7,6 +7,7 @@
 #include <mutex>
 #include <string>
 
+#include "jobs/play_input.h"
 #include "tsp/core/background_worker.h"
 
 namespace tspplayer {
@@ -15,10 +16,10 @@ namespace tspplayer {
 /// from any thread.
 class OpenJob {
  public:
-  /// Starts building input (its field `field`, "" for the input's own choice) into cache_dir
-  /// ("" for the default cache folder) on a worker thread; allow_external: an HDF5 input may
-  /// read other files (`--allow-external`). Throws std::system_error when no thread can start.
-  OpenJob(std::string input, std::string field, std::string cache_dir, bool allow_external);
+  /// Starts building input with o (its field, "" for the input's own choice; the play command's
+  /// input options) into cache_dir ("" for the default cache folder) on a worker thread.
+  /// Throws std::system_error when no thread can start.
+  OpenJob(std::string input, tspgl::PlayInputOptions o, std::string cache_dir);
   /// Cancels a running build and waits for it to stop (it leaves no file). Never throws.
   ~OpenJob();
   OpenJob(const OpenJob&) = delete;

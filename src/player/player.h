@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "jobs/play_input.h"
 #include "render/render_settings.h"
 
 namespace tspplayer {
@@ -25,7 +26,7 @@ struct PlayerOptions {
   std::string tsp_path;              ///< the .tsp file
   std::string field;                 ///< --field: the field shown first ("": the file's first)
   std::string cache_dir;             ///< --cache-dir: where File > Open builds inputs ("": default)
-  bool allow_external = false;       ///< --allow-external: File > Open's HDF5 inputs may read other files
+  tspgl::PlayInputOptions input;     ///< how File > Open reads and builds inputs: play's input options
   std::string tf = "preset:sparse";  ///< --tf: a file or preset:NAME
   std::string tf_range;              ///< --tf-range: auto (default), data, file or LO:HI
   int step = 0;                      ///< --step: the step shown first

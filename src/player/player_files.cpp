@@ -63,7 +63,9 @@ void PlayerApp::open_input(const std::string& input, const std::string& field) {
   // whatever is wrong with it (missing, a device, bad contents) is the job's error, reported by
   // poll_open.
   try {
-    open_job_ = std::make_unique<OpenJob>(input, field, options_.cache_dir, options_.allow_external);
+    tspgl::PlayInputOptions o = options_.input;
+    o.field = field;
+    open_job_ = std::make_unique<OpenJob>(input, std::move(o), options_.cache_dir);
   } catch (const std::exception& e) {  // no thread could start
     open_failed(status, options_.trace, input, e.what());
     return;

@@ -7,6 +7,7 @@
 
 #include "jobs/playback_tuner.h"
 
+#include <cstdio>
 #include <cstdlib>
 
 #include <filesystem>
@@ -402,6 +403,51 @@ nlohmann::json read_json(const fs::path& p) {
   std::ifstream in(p);
   return nlohmann::json::parse(in);
 }
+
+// play takes build's input options (issue 30 item 1): a raw series with its grid size and type
+// plays without a separate build, a different grid size is another cached build, and
+// --field A,B builds both fields into one file (the first shown, the other in the field menu).
+TEST(Player, PlaysARawSeriesAndSeveralFieldsDirectly) {
+  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  const fs::path dir = tsptest::temp_dir(), cache = dir / "cache";
+  for (int t = 0; t < 3; ++t) {
+    std::vector<float> v(8 * 6 * 4);
+    for (std::size_t i = 0; i < v.size(); ++i) v[i] = float((i + std::size_t(t) * 7) % 23) / 22.f;
+    char name[32];
+    std::snprintf(name, sizeof name, "u_%04d.raw", t);
+    std::ofstream(dir / name, std::ios::binary)
+        .write(reinterpret_cast<const char*>(v.data()), std::streamsize(v.size() * sizeof(float)));
+  }
+  const std::string raw = q((dir / "u_%04d.raw").string());
+  auto r = run_tspplay("play " + raw + " --raw-dims 8,6,4 --raw-type f32 --cache-dir " + q(cache) +
+                       " --size " + kSize + " --screenshot " + q(dir / "raw.png"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("8x6x4 voxels, 3 steps"), std::string::npos) << r.out;
+  EXPECT_TRUE(fs::exists(dir / "raw.png"));
+  r = run_tspplay("play " + raw + " --raw-dims 4,6,8 --cache-dir " + q(cache) + " --size " + kSize +
+                  " --screenshot " + q(dir / "raw2.png"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("4x6x8 voxels, 3 steps"), std::string::npos) << r.out;
+  int built = 0;
+  for (const auto& e : fs::directory_iterator(cache / "builds")) built += e.path().extension() == ".tsp";
+  EXPECT_EQ(built, 2) << "the grid size is part of the cached build's key";
+  // Without the grid size: the reader's error, exit 1 or 2, nothing played.
+  r = run_tspplay("play " + raw + " --cache-dir " + q(cache) + " --size " + kSize);
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("raw"), std::string::npos) << r.err;
+
+  const fs::path h5 = tsptest::test_data_dir() / "h5" / "int16.h5";
+  const fs::path script = write_script("stats " + (dir / "f.json").string() + "\nfield u64\nstats " +
+                                       (dir / "g.json").string() + "\nquit\n");
+  r = run_tspplay("play " + q(h5) + " --field plain,u64 --cache-dir " + q(cache) + " --size " +
+                  kSize + " --script " + q(script));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json f = read_json(dir / "f.json"), g = read_json(dir / "g.json");
+  EXPECT_EQ(f["fields"], nlohmann::json({"plain", "u64"}));
+  EXPECT_EQ(f["field"], "plain");
+  EXPECT_EQ(g["field"], "u64");
+}
+
 
 // A window large enough docks the panels beside the volume: the volume-only screenshot is the
 // view's size (stats say where it is) and matches `tspplay render` at that size; hidden panels

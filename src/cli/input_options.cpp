@@ -1,0 +1,85 @@
+#include "cli/input_options.h"
+
+#include "cli/args.h"
+#include "tsp/core/error.h"
+#include "tsp/voxelize/voxelizer.h"
+
+namespace tspcli {
+
+namespace {
+constexpr int kMaxRawEdge = 1 << 20;
+}  // namespace
+
+void add_input_options(CLI::App* c, InputArgs& a) {
+  c->add_option("--resolution", a.resolution,
+                "Meshes: samples on the longest edge (default: from the median cell size, 16..256)");
+  c->add_option("--voxel-size", a.voxel_size, "Meshes: voxel edge in the mesh's units");
+  c->add_option("--cell-data", a.cell_data,
+                "Meshes, cell data: constant per cell, or averaged to the points then interpolated")
+      ->check(CLI::IsMember({"constant", "points"}));
+  c->add_option("--voxelizer", a.voxelizer,
+                "Meshes: locate (voxel centres located in cells; default) or scan (tetrahedra "
+                "scan-converted, with --antialias)")
+      ->check(CLI::IsMember({"locate", "scan"}));
+  c->add_option("--antialias", a.antialias,
+                "Meshes, --voxelizer scan: K x K x K sub-samples per voxel, 1..4 (default 1)")
+      ->check(CLI::Range(1, tsp::kMaxAntialias));
+  c->add_option("--hex", a.hex,
+                "Meshes, locate: hexahedra sampled whole by their trilinear map (isoparametric, "
+                "as VTK) or through tetrahedra")
+      ->check(CLI::IsMember({"isoparametric", "tetrahedra"}));
+  c->add_option("--raw-dims", a.raw_dims, "Raw input: grid size X,Y,Z");
+  c->add_option("--raw-type", a.raw_type, "Raw input: element type u8|u16|f32")
+      ->check(CLI::IsMember({"u8", "u16", "f32"}));
+  c->add_flag("--big-endian", a.big_endian, "Raw input: big-endian samples");
+  c->add_flag("--allow-external", a.allow_external,
+              "HDF5 input: read its external links, external raw storage and virtual datasets "
+              "(other files it names; refused by default)");
+}
+
+tsp::SourceOptions source_options(const InputArgs& a, const std::string& field) {
+  tsp::SourceOptions so;
+  so.field = field;
+  if (!a.raw_dims.empty()) so.raw_dims = parse_dims(a.raw_dims, "--raw-dims", kMaxRawEdge, false);
+  so.raw_type = a.raw_type == "u8"    ? tsp::RawType::u8
+                : a.raw_type == "u16" ? tsp::RawType::u16
+                                      : tsp::RawType::f32;
+  so.raw_big_endian = a.big_endian;
+  so.allow_external = a.allow_external;
+  return so;
+}
+
+tsp::VoxelizeOptions voxelize_options(const InputArgs& a, int threads) {
+  tsp::VoxelizeOptions vo;
+  vo.resolution = a.resolution;
+  vo.voxel_size = a.voxel_size;
+  vo.cell_data = a.cell_data == "points" ? tsp::CellDataMode::points : tsp::CellDataMode::constant;
+  vo.sample.threads = threads;
+  vo.sample.kind = a.voxelizer == "scan" ? tsp::VoxelizerKind::scan : tsp::VoxelizerKind::locate;
+  vo.sample.hex = a.hex == "tetrahedra" ? tsp::HexSampling::tetrahedra : tsp::HexSampling::isoparametric;
+  vo.sample.antialias = a.antialias;
+  if (a.antialias != 1 && a.voxelizer != "scan")
+    throw tsp::UsageError("--antialias " + std::to_string(a.antialias) +
+                          " needs --voxelizer scan (the locating voxelizer samples voxel centres)");
+  return vo;
+}
+
+std::string input_key(const InputArgs& a) {
+  const InputArgs d;
+  std::string k;
+  const auto add = [&k](const std::string& name, const std::string& value) {
+    k += "|" + name + "=" + value;
+  };
+  if (a.raw_dims != d.raw_dims) add("raw-dims", a.raw_dims);
+  if (a.raw_type != d.raw_type) add("raw-type", a.raw_type);
+  if (a.big_endian) add("big-endian", "1");
+  if (a.resolution != d.resolution) add("resolution", std::to_string(a.resolution));
+  if (a.voxel_size != d.voxel_size) add("voxel-size", std::to_string(a.voxel_size));
+  if (a.cell_data != d.cell_data) add("cell-data", a.cell_data);
+  if (a.voxelizer != d.voxelizer) add("voxelizer", a.voxelizer);
+  if (a.hex != d.hex) add("hex", a.hex);
+  if (a.antialias != d.antialias) add("antialias", std::to_string(a.antialias));
+  return k;
+}
+
+}  // namespace tspcli
