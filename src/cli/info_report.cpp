@@ -107,6 +107,8 @@ json info_json(const tsp::TspFile& f, bool with_nodes) {
   j["spacing"] = m.spacing;
   j["stencil"] = tree.has_stencil();
   j["times"] = m.times;
+  j["time_units"] = m.time_units.units;
+  j["time_calendar"] = m.time_units.calendar;
   if (tree.has_stencil()) j["inside_fraction"] = tree.inside_fraction(0);
   j["histogram"] = m.histogram;
   json levels = json::array();
@@ -181,8 +183,11 @@ void print_info(const tsp::TspFile& f, bool with_nodes) {
   std::printf("geometry      voxel (i,j,k) at (%g, %g, %g) + (i,j,k)*(%g, %g, %g)\n", m.origin[0],
               m.origin[1], m.origin[2], m.spacing[0], m.spacing[1], m.spacing[2]);
   if (!m.times.empty())
-    std::printf("times         %g .. %g (physical, from the input)\n", m.times.front(),
-                m.times.back());
+    std::printf("times         %s .. %s (physical, from the input%s)\n",
+                tsp::format_time(m.times.front(), m.time_units).c_str(),
+                tsp::format_time(m.times.back(), m.time_units).c_str(),
+                m.time_units.units.empty() ? "" : ("; units " + m.time_units.units +
+                                                   (m.time_units.calendar.empty() ? "" : ", calendar " + m.time_units.calendar)).c_str());
   if (tree.has_stencil())
     std::printf("stencil       %.1f%% of the voxels inside the mesh (the rest is never drawn)\n",
                 100.0 * tree.inside_fraction(0));

@@ -72,6 +72,7 @@ json frame_json(const FrameRecord& f) {
           {"ram_mib", double(f.ram_bytes) / (1 << 20)},
           {"rss_mib", double(f.rss_bytes) / (1 << 20)},
           {"time", f.time ? json(*f.time) : json(nullptr)},
+          {"time_text", f.time ? json(f.time_text) : json(nullptr)},
           {"lod", f.lod ? lod_json(*f.lod) : json(nullptr)}};
 }
 
@@ -312,7 +313,10 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
       tsp::CameraParams params = o.camera;
       params.azimuth_deg += o.orbit_deg * frame_index;
       rec.azimuth_deg = params.azimuth_deg;
-      if (!file->metadata().times.empty()) rec.time = file->metadata().times[std::size_t(t)];
+      if (!file->metadata().times.empty()) {
+        rec.time = file->metadata().times[std::size_t(t)];
+        rec.time_text = tsp::format_time(*rec.time, file->metadata().time_units);
+      }
       const tsp::Camera camera(tree.octree().dims(), params);
       if (moving && !o.probes.empty() && frame_index > 0) set_clip(frame_index);
       FrameRequest request;
@@ -331,7 +335,9 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
       const bool png = !dir.empty() && o.write_images && pass == o.passes;
       if (png || o.on_frame) {
         tsp::Image pixels = ctx->read_pixels();
-        if (o.annotate) annotate_frame(pixels, camera, tree.octree().dims(), tf, t, rec.time);
+        if (o.annotate)
+          annotate_frame(pixels, camera, tree.octree().dims(), tf, t,
+                         rec.time ? std::optional<std::string>(rec.time_text) : std::nullopt);
         if (o.on_frame) o.on_frame(rec, pixels);
         if (png) tsp::write_png(step_png(dir, t), pixels);
       }

@@ -102,6 +102,7 @@ struct FrameRecord {
   double azimuth_deg = 0;          ///< the camera's azimuth (it moves with --orbit)
   std::optional<LodRecord> lod;    ///< with --lod
   std::optional<double> time;      ///< the step's physical time, when the file has times
+  std::string time_text;           ///< time as tsp::format_time writes it (a date with CF units)
   std::int64_t ram_bytes = 0;      ///< bricks in RAM after the frame (the brick cache)
   std::int64_t rss_bytes = 0;      ///< the process's resident memory after the frame
 };

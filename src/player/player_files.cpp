@@ -221,7 +221,9 @@ void PlayerApp::record_frame(double now_s) {
     tspgl::annotate_frame(img, tsp::Camera(file->tree().octree().dims(), state.camera),
                           file->tree().octree().dims(), tf, state.step,
                           times.empty() ? std::nullopt
-                                        : std::optional<double>(times[std::size_t(state.step)]));
+                                        : std::optional<std::string>(tsp::format_time(
+                                              times[std::size_t(state.step)],
+                                              file->metadata().time_units)));
   }
   try {
     recorder_->frame(img, now_s);

@@ -210,7 +210,8 @@ void PlayerApp::draw_annotations(const tsp::Camera& cam) {
   if (times.empty())
     std::snprintf(label, sizeof label, "step %d", state.step);
   else
-    std::snprintf(label, sizeof label, "step %d   t = %g", state.step, times[std::size_t(state.step)]);
+    std::snprintf(label, sizeof label, "step %d   t = %s", state.step,
+                  tsp::format_time(times[std::size_t(state.step)], file->metadata().time_units).c_str());
   dl->AddText(ImVec2(float(v.x) + float(v.w) * 0.5f - 40, float(v.y) + 8),
               IM_COL32(235, 235, 235, 255), label);
   draw_legend(dl, v, tf, field());

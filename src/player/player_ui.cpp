@@ -125,11 +125,13 @@ void timeline_section(PlayerApp& app) {
   const bool was_playing = app.state.playing;
   // The step with its physical time when the file has times ("step 3  t = 0.15").
   const auto& times = app.file->metadata().times;
-  char label[64];
+  char label[96];
   if (times.empty())
     std::snprintf(label, sizeof label, "step %%d");
   else
-    std::snprintf(label, sizeof label, "step %%d  t = %g", times[std::size_t(app.state.step)]);
+    std::snprintf(label, sizeof label, "step %%d  t = %s",
+                  tsp::format_time(times[std::size_t(app.state.step)], app.file->metadata().time_units)
+                      .c_str());
   if (ImGui::SliderInt("##step", &step, 0, last, label))
     app.command(step_command(std::clamp(step, 0, last)));
   if (ImGui::IsItemActivated()) {

@@ -150,10 +150,38 @@ TEST(BuildInfoCli, KatrinaTemperature) {
 
   auto h = run_tspplay("info " + q(dir / "t.tsp"));
   ASSERT_EQ(h.exit_code, 0) << h.err;
-  for (const char* s : {"48x48x14", "steps         4", "ci_test_file.nc", "e_ss mean"})
+  for (const char* s : {"48x48x14", "steps         4", "ci_test_file.nc", "e_ss mean",
+                        "times         2005-08-28 12:00 .. 2005-08-28 21:00"})
     EXPECT_NE(h.out.find(s), std::string::npos) << s << "\n" << h.out;
+  // WRF's Times: seconds since the first date, kept in the file.
+  EXPECT_EQ(j["time_units"], "seconds since 2005-08-28 12:00:00");
+  EXPECT_EQ(j["times"], json({0, 10800, 21600, 32400}));
   // Without --nodes the JSON has no node list.
   EXPECT_FALSE(info_json(dir / "t.tsp", "").contains("nodes"));
+}
+
+// A CF time coordinate's units and calendar (tests/data/h5/map_over_time.nc: 0, 6, 12 "hours
+// since 2000-01-01 00:00:00") travel into the .tsp file and show as dates in info and in
+// render's frames.json.
+TEST(BuildInfoCli, CfTimeUnitsShowAsDates) {
+  const fs::path dir = tsptest::temp_dir();
+  const fs::path nc = tsptest::test_data_dir() / "h5" / "map_over_time.nc";
+  auto r = run_tspplay("build " + q(nc) + " --field T -o " + q(dir / "t.tsp"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json j = info_json(dir / "t.tsp", "");
+  EXPECT_EQ(j["times"], json({0, 6, 12}));
+  EXPECT_EQ(j["time_units"], "hours since 2000-01-01 00:00:00");
+  EXPECT_EQ(j["time_calendar"], "standard");
+  const auto h = run_tspplay("info " + q(dir / "t.tsp"));
+  EXPECT_NE(h.out.find("times         2000-01-01 00:00 .. 2000-01-01 12:00"), std::string::npos)
+      << h.out;
+  r = run_tspplay("render " + q(dir / "t.tsp") + " --size 32x24 -o " + q(dir / "f"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream in(dir / "f" / "frames.json");
+  const json frames = json::parse(in)["frames"];
+  ASSERT_EQ(frames.size(), 3u);
+  EXPECT_EQ(frames[1]["time"], 6);
+  EXPECT_EQ(frames[1]["time_text"], "2000-01-01 06:00");
 }
 
 // --field A,B: one tree each in one file. info lists the fields and describes any one of them

@@ -258,11 +258,14 @@ def make_map_over_time(path):
     """h5/map_over_time.nc: NetCDF-4-style dimension scales Time, south_north, west_east; /T2 is a
     2-D field over 3 times (3, 4, 5), like WRF's T2; /T a 4-D field (3, 2, 4, 5); /slab a plain
     3-D (z, y, x) = (3, 4, 5) dataset whose first dimension is not time. The reader refuses T2
-    as a map over time, names it so among the candidates, and reads slab as one volume."""
+    as a map over time, names it so among the candidates, and reads slab as one volume. Time is a
+    CF time coordinate: 0, 6, 12 "hours since 2000-01-01 00:00:00", calendar "standard"."""
     with h5py.File(path, "w") as h:
         for name, n in (("Time", 3), ("bottom_top", 2), ("south_north", NY), ("west_east", NX)):
-            h[name] = np.arange(n, dtype=np.float64)
+            h[name] = np.arange(n, dtype=np.float64) * (6.0 if name == "Time" else 1.0)
             h[name].make_scale(name)
+        h["Time"].attrs["units"] = "hours since 2000-01-01 00:00:00"
+        h["Time"].attrs["calendar"] = "standard"
         t2 = h.create_dataset("T2", data=np.stack([f(t)[0] for t in range(3)]).astype(np.float32))
         for i, name in enumerate(["Time", "south_north", "west_east"]):
             t2.dims[i].attach_scale(h[name])

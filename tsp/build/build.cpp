@@ -396,6 +396,7 @@ BuildReport build_field(VolumeSource& source, const TempOutput* out,
     meta.origin = options.origin.value_or(source.origin());
     meta.times = source.times();
     if (meta.times.size() != std::size_t(steps)) meta.times.clear();  // a reader's slip: none
+    if (!meta.times.empty()) meta.time_units = source.time_units();
     meta.spacing = options.spacing.value_or(source.spacing());
     meta.build_ranks = part ? part->ranks() : 1;
     writer.finish(tree, meta);

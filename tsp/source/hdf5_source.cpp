@@ -230,16 +230,31 @@ std::optional<double> wrf_date_seconds(const std::string& text) {
   return double(timegm(&tm));
 }
 
+// A string attribute of obj, "" when absent or not a string. Never throws.
+std::string text_attribute(hid_t obj, const char* name) {
+  try {
+    return io::string_attribute(obj, name, name).value_or("");
+  } catch (const Error&) {
+    return "";
+  }
+}
+
 // The physical time of each of a 4-D dataset's steps: the time dimension's coordinate variable
-// when it has one value per step, increasing; else WRF's `Times` (one date string per step) as
-// seconds since the first step. Empty when neither (or they do not increase). Never throws.
-std::vector<double> step_times(hid_t file, hid_t ds, hsize_t steps) {
+// when it has one value per step, increasing (its CF `units` and `calendar` into units); else
+// WRF's `Times` (one date string per step) as seconds since the first step (units "seconds
+// since" that date). Empty when neither (or they do not increase). Never throws.
+std::vector<double> step_times(hid_t file, hid_t ds, hsize_t steps, TimeUnits& units) {
+  units = {};
   auto increasing = [](const std::vector<double>& v) {
     for (std::size_t i = 0; i < v.size(); ++i)
       if (!std::isfinite(v[i]) || (i > 0 && !(v[i] > v[i - 1]))) return false;
     return !v.empty();
   };
-  if (auto t = scale_values(ds, 0, steps); t && increasing(*t)) return *t;
+  if (auto t = scale_values(ds, 0, steps); t && increasing(*t)) {
+    const Handle scale = dimension_scale(ds, 0);
+    units = {text_attribute(scale.get(), "units"), text_attribute(scale.get(), "calendar")};
+    return *t;
+  }
   if (H5Lexists(file, "Times", H5P_DEFAULT) <= 0) return {};
   Handle times(H5Dopen2(file, "Times", H5P_DEFAULT));
   if (!times) return {};
@@ -261,7 +276,12 @@ std::vector<double> step_times(hid_t file, hid_t ds, hsize_t steps) {
     t.push_back(*s);
   }
   for (std::size_t i = t.size(); i-- > 0;) t[i] -= t[0];
-  return increasing(t) || t.size() == 1 ? t : std::vector<double>{};
+  if (!increasing(t) && t.size() != 1) return {};
+  std::string first(chars.data(), std::size_t(shape[1]));
+  for (char& c : first)
+    if (c == '_') c = ' ';
+  units = {"seconds since " + first, ""};
+  return t;
 }
 
 // The mean over a horizontal plane of a WRF geopotential, (PH + PHB)[t = 0, level], in m²/s²;
@@ -354,8 +374,10 @@ class Hdf5Source final : public VolumeSource {
   std::array<double, 3> origin() const override { return geometry_.origin; }
   std::array<double, 3> spacing() const override { return geometry_.spacing; }
   std::vector<double> times() const override { return times_; }
+  TimeUnits time_units() const override { return time_units_; }
   GridGeometry geometry_;
   std::vector<double> times_;
+  TimeUnits time_units_;
   std::vector<std::string> files() const override { return {path_}; }
 
   void read_step(int t, std::span<float> out) override { read_slab(t, 0, dims_.z, out); }
@@ -423,11 +445,13 @@ std::unique_ptr<VolumeSource> open_dataset(const std::string& path, Handle file,
     }
   }
   std::vector<double> times;
-  if (shape.size() == 4) times = step_times(file.get(), ds.get(), shape[0]);
+  TimeUnits units;
+  if (shape.size() == 4) times = step_times(file.get(), ds.get(), shape[0], units);
   auto source = std::make_unique<Hdf5Source>(path, std::move(file), "dataset " + ds_path, dims,
                                              std::move(steps));
   source->geometry_ = geometry;
   source->times_ = std::move(times);
+  source->time_units_ = std::move(units);
   source->chunk_planes_ = chunk_depth(ds.get(), shape.size() == 4 ? 1 : 0);
   return source;
 }

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "tsp/core/time_text.h"
 #include "tsp/core/types.h"
 
 namespace tsp {
@@ -60,6 +61,9 @@ class VolumeSource {
   /// Physical time of every step when the input names them (.pvd timesteps, .series times,
   /// VTKHDF Steps/Values, an HDF5 time dimension scale); empty when it does not. Never throws.
   virtual std::vector<double> times() const { return {}; }
+  /// The units of times() when the input names them (CF `units`/`calendar` of the time
+  /// coordinate, WRF `Times` as "seconds since" the first date); empty otherwise. Never throws.
+  virtual TimeUnits time_units() const { return {}; }
   /// Physical position of voxel (0, 0, 0); (0, 0, 0) when the input does not say. Never throws.
   virtual std::array<double, 3> origin() const { return {0, 0, 0}; }
   /// Physical distance between neighbouring voxels per axis; (1, 1, 1) when the input does not

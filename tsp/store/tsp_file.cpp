@@ -340,6 +340,12 @@ std::unique_ptr<TspFile> TspFile::open(const std::string& path, const std::strin
       if (!std::isfinite(m.times[i]))
         r.fail(r.dataset_name(layout::kTimeValues),
                "element " + std::to_string(i) + " is not a finite time");
+    // Optional text attributes of the times (files written before them have none).
+    Handle values(H5Dopen2(impl->loc.get(), layout::kTimeValues, H5P_DEFAULT));
+    for (auto [name, to] : {std::pair{layout::kAttrTimeUnits, &m.time_units.units},
+                            std::pair{layout::kAttrTimeCalendar, &m.time_units.calendar}})
+      if (values && H5Aexists(values.get(), name) > 0)
+        *to = io::string_attribute(values.get(), name, r.dataset_name(layout::kTimeValues)).value_or("");
   }
 
   const std::vector<hsize_t> n = {hsize_t(tree.size())};

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "tsp/core/time_text.h"
 #include "tsp/store/brick_store.h"
 
 namespace tsp {
@@ -30,6 +31,7 @@ struct TspMetadata {
   int build_ranks = 1;  ///< processes that built the file (tspplay-mpi ranks; 1: serial)
   int deflate = 0;      ///< deflate level of the bricks (build --compress; read, not written)
   std::vector<double> times;  ///< physical time of every step, when the input named them
+  TimeUnits time_units;       ///< the units of times (CF units/calendar), when the input named them
 };
 
 /// An open .tsp file: tree, metadata, and brick reads (one HDF5 chunk per brick and step).

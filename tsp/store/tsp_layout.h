@@ -38,6 +38,9 @@ inline constexpr const char* kAttrQuantization = "quantization";  // text of the
 inline constexpr const char* kAttrNodeId = "tsp_node_id";         // text of the id rule
 inline constexpr const char* kAttrOrigin = "origin";    // float64[3]: voxel (0,0,0) in space
 inline constexpr const char* kAttrSpacing = "spacing";  // float64[3]: voxel spacing per axis
+// Text, on kTimeValues when the input named them: CF-style units and calendar of the times.
+inline constexpr const char* kAttrTimeUnits = "units";
+inline constexpr const char* kAttrTimeCalendar = "calendar";
 // Root only, files with several fields: their names in order, one per line (the first is the
 // root's own field).
 inline constexpr const char* kAttrFields = "fields";

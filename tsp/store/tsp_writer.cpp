@@ -333,6 +333,13 @@ void TspWriter::finish(const TspTree& tree, const TspMetadata& meta) {
     assert(meta.times.size() == std::size_t(time.steps()));
     write_dataset(f, p, layout::kTimeValues, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE,
                   {hsize_t(meta.times.size())}, meta.times.data());
+    const auto units_attr = [&](const char* name, const std::string& text) {
+      if (text.empty()) return;
+      Handle values(check_id(H5Dopen2(f, layout::kTimeValues, H5P_DEFAULT), p, layout::kTimeValues));
+      write_attr_string(values.get(), p, name, text);
+    };
+    units_attr(layout::kAttrTimeUnits, meta.time_units.units);
+    units_attr(layout::kAttrTimeCalendar, meta.time_units.calendar);
   }
 
   // Statistics by TSP node id.
