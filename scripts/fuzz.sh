@@ -33,9 +33,17 @@ export ASAN_OPTIONS=detect_leaks=0:abort_on_error=1:allocator_may_return_null=1
 # Each target runs for the whole SECONDS: libFuzzer's fork mode records a crash, timeout or
 # out-of-memory input in build-fuzz/crashes/<target>/ and goes on. Afterwards every recorded
 # input is replayed alone and classified: a report whose first frames (below the sanitizer's
-# interceptor) are in libhdf5 is HDF5's own parsing of crafted metadata (fuzz/known/README.md);
-# a timeout or a report anywhere else is ours and fails the run. JOBS targets run at once.
+# interceptor, libFuzzer, libc and the allocator) are in libhdf5 is HDF5's own parsing of
+# crafted metadata (fuzz/known/README.md) — a crash, a hang or a huge allocation; a report
+# anywhere else is ours and fails the run. JOBS targets run at once.
 JOBS=${JOBS:-1}
+# Whose code a replayed report stops in: the first stack frame outside the sanitizer, libFuzzer,
+# libc and the allocator ("libhdf5", "ours" or "none" when the report has no stack).
+first_frame() {
+  grep -E '^ +#[0-9]+ ' "$1" |
+    grep -vE '__sanitizer|fuzzer::|__interceptor|asan_|ubsan|libc\.so|/libc-|nptl/|sysdeps/|stdlib/|signal/| in malloc | in calloc | in realloc | in operator new' |
+    head -1 | awk '{ if ($0 ~ /libhdf5/) print "libhdf5"; else if ($0 == "") print "none"; else print "ours" }'
+}
 fuzz_one() {
   local t=$1 log="build-fuzz/$1.log" summary="build-fuzz/$1.summary"
   mkdir -p "build-fuzz/corpus/$t" "build-fuzz/crashes/$t"
@@ -48,7 +56,7 @@ fuzz_one() {
     [ -e "$f" ] || continue
     rlog="$f.replay"
     "build-fuzz/${t}_fuzz" -timeout=20 -rss_limit_mb=2048 "$f" >"$rlog" 2>&1 && continue  # no longer reproduces
-    if grep -E '^ +#[0-2] ' "$rlog" | grep -q 'libhdf5'; then
+    if [ "$(first_frame "$rlog")" = libhdf5 ]; then
       hdf5=$((hdf5 + 1))
     else
       ours=$((ours + 1))

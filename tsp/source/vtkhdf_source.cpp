@@ -15,6 +15,7 @@
 #include <cassert>
 #include <climits>
 #include <cmath>
+#include <cstdio>
 #include <optional>
 #include <vector>
 
@@ -140,9 +141,12 @@ std::unique_ptr<VolumeSource> open_vtkhdf_source(const std::string& path, h5::Ha
   auto version = numeric_attribute(root.get(), "Version", where);
   if (!version || version->size() != 2)
     throw FormatError(where + ": attribute Version missing or not [major, minor]");
-  if ((*version)[0] < 1 || (*version)[0] > kMaxMajorVersion)
-    throw FormatError(where + ": VTKHDF version " + std::to_string(int((*version)[0])) + "." +
-                      std::to_string(int((*version)[1])) + ", expected major version 1 or 2");
+  if (!((*version)[0] >= 1 && (*version)[0] <= kMaxMajorVersion)) {
+    // (%g: a crafted version is any double, which an int cannot hold)
+    char text[64];
+    std::snprintf(text, sizeof text, "%g.%g", (*version)[0], (*version)[1]);
+    throw FormatError(where + ": VTKHDF version " + text + ", expected major version 1 or 2");
+  }
   auto type = string_attribute(root.get(), "Type", where);
   if (!type) {
     // Version 1.x files may omit Type; VTK deduces it from what the group holds.
