@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Voxelizer benchmark against VTK (python3-vtk9, the reference, not a dependency).
 
-    /usr/bin/python3 bench/voxelize_vtk.py MESH.vtu FIELD RESOLUTION [ROUNDS] [iso|tets]
+    /usr/bin/python3 bench/voxelize_vtk.py MESH.vtu|.vts|.q FIELD RESOLUTION [ROUNDS] [iso|tets]
 
 Runs build/voxelize_bench (our voxelizer) and VTK's vtkResampleToImage (probe filter: point
 location in the mesh, interpolation by the cell's own functions) on the same mesh and grid in
@@ -24,6 +24,33 @@ from vtk.util import numpy_support as ns
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 
+def read_with_vtk(mesh):
+    """The mesh as VTK reads it: .vtu, .vts, or a PLOT3D .q on the only .xyz beside it (VTK's
+    reader detects the PLOT3D layout; its blocks are appended into one grid)."""
+    if mesh.endswith(".vts"):
+        reader = vtk.vtkXMLStructuredGridReader()
+        reader.SetFileName(mesh)
+    elif mesh.endswith(".q"):
+        folder = os.path.dirname(os.path.abspath(mesh))
+        grids = [f for f in os.listdir(folder) if f.endswith(".xyz")]
+        assert len(grids) == 1, "expected one .xyz beside " + mesh
+        p3d = vtk.vtkMultiBlockPLOT3DReader()
+        p3d.SetXYZFileName(os.path.join(folder, grids[0]))
+        p3d.SetQFileName(mesh)
+        p3d.SetAutoDetectFormat(1)
+        p3d.AddFunction(110)  # pressure
+        p3d.Update()
+        reader = vtk.vtkAppendFilter()
+        blocks = p3d.GetOutput()
+        for b in range(blocks.GetNumberOfBlocks()):
+            reader.AddInputData(blocks.GetBlock(b))
+    else:
+        reader = vtk.vtkXMLUnstructuredGridReader()
+        reader.SetFileName(mesh)
+    reader.Update()
+    return reader.GetOutput()
+
+
 def main():
     mesh, field, res = sys.argv[1], sys.argv[2], int(sys.argv[3])
     rounds = int(sys.argv[4]) if len(sys.argv) > 4 else 5
@@ -38,10 +65,7 @@ def main():
         values = np.fromfile(prefix + ".f32", dtype=np.float32)
         inside = np.fromfile(prefix + ".u8", dtype=np.uint8).astype(bool)
 
-    reader = vtk.vtkXMLUnstructuredGridReader()
-    reader.SetFileName(mesh)
-    reader.Update()
-    ug = reader.GetOutput()
+    ug = read_with_vtk(mesh)
     ug.GetPointData().SetActiveScalars(field)
     lo = ours["origin"]
     h = ours["spacing"]

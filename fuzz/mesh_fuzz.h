@@ -10,11 +10,11 @@
 
 namespace tspfuzz {
 
-/// Reads every step of the mesh input at path and voxelizes it every way; tsp::Error is a clean
-/// refusal, anything else a finding.
-inline void voxelize_every_way(const std::string& path) {
+/// Reads every step of the mesh input at path (a PLOT3D solution on plot3d_grid) and voxelizes
+/// it every way; tsp::Error is a clean refusal, anything else a finding.
+inline void voxelize_every_way(const std::string& path, const std::string& plot3d_grid = "") {
   expect_clean([&] {
-    auto s = tsp::open_mesh_source(path, "");
+    auto s = tsp::open_mesh_source(path, "", false, plot3d_grid);
     for (int t = 0; t < s->steps(); ++t) {
       const tsp::Mesh m = s->read_step(t);
       tsp::VoxelizeOptions o;

@@ -28,6 +28,9 @@ void add_input_options(CLI::App* c, InputArgs& a) {
                 "Meshes, locate: hexahedra sampled whole by their trilinear map (isoparametric, "
                 "as VTK) or through tetrahedra")
       ->check(CLI::IsMember({"isoparametric", "tetrahedra"}));
+  c->add_option("--xyz", a.xyz,
+                 "PLOT3D input (.q solutions): their grid file (default: the only .xyz beside "
+                 "the first .q)");
   c->add_option("--raw-dims", a.raw_dims, "Raw input: grid size X,Y,Z");
   c->add_option("--raw-type", a.raw_type, "Raw input: element type u8|u16|f32")
       ->check(CLI::IsMember({"u8", "u16", "f32"}));
@@ -46,6 +49,7 @@ tsp::SourceOptions source_options(const InputArgs& a, const std::string& field) 
                                       : tsp::RawType::f32;
   so.raw_big_endian = a.big_endian;
   so.allow_external = a.allow_external;
+  so.plot3d_grid = a.xyz;
   return so;
 }
 
@@ -79,6 +83,7 @@ std::string input_key(const InputArgs& a) {
   if (a.voxelizer != d.voxelizer) add("voxelizer", a.voxelizer);
   if (a.hex != d.hex) add("hex", a.hex);
   if (a.antialias != d.antialias) add("antialias", std::to_string(a.antialias));
+  if (a.xyz != d.xyz) add("xyz", a.xyz);
   return k;
 }
 

@@ -42,7 +42,8 @@ bool has_input_extension(const std::string& name) {
   for (char& c : lower) c = char(std::tolower(static_cast<unsigned char>(c)));
   static constexpr const char* kSuffixes[] = {
       ".tsp", ".h5",  ".hdf5", ".hdf", ".he5",        ".nc",         ".nc4",        ".vtkhdf",
-      ".vti", ".vtu", ".vtm",  ".pvd", ".vti.series", ".vtu.series", ".vtm.series", ".raw"};
+      ".vti", ".vtu", ".vts",  ".vtm", ".pvd", ".vti.series", ".vtu.series", ".vts.series",
+      ".vtm.series", ".q", ".raw"};
   for (const char* s : kSuffixes) {
     const std::size_t n = std::char_traits<char>::length(s);
     if (lower.size() > n && lower.compare(lower.size() - n, n, s) == 0) return true;

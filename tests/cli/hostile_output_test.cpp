@@ -150,7 +150,14 @@ TEST(HostileOutput, OutputsThatAreInputsAreRefusedAndTheInputsKept) {
   EXPECT_NE(r.err.find("frames.json is the input file"), std::string::npos) << r.err;
   EXPECT_EQ(tsptest::read_file(frames / "frames.json"), tf_bytes);
   EXPECT_TRUE(temporaries(dir).empty());
-  // The player: --screenshot, and a script's screenshot and stats, aimed at the played file.
+}
+
+// The player: --screenshot, and a script's screenshot and stats, aimed at the played file. (A
+// test of its own: it opens a window, so the sanitizer suite runs it with the window tests.)
+TEST(HostileOutputWindow, ScreenshotsAndStatsAimedAtThePlayedFileAreRefused) {
+  const fs::path dir = tsptest::temp_dir();
+  const fs::path tsp = small_tsp(dir);
+  const std::string tsp_bytes = tsptest::read_file(tsp);
   auto p = run_tspplay("play " + quote(tsp) + " --size 32x24 --screenshot " + quote(tsp));
   EXPECT_EQ(p.exit_code, 2) << p.err;
   EXPECT_NE(p.err.find("the output is the input file"), std::string::npos) << p.err;

@@ -10,7 +10,8 @@
 #include "tsp/core/file_check.h"
 #include "tsp/source/raw_source.h"
 #include "tsp/source/series_list.h"
-#include "tsp/source/vtu_file.h"
+#include "tsp/source/mesh_file.h"
+#include "tsp/source/plot3d_source.h"
 #include "tsp/source/vtkhdf_mesh_source.h"
 
 namespace tsp {
@@ -24,13 +25,13 @@ bool is_hdf5_name(const std::string& s) {
 }
 
 bool names_unstructured(const std::string& file) {
-  return io::has_suffix(file, ".vtu") || io::has_suffix(file, ".vtm");
+  return io::is_mesh_file_name(file) || io::has_suffix(file, ".vtm");
 }
 
-// A series of .vtu files (a .vtm step reads its volume block).
-class VtuSeriesSource final : public MeshSource {
+// A series of .vtu or .vts files (a .vtm step reads its volume block).
+class MeshFileSeriesSource final : public MeshSource {
  public:
-  VtuSeriesSource(std::string input, std::vector<io::StepFile> steps, io::VtuField field,
+  MeshFileSeriesSource(std::string input, std::vector<io::StepFile> steps, io::MeshField field,
                   bool named_times)
       : input_(std::move(input)),
         steps_(std::move(steps)),
@@ -59,25 +60,25 @@ class VtuSeriesSource final : public MeshSource {
   }
   std::string describe() const override {
     return input_ + ", " + (field_.cells ? "CellData " : "PointData ") + field_.spec.name +
-           (steps_.size() > 1 ? " (" + std::to_string(steps_.size()) + " .vtu steps)" : "");
+           (steps_.size() > 1 ? " (" + std::to_string(steps_.size()) + " steps)" : "");
   }
   Mesh read_step(int t) override {
     assert(t >= 0 && t < steps());
-    io::VtuFile file(volume_file(steps_[std::size_t(t)].file));
-    io::VtuField f = file.resolve(field_.spec);
+    std::unique_ptr<io::MeshFile> file = io::open_mesh_file(volume_file(steps_[std::size_t(t)].file));
+    io::MeshField f = file->resolve(field_.spec);
     if (f.cells != field_.cells)
-      throw FormatError(file.path() + ": field " + f.spec.name + " is " +
+      throw FormatError(file->path() + ": field " + f.spec.name + " is " +
                         (f.cells ? "CellData" : "PointData") + " here but " +
                         (field_.cells ? "CellData" : "PointData") + " in the first step");
-    return file.read(f);
+    return file->read(f);
   }
 
   Aabb bounds(int t) override {
     assert(t >= 0 && t < steps());
-    return io::VtuFile(volume_file(steps_[std::size_t(t)].file)).bounds();
+    return io::open_mesh_file(volume_file(steps_[std::size_t(t)].file))->bounds();
   }
 
-  // A step's .vtu: itself, or a .vtm's volume block.
+  // A step's .vtu or .vts: itself, or a .vtm's volume block.
   static std::string volume_file(const std::string& file) {
     return io::has_suffix(file, ".vtm") ? io::vtm_volume_block(file) : file;
   }
@@ -85,7 +86,7 @@ class VtuSeriesSource final : public MeshSource {
  private:
   std::string input_;
   std::vector<io::StepFile> steps_;
-  io::VtuField field_;
+  io::MeshField field_;
   bool named_times_;  // the steps came from a .pvd or .series list
 };
 
@@ -101,9 +102,14 @@ std::unique_ptr<MeshSource> open_vtu_steps(const std::string& input,
       throw IoError(s.file == input ? std::string(e.what()) : input + ": " + e.what());
     }
   }
-  io::VtuFile first(VtuSeriesSource::volume_file(steps[0].file));
-  io::VtuField field = first.resolve(spec);
-  return std::make_unique<VtuSeriesSource>(input, std::move(steps), field, named_times);
+  const std::string first_file = MeshFileSeriesSource::volume_file(steps[0].file);
+  for (const io::StepFile& s : steps)
+    if (io::has_suffix(MeshFileSeriesSource::volume_file(s.file), ".vts") !=
+        io::has_suffix(first_file, ".vts"))
+      throw FormatError(input + ": step " + s.file + " and step " + steps[0].file +
+                        " are of different kinds (.vts and .vtu); expected one kind of grid");
+  io::MeshField field = io::open_mesh_file(first_file)->resolve(spec);
+  return std::make_unique<MeshFileSeriesSource>(input, std::move(steps), field, named_times);
 }
 
 // The steps a list or pattern names.
@@ -128,8 +134,9 @@ h5::External external_policy(bool allow) {
 
 bool is_mesh_input(const std::string& input, bool allow_external) {
   try {
-    if (io::has_suffix(input, ".vtu") || io::has_suffix(input, ".vtm") || io::has_suffix(input, ".vtu.series") ||
-        io::has_suffix(input, ".vtm.series"))
+    if (io::is_mesh_file_name(input) || io::has_suffix(input, ".vtm") ||
+        io::has_suffix(input, ".vtu.series") || io::has_suffix(input, ".vts.series") ||
+        io::has_suffix(input, ".vtm.series") || is_plot3d_input(input))
       return true;
     if (io::has_suffix(input, ".pvd")) {
       std::vector<io::StepFile> steps = io::read_pvd(input);
@@ -149,8 +156,9 @@ bool is_mesh_input(const std::string& input, bool allow_external) {
 }
 
 std::unique_ptr<MeshSource> open_mesh_source(const std::string& input, const std::string& field,
-                                             bool allow_external) {
+                                             bool allow_external, const std::string& plot3d_grid) {
   const FieldSpec spec = FieldSpec::parse(field);
+  if (is_plot3d_input(input)) return open_plot3d_source(input, plot3d_grid, spec);
   std::vector<io::StepFile> steps = listed_steps(input);
   if (steps.size() == 1 && steps[0].file == input) require_regular_file(input, "input");
   if (!steps.empty() && is_hdf5_name(steps[0].file)) {

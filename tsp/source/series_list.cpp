@@ -122,7 +122,7 @@ std::string vtm_volume_block(const std::string& path) {
     const std::string file = ds.attribute("file").value();
     names.push_back(name.empty() ? file : name);
     if (name == "internal" && !file.empty()) internal = file;
-    if (has_suffix(file, ".vtu")) volumes.push_back(file);
+    if (has_suffix(file, ".vtu") || has_suffix(file, ".vts")) volumes.push_back(file);
   }
   // The block is read later through the input gate; checked here too, so that the error names
   // the .vtm that points at it.
@@ -140,8 +140,9 @@ std::string vtm_volume_block(const std::string& path) {
   std::string list;
   for (std::size_t i = 0; i < names.size(); ++i) list += (i ? ", " : "") + names[i];
   throw FormatError(path + ": no DataSet named \"internal\" and " +
-                    std::to_string(volumes.size()) + " .vtu blocks (blocks: " +
-                    (list.empty() ? "none" : list) + "); expected the volume mesh as one .vtu");
+                    std::to_string(volumes.size()) + " .vtu/.vts blocks (blocks: " +
+                    (list.empty() ? "none" : list) +
+                    "); expected the volume mesh as one .vtu or .vts");
 }
 
 }  // namespace tsp::io

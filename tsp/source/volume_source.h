@@ -82,6 +82,7 @@ struct SourceOptions {
   bool raw_big_endian = false;          ///< raw series: byte order
   bool allow_external = false;  ///< HDF5: read external links, external storage and virtual
                                 ///< datasets (h5::check_external; `--allow-external`)
+  std::string plot3d_grid;  ///< PLOT3D: the .q solutions' grid (.xyz; empty: the only one beside)
 };
 
 }  // namespace tsp

@@ -1,46 +1,20 @@
 #include "tsp/source/vtu_file.h"
 
 #include <algorithm>
-#include <charconv>
 
 #include "tsp/core/error.h"
 
 namespace tsp::io {
 namespace {
 
-// A Piece's NumberOfPoints / NumberOfCells: a whole number ≥ 0. Throws FormatError.
-std::int64_t count_attribute(const pugi::xml_node& piece, const char* name,
-                             const std::string& where) {
-  const std::string text = piece.attribute(name).value();
-  std::int64_t v = -1;
-  auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-  if (text.empty() || ec != std::errc() || p != text.data() + text.size() || v < 0)
-    throw FormatError(where + ": " + name + " \"" + text + "\" is not a whole number >= 0");
-  return v;
-}
-
-int components_of(const pugi::xml_node& array, const std::string& where) {
-  const int c = array.attribute("NumberOfComponents").as_int(1);
-  if (c < 1 || c > 64)
-    throw FormatError(where + ": NumberOfComponents " + std::to_string(c) + ", expected 1..64");
-  return c;
-}
+using detail::components_of;
+using detail::count_attribute;
+using detail::piece_points;
 
 pugi::xml_node required(const pugi::xml_node& section, const char* name, const std::string& where) {
   pugi::xml_node a = find_data_array(section, name);
   if (!a) throw FormatError(where + ": <" + section.name() + "> has no DataArray '" + name + "'");
   return a;
-}
-
-// A piece's points, NumberOfPoints × 3 coordinates. Throws FormatError naming `where`.
-std::vector<float> piece_points(const VtkDocument& doc, const pugi::xml_node& piece,
-                                std::int64_t np, const std::string& where) {
-  pugi::xml_node pts = piece.child("Points").child("DataArray");
-  if (!pts) throw FormatError(where + ": no <Points> DataArray");
-  if (components_of(pts, where + ", Points") != 3)
-    throw FormatError(where + ": Points have " + pts.attribute("NumberOfComponents").value() +
-                      " components, expected 3");
-  return doc.floats(pts, std::uint64_t(np) * 3);
 }
 
 }  // namespace
@@ -49,40 +23,8 @@ VtuFile::VtuFile(const std::string& path) : doc_(path, "UnstructuredGrid", false
   if (!doc_.dataset().child("Piece")) throw FormatError(path + ": <UnstructuredGrid> has no <Piece>");
 }
 
-VtuField VtuFile::resolve(const FieldSpec& spec) const {
-  pugi::xml_node piece = doc_.dataset().child("Piece");
-  std::vector<std::string> points = data_array_names(piece.child("PointData"));
-  std::vector<std::string> cells = data_array_names(piece.child("CellData"));
-  const std::string listing =
-      "PointData: " + join_names(points) + "; CellData: " + join_names(cells);
-  VtuField f;
-  f.spec = spec;
-  if (spec.name.empty()) {
-    std::string scalars = piece.child("PointData").attribute("Scalars").value();
-    if (points.size() == 1) {
-      f.spec.name = points[0];
-    } else if (points.empty() && cells.size() == 1) {
-      f.spec.name = cells[0];
-      f.cells = true;
-    } else if (!scalars.empty() && std::count(points.begin(), points.end(), scalars)) {
-      f.spec.name = scalars;
-    } else {
-      throw FormatError(path() + ": no field given and no single array to default to (" +
-                        listing + "); name one with --field");
-    }
-  } else if (std::count(points.begin(), points.end(), spec.name)) {
-  } else if (std::count(cells.begin(), cells.end(), spec.name)) {
-    f.cells = true;
-  } else {
-    throw FormatError(path() + ": field '" + spec.name + "' not found; available arrays: " +
-                      listing);
-  }
-  pugi::xml_node array =
-      find_data_array(piece.child(f.cells ? "CellData" : "PointData"), f.spec.name);
-  const std::string where = path() + ", array " + f.spec.name;
-  f.components = components_of(array, where);
-  FieldSpec::reduce(std::vector<float>(std::size_t(f.components)), f.components, f.spec, where);
-  return f;
+MeshField VtuFile::resolve(const FieldSpec& spec) const {
+  return detail::resolve_field(doc_.dataset().child("Piece"), spec, path());
 }
 
 Aabb VtuFile::bounds() const {
@@ -106,7 +48,7 @@ Aabb VtuFile::bounds() const {
   return all;
 }
 
-Mesh VtuFile::read(const VtuField& f) const {
+Mesh VtuFile::read(const MeshField& f) const {
   Mesh m;
   m.cell_values = f.cells;
   m.offsets.push_back(0);
@@ -192,19 +134,7 @@ Mesh VtuFile::read(const VtuField& f) const {
       m.face_start.resize(std::size_t(m.cell_count()), -1);
     }
 
-    pugi::xml_node section = piece.child(f.cells ? "CellData" : "PointData");
-    pugi::xml_node array = find_data_array(section, f.spec.name);
-    if (!array)
-      throw FormatError(pw + ": has no " + (f.cells ? "CellData" : "PointData") + " array '" +
-                        f.spec.name + "'");
-    const std::string aw = pw + ", array " + f.spec.name;
-    const int comps = components_of(array, aw);
-    if (comps != f.components)
-      throw FormatError(aw + ": has " + std::to_string(comps) + " components, the first piece " +
-                        std::to_string(f.components));
-    const std::int64_t tuples = f.cells ? nc : np;
-    const std::vector<float> v = FieldSpec::reduce(
-        doc_.floats(array, std::uint64_t(tuples) * std::uint64_t(comps)), comps, f.spec, aw);
+    const std::vector<float> v = detail::piece_values(doc_, piece, f, f.cells ? nc : np, pw);
     m.values.insert(m.values.end(), v.begin(), v.end());
   }
   if (any_faces) m.face_start.resize(std::size_t(m.cell_count()), -1);

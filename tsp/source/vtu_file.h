@@ -3,34 +3,20 @@
 #pragma once
 #include <string>
 
-#include "tsp/source/mesh_source.h"
-#include "tsp/source/vtk/vtk_document.h"
+#include "tsp/source/mesh_file.h"
 
 namespace tsp::io {
 
-/// A field chosen in a .vtu file: its array, PointData or CellData, and its component count.
-struct VtuField {
-  FieldSpec spec;
-  bool cells = false;
-  int components = 1;
-};
-
 /// A parsed .vtu file (all pieces concatenated into one mesh).
-class VtuFile {
+class VtuFile final : public MeshFile {
  public:
   /// Reads and parses path. Throws IoError (missing/unreadable) or FormatError (not XML, not
   /// UnstructuredGrid, no Piece, bad NumberOfPoints/NumberOfCells, unsupported encoding).
   explicit VtuFile(const std::string& path);
-  /// The file's path.
-  const std::string& path() const { return doc_.path(); }
-  /// Resolves a request (empty name: the only array, else PointData's Scalars array). Throws
-  /// FormatError listing the arrays when it is missing or ambiguous or does not fit the array.
-  VtuField resolve(const FieldSpec& spec) const;
-  /// Bounds of every piece's points. Throws FormatError on bad Points data.
-  Aabb bounds() const;
-  /// The mesh with field f, validated by check_mesh. Throws FormatError naming the file and
-  /// the array on missing, truncated or inconsistent arrays.
-  Mesh read(const VtuField& f) const;
+  const std::string& path() const override { return doc_.path(); }
+  MeshField resolve(const FieldSpec& spec) const override;
+  Aabb bounds() const override;
+  Mesh read(const MeshField& f) const override;
 
  private:
   VtkDocument doc_;

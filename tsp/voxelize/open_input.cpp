@@ -8,7 +8,8 @@ namespace tsp {
 std::unique_ptr<VolumeSource> open_input(const std::string& input, const SourceOptions& options,
                                          const VoxelizeOptions& voxel) {
   if (is_mesh_input(input, options.allow_external))
-    return voxelized_source(open_mesh_source(input, options.field, options.allow_external), voxel);
+    return voxelized_source(open_mesh_source(input, options.field, options.allow_external,
+                                              options.plot3d_grid), voxel);
   return open_source(input, options);
 }
 

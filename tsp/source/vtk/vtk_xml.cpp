@@ -6,8 +6,11 @@
 #include <bit>
 #include <cctype>
 #include <charconv>
+#include <climits>
+#include <cstdint>
 #include <cstring>
 #include <limits>
+#include <sstream>
 #include <type_traits>
 
 #include "tsp/core/error.h"
@@ -275,5 +278,24 @@ void parse_ascii(std::string_view text, std::span<float> out, const std::string&
     throw FormatError(where + ": ascii data holds " + std::to_string(count) + " values, expected " +
                       std::to_string(out.size()));
 }
+
+void parse_extent(const char* text, long long out[6], const std::string& where, const char* what) {
+  std::istringstream in(text ? text : "");
+  for (int i = 0; i < 6; ++i)
+    if (!(in >> out[i]))
+      throw FormatError(where + ": " + what + " \"" + (text ? text : "") + "\" is not 6 integers");
+  std::string rest;
+  if (in >> rest) throw FormatError(where + ": " + what + " has more than 6 values");
+  for (int i = 0; i < 6; ++i)
+    if (out[i] < INT32_MIN || out[i] > INT32_MAX)
+      throw FormatError(where + ": " + what + " value " + std::to_string(out[i]) +
+                        " is outside the 32-bit range");
+  for (int a = 0; a < 3; ++a)
+    if (out[2 * a + 1] < out[2 * a])
+      throw FormatError(where + ": " + what + " axis " + std::to_string(a) + " is [" +
+                        std::to_string(out[2 * a]) + ", " + std::to_string(out[2 * a + 1]) +
+                        "], expected lo <= hi");
+}
+
 
 }  // namespace tsp::io::vtkxml

@@ -54,4 +54,8 @@ void convert_to_int64(std::span<const unsigned char> bytes, ElemType t, bool big
 /// `where` when a token is not a number or the count differs from out.size().
 void parse_ascii(std::string_view text, std::span<float> out, const std::string& where);
 
+/// Parses an extent "x0 x1 y0 y1 z0 z1" (32-bit integers, lo <= hi per axis) into out. Throws
+/// FormatError naming where and what (the attribute: "WholeExtent", "Extent").
+void parse_extent(const char* text, long long out[6], const std::string& where, const char* what);
+
 }  // namespace tsp::io::vtkxml
