@@ -4,14 +4,14 @@
 # inputs go to build-fuzz/corpus/<target>, crashes to build-fuzz/crashes/<target>/ (add a crash
 # to fuzz/corpus/<target>/ once it is fixed: the normal test suite replays that corpus).
 # Prints, per target, the execution rate, coverage (edges) and corpus size libFuzzer reports.
-#   JOBS=N bash scripts/fuzz.sh [SECONDS] [TARGET ...]  TARGET: vti vtu vtkhdf_mesh series tf raw hdf5
+#   JOBS=N bash scripts/fuzz.sh [SECONDS] [TARGET ...]  TARGET: vti vtu vts plot3d vtkhdf_mesh series tf raw hdf5
 #                                                    tsp calibration script png vtm
 set -euo pipefail
 cd "$(dirname "$0")/.."
 SECONDS_EACH=${1:-60}
 shift || true
 TARGETS=("$@")
-[ ${#TARGETS[@]} -eq 0 ] && TARGETS=(vti vtu vtkhdf_mesh series tf raw hdf5 tsp calibration script png vtm)
+[ ${#TARGETS[@]} -eq 0 ] && TARGETS=(vti vtu vts plot3d vtkhdf_mesh series tf raw hdf5 tsp calibration script png vtm)
 bash scripts/install-deps.sh
 missing=()
 for p in clang libclang-rt-14-dev; do

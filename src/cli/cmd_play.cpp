@@ -43,6 +43,22 @@ void run(PlayArgs a) {
   a.options.input.source = source_options(a.in, "");
   a.options.input.voxelize = voxelize_options(a.in, 0);
   a.options.input.key = input_key(a.in);
+  // File > Open's options line: parsed by the same options, starting from the command line's.
+  a.options.parse_input_options = [base = a.in](const std::string& line) {
+    CLI::App parser("File > Open build options");
+    InputArgs in = base;
+    add_input_options(&parser, in);
+    try {
+      parser.parse(line, false);
+    } catch (const CLI::ParseError& e) {
+      throw tsp::UsageError("build options '" + line + "': " + e.what());
+    }
+    tspgl::PlayInputOptions o;
+    o.source = source_options(in, "");
+    o.voxelize = voxelize_options(in, 0);
+    o.key = input_key(in);
+    return o;
+  };
   if (a.proportions != "physical" && a.proportions != "samples")
     throw tsp::UsageError("--proportions '" + a.proportions + "': expected physical or samples");
   a.options.physical_proportions = a.proportions == "physical";

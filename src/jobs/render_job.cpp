@@ -180,6 +180,21 @@ std::array<double, 3> shown_voxel_size(const std::array<double, 3>& spacing,
   return v;
 }
 
+void place_field(tsp::CameraParams& c, const tsp::TspFile& file, const std::array<double, 3>& scale,
+                 bool physical) {
+  c.voxel_size = shown_voxel_size(file.metadata().spacing, scale, physical);
+  c.origin = {0, 0, 0};
+  c.frame = tsp::empty_aabb();
+  if (!physical || file.fields().size() < 2) return;
+  const tsp::Aabb& f = file.frame();
+  for (std::size_t a = 0; a < 3; ++a) {
+    const double k = c.voxel_size[a] / file.metadata().spacing[a];  // the scale, or 1/spacing
+    c.origin[a] = file.metadata().origin[a] * k;
+    c.frame.lo[a] = f.lo[a] * k;
+    c.frame.hi[a] = f.hi[a] * k;
+  }
+}
+
 RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderProgress& progress,
                                const CalibrationProgress& calibration_progress) {
   RenderJobOptions options = requested;
@@ -222,8 +237,7 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
   auto file = tsp::TspFile::open(options.tsp_path, options.field);
   const tsp::TspTree& tree = file->tree();
   // Physical proportions: the file's voxel spacing (times --scale) shapes the view.
-  options.camera.voxel_size =
-      shown_voxel_size(file->metadata().spacing, options.scale, options.physical_proportions);
+  place_field(options.camera, *file, options.scale, options.physical_proportions);
   const int last = checked_last_step(tree, options.first_step, options.last_step, options.tsp_path);
   const tsp::TransferFunction tf = tsp::transfer_function_from_arg(
       options.tf, tree.value_range(), tsp::kDefaultTfEntries, options.tf_range);

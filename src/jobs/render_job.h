@@ -17,6 +17,7 @@
 #include "tsp/lod/lod_controller.h"
 #include "tsp/metric/metric.h"
 #include "tsp/report/image.h"
+#include "tsp/store/tsp_file.h"
 #include "tsp/tree/tsp_tree.h"
 
 namespace tspgl {
@@ -92,6 +93,12 @@ inline constexpr double kMaxScale = 1000;
 /// times scale per axis. Spacing that is not positive and finite counts as 1. Never throws.
 std::array<double, 3> shown_voxel_size(const std::array<double, 3>& spacing,
                                        const std::array<double, 3>& scale, bool physical);
+/// Places field `file` in the view c: its shown voxel size (shown_voxel_size); with physical
+/// proportions and several fields in the file, also its origin and the file's frame (every
+/// field's box, TspFile::frame) times scale, so that fields on different grids (WRF's staggered
+/// W beside T) overlay and switching fields keeps the view. Never throws.
+void place_field(tsp::CameraParams& c, const tsp::TspFile& file, const std::array<double, 3>& scale,
+                 bool physical);
 /// Most passes a job plays.
 inline constexpr int kMaxPasses = 1000;
 

@@ -144,7 +144,7 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
     if (!(k > 0) || !(k <= tspgl::kMaxScale))
       throw tsp::UsageError("--scale: expected three factors in (0, " +
                             std::to_string(int(tspgl::kMaxScale)) + "], found " + std::to_string(k));
-  state.camera.voxel_size = voxel_size();
+  place_camera(state.camera);
   for (const std::string& text : options.probes) state.probes.push_back(tsp::parse_probe(text));
   state.probe_op = tsp::parse_probe_op(options.probe_op);
   state.probe_surface = options.probe_surface;
@@ -248,14 +248,14 @@ void PlayerApp::make_renderer() {
   applied_probe_version_ = ~std::uint64_t(0);  // the new renderer gets the probes
 }
 
-std::array<double, 3> PlayerApp::voxel_size() const {
-  return tspgl::shown_voxel_size(file->metadata().spacing, options_.scale,
-                                 options_.physical_proportions);
+void PlayerApp::place_camera(tsp::CameraParams& c) const {
+  tspgl::place_field(c, *file, options_.scale, options_.physical_proportions);
 }
 
 void PlayerApp::set_scale(const std::array<double, 3>& scale) {
   options_.scale = scale;
-  state.camera.voxel_size = initial_camera.voxel_size = voxel_size();
+  place_camera(state.camera);
+  place_camera(initial_camera);
 }
 
 int PlayerApp::steps() const {

@@ -3,6 +3,7 @@
 // format and behaviour: docs/player.md.
 #pragma once
 #include <array>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,10 @@ struct PlayerOptions {
   std::string field;                 ///< --field: the field shown first ("": the file's first)
   std::string cache_dir;             ///< --cache-dir: where File > Open builds inputs ("": default)
   tspgl::PlayInputOptions input;     ///< how File > Open reads and builds inputs: play's input options
+  /// File > Open's "build options" line (`--raw-dims 64,64,64 --raw-type f32`, `--resolution
+  /// 128`, `--xyz grid.xyz`, …) parsed as `play` parses them, on top of `input`: the same names,
+  /// checks and errors (tsp::UsageError). Empty: the dialog takes no options.
+  std::function<tspgl::PlayInputOptions(const std::string& line)> parse_input_options;
   std::string tf = "preset:sparse";  ///< --tf: a file or preset:NAME
   std::string tf_range;              ///< --tf-range: auto (default), data, file or LO:HI
   int step = 0;                      ///< --step: the step shown first

@@ -185,8 +185,8 @@ class PlayerApp {
   void command(const ScriptAction& a);
   /// Number of steps of the file.
   int steps() const;
-  /// The voxel size the view shows: the file's spacing (physical proportions) times the scale.
-  std::array<double, 3> voxel_size() const;
+  /// Sets c's voxel size, origin and frame for the current field (tspgl::place_field).
+  void place_camera(tsp::CameraParams& c) const;
   /// Stretches the axes by scale (exaggeration) from the next frame on.
   void set_scale(const std::array<double, 3>& scale);
   /// The axis stretch (--scale).
@@ -214,8 +214,10 @@ class PlayerApp {
 
   // ---- files (player_files.cpp) ----
   /// File > Open: plays input (a .tsp file at once; any other input is built into the cache
-  /// folder on a thread, with progress, then played). Errors go to status.
-  void open_input(const std::string& input, const std::string& field);
+  /// folder on a thread, with progress, then played) with build_options as play's command line
+  /// takes them (PlayerOptions::parse_input_options; empty: play's own). Errors go to status.
+  void open_input(const std::string& input, const std::string& field,
+                  const std::string& build_options = "");
   /// The running File > Open build, if any (for its progress dialog).
   OpenJob* open_job() { return open_job_.get(); }
   /// Asks the running File > Open build to stop (no file is left).

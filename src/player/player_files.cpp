@@ -42,12 +42,18 @@ void open_failed(std::string& status, bool trace, const std::string& input, cons
 
 }  // namespace
 
-void PlayerApp::open_input(const std::string& input, const std::string& field) {
+void PlayerApp::open_input(const std::string& input, const std::string& field,
+                           const std::string& build_options) {
   if (open_job_) {
     open_failed(status, options_.trace, input, "still opening " + open_job_->input());
     return;
   }
   if (tspgl::is_tsp_file(input)) {
+    if (!build_options.empty()) {
+      open_failed(status, options_.trace, input,
+                  "a .tsp file is built already: no build options (" + build_options + ")");
+      return;
+    }
     if (!field.empty()) {
       open_failed(status, options_.trace, input, "a .tsp file has its field already (" + field + ")");
       return;
@@ -64,9 +70,14 @@ void PlayerApp::open_input(const std::string& input, const std::string& field) {
   // poll_open.
   try {
     tspgl::PlayInputOptions o = options_.input;
+    if (!build_options.empty()) {
+      if (!options_.parse_input_options)
+        throw tsp::UsageError("build options are not taken here (" + build_options + ")");
+      o = options_.parse_input_options(build_options);  // throws UsageError: nothing started
+    }
     o.field = field;
     open_job_ = std::make_unique<OpenJob>(input, std::move(o), options_.cache_dir);
-  } catch (const std::exception& e) {  // no thread could start
+  } catch (const std::exception& e) {  // bad build options, or no thread could start
     open_failed(status, options_.trace, input, e.what());
     return;
   }
@@ -125,7 +136,8 @@ void PlayerApp::open_file(const std::string& path) {
   ready.assign(std::size_t(tree.time().steps()), -1.f);
   ready_next_ = 0;
   state.camera = tsp::CameraParams{};
-  state.camera.voxel_size = voxel_size();
+  options_.scale = {1, 1, 1};  // the last file's exaggeration rarely suits this one
+  place_camera(state.camera);
   initial_camera = state.camera;
   make_renderer();
   update_tol_max();
@@ -175,6 +187,8 @@ void PlayerApp::switch_field(const std::string& name) {
     make_renderer();
   }
   driver_.reset();
+  place_camera(state.camera);  // (another grid: its own voxel size and place in the frame)
+  place_camera(initial_camera);
   ready.assign(std::size_t(steps()), -1.f);
   ready_next_ = 0;
   update_tol_max();

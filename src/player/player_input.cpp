@@ -199,7 +199,7 @@ void PlayerApp::apply(const ScriptAction& a) {
       state.log_opacity = a.flag;
       break;
     case Kind::open:
-      open_input(a.text, a.text2);
+      open_input(a.text, a.text2, a.text3);
       break;
     case Kind::field:
       try {

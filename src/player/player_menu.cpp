@@ -58,6 +58,7 @@ struct MenuState {
   bool all_files = false;  // the open dialog lists every file, not only the kinds play reads
   char open_path[kPathChars] = "";
   char field[128] = "";
+  char build_options[kPathChars] = "";  // File > Open: --raw-dims 64,64,64 --raw-type f32, …
   char tf_path[kPathChars] = "";
   char movie_path[kPathChars] = "tspplay_movie.mp4";
   Listing listing;
@@ -164,14 +165,21 @@ void open_dialog(PlayerApp& app) {
   int shown = s.all_files ? 1 : 0;
   ImGui::SetNextItemWidth(320);
   if (ImGui::Combo("##kinds", &shown,
-                   "Inputs play reads (.tsp .h5 .nc .vti .vtu .vtm .pvd .series .raw)\0All files\0"))
+                   "Inputs play reads (.tsp .h5 .nc .vti .vtu .vts .vtm .pvd .series .q .raw)\0"
+                   "All files\0"))
     s.all_files = shown == 1;
   ImGui::SetNextItemWidth(-60);
   ImGui::InputText("path", s.open_path, sizeof s.open_path);
   ImGui::SetNextItemWidth(200);
   ImGui::InputText("field (inputs with several)", s.field, sizeof s.field);
+  ImGui::SetNextItemWidth(-60);
+  ImGui::InputTextWithHint("build options", "--raw-dims 64,64,64 --raw-type f32 | --resolution 128 | --xyz grid.xyz",
+                           s.build_options, sizeof s.build_options);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("As on play's command line: a raw series' grid and type, a mesh's\n"
+                      "resolution or voxel size, a PLOT3D solution's grid (tspplay play --help)");
   if (ImGui::Button("Open") || open_now) {
-    app.open_input(s.open_path, s.field);
+    app.open_input(s.open_path, s.field, s.build_options);
     ImGui::CloseCurrentPopup();
   }
   ImGui::SameLine();

@@ -153,12 +153,16 @@ ScriptAction parse_words(const LineParser& p) {
     a.kind = Kind::target_fps;
     a.value = p.number(1, "target-fps FPS");
   } else if (cmd == "open") {
-    if (p.words.size() != 2 && p.words.size() != 3)
-      p.fail("'open' takes 1 or 2 arguments: expected 'open PATH [FIELD]', found " +
-             std::to_string(p.words.size() - 1));
+    // open PATH [FIELD] [--OPTION VALUE ...]: the options as play takes them (--raw-dims, …).
+    if (p.words.size() < 2)
+      p.fail("'open' takes a path: expected 'open PATH [FIELD] [--OPTION VALUE ...]'");
     a.kind = Kind::open;
     a.text = p.words[1];
-    if (p.words.size() == 3) a.text2 = p.words[2];
+    std::size_t k = 2;
+    if (k < p.words.size() && p.words[k].rfind("--", 0) != 0) a.text2 = p.words[k++];
+    for (; k < p.words.size(); ++k) a.text3 += (a.text3.empty() ? "" : " ") + p.words[k];
+    if (!a.text3.empty() && a.text3.rfind("--", 0) != 0)
+      p.fail("'open': expected 'open PATH [FIELD] [--OPTION VALUE ...]', found '" + a.text3 + "'");
   } else if (cmd == "probe" || cmd == "probe-op") {
     p.expect_args(1, cmd == "probe" ? "probe plane:A,B,C,D|sphere:X,Y,Z,R|box:..."
                                     : "probe-op intersect|union|subtract");

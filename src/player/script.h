@@ -61,6 +61,7 @@ struct ScriptAction {
   double value = 0, value2 = 0, value3 = 0;
   bool flag = false;
   std::string text, text2;
+  std::string text3;  ///< `open`: build options, as on play's command line (may be empty)
   int line = 0;  ///< 1-based line in the script, for messages
 };
 

@@ -184,6 +184,26 @@ TEST(BuildInfoCli, CfTimeUnitsShowAsDates) {
   EXPECT_EQ(frames[1]["time_text"], "2000-01-01 06:00");
 }
 
+// WRF's T (mass points, 14 levels) and W (staggered, 15 levels) in one file: each keeps its
+// grid, W half a layer below T, and both render in one frame.
+TEST(BuildInfoCli, StaggeredWrfFieldsKeepTheirGrids) {
+  if (!fs::exists(katrina())) GTEST_SKIP() << "shared data absent: " << katrina();
+  const fs::path dir = tsptest::temp_dir();
+  auto r = run_tspplay("build " + q(katrina()) + " --field T,W -o " + q(dir / "tw.tsp"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json t = info_json(dir / "tw.tsp", " --field T");
+  const json w = info_json(dir / "tw.tsp", " --nodes --field W");
+  EXPECT_EQ(t["dims"], json({48, 48, 14}));
+  EXPECT_EQ(w["dims"], json({48, 48, 15}));
+  const double dz = double(w["spacing"][2]);
+  EXPECT_DOUBLE_EQ(double(t["spacing"][2]), dz);
+  EXPECT_NEAR(double(t["origin"][2]) - double(w["origin"][2]), 0.5 * dz, 1e-6 * dz);
+  check_info(w, read_all(katrina().string(), "W"), 16);
+  for (const char* f : {"T", "W"})
+    EXPECT_EQ(run_tspplay("render " + q(dir / "tw.tsp") + " --field " + f + " --size 32x24 -o " +
+                          q(dir / f)).exit_code, 0) << f;
+}
+
 // --field A,B: one tree each in one file. info lists the fields and describes any one of them
 // with --field, each matching the brute force over its own dataset; render and metrics take
 // --field too.
@@ -207,7 +227,8 @@ TEST(BuildInfoCli, SeveralFieldsInOneFile) {
   const auto bad = run_tspplay("info " + q(dir / "m.tsp") + " --field density");
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.err.find("holds the field(s) plain, u64"), std::string::npos) << bad.err;
-  // A field on another grid, or one named twice: refused, nothing written.
+  // A field over other steps (f: 4 steps, single: 1), or one named twice: refused, nothing
+  // written.
   const fs::path grid4d = tsptest::test_data_dir() / "h5" / "grid4d.h5";
   EXPECT_EQ(run_tspplay("build " + q(grid4d) + " --field f,single -o " + q(dir / "x.tsp")).exit_code,
             1);

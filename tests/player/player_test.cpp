@@ -437,8 +437,14 @@ TEST(Player, PlaysARawSeriesAndSeveralFieldsDirectly) {
   EXPECT_NE(r.err.find("raw"), std::string::npos) << r.err;
 
   const fs::path h5 = tsptest::test_data_dir() / "h5" / "int16.h5";
-  const fs::path script = write_script("stats " + (dir / "f.json").string() + "\nfield u64\nstats " +
-                                       (dir / "g.json").string() + "\nquit\n");
+  // File > Open (script `open`) with build options as play takes them: the raw series' grid;
+  // bad options are play's own error, and the file playing stays.
+  const std::string raw_path = (dir / "u_%04d.raw").string();
+  const fs::path script = write_script(
+      "stats " + (dir / "f.json").string() + "\nfield u64\nstats " + (dir / "g.json").string() +
+      "\nopen " + raw_path + " --raw-dims 8,6,4 --raw-type f32\nwait-frames 1\nstats " +
+      (dir / "h.json").string() + "\nopen " + raw_path + " --raw-dims 8,6\nwait-frames 1\nstats " +
+      (dir / "i.json").string() + "\nquit\n");
   r = run_tspplay("play " + q(h5) + " --field plain,u64 --cache-dir " + q(cache) + " --size " +
                   kSize + " --script " + q(script));
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -446,6 +452,11 @@ TEST(Player, PlaysARawSeriesAndSeveralFieldsDirectly) {
   EXPECT_EQ(f["fields"], nlohmann::json({"plain", "u64"}));
   EXPECT_EQ(f["field"], "plain");
   EXPECT_EQ(g["field"], "u64");
+  const nlohmann::json h = read_json(dir / "h.json"), i = read_json(dir / "i.json");
+  EXPECT_NE(h["file"].get<std::string>().find((cache / "builds").string()), std::string::npos) << h;
+  EXPECT_EQ(h["steps_ready"].size(), 3u);  // the raw series' 3 steps
+  EXPECT_NE(r.err.find("--raw-dims '8,6'"), std::string::npos) << r.err;
+  EXPECT_EQ(i["file"], h["file"]);
 }
 
 

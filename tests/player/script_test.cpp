@@ -99,9 +99,11 @@ TEST(PlayerScript, ParsesEveryAction) {
   EXPECT_EQ(l[3].kind, Kind::wait_seconds);
   EXPECT_DOUBLE_EQ(l[3].value, 0.5);
   const auto f = parse_script("panels off\nevery-step on\nlog-opacity on\nopen a.tsp\n"
-                              "open raw.h5 U:mag\nrecord m.mp4\nrecord stop\n",
+                              "open raw.h5 U:mag\nrecord m.mp4\nrecord stop\n"
+                              "open u_%04d.raw --raw-dims 8,6,4 --raw-type u8\n"
+                              "open m.q Pressure --xyz g.xyz\n",
                               "f.txt");
-  ASSERT_EQ(f.size(), 7u);
+  ASSERT_EQ(f.size(), 9u);
   EXPECT_EQ(f[0].kind, Kind::panels);
   EXPECT_FALSE(f[0].flag);
   EXPECT_EQ(f[1].kind, Kind::every_step);
@@ -114,6 +116,11 @@ TEST(PlayerScript, ParsesEveryAction) {
   EXPECT_EQ(f[5].kind, Kind::record);
   EXPECT_EQ(f[5].text, "m.mp4");
   EXPECT_EQ(f[6].kind, Kind::record_stop);
+  EXPECT_EQ(f[7].text, "u_%04d.raw");
+  EXPECT_EQ(f[7].text2, "");
+  EXPECT_EQ(f[7].text3, "--raw-dims 8,6,4 --raw-type u8");
+  EXPECT_EQ(f[8].text2, "Pressure");
+  EXPECT_EQ(f[8].text3, "--xyz g.xyz");
   const auto g = parse_script("probe sphere:1,2,3,4\nprobe-op union\nprobe-surface off\n"
                               "probe-move 1 0.5 0 -2\nprobe-clear\nfield p\n",
                               "g.txt");
@@ -162,7 +169,9 @@ TEST(PlayerScript, ErrorsNameTheLineAndWhatWasExpected) {
   EXPECT_NE(error_of("wait-seconds -1").find("wait-seconds must be"), std::string::npos);
   EXPECT_NE(error_of("record m.avi").find("expected a .mp4 or .gif file name, or stop"),
             std::string::npos);
-  EXPECT_NE(error_of("open").find("'open' takes 1 or 2 arguments"), std::string::npos);
+  EXPECT_NE(error_of("open").find("'open' takes a path"), std::string::npos);
+  EXPECT_NE(error_of("open a.raw U V").find("expected 'open PATH [FIELD] [--OPTION"),
+            std::string::npos);
   EXPECT_NE(error_of("panels maybe").find("expected on or off"), std::string::npos);
   EXPECT_NE(error_of("probe cone:1").find("expected plane"), std::string::npos);
   EXPECT_NE(error_of("probe-op xor").find("expected intersect, union or subtract"),

@@ -436,21 +436,18 @@ std::vector<BuildReport> build_tsp_fields(const FieldSourceFn& open_field,
   std::vector<BuildReport> reports;
   InputGuard inputs;
   std::optional<TempOutput> out;
-  Dims dims0;
   int steps0 = 0;
   for (std::size_t k = 0; k < fields.size(); ++k) {
     std::unique_ptr<VolumeSource> source = open_field(fields[k]);
     if (k == 0) {
       for (const std::string& f : source->files()) inputs.add(f);
       if (!writes_nothing(options)) out.emplace(out_path);
-      dims0 = source->dims();
       steps0 = source->steps();
-    } else if (!(source->dims() == dims0) || source->steps() != steps0) {
+    } else if (source->steps() != steps0) {
       throw FormatError(source->describe() + ": field " + fields[k] + " has " +
-                        to_string(source->dims()) + " voxels and " +
                         std::to_string(source->steps()) + " steps, the first field " + fields[0] +
-                        " " + to_string(dims0) + " and " + std::to_string(steps0) +
-                        " (one .tsp holds fields on one grid)");
+                        " " + std::to_string(steps0) +
+                        " (the fields of one .tsp play over the same steps)");
     }
     BuildOptions o = options;
     o.field_name = fields[k];

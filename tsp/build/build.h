@@ -60,10 +60,11 @@ using FieldSourceFn = std::function<std::unique_ptr<VolumeSource>(const std::str
 /// Builds several fields of one input into one .tsp file, one tree each, in the order given: the
 /// first at the file's root (so every reader sees it), the others in groups fields/1, fields/2, …
 /// with the list in the root attribute `fields` (docs/formats.md). Each field is built like
-/// build_tsp_file, reading its own source (open_field(name)); all must have the first field's
-/// dims and steps. options.field_name is ignored (each field gets its name); progress phases
-/// are prefixed with the field. One report per field. Throws like build_tsp_file, and
-/// FormatError for a field on another grid; never leaves a partial out_path.
+/// build_tsp_file, reading its own source (open_field(name)) on its own grid (dims, origin,
+/// spacing: WRF's staggered fields keep theirs); all must have the first field's steps.
+/// options.field_name is ignored (each field gets its name); progress phases are prefixed with
+/// the field. One report per field. Throws like build_tsp_file, and FormatError for a field
+/// with other steps; never leaves a partial out_path.
 std::vector<BuildReport> build_tsp_fields(const FieldSourceFn& open_field,
                                           const std::vector<std::string>& fields,
                                           const std::string& out_path, const BuildOptions& options);

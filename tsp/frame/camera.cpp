@@ -23,11 +23,19 @@ Camera::Camera(Dims dims, const CameraParams& p) : params_(p) {
   const double smallest = std::min({p.voxel_size[0], p.voxel_size[1], p.voxel_size[2]});
   const glm::dvec3 stretch(p.voxel_size[0] / smallest, p.voxel_size[1] / smallest,
                            p.voxel_size[2] / smallest);
-  const glm::dvec3 extent = stretch * glm::dvec3(std::max(dims.x - 1, 0), std::max(dims.y - 1, 0),
-                                                 std::max(dims.z - 1, 0));
-  const glm::dvec3 centre = extent * 0.5;
+  // World of sample s = origin / smallest + stretch · s; the view fits the frame (or the volume).
+  const glm::dvec3 shift =
+      glm::dvec3(p.origin[0], p.origin[1], p.origin[2]) / smallest;
+  glm::dvec3 lo = shift;
+  glm::dvec3 hi = shift + stretch * glm::dvec3(std::max(dims.x - 1, 0), std::max(dims.y - 1, 0),
+                                               std::max(dims.z - 1, 0));
+  if (!is_empty(p.frame)) {
+    lo = glm::dvec3(p.frame.lo[0], p.frame.lo[1], p.frame.lo[2]) / smallest;
+    hi = glm::dvec3(p.frame.hi[0], p.frame.hi[1], p.frame.hi[2]) / smallest;
+  }
+  const glm::dvec3 centre = (lo + hi) * 0.5;
   // Bounding-sphere radius; a single-voxel volume still gets a unit sphere.
-  const double radius = std::max(0.5 * glm::length(extent), 0.5);
+  const double radius = std::max(0.5 * glm::length(hi - lo), 0.5);
   const double az = radians(p.azimuth_deg), el = radians(p.elevation_deg);
   const glm::dvec3 to_eye(std::cos(el) * std::sin(az), -std::cos(el) * std::cos(az), std::sin(el));
   const glm::dvec3 up_hint(0, 0, 1);
@@ -54,11 +62,12 @@ Camera::Camera(Dims dims, const CameraParams& p) : params_(p) {
   const glm::dvec3 eye_world = target + to_eye * distance;
   // Back to sample coordinates: points divide by the stretch; depth = dot(−to_eye, stretch·x),
   // so the planes of equal depth have normal stretch·(−to_eye); rays run along (−to_eye)/stretch.
-  eye_ = eye_world / stretch;
+  eye_ = (eye_world - shift) / stretch;
   dir_ = glm::normalize(-to_eye * stretch);
   ray_ = glm::normalize(-to_eye / stretch);
   ray_cosine_ = std::clamp(glm::dot(ray_, dir_), 1e-6, 1.0);
-  view_ = glm::lookAt(eye_world, target, up) * glm::scale(glm::dmat4(1.0), stretch);
+  view_ = glm::lookAt(eye_world, target, up) * glm::translate(glm::dmat4(1.0), shift) *
+          glm::scale(glm::dmat4(1.0), stretch);
 }
 
 std::array<double, 2> parse_view_angles(const std::string& text) {

@@ -24,6 +24,12 @@ struct CameraParams {
   /// Physical size of a voxel per axis (any positive scale): the volume is shown in these
   /// proportions (the .tsp's spacing, times any exaggeration). {1, 1, 1}: sample proportions.
   std::array<double, 3> voxel_size{1, 1, 1};
+  /// Where sample (0, 0, 0) lies, in the units of voxel_size: with `frame`, places this volume
+  /// among the file's other fields (a staggered field sits half a cell off).
+  std::array<double, 3> origin{0, 0, 0};
+  /// The box the view fits and turns around, in the units of voxel_size (the file's fields
+  /// united, so that switching fields keeps the view); empty (lo > hi): the volume's own box.
+  Aabb frame = empty_aabb();
   bool operator==(const CameraParams&) const = default;
 };
 

@@ -311,8 +311,9 @@ double mean_geopotential(hid_t file, hsize_t level, const std::vector<hsize_t>& 
 // global attributes DX and DY (metres), and the levels' heights follow the geopotential
 // (PH + PHB)/g on the staggered levels. The vertical spacing is the mean layer thickness of the
 // first step's horizontal means, (top − bottom)/(levels − 1); the levels are not evenly spaced
-// (thinner near the ground), so this is their average. Origin: x, y 0, z the lowest level's
-// mean height (half a layer up for mass-point variables). Leaves g alone when DX/DY are absent.
+// (thinner near the ground), so this is their average. Origin: x, y 0 at the first mass point
+// (−½ DX or DY for a field staggered along x or y), z the lowest level's mean height (half a
+// layer up for mass-point variables). Leaves g alone when DX/DY are absent.
 // Never throws (what it cannot read is ignored).
 void wrf_geometry(hid_t file, Dims dims, GridGeometry& g) {
   constexpr double kGravity = 9.81;
@@ -330,6 +331,10 @@ void wrf_geometry(hid_t file, Dims dims, GridGeometry& g) {
   if (shape.size() != 4 || shape[0] < 1 || shape[1] < 2 || shape[2] < 1 || shape[3] < 1) return;
   // The horizontal plane is the grid's (or one wider, staggered): nothing larger is read.
   if (shape[2] > hsize_t(dims.y) + 1 || shape[3] > hsize_t(dims.x) + 1) return;
+  // PH's plane is the mass points'; a field one wider (U on west_east_stag, V on
+  // south_north_stag) lies on the cell faces, half a cell before the first mass point.
+  if (hsize_t(dims.x) == shape[3] + 1) g.origin[0] = -0.5 * g.spacing[0];
+  if (hsize_t(dims.y) == shape[2] + 1) g.origin[1] = -0.5 * g.spacing[1];
   const hsize_t levels = shape[1];  // staggered: one more than the mass-point levels
   if (hsize_t(dims.z) != levels && hsize_t(dims.z) != levels - 1) return;
   const double bottom = mean_geopotential(file, 0, shape) / kGravity;

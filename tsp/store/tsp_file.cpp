@@ -135,7 +135,37 @@ struct TspFile::Impl {
   Handle inside;
   std::unique_ptr<TspTree> tree;
   TspMetadata meta;
+  Aabb frame;  ///< every field's physical box, united
 };
+
+namespace {
+
+// Field loc's physical box, origin .. origin + (dims − 1)·spacing, from its attributes (the
+// origin and spacing default to 0 and 1). Throws FormatError naming the field's group.
+Aabb field_box(const Reader& r) {
+  const auto dims = r.attr_numbers<int>(layout::kAttrDims, H5T_NATIVE_INT, 3);
+  std::array<double, 3> org{0, 0, 0}, sp{1, 1, 1};
+  if (r.has_attr(layout::kAttrOrigin) || r.has_attr(layout::kAttrSpacing)) {
+    const auto o = r.attr_numbers<double>(layout::kAttrOrigin, H5T_NATIVE_DOUBLE, 3);
+    const auto h = r.attr_numbers<double>(layout::kAttrSpacing, H5T_NATIVE_DOUBLE, 3);
+    for (int a = 0; a < 3; ++a) {
+      if (!std::isfinite(o[std::size_t(a)]) || !std::isfinite(h[std::size_t(a)]) ||
+          !(h[std::size_t(a)] > 0))
+        r.fail("attributes origin/spacing", "expected finite values and spacings > 0");
+      org[std::size_t(a)] = o[std::size_t(a)];
+      sp[std::size_t(a)] = h[std::size_t(a)];
+    }
+  }
+  Aabb b;
+  for (int a = 0; a < 3; ++a) {
+    if (dims[std::size_t(a)] < 1) r.fail("attribute dims", "expected sizes >= 1");
+    b.lo[a] = org[std::size_t(a)];
+    b.hi[a] = org[std::size_t(a)] + (dims[std::size_t(a)] - 1) * sp[std::size_t(a)];
+  }
+  return b;
+}
+
+}  // namespace
 
 TspFile::TspFile(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 
@@ -225,11 +255,10 @@ std::unique_ptr<TspFile> TspFile::open(const std::string& path, const std::strin
   auto dims = r.attr_numbers<int>(layout::kAttrDims, H5T_NATIVE_INT, 3);
   int steps = r.attr_numbers<int>(layout::kAttrSteps, H5T_NATIVE_INT, 1)[0];
   int brick = r.attr_numbers<int>(layout::kAttrBrickSize, H5T_NATIVE_INT, 1)[0];
-  if (impl->field_index > 0 &&
-      (dims != root.attr_numbers<int>(layout::kAttrDims, H5T_NATIVE_INT, 3) ||
-       steps != root.attr_numbers<int>(layout::kAttrSteps, H5T_NATIVE_INT, 1)[0] ||
-       brick != root.attr_numbers<int>(layout::kAttrBrickSize, H5T_NATIVE_INT, 1)[0]))
-    r.fail("attributes dims/steps/brick_size", "differ from the file's first field");
+  // Fields may lie on different grids (their own dims, origin, spacing, brick size) but play
+  // over the same steps.
+  if (impl->field_index > 0 && steps != root.attr_numbers<int>(layout::kAttrSteps, H5T_NATIVE_INT, 1)[0])
+    r.fail("attribute steps", "differs from the file's first field");
   if (steps < 1) r.fail("attribute steps", "expected at least 1, found " + std::to_string(steps));
   check_grid(dims[0], dims[1], dims[2], steps, path + ": attributes dims/steps");
   try {
@@ -410,6 +439,24 @@ std::unique_ptr<TspFile> TspFile::open(const std::string& path, const std::strin
     if (H5Tget_size(itype.get()) != 1)
       r.fail(r.dataset_name(layout::kBrickInside), "expected 8-bit flags");
   }
+  // The frame: this field's box, united with every other field's (attributes only; a field
+  // whose group is missing or broken is that field's error when it is opened, not this one's).
+  impl->frame = field_box(r);
+  for (std::size_t k = 0; k < impl->fields.size(); ++k) {
+    if (int(k) == impl->field_index) continue;
+    const std::string group = k == 0 ? std::string("/") : layout::field_group(int(k));
+    if (k > 0 && !h5::exists(impl->file.get(), group.c_str())) continue;
+    Handle g(H5Gopen2(impl->file.get(), group.c_str(), H5P_DEFAULT));
+    if (!g) continue;
+    try {
+      const Aabb b = field_box(Reader(path, g.get(), k == 0 ? "/" : "/" + group + "/"));
+      for (int a = 0; a < 3; ++a) {
+        impl->frame.lo[a] = std::min(impl->frame.lo[a], b.lo[a]);
+        impl->frame.hi[a] = std::max(impl->frame.hi[a], b.hi[a]);
+      }
+    } catch (const FormatError&) {
+    }
+  }
   return std::unique_ptr<TspFile>(new TspFile(std::move(impl)));
 }
 
@@ -425,6 +472,8 @@ const std::string& TspFile::path() const {
 const std::vector<std::string>& TspFile::fields() const {
   return impl_->fields;
 }
+const Aabb& TspFile::frame() const { return impl_->frame; }
+
 int TspFile::field_index() const {
   return impl_->field_index;
 }

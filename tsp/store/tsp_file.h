@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "tsp/core/geometry.h"
 #include "tsp/core/time_text.h"
 #include "tsp/store/brick_store.h"
 
@@ -53,6 +54,10 @@ class TspFile : public BrickStore {
   const std::vector<std::string>& fields() const;
   /// Which of fields() this one is.
   int field_index() const;
+  /// The physical box every field of the file lies in: the union over fields of origin ..
+  /// origin + (dims − 1)·spacing (fields may lie on different grids, as WRF's staggered ones).
+  /// Views fit this box, so that switching fields keeps them in place. Never throws.
+  const Aabb& frame() const;
   /// Reads one stored brick (leaf or level) at one step; thread-safe. Throws IoError/FormatError.
   void read_brick(int brick, int step, std::span<std::uint16_t> out) const override;
   /// Reads one stored brick's stencil at one step (files with a stencil); thread-safe. Throws

@@ -158,3 +158,49 @@ TEST(Camera, ParsesViewAnglesAndRejectsBadText) {
 
 }  // namespace
 }  // namespace tsp
+
+namespace tsp {
+namespace {
+
+// Two fields on different grids (W: one more level, half a layer lower, stretched voxels) fitted
+// to one frame: a physical point projects to the same pixel and depth in both views; each view
+// fitted to its own box would put it elsewhere.
+TEST(Camera, FieldsSharingAFrameProjectAPhysicalPointAlike) {
+  CameraParams p;
+  p.width = 320;
+  p.height = 200;
+  p.azimuth_deg = 35;
+  p.elevation_deg = 25;
+  p.voxel_size = {2, 2, 0.5};
+  const Dims t_dims{16, 12, 9}, w_dims{16, 12, 10};
+  CameraParams t = p, w = p;
+  w.origin = {-3, 0, -0.25};  // half a layer of 0.5 lower, and 1.5 voxels to the left
+  t.frame = w.frame = Aabb{{-3, 0, -0.25}, {30, 22, 4.25}};
+  for (Projection proj : {Projection::orthographic, Projection::perspective}) {
+    t.projection = w.projection = proj;
+    const Camera ct(t_dims, t), cw(w_dims, w);
+    for (const glm::dvec3 phys : {glm::dvec3(3, 4, 1), glm::dvec3(28, 2, 3.5), glm::dvec3(15, 11, 0)}) {
+      // Sample coordinates: (phys − origin) / voxel size.
+      const glm::dvec3 st = phys / glm::dvec3(2, 2, 0.5);
+      const glm::dvec3 sw = (phys - glm::dvec3(-3, 0, -0.25)) / glm::dvec3(2, 2, 0.5);
+      const glm::dvec4 a = ct.view_projection() * glm::dvec4(st, 1.0);
+      const glm::dvec4 b = cw.view_projection() * glm::dvec4(sw, 1.0);
+      for (int k = 0; k < 3; ++k) EXPECT_NEAR(a[k] / a.w, b[k] / b.w, 1e-9) << k;
+      // The eye, in each volume's sample coordinates, is the same physical point.
+      const auto vec = [](std::array<double, 3> e) { return glm::dvec3(e[0], e[1], e[2]); };
+      const glm::dvec3 et = vec(ct.eye()) * glm::dvec3(2, 2, 0.5);
+      const glm::dvec3 ew = vec(cw.eye()) * glm::dvec3(2, 2, 0.5) + glm::dvec3(-3, 0, -0.25);
+      EXPECT_NEAR(glm::length(et - ew), 0, 1e-9);
+    }
+    // Fitted each to its own box, the two views disagree.
+    CameraParams own_t = t, own_w = w;
+    own_t.frame = own_w.frame = empty_aabb();
+    own_w.origin = {0, 0, 0};
+    const glm::dvec4 a = Camera(t_dims, own_t).view_projection() * glm::dvec4(1, 1, 1, 1.0);
+    const glm::dvec4 b = Camera(w_dims, own_w).view_projection() * glm::dvec4(2.5, 1, 1.5, 1.0);
+    EXPECT_GT(glm::length(glm::dvec2(a) / a.w - glm::dvec2(b) / b.w), 0.02);
+  }
+}
+
+}  // namespace
+}  // namespace tsp

@@ -272,8 +272,12 @@ TEST(Hdf5Source, WrfSpacingFromDxDyAndTheGeopotential) {
     return sum / (48 * 48) / 9.81;
   };
   const double dz = (mean_height(14) - mean_height(0)) / 14;
-  for (const char* field : {"T", "W"}) {  // mass points (14 levels) and staggered (15)
+  // Mass points (T: 14 levels), staggered vertically (W: 15) and horizontally (U: 49 wide in x,
+  // V in y: half a cell, 5 km, before the first mass point).
+  for (const char* field : {"T", "W", "U", "V"}) {
     auto s = open(wrf_file().string(), field);
+    EXPECT_DOUBLE_EQ(s->origin()[0], s->dims().x == 49 ? -5000.0 : 0.0) << field;
+    EXPECT_DOUBLE_EQ(s->origin()[1], s->dims().y == 49 ? -5000.0 : 0.0) << field;
     EXPECT_DOUBLE_EQ(s->spacing()[0], 10000.0);
     EXPECT_DOUBLE_EQ(s->spacing()[1], 10000.0);
     EXPECT_NEAR(s->spacing()[2], dz, 1e-9 * dz) << field;

@@ -1,6 +1,7 @@
 // Several fields in one .tsp file: each field's tree, statistics and bricks are exactly those of
-// a file built from that field alone; the first sits at the root (every reader sees it); a
-// field on another grid, a repeated name and an unknown field are clear errors.
+// a file built from that field alone; the first sits at the root (every reader sees it); fields
+// may lie on different grids (their own dims, origin, spacing) inside the file's frame; a field
+// with other steps, a repeated name and an unknown field are clear errors.
 #include <gtest/gtest.h>
 #include <hdf5.h>
 
@@ -99,7 +100,46 @@ TEST(TspFields, EachFieldIsTheSingleFieldBuildOfItsSource) {
   EXPECT_EQ(TspFile::open(single(1, "ramp"))->fields(), std::vector<std::string>{"ramp"});
 }
 
-TEST(TspFields, UnknownFieldOtherGridAndRepeatedNamesAreErrors) {
+// A field placed in physical space (WRF's staggered W: one more level, half a layer lower).
+class PlacedSource final : public MemorySource {
+ public:
+  PlacedSource(MemorySource m, std::array<double, 3> origin)
+      : MemorySource(std::move(m)), origin_(origin) {}
+  std::array<double, 3> origin() const override { return origin_; }
+
+ private:
+  std::array<double, 3> origin_;
+};
+
+TEST(TspFields, FieldsOnDifferentGridsKeepTheirOwnAndShareAFrame) {
+  constexpr Dims kStaggered{20, 13, 11};
+  const std::array<double, 3> shift{-0.5, 0, -0.5};
+  const std::string path = (tsptest::temp_dir() / "grids.tsp").string();
+  build_tsp_fields(
+      [&](const std::string& f) -> std::unique_ptr<VolumeSource> {
+        if (f == "T") return std::make_unique<MemorySource>(field_source(0));
+        return std::make_unique<PlacedSource>(field_source(1, kStaggered), shift);
+      },
+      {"T", "W"}, path, options());
+  auto t = TspFile::open(path, "T");
+  auto w = TspFile::open(path, "W");
+  EXPECT_EQ(t->tree().octree().dims(), kDims);
+  EXPECT_EQ(w->tree().octree().dims(), kStaggered);
+  EXPECT_EQ(w->metadata().origin, shift);
+  // The frame holds both boxes: T's [0, D − 1], W's [shift, shift + D' − 1].
+  const Aabb want{{-0.5, 0, -0.5}, {18.5, 12, 9.5}};
+  EXPECT_EQ(t->frame(), want);
+  EXPECT_EQ(w->frame(), want);
+  // W is exactly its own single-field build.
+  PlacedSource alone(field_source(1, kStaggered), shift);
+  const std::string single_w = (tsptest::temp_dir() / "w.tsp").string();
+  build_tsp_file(alone, single_w, options());
+  expect_same_field(*w, *TspFile::open(single_w));
+  // A one-field file's frame is its own box.
+  EXPECT_EQ(TspFile::open(single_w)->frame(), (Aabb{{-0.5, 0, -0.5}, {18.5, 12, 9.5}}));
+}
+
+TEST(TspFields, UnknownFieldOtherStepsAndRepeatedNamesAreErrors) {
   const std::string path = multi({"wave", "ramp"});
   try {
     TspFile::open(path, "pressure");
@@ -110,7 +150,9 @@ TEST(TspFields, UnknownFieldOtherGridAndRepeatedNamesAreErrors) {
   }
   const std::string out = (tsptest::temp_dir() / "bad.tsp").string();
   auto open_other = [](const std::string& f) -> std::unique_ptr<VolumeSource> {
-    return std::make_unique<MemorySource>(field_source(0, f == "a" ? kDims : Dims{7, 7, 7}));
+    if (f == "a") return std::make_unique<MemorySource>(field_source(0));
+    return std::make_unique<MemorySource>(  // one step fewer
+        MemorySource::from_function(kDims, kSteps - 1, [](int x, int, int, int) { return float(x); }));
   };
   EXPECT_THROW(build_tsp_fields(open_other, {"a", "b"}, out, options()), FormatError);
   EXPECT_FALSE(fs::exists(out));
