@@ -459,6 +459,26 @@ TEST(Player, PlaysARawSeriesAndSeveralFieldsDirectly) {
   EXPECT_EQ(i["file"], h["file"]);
 }
 
+// WRF's T, W (15 staggered levels) and QVAPOR played straight from the NetCDF file: built into
+// one file, each on its own grid, switching keeps the view (issue 30).
+TEST(Player, PlaysSeveralWrfFieldsOnTheirOwnGrids) {
+  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  const fs::path wrf = tsptest::shared_data_dir() / "wrf-katrina" / "ci_test_file.nc";
+  if (!fs::exists(wrf)) GTEST_SKIP() << "shared data absent: " << wrf;
+  const fs::path dir = tsptest::temp_dir();
+  const fs::path script = write_script("stats " + (dir / "t.json").string() + "\nfield W\nstats " +
+                                       (dir / "w.json").string() + "\nquit\n");
+  auto r = run_tspplay("play " + q(wrf) + " --field T,W,QVAPOR --cache-dir " + q(dir / "cache") +
+                       " --size " + kSize + " --script " + q(script));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json t = read_json(dir / "t.json"), w = read_json(dir / "w.json");
+  EXPECT_EQ(t["fields"], nlohmann::json({"T", "W", "QVAPOR"}));
+  EXPECT_EQ(t["field"], "T");
+  EXPECT_EQ(w["field"], "W");
+  EXPECT_EQ(t["steps_ready"].size(), 4u);
+  EXPECT_EQ(t["file"], w["file"]);
+}
+
 
 // A window large enough docks the panels beside the volume: the volume-only screenshot is the
 // view's size (stats say where it is) and matches `tspplay render` at that size; hidden panels
