@@ -240,7 +240,9 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
   place_field(options.camera, *file, options.scale, options.physical_proportions);
   const int last = checked_last_step(tree, options.first_step, options.last_step, options.tsp_path);
   const tsp::TransferFunction tf = tsp::transfer_function_from_arg(
-      options.tf, tree.value_range(), tsp::kDefaultTfEntries, options.tf_range);
+      options.tf,
+      tsp::tf_domain_of(options.tf_range, tree.value_range(), file->metadata().histogram),
+      tsp::kDefaultTfEntries, options.tf_range);
   // Every output is checked before any work and replaced only when the whole job succeeded.
   const tsp::InputGuard inputs({options.tsp_path, options.tf, options.probe_tf});
   std::optional<tsp::OutputFolder> folder;
@@ -287,9 +289,11 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
   std::optional<tsp::TransferFunction> surface;
   if (o.probe_surface)
     surface = o.probe_tf.empty() ? tf
-                                 : tsp::transfer_function_from_arg(o.probe_tf, tree.value_range(),
-                                                                   tsp::kDefaultTfEntries,
-                                                                   o.tf_range);
+                                 : tsp::transfer_function_from_arg(
+                                       o.probe_tf,
+                                       tsp::tf_domain_of(o.tf_range, tree.value_range(),
+                                                         file->metadata().histogram),
+                                       tsp::kDefaultTfEntries, o.tf_range);
   auto set_clip = [&](int frame) {
     std::vector<tsp::Probe> probes = o.probes;
     for (tsp::Probe& p : probes) tsp::move_probe(p, {o.probe_motion[0] * frame,

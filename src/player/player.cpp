@@ -131,8 +131,10 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
     script_.push_back(shot);
     script_.push_back(ScriptAction{});  // quit
   }
-  tf = tsp::transfer_function_from_arg(options.tf, tree.value_range(), tsp::kDefaultTfEntries,
-                                       tsp::parse_tf_range(options.tf_range));
+  const tsp::TfRangeChoice range = tsp::parse_tf_range(options.tf_range);
+  tf = tsp::transfer_function_from_arg(
+      options.tf, tsp::tf_domain_of(range, tree.value_range(), file->metadata().histogram),
+      tsp::kDefaultTfEntries, range);
   if (std::string w = tsp::tf_range_warning(tf, file->metadata().data_range); !w.empty()) {
     std::fprintf(stderr, "tspplay: warning: %s\n", w.c_str());
     status = w;

@@ -185,6 +185,9 @@ class PlayerApp {
   void command(const ScriptAction& a);
   /// Number of steps of the file.
   int steps() const;
+  /// The TF the player starts a file or field with: --tf placed as --tf-range says over f's data.
+  /// Throws like tsp::transfer_function_from_arg.
+  tsp::TransferFunction start_tf(const tsp::TspFile& f) const;
   /// Sets c's voxel size, origin and frame for the current field (tspgl::place_field).
   void place_camera(tsp::CameraParams& c) const;
   /// Stretches the axes by scale (exaggeration) from the next frame on.

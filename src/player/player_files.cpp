@@ -105,6 +105,13 @@ void PlayerApp::poll_open() {
   }
 }
 
+tsp::TransferFunction PlayerApp::start_tf(const tsp::TspFile& f) const {
+  const tsp::TfRangeChoice range = tsp::parse_tf_range(options_.tf_range);
+  return tsp::transfer_function_from_arg(
+      options_.tf, tsp::tf_domain_of(range, f.tree().value_range(), f.metadata().histogram),
+      tsp::kDefaultTfEntries, range);
+}
+
 void PlayerApp::open_file(const std::string& path) {
   std::unique_ptr<tsp::TspFile> next = tsp::TspFile::open(path);  // throws: nothing changed
   if (recorder_) stop_recording();  // a movie has one size and one dataset
@@ -118,8 +125,7 @@ void PlayerApp::open_file(const std::string& path) {
   const tsp::TspTree& tree = file->tree();
   // The TF the player started with, fitted to the new data (a map edited for other data
   // rarely suits this one).
-  tsp::TransferFunction fresh = tsp::transfer_function_from_arg(
-      options_.tf, tree.value_range(), tsp::kDefaultTfEntries, tsp::parse_tf_range(options_.tf_range));
+  tsp::TransferFunction fresh = start_tf(*file);
   tf = fresh;
   lazy_ = std::make_unique<tsp::LazyErrors>(tree, state.metric, tf);
   reference_version_ = ~std::uint64_t(0);
@@ -162,9 +168,7 @@ void PlayerApp::switch_field(const std::string& name) {
   } else {
     next.file = tsp::TspFile::open(options_.tsp_path, name);  // throws: nothing changed
     // The TF the player was started with, fitted to this field's data.
-    next.tf = tsp::transfer_function_from_arg(options_.tf, next.file->tree().value_range(),
-                                              tsp::kDefaultTfEntries,
-                                              tsp::parse_tf_range(options_.tf_range));
+    next.tf = start_tf(*next.file);
   }
   switch_started_s_ = clock_.seconds();
   prefetcher.reset();  // it reads into the renderer's brick cache
@@ -299,6 +303,7 @@ void PlayerApp::write_stats(const std::string& path) const {
   nlohmann::json points = nlohmann::json::array();  // the editor's handles: value, opacity
   for (const tsp::TfPoint& p : tf_points) points.push_back({p.x, p.c.a});
   j["tf_points"] = points;
+  j["tf_domain"] = {tf.domain().lo, tf.domain().hi};
   j["quality"] = quality_note;
   j["frames_drawn"] = frames_drawn_;
   j["playback"] = playback_json();

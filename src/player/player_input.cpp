@@ -138,6 +138,17 @@ void PlayerApp::apply(const ScriptAction& a) {
     case Kind::tf:
       set_tf(tsp::transfer_function_from_arg(a.text, file->tree().value_range(), tf.size()), true);
       break;
+    case Kind::tf_range: {  // the map as it is, stretched over the chosen range
+      const tsp::TfRangeChoice c = tsp::parse_tf_range(a.text);
+      const tsp::ValueRange to =
+          c.mode == tsp::TfRangeChoice::Mode::explicit_range
+              ? c.range
+              : tsp::tf_domain_of(c, file->tree().value_range(), file->metadata().histogram);
+      set_tf(tsp::rescaled(tf, to), true);
+      status = "transfer function stretched over " + a.text + " [" + std::to_string(to.lo) +
+               ", " + std::to_string(to.hi) + "]";
+      break;
+    }
     case Kind::tolerance:
       set_tolerances({a.value, a.value2});
       break;

@@ -189,6 +189,16 @@ void tf_section(PlayerApp& app) {
     app.set_tf(tsp::rescaled(app.tf, d), true);
     app.status = "transfer function stretched over the data range";
   }
+  ImGui::SameLine();
+  if (ImGui::Button("fit to bulk")) {  // over the 1st to 99th percentile of the samples
+    ScriptAction fit;
+    fit.kind = ScriptAction::Kind::tf_range;
+    fit.text = "histogram";
+    app.command(fit);
+  }
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Stretch the map over where the data is: the 1st to 99th percentile of\n"
+                      "every sample (tf-range histogram)");
 
   static char path[512] = "";
   if (path[0] == 0) std::snprintf(path, sizeof path, "%s", app.tf_path.c_str());

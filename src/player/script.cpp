@@ -8,6 +8,7 @@
 #include "render/settings_table.h"
 #include "tsp/clip/probe.h"
 #include "tsp/core/error.h"
+#include "tsp/metric/tf_io.h"
 #include "tsp/core/input_file.h"
 
 namespace tspplayer {
@@ -101,6 +102,10 @@ ScriptAction parse_words(const LineParser& p) {
   } else if (cmd == "tf") {
     p.expect_args(1, "tf FILE|preset:NAME");
     a.kind = Kind::tf;
+    a.text = p.words[1];
+  } else if (cmd == "tf-range") {
+    p.expect_args(1, "tf-range data|histogram|LO:HI");
+    a.kind = Kind::tf_range;
     a.text = p.words[1];
   } else if (cmd == "tolerance") {
     p.expect_args(2, "tolerance SPATIAL TEMPORAL");
@@ -201,7 +206,7 @@ ScriptAction parse_words(const LineParser& p) {
     for (const tspgl::SettingSpec& spec : tspgl::settings_table())
       settings += std::string(spec.name) + ", ";
     p.fail("unknown action '" + cmd +
-           "': expected step, play, pause, speed, loop, tf, tolerance, metric, cache, prefetch, "
+           "': expected step, play, pause, speed, loop, tf, tf-range, tolerance, metric, cache, prefetch, "
            "view, zoom, projection, screenshot, screenshot-ui, wait-frames, wait-seconds, " +
            settings +
            "quality, stats, lod, target-fps, show-cut, panels, every-step, log-opacity, open, "
@@ -246,6 +251,13 @@ void validate(const ScriptAction& a) {
         fail("speed must be positive: " + std::to_string(kMinSpeed).substr(0, 4) + " to " +
              std::to_string(int(kMaxSpeed)) + " steps per second");
       break;
+    case Kind::tf_range: {
+      const tsp::TfRangeChoice c = tsp::parse_tf_range(a.text);  // throws UsageError
+      if (c.mode != tsp::TfRangeChoice::Mode::data && c.mode != tsp::TfRangeChoice::Mode::histogram &&
+          c.mode != tsp::TfRangeChoice::Mode::explicit_range)
+        fail("tf-range '" + a.text + "': the map shown is stretched over data, histogram or LO:HI");
+      break;
+    }
     case Kind::tolerance:
       if (!(a.value >= 0) || !(a.value2 >= 0) || !std::isfinite(a.value) || !std::isfinite(a.value2))
         fail("tolerances must be finite and not negative");

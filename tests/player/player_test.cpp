@@ -466,13 +466,23 @@ TEST(Player, PlaysSeveralWrfFieldsOnTheirOwnGrids) {
   const fs::path wrf = tsptest::shared_data_dir() / "wrf-katrina" / "ci_test_file.nc";
   if (!fs::exists(wrf)) GTEST_SKIP() << "shared data absent: " << wrf;
   const fs::path dir = tsptest::temp_dir();
-  const fs::path script = write_script("stats " + (dir / "t.json").string() + "\nfield W\nstats " +
-                                       (dir / "w.json").string() + "\nquit\n");
+  const fs::path script = write_script(
+      "stats " + (dir / "t.json").string() + "\nfield W\nstats " + (dir / "w.json").string() +
+      "\ntf-range histogram\nstats " + (dir / "h.json").string() + "\ntf-range -1:2\nstats " +
+      (dir / "e.json").string() + "\nquit\n");
   auto r = run_tspplay("play " + q(wrf) + " --field T,W,QVAPOR --cache-dir " + q(dir / "cache") +
                        " --size " + kSize + " --script " + q(script));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json t = read_json(dir / "t.json"), w = read_json(dir / "w.json");
   EXPECT_EQ(t["fields"], nlohmann::json({"T", "W", "QVAPOR"}));
+  // tf-range (the panel's "fit to bulk"): W's map moves inside its data range (W is near 0 but
+  // for a few updrafts: the 1st to 99th percentile is far narrower), then to an explicit one.
+  const nlohmann::json h = read_json(dir / "h.json"), e = read_json(dir / "e.json");
+  const double lo = h["tf_domain"][0], hi = h["tf_domain"][1];
+  EXPECT_GT(lo, double(w["tf_domain"][0]));
+  EXPECT_LT(hi, double(w["tf_domain"][1]));
+  EXPECT_LT(hi - lo, 0.8 * (double(w["tf_domain"][1]) - double(w["tf_domain"][0])));
+  EXPECT_EQ(e["tf_domain"], nlohmann::json({-1.0, 2.0}));
   EXPECT_EQ(t["field"], "T");
   EXPECT_EQ(w["field"], "W");
   EXPECT_EQ(t["steps_ready"].size(), 4u);

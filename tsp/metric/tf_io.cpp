@@ -296,6 +296,10 @@ TfRangeChoice parse_tf_range(const std::string& text) {
     c.mode = TfRangeChoice::Mode::file;
     return c;
   }
+  if (text == "histogram") {
+    c.mode = TfRangeChoice::Mode::histogram;
+    return c;
+  }
   const auto colon = text.find(':', 1);
   double lo = 0, hi = 0;
   bool ok = colon != std::string::npos;
@@ -310,7 +314,8 @@ TfRangeChoice parse_tf_range(const std::string& text) {
     }
   }
   if (!ok || !std::isfinite(lo) || !std::isfinite(hi) || !(lo < hi))
-    throw UsageError("--tf-range '" + text + "': expected auto, data, file or LO:HI with LO < HI");
+    throw UsageError("--tf-range '" + text +
+                     "': expected auto, data, file, histogram or LO:HI with LO < HI");
   if (!std::isfinite(hi - lo))
     throw UsageError("--tf-range '" + text + "': HI - LO is beyond the double range; expected a "
                      "range of finite width");
@@ -341,6 +346,33 @@ std::string tf_range_warning(const TransferFunction& tf, ValueRange data) {
          "]: nothing will show; --tf-range data stretches it over the data";
 }
 
+ValueRange histogram_range(std::span<const std::uint64_t> histogram, ValueRange value_range) {
+  long double total = 0;
+  for (std::uint64_t n : histogram) total += (long double)n;
+  if (histogram.empty() || total <= 0 || !(value_range.lo < value_range.hi)) return value_range;
+  const double width = (value_range.hi - value_range.lo) / double(histogram.size());
+  // The value below which a share q of the samples lie, linear inside its bin.
+  const auto quantile = [&](double q) {
+    const long double want = q * total;
+    long double below = 0;
+    for (std::size_t b = 0; b < histogram.size(); ++b) {
+      const long double n = (long double)histogram[b];
+      if (n > 0 && below + n >= want)
+        return value_range.lo + width * (double(b) + double((want - below) / n));
+      below += n;
+    }
+    return value_range.hi;
+  };
+  const ValueRange r{quantile(kHistogramTail), quantile(1 - kHistogramTail)};
+  return r.lo < r.hi ? r : value_range;
+}
+
+ValueRange tf_domain_of(const TfRangeChoice& c, ValueRange value_range,
+                        std::span<const std::uint64_t> histogram) {
+  return c.mode == TfRangeChoice::Mode::histogram ? histogram_range(histogram, value_range)
+                                                  : value_range;
+}
+
 TransferFunction transfer_function_from_arg(const std::string& arg, ValueRange default_domain,
                                             int entries, const TfRangeChoice& range) {
   using Mode = TfRangeChoice::Mode;
@@ -355,6 +387,7 @@ TransferFunction transfer_function_from_arg(const std::string& arg, ValueRange d
     case Mode::file:
       return tf;
     case Mode::data:
+    case Mode::histogram:  // (the caller's domain is the histogram's: tf_domain_of)
       return rescaled(tf, data);
     case Mode::explicit_range:
       return rescaled(tf, range.range);

@@ -1,6 +1,7 @@
 // Transfer-function files and presets: our JSON, ParaView colour-map presets, named presets.
 // Formats: docs/transfer-functions.md.
 #pragma once
+#include <span>
 #include <string>
 #include <vector>
 
@@ -44,14 +45,29 @@ struct TfRangeChoice {
                 ///< (ParaView presets) for data outside [0, 1], which is stretched over the data
     data,       ///< every TF stretched over the data's range
     file,       ///< a file's own range, whatever it is
+    histogram,  ///< stretched over where the data is: its 1st to 99th percentile (tf_domain_of)
     explicit_range  ///< stretched over `range`
   };
   Mode mode = Mode::automatic;
   ValueRange range;  ///< explicit_range only
 };
 
-/// Parses --tf-range "auto", "data", "file" or "LO:HI" (finite, LO < HI). Throws UsageError.
+/// Parses --tf-range "auto", "data", "file", "histogram" or "LO:HI" (finite, LO < HI). Throws
+/// UsageError.
 TfRangeChoice parse_tf_range(const std::string& text);
+
+/// Share of the samples left out below and above the histogram range (1 % each side).
+inline constexpr double kHistogramTail = 0.01;
+
+/// The values between the kHistogramTail and 1 − kHistogramTail quantiles of a histogram of
+/// equal bins over value_range (a .tsp's /histogram), interpolated inside the bins; value_range
+/// when the histogram is empty or the quantiles meet. Never throws.
+ValueRange histogram_range(std::span<const std::uint64_t> histogram, ValueRange value_range);
+
+/// The data domain a TF is placed over for choice c: histogram_range for Mode::histogram, else
+/// value_range. Never throws.
+ValueRange tf_domain_of(const TfRangeChoice& c, ValueRange value_range,
+                        std::span<const std::uint64_t> histogram);
 
 /// tf with its domain moved to `to`: every entry keeps its colour, its position mapped linearly.
 /// Throws UsageError on an invalid `to`.

@@ -157,6 +157,38 @@ TEST(TfIo, ParaViewCommonMapsAreBuiltIn) {
   }
 }
 
+// --tf-range histogram: the 1st to 99th percentile of a histogram, against hand-worked cases.
+TEST(TfIo, HistogramRangeIsTheCentralNinetyEightPercent) {
+  EXPECT_EQ(parse_tf_range("histogram").mode, TfRangeChoice::Mode::histogram);
+  // 100 samples spread evenly over 4 bins of [0, 8): 25 per bin of width 2. The 1st percentile
+  // is 1 sample into bin 0: 0 + 2·(1/25) = 0.08; the 99th, 99 samples: 24 into bin 3: 6 + 2·24/25.
+  const std::vector<std::uint64_t> even{25, 25, 25, 25};
+  const ValueRange r = histogram_range(even, {0, 8});
+  EXPECT_NEAR(r.lo, 0.08, 1e-12);
+  EXPECT_NEAR(r.hi, 6 + 2 * 24.0 / 25, 1e-12);
+  // A spike: 9 900 samples in bin 1 of 10 over [0, 100), 50 in bin 0 and 50 in bin 9 (the
+  // extremes that set the range). The range shrinks to bin 1: [10, 20].
+  std::vector<std::uint64_t> spike(10, 0);
+  spike[0] = 50;
+  spike[1] = 9900;
+  spike[9] = 50;
+  const ValueRange s = histogram_range(spike, {0, 100});
+  EXPECT_NEAR(s.lo, 10 + 10 * (100 - 50) / 9900.0, 1e-9);  // 100 samples in: 50 into bin 1
+  EXPECT_NEAR(s.hi, 10 + 10 * (9900 - 50 - 0.0) / 9900.0 + 0.0, 1e-9);  // 9 900 in: 9 850 into bin 1
+  // Degenerate histograms keep the value range; tf_domain_of uses the histogram only when asked.
+  EXPECT_EQ(histogram_range(std::vector<std::uint64_t>(4, 0), {0, 8}), (ValueRange{0, 8}));
+  EXPECT_EQ(histogram_range({}, {0, 8}), (ValueRange{0, 8}));
+  const std::vector<std::uint64_t> one{0, 7, 0, 0};  // every sample in one bin: still a range
+  EXPECT_LT(histogram_range(one, {0, 8}).lo, histogram_range(one, {0, 8}).hi);
+  EXPECT_EQ(tf_domain_of(parse_tf_range("data"), {0, 100}, spike), (ValueRange{0, 100}));
+  EXPECT_EQ(tf_domain_of(parse_tf_range("histogram"), {0, 100}, spike), s);
+  // A preset placed by transfer_function_from_arg over that domain has it as its own.
+  const TransferFunction tf =
+      transfer_function_from_arg("preset:sparse", s, kDefaultTfEntries, parse_tf_range("histogram"));
+  EXPECT_NEAR(tf.domain().lo, s.lo, 1e-12);
+  EXPECT_NEAR(tf.domain().hi, s.hi, 1e-12);
+}
+
 TEST(TfIo, TfRangeChoicesAndRescaling) {
   EXPECT_EQ(parse_tf_range("").mode, TfRangeChoice::Mode::automatic);
   EXPECT_EQ(parse_tf_range("data").mode, TfRangeChoice::Mode::data);
