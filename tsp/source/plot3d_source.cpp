@@ -110,6 +110,9 @@ bool read_header(BinaryFile& f, bool big, bool records, bool multi, Layout& out)
       d[std::size_t(a)] = int_at(dims.data() + 12 * k + 4 * a, big);
       if (d[std::size_t(a)] < 1 || d[std::size_t(a)] > kMaxBlockEdge) return false;
     }
+    // Every point takes at least 4 bytes of the file: a block declaring more cannot fit (and
+    // the products of its sizes stay far from overflow).
+    if (double(d[0]) * double(d[1]) * double(d[2]) > double(f.size())) return false;
     out.blocks.push_back(d);
   }
   if (records && (!next(marker) || std::int64_t(marker) != 12 * std::int64_t(nb))) return false;
