@@ -24,8 +24,9 @@ the ratios printed and written to OUT_DIR/vtk_search.json.
 
 TF.json is tspplay's own format (e.g. the demo's sparse_tf.json or `tspplay` presets saved with
 save_transfer_function); its points become VTK's colour and opacity functions. Opacity is per
-unit distance of one voxel in both (spec §9), the sample distance is --spacing voxels, shading off
-(--shade on: VTK's default lighting, to compare with `tspplay render --shade on`),
+unit distance of one voxel in both (spec §9), the sample distance is --spacing voxels, shading on
+as tspplay's default (VTK's default lighting, to compare with `tspplay render`; --shade off to
+compare with `tspplay render --shade off`),
 trilinear interpolation, orthographic camera fitted as tsp/frame/camera.cpp fits it.
 """
 import argparse
@@ -222,7 +223,7 @@ def main():
     p.add_argument("--view", default="30,20")
     p.add_argument("--spacing", type=float, default=0.5)
     p.add_argument("--mapper", default="both", choices=["cpu", "gpu", "both"])
-    p.add_argument("--shade", default="off", choices=["on", "off"],
+    p.add_argument("--shade", default="on", choices=["on", "off"],
                    help="light the volume (VTK's default coefficients and headlight)")
     p.add_argument("--search", default="", help="target mean dE values, e.g. 1,3")
     p.add_argument("--spacings", default="0.25,0.5,1,1.5,2,3,4,6,8")

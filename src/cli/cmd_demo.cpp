@@ -17,6 +17,7 @@
 #include "jobs/movie.h"
 #include "jobs/render_job.h"
 #include "player/player.h"
+#include "render/settings_table.h"
 #include "tsp/core/error.h"
 #include "tsp/core/json_text.h"
 #include "tsp/core/stopwatch.h"
@@ -82,7 +83,10 @@ json render_frames(const fs::path& tsp_path, const fs::path& tf_path, const fs::
   o.tsp_path = tsp_path.string();
   o.tf = tf_path.string();
   o.passes = 2;  // the second pass plays with the textures the first left in the cache
+  o.annotate = true;  // outline, axes, colour legend and step on every frame (both renderers)
   json out;
+  // How the frames were drawn: lighting, sampling, compositing, pre-integration (the defaults).
+  out["settings"] = tspgl::settings_json(o.settings);
   std::printf("\nrendering %dx%d frames headless (OSMesa):\n", o.camera.width, o.camera.height);
   for (bool baseline : {false, true}) {
     o.baseline = baseline;

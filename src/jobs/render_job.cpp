@@ -241,7 +241,7 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
   const int last = checked_last_step(tree, options.first_step, options.last_step, options.tsp_path);
   const tsp::TransferFunction tf = tsp::transfer_function_from_arg(
       options.tf,
-      tsp::tf_domain_of(options.tf_range, tree.value_range(), file->metadata().histogram),
+      tsp::tf_domain_of(options.tf_range, *file, options.first_step),
       tsp::kDefaultTfEntries, options.tf_range);
   // Every output is checked before any work and replaced only when the whole job succeeded.
   const tsp::InputGuard inputs({options.tsp_path, options.tf, options.probe_tf});
@@ -291,8 +291,7 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
     surface = o.probe_tf.empty() ? tf
                                  : tsp::transfer_function_from_arg(
                                        o.probe_tf,
-                                       tsp::tf_domain_of(o.tf_range, tree.value_range(),
-                                                         file->metadata().histogram),
+                                       tsp::tf_domain_of(o.tf_range, *file, o.first_step),
                                        tsp::kDefaultTfEntries, o.tf_range);
   auto set_clip = [&](int frame) {
     std::vector<tsp::Probe> probes = o.probes;

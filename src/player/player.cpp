@@ -133,7 +133,7 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
   }
   const tsp::TfRangeChoice range = tsp::parse_tf_range(options.tf_range);
   tf = tsp::transfer_function_from_arg(
-      options.tf, tsp::tf_domain_of(range, tree.value_range(), file->metadata().histogram),
+      options.tf, tsp::tf_domain_of(range, *file, state.step),
       tsp::kDefaultTfEntries, range);
   if (std::string w = tsp::tf_range_warning(tf, file->metadata().data_range); !w.empty()) {
     std::fprintf(stderr, "tspplay: warning: %s\n", w.c_str());

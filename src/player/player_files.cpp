@@ -108,7 +108,7 @@ void PlayerApp::poll_open() {
 tsp::TransferFunction PlayerApp::start_tf(const tsp::TspFile& f) const {
   const tsp::TfRangeChoice range = tsp::parse_tf_range(options_.tf_range);
   return tsp::transfer_function_from_arg(
-      options_.tf, tsp::tf_domain_of(range, f.tree().value_range(), f.metadata().histogram),
+      options_.tf, tsp::tf_domain_of(range, f, 0),  // (a file opens at step 0)
       tsp::kDefaultTfEntries, range);
 }
 

@@ -143,7 +143,7 @@ void PlayerApp::apply(const ScriptAction& a) {
       const tsp::ValueRange to =
           c.mode == tsp::TfRangeChoice::Mode::explicit_range
               ? c.range
-              : tsp::tf_domain_of(c, file->tree().value_range(), file->metadata().histogram);
+              : tsp::tf_domain_of(c, *file, state.step);
       set_tf(tsp::rescaled(tf, to), true);
       status = "transfer function stretched over " + a.text + " [" + std::to_string(to.lo) +
                ", " + std::to_string(to.hi) + "]";

@@ -23,7 +23,8 @@ struct ScriptAction {
     speed,          ///< playback speed `value` steps per second
     loop,           ///< loop on (`flag`) or off
     tf,             ///< transfer function `text`: a file or preset:NAME
-    tf_range,       ///< the TF as it is, stretched over `text`: data, histogram or LO:HI
+    tf_range,       ///< the TF as it is, stretched over `text`: data, histogram, step (the
+                    ///< step shown) or LO:HI
     tolerance,      ///< spatial `value`, temporal `value2`
     setting,        ///< render setting `text` (a row of render/settings_table.h) set to `text2`
     metric,         ///< metric `text`

@@ -57,10 +57,11 @@ struct RenderSettings {
   /// (tsp::preintegrate) instead of the point lookup.
   bool preintegrated = false;
   /// Textured samples lit by a headlight (Blinn–Phong, kAmbient … kSpecularPower; the normal
-  /// from central differences of the scalar, one-sided on brick faces). Uniform data and flat
-  /// nodes stay unlit. Off by default until brick faces get central differences too: the brick
-  /// grid and the whole-volume paths (dense, baseline) differ there (docs/rendering.md).
-  bool shade = false;
+  /// from central differences of the scalar; across a brick face from the neighbour brick when
+  /// it is a level-0 texture, else one-sided). Uniform data and flat nodes stay unlit. On by
+  /// default (issue 29): docs/rendering.md says where the brick grid's picture differs from
+  /// the whole-volume paths' (dense, baseline).
+  bool shade = true;
   /// Keep the last frame's pixels whose rays meet only bricks drawn as before (same view, TF and
   /// knobs), drawing only the rectangles of the bricks that changed (image_reuse.h). Exact.
   bool reuse_image = true;

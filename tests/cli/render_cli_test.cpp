@@ -6,9 +6,14 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <vector>
+
 #include "support/paths.h"
+#include "tsp/metric/tf_io.h"
 #include "tsp/report/image.h"
 #include "tsp/report/image_diff.h"
+#include "tsp/source/open_source.h"
 
 namespace {
 
@@ -264,6 +269,59 @@ TEST(RenderCli, ATransferFunctionThatMissesTheDataIsWarnedAbout) {
   EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
   r = run_tspplay("render " + q(tsp) + " --tf preset:viridis --tf-range 1:0 -o " + q(dir / "c"));
   EXPECT_EQ(r.exit_code, 2);
+}
+
+// --tf-range step: the map is stretched over the first drawn step's own range — the extreme
+// values of that step read back from the source (brute force) — not the series'; the colours
+// change accordingly and match an explicit LO:HI of those values.
+TEST(RenderCli, TfRangeStepStretchesTheMapOverTheStepsRange) {
+  const fs::path dir = tsptest::temp_dir();
+  // The vortex's early steps span less than the series' range.
+  auto g = run_tspplay("generate vortex -o " + q(dir / "v.h5") + " --dims 24,24,24 --steps 6");
+  ASSERT_EQ(g.exit_code, 0) << g.err;
+  ASSERT_EQ(run_tspplay("build " + q(dir / "v.h5") + " --field vortex --brick 8 -o " +
+                        q(dir / "v.tsp")).exit_code, 0);
+  tsp::SourceOptions so;
+  so.field = "vortex";
+  auto src = tsp::open_source((dir / "v.h5").string(), so);
+  std::vector<float> v(std::size_t(src->dims().count()));
+  src->read_step(0, v);
+  const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+  float series_lo = *lo, series_hi = *hi;
+  for (int t = 1; t < src->steps(); ++t) {
+    src->read_step(t, v);
+    series_lo = std::min(series_lo, *std::min_element(v.begin(), v.end()));
+    series_hi = std::max(series_hi, *std::max_element(v.begin(), v.end()));
+  }
+  src->read_step(0, v);
+  const float step_lo = *std::min_element(v.begin(), v.end());
+  const float step_hi = *std::max_element(v.begin(), v.end());
+  ASSERT_GT(series_hi - series_lo, 1.05 * (step_hi - step_lo)) << "the fixture's step 0 must span less";
+
+  const std::string common = " --tf preset:filled --steps 0 --size 96x72 ";
+  auto r = run_tspplay("render " + q(dir / "v.tsp") + common + "--tf-range step --save-tf " +
+                       q(dir / "step.json") + " -o " + q(dir / "step"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const tsp::ValueRange d = tsp::load_transfer_function((dir / "step.json").string()).domain();
+  const double tol = 1e-5 * (series_hi - series_lo);
+  EXPECT_NEAR(d.lo, step_lo, tol);
+  EXPECT_NEAR(d.hi, step_hi, tol);
+  ASSERT_EQ(run_tspplay("render " + q(dir / "v.tsp") + common + "-o " + q(dir / "auto")).exit_code, 0);
+  char range[96];
+  std::snprintf(range, sizeof range, "%.9g:%.9g", double(step_lo), double(step_hi));
+  ASSERT_EQ(run_tspplay("render " + q(dir / "v.tsp") + common + "--tf-range " + range + " -o " +
+                        q(dir / "explicit")).exit_code, 0);
+  const tsp::Image step = tsp::read_png((dir / "step" / "step_0000.png").string());
+  const tsp::DiffStats vs_auto =
+      tsp::diff_images(step, tsp::read_png((dir / "auto" / "step_0000.png").string()));
+  const tsp::DiffStats vs_explicit =
+      tsp::diff_images(step, tsp::read_png((dir / "explicit" / "step_0000.png").string()));
+  EXPECT_GT(vs_auto.mean, 1.0);       // other colours than the series' map
+  EXPECT_LT(vs_explicit.mean, 0.05);  // the step's own range, as written out
+  // Bad choices are usage errors.
+  r = run_tspplay("render " + q(dir / "v.tsp") + " --tf-range steps -o " + q(dir / "bad"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("step"), std::string::npos) << r.err;
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 
 #include "jobs/playback_tuner.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 
@@ -20,6 +21,7 @@
 #include "tsp/core/error.h"
 #include "tsp/report/image.h"
 #include "tsp/report/image_diff.h"
+#include "tsp/source/open_source.h"
 
 namespace {
 
@@ -469,7 +471,8 @@ TEST(Player, PlaysSeveralWrfFieldsOnTheirOwnGrids) {
   const fs::path script = write_script(
       "stats " + (dir / "t.json").string() + "\nfield W\nstats " + (dir / "w.json").string() +
       "\ntf-range histogram\nstats " + (dir / "h.json").string() + "\ntf-range -1:2\nstats " +
-      (dir / "e.json").string() + "\nquit\n");
+      (dir / "e.json").string() + "\nstep 3\ntf-range step\nstats " + (dir / "s.json").string() +
+      "\nquit\n");
   auto r = run_tspplay("play " + q(wrf) + " --field T,W,QVAPOR --cache-dir " + q(dir / "cache") +
                        " --size " + kSize + " --script " + q(script));
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -483,6 +486,17 @@ TEST(Player, PlaysSeveralWrfFieldsOnTheirOwnGrids) {
   EXPECT_LT(hi, double(w["tf_domain"][1]));
   EXPECT_LT(hi - lo, 0.8 * (double(w["tf_domain"][1]) - double(w["tf_domain"][0])));
   EXPECT_EQ(e["tf_domain"], nlohmann::json({-1.0, 2.0}));
+  // tf-range step (the panel's "fit to step"): W's values at step 3, read from the NetCDF file.
+  tsp::SourceOptions so;
+  so.field = "W";
+  auto src = tsp::open_source(wrf.string(), so);
+  std::vector<float> v(std::size_t(src->dims().count()));
+  src->read_step(3, v);
+  const auto [vlo, vhi] = std::minmax_element(v.begin(), v.end());
+  const nlohmann::json st = read_json(dir / "s.json");
+  const double tol = 1e-5 * (*vhi - *vlo);
+  EXPECT_NEAR(double(st["tf_domain"][0]), *vlo, tol);
+  EXPECT_NEAR(double(st["tf_domain"][1]), *vhi, tol);
   EXPECT_EQ(t["field"], "T");
   EXPECT_EQ(w["field"], "W");
   EXPECT_EQ(t["steps_ready"].size(), 4u);

@@ -60,10 +60,12 @@ struct AdaptiveScene {
   }
   // The largest step multiplier (a uniform region takes it at any spacing).
   static double largest_multiplier() { return tsp::kStepMultipliers.back(); }
+  bool shade = true;  ///< frames lit (the default) or unlit (analytic expectations)
   tsp::Image frame(const tsp::Camera& cam, double spacing, double sampling_tol, bool dense,
                    FrameReport* report = nullptr, bool all_textured = true) {
     RenderSettings s;
     s.spacing = spacing;
+    s.shade = shade;
     s.sampling_tol = sampling_tol;
     s.dense = dense;
     s.reuse_image = false;
@@ -79,6 +81,7 @@ struct AdaptiveScene {
   tsp::Image baseline_frame(const tsp::Camera& cam, double spacing) {
     RenderSettings s;
     s.spacing = spacing;
+    s.shade = shade;
     baseline->render(0, cam, s);
     return ctx->read_pixels();
   }
@@ -91,6 +94,7 @@ TEST(AdaptiveSampling, OneColourCubeIsTheExponentialAtAnyStep) {
   const tsp::Rgba c{0.9f, 0.5f, 0.2f, 0.03f};
   AdaptiveScene scene("adaptive_cube", [](int, int x, int, int) { return float(x) / 64; },
                       tf_of(c, c), tf_of({0, 0, 1, 0.01f}, {1, 0, 0, 0.05f}));
+  scene.shade = false;  // the exponential below is the unlit colour
   const double opacity = 1 - std::pow(1 - double(c.a), 64);
   const tsp::Luv want = tsp::srgb_to_luv(c.r * opacity, c.g * opacity, c.b * opacity);
   // Without adaptive sampling too: the caster's segments are cut exactly where the ray enters

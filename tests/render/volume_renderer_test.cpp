@@ -92,14 +92,18 @@ struct Scene {
     p.height = ctx->height();
     return tsp::Camera(file->tree().octree().dims(), p);
   }
+  bool shade = true;  ///< frames lit (the default) or unlit
   tsp::Image tsp_frame(int step, const tsp::Camera& cam, tsp::Tolerances tol = {}) {
     RenderSettings s;
     s.tol = tol;
+    s.shade = shade;
     renderer->render(step, cam, s, nodes);
     return ctx->read_pixels();
   }
   tsp::Image baseline_frame(int step, const tsp::Camera& cam) {
-    baseline->render(step, cam, RenderSettings{});
+    RenderSettings s;
+    s.shade = shade;
+    baseline->render(step, cam, s);
     return ctx->read_pixels();
   }
 };
@@ -368,6 +372,7 @@ TEST(VolumeRenderer, PreintegratedRampMatchesTheSegmentFormula) {
       s.compositing = comp;
       s.spacing = kSpacing;
       s.preintegrated = true;
+      s.shade = false;  // the segment formula above is the unlit colour
       if (baseline)
         scene.baseline->render(0, cam, s);
       else
@@ -387,7 +392,10 @@ TEST(VolumeRenderer, PreintegratedRampMatchesTheSegmentFormula) {
 
 // Partial-image reuse is exact: playing a series with a temporal tolerance (long spans, so most
 // bricks are drawn as in the previous frame) gives the same pixels as redrawing everything, for
-// every compositing, while redrawing only part of the image; a view change redraws it all.
+// every compositing, unlit and lit, while redrawing only part of the image; a view change redraws
+// it all. Lit slices are exact to one 8-bit level: a slice polygon cut to a redrawn rectangle
+// interpolates its texture coordinates with other rounding, and a lit sample's normal from the
+// differences of a nearly uniform region turns with it (unlit, the same rounding changes nothing).
 TEST(VolumeRenderer, PartialImageReuseGivesTheSamePixelsAsRedrawing) {
   const fs::path h5 = tsptest::datasets_dir() / "samples" / "hotPlume_32.h5";
   tsp::SourceOptions so;
@@ -397,32 +405,40 @@ TEST(VolumeRenderer, PartialImageReuseGivesTheSamePixelsAsRedrawing) {
   auto file = tsp::TspFile::open(path);
   const auto tf = tsp::preset_transfer_function("filled", file->tree().value_range());
   Scene with(path, tf, tsp::CachePolicy::on), without(path, tf, tsp::CachePolicy::on);
-  for (Compositing comp : {Compositing::slices, Compositing::boxes, Compositing::rays}) {
-    double redrawn = 0;
-    int frames = 0;
-    for (int pass = 0; pass < 2; ++pass) {
-      const tsp::Camera cam = with.camera(35 + 40 * pass, 15);
-      for (int step = 20; step <= 30; ++step) {
-        RenderSettings s;
-        s.compositing = comp;
-        s.tol = {0, 0.01};
-        s.reuse_image = true;
-        const FrameReport r = with.renderer->render(step, cam, s, with.nodes);
-        const tsp::Image a = with.ctx->read_pixels();
-        s.reuse_image = false;
-        without.renderer->render(step, cam, s, without.nodes);
-        const tsp::Image b = without.ctx->read_pixels();
-        ASSERT_EQ(a.rgba, b.rgba) << to_string(comp) << " step " << step << " pass " << pass
-                                  << (a.rgba == b.rgba ? "" : keep_failure("reuse", a, b));
-        if (step == 20) {
-          EXPECT_DOUBLE_EQ(r.redrawn_percent, 100.0) << "a new view redraws all";
+  for (bool shade : {false, true})
+    for (Compositing comp : {Compositing::slices, Compositing::boxes, Compositing::rays}) {
+      double redrawn = 0;
+      int frames = 0;
+      for (int pass = 0; pass < 2; ++pass) {
+        const tsp::Camera cam = with.camera(35 + 40 * pass, 15);
+        for (int step = 20; step <= 30; ++step) {
+          RenderSettings s;
+          s.compositing = comp;
+          s.tol = {0, 0.01};
+          s.shade = shade;
+          s.reuse_image = true;
+          const FrameReport r = with.renderer->render(step, cam, s, with.nodes);
+          const tsp::Image a = with.ctx->read_pixels();
+          s.reuse_image = false;
+          without.renderer->render(step, cam, s, without.nodes);
+          const tsp::Image b = without.ctx->read_pixels();
+          const std::string what = std::string(to_string(comp)) + (shade ? " lit" : " unlit") +
+                                   " step " + std::to_string(step) + " pass " +
+                                   std::to_string(pass);
+          if (shade && comp == Compositing::slices)
+            ASSERT_LT(tsp::diff_images(a, b).max, 0.5) << what << keep_failure("reuse", a, b);
+          else
+            ASSERT_EQ(a.rgba, b.rgba) << what
+                                      << (a.rgba == b.rgba ? "" : keep_failure("reuse", a, b));
+          if (step == 20) {
+            EXPECT_DOUBLE_EQ(r.redrawn_percent, 100.0) << "a new view redraws all";
+          }
+          redrawn += r.redrawn_percent;
+          ++frames;
         }
-        redrawn += r.redrawn_percent;
-        ++frames;
       }
+      EXPECT_LT(redrawn / frames, 60.0) << to_string(comp) << ": reuse kept most of the image";
     }
-    EXPECT_LT(redrawn / frames, 60.0) << to_string(comp) << ": reuse kept most of the image";
-  }
 }
 
 // The three ways of compositing textured boxes take the same samples: per-brick rays and the
@@ -597,6 +613,9 @@ TEST(VolumeRenderer, ToleranceChangeDropsUnreachableTexturesAndKeepsThePicture) 
   auto file = tsp::TspFile::open(path);
   Scene scene(path, tsp::preset_transfer_function("filled", file->tree().value_range()),
               tsp::CachePolicy::on, 80, 60, tsp::Metric::approximate);
+  // Unlit: lit, the faces beside transparent and flat bricks take one-sided differences where
+  // the baseline's are central, p99 4 against the bound of 3 (docs/rendering.md, lighting).
+  scene.shade = false;
   const tsp::Camera cam = scene.camera();
   for (int step = 0; step < 6; ++step) scene.tsp_frame(step, cam);
   const int before = scene.renderer->texture_count();

@@ -13,6 +13,7 @@
 #include "tsp/core/input_file.h"
 #include "tsp/core/temp_output.h"
 #include "tsp/core/json_text.h"
+#include "tsp/store/tsp_file.h"
 
 namespace tsp {
 
@@ -300,6 +301,10 @@ TfRangeChoice parse_tf_range(const std::string& text) {
     c.mode = TfRangeChoice::Mode::histogram;
     return c;
   }
+  if (text == "step") {
+    c.mode = TfRangeChoice::Mode::step;
+    return c;
+  }
   const auto colon = text.find(':', 1);
   double lo = 0, hi = 0;
   bool ok = colon != std::string::npos;
@@ -315,7 +320,7 @@ TfRangeChoice parse_tf_range(const std::string& text) {
   }
   if (!ok || !std::isfinite(lo) || !std::isfinite(hi) || !(lo < hi))
     throw UsageError("--tf-range '" + text +
-                     "': expected auto, data, file, histogram or LO:HI with LO < HI");
+                     "': expected auto, data, file, histogram, step or LO:HI with LO < HI");
   if (!std::isfinite(hi - lo))
     throw UsageError("--tf-range '" + text + "': HI - LO is beyond the double range; expected a "
                      "range of finite width");
@@ -368,9 +373,23 @@ ValueRange histogram_range(std::span<const std::uint64_t> histogram, ValueRange 
 }
 
 ValueRange tf_domain_of(const TfRangeChoice& c, ValueRange value_range,
-                        std::span<const std::uint64_t> histogram) {
-  return c.mode == TfRangeChoice::Mode::histogram ? histogram_range(histogram, value_range)
-                                                  : value_range;
+                        std::span<const std::uint64_t> histogram, ValueRange step_range) {
+  switch (c.mode) {
+    case TfRangeChoice::Mode::histogram:
+      return histogram_range(histogram, value_range);
+    case TfRangeChoice::Mode::step:
+      return std::isfinite(step_range.lo) && std::isfinite(step_range.hi) &&
+                     step_range.lo < step_range.hi
+                 ? step_range
+                 : value_range;
+    default:
+      return value_range;
+  }
+}
+
+ValueRange tf_domain_of(const TfRangeChoice& c, const TspFile& file, int step) {
+  return tf_domain_of(c, file.tree().value_range(), file.metadata().histogram,
+                      step_value_range(file.tree(), step));
 }
 
 TransferFunction transfer_function_from_arg(const std::string& arg, ValueRange default_domain,
@@ -387,7 +406,8 @@ TransferFunction transfer_function_from_arg(const std::string& arg, ValueRange d
     case Mode::file:
       return tf;
     case Mode::data:
-    case Mode::histogram:  // (the caller's domain is the histogram's: tf_domain_of)
+    case Mode::histogram:  // (the caller's domain is the histogram's or the step's: tf_domain_of)
+    case Mode::step:
       return rescaled(tf, data);
     case Mode::explicit_range:
       return rescaled(tf, range.range);

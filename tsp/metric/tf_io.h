@@ -9,6 +9,8 @@
 
 namespace tsp {
 
+class TspFile;
+
 /// Reads a transfer function from path: our JSON {"range":[lo,hi],"points":[[x,r,g,b,a],...]}
 /// or a ParaView colour-map preset (RGBPoints, optional opacity "Points"). Throws IoError when
 /// the file cannot be read, FormatError naming the file and the offending key otherwise.
@@ -46,14 +48,16 @@ struct TfRangeChoice {
     data,       ///< every TF stretched over the data's range
     file,       ///< a file's own range, whatever it is
     histogram,  ///< stretched over where the data is: its 1st to 99th percentile (tf_domain_of)
+    step,       ///< stretched over one step's range (render: the first step drawn; the player:
+                ///< the step shown when it is chosen)
     explicit_range  ///< stretched over `range`
   };
   Mode mode = Mode::automatic;
   ValueRange range;  ///< explicit_range only
 };
 
-/// Parses --tf-range "auto", "data", "file", "histogram" or "LO:HI" (finite, LO < HI). Throws
-/// UsageError.
+/// Parses --tf-range "auto", "data", "file", "histogram", "step" or "LO:HI" (finite, LO < HI).
+/// Throws UsageError.
 TfRangeChoice parse_tf_range(const std::string& text);
 
 /// Share of the samples left out below and above the histogram range (1 % each side).
@@ -64,10 +68,15 @@ inline constexpr double kHistogramTail = 0.01;
 /// when the histogram is empty or the quantiles meet. Never throws.
 ValueRange histogram_range(std::span<const std::uint64_t> histogram, ValueRange value_range);
 
-/// The data domain a TF is placed over for choice c: histogram_range for Mode::histogram, else
+/// The data domain a TF is placed over for choice c: histogram_range for Mode::histogram,
+/// step_range for Mode::step (value_range when step_range is not a finite lo < hi), else
 /// value_range. Never throws.
 ValueRange tf_domain_of(const TfRangeChoice& c, ValueRange value_range,
-                        std::span<const std::uint64_t> histogram);
+                        std::span<const std::uint64_t> histogram, ValueRange step_range = {});
+
+/// tf_domain_of for a .tsp's field at step `step` (its value range, histogram and the step's
+/// range). Asserts 0 <= step < steps.
+ValueRange tf_domain_of(const TfRangeChoice& c, const TspFile& file, int step);
 
 /// tf with its domain moved to `to`: every entry keeps its colour, its position mapped linearly.
 /// Throws UsageError on an invalid `to`.

@@ -1,5 +1,6 @@
 #include "tsp/tree/tsp_tree.h"
 
+#include <cassert>
 #include <cmath>
 
 #include "tsp/core/error.h"
@@ -26,6 +27,13 @@ TspTree::TspTree(Dims dims, int steps, int brick_size)
       time_(checked_time_tree(octree_, steps)),
       stats_(std::size_t(octree_.size()) * time_.size()),
       level_error_(std::size_t(octree_.level_brick_count()) * time_.steps(), 0.f) {}
+
+ValueRange step_value_range(const TspTree& tree, int t) {
+  assert(t >= 0 && t < tree.time().steps());
+  const NodeStats& s = tree.stats(tree.id(0, tree.time().leaf_of(t)));
+  if (s.empty() || !(s.min < s.max)) return tree.value_range();
+  return {s.min, s.max};
+}
 
 double coefficient_of_variation(double sigma, double mean, double range_width) {
   if (sigma == 0) return 0;

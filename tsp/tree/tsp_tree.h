@@ -81,6 +81,11 @@ class TspTree {
   ValueRange range_;
 };
 
+/// The extreme sample values of step t over the whole volume (the statistics of the root's leaf
+/// time node for t); the tree's value_range() when the step holds no sample inside the data.
+/// Asserts 0 <= t < steps.
+ValueRange step_value_range(const TspTree& tree, int t);
+
 /// COV with the spec's rule: 0 when sigma = 0; sigma / |mean| when mean ≠ 0; otherwise
 /// sigma / range_width (and 0 when that width is 0 too).
 double coefficient_of_variation(double sigma, double mean, double range_width);

@@ -182,6 +182,11 @@ TEST(TfIo, HistogramRangeIsTheCentralNinetyEightPercent) {
   EXPECT_LT(histogram_range(one, {0, 8}).lo, histogram_range(one, {0, 8}).hi);
   EXPECT_EQ(tf_domain_of(parse_tf_range("data"), {0, 100}, spike), (ValueRange{0, 100}));
   EXPECT_EQ(tf_domain_of(parse_tf_range("histogram"), {0, 100}, spike), s);
+  // step: the step's own range when it is a finite lo < hi, else the value range.
+  EXPECT_EQ(parse_tf_range("step").mode, TfRangeChoice::Mode::step);
+  EXPECT_EQ(tf_domain_of(parse_tf_range("step"), {0, 100}, spike, {20, 30}), (ValueRange{20, 30}));
+  EXPECT_EQ(tf_domain_of(parse_tf_range("step"), {0, 100}, spike, {30, 30}), (ValueRange{0, 100}));
+  EXPECT_EQ(tf_domain_of(parse_tf_range("data"), {0, 100}, spike, {20, 30}), (ValueRange{0, 100}));
   // A preset placed by transfer_function_from_arg over that domain has it as its own.
   const TransferFunction tf =
       transfer_function_from_arg("preset:sparse", s, kDefaultTfEntries, parse_tf_range("histogram"));
