@@ -7,9 +7,10 @@
 # same step at full quality (held-out pictures: not the tuning's probe steps' frames).
 #   bench/window_playback.sh FILE.tsp [extra play options...]
 # Env: TSPPLAY (build/tspplay), SIZE (1280x800), TF (preset:filled), SPEED (24), PLAY_SECONDS (10),
-#      SHOTS (5), QUALITY (1), OUT (a temporary folder, removed unless set).
+#      SHOTS (5), QUALITY (1), SHADE (on: play's default lighting; the references are rendered
+#      with the same), OUT (a temporary folder, removed unless set).
 set -euo pipefail
-[ $# -ge 1 ] || { sed -n '2,11p' "$0"; exit 2; }
+[ $# -ge 1 ] || { sed -n '2,12p' "$0"; exit 2; }
 file=$1
 shift
 tspplay=${TSPPLAY:-build/tspplay}
@@ -19,6 +20,7 @@ speed=${SPEED:-24}
 seconds=${PLAY_SECONDS:-10}
 shots=${SHOTS:-5}
 quality=${QUALITY:-1}
+shade=${SHADE:-on}
 if [ -n "${OUT:-}" ]; then out=$OUT; mkdir -p "$out"; else out=$(mktemp -d); trap 'rm -rf "$out"' EXIT; fi
 w=${size%x*} h=${size#*x}
 
@@ -45,7 +47,7 @@ play() {
     echo "quit"
   } > "$dir/script.txt"
   xvfb-run -a -s "-screen 0 ${w}x${h}x24 -noreset" "$tspplay" play "$file" --tf "$tf" \
-    --size "$size" --script "$dir/script.txt" "$@" > "$dir/play.log" 2>&1 ||
+    --size "$size" --shade "$shade" --script "$dir/script.txt" "$@" > "$dir/play.log" 2>&1 ||
     { echo "$0: play $label failed:"; tail -5 "$dir/play.log"; exit 1; } >&2
 }
 
@@ -54,7 +56,8 @@ compare() {
   local dir=$out/$1
   grep -o 'saved [^ ]*shot_[0-9]*\.png (step [0-9]*)' "$dir/play.log" | while read -r _ png _ step; do
     step=${step%)}
-    "$tspplay" render "$file" --tf "$tf" --size "$size" --steps "$step" -o "$dir/ref_$step" >/dev/null 2>&1
+    "$tspplay" render "$file" --tf "$tf" --size "$size" --shade "$shade" --steps "$step" \
+      -o "$dir/ref_$step" >/dev/null 2>&1
     local ref
     ref=$(ls "$dir/ref_$step"/*.png | head -1)
     printf '%s %s ' "$step" "$png"

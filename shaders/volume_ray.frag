@@ -27,10 +27,13 @@
 uniform float spacing;
 uniform vec3 atlas_scale;            // 1 / atlas size in texels
 uniform sampler3D pages;             // per brick: textured (xyz atlas offset, w = 1 + lx + 8·ly +
-                                     // 64·lz, l = log2 LOD factor), flat (rgb,
+                                     // 64·lz + 512·clip + 1024·row, l = log2 LOD factor,
+                                     // row = the level's TF row), flat (rgb,
                                      // w = ln(1 − α₁) < 0) or empty (x = radius of the cube of
                                      // empty bricks around it, w = 0)
 uniform vec3 cell;                   // sample spacings one brick covers, per axis
+uniform sampler2D level_tfs;         // coarse levels' TF rows (tsp/metric/level_tf.h): row r
+                                     // the TF blurred by the r-th σ, corrected for spacing
 uniform ivec3 grid;                  // bricks per axis
 #ifdef TSP_ADAPTIVE
 uniform sampler3D step_map;          // per step cell: step multiplier, TF row coordinate
@@ -38,7 +41,9 @@ uniform vec3 step_scale;             // sample point → step_map coordinate
 #endif
 const float kOpaque = 0.999;
 const float kNudge = 1e-3;
-const int kClipFlag = 512;           // BrickPages::kClipFlag           // voxels into the volume, to pick the first brick
+const int kClipFlag = 512;           // BrickPages::kClipFlag
+const int kLevelRowUnit = 1024;      // BrickPages::kLevelRowUnit: code / it = the TF row
+const float kLevelTfRows = 16.0;     // tsp::kLevelTfRows           // voxels into the volume, to pick the first brick
 out vec4 colour;
 
 // The surface of probe `probe` at sample point p seen along ray, opaque: the value at texture
@@ -112,6 +117,14 @@ bool neighbour_tap(vec3 q, int axis, vec3 lo, vec3 hi, out float v) {
   v = texture(volume, clamp((p + pn.xyz) * atlas_scale, (lo_n + pn.xyz) * atlas_scale,
                             (min(lo_n + cell, box_hi) + pn.xyz) * atlas_scale)).r;
   return true;
+}
+
+// A level brick's sample through its TF row (the TF averaged over the spread of the voxels it
+// stands for): stencil and shading as sample_colour's point lookup.
+vec4 sample_level(vec3 tc, vec3 lo, vec3 hi, int row) {
+  if (use_stencil != 0 && texture(volume, clamp(tc, lo, hi)).g < 0.5) return vec4(0.0);
+  return shade(texture(level_tfs, vec2(tf_coord(tc, lo, hi), (float(row) + 0.5) / kLevelTfRows)),
+               tc, lo, hi);
 }
 
 // A sample standing for k (≤ 1) of its full segment: opacity 1 − (1 − α)^k, premultiplied.
@@ -207,7 +220,8 @@ void main() {
     if (page.w > 0.5) {
       int code = int(page.w + 0.5) - 1;
       // Only bricks the clip surface may cross test their samples against the solid.
-      bool brick_clip = clip_on() && code >= kClipFlag;
+      bool brick_clip = clip_on() && (code & kClipFlag) != 0;
+      int tf_row = code / kLevelRowUnit;  // a level brick's TF row (0: the TF itself)
       code &= kClipFlag - 1;
       g_brick = c;
       g_page = page;
@@ -390,7 +404,13 @@ void main() {
               continue;
             }
           }
-          vec4 s = sample_colour(tc, 0.5 * dtc, tc_lo, tc_hi, u_prev);
+          vec4 s;
+          if (tf_row > 0) {
+            s = sample_level(tc, tc_lo, tc_hi, tf_row);
+            u_prev = -1.0;  // (no pre-integrated run through a level row)
+          } else {
+            s = sample_colour(tc, 0.5 * dtc, tc_lo, tc_hi, u_prev);
+          }
           if (s.a > 0.0) {
             float a = 1.0 - pow(max(1.0 - s.a, 0.0), (hi_j - lo_j) / dt);
             s = vec4(s.rgb * (a / s.a), a);

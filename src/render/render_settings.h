@@ -62,6 +62,11 @@ struct RenderSettings {
   /// default (issue 29): docs/rendering.md says where the brick grid's picture differs from
   /// the whole-volume paths' (dense, baseline).
   bool shade = true;
+  /// The one-pass caster classifies an LOD level brick with the TF averaged over the spread of
+  /// the voxels each of its samples stands for (the level's residual σ: tsp/metric/level_tf.h),
+  /// so thin TF bands survive at coarse levels; false: the TF itself (LaMar's opacity
+  /// correction alone). Slices and boxes compositing always use the TF itself.
+  bool level_tf = true;
   /// Keep the last frame's pixels whose rays meet only bricks drawn as before (same view, TF and
   /// knobs), drawing only the rectangles of the bricks that changed (image_reuse.h). Exact.
   bool reuse_image = true;

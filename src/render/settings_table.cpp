@@ -62,6 +62,12 @@ std::vector<SettingSpec> make_table() {
                        "the premultiplied TF colour by at most this much (e.g. 0.005; 0: off)",
                .get = [](const RenderSettings& s) { return number_text(s.sampling_tol); },
                .set = [](RenderSettings& s, double v) { s.sampling_tol = v; }});
+  t.push_back({.name = "level-tf", .kind = K::toggle, .group = G::quality, .unit = {}, .lo = 0, .hi = 0,
+               .choices = kToggle,
+               .help = "LOD level bricks (rays) classified by the TF averaged over the spread of "
+                       "the voxels a sample stands for, so thin TF bands survive coarse levels",
+               .get = [](const RenderSettings& s) { return on_off(s.level_tf); },
+               .set = [](RenderSettings& s, double v) { s.level_tf = v != 0; }});
   t.push_back({.name = "span-step", .kind = K::choice, .group = G::quality, .unit = {}, .lo = 0, .hi = 0,
                .choices = kSpanStepWords,
                .help = "What textures a span of several steps: its first step (the paper's), "

@@ -9,6 +9,7 @@
 
 #include "gl/gl_error.h"
 #include "tsp/frame/sample_steps.h"
+#include "tsp/metric/level_tf.h"
 
 namespace tspgl {
 
@@ -20,6 +21,7 @@ constexpr int kPreintegratedUnit = 3;  // texture unit of the pre-integrated TF 
 constexpr int kSurfaceTfUnit = 4;      // texture unit of the clip surface's colours
 constexpr int kStepMapUnit = 5;        // texture unit of adaptive sampling's per-brick steps
 constexpr int kTfRowsUnit = 6;         // texture unit of adaptive sampling's TF rows
+constexpr int kLevelTfUnit = 7;        // texture unit of the coarse levels' TF rows
 // Largest opacity per voxel a flat box is given, so that ln(1 − α) stays finite.
 constexpr float kMaxFlatAlpha = 1.f - 1e-6f;
 
@@ -75,7 +77,8 @@ void BrickPages::set_flat(int b, const tsp::Rgba& c) {
   f[3] = log_transmittance(c.a);
 }
 
-void BrickPages::set_textured(int b, const BrickSlot& slot, bool clipped) {
+void BrickPages::set_textured(int b, const BrickSlot& slot, bool clipped, int tf_row) {
+  assert(tf_row >= 0 && tf_row < tsp::kLevelTfRows);
   atlas_ = slot;
   float* w = &texels_[4 * std::size_t(b)];
   w[0] = slot.offset[0];
@@ -89,7 +92,8 @@ void BrickPages::set_textured(int b, const BrickSlot& slot, bool clipped) {
     code = code * (kMaxPageLevel + 1) + l;
   }
   // + kClipFlag: the clip surface may cross it (its samples are tested against the solid).
-  w[3] = 1.f + float(code + (clipped ? kClipFlag : 0));
+  // + row · kLevelRowUnit: a level brick's TF row (exact in a float: below 2^24).
+  w[3] = 1.f + float(code + (clipped ? kClipFlag : 0) + tf_row * kLevelRowUnit);
 }
 
 void BrickPages::finish() {
@@ -194,6 +198,7 @@ void SliceCompositor::set_units(const Program& p) {
   gl_.Uniform1i(p.uniform("surface_tf"), kSurfaceTfUnit);
   gl_.Uniform1i(p.uniform("step_map"), kStepMapUnit);
   gl_.Uniform1i(p.uniform("tf_rows"), kTfRowsUnit);
+  gl_.Uniform1i(p.uniform("level_tfs"), kLevelTfUnit);
 }
 
 void SliceCompositor::set_clip(const tsp::ClipRegion& clip, const tsp::TransferFunction* surface,
@@ -346,6 +351,7 @@ void SliceCompositor::begin_frame(const tsp::Camera& camera, const RenderSetting
   if (surface_on_) surface_tf_.bind_opaque(kSurfaceTfUnit);
   tf_.bind(kTfUnit, settings.spacing);
   if (adaptive_) tf_.bind_rows(kTfRowsUnit, settings.spacing);
+  tf_.bind_levels(kLevelTfUnit, settings.spacing);  // (read by level pages with a row)
   gl_.ActiveTexture(GL_TEXTURE0 + kVolumeUnit);
   gl_.BeginQuery(GL_SAMPLES_PASSED, fragments_query_);
 }

@@ -50,10 +50,14 @@ class BrickPages {
   /// Brick b drawn flat in c (opacity per voxel of depth; below kMinFlatAlpha it stays empty).
   void set_flat(int b, const tsp::Rgba& c);
   /// Brick b sampled from slot (a leaf's, or a level brick's covering b: slot.scale < 1); with
-  /// clipped, the clip surface may cross it and the ray caster tests its samples.
-  void set_textured(int b, const BrickSlot& slot, bool clipped = false);
+  /// clipped, the clip surface may cross it and the ray caster tests its samples; a level
+  /// brick's tf_row > 0 (< tsp::kLevelTfRows) samples that row of the levels' TF table
+  /// (tsp/metric/level_tf.h) instead of the TF.
+  void set_textured(int b, const BrickSlot& slot, bool clipped = false, int tf_row = 0);
   /// Added to a textured page's code when its samples are tested against the clip solid.
   static constexpr int kClipFlag = 512;
+  /// A textured page's code carries its TF row times this.
+  static constexpr int kLevelRowUnit = 1024;
   /// After the last set_*: gives every empty brick the radius of the cube of empty bricks centred
   /// on it (Chebyshev distance to the nearest non-empty brick − 1, at most kMaxLeapRadius), which
   /// the ray caster leaps over.

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "tsp/frame/sample_steps.h"
+#include "tsp/metric/level_tf.h"
 #include "tsp/metric/preintegration.h"
 
 namespace tspgl {
@@ -12,12 +13,14 @@ TfTexture::TfTexture(const GlApi& gl) : gl_(gl) {
   gl_.GenTextures(1, &id_);
   gl_.GenTextures(1, &table_id_);
   gl_.GenTextures(1, &rows_id_);
+  gl_.GenTextures(1, &levels_id_);
 }
 
 TfTexture::~TfTexture() {
   gl_.DeleteTextures(1, &id_);
   gl_.DeleteTextures(1, &table_id_);
   gl_.DeleteTextures(1, &rows_id_);
+  gl_.DeleteTextures(1, &levels_id_);
 }
 
 void TfTexture::set(const tsp::TransferFunction& tf, tsp::ValueRange quantized) {
@@ -25,6 +28,7 @@ void TfTexture::set(const tsp::TransferFunction& tf, tsp::ValueRange quantized) 
   spacing_ = -1;  // re-uploaded, corrected for the spacing, by the next bind
   table_spacing_ = -1;
   rows_spacing_ = -1;
+  levels_spacing_ = -1;
   opaque_current_ = false;
   // A normalised code s means v = q.lo + s·q.width; its TF coordinate is (v − tf.lo)/tf.width.
   const tsp::ValueRange d = tf.domain();
@@ -70,6 +74,27 @@ void TfTexture::bind_rows(int unit, double spacing) {
                  GLsizei(tsp::kStepMultipliers.size()), 0, GL_RGBA, GL_FLOAT, rgba.data());
   check_gl(gl_, "uploading the adaptive sampling's transfer functions");
   rows_spacing_ = spacing;
+}
+
+void TfTexture::bind_levels(int unit, double spacing) {
+  gl_.ActiveTexture(GLenum(GL_TEXTURE0 + unit));
+  gl_.BindTexture(GL_TEXTURE_2D, levels_id_);
+  if (spacing == levels_spacing_) return;
+  std::vector<float> rgba;
+  rgba.reserve(std::size_t(tf_.size()) * 4 * tsp::kLevelTfRows);
+  for (int row = 0; row < tsp::kLevelTfRows; ++row)
+    for (const tsp::Rgba& e : tsp::blurred_entries(tf_, tsp::level_tf_sigma(row))) {
+      const float a = tsp::corrected_opacity(e.a, spacing);
+      rgba.insert(rgba.end(), {e.r * a, e.g * a, e.b * a, a});
+    }
+  gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, GLsizei(tf_.size()), GLsizei(tsp::kLevelTfRows),
+                 0, GL_RGBA, GL_FLOAT, rgba.data());
+  check_gl(gl_, "uploading the coarse levels' transfer functions");
+  levels_spacing_ = spacing;
 }
 
 void TfTexture::bind_opaque(int unit) {

@@ -33,6 +33,11 @@ class TfTexture {
   /// `unit`: row r is the lookup of bind() for a spacing of spacing·tsp::kStepMultipliers[r];
   /// re-uploads first when the TF or spacing changed. Throws tsp::GlError.
   void bind_rows(int unit, double spacing);
+  /// Binds the K × tsp::kLevelTfRows table of coarse LOD levels (tsp/metric/level_tf.h) to
+  /// texture unit `unit`: row r is the lookup of bind() for the TF blurred by
+  /// tsp::level_tf_sigma(r); re-uploads first when the TF or spacing changed. Throws
+  /// tsp::GlError.
+  void bind_levels(int unit, double spacing);
   /// Binds the TF's colours, opaque and not premultiplied (a probe surface's lookup), to
   /// texture unit `unit`, re-uploading first when the TF changed. Throws tsp::GlError.
   void bind_opaque(int unit);
@@ -43,11 +48,12 @@ class TfTexture {
 
  private:
   const GlApi& gl_;
-  GLuint id_ = 0, table_id_ = 0, rows_id_ = 0;
+  GLuint id_ = 0, table_id_ = 0, rows_id_ = 0, levels_id_ = 0;
   double scale_ = 1, offset_ = 0;
   double spacing_ = -1;             ///< spacing the texture was corrected for (−1: stale)
   double table_spacing_ = -1;       ///< spacing the pre-integrated table was made for
   double rows_spacing_ = -1;        ///< spacing the adaptive rows were made for
+  double levels_spacing_ = -1;      ///< spacing the level rows were made for
   bool opaque_current_ = false;     ///< the opaque colours are uploaded (bind_opaque)
   tsp::TransferFunction tf_;        ///< the TF as given (uncorrected, not premultiplied)
 };

@@ -6,6 +6,7 @@
 #include "tsp/core/stopwatch.h"
 #include "tsp/frame/frame_plan.h"
 #include "tsp/frame/slicer.h"
+#include "tsp/metric/level_tf.h"
 #include "tsp/tree/traversal.h"
 
 namespace tspgl {
@@ -82,6 +83,7 @@ VolumeRenderer::ReuseKey VolumeRenderer::reuse_key(const tsp::Camera& camera,
   k.exact_flat = s.exact_flat;
   k.preintegrated = s.preintegrated;
   k.shade = s.shade;
+  k.level_tf = s.level_tf;
   k.skip_transparent = s.skip_transparent;
   k.background = s.background;
   k.tf_serial = tf_serial_;
@@ -268,7 +270,8 @@ bool VolumeRenderer::leaf_clipped(int brick) const {
          clip_sides_[std::size_t(tree_.octree().brick_node(brick))] != tsp::ClipSide::kept;
 }
 
-void VolumeRenderer::fill_pages(const tsp::FramePlan& plan, tsp::FrameMetric& metric) {
+void VolumeRenderer::fill_pages(const tsp::FramePlan& plan, tsp::FrameMetric& metric,
+                                bool level_tf) {
   const tsp::Octree& octree = tree_.octree();
   const auto g = octree.brick_grid();
   pages_.reset(g, {octree.brick_cells(0), octree.brick_cells(1), octree.brick_cells(2)});
@@ -294,10 +297,14 @@ void VolumeRenderer::fill_pages(const tsp::FramePlan& plan, tsp::FrameMetric& me
         // A level brick: the full-resolution traversal still decides, leaf page by leaf page,
         // what is skipped (transparent) or drawn flat (coherent); the rest samples the level.
         const BrickSlot slot = textures_.at(pt.key);
+        // Its TF row: the level's residual at this step, as a share of the TF's domain.
+        const int row = level_tf ? tsp::level_tf_row(double(tree_.level_error(o, pt.key.t0)) /
+                                                     tf_.domain().width())
+                                 : 0;
         octree.for_each_brick(o, [&](int b) {
           const LeafShading& ls = leaf_shading_[std::size_t(b)];
           if (ls.shading == tsp::Shading::textured)
-            pages_.set_textured(b, slot, leaf_clipped(b));
+            pages_.set_textured(b, slot, leaf_clipped(b), row);
           else if (ls.shading == tsp::Shading::flat)
             pages_.set_flat(b, metric.mean_colour(ls.tsp_id));
         });
@@ -431,7 +438,7 @@ void VolumeRenderer::compose(const Frame& f, const tsp::Camera& camera, tsp::Fra
     pages_.finish();
     compositor_->set_pages(pages_, octree.dims(), bounds);
   } else if (rays) {
-    fill_pages(f.plan, metric);
+    fill_pages(f.plan, metric, f.settings.level_tf);
     compositor_->set_pages(pages_, octree.dims(), bounds);
   } else {
     fill_items(f.plan, metric, camera, f.settings);

@@ -114,6 +114,7 @@ class VolumeRenderer {
     double spacing = 0;
     Compositing compositing = Compositing::rays;
     bool exact_flat = true, preintegrated = false, shade = false, skip_transparent = true;
+    bool level_tf = false;
     std::array<float, 3> background{};
     std::uint64_t tf_serial = 0;
     std::uint64_t clip_serial = 0;
@@ -176,7 +177,7 @@ class VolumeRenderer {
   void report(const tsp::FramePlan& plan, FrameReport& r) const;
   void fill_items(const tsp::FramePlan& plan, tsp::FrameMetric& metric, const tsp::Camera& camera,
                   const RenderSettings& settings);
-  void fill_pages(const tsp::FramePlan& plan, tsp::FrameMetric& metric);
+  void fill_pages(const tsp::FramePlan& plan, tsp::FrameMetric& metric, bool level_tf);
   // True when the clip surface may cross leaf brick `brick` (its node is not wholly kept).
   bool leaf_clipped(int brick) const;
   // True when plan textures every leaf brick at full resolution (fills dense_keys_).

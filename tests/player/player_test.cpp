@@ -831,14 +831,15 @@ TEST(Player, ProbesClipAsRenderDoesAndMoveFromTheScript) {
 }
 
 // One settings table for both commands: the same options on `play` (paused, full quality) and
-// `render` give the same picture — the defaults, slices at spacing 2 with a temporal tolerance,
-// a sphere probe with its surface, rays with pre-integration.
+// `render` give the same picture — the defaults (lit), slices at spacing 2 with a temporal
+// tolerance (unlit), a sphere probe with its surface, rays with pre-integration (unlit).
 TEST(Player, PausedPlayerDrawsWhatRenderDrawsForTheSameSettings) {
   if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
   const fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
   const std::vector<std::string> configurations = {
-      "", "--compositing slices --spacing 2 --temporal-tol 0.02",
-      "--probe sphere:15,14,13,9 --probe-surface on", "--compositing rays --preintegrated on"};
+      "", "--shade off --compositing slices --spacing 2 --temporal-tol 0.02",
+      "--probe sphere:15,14,13,9 --probe-surface on",
+      "--compositing rays --preintegrated on --shade off"};
   for (std::size_t k = 0; k < configurations.size(); ++k) {
     const std::string& o = configurations[k];
     const fs::path shot = dir / ("p" + std::to_string(k) + ".png"), out = dir / ("r" + std::to_string(k));
