@@ -110,7 +110,7 @@ const CommandRegistrar reg(35, [](CLI::App& app) {
   c->add_option("--tf", a->options.tf,
                 "Transfer function: a JSON file or preset:NAME (default preset:sparse)");
   c->add_option("--tf-range", a->options.tf_range,
-                "Where the TF sits over the data: auto, data, file, histogram (1st-99th percentile), step (the range of --step) or LO:HI (as for render)");
+                "Where the TF sits over the data: auto, data, file, histogram (1st-99th percentile), step (the range of --step), visible (what the starting view shows of it) or LO:HI (as for render)");
   c->add_option("--step", a->options.step, "Step shown first (default 0)");
   c->add_option("--screenshot", a->options.screenshot,
                 "Save the first complete frame (volume only) as PNG and exit");

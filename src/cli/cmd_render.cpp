@@ -196,8 +196,8 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
   c->add_option("--tf-range", a->tf_range,
                 "Where the TF sits over the data: auto (presets and normalised [0,1] maps "
                 "stretched over the data, other files as written), data, file, histogram (the "
-                "1st to 99th percentile of the samples), step (the range of the first step drawn) "
-                "or LO:HI");
+                "1st to 99th percentile of the samples), step (the range of the first step drawn), "
+                "visible (what this view and the probes show of it) or LO:HI");
   on_off_option(c, "--annotate", a->annotate,
               "Draw the outline box, an axes triad, a colour legend with ticks and the step (and "
               "time) into every frame (and so into --movie)");

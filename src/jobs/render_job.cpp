@@ -11,6 +11,7 @@
 #include "jobs/annotate.h"
 #include "jobs/calibration.h"
 #include "jobs/movie.h"
+#include "jobs/visible_range.h"
 #include "render/settings_table.h"
 #include "render/baseline_renderer.h"
 #include "render/volume_renderer.h"
@@ -239,10 +240,16 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
   // Physical proportions: the file's voxel spacing (times --scale) shapes the view.
   place_field(options.camera, *file, options.scale, options.physical_proportions);
   const int last = checked_last_step(tree, options.first_step, options.last_step, options.tsp_path);
+  // Where the TF sits: --tf-range visible takes what this view shows of the first step.
+  const tsp::ValueRange tf_domain =
+      options.tf_range.mode == tsp::TfRangeChoice::Mode::visible
+          ? visible_value_range(tree, options.first_step,
+                                tsp::Camera(tree.octree().dims(), options.camera),
+                                tsp::ClipRegion(options.probes, options.probe_op,
+                                                file->metadata().origin, file->metadata().spacing))
+          : tsp::tf_domain_of(options.tf_range, *file, options.first_step);
   const tsp::TransferFunction tf = tsp::transfer_function_from_arg(
-      options.tf,
-      tsp::tf_domain_of(options.tf_range, *file, options.first_step),
-      tsp::kDefaultTfEntries, options.tf_range);
+      options.tf, tf_domain, tsp::kDefaultTfEntries, options.tf_range);
   // Every output is checked before any work and replaced only when the whole job succeeded.
   const tsp::InputGuard inputs({options.tsp_path, options.tf, options.probe_tf});
   std::optional<tsp::OutputFolder> folder;
@@ -291,7 +298,7 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
     surface = o.probe_tf.empty() ? tf
                                  : tsp::transfer_function_from_arg(
                                        o.probe_tf,
-                                       tsp::tf_domain_of(o.tf_range, *file, o.first_step),
+                                       tf_domain,
                                        tsp::kDefaultTfEntries, o.tf_range);
   auto set_clip = [&](int frame) {
     std::vector<tsp::Probe> probes = o.probes;

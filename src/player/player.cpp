@@ -152,6 +152,12 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
   state.probe_surface = options.probe_surface;
   (void)tsp::ClipRegion(state.probes, state.probe_op, file->metadata().origin, file->metadata().spacing);
   if (!state.probes.empty()) probe_selected = 0;
+  if (range.mode == tsp::TfRangeChoice::Mode::visible) {  // now that view and probes are known
+    ScriptAction fit;
+    fit.kind = ScriptAction::Kind::tf_range;
+    fit.text = "visible";
+    apply(fit);
+  }
 
   ctx = tspgl::create_window_context(options.width, options.height, "tspplay - " + options.tsp_path,
                                      true);

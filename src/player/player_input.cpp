@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "jobs/visible_range.h"
 #include "player/player_app.h"
 #include "tsp/core/error.h"
 #include "tsp/metric/tf_io.h"
@@ -141,8 +142,13 @@ void PlayerApp::apply(const ScriptAction& a) {
     case Kind::tf_range: {  // the map as it is, stretched over the chosen range
       const tsp::TfRangeChoice c = tsp::parse_tf_range(a.text);
       const tsp::ValueRange to =
-          c.mode == tsp::TfRangeChoice::Mode::explicit_range
-              ? c.range
+          c.mode == tsp::TfRangeChoice::Mode::explicit_range ? c.range
+          : c.mode == tsp::TfRangeChoice::Mode::visible
+              ? tspgl::visible_value_range(
+                    file->tree(), state.step,
+                    tsp::Camera(file->tree().octree().dims(), state.camera),
+                    tsp::ClipRegion(state.probes, state.probe_op, file->metadata().origin,
+                                    file->metadata().spacing))
               : tsp::tf_domain_of(c, *file, state.step);
       set_tf(tsp::rescaled(tf, to), true);
       status = "transfer function stretched over " + a.text + " [" + std::to_string(to.lo) +

@@ -199,7 +199,6 @@ void tf_section(PlayerApp& app) {
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Stretch the map over where the data is: the 1st to 99th percentile of\n"
                       "every sample (tf-range histogram)");
-  ImGui::SameLine();
   if (ImGui::Button("fit to step")) {  // over the range of the step shown
     ScriptAction fit;
     fit.kind = ScriptAction::Kind::tf_range;
@@ -208,6 +207,16 @@ void tf_section(PlayerApp& app) {
   }
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Stretch the map over the range of the step shown (tf-range step)");
+  ImGui::SameLine();
+  if (ImGui::Button("fit to view")) {  // over what the view shows of the step
+    ScriptAction fit;
+    fit.kind = ScriptAction::Kind::tf_range;
+    fit.text = "visible";
+    app.command(fit);
+  }
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Stretch the map over the values of the bricks in view and inside the\n"
+                      "clip probes, at the step shown (tf-range visible)");
 
   static char path[512] = "";
   if (path[0] == 0) std::snprintf(path, sizeof path, "%s", app.tf_path.c_str());

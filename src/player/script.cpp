@@ -104,7 +104,7 @@ ScriptAction parse_words(const LineParser& p) {
     a.kind = Kind::tf;
     a.text = p.words[1];
   } else if (cmd == "tf-range") {
-    p.expect_args(1, "tf-range data|histogram|step|LO:HI");
+    p.expect_args(1, "tf-range data|histogram|step|visible|LO:HI");
     a.kind = Kind::tf_range;
     a.text = p.words[1];
   } else if (cmd == "tolerance") {
@@ -254,10 +254,10 @@ void validate(const ScriptAction& a) {
     case Kind::tf_range: {
       const tsp::TfRangeChoice c = tsp::parse_tf_range(a.text);  // throws UsageError
       if (c.mode != tsp::TfRangeChoice::Mode::data && c.mode != tsp::TfRangeChoice::Mode::histogram &&
-          c.mode != tsp::TfRangeChoice::Mode::step &&
+          c.mode != tsp::TfRangeChoice::Mode::step && c.mode != tsp::TfRangeChoice::Mode::visible &&
           c.mode != tsp::TfRangeChoice::Mode::explicit_range)
         fail("tf-range '" + a.text +
-             "': the map shown is stretched over data, histogram, step or LO:HI");
+             "': the map shown is stretched over data, histogram, step, visible or LO:HI");
       break;
     }
     case Kind::tolerance:

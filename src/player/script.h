@@ -24,7 +24,7 @@ struct ScriptAction {
     loop,           ///< loop on (`flag`) or off
     tf,             ///< transfer function `text`: a file or preset:NAME
     tf_range,       ///< the TF as it is, stretched over `text`: data, histogram, step (the
-                    ///< step shown) or LO:HI
+                    ///< step shown), visible (what the view shows of it) or LO:HI
     tolerance,      ///< spatial `value`, temporal `value2`
     setting,        ///< render setting `text` (a row of render/settings_table.h) set to `text2`
     metric,         ///< metric `text`

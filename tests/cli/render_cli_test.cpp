@@ -14,6 +14,7 @@
 #include "tsp/report/image.h"
 #include "tsp/report/image_diff.h"
 #include "tsp/source/open_source.h"
+#include "tsp/store/tsp_file.h"
 
 namespace {
 
@@ -322,6 +323,58 @@ TEST(RenderCli, TfRangeStepStretchesTheMapOverTheStepsRange) {
   r = run_tspplay("render " + q(dir / "v.tsp") + " --tf-range steps -o " + q(dir / "bad"));
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("step"), std::string::npos) << r.err;
+}
+
+// --tf-range visible: the map over the values of the leaf bricks the view shows — with a plane
+// probe keeping x <= 4, the column of bricks at x = 0 alone — checked against the source's own
+// samples inside those bricks' boxes; with the whole volume in view and no probe, the step's
+// range.
+TEST(RenderCli, TfRangeVisibleTakesTheBricksInViewAndInsideTheProbes) {
+  const fs::path dir = tsptest::temp_dir();
+  ASSERT_EQ(run_tspplay("generate vortex -o " + q(dir / "v.h5") + " --dims 24,24,24 --steps 6")
+                .exit_code, 0);
+  ASSERT_EQ(run_tspplay("build " + q(dir / "v.h5") + " --field vortex --brick 8 -o " +
+                        q(dir / "v.tsp")).exit_code, 0);
+  // The bricks' own boxes at x = 0 reach up to x_hi (the plane at 4 removes the next column).
+  auto file = tsp::TspFile::open((dir / "v.tsp").string());
+  const tsp::Octree& octree = file->tree().octree();
+  int x_hi = 0;
+  for (int o = 0; o < octree.size(); ++o)
+    if (octree.node(o).is_leaf() && octree.node(o).box.lo[0] == 0)
+      x_hi = std::max(x_hi, octree.node(o).box.hi[0]);
+  ASSERT_GT(x_hi, 4);
+  ASSERT_LT(x_hi, 12);
+  tsp::SourceOptions so;
+  so.field = "vortex";
+  auto src = tsp::open_source((dir / "v.h5").string(), so);
+  const tsp::Dims d = src->dims();
+  std::vector<float> v(std::size_t(d.count()));
+  src->read_step(2, v);
+  float lo = 1e30f, hi = -1e30f;
+  for (int z = 0; z < d.z; ++z)
+    for (int y = 0; y < d.y; ++y)
+      for (int x = 0; x < x_hi; ++x) {
+        const float s = v[std::size_t(x + d.x * (y + std::int64_t(d.y) * z))];
+        lo = std::min(lo, s);
+        hi = std::max(hi, s);
+      }
+  const float step_lo = *std::min_element(v.begin(), v.end());
+  const float step_hi = *std::max_element(v.begin(), v.end());
+  ASSERT_TRUE(lo > step_lo || hi < step_hi) << "the column must span less than the step";
+  const std::string common = " --steps 2 --size 96x72 --tf-range visible --save-tf ";
+  auto r = run_tspplay("render " + q(dir / "v.tsp") + common + q(dir / "probe.json") +
+                       " --probe plane:1,0,0,4 -o " + q(dir / "probe"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const tsp::ValueRange p = tsp::load_transfer_function((dir / "probe.json").string()).domain();
+  const double tol = 1e-5 * (step_hi - step_lo);
+  EXPECT_NEAR(p.lo, lo, tol);
+  EXPECT_NEAR(p.hi, hi, tol);
+  r = run_tspplay("render " + q(dir / "v.tsp") + common + q(dir / "all.json") + " -o " +
+                  q(dir / "all"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const tsp::ValueRange a = tsp::load_transfer_function((dir / "all.json").string()).domain();
+  EXPECT_NEAR(a.lo, step_lo, tol);
+  EXPECT_NEAR(a.hi, step_hi, tol);
 }
 
 }  // namespace

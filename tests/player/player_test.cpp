@@ -472,7 +472,7 @@ TEST(Player, PlaysSeveralWrfFieldsOnTheirOwnGrids) {
       "stats " + (dir / "t.json").string() + "\nfield W\nstats " + (dir / "w.json").string() +
       "\ntf-range histogram\nstats " + (dir / "h.json").string() + "\ntf-range -1:2\nstats " +
       (dir / "e.json").string() + "\nstep 3\ntf-range step\nstats " + (dir / "s.json").string() +
-      "\nquit\n");
+      "\ntf-range visible\nstats " + (dir / "v.json").string() + "\nquit\n");
   auto r = run_tspplay("play " + q(wrf) + " --field T,W,QVAPOR --cache-dir " + q(dir / "cache") +
                        " --size " + kSize + " --script " + q(script));
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -497,6 +497,10 @@ TEST(Player, PlaysSeveralWrfFieldsOnTheirOwnGrids) {
   const double tol = 1e-5 * (*vhi - *vlo);
   EXPECT_NEAR(double(st["tf_domain"][0]), *vlo, tol);
   EXPECT_NEAR(double(st["tf_domain"][1]), *vhi, tol);
+  // tf-range visible ("fit to view"): the whole volume is in view, so the step's range again.
+  const nlohmann::json vis = read_json(dir / "v.json");
+  EXPECT_NEAR(double(vis["tf_domain"][0]), *vlo, tol);
+  EXPECT_NEAR(double(vis["tf_domain"][1]), *vhi, tol);
   EXPECT_EQ(t["field"], "T");
   EXPECT_EQ(w["field"], "W");
   EXPECT_EQ(t["steps_ready"].size(), 4u);

@@ -170,11 +170,12 @@ TEST(PlayerScript, ErrorsNameTheLineAndWhatWasExpected) {
   EXPECT_NE(error_of("record m.avi").find("expected a .mp4 or .gif file name, or stop"),
             std::string::npos);
   EXPECT_NE(error_of("open").find("'open' takes a path"), std::string::npos);
-  EXPECT_NE(error_of("tf-range file").find("data, histogram, step or LO:HI"), std::string::npos);
-  EXPECT_NE(error_of("tf-range 3:1").find("expected auto, data, file, histogram, step or"),
+  EXPECT_NE(error_of("tf-range file").find("data, histogram, step, visible or LO:HI"), std::string::npos);
+  EXPECT_NE(error_of("tf-range 3:1").find("expected auto, data, file, histogram, step, visible or"),
             std::string::npos) << error_of("tf-range 3:1");
   EXPECT_EQ(parse_script("tf-range histogram\ntf-range -1:2\n", "r.txt")[1].text, "-1:2");
   EXPECT_EQ(parse_script("tf-range step\n", "r.txt")[0].text, "step");
+  EXPECT_EQ(parse_script("tf-range visible\n", "r.txt")[0].text, "visible");
   EXPECT_NE(error_of("open a.raw U V").find("expected 'open PATH [FIELD] [--OPTION"),
             std::string::npos);
   EXPECT_NE(error_of("panels maybe").find("expected on or off"), std::string::npos);

@@ -305,6 +305,10 @@ TfRangeChoice parse_tf_range(const std::string& text) {
     c.mode = TfRangeChoice::Mode::step;
     return c;
   }
+  if (text == "visible") {
+    c.mode = TfRangeChoice::Mode::visible;
+    return c;
+  }
   const auto colon = text.find(':', 1);
   double lo = 0, hi = 0;
   bool ok = colon != std::string::npos;
@@ -320,7 +324,7 @@ TfRangeChoice parse_tf_range(const std::string& text) {
   }
   if (!ok || !std::isfinite(lo) || !std::isfinite(hi) || !(lo < hi))
     throw UsageError("--tf-range '" + text +
-                     "': expected auto, data, file, histogram, step or LO:HI with LO < HI");
+                     "': expected auto, data, file, histogram, step, visible or LO:HI with LO < HI");
   if (!std::isfinite(hi - lo))
     throw UsageError("--tf-range '" + text + "': HI - LO is beyond the double range; expected a "
                      "range of finite width");
@@ -378,6 +382,7 @@ ValueRange tf_domain_of(const TfRangeChoice& c, ValueRange value_range,
     case TfRangeChoice::Mode::histogram:
       return histogram_range(histogram, value_range);
     case TfRangeChoice::Mode::step:
+    case TfRangeChoice::Mode::visible:
       return std::isfinite(step_range.lo) && std::isfinite(step_range.hi) &&
                      step_range.lo < step_range.hi
                  ? step_range
@@ -408,6 +413,7 @@ TransferFunction transfer_function_from_arg(const std::string& arg, ValueRange d
     case Mode::data:
     case Mode::histogram:  // (the caller's domain is the histogram's or the step's: tf_domain_of)
     case Mode::step:
+    case Mode::visible:
       return rescaled(tf, data);
     case Mode::explicit_range:
       return rescaled(tf, range.range);

@@ -50,13 +50,16 @@ struct TfRangeChoice {
     histogram,  ///< stretched over where the data is: its 1st to 99th percentile (tf_domain_of)
     step,       ///< stretched over one step's range (render: the first step drawn; the player:
                 ///< the step shown when it is chosen)
+    visible,    ///< over the range of what the view shows of that step (the app computes it:
+                ///< tspgl::visible_value_range; tf_domain_of gives the step's range)
     explicit_range  ///< stretched over `range`
   };
   Mode mode = Mode::automatic;
   ValueRange range;  ///< explicit_range only
 };
 
-/// Parses --tf-range "auto", "data", "file", "histogram", "step" or "LO:HI" (finite, LO < HI).
+/// Parses --tf-range "auto", "data", "file", "histogram", "step", "visible" or "LO:HI" (finite,
+/// LO < HI).
 /// Throws UsageError.
 TfRangeChoice parse_tf_range(const std::string& text);
 
@@ -69,7 +72,8 @@ inline constexpr double kHistogramTail = 0.01;
 ValueRange histogram_range(std::span<const std::uint64_t> histogram, ValueRange value_range);
 
 /// The data domain a TF is placed over for choice c: histogram_range for Mode::histogram,
-/// step_range for Mode::step (value_range when step_range is not a finite lo < hi), else
+/// step_range for Mode::step and Mode::visible (value_range when step_range is not a finite
+/// lo < hi), else
 /// value_range. Never throws.
 ValueRange tf_domain_of(const TfRangeChoice& c, ValueRange value_range,
                         std::span<const std::uint64_t> histogram, ValueRange step_range = {});

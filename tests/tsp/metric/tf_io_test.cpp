@@ -184,6 +184,7 @@ TEST(TfIo, HistogramRangeIsTheCentralNinetyEightPercent) {
   EXPECT_EQ(tf_domain_of(parse_tf_range("histogram"), {0, 100}, spike), s);
   // step: the step's own range when it is a finite lo < hi, else the value range.
   EXPECT_EQ(parse_tf_range("step").mode, TfRangeChoice::Mode::step);
+  EXPECT_EQ(parse_tf_range("visible").mode, TfRangeChoice::Mode::visible);
   EXPECT_EQ(tf_domain_of(parse_tf_range("step"), {0, 100}, spike, {20, 30}), (ValueRange{20, 30}));
   EXPECT_EQ(tf_domain_of(parse_tf_range("step"), {0, 100}, spike, {30, 30}), (ValueRange{0, 100}));
   EXPECT_EQ(tf_domain_of(parse_tf_range("data"), {0, 100}, spike, {20, 30}), (ValueRange{0, 100}));
