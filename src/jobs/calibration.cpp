@@ -28,9 +28,10 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 // Bumped whenever what a calibration measures changes, so old cache files are recomputed.
-constexpr int kCalibrationVersion = 4;  // 2: the key holds the voxel size; 3: frames skip
+constexpr int kCalibrationVersion = 5;  // 2: the key holds the voxel size; 3: frames skip
                                          // transparent children (--skip-transparent on); 4: rays
-                                         // sample exact segments, spans textured by their mean
+                                         // sample exact segments, spans textured by their mean;
+                                         // 5: lit by default, levels drawn with their TF rows
 
 std::uint64_t fnv1a(const std::string& s) {
   std::uint64_t h = 1469598103934665603ull;
