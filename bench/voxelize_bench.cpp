@@ -1,7 +1,7 @@
 // Voxelization throughput on one mesh step: tspplay's voxelizer (cells → tetrahedra → binned,
 // sampled) timed over rounds, writing the grid and stencil for bench/voxelize_vtk.py, which
 // times VTK's vtkResampleToImage on the same mesh and grid in the same run and compares values.
-//   voxelize_bench MESH FIELD RESOLUTION OUT_PREFIX [ROUNDS] [iso|tets|scanK]
+//   voxelize_bench MESH FIELD RESOLUTION OUT_PREFIX [ROUNDS] [iso|tets|scanK|twoK|twoKj]
 // prints JSON: cells, tets, voxels, inside, the grid, seconds per round (median), cells/s,
 // voxels/s; writes OUT_PREFIX.f32 (values) and OUT_PREFIX.u8 (stencil), x fastest.
 #include <algorithm>
@@ -17,18 +17,31 @@
 
 int main(int argc, char** argv) {
   if (argc < 5) {
-    std::fprintf(stderr, "usage: voxelize_bench MESH FIELD RESOLUTION OUT_PREFIX [ROUNDS] [iso|tets|scanK]\n");
+    std::fprintf(stderr, "usage: voxelize_bench MESH FIELD RESOLUTION OUT_PREFIX [ROUNDS] "
+                         "[iso|tets|scanK|twoK|twoKj]\n");
     return 2;
   }
   try {
     const int rounds = argc > 5 ? std::atoi(argv[5]) : 5;
-    // iso (default), tets, or scanK (voxelizer B with K× anti-aliasing).
+    // iso (default), tets, scanK (voxelizer B with K× anti-aliasing), twoK (voxelizer C, the
+    // two-buffer method, K³ passes) or twoKj (jittered).
     const std::string mode = argc > 6 ? argv[6] : "iso";
     tsp::SampleOptions so;
     if (mode == "tets") so.hex = tsp::HexSampling::tetrahedra;
     if (mode.rfind("scan", 0) == 0) {
       so.kind = tsp::VoxelizerKind::scan;
       so.antialias = mode.size() > 4 ? std::atoi(mode.c_str() + 4) : 1;
+    }
+    if (mode.rfind("two", 0) == 0) {
+      so.kind = tsp::VoxelizerKind::two_buffer;
+      so.antialias = mode.size() > 3 ? std::max(1, std::atoi(mode.c_str() + 3)) : 1;
+      so.jitter = mode.back() == 'j';
+    }
+    if (so.antialias < 1 || so.antialias > (so.kind == tsp::VoxelizerKind::two_buffer
+                                                ? tsp::kMaxTwoBufferK
+                                                : tsp::kMaxAntialias)) {
+      std::fprintf(stderr, "voxelize_bench: %s: anti-aliasing factor out of range\n", mode.c_str());
+      return 2;
     }
     auto source = tsp::open_mesh_source(argv[1], argv[2]);
     const tsp::Mesh mesh = source->read_step(0);

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Voxelizer benchmark against VTK (python3-vtk9, the reference, not a dependency).
 
-    /usr/bin/python3 bench/voxelize_vtk.py MESH.vtu|.vts|.q FIELD RESOLUTION [ROUNDS] [iso|tets]
+    /usr/bin/python3 bench/voxelize_vtk.py MESH.vtu|.vts|.q FIELD RESOLUTION [ROUNDS] [iso|tets|scanK|twoK|twoKj]
 
 Runs build/voxelize_bench (our voxelizer) and VTK's vtkResampleToImage (probe filter: point
 location in the mesh, interpolation by the cell's own functions) on the same mesh and grid in

@@ -156,7 +156,7 @@ void run(const DemoArgs& a) {
   const std::string stem = source->name() + "_" + tsp::to_string(source->dims()) + "_" +
                            std::to_string(source->steps());
   const fs::path h5 = dir / (stem + ".h5"), tsp_path = dir / (stem + ".tsp");
-  const fs::path tf_path = dir / "sparse_tf.json", report_path = dir / "report.json";
+  const fs::path tf_path = dir / "auto_tf.json", report_path = dir / "report.json";
   json report;
   report["dataset"] = {{"name", source->name()},
                        {"dims", {source->dims().x, source->dims().y, source->dims().z}},
@@ -198,10 +198,14 @@ void run(const DemoArgs& a) {
   info.erase("histogram");
   report["tree"] = info;
 
-  const tsp::TransferFunction tf =
-      tsp::preset_transfer_function("sparse", tsp::preset_domain(file->tree().value_range()));
+  // The default colour map (preset:auto: opacity where the data is rare, from the histogram),
+  // saved so that metrics, render and play can be rerun on the same map.
+  const tsp::ValueHistogram histogram = tsp::histogram_of(*file);
+  const tsp::TransferFunction tf = tsp::preset_transfer_function(
+      tsp::kAutoPreset, tsp::preset_domain(file->tree().value_range()), tsp::kDefaultTfEntries,
+      &histogram);
   tsp::save_transfer_function(tf, tf_path.string());
-  std::printf("\nerror metrics with the sparse colour map (%s):\n", tf_path.string().c_str());
+  std::printf("\nerror metrics with the default colour map (%s):\n", tf_path.string().c_str());
   for (tsp::Metric m : {tsp::Metric::scalar, tsp::Metric::approximate, tsp::Metric::perceptual,
                         tsp::Metric::reference}) {
     json s = metric_summary(m, *file, tf);

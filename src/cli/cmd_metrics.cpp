@@ -72,8 +72,9 @@ void run(const MetricsArgs &a) {
   const tsp::Metric metric = tsp::parse_metric(a.metric);
   auto file = tsp::TspFile::open(a.file, a.field);
   const tsp::TspTree &tree = file->tree();
+  const tsp::ValueHistogram histogram = tsp::histogram_of(*file);
   const tsp::TransferFunction tf =
-      tsp::transfer_function_from_arg(a.tf, tree.value_range(), a.entries);
+      tsp::transfer_function_from_arg(a.tf, tree.value_range(), a.entries, {}, &histogram);
   const int threads = tsp::resolve_threads(a.threads);
   const tsp::Stopwatch watch;
   const tsp::MetricResult r = tsp::compute_errors(metric, tree, tf, file.get(), threads);

@@ -108,7 +108,8 @@ const CommandRegistrar reg(35, [](CLI::App& app) {
                 "Raw input: the cache folder (default $TSPPLAY_CACHE_DIR, $XDG_CACHE_HOME/tspplay "
                 "or ~/.cache/tspplay; builds go to its builds/)");
   c->add_option("--tf", a->options.tf,
-                "Transfer function: a JSON file or preset:NAME (default preset:sparse)");
+                "Transfer function: a JSON file or preset:NAME (default preset:auto, built from "
+                "the data's histogram)");
   c->add_option("--tf-range", a->options.tf_range,
                 "Where the TF sits over the data: auto, data, file, histogram (1st-99th percentile), step (the range of --step), visible (what the starting view shows of it) or LO:HI (as for render)");
   c->add_option("--step", a->options.step, "Step shown first (default 0)");
@@ -145,6 +146,9 @@ const CommandRegistrar reg(35, [](CLI::App& app) {
                 "When even the coarsest cut misses --target-fps: scale (a smaller render target, "
                 "default) or splats (each node of a coarse cut one splat of its mean colour)")
       ->check(CLI::IsMember({"scale", "splats"}));
+  c->add_option("--lod-filter", a->options.lod_filter,
+                "How the cut is chosen: error (holds --target-fps, default) or LaMar's selection "
+                "filters distance[:K] and fov[:K] (as for render; the panel's 'cut by')");
   c->add_option("--speed", a->options.speed,
                 "Playback speed, steps per second (default 24, a movie's rate; 0.25 to 60)");
   c->add_option("--quality", a->options.quality,
@@ -169,10 +173,10 @@ const CommandRegistrar reg(35, [](CLI::App& app) {
                                    "--screenshot", "--script"}},
                  {"Input to build (not a .tsp; as for build)",
                   {"--raw-dims", "--raw-type", "--big-endian", "--allow-external", "--resolution",
-                   "--voxel-size", "--cell-data", "--voxelizer", "--antialias", "--hex"}},
+                   "--voxel-size", "--cell-data", "--voxelizer", "--antialias", "--jitter", "--hex"}},
                  {"Camera", {"--size", "--proportions", "--scale"}},
                  {"Playback", {"--speed", "--quality", "--playback"}},
-                 {"LOD", {"--lod", "--lod-fallback", "--target-fps"}},
+                 {"LOD", {"--lod", "--lod-filter", "--lod-fallback", "--target-fps"}},
                  {"Probes", {"--probe", "--probe-op", "--probe-surface"}},
                  {"Memory", {"--ram-budget", "--texture-budget"}},
                  {"Diagnostics", {"--trace", "--frame-delay-ms"}}});

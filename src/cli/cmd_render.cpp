@@ -25,7 +25,7 @@ constexpr double kMaxTargetFps = 240;
 
 struct RenderArgs {
   std::string field;
-  std::string file, tf = "preset:sparse", out, steps, size = "640x480", view = "30,20", movie,
+  std::string file, tf = "preset:auto", out, steps, size = "640x480", view = "30,20", movie,
               tf_range;
   int fps = tspgl::kMovieFps;
   std::string annotate = "off";
@@ -41,7 +41,7 @@ struct RenderArgs {
   std::string lod_fallback = "scale";
   double target_ms = 0, target_fps = 0, orbit = 0;
   int split_limit = tsp::LodOptions{}.split_limit;
-  std::string focus;
+  std::string focus, lod_filter = "error", eye;
   std::string proportions = "physical", scale;
   std::vector<std::string> probes;
   std::string probe_op = "intersect", probe_surface = "off", probe_tf, probe_motion;
@@ -116,6 +116,19 @@ void run(const RenderArgs& a) {
   o.lod_options.split_limit = a.split_limit;
   o.lod_options.fallback = tsp::parse_lod_fallback(a.lod_fallback, "--lod-fallback");
   if (!a.focus.empty()) o.lod_options.focus = parse_triple(a.focus, "--focus", "X,Y,Z in voxels");
+  o.lod_filter = tsp::parse_lod_filter(a.lod_filter, "--lod-filter");
+  if (o.lod_filter.kind != tsp::LodFilter::error) {  // LaMar's filters choose the cut themselves
+    if (!a.lod.empty() || a.target_ms != 0 || a.target_fps != 0)
+      throw tsp::UsageError("--lod-filter " + a.lod_filter +
+                            " chooses the cut from where the tiles lie: drop --lod, --target-ms "
+                            "and --target-fps (--lod-filter error is the error-driven cut)");
+    o.lod = tspgl::LodMode::filter;
+  }
+  if (!a.eye.empty()) {  // a placed eye looks along the view's direction, in perspective
+    const auto e = parse_triple(a.eye, "--eye", "X,Y,Z in voxels");
+    o.camera.eye = std::array<double, 3>{e[0], e[1], e[2]};
+    o.camera.projection = tsp::Projection::perspective;
+  }
   if (a.proportions != "physical" && a.proportions != "samples")
     throw tsp::UsageError("--proportions '" + a.proportions + "': expected physical or samples");
   o.physical_proportions = a.proportions == "physical";
@@ -191,7 +204,9 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
   auto a = std::make_shared<RenderArgs>();
   c->add_option("file", a->file, "The .tsp file")->required();
   c->add_option("--field", a->field, "A file with several fields: this one (default: the first)");
-  c->add_option("--tf", a->tf, "Transfer function: a JSON file or preset:NAME (default preset:sparse)");
+  c->add_option("--tf", a->tf,
+                "Transfer function: a JSON file or preset:NAME (default preset:auto, built from "
+                "the data's histogram)");
   c->add_option("-o,--output", a->out, "Directory for step_NNNN.png and frames.json")->required();
   c->add_option("--tf-range", a->tf_range,
                 "Where the TF sits over the data: auto (presets and normalised [0,1] maps "
@@ -264,6 +279,14 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
   c->add_option("--orbit", a->orbit, "Advance the azimuth this many degrees every frame");
   c->add_option("--split-limit", a->split_limit,
                 "--lod auto: most node splits per frame (default 8)");
+  c->add_option("--lod-filter", a->lod_filter,
+                "How the cut is chosen: error (the error-driven cut of --lod auto), or LaMar's "
+                "selection filters distance[:K] (a tile drawn when the eye is more than K times "
+                "its diagonal away) and fov[:K] (drawn when it subtends less than half the field "
+                "of view over K; outside the view: not refined); default error");
+  c->add_option("--eye", a->eye,
+                "Place the eye at X,Y,Z in voxels (inside the volume or out), looking along "
+                "--view's direction; implies --perspective");
   c->add_option("--focus", a->focus,
                 "--lod auto: centre of attention X,Y,Z in voxels (default the volume centre)");
   c->add_option("--calibration-dir", a->calibration_dir,
@@ -272,10 +295,11 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
   a->settings.add_to(c);
   set_groups(c, {{"Input/output", {"--field", "--tf", "--output", "--tf-range", "--annotate",
                                    "--movie", "--fps", "--steps", "--passes", "--save-tf"}},
-                 {"Camera", {"--size", "--view", "--perspective", "--proportions", "--scale",
+                 {"Camera", {"--size", "--view", "--perspective", "--eye", "--proportions", "--scale",
                              "--orbit"}},
                  {"Quality", {"--metric", "--quality", "--calibration-dir"}},
-                 {"LOD", {"--lod", "--lod-fallback", "--target-fps", "--split-limit", "--focus"}},
+                 {"LOD", {"--lod", "--lod-filter", "--lod-fallback", "--target-fps", "--split-limit",
+                          "--focus"}},
                  {"Probes", {"--probe", "--probe-op", "--probe-surface", "--probe-motion",
                              "--probe-tf"}},
                  {"Memory", {"--texture-budget", "--ram-budget"}},

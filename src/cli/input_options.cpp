@@ -18,12 +18,19 @@ void add_input_options(CLI::App* c, InputArgs& a) {
                 "Meshes, cell data: constant per cell, or averaged to the points then interpolated")
       ->check(CLI::IsMember({"constant", "points"}));
   c->add_option("--voxelizer", a.voxelizer,
-                "Meshes: locate (voxel centres located in cells; default) or scan (tetrahedra "
-                "scan-converted, with --antialias)")
-      ->check(CLI::IsMember({"locate", "scan"}));
+                "Meshes: locate (voxel centres located in cells; default), scan (tetrahedra "
+                "scan-converted plane by plane) or two-buffer (front and back faces into two "
+                "buffers, the voxels between them stepped; paper 003), the last two with "
+                "--antialias")
+      ->check(CLI::IsMember({"locate", "scan", "two-buffer"}));
   c->add_option("--antialias", a.antialias,
-                "Meshes, --voxelizer scan: K x K x K sub-samples per voxel, 1..4 (default 1)")
-      ->check(CLI::Range(1, tsp::kMaxAntialias));
+                "Meshes, --voxelizer scan|two-buffer: K x K x K sub-samples per voxel, 1..4 "
+                "(scan) or 1..5 (two-buffer) (default 1)")
+      ->check(CLI::Range(1, tsp::kMaxTwoBufferK));
+  c->add_option("--jitter", a.jitter,
+                "Meshes, --voxelizer two-buffer: on moves each sub-sample by a fixed "
+                "pseudo-random amount inside its sub-cell (default off)")
+      ->check(CLI::IsMember({"on", "off"}));
   c->add_option("--hex", a.hex,
                 "Meshes, locate: hexahedra sampled whole by their trilinear map (isoparametric, "
                 "as VTK) or through tetrahedra")
@@ -59,12 +66,22 @@ tsp::VoxelizeOptions voxelize_options(const InputArgs& a, int threads) {
   vo.voxel_size = a.voxel_size;
   vo.cell_data = a.cell_data == "points" ? tsp::CellDataMode::points : tsp::CellDataMode::constant;
   vo.sample.threads = threads;
-  vo.sample.kind = a.voxelizer == "scan" ? tsp::VoxelizerKind::scan : tsp::VoxelizerKind::locate;
+  vo.sample.kind = a.voxelizer == "scan"         ? tsp::VoxelizerKind::scan
+                   : a.voxelizer == "two-buffer" ? tsp::VoxelizerKind::two_buffer
+                                                 : tsp::VoxelizerKind::locate;
   vo.sample.hex = a.hex == "tetrahedra" ? tsp::HexSampling::tetrahedra : tsp::HexSampling::isoparametric;
   vo.sample.antialias = a.antialias;
-  if (a.antialias != 1 && a.voxelizer != "scan")
+  vo.sample.jitter = a.jitter == "on";
+  if (a.antialias != 1 && a.voxelizer == "locate")
     throw tsp::UsageError("--antialias " + std::to_string(a.antialias) +
-                          " needs --voxelizer scan (the locating voxelizer samples voxel centres)");
+                          " needs --voxelizer scan or two-buffer (the locating voxelizer samples "
+                          "voxel centres)");
+  if (a.voxelizer == "scan" && a.antialias > tsp::kMaxAntialias)
+    throw tsp::UsageError("--antialias " + std::to_string(a.antialias) + ": --voxelizer scan takes "
+                          "1 to " + std::to_string(tsp::kMaxAntialias) + " (two-buffer up to " +
+                          std::to_string(tsp::kMaxTwoBufferK) + ")");
+  if (a.jitter == "on" && a.voxelizer != "two-buffer")
+    throw tsp::UsageError("--jitter on needs --voxelizer two-buffer");
   return vo;
 }
 
@@ -83,6 +100,7 @@ std::string input_key(const InputArgs& a) {
   if (a.voxelizer != d.voxelizer) add("voxelizer", a.voxelizer);
   if (a.hex != d.hex) add("hex", a.hex);
   if (a.antialias != d.antialias) add("antialias", std::to_string(a.antialias));
+  if (a.jitter != d.jitter) add("jitter", a.jitter);
   if (a.xyz != d.xyz) add("xyz", a.xyz);
   return k;
 }

@@ -21,11 +21,12 @@ struct InputArgs {
   std::string cell_data = "constant";
   std::string voxelizer = "locate", hex = "isoparametric";
   int antialias = 1;
+  std::string jitter = "off";  ///< two-buffer: jittered sub-samples
   std::string xyz;  ///< PLOT3D grid of .q inputs
 };
 
 /// Adds --raw-dims, --raw-type, --big-endian, --allow-external, --resolution, --voxel-size,
-/// --cell-data, --voxelizer, --antialias, --hex and --xyz to c, writing into a (which must outlive c).
+/// --cell-data, --voxelizer, --antialias, --jitter, --hex and --xyz to c, writing into a (which must outlive c).
 void add_input_options(CLI::App* c, InputArgs& a);
 
 /// The reader's options from a and field. Throws tsp::UsageError on a bad --raw-dims.

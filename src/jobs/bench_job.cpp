@@ -306,8 +306,10 @@ json run_bench(const BenchOptions& options, const BenchProgress& progress) {
   const tsp::TspTree& tree = file->tree();
   const int last = checked_last_step(tree, o.first_step, o.last_step, o.tsp_path);
   std::vector<tsp::TransferFunction> tfs;
+  const tsp::ValueHistogram histogram = tsp::histogram_of(*file);
   for (const std::string& arg : o.tfs)
-    tfs.push_back(tsp::transfer_function_from_arg(arg, tree.value_range()));
+    tfs.push_back(tsp::transfer_function_from_arg(arg, tree.value_range(), tsp::kDefaultTfEntries,
+                                                  {}, &histogram));
 
   const fs::path dir = make_output_dir(o.out_dir);
 

@@ -248,8 +248,9 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
                                 tsp::ClipRegion(options.probes, options.probe_op,
                                                 file->metadata().origin, file->metadata().spacing))
           : tsp::tf_domain_of(options.tf_range, *file, options.first_step);
+  const tsp::ValueHistogram histogram = tsp::histogram_of(*file);
   const tsp::TransferFunction tf = tsp::transfer_function_from_arg(
-      options.tf, tf_domain, tsp::kDefaultTfEntries, options.tf_range);
+      options.tf, tf_domain, tsp::kDefaultTfEntries, options.tf_range, &histogram);
   // Every output is checked before any work and replaced only when the whole job succeeded.
   const tsp::InputGuard inputs({options.tsp_path, options.tf, options.probe_tf});
   std::optional<tsp::OutputFolder> folder;
@@ -299,7 +300,7 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
                                  : tsp::transfer_function_from_arg(
                                        o.probe_tf,
                                        tf_domain,
-                                       tsp::kDefaultTfEntries, o.tf_range);
+                                       tsp::kDefaultTfEntries, o.tf_range, &histogram);
   auto set_clip = [&](int frame) {
     std::vector<tsp::Probe> probes = o.probes;
     for (tsp::Probe& p : probes) tsp::move_probe(p, {o.probe_motion[0] * frame,
@@ -322,6 +323,7 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
   lod.mode = o.lod;
   lod.level = lod_level;
   lod.splat_px = o.splat_px;
+  lod.filter = o.lod_filter;
   lod.options = o.lod_options;
   lod.options.target_ms = o.target_ms;
   if (lod.options.texture_budget == 0) lod.options.texture_budget = o.texture_budget;
@@ -387,7 +389,11 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
     j["lod"] = o.lod == LodMode::off     ? json("off")
                : o.lod == LodMode::fixed ? json(lod_level)
                : o.lod == LodMode::splat ? json("splat:" + json(o.splat_px).dump())
-                                         : json("auto");
+               : o.lod == LodMode::filter ? json("filter")
+                                          : json("auto");
+    j["lod_filter"] = o.lod == LodMode::filter ? tsp::to_string(o.lod_filter.kind) : "error";
+    j["lod_filter_k"] = o.lod_filter.scale;
+    if (o.camera.eye) j["eye"] = *o.camera.eye;
     j["target_ms"] = o.target_ms;
     j["lod_fallback"] = tsp::to_string(o.lod_options.fallback);
     j["orbit_deg"] = o.orbit_deg;

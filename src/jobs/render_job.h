@@ -31,7 +31,7 @@ using FrameSink = std::function<void(const FrameRecord&, const tsp::Image&)>;
 struct RenderJobOptions {
   std::string tsp_path;                       ///< the .tsp file
   std::string field;                          ///< --field: one of its fields ("": the first)
-  std::string tf = "preset:sparse";           ///< --tf: a file or preset:NAME
+  std::string tf = "preset:auto";             ///< --tf: a file or preset:NAME
   tsp::TfRangeChoice tf_range;                ///< --tf-range: where the TF sits over the data
   bool annotate = false;                      ///< --annotate: outline, axes, legend, step/time
   std::string out_dir;                        ///< frames/: replaced as a whole when the job
@@ -70,6 +70,7 @@ struct RenderJobOptions {
   LodMode lod = LodMode::off;                 ///< --lod off|K|auto
   int lod_level = 0;                          ///< --lod K
   double splat_px = 0;                        ///< --lod splat:PX, the minimum splat size
+  tsp::SelectionFilter lod_filter;            ///< --lod-filter distance|fov (LodMode::filter)
   /// --target-ms (> 0, with --lod auto): the controller holds this frame time; 0 with --lod auto:
   /// every frame refined until no node's error is above lod_options.min_error.
   double target_ms = 0;

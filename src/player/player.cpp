@@ -123,6 +123,7 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
   state.quality = float(options.quality);  // tuned when playing starts
   state.keep_quality = options.keep_quality;
   state.splat_fallback = options.splat_fallback;
+  state.lod_filter = tsp::parse_lod_filter(options.lod_filter, "--lod-filter");
   if (!options.script.empty()) script_ = load_script(options.script);
   if (!options.screenshot.empty()) {
     ScriptAction shot;
@@ -132,9 +133,10 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
     script_.push_back(ScriptAction{});  // quit
   }
   const tsp::TfRangeChoice range = tsp::parse_tf_range(options.tf_range);
+  const tsp::ValueHistogram histogram = tsp::histogram_of(*file);
   tf = tsp::transfer_function_from_arg(
       options.tf, tsp::tf_domain_of(range, *file, state.step),
-      tsp::kDefaultTfEntries, range);
+      tsp::kDefaultTfEntries, range, &histogram);
   if (std::string w = tsp::tf_range_warning(tf, file->metadata().data_range); !w.empty()) {
     std::fprintf(stderr, "tspplay: warning: %s\n", w.c_str());
     status = w;

@@ -32,7 +32,7 @@ struct PlayerOptions {
   /// 128`, `--xyz grid.xyz`, …) parsed as `play` parses them, on top of `input`: the same names,
   /// checks and errors (tsp::UsageError). Empty: the dialog takes no options.
   std::function<tspgl::PlayInputOptions(const std::string& line)> parse_input_options;
-  std::string tf = "preset:sparse";  ///< --tf: a file or preset:NAME
+  std::string tf = "preset:auto";  ///< --tf: a file or preset:NAME
   std::string tf_range;              ///< --tf-range: auto (default), data, file or LO:HI
   int step = 0;                      ///< --step: the step shown first
   std::string screenshot;         ///< --screenshot: save the first complete frame here, then exit
@@ -50,6 +50,7 @@ struct PlayerOptions {
   double quality = kDefaultPlayingQuality;
   bool keep_quality = true;       ///< --playback quality|rate: what gives while playing
   bool splat_fallback = false;    ///< --lod-fallback splats: splats when even the coarsest cut is slow
+  std::string lod_filter = "error";  ///< --lod-filter error|distance[:K]|fov[:K]
   bool trace = false;             ///< --trace: one stdout line per applied change
   double frame_delay_ms = 0;      ///< --frame-delay-ms: a slow machine, for tests (0..2000)
   bool physical_proportions = true;      ///< --proportions physical|samples

@@ -107,9 +107,10 @@ void PlayerApp::poll_open() {
 
 tsp::TransferFunction PlayerApp::start_tf(const tsp::TspFile& f) const {
   const tsp::TfRangeChoice range = tsp::parse_tf_range(options_.tf_range);
+  const tsp::ValueHistogram histogram = tsp::histogram_of(f);
   return tsp::transfer_function_from_arg(
       options_.tf, tsp::tf_domain_of(range, f, 0),  // (a file opens at step 0)
-      tsp::kDefaultTfEntries, range);
+      tsp::kDefaultTfEntries, range, &histogram);
 }
 
 void PlayerApp::open_file(const std::string& path) {
@@ -323,6 +324,8 @@ void PlayerApp::write_stats(const std::string& path) const {
               {"splats", lod_stats.splats},
               {"splat_px", lod_stats.splat_px},
               {"splat_fallback", state.splat_fallback},
+              {"filter", tsp::to_string(state.lod_filter.kind)},
+              {"filter_k", state.lod_filter.scale},
               {"max_error", lod_stats.max_error},
               {"full_quality_after_s", full_quality_after_s},
               // Full quality: no node left whose level differs from full resolution in the

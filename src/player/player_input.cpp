@@ -136,9 +136,13 @@ void PlayerApp::apply(const ScriptAction& a) {
     case Kind::loop:
       state.loop = a.flag;
       break;
-    case Kind::tf:
-      set_tf(tsp::transfer_function_from_arg(a.text, file->tree().value_range(), tf.size()), true);
+    case Kind::tf: {
+      const tsp::ValueHistogram histogram = tsp::histogram_of(*file);
+      set_tf(tsp::transfer_function_from_arg(a.text, file->tree().value_range(), tf.size(), {},
+                                             &histogram),
+             true);
       break;
+    }
     case Kind::tf_range: {  // the map as it is, stretched over the chosen range
       const tsp::TfRangeChoice c = tsp::parse_tf_range(a.text);
       const tsp::ValueRange to =
@@ -199,6 +203,9 @@ void PlayerApp::apply(const ScriptAction& a) {
       break;
     case Kind::lod:
       set_lod(a.flag);
+      break;
+    case Kind::lod_filter:
+      state.lod_filter = tsp::parse_lod_filter(a.text, "lod-filter");
       break;
     case Kind::target_fps:
       state.target_fps = float(a.value);

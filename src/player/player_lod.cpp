@@ -55,6 +55,14 @@ tspgl::LodSpec PlayerApp::lod_spec(double now_s) {
     refining = false;
     return {};
   }
+  // LaMar's selection filters: the cut follows the camera by their rule, whatever the target.
+  if (state.lod_filter.kind != tsp::LodFilter::error) {
+    refining = false;
+    tspgl::LodSpec spec;
+    spec.mode = tspgl::LodMode::filter;
+    spec.filter = state.lod_filter;
+    return spec;
+  }
   // Playing at a quality target: the tuned rung's LOD level everywhere (or full resolution),
   // never a time-only cut (before the first tuning ends, the provisional rung).
   if (state.playing && state.quality > 0) {
@@ -98,6 +106,8 @@ void PlayerApp::lod_drawn(const std::optional<tsp::LodFrameStats>& stats, double
 }
 
 bool PlayerApp::full_quality() const {
+  // A selection filter's cut is the picture asked for: nothing is left to refine once drawn.
+  if (state.lod_on && state.lod_filter.kind != tsp::LodFilter::error) return true;
   return !state.lod_on || (refining && lod_stats.max_error == 0 && lod_stats.render_scale == 1);
 }
 

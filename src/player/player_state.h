@@ -8,6 +8,7 @@
 #include "render/render_settings.h"
 #include "tsp/clip/probe.h"
 #include "tsp/frame/camera.h"
+#include "tsp/lod/selection_filter.h"
 #include "tsp/metric/metric.h"
 
 namespace tspplayer {
@@ -35,6 +36,7 @@ struct PlayerState {
   float target_fps = float(kDefaultTargetFps);  ///< held while interacting
   bool show_cut = false;       ///< outline the cut's nodes, coloured by level (key L)
   bool splat_fallback = false; ///< splats (not a smaller target) below the coarsest cut
+  tsp::SelectionFilter lod_filter;  ///< error: the adaptive cut; distance|fov: LaMar's filters
   bool panels = true;       ///< the UI panels (Tab); hidden: the volume fills the window
   bool annotations = true;  ///< outline box, axes triad, step/time over the volume
   bool log_opacity = false; ///< the TF editor's opacity axis on a log scale

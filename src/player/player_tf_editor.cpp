@@ -183,7 +183,12 @@ void tf_section(PlayerApp& app) {
   ImGui::Combo("##preset", &preset, cnames.data(), int(cnames.size()));
   ImGui::SameLine();
   if (ImGui::Button("apply preset"))
-    app.set_tf(tsp::preset_transfer_function(names[std::size_t(preset)], d, app.tf.size()), true);
+  {
+    const tsp::ValueHistogram histogram = tsp::histogram_of(*app.file);
+    app.set_tf(tsp::preset_transfer_function(names[std::size_t(preset)], d, app.tf.size(),
+                                             &histogram),
+               true);
+  }
   ImGui::SameLine();
   if (ImGui::Button("fit to data")) {  // the map as it is, stretched over the data's range
     app.set_tf(tsp::rescaled(app.tf, d), true);
@@ -225,7 +230,9 @@ void tf_section(PlayerApp& app) {
   app.tf_path = path;
   try {
     if (ImGui::Button("load")) {
-      app.set_tf(tsp::transfer_function_from_arg(app.tf_path, d, app.tf.size()), true);
+      const tsp::ValueHistogram histogram = tsp::histogram_of(*app.file);
+      app.set_tf(tsp::transfer_function_from_arg(app.tf_path, d, app.tf.size(), {}, &histogram),
+                 true);
       const std::string w = tsp::tf_range_warning(app.tf, app.file->metadata().data_range);
       app.status = w.empty() ? "loaded " + app.tf_path : "loaded " + app.tf_path + "; " + w;
     }

@@ -317,6 +317,33 @@ void settings_section(PlayerApp& app) {
     app.command(a);
   }
   ImGui::Checkbox("splats when the coarsest cut is too slow", &app.state.splat_fallback);
+  // How the cut is chosen: by error against the target, or by LaMar's selection filters.
+  {
+    static const char* const kFilters[] = {"error (target fps)", "distance from the eye",
+                                           "field of view"};
+    int kind = int(app.state.lod_filter.kind);
+    float k = float(app.state.lod_filter.scale);
+    ImGui::SetNextItemWidth(170);
+    const bool picked = ImGui::Combo("cut by", &kind, kFilters, 3);
+    bool scaled = false;
+    if (kind != 0) {
+      ImGui::SameLine();
+      ImGui::SetNextItemWidth(90);
+      scaled = ImGui::SliderFloat("K", &k, 0.25f, 8.f, "%.2f", ImGuiSliderFlags_Logarithmic);
+    }
+    if (picked || scaled) {
+      ScriptAction a = command_of(ScriptAction::Kind::lod_filter);
+      const char* const names[] = {"error", "distance", "fov"};
+      char text[64];
+      std::snprintf(text, sizeof text, "%s:%g", names[kind], double(k));
+      a.text = kind == 0 ? "error" : text;
+      app.command(a);
+    }
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("LaMar's filters: a tile is drawn whole when the eye is more than K\n"
+                        "diagonals away (distance) or when it subtends less than half the\n"
+                        "field of view over K (fov; outside the view: not refined)");
+  }
 
   if (ImGui::TreeNode("caches and uploads")) {
     bool cache = app.state.cache_on;

@@ -10,6 +10,7 @@
 #include "tsp/core/error.h"
 #include "tsp/metric/tf_io.h"
 #include "tsp/core/input_file.h"
+#include "tsp/lod/selection_filter.h"
 
 namespace tspplayer {
 
@@ -157,6 +158,10 @@ ScriptAction parse_words(const LineParser& p) {
     p.expect_args(1, "target-fps FPS");
     a.kind = Kind::target_fps;
     a.value = p.number(1, "target-fps FPS");
+  } else if (cmd == "lod-filter") {
+    p.expect_args(1, "lod-filter error|distance[:K]|fov[:K]");
+    a.kind = Kind::lod_filter;
+    a.text = p.words[1];
   } else if (cmd == "open") {
     // open PATH [FIELD] [--OPTION VALUE ...]: the options as play takes them (--raw-dims, …).
     if (p.words.size() < 2)
@@ -209,7 +214,7 @@ ScriptAction parse_words(const LineParser& p) {
            "': expected step, play, pause, speed, loop, tf, tf-range, tolerance, metric, cache, prefetch, "
            "view, zoom, projection, screenshot, screenshot-ui, wait-frames, wait-seconds, " +
            settings +
-           "quality, stats, lod, target-fps, show-cut, panels, every-step, log-opacity, open, "
+           "quality, stats, lod, target-fps, lod-filter, show-cut, panels, every-step, log-opacity, open, "
            "field, probe, probe-op, probe-surface, probe-clear, probe-move, record, "
            "reset-camera, playback or quit");
   }
@@ -283,6 +288,9 @@ void validate(const ScriptAction& a) {
       if (!(a.value >= 1 && a.value <= kMaxTargetFps))
         fail("target-fps must be 1 to " + std::to_string(int(kMaxTargetFps)) +
              " frames per second");
+      break;
+    case Kind::lod_filter:
+      tsp::parse_lod_filter(a.text, "lod-filter");  // (throws UsageError naming it)
       break;
     case Kind::probe_move:
       if (!std::isfinite(a.value) || !std::isfinite(a.value2) || !std::isfinite(a.value3))

@@ -41,6 +41,7 @@ struct ScriptAction {
     stats,          ///< write the HUD statistics (frame times, fps, last frame) to `text` (JSON)
     lod,            ///< the LOD cut on (`flag`) or off
     target_fps,     ///< LOD target `value` frames per second while interacting
+    lod_filter,     ///< how the cut is chosen: `text` error|distance[:K]|fov[:K] (LaMar's filters)
     show_cut,       ///< outline the cut's nodes by level on (`flag`) or off
     panels,         ///< the UI panels shown (`flag`) or hidden (the volume fills the window)
     every_step,     ///< playback shows every step (`flag`) or keeps real time, dropping steps

@@ -16,6 +16,7 @@ void FrameDriver::set_lod(const LodSpec& lod) {
   const bool keep_controller = controller_ && lod.mode == LodMode::adaptive;
   lod_ = lod;
   fixed_cut_.reset();
+  filter_cut_.reset();
   if (lod.mode == LodMode::fixed) {
     const tsp::Octree& o = renderer_->tree().octree();
     fixed_cut_ = tsp::LodCut::at_level(o, std::clamp(lod.level, 0, o.max_lod_level()));
@@ -32,6 +33,7 @@ tsp::LodStops FrameDriver::current_stops() const {
   if (fixed_cut_) return fixed_cut_->stops();
   if (controller_) return controller_->stops();
   if (lod_.mode == LodMode::splat) return splats_.stops;
+  if (filter_cut_) return filter_cut_->stops();
   return {};
 }
 
@@ -65,6 +67,11 @@ DrawnFrame FrameDriver::draw(const FrameRequest& r) {
       out.settings.compositing = Compositing::boxes;
       break;
     }
+    case LodMode::filter:  // LaMar's depth-first selection from this frame's camera
+      filter_cut_ = tsp::selection_cut(renderer_->tree().octree(), *r.camera, lod_.filter);
+      stops = filter_cut_->stops();
+      out.lod = tsp::cut_stats(*filter_cut_);
+      break;
     case LodMode::adaptive: {
       assert(r.tf);
       tsp::LodFrameStats st = controller_->update(*r.camera, r.step, *r.tf, r.settings.spacing,

@@ -1,6 +1,6 @@
 // One frame driver: a FrameRequest (step, camera, settings, metric) turned into a frame by the
 // TSP renderer or the baseline — the frame's LOD cut chosen (full resolution, one level
-// everywhere, the adaptive controller's cut or the splat cut), the settings the cut asks for
+// everywhere, the adaptive controller's cut, the splat cut or a selection filter's cut), the settings the cut asks for
 // applied (splats composited as boxes, the controller's render scale), the frame drawn and the
 // controller fed its measured time. `render`, the player and the bench's and calibration's
 // probes all draw through it, so what the bench measures is what the window plays.
@@ -13,20 +13,23 @@
 #include "tsp/frame/camera.h"
 #include "tsp/lod/lod_controller.h"
 #include "tsp/lod/lod_cut.h"
+#include "tsp/lod/selection_filter.h"
 #include "tsp/lod/splat_cut.h"
 #include "tsp/metric/frame_metric.h"
 #include "tsp/metric/transfer_function.h"
 
 namespace tspgl {
 
-/// How a frame's spatial LOD cut is chosen (render --lod off|K|auto|splat:PX; the player's LOD).
-enum class LodMode { off, fixed, adaptive, splat };
+/// How a frame's spatial LOD cut is chosen (render --lod off|K|auto|splat:PX, --lod-filter
+/// distance|fov; the player's LOD).
+enum class LodMode { off, fixed, adaptive, splat, filter };
 
 /// The LOD cut frames are drawn with.
 struct LodSpec {
   LodMode mode = LodMode::off;
   int level = 0;          ///< fixed: the level drawn everywhere (clamped to the tree's levels)
   double splat_px = 0;    ///< splat: the minimum splat size in pixels
+  tsp::SelectionFilter filter;  ///< filter: LaMar's selection filter (distance or fov) and K
   tsp::LodOptions options;  ///< adaptive: the controller's options (target, limits, focus, ...)
   /// adaptive: each frame refines until nothing is left to split (an untimed, converged cut:
   /// render without --target-ms) instead of one update per frame (timed).
@@ -77,6 +80,7 @@ class FrameDriver {
   BaselineRenderer* baseline_ = nullptr;
   LodSpec lod_;
   std::optional<tsp::LodCut> fixed_cut_;
+  std::optional<tsp::LodCut> filter_cut_;  // the filter's cut of the last frame
   std::unique_ptr<tsp::LodController> controller_;
   tsp::SplatCut splats_;
 };

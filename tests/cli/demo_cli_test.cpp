@@ -25,7 +25,7 @@ TEST(DemoCli, GeneratesBuildsReportsAndReuses) {
   const fs::path h5 = dir / "shock_20x17x9_5.h5", tsp_path = dir / "shock_20x17x9_5.tsp";
   ASSERT_TRUE(fs::exists(h5));
   ASSERT_TRUE(fs::exists(tsp_path));
-  ASSERT_TRUE(fs::exists(dir / "sparse_tf.json"));
+  ASSERT_TRUE(fs::exists(dir / "auto_tf.json"));
 
   // The .h5 holds exactly what the generator makes.
   auto gen = tsp::make_generated_source("shock", {tsp::Dims{20, 17, 9}, 5});
@@ -51,11 +51,12 @@ TEST(DemoCli, GeneratesBuildsReportsAndReuses) {
     // The same count `tspplay metrics --json` gives for the demo's TF file.
     const std::string name = m["metric"].get<std::string>();
     auto mr = run_tspplay("metrics " + tsptest::quote(tsp_path) + " --tf " +
-                          tsptest::quote(dir / "sparse_tf.json") + " --metric " + name + " --json");
+                          tsptest::quote(dir / "auto_tf.json") + " --metric " + name + " --json");
     ASSERT_EQ(mr.exit_code, 0) << mr.err;
     const json mj = json::parse(mr.out);
     EXPECT_EQ(m["transparent_nodes"], mj["transparent_nodes"]) << name;
-    EXPECT_GT(m["transparent_nodes"].get<int>(), 0) << name << ": the sparse TF hides some nodes";
+    // (The default map, preset:auto, leaves no node of this small shock wholly clear: every
+    // node holds some value off the background's; on the 64³ demo it hides 2646 of 10773.)
   }
   // Every metric uses the same exact transparency test, so they agree on the count.
   EXPECT_EQ(rep["metrics"][0]["transparent_nodes"], rep["metrics"][3]["transparent_nodes"]);

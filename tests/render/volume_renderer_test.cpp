@@ -182,6 +182,47 @@ TEST(VolumeRenderer, FlatNodeDrawnOnceIsTheExactExponential) {
   expect_close("flat_exact_vs_fine_slices", exact_rays, fine_slices, 0.5, 3.0);
 }
 
+// Issue 31 item 4: a camera inside the volume (CameraParams::eye). From (16, 8, 16) of a constant
+// 32³ cube, looking along +y, the centre ray runs L = 24 voxels to the far face: its pixel is
+// the exact exponential α = 1 − (1 − α₁)^24, in the ray caster (rays starting at the eye) and
+// in slices (the planes in front of the near plane).
+TEST(VolumeRenderer, AnEyeInsideTheCubeSeesTheExponentialOfItsRayToTheFarFace) {
+  auto src = tsptest::MemorySource::from_function({33, 33, 33}, 2,
+                                                  [](int, int, int, int) { return 0.5f; });
+  const std::string path = build(src, "inside_cube", tsp::ValueRange{0, 1});
+  const tsp::Rgba c{0.9f, 0.5f, 0.2f, 0.03f};
+  Scene scene(path, flat_tf(c), tsp::CachePolicy::on);
+  tsp::CameraParams p;
+  p.projection = tsp::Projection::perspective;
+  p.azimuth_deg = 0;  // looks along +y
+  p.elevation_deg = 0;
+  p.width = scene.ctx->width();
+  p.height = scene.ctx->height();
+  p.eye = std::array<double, 3>{16, 8, 16};
+  const tsp::Camera cam(scene.file->tree().octree().dims(), p);
+  const double opacity = 1 - std::pow(1 - double(c.a), 24.0);
+  const std::uint8_t want[3] = {std::uint8_t(std::lround(255 * c.r * opacity)),
+                                std::uint8_t(std::lround(255 * c.g * opacity)),
+                                std::uint8_t(std::lround(255 * c.b * opacity))};
+  for (Compositing comp : {Compositing::rays, Compositing::slices}) {
+    RenderSettings s;
+    s.compositing = comp;
+    s.exact_flat = true;
+    s.shade = false;
+    scene.renderer->render(0, cam, s, scene.nodes);
+    const tsp::Image img = scene.ctx->read_pixels();
+    const std::uint8_t* px = img.at(img.width / 2, img.height / 2);
+    EXPECT_LT(tsp::delta_e_luv(tsp::srgb8_to_luv(px[0], px[1], px[2]),
+                               tsp::srgb8_to_luv(want[0], want[1], want[2])),
+              0.5)
+        << to_string(comp) << ": got " << int(px[0]) << "," << int(px[1]) << "," << int(px[2])
+        << " want " << int(want[0]) << "," << int(want[1]) << "," << int(want[2]);
+    // The whole image is inside the cube: no background pixel.
+    const std::uint8_t* corner = img.at(0, 0);
+    EXPECT_GT(corner[0] + corner[1] + corner[2], 0) << to_string(comp);
+  }
+}
+
 // Issue 9 item 5: the left half transparent (value 0 under a TF that is transparent there), the
 // right half a smooth ramp; at a tolerance that makes the root coherent, the paper's rule draws
 // the root flat — its mean colour haze over the empty half too — and ours draws its children,

@@ -14,6 +14,8 @@ namespace tsp {
 namespace {
 constexpr double kPi = 3.14159265358979323846;
 double radians(double deg) { return deg * kPi / 180.0; }
+// A placed eye's near plane, as a share of the frame's bounding radius.
+constexpr double kPlacedEyeNear = 1e-3;
 }  // namespace
 
 Camera::Camera(Dims dims, const CameraParams& p) : params_(p) {
@@ -59,14 +61,27 @@ Camera::Camera(Dims dims, const CameraParams& p) : params_(p) {
     projection_ = glm::ortho(-half_w, half_w, -half_h, half_h, distance - radius * 1.01,
                              distance + radius * 1.01);
   }
-  const glm::dvec3 eye_world = target + to_eye * distance;
+  glm::dvec3 eye_world = target + to_eye * distance;
+  glm::dvec3 look_at = target;
+  if (p.projection == Projection::perspective && p.eye) {
+    // A placed eye: near plane close to it, far plane beyond the frame's farthest corner.
+    eye_world = shift + stretch * glm::dvec3((*p.eye)[0], (*p.eye)[1], (*p.eye)[2]);
+    look_at = eye_world - to_eye;
+    double farthest = 0;
+    for (int c = 0; c < 8; ++c)
+      farthest = std::max(farthest, glm::length(glm::dvec3(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y,
+                                                           c & 4 ? hi.z : lo.z) -
+                                                eye_world));
+    projection_ = glm::perspective(radians(p.fov_deg), aspect, radius * kPlacedEyeNear,
+                                   std::max(farthest, radius) * 1.01);
+  }
   // Back to sample coordinates: points divide by the stretch; depth = dot(−to_eye, stretch·x),
   // so the planes of equal depth have normal stretch·(−to_eye); rays run along (−to_eye)/stretch.
   eye_ = (eye_world - shift) / stretch;
   dir_ = glm::normalize(-to_eye * stretch);
   ray_ = glm::normalize(-to_eye / stretch);
   ray_cosine_ = std::clamp(glm::dot(ray_, dir_), 1e-6, 1.0);
-  view_ = glm::lookAt(eye_world, target, up) * glm::translate(glm::dmat4(1.0), shift) *
+  view_ = glm::lookAt(eye_world, look_at, up) * glm::translate(glm::dmat4(1.0), shift) *
           glm::scale(glm::dmat4(1.0), stretch);
 }
 

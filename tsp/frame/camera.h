@@ -2,6 +2,7 @@
 // orthographic or perspective. Pure math (GLM), shared by the renderer, slicing and ordering.
 #pragma once
 #include <array>
+#include <optional>
 #include <glm/glm.hpp>
 
 #include "tsp/core/geometry.h"
@@ -30,6 +31,11 @@ struct CameraParams {
   /// The box the view fits and turns around, in the units of voxel_size (the file's fields
   /// united, so that switching fields keeps the view); empty (lo > hi): the volume's own box.
   Aabb frame = empty_aabb();
+  /// Perspective only: the eye placed here (sample coordinates, voxels; inside the volume or
+  /// out), looking along the direction the angles give (towards the centre from azimuth and
+  /// elevation), instead of orbiting at the distance that fits the frame; zoom and pan are not
+  /// used then. Empty: the orbit camera.
+  std::optional<std::array<double, 3>> eye;
   bool operator==(const CameraParams&) const = default;
 };
 

@@ -262,12 +262,19 @@ void save_transfer_function(const TransferFunction& tf, const std::string& path)
 }
 
 std::vector<std::string> preset_names() {
-  std::vector<std::string> names;
+  std::vector<std::string> names{kAutoPreset};
   for (auto& [name, knots] : presets()) names.push_back(name);
   return names;
 }
 
-TransferFunction preset_transfer_function(const std::string& name, ValueRange domain, int entries) {
+TransferFunction preset_transfer_function(const std::string& name, ValueRange domain, int entries,
+                                          const ValueHistogram* histogram) {
+  if (name == kAutoPreset) {
+    if (histogram == nullptr)
+      throw UsageError("preset:auto is built from the data's histogram, which is not at hand "
+                       "here; name another preset or a transfer function file");
+    return histogram_transfer_function(*histogram, domain, entries);
+  }
   for (auto& [n, knots] : presets()) {
     if (n != name) continue;
     std::vector<TfPoint> points;
@@ -397,15 +404,20 @@ ValueRange tf_domain_of(const TfRangeChoice& c, const TspFile& file, int step) {
                       step_value_range(file.tree(), step));
 }
 
+ValueHistogram histogram_of(const TspFile& file) {
+  return {file.metadata().histogram, preset_domain(file.tree().value_range())};
+}
+
 TransferFunction transfer_function_from_arg(const std::string& arg, ValueRange default_domain,
-                                            int entries, const TfRangeChoice& range) {
+                                            int entries, const TfRangeChoice& range,
+                                            const ValueHistogram* histogram) {
   using Mode = TfRangeChoice::Mode;
   const std::string prefix = kPresetPrefix;
   const ValueRange data = preset_domain(default_domain);
   if (arg.rfind(prefix, 0) == 0)
     return preset_transfer_function(arg.substr(prefix.size()),
                                     range.mode == Mode::explicit_range ? range.range : data,
-                                    entries);
+                                    entries, histogram);
   TransferFunction tf = load_transfer_function(arg, entries);
   switch (range.mode) {
     case Mode::file:

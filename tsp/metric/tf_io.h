@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "tsp/metric/histogram_tf.h"
 #include "tsp/metric/transfer_function.h"
 
 namespace tsp {
@@ -25,14 +26,22 @@ TransferFunction parse_transfer_function(const std::string& text, const std::str
 /// the end). Throws IoError when the file cannot be written.
 void save_transfer_function(const TransferFunction& tf, const std::string& path);
 
-/// Names of the built-in presets ("sparse", "filled", "grey", and ParaView's common maps:
+/// The preset built from the data's histogram (histogram_transfer_function): the default --tf.
+inline constexpr const char* kAutoPreset = "auto";
+
+/// Names of the built-in presets ("auto", "sparse", "filled", "grey", and ParaView's common maps:
 /// "viridis", "inferno", "cool-to-warm", "jet", "grayscale", "rainbow-uniform").
 std::vector<std::string> preset_names();
 
-/// A built-in preset stretched over domain. Throws UsageError for an unknown name (listing the
-/// known ones) or an invalid domain.
+/// A built-in preset stretched over domain; "auto" is histogram_transfer_function(*histogram,
+/// domain). Throws UsageError for an unknown name (listing the known ones), an invalid domain,
+/// or "auto" without a histogram.
 TransferFunction preset_transfer_function(const std::string& name, ValueRange domain,
-                                          int entries = kDefaultTfEntries);
+                                          int entries = kDefaultTfEntries,
+                                          const ValueHistogram* histogram = nullptr);
+
+/// A .tsp field's value histogram: its /histogram over its value range (a view into file).
+ValueHistogram histogram_of(const TspFile& file);
 
 /// The domain a preset is stretched over for data whose values span r: r itself when it is a
 /// finite interval with lo < hi; for a constant field (lo = hi) the interval of width
@@ -89,11 +98,12 @@ TransferFunction rescaled(const TransferFunction& tf, ValueRange to);
 /// A warning when tf's domain misses the data's range (no overlap), else empty. Never throws.
 std::string tf_range_warning(const TransferFunction& tf, ValueRange data);
 
-/// Resolves a --tf argument: "preset:NAME" gives that preset, anything else is a file path;
-/// placed over the data (default_domain) as `range` says. Throws like load_transfer_function /
-/// preset_transfer_function.
+/// Resolves a --tf argument: "preset:NAME" gives that preset (histogram: the data's, for
+/// preset:auto), anything else is a file path; placed over the data (default_domain) as `range`
+/// says. Throws like load_transfer_function / preset_transfer_function.
 TransferFunction transfer_function_from_arg(const std::string& arg, ValueRange default_domain,
                                             int entries = kDefaultTfEntries,
-                                            const TfRangeChoice& range = {});
+                                            const TfRangeChoice& range = {},
+                                            const ValueHistogram* histogram = nullptr);
 
 }  // namespace tsp

@@ -12,6 +12,7 @@
 #include "tsp/core/parallel_for.h"
 #include "tsp/voxelize/mat3.h"
 #include "tsp/voxelize/scan_convert.h"
+#include "tsp/voxelize/two_buffer.h"
 #include "tsp/voxelize/tet_box.h"
 
 namespace tsp {
@@ -367,18 +368,21 @@ VoxelizeStats voxelize(const Mesh& mesh, const VoxelGrid& grid, std::span<float>
                        std::span<std::uint8_t> inside, const SampleOptions& options) {
   const Dims d = grid.dims;
   assert(std::int64_t(values.size()) == d.count() && inside.size() == values.size());
-  assert(options.antialias >= 1 && options.antialias <= kMaxAntialias);
+  const bool two = options.kind == VoxelizerKind::two_buffer;
+  assert(options.antialias >= 1 && options.antialias <= (two ? kMaxTwoBufferK : kMaxAntialias));
   const int threads = options.threads;
   const bool scan = options.kind == VoxelizerKind::scan;
   std::fill(values.begin(), values.end(), 0.f);
   std::fill(inside.begin(), inside.end(), std::uint8_t(0));
-  const bool whole_hex = !scan && options.hex == HexSampling::isoparametric;
+  const bool whole_hex = !scan && !two && options.hex == HexSampling::isoparametric;
   const bool all_hex = whole_hex && std::all_of(mesh.types.begin(), mesh.types.end(), is_hexahedral);
   const TetMesh tets = all_hex ? TetMesh{} : tetrahedralize(mesh, whole_hex);
   Voxelizer vx{mesh, tets, grid, values, inside, whole_hex, {}, {}, 0, {}};
   if (scan)
     for (int a = 0; a < 3; ++a)
       vx.margin[std::size_t(a)] = (0.5 - 0.5 / options.antialias) * grid.spacing[std::size_t(a)];
+  if (two)  // a pass's samples lie within half a voxel of the centres
+    for (int a = 0; a < 3; ++a) vx.margin[std::size_t(a)] = 0.5 * grid.spacing[std::size_t(a)];
   vx.tiles = bar_tiles(d, resolve_threads(threads));
   VoxelizeStats stats;
   stats.tets = std::int64_t(tets.tets.size());
@@ -426,6 +430,13 @@ VoxelizeStats voxelize(const Mesh& mesh, const VoxelGrid& grid, std::span<float>
     acc.taken.assign(values.size(), 0);
     acc.sum.assign(values.size(), 0.0);
   }
+  detail::PassBuffers passes;
+  if (two) {
+    passes.k = options.antialias;
+    passes.offset = detail::pass_offsets(options.antialias, options.jitter);
+    passes.taken.assign(values.size(), {0, 0});
+    passes.sum.assign(values.size(), 0.0);
+  }
   parallel_for(vx.tiles.count(), 1, threads, [&](int, std::int64_t first, std::int64_t last) {
     for (std::int64_t ti = first; ti < last; ++ti) {
       const int tl[3] = {int(ti % vx.tiles.n[0]), int(ti / vx.tiles.n[0] % vx.tiles.n[1]),
@@ -441,6 +452,7 @@ VoxelizeStats voxelize(const Mesh& mesh, const VoxelGrid& grid, std::span<float>
       for (auto& block : block_bins) {
         for (Item item : block[std::size_t(ti)])
           found += scan        ? detail::scan_tet(tets, item, grid, t0, t1, acc)
+                   : two       ? detail::two_buffer_tet(tets, item, grid, t0, t1, passes)
                    : item >= 0 ? vx.sample_tet(item, t0, t1)
                                : vx.sample_hex(-1 - item, t0, t1);
         std::vector<Item>().swap(block[std::size_t(ti)]);
@@ -455,6 +467,16 @@ VoxelizeStats voxelize(const Mesh& mesh, const VoxelGrid& grid, std::span<float>
       const int n = std::popcount(acc.taken[i]);
       if (2 * n < all) continue;
       values[i] = float(acc.sum[i] / n);
+      inside[i] = 1;
+      ++stats.inside;
+    }
+  } else if (two) {
+    // The passes to voxels: inside when at least half of them hit.
+    const int all = int(passes.offset.size());
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      const int n = std::popcount(passes.taken[i][0]) + std::popcount(passes.taken[i][1]);
+      if (2 * n < all) continue;
+      values[i] = float(passes.sum[i] / n);
       inside[i] = 1;
       ++stats.inside;
     }

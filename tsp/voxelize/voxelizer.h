@@ -37,7 +37,12 @@ enum class HexSampling {
 enum class VoxelizerKind {
   locate,  ///< A (paper 000): each voxel centre located in a cell, interpolated there
   scan,    ///< B (paper 003): tetrahedra scan-converted onto K× sub-samples, averaged per voxel
+  two_buffer,  ///< C (paper 003 §2): front and back faces into two buffers, voxels between them
+               ///< stepped incrementally; K³ shifted (optionally jittered) passes accumulated
 };
+
+/// Largest anti-aliasing factor of the two-buffer voxelizer (K³ passes fit a 128-bit mask).
+inline constexpr int kMaxTwoBufferK = 5;
 
 /// Largest anti-aliasing factor of the scan voxelizer (K³ sub-samples fit a 64-bit mask).
 inline constexpr int kMaxAntialias = 4;
@@ -54,8 +59,11 @@ inline constexpr std::int64_t kMinVisitBudget = std::int64_t(1) << 30;
 struct SampleOptions {
   VoxelizerKind kind = VoxelizerKind::locate;
   HexSampling hex = HexSampling::isoparametric;  ///< locate only
-  int antialias = 1;  ///< scan only: K, 1..kMaxAntialias; a voxel is inside when at least half
-                      ///< its K³ sub-samples are, and holds their mean
+  int antialias = 1;  ///< scan and two_buffer: K, 1..kMaxAntialias (scan) or kMaxTwoBufferK; a
+                      ///< voxel is inside when at least half its K³ sub-samples are, and holds
+                      ///< their mean
+  bool jitter = false;  ///< two_buffer: each sub-sample moved by a fixed pseudo-random amount
+                        ///< inside its sub-cell (paper 003 §3.1's jittered pattern)
   int threads = 0;    ///< workers; 0 = all cores
 };
 

@@ -113,7 +113,7 @@ TEST(TfIo, MissingFileIsAnIoError) {
 
 TEST(TfIo, PresetsSparseIsMostlyTransparentFilledIsNot) {
   auto names = preset_names();
-  EXPECT_EQ(names.size(), 9u);  // ours three and ParaView's six common maps
+  EXPECT_EQ(names.size(), 10u);  // auto (from the histogram), ours three, ParaView's six maps
   TransferFunction sparse = preset_transfer_function("sparse", {0, 1000});
   TransferFunction filled = preset_transfer_function("filled", {0, 1000});
   int sparse_clear = 0, filled_clear = 0;

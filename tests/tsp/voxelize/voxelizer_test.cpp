@@ -10,6 +10,7 @@
 
 #include "tsp/core/error.h"
 #include "tsp/voxelize/tet_box.h"
+#include "tsp/voxelize/two_buffer.h"
 #include "tsp/voxelize/voxelized_source.h"
 
 namespace tsp {
@@ -51,13 +52,14 @@ Mesh jittered_box(int n, double jitter, Keep keep, F f) {
   return m;
 }
 
-// Voxelizer A in both hexahedron modes and B without anti-aliasing: all sample voxel centres.
+// Voxelizer A in both hexahedron modes, B and C without anti-aliasing: all sample voxel centres.
 std::vector<SampleOptions> all_samplers() {
-  SampleOptions iso, tets, scan;
+  SampleOptions iso, tets, scan, two;
   tets.hex = HexSampling::tetrahedra;
   scan.kind = VoxelizerKind::scan;
-  iso.threads = tets.threads = scan.threads = 2;
-  return {iso, tets, scan};
+  two.kind = VoxelizerKind::two_buffer;
+  iso.threads = tets.threads = scan.threads = two.threads = 2;
+  return {iso, tets, scan, two};
 }
 
 VoxelGrid unit_grid(int n) {
@@ -216,6 +218,101 @@ TEST(Voxelizer, ScanSubsamplesReachCellsBetweenVoxelCentres) {
             EXPECT_NEAR(v[i], f(x / 6.0, y / 6.0, z / 6.0), 1e-5) << k;
           }
         }
+  }
+}
+
+// Voxelizer C (two buffers) samples the lattice voxelizer B does: at every K without jitter,
+// the same voxels inside and the same values, on a mesh with a hole (cells of 1/9, voxels of
+// 1/10: sub-samples on shared faces and near the hole's walls).
+TEST(Voxelizer, TwoBufferTakesTheSamplesScanTakesAtEveryK) {
+  auto f = [](double x, double y, double z) { return float(2 * x * x - y + 3 * z); };
+  const Mesh m = jittered_box(9, 0.2, [](double x, double y, double) {
+    return (x - 0.5) * (x - 0.5) + (y - 0.5) * (y - 0.5) > 0.04;
+  }, f);
+  const VoxelGrid g = unit_grid(11);
+  std::vector<float> vs(std::size_t(g.dims.count())), vt(vs.size());
+  std::vector<std::uint8_t> is(vs.size()), it(vs.size());
+  for (int k = 1; k <= kMaxAntialias; ++k) {
+    SampleOptions scan, two;
+    scan.kind = VoxelizerKind::scan;
+    two.kind = VoxelizerKind::two_buffer;
+    scan.antialias = two.antialias = k;
+    const VoxelizeStats a = voxelize(m, g, vs, is, scan);
+    const VoxelizeStats b = voxelize(m, g, vt, it, two);
+    EXPECT_EQ(a.inside, b.inside) << k;
+    EXPECT_GT(b.inside, 0);
+    EXPECT_LT(b.inside, g.dims.count());  // the hole
+    for (std::size_t i = 0; i < vs.size(); ++i) {
+      EXPECT_EQ(is[i], it[i]) << "K " << k << " voxel " << i;
+      EXPECT_NEAR(vs[i], vt[i], 1e-5) << "K " << k << " voxel " << i;
+    }
+  }
+}
+
+// K = 5 and the jittered pattern: a fully covered voxel of a linear field holds the field at its
+// centre moved by the passes' mean offset (0 without jitter), and a voxel on the box's faces,
+// edges or corners is inside exactly when at least half its passes' samples fall in the box.
+TEST(Voxelizer, TwoBufferPassesAverageALinearFieldAtTheirMeanOffset) {
+  auto f = [](double x, double y, double z) { return 1 + 2 * x - 3 * y + 0.5 * z; };
+  const Mesh m = jittered_box(20, 0.2, [](double, double, double) { return true; },
+                              [&](double x, double y, double z) { return float(f(x, y, z)); });
+  const VoxelGrid g = unit_grid(7);
+  std::vector<float> v(std::size_t(g.dims.count()));
+  std::vector<std::uint8_t> in(v.size());
+  for (bool jitter : {false, true}) {
+    SampleOptions so;
+    so.kind = VoxelizerKind::two_buffer;
+    so.antialias = kMaxTwoBufferK;
+    so.jitter = jitter;
+    voxelize(m, g, v, in, so);
+    std::array<double, 3> mean{0, 0, 0};
+    const auto offsets = detail::pass_offsets(kMaxTwoBufferK, jitter);
+    ASSERT_EQ(offsets.size(), 125u);
+    for (const auto& o : offsets)
+      for (int a = 0; a < 3; ++a) mean[std::size_t(a)] += o[std::size_t(a)] / 125;
+    for (int z = 0; z < 7; ++z)
+      for (int y = 0; y < 7; ++y)
+        for (int x = 0; x < 7; ++x) {
+          const int faces = (x == 0 || x == 6) + (y == 0 || y == 6) + (z == 0 || z == 6);
+          const std::size_t i = std::size_t(x + 7 * (y + 7 * z));
+          if (faces == 0) {
+            EXPECT_TRUE(in[i]);
+            EXPECT_NEAR(v[i], f((x + mean[0]) / 6, (y + mean[1]) / 6, (z + mean[2]) / 6), 1e-5)
+                << jitter;
+          }
+          // A voxel on the box's faces holds the passes whose sample falls inside the box:
+          // at least half of them, or it is outside.
+          int hits = 0;
+          const int c[3] = {x, y, z};
+          for (const auto& o : offsets) {
+            bool hit = true;
+            for (int a = 0; a < 3; ++a) {
+              if (c[a] == 0) hit &= o[std::size_t(a)] >= 0;
+              if (c[a] == 6) hit &= o[std::size_t(a)] <= 0;
+            }
+            hits += hit;
+          }
+          EXPECT_EQ(bool(in[i]), 2 * hits >= 125) << jitter << ": " << x << "," << y << "," << z;
+        }
+  }
+}
+
+TEST(Voxelizer, PassOffsetsAreSubCellCentresOrJitteredInsideThem) {
+  EXPECT_EQ(detail::pass_offsets(1, false), (std::vector<std::array<double, 3>>{{0, 0, 0}}));
+  for (int k = 1; k <= kMaxTwoBufferK; ++k) {
+    const auto plain = detail::pass_offsets(k, false), jittered = detail::pass_offsets(k, true);
+    ASSERT_EQ(plain.size(), std::size_t(k * k * k));
+    ASSERT_EQ(jittered, detail::pass_offsets(k, true));  // a fixed pattern
+    bool moved = false;
+    for (std::size_t p = 0; p < plain.size(); ++p)
+      for (int a = 0; a < 3; ++a) {
+        const double d = jittered[p][std::size_t(a)] - plain[p][std::size_t(a)];
+        EXPECT_LE(std::abs(d), detail::kJitterShare / k + 1e-12);
+        moved |= std::abs(d) > 1e-6;
+        EXPECT_GT(jittered[p][std::size_t(a)], -0.5);
+        EXPECT_LT(jittered[p][std::size_t(a)], 0.5);
+      }
+    EXPECT_TRUE(moved) << k;
   }
 }
 
