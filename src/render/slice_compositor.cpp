@@ -185,8 +185,8 @@ SliceCompositor::~SliceCompositor() {
 }
 
 void SliceCompositor::set_transfer_function(const tsp::TransferFunction& tf,
-                                            tsp::ValueRange quantized) {
-  tf_.set(tf, quantized);
+                                            tsp::ValueRange quantized, std::vector<double> prior) {
+  tf_.set(tf, quantized, std::move(prior));
 }
 
 void SliceCompositor::set_units(const Program& p) {

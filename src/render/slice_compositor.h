@@ -93,7 +93,8 @@ class SliceCompositor {
   SliceCompositor& operator=(const SliceCompositor&) = delete;
 
   /// Uses tf for bricks quantized over `quantized` from the next frame on.
-  void set_transfer_function(const tsp::TransferFunction& tf, tsp::ValueRange quantized);
+  void set_transfer_function(const tsp::TransferFunction& tf, tsp::ValueRange quantized,
+                             std::vector<double> prior = {});
   /// Textures carry a stencil in their second channel (RG16): outside samples are not drawn.
   void set_stencil(bool on) { stencil_ = on; }
   /// The one-pass ray caster clips to clip (no probe: nothing clipped) and, with surface, draws

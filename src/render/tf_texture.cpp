@@ -23,8 +23,10 @@ TfTexture::~TfTexture() {
   gl_.DeleteTextures(1, &levels_id_);
 }
 
-void TfTexture::set(const tsp::TransferFunction& tf, tsp::ValueRange quantized) {
+void TfTexture::set(const tsp::TransferFunction& tf, tsp::ValueRange quantized,
+                    std::vector<double> prior) {
   tf_ = tf;
+  prior_ = std::move(prior);
   spacing_ = -1;  // re-uploaded, corrected for the spacing, by the next bind
   table_spacing_ = -1;
   rows_spacing_ = -1;
@@ -83,7 +85,7 @@ void TfTexture::bind_levels(int unit, double spacing) {
   std::vector<float> rgba;
   rgba.reserve(std::size_t(tf_.size()) * 4 * tsp::kLevelTfRows);
   for (int row = 0; row < tsp::kLevelTfRows; ++row)
-    for (const tsp::Rgba& e : tsp::blurred_entries(tf_, tsp::level_tf_sigma(row))) {
+    for (const tsp::Rgba& e : tsp::blurred_entries(tf_, tsp::level_tf_sigma(row), prior_)) {
       const float a = tsp::corrected_opacity(e.a, spacing);
       rgba.insert(rgba.end(), {e.r * a, e.g * a, e.b * a, a});
     }

@@ -20,8 +20,11 @@ class TfTexture {
   TfTexture(const TfTexture&) = delete;
   TfTexture& operator=(const TfTexture&) = delete;
 
-  /// Uses tf for bricks quantized over `quantized` from the next bind() on.
-  void set(const tsp::TransferFunction& tf, tsp::ValueRange quantized);
+  /// Uses tf for bricks quantized over `quantized` from the next bind() on; prior (per entry,
+  /// how many samples take its value; empty: none) weighs the coarse levels' blur
+  /// (tsp::blurred_entries).
+  void set(const tsp::TransferFunction& tf, tsp::ValueRange quantized,
+           std::vector<double> prior = {});
   /// Binds it to texture unit `unit`, re-uploading first when the TF or spacing changed.
   /// Throws tsp::GlError.
   void bind(int unit, double spacing);
@@ -56,6 +59,7 @@ class TfTexture {
   double levels_spacing_ = -1;      ///< spacing the level rows were made for
   bool opaque_current_ = false;     ///< the opaque colours are uploaded (bind_opaque)
   tsp::TransferFunction tf_;        ///< the TF as given (uncorrected, not premultiplied)
+  std::vector<double> prior_;       ///< per entry, the data's count there (empty: none)
 };
 
 }  // namespace tspgl

@@ -42,12 +42,15 @@ VolumeRenderer::VolumeRenderer(GlContext& ctx, const tsp::BrickStore& bricks,
       textures_(ctx.gl(), bricks_),
       dense_(ctx.gl(), bricks_) {
   compositor_->set_stencil(tree_.has_stencil());
+  histogram_.assign(bricks.histogram().begin(), bricks.histogram().end());
 }
 
 VolumeRenderer::~VolumeRenderer() = default;
 
 void VolumeRenderer::set_transfer_function(const tsp::TransferFunction& tf) {
-  compositor_->set_transfer_function(tf, tree_.value_range());
+  // The coarse levels' blur weighs values by how many samples take them (the file's histogram).
+  compositor_->set_transfer_function(tf, tree_.value_range(),
+                                     tsp::entry_prior(tf, histogram_, tree_.value_range()));
   tf_ = tf;
   variation_.reset();
   textures_.forget_variations();

@@ -128,6 +128,7 @@ class VolumeRenderer {
   };
   std::optional<Previous> previous_;
   std::uint64_t tf_serial_ = 0;  // set_transfer_function calls
+  std::vector<std::uint64_t> histogram_;  // the store's value histogram (the level TF's prior)
   tsp::ClipRegion clip_;
   bool clip_surface_ = false;
   std::vector<tsp::ClipSide> clip_sides_;  // per octree node, empty: no clip

@@ -80,8 +80,9 @@ TEST(DefaultTfCli, TheHistogramMapShowsEveryStepOfEveryCommittedSample) {
       const tsp::Image empty = tsp::read_png(clear[std::size_t(t)].string());
       const tsp::DiffStats d = tsp::diff_images(tsp::read_png(shown[std::size_t(t)].string()), empty);
       EXPECT_GT(d.max, kShownDeltaE) << "step " << t << ": the default map shows nothing";
-      if (t == steps - 1)
+      if (t == steps - 1) {
         EXPECT_GT(d.p99, kPictureDeltaE) << "step " << t << ": the default map shows too little";
+      }
       const tsp::DiffStats old = tsp::diff_images(tsp::read_png(sparse[std::size_t(t)].string()), empty);
       sparse_empty += old.p99 <= kPictureDeltaE;
       auto_empty += d.p99 <= kPictureDeltaE;

@@ -126,7 +126,12 @@ double mean_channel(const tsp::Image& img, int c) {
 // with the TF itself, level 2 shows nothing; with the levels' TF (the TF averaged over the
 // level's residual spread, tsp/metric/level_tf.h) it shows the band as a glow giving the light
 // level 0's lattice of dots gives (the dots themselves are beyond level 2's resolution, so the
-// per-pixel ΔE stays high either way: the test compares the picture's mean colour).
+// per-pixel ΔE stays high either way: the test compares the picture's mean colour). The blur is
+// weighted by the data's histogram (entry_prior): here the voxel values sit on four spikes
+// (0.2, 0.4, 0.6, 0.8, in shares 1:3:3:1) and the band on the top one, so the prior gives the
+// band the full eighth of the samples while level 0's trilinear samples cross it only in thin
+// shells — the glow is brighter than level 0's light (measured 0.206 against 0.125 unlit; with
+// the plain normal blur it was 0.1250), bounded here by twice it.
 TEST(LodRender, ThinBandCrossedByAFineOscillationSurvivesLevelTwo) {
   const double kAmp = 0.1;
   const auto wave = [](int i) { return std::sin(M_PI * (i + 0.5) / 2) * M_SQRT2; };  // ±1
@@ -149,9 +154,10 @@ TEST(LodRender, ThinBandCrossedByAFineOscillationSurvivesLevelTwo) {
         mean_channel(scene.frame(two, 30, 20, Compositing::rays, false, shade), 0);
     ASSERT_GT(red0, 0.02) << "level 0 shows the band";
     EXPECT_LT(without, 0.1 * red0) << "shade " << shade;
-    // Unlit the glow's light is level 0's to a few per cent (measured 0.1250 against 0.1248);
-    // lit, level 2's nearly uniform data has almost no gradient and stays unlit (brighter).
-    EXPECT_NEAR(with, red0, (shade ? 0.5 : 0.05) * red0) << "shade " << shade;
+    // The band survives as a glow of level 0's light to within a factor of two (lit, level 2's
+    // nearly uniform data has almost no gradient and stays unlit: brighter still).
+    EXPECT_GT(with, 0.5 * red0) << "shade " << shade;
+    EXPECT_LT(with, (shade ? 3.0 : 2.0) * red0) << "shade " << shade;
   }
 }
 

@@ -25,7 +25,24 @@ int level_tf_row(double sigma) {
   return std::clamp(int(std::lround(r)), 1, kLevelTfRows - 1);
 }
 
-std::vector<Rgba> blurred_entries(const TransferFunction& tf, double sigma) {
+std::vector<double> entry_prior(const TransferFunction& tf, std::span<const std::uint64_t> counts,
+                                ValueRange over) {
+  std::vector<double> prior;
+  const int bins = int(counts.size());
+  if (bins == 0 || !(over.lo < over.hi)) return prior;
+  prior.resize(std::size_t(tf.size()), 0.0);
+  for (int j = 0; j < tf.size(); ++j) {
+    const double u = (tf.entry_value(j) - over.lo) / (over.hi - over.lo);
+    if (u >= 0 && u <= 1) prior[std::size_t(j)] = double(counts[std::size_t(std::min(bins - 1, int(u * bins)))]);
+  }
+  double mean = 0;
+  for (double p : prior) mean += p / double(prior.size());
+  for (double& p : prior) p += kLevelTfPriorFloor * mean;
+  return prior;
+}
+
+std::vector<Rgba> blurred_entries(const TransferFunction& tf, double sigma,
+                                  std::span<const double> prior) {
   const int k = tf.size();
   std::vector<Rgba> out(tf.entries().begin(), tf.entries().end());
   const double s = sigma * k;  // in entries
@@ -37,11 +54,27 @@ std::vector<Rgba> blurred_entries(const TransferFunction& tf, double sigma) {
     w[std::size_t(d + reach)] = std::exp(-0.5 * (d / s) * (d / s));
     total += w[std::size_t(d + reach)];
   }
+  const bool weighted = int(prior.size()) == k;
   for (int j = 0; j < k; ++j) {
+    // The kernel's weights times the prior, normalised (the plain kernel where the prior
+    // vanishes over all of it).
+    double norm = total;
+    bool use_prior = false;
+    if (weighted) {
+      double t = 0;
+      for (int d = -reach; d <= reach; ++d)
+        t += w[std::size_t(d + reach)] * prior[std::size_t(std::clamp(j + d, 0, k - 1))];
+      if (t > 0) {
+        norm = t;
+        use_prior = true;
+      }
+    }
     double a = 0, r = 0, g = 0, b = 0;
     for (int d = -reach; d <= reach; ++d) {
-      const Rgba& e = tf.entry(std::clamp(j + d, 0, k - 1));
-      const double wd = w[std::size_t(d + reach)] / total;
+      const int at = std::clamp(j + d, 0, k - 1);
+      const Rgba& e = tf.entry(at);
+      const double wd =
+          w[std::size_t(d + reach)] * (use_prior ? prior[std::size_t(at)] : 1.0) / norm;
       a += wd * e.a;
       r += wd * e.a * e.r;
       g += wd * e.a * e.g;

@@ -8,6 +8,8 @@
 // a wider, fainter one of the same weight. Rows of σ on a geometric ladder, so a brick picks
 // the row nearest its own σ.
 #pragma once
+#include <cstdint>
+#include <span>
 #include <vector>
 
 #include "tsp/metric/transfer_function.h"
@@ -33,6 +35,23 @@ int level_tf_row(double sigma);
 /// over the entries i, weights w of the normal density at the entry centres' distance,
 /// normalised; values beyond the domain take the edge entries, as the lookup clamps. Straight
 /// (not premultiplied) colours, opacity per voxel like tf's. sigma <= 0: tf's entries.
-std::vector<Rgba> blurred_entries(const TransferFunction& tf, double sigma);
+/// With prior (one weight per entry: how many samples of the data take the entry's value), the
+/// normal weights are multiplied by it — the voxels a sample stands for take the values the data
+/// takes, not any value near the sample's (a background value next to an opaque value no sample
+/// takes stays clear); where the prior is 0 over the whole kernel, the plain normal weights.
+std::vector<Rgba> blurred_entries(const TransferFunction& tf, double sigma,
+                                  std::span<const double> prior = {});
+
+/// Share of the mean count added to every entry's prior: half the blur's weight follows the
+/// data's distribution, half the plain normal kernel. Measured at level 1 and 2 (docs/results.md):
+/// prior alone (0) helped the histogram map and hurt the sparse one; 1 kept the sparse map within
+/// 0.2 ΔE of no prior and the histogram map within 0.5 of its best.
+inline constexpr double kLevelTfPriorFloor = 1.0;
+
+/// The prior of blurred_entries for tf from a value histogram (counts of equal bins over
+/// `over`): per entry, the count of the bin holding its value (0 outside `over`) plus
+/// kLevelTfPriorFloor times the mean of those counts; empty when the histogram is. Never throws.
+std::vector<double> entry_prior(const TransferFunction& tf, std::span<const std::uint64_t> counts,
+                                ValueRange over);
 
 }  // namespace tsp

@@ -18,6 +18,9 @@ class BrickStore {
   virtual ~BrickStore() = default;
   /// The tree the bricks belong to.
   virtual const TspTree& tree() const = 0;
+  /// The value histogram of every sample, equal bins over tree().value_range(); empty when the
+  /// store has none. Never throws.
+  virtual std::span<const std::uint64_t> histogram() const { return {}; }
   /// Reads stored brick b at step t into out: tree().octree().lattice(b).count() codes,
   /// x fastest. Throws IoError/FormatError.
   virtual void read_brick(int brick, int step, std::span<std::uint16_t> out) const = 0;

@@ -45,6 +45,8 @@ class TspFile : public BrickStore {
   ~TspFile() override;
   /// The tree with every node's statistics.
   const TspTree& tree() const override;
+  /// metadata().histogram.
+  std::span<const std::uint64_t> histogram() const override { return metadata().histogram; }
   /// Provenance, ranges, histogram.
   const TspMetadata& metadata() const;
   /// Path the file was opened from.

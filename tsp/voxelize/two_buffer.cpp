@@ -115,10 +115,11 @@ std::vector<std::array<double, 3>> pass_offsets(int k, bool jitter) {
       for (int sx = 0; sx < k; ++sx) {
         const int s[3] = {sx, sy, sz};
         std::array<double, 3> o{};
+        const std::uint64_t column = std::uint64_t(sy * k + sx), pass = out.size();
         for (int a = 0; a < 3; ++a) {
           o[std::size_t(a)] = (s[a] + 0.5) / k - 0.5;
-          if (jitter) {
-            const std::uint64_t h = splitmix(std::uint64_t(out.size()) * 3 + std::uint64_t(a));
+          if (jitter) {  // x and y by the sub-pixel, z by the pass
+            const std::uint64_t h = splitmix((a < 2 ? column : pass) * 3 + std::uint64_t(a));
             const double u = double(h >> 11) * 0x1.0p-53 * 2 - 1;  // in [−1, 1)
             o[std::size_t(a)] += u * kJitterShare / k;
           }
@@ -157,13 +158,16 @@ std::int64_t two_buffer_tet(const TetMesh& m, std::int64_t t, const VoxelGrid& g
   thread_local Buffer front, back;
   const Dims d = g.dims;
   std::int64_t taken = 0;
-  for (std::size_t pass = 0; pass < b.offset.size(); ++pass) {
-    const std::array<double, 3>& o = b.offset[pass];
-    Vertex v[4];  // in the pass's lattice: sample (i, j, k) at (i, j, k)
+  const int k = b.k;
+  const std::size_t columns = std::size_t(k) * std::size_t(k);
+  for (std::size_t column = 0; column < columns; ++column) {
+    // The sub-pixel's buffers, in its lattice: sample (i, j) at (i, j); depth unshifted.
+    const std::array<double, 3>& o = b.offset[column];
+    Vertex v[4];
     for (int i = 0; i < 4; ++i)
       v[i] = {(p[i][0] - g.origin[0]) / g.spacing[0] - o[0],
               (p[i][1] - g.origin[1]) / g.spacing[1] - o[1],
-              (p[i][2] - g.origin[2]) / g.spacing[2] - o[2], p[i][3]};
+              (p[i][2] - g.origin[2]) / g.spacing[2], p[i][3]};
     double lo[2] = {v[0].x, v[0].y}, hi[2] = {v[0].x, v[0].y};
     for (const Vertex& x : v) {
       lo[0] = std::min(lo[0], x.x);
@@ -182,10 +186,10 @@ std::int64_t two_buffer_tet(const TetMesh& m, std::int64_t t, const VoxelGrid& g
     for (int f = 0; f < 4; ++f)
       if (side[f] != 0)
         scan_convert(v[kFaces[f][0]], v[kFaces[f][1]], v[kFaces[f][2]], side[f] < 0 ? front : back);
-    // Between the two buffers: every voxel of a column from the front depth to the back depth,
-    // the value stepped from the front value.
-    const std::size_t word = pass / 64;
-    const std::uint64_t bit = std::uint64_t(1) << (pass % 64);
+    // Between the two buffers, for each pass of this sub-pixel (its own depth offset): every
+    // voxel of a column from the front depth to the back depth, the value stepped from the
+    // front value.
+    const std::size_t slab = std::size_t(d.x) * std::size_t(d.y);
     for (int j = j0; j <= j1; ++j)
       for (int i = i0; i <= i1; ++i) {
         const std::size_t at = std::size_t(j - j0) * std::size_t(front.w) + std::size_t(i - i0);
@@ -195,19 +199,23 @@ std::int64_t two_buffer_tet(const TetMesh& m, std::int64_t t, const VoxelGrid& g
           std::swap(zf, zb);
           std::swap(vf, vb);
         }
-        const int k0 = std::max(t0[2], first_at_or_above(std::max(zf, double(t0[2]) - 1)));
-        const int k1 = std::min(t1[2], last_at_or_below(std::min(zb, double(t1[2]) + 1)));
-        if (k0 > k1) continue;
         const double incr = zb > zf ? (vb - vf) / (zb - zf) : 0;
-        double value = vf + (k0 - zf) * incr;
-        std::size_t voxel = std::size_t(i + std::int64_t(d.x) * (j + std::int64_t(d.y) * k0));
-        const std::size_t slab = std::size_t(d.x) * std::size_t(d.y);
-        for (int k = k0; k <= k1; ++k, voxel += slab, value += incr) {
-          std::uint64_t& mask = b.taken[voxel][word];
-          if (mask & bit) continue;
-          mask |= bit;
-          b.sum[voxel] += value;
-          ++taken;
+        for (std::size_t pass = column; pass < b.offset.size(); pass += columns) {
+          const double oz = b.offset[pass][2];
+          const int k0 = std::max(t0[2], first_at_or_above(std::max(zf - oz, double(t0[2]) - 1)));
+          const int k1 = std::min(t1[2], last_at_or_below(std::min(zb - oz, double(t1[2]) + 1)));
+          if (k0 > k1) continue;
+          const std::size_t word = pass / 64;
+          const std::uint64_t bit = std::uint64_t(1) << (pass % 64);
+          double value = vf + (k0 + oz - zf) * incr;
+          std::size_t voxel = std::size_t(i + std::int64_t(d.x) * (j + std::int64_t(d.y) * k0));
+          for (int kk = k0; kk <= k1; ++kk, voxel += slab, value += incr) {
+            std::uint64_t& mask = b.taken[voxel][word];
+            if (mask & bit) continue;
+            mask |= bit;
+            b.sum[voxel] += value;
+            ++taken;
+          }
         }
       }
   }

@@ -13,6 +13,9 @@
 // a K³ sub-grid, or, jittered, each moved by a fixed pseudo-random amount inside its sub-cell —
 // accumulated per voxel (a mask of the passes already taken, so a sample on a face shared by two
 // tetrahedra counts once, and their sum). A voxel is inside when at least half its passes hit.
+// The K passes that share an (x, y) offset (a sub-pixel) share the two buffers: their depths
+// and values are scan-converted once and each pass steps its own depth offset between them, so
+// a tetrahedron is scan-converted K² times, not K³.
 #pragma once
 #include <array>
 #include <cstdint>
@@ -31,9 +34,11 @@ struct PassBuffers {
   std::vector<double> sum;
 };
 
-/// The K³ pass offsets (in voxels, each in (−½, ½)): sub-cell centres ((s + ½)/K − ½ per axis),
-/// jittered by a fixed pseudo-random amount within ±kJitterShare of a sub-cell when jitter.
-/// K = 1 without jitter is the voxel centre alone. Never throws.
+/// The K³ pass offsets (in voxels, each in (−½, ½)), pass p = (s_z·K + s_y)·K + s_x: sub-cell
+/// centres ((s + ½)/K − ½ per axis), jittered by a fixed pseudo-random amount within
+/// ±kJitterShare of a sub-cell when jitter — x and y by the sub-pixel (s_x, s_y), so the K
+/// passes p mod K² share them, z by the pass. K = 1 without jitter is the voxel centre alone.
+/// Never throws.
 std::vector<std::array<double, 3>> pass_offsets(int k, bool jitter);
 
 /// Share of a sub-cell a jittered sample may move from its centre, each way.

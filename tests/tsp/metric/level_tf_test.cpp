@@ -54,5 +54,36 @@ TEST(LevelTf, BlurredEntriesAreTheExpectedColourOfTheSpread) {
   for (const Rgba& e : blurred_entries(edge, 0.1)) EXPECT_NEAR(e.a, 0.5, 1e-6);
 }
 
+// The data's prior: an opaque entry no sample takes, beside a clear one most samples take. The
+// plain blur spreads the opaque entry's opacity over the clear one; weighted by the prior (the
+// counts plus the mean count) the clear entry stays nearly clear, as worked out here.
+TEST(LevelTf, ThePriorKeepsACommonClearValueClearBesideARareOpaqueOne) {
+  TransferFunction tf({0, 8}, 8);
+  std::vector<Rgba> e(8, Rgba{1, 1, 1, 0});
+  e[4].a = 1;  // opaque, taken by no sample
+  tf.set_entries(0, e);
+  const std::vector<std::uint64_t> counts{0, 0, 0, 1000, 0, 0, 0, 0};
+  const std::vector<double> prior = entry_prior(tf, counts, {0, 8});
+  ASSERT_EQ(prior.size(), 8u);
+  EXPECT_DOUBLE_EQ(prior[3], 1000 + kLevelTfPriorFloor * 125);
+  EXPECT_DOUBLE_EQ(prior[0], kLevelTfPriorFloor * 125);
+  const double sigma = 1.0 / 8;  // one entry
+  const std::vector<Rgba> plain = blurred_entries(tf, sigma), weighted = blurred_entries(tf, sigma, prior);
+  // Entry 3's expected opacity under the prior-weighted kernel, summed here.
+  double num = 0, den = 0;
+  for (int i = 0; i < 8; ++i) {
+    const double w = std::exp(-0.5 * (i - 3) * (i - 3)) * prior[std::size_t(i)];
+    num += w * e[std::size_t(i)].a;
+    den += w;
+  }
+  EXPECT_NEAR(weighted[3].a, num / den, 1e-3);  // (the kernel is cut at a few σ)
+  EXPECT_LT(weighted[3].a, 0.5 * plain[3].a);
+  EXPECT_GT(plain[3].a, 0.2f);
+  // Without a histogram: the plain blur.
+  EXPECT_TRUE(entry_prior(tf, {}, {0, 8}).empty());
+  const std::vector<Rgba> none = blurred_entries(tf, sigma, {});
+  for (int i = 0; i < 8; ++i) EXPECT_EQ(none[std::size_t(i)].a, plain[std::size_t(i)].a);
+}
+
 }  // namespace
 }  // namespace tsp

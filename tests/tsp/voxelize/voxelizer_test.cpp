@@ -313,6 +313,10 @@ TEST(Voxelizer, PassOffsetsAreSubCellCentresOrJitteredInsideThem) {
         EXPECT_LT(jittered[p][std::size_t(a)], 0.5);
       }
     EXPECT_TRUE(moved) << k;
+    // The K passes of a sub-pixel share its x and y (they share the two buffers).
+    for (std::size_t p = 0; p < plain.size(); ++p)
+      for (int a = 0; a < 2; ++a)
+        EXPECT_EQ(jittered[p][std::size_t(a)], jittered[p % std::size_t(k * k)][std::size_t(a)]);
   }
 }
 
