@@ -68,8 +68,9 @@ void scan_convert(Vertex a, Vertex b, Vertex c, Buffer& buf) {
   if (a.y > b.y) std::swap(a, b);
   if (b.y > c.y) std::swap(b, c);
   if (a.y > b.y) std::swap(a, b);
-  const int j0 = std::max(buf.j0, first_at_or_above(a.y));
-  const int j1 = std::min(buf.j0 + buf.h - 1, last_at_or_below(c.y));
+  // (Clamped to the buffer before the conversion to int: a vertex may lie far away.)
+  const int j0 = std::max(buf.j0, first_at_or_above(std::max(a.y, double(buf.j0) - 1)));
+  const int j1 = std::min(buf.j0 + buf.h - 1, last_at_or_below(std::min(c.y, double(buf.j0 + buf.h))));
   if (j0 > j1) return;
   EdgeWalk longest(a, c, j0), upper(a, b, j0), lower(b, c, j0);
   for (int j = j0; j <= j1; ++j, longest.step(), upper.step(), lower.step()) {
@@ -90,8 +91,9 @@ void scan_convert(Vertex a, Vertex b, Vertex c, Buffer& buf) {
       std::swap(zl, zr);
       std::swap(vl, vr);
     }
-    const int i0 = std::max(buf.i0, first_at_or_above(xl));
-    const int i1 = std::min(buf.i0 + buf.w - 1, last_at_or_below(xr));
+    if (!(xl <= xr)) continue;  // (NaN)
+    const int i0 = std::max(buf.i0, first_at_or_above(std::max(xl, double(buf.i0) - 1)));
+    const int i1 = std::min(buf.i0 + buf.w - 1, last_at_or_below(std::min(xr, double(buf.i0 + buf.w))));
     if (i0 > i1) continue;
     const double w = xr - xl;
     const double dz = w > 0 ? (zr - zl) / w : 0, dv = w > 0 ? (vr - vl) / w : 0;
@@ -199,6 +201,7 @@ std::int64_t two_buffer_tet(const TetMesh& m, std::int64_t t, const VoxelGrid& g
           std::swap(zf, zb);
           std::swap(vf, vb);
         }
+        if (!(zf <= zb)) continue;  // (NaN)
         const double incr = zb > zf ? (vb - vf) / (zb - zf) : 0;
         for (std::size_t pass = column; pass < b.offset.size(); pass += columns) {
           const double oz = b.offset[pass][2];

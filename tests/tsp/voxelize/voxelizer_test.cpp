@@ -297,6 +297,30 @@ TEST(Voxelizer, TwoBufferPassesAverageALinearFieldAtTheirMeanOffset) {
   }
 }
 
+// One tetrahedron whose vertices lie a billion units away, holding the whole grid: every
+// voxelizer takes every voxel and the linear field (x) at its centre — the scan converters clamp
+// to the tile before converting coordinates to integers.
+TEST(Voxelizer, AHugeTetrahedronAroundTheGridIsSampledExactly) {
+  Mesh m;
+  m.points = {-1e9, -1e9, -1e9, 4e9, -1e9, -1e9, -1e9, 4e9, -1e9, -1e9, -1e9, 4e9};
+  m.connectivity = {0, 1, 2, 3};
+  m.offsets = {0, 4};
+  m.types = {CellType::tetra};
+  for (int p = 0; p < 4; ++p) m.values.push_back(float(m.points[std::size_t(3 * p)]));
+  check_mesh(m, "huge tet");
+  const VoxelGrid g = unit_grid(9);
+  std::vector<float> v(std::size_t(g.dims.count()));
+  std::vector<std::uint8_t> in(v.size());
+  for (const SampleOptions& so : all_samplers()) {
+    const VoxelizeStats st = voxelize(m, g, v, in, so);
+    EXPECT_EQ(st.inside, g.dims.count()) << int(so.kind);
+    for (int z = 0; z < 9; ++z)
+      for (int y = 0; y < 9; ++y)
+        for (int x = 0; x < 9; ++x)
+          EXPECT_NEAR(v[std::size_t(x + 9 * (y + 9 * z))], x / 8.0, 1e-3) << int(so.kind);
+  }
+}
+
 TEST(Voxelizer, PassOffsetsAreSubCellCentresOrJitteredInsideThem) {
   EXPECT_EQ(detail::pass_offsets(1, false), (std::vector<std::array<double, 3>>{{0, 0, 0}}));
   for (int k = 1; k <= kMaxTwoBufferK; ++k) {
