@@ -4,20 +4,11 @@
 #include <cmath>
 
 #include "tsp/core/error.h"
+#include "tsp/metric/tf_io.h"
 
 namespace tsp {
 
 namespace detail {
-
-// ParaView's Cool to Warm (Moreland's three points) at t in [0, 1].
-Rgba cool_to_warm(double t) {
-  constexpr Rgba kCool{0.230f, 0.299f, 0.754f, 0}, kMid{0.865f, 0.865f, 0.865f, 0},
-      kWarm{0.706f, 0.016f, 0.150f, 0};
-  const Rgba& a = t < 0.5 ? kCool : kMid;
-  const Rgba& b = t < 0.5 ? kMid : kWarm;
-  const float u = float(std::clamp(t < 0.5 ? 2 * t : 2 * t - 1, 0.0, 1.0));
-  return {a.r + (b.r - a.r) * u, a.g + (b.g - a.g) * u, a.b + (b.b - a.b) * u, 0};
-}
 
 bool valid(ValueRange r) {
   return std::isfinite(r.lo) && std::isfinite(r.hi) && r.lo < r.hi && std::isfinite(r.width());
@@ -76,7 +67,8 @@ TransferFunction histogram_transfer_function(const ValueHistogram& h, ValueRange
   if (!detail::valid(domain) || !detail::valid(h.over))
     throw UsageError("histogram transfer function: the domain and the histogram's range must be "
                      "finite with lo < hi");
-  TransferFunction tf(domain, entries);  // (throws on entries < 2)
+  // Colours: the cool-to-warm preset's, over the domain (throws on entries < 2).
+  TransferFunction tf = preset_transfer_function("cool-to-warm", domain, entries);
   // Rarity among the bins the domain overlaps: a map over part of the data (one step's range, a
   // chosen interval) still makes its own rarest values opaque.
   const int bins = int(h.counts.size());
@@ -103,7 +95,7 @@ TransferFunction histogram_transfer_function(const ValueHistogram& h, ValueRange
       s = tail[b];
     }
     if (bins == 0) r = kHistogramTfFlatRarity;
-    Rgba c = detail::cool_to_warm((j + 0.5) / tf.size());
+    Rgba c = tf.entry(j);
     const double by_rarity =
         r < kHistogramTfClearRarity ? 0.0 : kHistogramTfMaxOpacity * std::pow(r, kHistogramTfGamma);
     const double by_tail =

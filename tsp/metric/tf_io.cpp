@@ -405,7 +405,7 @@ ValueRange tf_domain_of(const TfRangeChoice& c, const TspFile& file, int step) {
 }
 
 ValueHistogram histogram_of(const TspFile& file) {
-  return {file.metadata().histogram, preset_domain(file.tree().value_range())};
+  return {file.histogram(), preset_domain(file.tree().value_range())};
 }
 
 TransferFunction transfer_function_from_arg(const std::string& arg, ValueRange default_domain,
