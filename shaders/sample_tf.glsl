@@ -25,23 +25,30 @@ const float kFlatGradient = 1e-3;    // value range per voxel below which lighti
 // |n·l|. Where the gradient vanishes (uniform data) the sample stays unlit, like a flat node.
 // Specular light is white, weighted by the sample's opacity (premultiplied).
 #ifdef TSP_CLIP
-// The one-pass caster (TSP_CLIP is defined in every variant of it) reads a tap beyond its
-// brick's face from the neighbour brick through the brick pages (volume_ray.frag); false when
-// the neighbour holds no level-0 texture there.
-bool neighbour_tap(vec3 q, int axis, vec3 lo, vec3 hi, out float v);
+// The one-pass caster (TSP_CLIP is defined in every variant of it) sets, on entering a level-0
+// textured brick, where a tap beyond each face reads the neighbour brick: xyz the shift from
+// this brick's atlas coordinates to the neighbour's, w 1 where the neighbour holds a level-0
+// texture (else 0: the tap is clamped and the difference one-sided). Per brick, not per tap:
+// a branch per tap cost 1.9× a lit frame on llvmpipe, which runs both sides of a branch where
+// its lanes differ (docs/results.md, issue 29).
+vec4 g_beyond_lo[3] = vec4[3](vec4(0.0), vec4(0.0), vec4(0.0));
+vec4 g_beyond_hi[3] = vec4[3](vec4(0.0), vec4(0.0), vec4(0.0));
 #endif
 
 // One tap of the central differences: the scalar one texel from tc along `axis` (q) and where
 // along that axis it was read — q itself, or clamped onto the brick's face when the texel lies
-// beyond it and no neighbour supplies it (then the difference is one-sided).
+// beyond it and no neighbour supplies it (then the difference is one-sided). No branch.
 vec2 gradient_tap(vec3 q, int axis, vec3 lo, vec3 hi) {
-#ifdef TSP_CLIP
-  float v;
-  if ((q[axis] < lo[axis] || q[axis] > hi[axis]) && neighbour_tap(q, axis, lo, hi, v))
-    return vec2(v, q[axis]);
-#endif
   vec3 c = clamp(q, lo, hi);
+#ifdef TSP_CLIP
+  bool up = q[axis] > hi[axis];
+  vec4 s = up ? g_beyond_hi[axis] : g_beyond_lo[axis];
+  float use = (up || q[axis] < lo[axis]) ? s.w : 0.0;
+  c[axis] = mix(c[axis], q[axis], use);
+  return vec2(texture(volume, c + s.xyz * use).r, c[axis]);
+#else
   return vec2(texture(volume, c).r, c[axis]);
+#endif
 }
 
 vec4 shade(vec4 c, vec3 tc, vec3 lo, vec3 hi) {

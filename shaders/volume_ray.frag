@@ -96,27 +96,26 @@ float skip_to_kept(float t, float dt) {
   return t >= cur_s ? 0.0 : ceil((cur_s - t) / dt);
 }
 
-// The brick the caster is in (for neighbour_tap): its grid index and page, and whether it is a
-// level-0 texture (level bricks keep one-sided differences on their faces).
-ivec3 g_brick = ivec3(0);
-vec4 g_page = vec4(0.0);
-bool g_level0 = false;
-
-// A gradient tap beyond the current brick's face along `axis` (sample_tf.glsl): read from the
-// neighbour brick across that face when it is a level-0 texture, clamped to its own box.
-bool neighbour_tap(vec3 q, int axis, vec3 lo, vec3 hi, out float v) {
-  v = 0.0;
-  if (!g_level0) return false;
-  ivec3 cn = g_brick;
-  cn[axis] += q[axis] > hi[axis] ? 1 : -1;
-  if (cn[axis] < 0 || cn[axis] >= grid[axis]) return false;
-  vec4 pn = texelFetch(pages, cn, 0);
-  if (pn.w <= 0.5 || ((int(pn.w + 0.5) - 1) & (kClipFlag - 1)) != 0) return false;
-  vec3 p = q / atlas_scale - g_page.xyz;  // sample coordinates (level 0: one texel a sample)
-  vec3 lo_n = vec3(cn) * cell;
-  v = texture(volume, clamp((p + pn.xyz) * atlas_scale, (lo_n + pn.xyz) * atlas_scale,
-                            (min(lo_n + cell, box_hi) + pn.xyz) * atlas_scale)).r;
-  return true;
+// Where the gradient's taps beyond brick c's faces read (g_beyond_lo/hi in sample_tf.glsl): the
+// neighbour across each face when both are level-0 textures (a level brick or one beside an
+// empty, flat or level brick keeps one-sided differences on that face).
+void find_neighbours(ivec3 c, vec4 page, bool level0) {
+  for (int a = 0; a < 3; ++a) {
+    for (int side = 0; side < 2; ++side) {
+      ivec3 cn = c;
+      cn[a] += side == 0 ? -1 : 1;
+      vec4 s = vec4(0.0);
+      if (level0 && cn[a] >= 0 && cn[a] < grid[a]) {
+        vec4 pn = texelFetch(pages, cn, 0);
+        if (pn.w > 0.5 && ((int(pn.w + 0.5) - 1) & (kClipFlag - 1)) == 0)
+          s = vec4((pn.xyz - page.xyz) * atlas_scale, 1.0);
+      }
+      if (side == 0)
+        g_beyond_lo[a] = s;
+      else
+        g_beyond_hi[a] = s;
+    }
+  }
 }
 
 // A level brick's sample through its TF row (the TF averaged over the spread of the voxels it
@@ -223,9 +222,7 @@ void main() {
       bool brick_clip = clip_on() && (code & kClipFlag) != 0;
       int tf_row = code / kLevelRowUnit;  // a level brick's TF row (0: the TF itself)
       code &= kClipFlag - 1;
-      g_brick = c;
-      g_page = page;
-      g_level0 = code == 0;
+      if (use_shading != 0) find_neighbours(c, page, code == 0);
       ivec3 lv = ivec3(code & 7, (code >> 3) & 7, (code >> 6) & 7);
       vec3 scale = 1.0 / vec3(ivec3(1) << lv);
       float m = float(1 << max(lv.x, max(lv.y, lv.z)));
