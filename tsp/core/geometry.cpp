@@ -1,6 +1,7 @@
 #include "tsp/core/geometry.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace tsp {
 
@@ -41,6 +42,14 @@ Aabb geometric_box(const Box& box, const Dims& d) {
     g.hi[a] = std::min(box.hi[a], d[a] - 1);
   }
   return g;
+}
+
+std::array<double, 3> centre(const Aabb& box) {
+  return {0.5 * (box.lo[0] + box.hi[0]), 0.5 * (box.lo[1] + box.hi[1]), 0.5 * (box.lo[2] + box.hi[2])};
+}
+
+double diagonal(const Aabb& box) {
+  return std::hypot(box.hi[0] - box.lo[0], box.hi[1] - box.lo[1], box.hi[2] - box.lo[2]);
 }
 
 }  // namespace tsp

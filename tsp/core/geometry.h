@@ -24,6 +24,10 @@ void grow(Aabb& box, const std::array<double, 3>& p);
 void unite(Aabb& box, const Aabb& other);
 /// The points in both a and b (empty when they do not meet). Never throws.
 Aabb intersection(const Aabb& a, const Aabb& b);
+/// The centre of box. Never throws.
+std::array<double, 3> centre(const Aabb& box);
+/// The length of box's diagonal. Never throws.
+double diagonal(const Aabb& box);
 
 /// The geometric box of voxel box `box` in a volume of dims d: [lo, min(hi, D − 1)] per axis, so
 /// that bricks and octree nodes tile [0, D − 1]³ with shared faces.

@@ -84,9 +84,7 @@ void LodController::evaluate(const Camera& camera, int t, const TransferFunction
     cost_[std::size_t(id)] = leaf_sum[std::size_t(id)] / double(std::max({f[0], f[1], f[2]}));
     const double visibility =
         area_sum[std::size_t(id)] > 0 ? vis_sum[std::size_t(id)] / area_sum[std::size_t(id)] : 0;
-    const Aabb box = geometric_box(n.box, d);
-    const std::array<double, 3> c{0.5 * (box.lo[0] + box.hi[0]), 0.5 * (box.lo[1] + box.hi[1]),
-                                  0.5 * (box.lo[2] + box.hi[2])};
+    const std::array<double, 3> c = centre(geometric_box(n.box, d));
     // The centre of attention weighs by distance and field of view only when one is given: the
     // image's mean ΔE counts every pixel alike, and weighting by the volume centre raised it at
     // equal frame time (docs/results.md).

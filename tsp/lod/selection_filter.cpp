@@ -22,9 +22,8 @@ struct Tile {
 Tile tile_of(const Octree& octree, int id) {
   Tile t;
   t.box = geometric_box(octree.node(id).box, octree.dims());
-  for (int a = 0; a < 3; ++a) t.centre[std::size_t(a)] = 0.5 * (t.box.lo[a] + t.box.hi[a]);
-  t.diagonal = std::hypot(t.box.hi[0] - t.box.lo[0], t.box.hi[1] - t.box.lo[1],
-                          t.box.hi[2] - t.box.lo[2]);
+  t.centre = centre(t.box);
+  t.diagonal = diagonal(t.box);
   return t;
 }
 

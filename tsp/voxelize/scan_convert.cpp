@@ -3,11 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "tsp/voxelize/lattice_round.h"
+
 namespace tsp::detail {
 namespace {
-
-// Sub-samples on a plane or span within this many sub-sample spacings of its edge count as on it.
-constexpr double kEdgeTolerance = 1e-9;
 
 struct Point3 {
   double x, y, z, v;
@@ -28,8 +27,8 @@ void sub_range(double a, double b, double origin, double h, int k, int lo, int h
   }
   u = std::max(u, double(lo) - 1);  // clamped before the conversion to int
   w = std::min(w, double(hi) + 1);
-  r0 = std::max(lo, int(std::ceil(u - kEdgeTolerance)));
-  r1 = std::min(hi, int(std::floor(w + kEdgeTolerance)));
+  r0 = std::max(lo, first_at_or_above(u));
+  r1 = std::min(hi, last_at_or_below(w));
 }
 
 double sub_coord(int s, double origin, double h, int k) { return origin + ((s + 0.5) / k - 0.5) * h; }

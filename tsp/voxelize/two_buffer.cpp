@@ -3,12 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "tsp/voxelize/lattice_round.h"
+
 namespace tsp::detail {
 namespace {
-
-// Samples within this many voxel spacings of an edge or face count as on it (both cells take
-// them; the pass mask keeps the first).
-constexpr double kEdgeTolerance = 1e-9;
 
 // A vertex in the pass's lattice units: sample (i, j, k) of the pass sits at (i, j, k).
 struct Vertex {
@@ -38,9 +36,6 @@ std::uint64_t splitmix(std::uint64_t x) {
   x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
   return x ^ (x >> 31);
 }
-
-int first_at_or_above(double u) { return int(std::ceil(u - kEdgeTolerance)); }
-int last_at_or_below(double u) { return int(std::floor(u + kEdgeTolerance)); }
 
 // An edge walked one scan line at a time (form_buffers): x, depth and value at row j, stepped.
 struct EdgeWalk {
