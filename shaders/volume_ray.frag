@@ -39,6 +39,8 @@ uniform ivec3 grid;                  // bricks per axis
 uniform sampler3D step_map;          // per step cell: step multiplier, TF row coordinate
 uniform vec3 step_scale;             // sample point → step_map coordinate
 #endif
+uniform int use_surface_depth;        // 1: rays end at the surface splats' depths
+uniform sampler2D surface_depth;     // per pixel, the surface's depth along view_dir
 const float kOpaque = 0.999;
 const float kNudge = 1e-3;
 const int kClipFlag = 512;           // BrickPages::kClipFlag
@@ -138,6 +140,14 @@ void main() {
   float len = (r.depth_exit - r.depth_entry) / r.cos_theta;
   if (len <= 0.0) discard;
   vec3 entry = exit_point - r.ray * len;
+  if (use_surface_depth != 0) {
+    // An opaque surface (surface_splat.frag) ends the ray where it lies: only what is in front
+    // of it is composited over it (the compositor copied its picture under the volume).
+    float cut = (texelFetch(surface_depth, ivec2(gl_FragCoord.xy), 0).r - r.depth_entry) /
+                r.cos_theta;
+    if (cut <= 0.0) discard;
+    len = min(len, cut);
+  }
 #if TSP_CLIP == 2
   // An intersection (the common case: one plane, a box, a sphere) keeps one interval of the
   // ray: the ray is cut to it here and walks it as an unclipped ray. With the surface on, a ray

@@ -25,6 +25,7 @@ namespace tspgl {
   X(PFNGLREADBUFFERPROC, ReadBuffer)                             \
   X(PFNGLREADPIXELSPROC, ReadPixels)                             \
   X(PFNGLDEPTHMASKPROC, DepthMask)                               \
+  X(PFNGLDEPTHFUNCPROC, DepthFunc)                               \
   X(PFNGLCULLFACEPROC, CullFace)                                 \
   X(PFNGLSCISSORPROC, Scissor)                                   \
   X(PFNGLCOLORMASKPROC, ColorMask)                               \
@@ -47,6 +48,9 @@ namespace tspgl {
   X(PFNGLVERTEXATTRIB4FPROC, VertexAttrib4f)                     \
   /* drawing */                                                  \
   X(PFNGLDRAWARRAYSPROC, DrawArrays)                             \
+  X(PFNGLDRAWARRAYSINSTANCEDPROC, DrawArraysInstanced)           \
+  X(PFNGLVERTEXATTRIBDIVISORPROC, VertexAttribDivisor)           \
+  X(PFNGLDRAWBUFFERSPROC, DrawBuffers)                           \
   X(PFNGLMULTIDRAWARRAYSPROC, MultiDrawArrays)                   \
   X(PFNGLDRAWELEMENTSPROC, DrawElements)                         \
   /* shaders, programs, uniforms */                              \

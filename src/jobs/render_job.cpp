@@ -14,6 +14,7 @@
 #include "jobs/visible_range.h"
 #include "render/settings_table.h"
 #include "render/baseline_renderer.h"
+#include "render/mesh_surface.h"
 #include "render/volume_renderer.h"
 #include "tsp/core/error.h"
 #include "tsp/core/interrupt.h"
@@ -44,7 +45,7 @@ json lod_json(const LodRecord& l) {
           {"splat_px", s.splat_px},          {"splats", s.splats}};
 }
 
-json frame_json(const FrameRecord& f) {
+json frame_json_without_surface(const FrameRecord& f) {
   const FrameReport& r = f.report;
   return {{"pass", f.pass},
           {"step", r.step},
@@ -75,6 +76,15 @@ json frame_json(const FrameRecord& f) {
           {"time", f.time ? json(*f.time) : json(nullptr)},
           {"time_text", f.time ? json(f.time_text) : json(nullptr)},
           {"lod", f.lod ? lod_json(*f.lod) : json(nullptr)}};
+}
+
+json frame_json(const FrameRecord& f) {
+  json j = frame_json_without_surface(f);
+  if (f.surface_splats >= 0) {
+    j["surface_splats"] = f.surface_splats;
+    j["surface_cut_ms"] = f.surface_cut_ms;
+  }
+  return j;
 }
 
 }  // namespace
@@ -235,6 +245,17 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
     if (!(k > 0) || !(k <= kMaxScale))
       throw tsp::UsageError("--scale: expected three factors in (0, " +
                             std::to_string(int(kMaxScale)) + "], found " + std::to_string(k));
+  if (!options.surface &&
+      (!options.surface_mesh.empty() || !options.surface_field.empty() || !options.surface_tf.empty()))
+    throw tsp::UsageError("--surface-mesh/--surface-field/--surface-tf need --surface boundary");
+  if (options.surface && options.surface_mesh.empty())
+    throw tsp::UsageError("--surface boundary needs --surface-mesh, the mesh series the file was "
+                          "built from");
+  if (options.surface && options.settings.compositing != Compositing::rays)
+    throw tsp::UsageError("--surface boundary is drawn with --compositing rays");
+  if (!(options.surface_px >= 0) || !(options.surface_px <= kMaxSurfacePx))
+    throw tsp::UsageError("--surface-px " + std::to_string(options.surface_px) +
+                          ": expected a size in pixels in [0, " + std::to_string(int(kMaxSurfacePx)) + "]");
   auto file = tsp::TspFile::open(options.tsp_path, options.field);
   const tsp::TspTree& tree = file->tree();
   // Physical proportions: the file's voxel spacing (times --scale) shapes the view.
@@ -252,7 +273,8 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
   const tsp::TransferFunction tf = tsp::transfer_function_from_arg(
       options.tf, tf_domain, tsp::kDefaultTfEntries, options.tf_range, &histogram);
   // Every output is checked before any work and replaced only when the whole job succeeded.
-  const tsp::InputGuard inputs({options.tsp_path, options.tf, options.probe_tf});
+  const tsp::InputGuard inputs({options.tsp_path, options.tf, options.probe_tf, options.surface_mesh,
+                                options.surface_tf});
   std::optional<tsp::OutputFolder> folder;
   if (!options.out_dir.empty()) folder.emplace(options.out_dir, is_frame_set_name);
   std::optional<tsp::TempOutput> saved_tf, movie;
@@ -310,6 +332,17 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
                                        file->metadata().spacing),
                        surface);
   };
+  // The mesh's boundary under the volume: its splat hierarchy per step, coloured by its own TF.
+  std::optional<MeshSurface> mesh_surface;
+  std::optional<tsp::TransferFunction> surface_tf;
+  if (o.surface) {
+    mesh_surface.emplace(o.surface_mesh, o.surface_field.empty() ? file->metadata().field : o.surface_field,
+                         file->metadata().origin, file->metadata().spacing);
+    tsp::ValueRange r = mesh_surface->tree(o.first_step).value_range;
+    if (!(r.hi > r.lo)) r = {r.lo - 0.5, r.lo + 0.5};  // one value: any range around it
+    surface_tf = tsp::transfer_function_from_arg(o.surface_tf.empty() ? "preset:cool-to-warm" : o.surface_tf,
+                                                 r, tsp::kDefaultTfEntries);
+  }
   const bool moving = o.probe_motion != std::array<double, 3>{0, 0, 0};
   if (!o.probes.empty()) set_clip(0);
   tsp::WholeTreeMetric nodes(metric);
@@ -351,7 +384,13 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
       request.settings = settings;
       request.metric = &nodes;
       request.tf = &tf;
+      SliceCompositor& compositor = baseline ? baseline->compositor() : *renderer->compositor();
+      if (mesh_surface) compositor.set_surface({&mesh_surface->tree(t), &*surface_tf, o.surface_px});
       const DrawnFrame drawn = driver->draw(request);
+      if (mesh_surface) {
+        rec.surface_splats = compositor.surface_stats().splats;
+        rec.surface_cut_ms = compositor.surface_stats().cut_ms;
+      }
       rec.report = drawn.report;
       if (drawn.lod) rec.lod = LodRecord{o.lod == LodMode::adaptive ? o.target_ms : 0, *drawn.lod};
       rec.ram_bytes = (baseline ? baseline->brick_cache() : renderer->brick_cache()).stats().resident_bytes;
@@ -398,6 +437,12 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
     j["lod_fallback"] = tsp::to_string(o.lod_options.fallback);
     j["orbit_deg"] = o.orbit_deg;
     j["lod_levels"] = tree.octree().max_lod_level() + 1;
+    j["surface"] = o.surface ? "boundary" : "off";
+    if (o.surface) {
+      j["surface_mesh"] = o.surface_mesh;
+      j["surface_field"] = o.surface_field.empty() ? file->metadata().field : o.surface_field;
+      j["surface_px"] = o.surface_px;
+    }
     if (o.quality > 0)
       j["quality"] = {{"target_delta_e", o.quality},
                       {"render_options", result.quality_options},

@@ -53,6 +53,14 @@ struct RenderJobOptions {
   std::string probe_tf;                       ///< --probe-tf: its colours ("": the volume's TF)
   std::array<double, 3> probe_motion{0, 0, 0};  ///< --probe-motion: every probe moves this far
                                                 ///< each frame (physical units)
+  /// --surface boundary: the boundary of the mesh series surface_mesh (the one the file was
+  /// built from) drawn opaque under the volume as TetSplat's splats (render/mesh_surface.h).
+  bool surface = false;
+  std::string surface_mesh;                   ///< --surface-mesh: that mesh series
+  std::string surface_field;                  ///< --surface-field ("": the file's field)
+  std::string surface_tf;                     ///< --surface-tf ("": cool-to-warm over the
+                                              ///< surface's values at the first step)
+  double surface_px = 1;                      ///< --surface-px: the minimum splat size (pixels)
   std::array<double, 3> scale{1, 1, 1};       ///< --scale SX,SY,SZ: exaggeration per axis
   int passes = 1;                             ///< times the step range is played
   /// The frame knobs: --spatial-tol/--temporal-tol, --spacing, --compositing, --flat,
@@ -89,6 +97,8 @@ struct LodRecord {
 inline constexpr double kMaxTargetMs = 60000;
 /// Largest --scale factor.
 inline constexpr double kMaxScale = 1000;
+/// Largest --surface-px (a splat as wide as a large window).
+inline constexpr double kMaxSurfacePx = 4096;
 
 /// The voxel size a view shows: the file's spacing (or cubes, without physical proportions)
 /// times scale per axis. Spacing that is not positive and finite counts as 1. Never throws.
@@ -113,6 +123,8 @@ struct FrameRecord {
   std::string time_text;           ///< time as tsp::format_time writes it (a date with CF units)
   std::int64_t ram_bytes = 0;      ///< bricks in RAM after the frame (the brick cache)
   std::int64_t rss_bytes = 0;      ///< the process's resident memory after the frame
+  int surface_splats = -1;         ///< --surface: splats drawn (−1: no surface)
+  double surface_cut_ms = 0;       ///< --surface: choosing the cut and filling its buffer
 };
 
 /// What a job did.

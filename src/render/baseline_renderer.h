@@ -32,6 +32,8 @@ class BaselineRenderer {
   /// report everything as new texture; tolerances and the upload budget are ignored. Throws
   /// tsp::Error on brick read failures, tsp::GlError on GL failures.
   FrameReport render(int step, const tsp::Camera& camera, const RenderSettings& settings);
+  /// Its compositor (to set a surface under the volume).
+  SliceCompositor& compositor() { return compositor_; }
   /// The RAM brick cache it reads through.
   const tsp::BrickCache& brick_cache() const { return bricks_; }
 

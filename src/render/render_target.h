@@ -26,6 +26,12 @@ class RenderTarget {
   /// Copies it into the rectangle of the context's canvas whose lower-left corner is (x, y) and
   /// whose size is w × h (magnified with linear filtering when it differs) and binds the canvas.
   void resolve(int x, int y, int w, int h);
+  /// The framebuffer (0 before the first bind()).
+  GLuint framebuffer() const { return fbo_; }
+  /// Its size in pixels (after the scale), as last bound.
+  int width() const { return width_; }
+  /// See width().
+  int height() const { return height_; }
 
  private:
   GlContext& ctx_;

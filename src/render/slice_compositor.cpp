@@ -22,6 +22,7 @@ constexpr int kSurfaceTfUnit = 4;      // texture unit of the clip surface's col
 constexpr int kStepMapUnit = 5;        // texture unit of adaptive sampling's per-brick steps
 constexpr int kTfRowsUnit = 6;         // texture unit of adaptive sampling's TF rows
 constexpr int kLevelTfUnit = 7;        // texture unit of the coarse levels' TF rows
+constexpr int kSurfaceDepthUnit = 8;    // texture unit of the surface splats' depths
 // Largest opacity per voxel a flat box is given, so that ln(1 − α) stays finite.
 constexpr float kMaxFlatAlpha = 1.f - 1e-6f;
 
@@ -199,10 +200,12 @@ void SliceCompositor::set_units(const Program& p) {
   gl_.Uniform1i(p.uniform("step_map"), kStepMapUnit);
   gl_.Uniform1i(p.uniform("tf_rows"), kTfRowsUnit);
   gl_.Uniform1i(p.uniform("level_tfs"), kLevelTfUnit);
+  gl_.Uniform1i(p.uniform("surface_depth"), kSurfaceDepthUnit);
 }
 
 void SliceCompositor::set_clip(const tsp::ClipRegion& clip, const tsp::TransferFunction* surface,
                                tsp::ValueRange quantized) {
+  clip_region_ = clip;
   const int n = int(clip.probes().size());
   // The clipping caster is its own program, built the first time a probe is used: its code
   // costs llvmpipe's shader compiler seconds, which frames without probes should not pay.
@@ -290,6 +293,36 @@ void SliceCompositor::begin_frame(const tsp::Camera& camera, const RenderSetting
   target_.bind(view.width, view.height, settings.render_scale);
   gl_.Disable(GL_SCISSOR_TEST);
   if (!keep) clear(gl_, settings);
+  const auto dir = camera.direction(), eye = camera.eye(), ray = camera.ray_direction();
+  const double cosine = camera.ray_cosine();
+  // The headlight: towards the viewer along the central ray, in world axes (the sample grid
+  // stretched by the voxel size), where the shader takes the gradient too.
+  // Voxel sizes normalised so the smallest is 1: the shader's gradients are per voxel.
+  std::array<double, 3> voxel = view.voxel_size;
+  const double smallest = std::min({voxel[0], voxel[1], voxel[2]});
+  for (double& v : voxel) v /= smallest;
+  std::array<double, 3> light{-ray[0] * voxel[0], -ray[1] * voxel[1], -ray[2] * voxel[2]};
+  const double light_norm = std::hypot(light[0], light[1], light[2]);
+  for (double& l : light) l /= light_norm;
+  surface_drawn_ = false;
+  surface_stats_ = {};
+  if (has_surface() && settings.compositing == Compositing::rays) {
+    // The opaque surface first, into its own target; its picture becomes the frame's
+    // background and its depths end the rays (volume_ray.frag). Never kept: the frame is whole.
+    assert(!keep);
+    if (!surface_splats_) surface_splats_ = std::make_unique<SurfaceSplats>(ctx_);
+    surface_stats_ = surface_splats_->draw(
+        surface_, camera, clip_region_, target_.width(), target_.height(), settings.background,
+        settings.shade, light, {1 / voxel[0], 1 / voxel[1], 1 / voxel[2]},
+        {dir[0] / cosine, dir[1] / cosine, dir[2] / cosine});
+    gl_.BindFramebuffer(GL_DRAW_FRAMEBUFFER, target_.framebuffer());
+    gl_.BlitFramebuffer(0, 0, target_.width(), target_.height(), 0, 0, target_.width(),
+                        target_.height(), GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    target_.bind(view.width, view.height, settings.render_scale);
+    gl_.ActiveTexture(GL_TEXTURE0 + kSurfaceDepthUnit);
+    gl_.BindTexture(GL_TEXTURE_2D, surface_splats_->depth_texture());
+    surface_drawn_ = true;
+  }
   gl_.Disable(GL_DEPTH_TEST);
   gl_.Disable(GL_CULL_FACE);
   gl_.Enable(GL_BLEND);
@@ -297,8 +330,6 @@ void SliceCompositor::begin_frame(const tsp::Camera& camera, const RenderSetting
   gl_.BlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
   gl_.BindVertexArray(vao_);
   const glm::mat4 vp(camera.view_projection());
-  const auto dir = camera.direction(), eye = camera.eye(), ray = camera.ray_direction();
-  const double cosine = camera.ray_cosine();
   for (const Program* p : std::initializer_list<const Program*>{&textured_, &flat_, &box_textured_, &box_flat_, rays_}) {
     p->use();
     gl_.UniformMatrix4fv(p->uniform("view_projection"), 1, GL_FALSE, glm::value_ptr(vp));
@@ -322,15 +353,6 @@ void SliceCompositor::begin_frame(const tsp::Camera& camera, const RenderSetting
     p->use();
     gl_.Uniform1f(p->uniform("spacing"), float(settings.spacing));
   }
-  // The headlight: towards the viewer along the central ray, in world axes (the sample grid
-  // stretched by the voxel size), where the shader takes the gradient too.
-  // Voxel sizes normalised so the smallest is 1: the shader's gradients are per voxel.
-  std::array<double, 3> voxel = view.voxel_size;
-  const double smallest = std::min({voxel[0], voxel[1], voxel[2]});
-  for (double& v : voxel) v /= smallest;
-  std::array<double, 3> light{-ray[0] * voxel[0], -ray[1] * voxel[1], -ray[2] * voxel[2]};
-  const double light_norm = std::hypot(light[0], light[1], light[2]);
-  for (double& l : light) l /= light_norm;
   for (const Program* p : std::initializer_list<const Program*>{&textured_, &box_textured_, rays_}) {
     p->use();
     gl_.Uniform1i(p->uniform("use_preintegrated"), settings.preintegrated ? 1 : 0);
@@ -484,6 +506,7 @@ void SliceCompositor::set_step_map(const std::vector<std::uint8_t>& rows, std::a
 void SliceCompositor::draw_rays() {
   gl_.BindTexture(GL_TEXTURE_3D, rays_atlas_);
   rays_->use();
+  gl_.Uniform1i(rays_->uniform("use_surface_depth"), surface_drawn_ ? 1 : 0);
   gl_.BindVertexArray(cube_vao_);
   gl_.Enable(GL_CULL_FACE);
   gl_.CullFace(GL_FRONT);

@@ -6,6 +6,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -15,6 +16,7 @@
 #include "render/frame_report.h"
 #include "render/image_reuse.h"
 #include "render/render_target.h"
+#include "render/surface_splats.h"
 #include "render/tf_texture.h"
 #include "tsp/clip/probe.h"
 #include "tsp/core/types.h"
@@ -102,6 +104,14 @@ class SliceCompositor {
   /// Throws tsp::GlError.
   void set_clip(const tsp::ClipRegion& clip, const tsp::TransferFunction* surface,
                 tsp::ValueRange quantized);
+  /// The opaque surface under the volume from the next begin_frame on (rays compositing; the
+  /// tree and TF must outlive its frames): drawn first, the rays end where they meet it; a
+  /// frame with a surface is never kept (no partial-image reuse). An empty SurfaceFrame: none.
+  void set_surface(const SurfaceFrame& s) { surface_ = s; }
+  /// True when a surface is set (a tree with nodes).
+  bool has_surface() const { return surface_.tree && !surface_.tree->nodes.empty(); }
+  /// What the surface pass of the last begin_frame drew.
+  const SurfaceStats& surface_stats() const { return surface_stats_; }
   /// Makes the context current, binds the 16-bit target at the camera's size (cleared unless
   /// `keep`: then the last frame's pixels stay, for partial-image reuse), sets blending and the
   /// camera. Throws tsp::GlError.
@@ -138,6 +148,11 @@ class SliceCompositor {
 
  private:
   GlContext& ctx_;
+  SurfaceFrame surface_;                           // the surface set for the next frames
+  std::unique_ptr<SurfaceSplats> surface_splats_;  // its pass (made on first use)
+  SurfaceStats surface_stats_;
+  bool surface_drawn_ = false;                     // this frame's rays stop at the surface
+  tsp::ClipRegion clip_region_;                    // the last set_clip's solid
   const GlApi& gl_;
   Program textured_, flat_, box_textured_, box_flat_, rays_plain_;
   std::optional<Program> rays_clip_;  ///< the caster with the clip code (made on first use)

@@ -374,7 +374,7 @@ void VolumeRenderer::decide_reuse(Frame& f, const tsp::Camera& camera, tsp::Fram
   f.ids = brick_identities(
       tree_, f.plan, [&](int id) { return metric.mean_colour(id); }, level_pages_);
   f.key = reuse_key(camera, f.settings);
-  f.reuse = f.settings.reuse_image && f.settings.render_scale == 1 && previous_ &&
+  f.reuse = f.settings.reuse_image && !compositor_->has_surface() && f.settings.render_scale == 1 && previous_ &&
             previous_->key == f.key;
   if (f.reuse) {
     BrickIdentities before = previous_->ids;

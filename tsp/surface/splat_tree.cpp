@@ -42,19 +42,26 @@ SurfaceSplat merge(const SurfaceSplat& a, const SurfaceSplat& b) {
   return s;
 }
 
+// A leaf: its splat and its triangle.
+struct Leaf {
+  SurfaceSplat splat;
+  std::array<std::array<float, 3>, 3> triangle;
+};
+
 // Builds the subtree over leaves[b, e) in pre-order into tree; returns its root's id.
-int build(std::vector<SurfaceSplat>& leaves, std::size_t b, std::size_t e, SplatTree& tree) {
+int build(std::vector<Leaf>& leaves, std::size_t b, std::size_t e, SplatTree& tree) {
   const int id = int(tree.nodes.size());
   tree.nodes.emplace_back();
   if (e - b == 1) {
-    tree.nodes[std::size_t(id)].splat = leaves[b];
+    tree.nodes[std::size_t(id)].splat = leaves[b].splat;
+    tree.nodes[std::size_t(id)].triangle = leaves[b].triangle;
     return id;
   }
-  std::array<float, 3> lo = leaves[b].centre, hi = lo;
+  std::array<float, 3> lo = leaves[b].splat.centre, hi = lo;
   for (std::size_t i = b; i < e; ++i)
     for (std::size_t k = 0; k < 3; ++k) {
-      lo[k] = std::min(lo[k], leaves[i].centre[k]);
-      hi[k] = std::max(hi[k], leaves[i].centre[k]);
+      lo[k] = std::min(lo[k], leaves[i].splat.centre[k]);
+      hi[k] = std::max(hi[k], leaves[i].splat.centre[k]);
     }
   std::size_t axis = 0;
   for (std::size_t k = 1; k < 3; ++k)
@@ -62,7 +69,7 @@ int build(std::vector<SurfaceSplat>& leaves, std::size_t b, std::size_t e, Splat
   const std::size_t mid = b + (e - b) / 2;
   std::nth_element(leaves.begin() + std::ptrdiff_t(b), leaves.begin() + std::ptrdiff_t(mid),
                    leaves.begin() + std::ptrdiff_t(e),
-                   [axis](const SurfaceSplat& x, const SurfaceSplat& y) { return x.centre[axis] < y.centre[axis]; });
+                   [axis](const Leaf& x, const Leaf& y) { return x.splat.centre[axis] < y.splat.centre[axis]; });
   const int c0 = build(leaves, b, mid, tree);
   const int c1 = build(leaves, mid, e, tree);
   SplatTreeNode& n = tree.nodes[std::size_t(id)];
@@ -77,7 +84,7 @@ SplatTree build_splat_tree(const Mesh& mesh, const BoundaryTriangles& boundary,
                            const std::array<double, 3>& origin,
                            const std::array<double, 3>& spacing) {
   using detail::V3;
-  std::vector<SurfaceSplat> leaves;
+  std::vector<detail::Leaf> leaves;
   leaves.reserve(boundary.points.size());
   SplatTree tree;
   tree.value_range = {0, 0};
@@ -112,7 +119,13 @@ SplatTree build_splat_tree(const Mesh& mesh, const BoundaryTriangles& boundary,
     if (first || s.value < tree.value_range.lo) tree.value_range.lo = s.value;
     if (first || s.value > tree.value_range.hi) tree.value_range.hi = s.value;
     first = false;
-    leaves.push_back(s);
+    detail::Leaf leaf{s, {}};
+    for (std::size_t k = 0; k < 3; ++k) {
+      leaf.triangle[0][k] = float(p0[k]);
+      leaf.triangle[1][k] = float(p1[k]);
+      leaf.triangle[2][k] = float(p2[k]);
+    }
+    leaves.push_back(leaf);
   }
   tree.leaves = int(leaves.size());
   if (leaves.empty()) return tree;

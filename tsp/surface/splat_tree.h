@@ -23,10 +23,12 @@ struct SurfaceSplat {
   float value = 0;                       ///< the field, area-weighted over them
 };
 
-/// A node of the hierarchy: its splat and its two children (−1, −1 for a leaf).
+/// A node of the hierarchy: its splat and its two children (−1, −1 for a leaf). A leaf also
+/// keeps its triangle, which is drawn instead of its disc (the boundary itself, exactly).
 struct SplatTreeNode {
   SurfaceSplat splat;
   std::array<int, 2> child{-1, -1};
+  std::array<std::array<float, 3>, 3> triangle{};  ///< a leaf's corners (sample coordinates)
   bool is_leaf() const { return child[0] < 0; }
 };
 

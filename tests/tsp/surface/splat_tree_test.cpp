@@ -145,10 +145,19 @@ TEST(SplatTree, SumsOverTheBoundaryAndCutsCoverEveryLeafOnce) {
   EXPECT_NEAR(root.value, 2.0, 1e-5);
   for (int k = 0; k < 3; ++k) EXPECT_NEAR(root.centre[std::size_t(k)], 6.0, 1e-5);
   EXPECT_EQ(tree.value_range, (ValueRange{0, 4}));
-  // Every node before its children, its radius holding theirs.
+  // Every node before its children, its radius holding theirs; a leaf keeps its triangle,
+  // centred on its splat and held by its radius.
   for (std::size_t i = 0; i < tree.nodes.size(); ++i) {
     const SplatTreeNode& n = tree.nodes[i];
-    if (n.is_leaf()) continue;
+    if (n.is_leaf()) {
+      for (std::size_t k = 0; k < 3; ++k)
+        EXPECT_NEAR((n.triangle[0][k] + n.triangle[1][k] + n.triangle[2][k]) / 3, n.splat.centre[k], 1e-5);
+      for (const auto& c : n.triangle)
+        EXPECT_LE(std::hypot(double(c[0]) - n.splat.centre[0], double(c[1]) - n.splat.centre[1],
+                             double(c[2]) - n.splat.centre[2]),
+                  n.splat.radius * (1 + 1e-6) + 1e-6);
+      continue;
+    }
     for (int c : n.child) {
       ASSERT_GT(c, int(i));
       const SurfaceSplat& s = tree.nodes[std::size_t(c)].splat;

@@ -1,0 +1,126 @@
+// render --surface boundary (issue 31 item 2, TetSplat's Shell): the mesh's boundary drawn as
+// opaque lit splats coloured by a field of its own, against the analytic Lambert term of the
+// faces that look at the camera; a probe opens it; a larger minimum splat size draws fewer
+// splats; misuse is a usage error. The boundary and the hierarchy themselves are checked in
+// tests/tsp/surface/splat_tree_test.cpp.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "support/paths.h"
+#include "tsp/core/color.h"
+#include "tsp/report/image.h"
+
+namespace fs = std::filesystem;
+using tsptest::run_tspplay;
+
+namespace {
+
+std::string q(const fs::path& p) { return tsptest::quote(p); }
+
+nlohmann::json frames(const fs::path& dir) {
+  std::ifstream in(dir / "frames.json");
+  return nlohmann::json::parse(in);
+}
+
+// Pixels of img within ΔE 2 of the 8-bit colour (r, g, b).
+int pixels_near(const tsp::Image& img, double r, double g, double b) {
+  const tsp::Luv want = tsp::srgb_to_luv(r, g, b);
+  int n = 0;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      const std::uint8_t* p = img.at(x, y);
+      if (tsp::delta_e_luv(tsp::srgb8_to_luv(p[0], p[1], p[2]), want) < 2) ++n;
+    }
+  return n;
+}
+
+// The fixture: six disjoint unit cells along x (tetra, voxel, hexahedron, wedge, pyramid,
+// polyhedron at x = 0, 2, …, 10), cell field c = 7·cell + t (tests/data/make_mesh_fixtures.py).
+struct SurfaceCli : ::testing::Test {
+  fs::path dir = tsptest::temp_dir();
+  std::string mesh = (tsptest::test_data_dir() / "vtu" / "binary_%d.vtu").string();
+  void SetUp() override {
+    auto r = run_tspplay("build " + q(mesh) + " --field f --resolution 96 -o " + q(dir / "m.tsp"));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    // A grey ramp over c: grey c/35.
+    std::ofstream(dir / "ramp.json") << R"({"range": [0, 35], "points": [[0, 0, 0, 0, 1], [35, 1, 1, 1, 1]]})";
+  }
+  std::string render(const std::string& out, const std::string& extra) {
+    return "render " + q(dir / "m.tsp") + " --steps 0 --size 960x240 --view 0,0 --surface boundary "
+           "--surface-mesh " + q(mesh) + " --surface-field c --surface-tf " + q(dir / "ramp.json") +
+           " " + extra + " -o " + q(dir / out);
+  }
+};
+
+TEST_F(SurfaceCli, FacesTowardsTheCameraShowTheirCellsColourLitByLambert) {
+  auto r = run_tspplay(render("lit", ""));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const tsp::Image img = tsp::read_png((dir / "lit" / "step_0000.png").string());
+  // View 0,0 looks along +y: the faces at y = 0 face the headlight (n·l = 1), so a face of cell
+  // k shows grey g = (7k)/35 lit as g·(ambient + diffuse) + specular = 0.8·g + 0.2.
+  for (int k : {0, 1, 2, 3, 5}) {  // the pyramid's faces are all slanted
+    const double g = 0.8 * (7.0 * k / 35.0) + 0.2;
+    EXPECT_GT(pixels_near(img, g, g, g), 200) << "cell " << k << ": grey " << g;
+  }
+  const nlohmann::json j = frames(dir / "lit");
+  EXPECT_EQ(j["surface"], "boundary");
+  EXPECT_EQ(j["surface_field"], "c");
+  EXPECT_GT(int(j["frames"][0]["surface_splats"]), 0);
+
+  // Unlit: the TF's grey itself.
+  r = run_tspplay(render("unlit", "--shade off"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const tsp::Image flat = tsp::read_png((dir / "unlit" / "step_0000.png").string());
+  EXPECT_GT(pixels_near(flat, 14.0 / 35, 14.0 / 35, 14.0 / 35), 200);
+}
+
+TEST_F(SurfaceCli, AProbeCutsTheSurfaceAndLargerSplatsAreFewer) {
+  ASSERT_EQ(run_tspplay(render("whole", "")).exit_code, 0);
+  // Keep x ≤ 3.5: the tetrahedron and the voxel stay, the hexahedron (x in [4, 5]) and the
+  // cells beyond it go, surface and volume.
+  auto r = run_tspplay(render("cut", "--probe plane:1,0,0,3.5"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const tsp::Image whole = tsp::read_png((dir / "whole" / "step_0000.png").string());
+  const tsp::Image cut = tsp::read_png((dir / "cut" / "step_0000.png").string());
+  const double voxel = 0.8 * 0.2 + 0.2, hexahedron = 0.8 * 0.4 + 0.2;
+  EXPECT_GT(pixels_near(whole, hexahedron, hexahedron, hexahedron), 200);
+  EXPECT_EQ(pixels_near(cut, hexahedron, hexahedron, hexahedron), 0);
+  EXPECT_GT(pixels_near(cut, voxel, voxel, voxel), 200);
+  EXPECT_LT(int(frames(dir / "cut")["frames"][0]["surface_splats"]),
+            int(frames(dir / "whole")["frames"][0]["surface_splats"]));
+  // Coarser cuts: no more splats, and one splat for the whole surface once it is that small.
+  int previous = int(frames(dir / "whole")["frames"][0]["surface_splats"]);
+  for (int px : {60, 200, 4096}) {
+    const std::string out = "px" + std::to_string(px);
+    ASSERT_EQ(run_tspplay(render(out, "--surface-px " + std::to_string(px))).exit_code, 0);
+    const int n = frames(dir / out)["frames"][0]["surface_splats"];
+    EXPECT_LE(n, previous) << px;
+    if (px == 4096) {
+      EXPECT_EQ(n, 1);
+    }
+    previous = n;
+  }
+  EXPECT_LT(previous, int(frames(dir / "whole")["frames"][0]["surface_splats"]));
+}
+
+TEST_F(SurfaceCli, MisuseIsAUsageError) {
+  const std::string base = "render " + q(dir / "m.tsp") + " --steps 0 --size 64x48 -o " + q(dir / "x") + " ";
+  for (const std::string& bad :
+       {std::string("--surface boundary"),                                     // no mesh
+        "--surface-mesh " + q(mesh),                                           // no --surface
+        "--surface boundary --surface-mesh " + q(mesh) + " --compositing slices",
+        "--surface boundary --surface-mesh " + q(mesh) + " --surface-px -1",
+        "--surface boundary --surface-mesh " + q(mesh) + " --surface-field nosuch"}) {
+    const auto r = run_tspplay(base + bad);
+    EXPECT_NE(r.exit_code, 0) << bad;
+    EXPECT_NE(r.err.find("error"), std::string::npos) << bad << ": " << r.err;
+    EXPECT_FALSE(fs::exists(dir / "x")) << bad;
+  }
+}
+
+}  // namespace
