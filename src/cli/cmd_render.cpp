@@ -46,7 +46,7 @@ struct RenderArgs {
   std::vector<std::string> probes;
   std::string probe_op = "intersect", probe_surface = "off", probe_tf, probe_motion;
   std::string surface = "off", surface_mesh, surface_field, surface_tf;
-  double surface_px = 1;
+  double surface_px = 1, surface_target_ms = 0;
 };
 
 /// The knobs --quality picks itself (giving one of them with it is an error).
@@ -143,6 +143,7 @@ void run(const RenderArgs& a) {
   o.surface_field = a.surface_field;
   o.surface_tf = a.surface_tf;
   o.surface_px = a.surface_px;
+  o.surface_target_ms = a.surface_target_ms;
   if (!a.probe_motion.empty())
     o.probe_motion = parse_triple(a.probe_motion, "--probe-motion", "DX,DY,DZ per frame");
   if (!a.scale.empty())
@@ -273,6 +274,9 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
   c->add_option("--surface-px", a->surface_px,
                 "Minimum splat size in pixels (default 1): the splat hierarchy is cut where a "
                 "splat projects to at most this; larger is coarser and faster");
+  c->add_option("--surface-target-ms", a->surface_target_ms,
+                "Hold the surface pass at this many ms: the minimum splat size adapts frame by "
+                "frame, from --surface-px (TetSplat's frame-rate knob; frames.json records it)");
   c->add_option("--scale", a->scale,
                 "SX,SY,SZ: stretch each axis by this factor (e.g. 1,1,20 exaggerates height)");
   c->add_option("--passes", a->passes, "Play the steps this many times (default 1)");
@@ -327,7 +331,7 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
                  {"Probes", {"--probe", "--probe-op", "--probe-surface", "--probe-motion",
                              "--probe-tf"}},
                  {"Surface", {"--surface", "--surface-mesh", "--surface-field", "--surface-tf",
-                              "--surface-px"}},
+                              "--surface-px", "--surface-target-ms"}},
                  {"Memory", {"--texture-budget", "--ram-budget"}},
                  {"Diagnostics", {"--baseline", "--cache"}}});
   c->callback([a] { run(*a); });

@@ -83,6 +83,8 @@ json frame_json(const FrameRecord& f) {
   if (f.surface_splats >= 0) {
     j["surface_splats"] = f.surface_splats;
     j["surface_cut_ms"] = f.surface_cut_ms;
+    j["surface_ms"] = f.surface_ms;
+    j["surface_px"] = f.surface_px;
   }
   return j;
 }
@@ -253,6 +255,11 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
                           "built from");
   if (options.surface && options.settings.compositing != Compositing::rays)
     throw tsp::UsageError("--surface boundary is drawn with --compositing rays");
+  if (!(options.surface_target_ms >= 0) || options.surface_target_ms > kMaxTargetMs)
+    throw tsp::UsageError("--surface-target-ms " + std::to_string(options.surface_target_ms) +
+                          ": expected a time in (0, " + std::to_string(int(kMaxTargetMs)) + "] ms");
+  if (options.surface_target_ms > 0 && !options.surface)
+    throw tsp::UsageError("--surface-target-ms needs --surface boundary");
   if (!(options.surface_px >= 0) || !(options.surface_px <= kMaxSurfacePx))
     throw tsp::UsageError("--surface-px " + std::to_string(options.surface_px) +
                           ": expected a size in pixels in [0, " + std::to_string(int(kMaxSurfacePx)) + "]");
@@ -343,6 +350,7 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
     surface_tf = tsp::transfer_function_from_arg(o.surface_tf.empty() ? "preset:cool-to-warm" : o.surface_tf,
                                                  r, tsp::kDefaultTfEntries);
   }
+  double surface_px = o.surface_px;  // the cut's minimum splat size (adapts to a target)
   const bool moving = o.probe_motion != std::array<double, 3>{0, 0, 0};
   if (!o.probes.empty()) set_clip(0);
   tsp::WholeTreeMetric nodes(metric);
@@ -385,11 +393,19 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
       request.metric = &nodes;
       request.tf = &tf;
       SliceCompositor& compositor = baseline ? baseline->compositor() : *renderer->compositor();
-      if (mesh_surface) compositor.set_surface({&mesh_surface->tree(t), &*surface_tf, o.surface_px});
+      if (mesh_surface) compositor.set_surface({&mesh_surface->tree(t), &*surface_tf, surface_px});
       const DrawnFrame drawn = driver->draw(request);
       if (mesh_surface) {
-        rec.surface_splats = compositor.surface_stats().splats;
-        rec.surface_cut_ms = compositor.surface_stats().cut_ms;
+        const SurfaceStats& ss = compositor.surface_stats();
+        rec.surface_splats = ss.splats;
+        rec.surface_cut_ms = ss.cut_ms;
+        rec.surface_ms = ss.ms;
+        rec.surface_px = surface_px;
+        // Splats ∝ 1 / size²: the size that would have taken the target, a step at a time.
+        if (o.surface_target_ms > 0 && ss.ms > 0)
+          surface_px = std::clamp(surface_px * std::clamp(std::sqrt(ss.ms / o.surface_target_ms),
+                                                          1 / kSurfacePxStep, kSurfacePxStep),
+                                  kMinSurfacePx, kMaxSurfacePx);
       }
       rec.report = drawn.report;
       if (drawn.lod) rec.lod = LodRecord{o.lod == LodMode::adaptive ? o.target_ms : 0, *drawn.lod};
@@ -442,6 +458,7 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
       j["surface_mesh"] = o.surface_mesh;
       j["surface_field"] = o.surface_field.empty() ? file->metadata().field : o.surface_field;
       j["surface_px"] = o.surface_px;
+      j["surface_target_ms"] = o.surface_target_ms;
     }
     if (o.quality > 0)
       j["quality"] = {{"target_delta_e", o.quality},

@@ -61,6 +61,9 @@ struct RenderJobOptions {
   std::string surface_tf;                     ///< --surface-tf ("": cool-to-warm over the
                                               ///< surface's values at the first step)
   double surface_px = 1;                      ///< --surface-px: the minimum splat size (pixels)
+  /// --surface-target-ms (> 0): the minimum splat size adapts frame by frame so the surface
+  /// pass takes this long (TetSplat's frame-rate knob); surface_px is where it starts.
+  double surface_target_ms = 0;
   std::array<double, 3> scale{1, 1, 1};       ///< --scale SX,SY,SZ: exaggeration per axis
   int passes = 1;                             ///< times the step range is played
   /// The frame knobs: --spatial-tol/--temporal-tol, --spacing, --compositing, --flat,
@@ -99,6 +102,11 @@ inline constexpr double kMaxTargetMs = 60000;
 inline constexpr double kMaxScale = 1000;
 /// Largest --surface-px (a splat as wide as a large window).
 inline constexpr double kMaxSurfacePx = 4096;
+/// Smallest minimum splat size --surface-target-ms goes down to (half a pixel: every leaf).
+inline constexpr double kMinSurfacePx = 0.5;
+/// Largest factor --surface-target-ms changes the minimum splat size by from one frame to the
+/// next.
+inline constexpr double kSurfacePxStep = 2;
 
 /// The voxel size a view shows: the file's spacing (or cubes, without physical proportions)
 /// times scale per axis. Spacing that is not positive and finite counts as 1. Never throws.
@@ -125,6 +133,8 @@ struct FrameRecord {
   std::int64_t rss_bytes = 0;      ///< the process's resident memory after the frame
   int surface_splats = -1;         ///< --surface: splats drawn (−1: no surface)
   double surface_cut_ms = 0;       ///< --surface: choosing the cut and filling its buffer
+  double surface_ms = 0;           ///< --surface: the whole surface pass
+  double surface_px = 0;           ///< --surface: the minimum splat size it was cut at
 };
 
 /// What a job did.

@@ -504,6 +504,9 @@ void SliceCompositor::set_step_map(const std::vector<std::uint8_t>& rows, std::a
 }
 
 void SliceCompositor::draw_rays() {
+  // A mesh's boundary is closed and the volume lies inside it: drawn opaque and whole (no
+  // probe cuts it open), it hides every ray's samples.
+  if (surface_drawn_ && !clip_region_.active()) return;
   gl_.BindTexture(GL_TEXTURE_3D, rays_atlas_);
   rays_->use();
   gl_.Uniform1i(rays_->uniform("use_surface_depth"), surface_drawn_ ? 1 : 0);

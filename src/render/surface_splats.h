@@ -29,6 +29,7 @@ struct SurfaceFrame {
 struct SurfaceStats {
   int splats = 0;        ///< splats of the cut drawn
   double cut_ms = 0;     ///< choosing the cut and filling the instance buffer
+  double ms = 0;         ///< the whole pass: the cut, the draw and GL finishing it
 };
 
 /// The splat pass of one GL context (which must be current and outlive it). Use from the
