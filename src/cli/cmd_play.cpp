@@ -85,6 +85,14 @@ void run(PlayArgs a) {
   const tsp::InputGuard inputs({a.options.tsp_path, a.options.tf, a.options.script});
   if (!a.options.screenshot.empty()) tsp::check_output_path(a.options.screenshot);
   const bool tsp = tspgl::is_tsp_file(a.options.tsp_path);
+  // --surface boundary on a mesh input: its own boundary.
+  if (a.options.settings.surface && a.options.surface_mesh.empty() && !tsp)
+    a.options.surface_mesh = a.options.tsp_path;
+  if (a.options.settings.surface && a.options.surface_mesh.empty())
+    throw tsp::UsageError("--surface boundary needs a mesh: play a mesh input, or give "
+                          "--surface-mesh (the mesh series the file was built from)");
+  if (a.options.settings.surface && a.options.settings.compositing != tspgl::Compositing::rays)
+    throw tsp::UsageError("--surface boundary is drawn with --compositing rays");
   tspgl::PlayInputOptions input = a.options.input;
   input.field = a.field;
   a.options.tsp_path = tspgl::prepare_play_input(a.options.tsp_path, input, a.cache_dir, hooks);
@@ -127,6 +135,13 @@ const CommandRegistrar reg(35, [](CLI::App& app) {
   c->add_option("--scale", a->scale, "SX,SY,SZ: stretch each axis (e.g. 1,1,20 for height)");
   c->add_option("--probe", a->options.probes,
                 "Clip probe, repeatable (as render --probe; the Probes panel edits them)");
+  c->add_option("--surface-mesh", a->options.surface_mesh,
+                "The mesh series whose boundary --surface boundary draws (default: the input, "
+                "when it is a mesh)");
+  c->add_option("--surface-field", a->options.surface_field,
+                "The field the surface shows (default: the file's)");
+  c->add_option("--surface-tf", a->options.surface_tf,
+                "Colours of the surface: a TF file or preset:NAME (default preset:cool-to-warm)");
   c->add_option("--probe-op", a->options.probe_op, "intersect (default), union or subtract")
       ->check(CLI::IsMember({"intersect", "union", "subtract"}));
   c->add_option("--probe-surface", a->probe_surface,
@@ -178,6 +193,7 @@ const CommandRegistrar reg(35, [](CLI::App& app) {
                  {"Playback", {"--speed", "--quality", "--playback"}},
                  {"LOD", {"--lod", "--lod-filter", "--lod-fallback", "--target-fps"}},
                  {"Probes", {"--probe", "--probe-op", "--probe-surface"}},
+                 {"Surface", {"--surface-mesh", "--surface-field", "--surface-tf"}},
                  {"Memory", {"--ram-budget", "--texture-budget"}},
                  {"Diagnostics", {"--trace", "--frame-delay-ms"}}});
   c->callback([a] {

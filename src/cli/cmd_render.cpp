@@ -45,8 +45,8 @@ struct RenderArgs {
   std::string proportions = "physical", scale;
   std::vector<std::string> probes;
   std::string probe_op = "intersect", probe_surface = "off", probe_tf, probe_motion;
-  std::string surface = "off", surface_mesh, surface_field, surface_tf;
-  double surface_px = 1, surface_target_ms = 0;
+  std::string surface_mesh, surface_field, surface_tf;
+  double surface_target_ms = 0;
 };
 
 /// The knobs --quality picks itself (giving one of them with it is an error).
@@ -138,11 +138,9 @@ void run(const RenderArgs& a) {
   o.probe_op = tsp::parse_probe_op(a.probe_op);
   o.probe_surface = a.probe_surface == "on";
   o.probe_tf = a.probe_tf;
-  o.surface = a.surface == "boundary";
   o.surface_mesh = a.surface_mesh;
   o.surface_field = a.surface_field;
   o.surface_tf = a.surface_tf;
-  o.surface_px = a.surface_px;
   o.surface_target_ms = a.surface_target_ms;
   if (!a.probe_motion.empty())
     o.probe_motion = parse_triple(a.probe_motion, "--probe-motion", "DX,DY,DZ per frame");
@@ -257,11 +255,6 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
                 "its normal), e.g. to sweep a slice through the data");
   c->add_option("--probe-tf", a->probe_tf,
                 "Colours of the clip surface: a TF file or preset:NAME (default: --tf's)");
-  c->add_option("--surface", a->surface,
-                "boundary: the mesh's boundary (TetSplat's Shell) drawn as an opaque lit surface "
-                "of splats under the volume, which shows where a --probe cuts it open; off "
-                "(default)")
-      ->check(CLI::IsMember({"off", "boundary"}));
   c->add_option("--surface-mesh", a->surface_mesh,
                 "The mesh series the file was built from (any build input: .vtu, .pvd, "
                 ".vtm.series, 'can_%d.hdf', ...), whose boundary --surface draws");
@@ -271,9 +264,6 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
   c->add_option("--surface-tf", a->surface_tf,
                 "Colours of the surface: a TF file or preset:NAME (default preset:cool-to-warm "
                 "over the surface's values at the first step)");
-  c->add_option("--surface-px", a->surface_px,
-                "Minimum splat size in pixels (default 1): the splat hierarchy is cut where a "
-                "splat projects to at most this; larger is coarser and faster");
   c->add_option("--surface-target-ms", a->surface_target_ms,
                 "Hold the surface pass at this many ms: the minimum splat size adapts frame by "
                 "frame, from --surface-px (TetSplat's frame-rate knob; frames.json records it)");
@@ -330,8 +320,8 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
                           "--focus"}},
                  {"Probes", {"--probe", "--probe-op", "--probe-surface", "--probe-motion",
                              "--probe-tf"}},
-                 {"Surface", {"--surface", "--surface-mesh", "--surface-field", "--surface-tf",
-                              "--surface-px", "--surface-target-ms"}},
+                 {"Surface", {"--surface-mesh", "--surface-field", "--surface-tf",
+                              "--surface-target-ms"}},
                  {"Memory", {"--texture-budget", "--ram-budget"}},
                  {"Diagnostics", {"--baseline", "--cache"}}});
   c->callback([a] { run(*a); });

@@ -247,22 +247,19 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
     if (!(k > 0) || !(k <= kMaxScale))
       throw tsp::UsageError("--scale: expected three factors in (0, " +
                             std::to_string(int(kMaxScale)) + "], found " + std::to_string(k));
-  if (!options.surface &&
+  if (!options.settings.surface &&
       (!options.surface_mesh.empty() || !options.surface_field.empty() || !options.surface_tf.empty()))
     throw tsp::UsageError("--surface-mesh/--surface-field/--surface-tf need --surface boundary");
-  if (options.surface && options.surface_mesh.empty())
+  if (options.settings.surface && options.surface_mesh.empty())
     throw tsp::UsageError("--surface boundary needs --surface-mesh, the mesh series the file was "
                           "built from");
-  if (options.surface && options.settings.compositing != Compositing::rays)
+  if (options.settings.surface && options.settings.compositing != Compositing::rays)
     throw tsp::UsageError("--surface boundary is drawn with --compositing rays");
   if (!(options.surface_target_ms >= 0) || options.surface_target_ms > kMaxTargetMs)
     throw tsp::UsageError("--surface-target-ms " + std::to_string(options.surface_target_ms) +
                           ": expected a time in (0, " + std::to_string(int(kMaxTargetMs)) + "] ms");
-  if (options.surface_target_ms > 0 && !options.surface)
+  if (options.surface_target_ms > 0 && !options.settings.surface)
     throw tsp::UsageError("--surface-target-ms needs --surface boundary");
-  if (!(options.surface_px >= 0) || !(options.surface_px <= kMaxSurfacePx))
-    throw tsp::UsageError("--surface-px " + std::to_string(options.surface_px) +
-                          ": expected a size in pixels in [0, " + std::to_string(int(kMaxSurfacePx)) + "]");
   auto file = tsp::TspFile::open(options.tsp_path, options.field);
   const tsp::TspTree& tree = file->tree();
   // Physical proportions: the file's voxel spacing (times --scale) shapes the view.
@@ -342,7 +339,7 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
   // The mesh's boundary under the volume: its splat hierarchy per step, coloured by its own TF.
   std::optional<MeshSurface> mesh_surface;
   std::optional<tsp::TransferFunction> surface_tf;
-  if (o.surface) {
+  if (o.settings.surface) {
     mesh_surface.emplace(o.surface_mesh, o.surface_field.empty() ? file->metadata().field : o.surface_field,
                          file->metadata().origin, file->metadata().spacing);
     tsp::ValueRange r = mesh_surface->tree(o.first_step).value_range;
@@ -350,7 +347,7 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
     surface_tf = tsp::transfer_function_from_arg(o.surface_tf.empty() ? "preset:cool-to-warm" : o.surface_tf,
                                                  r, tsp::kDefaultTfEntries);
   }
-  double surface_px = o.surface_px;  // the cut's minimum splat size (adapts to a target)
+  double surface_px = o.settings.surface_px;  // the cut's minimum splat size (adapts to a target)
   const bool moving = o.probe_motion != std::array<double, 3>{0, 0, 0};
   if (!o.probes.empty()) set_clip(0);
   tsp::WholeTreeMetric nodes(metric);
@@ -453,11 +450,9 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
     j["lod_fallback"] = tsp::to_string(o.lod_options.fallback);
     j["orbit_deg"] = o.orbit_deg;
     j["lod_levels"] = tree.octree().max_lod_level() + 1;
-    j["surface"] = o.surface ? "boundary" : "off";
-    if (o.surface) {
+    if (o.settings.surface) {
       j["surface_mesh"] = o.surface_mesh;
       j["surface_field"] = o.surface_field.empty() ? file->metadata().field : o.surface_field;
-      j["surface_px"] = o.surface_px;
       j["surface_target_ms"] = o.surface_target_ms;
     }
     if (o.quality > 0)

@@ -53,14 +53,13 @@ struct RenderJobOptions {
   std::string probe_tf;                       ///< --probe-tf: its colours ("": the volume's TF)
   std::array<double, 3> probe_motion{0, 0, 0};  ///< --probe-motion: every probe moves this far
                                                 ///< each frame (physical units)
-  /// --surface boundary: the boundary of the mesh series surface_mesh (the one the file was
-  /// built from) drawn opaque under the volume as TetSplat's splats (render/mesh_surface.h).
-  bool surface = false;
+  /// With settings.surface (--surface boundary): the mesh series whose boundary is drawn opaque
+  /// under the volume as TetSplat's splats (render/mesh_surface.h), the one the file was built
+  /// from; its minimum splat size is settings.surface_px.
   std::string surface_mesh;                   ///< --surface-mesh: that mesh series
   std::string surface_field;                  ///< --surface-field ("": the file's field)
   std::string surface_tf;                     ///< --surface-tf ("": cool-to-warm over the
                                               ///< surface's values at the first step)
-  double surface_px = 1;                      ///< --surface-px: the minimum splat size (pixels)
   /// --surface-target-ms (> 0): the minimum splat size adapts frame by frame so the surface
   /// pass takes this long (TetSplat's frame-rate knob); surface_px is where it starts.
   double surface_target_ms = 0;
@@ -100,8 +99,6 @@ struct LodRecord {
 inline constexpr double kMaxTargetMs = 60000;
 /// Largest --scale factor.
 inline constexpr double kMaxScale = 1000;
-/// Largest --surface-px (a splat as wide as a large window).
-inline constexpr double kMaxSurfacePx = 4096;
 /// Smallest minimum splat size --surface-target-ms goes down to (half a pixel: every leaf).
 inline constexpr double kMinSurfacePx = 0.5;
 /// Largest factor --surface-target-ms changes the minimum splat size by from one frame to the

@@ -58,6 +58,11 @@ struct PlayerOptions {
   std::string probe_op = "intersect";    ///< --probe-op
   bool probe_surface = true;             ///< --probe-surface on|off
   std::array<double, 3> scale{1, 1, 1};  ///< --scale: stretch per axis (exaggeration)
+  /// --surface-mesh: the mesh series whose boundary settings.surface draws under the volume of
+  /// the file opened first (play INPUT with --surface boundary: INPUT itself); "": none.
+  std::string surface_mesh;
+  std::string surface_field;  ///< --surface-field: the field it shows ("": the file's)
+  std::string surface_tf;     ///< --surface-tf: its colours ("": cool-to-warm over its values)
 };
 
 /// Opens the window and runs until it is closed, the script quits or the screenshot is saved.

@@ -26,6 +26,7 @@
 #include "player/player_state.h"
 #include "player/script.h"
 #include "render/frame_driver.h"
+#include "render/mesh_surface.h"
 #include "render/volume_renderer.h"
 #include "tsp/clip/probe.h"
 #include "tsp/core/stopwatch.h"
@@ -107,6 +108,10 @@ class PlayerApp {
   std::unique_ptr<tsp::TspFile> file;
   std::unique_ptr<tspgl::GlContext> ctx;
   std::unique_ptr<tspgl::VolumeRenderer> renderer;  ///< draws `file` (the shown field)
+  /// The boundary of options' surface mesh and its colours (the first file only; File > Open
+  /// of another file drops it), drawn when state.settings.surface is on.
+  std::optional<tspgl::MeshSurface> mesh_surface;
+  std::optional<tsp::TransferFunction> surface_tf;
   std::unique_ptr<tsp::BrickPrefetcher>
       prefetcher;  ///< reads into renderer's brick cache; made after it
   tsp::TransferFunction tf;

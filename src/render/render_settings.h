@@ -92,9 +92,17 @@ struct RenderSettings {
   /// tsp::kStepMultipliers whose step changes the premultiplied TF colour by at most this much
   /// (0: every brick every spacing). Excludes pre-integration.
   double sampling_tol = 0;
+  /// Rays compositing: the mesh's boundary drawn opaque under the volume from TetSplat's splat
+  /// hierarchy (render/surface_splats.h), where the caller gives the compositor one.
+  bool surface = false;
+  /// The boundary's minimum splat size in pixels, in [0, kMaxSurfacePx] (0: every leaf).
+  double surface_px = 1;
   /// Every field equal.
   bool operator==(const RenderSettings&) const = default;
 };
+
+/// Largest RenderSettings::surface_px (a splat as wide as a large window).
+inline constexpr double kMaxSurfacePx = 4096;
 
 /// Smallest RenderSettings::render_scale.
 inline constexpr double kMinRenderScale = 0.25;

@@ -33,6 +33,7 @@ const std::vector<std::string_view> kToggle{"off", "on"};
 const std::vector<std::string_view> kCompositingWords{"slices", "boxes", "rays"};
 const std::vector<std::string_view> kSpanStepWords{"first", "middle", "mean"};
 const std::vector<std::string_view> kFlatWords{"slices", "exact"};
+const std::vector<std::string_view> kSurfaceWords{"off", "boundary"};
 
 std::vector<SettingSpec> make_table() {
   using K = SettingKind;
@@ -97,6 +98,20 @@ std::vector<SettingSpec> make_table() {
                        "diffuse 0.7, specular 0.2, power 10), normals from the scalar's gradient",
                .get = [](const RenderSettings& s) { return on_off(s.shade); },
                .set = [](RenderSettings& s, double v) { s.shade = v != 0; }});
+  t.push_back({.name = "surface", .kind = K::choice, .group = G::compositing, .unit = {}, .lo = 0, .hi = 0,
+               .choices = kSurfaceWords,
+               .help = "boundary: the mesh's boundary (TetSplat's Shell) drawn as an opaque lit "
+                       "surface of splats under the volume (rays), which shows where a probe cuts "
+                       "it open; needs the mesh (render: --surface-mesh; play: a mesh input)",
+               .get = [](const RenderSettings& s) { return std::string(s.surface ? "boundary" : "off"); },
+               .set = [](RenderSettings& s, double v) { s.surface = v != 0; }});
+  t.push_back({.name = "surface-px", .kind = K::number, .group = G::compositing, .unit = "pixels",
+               .lo = 0, .hi = kMaxSurfacePx, .choices = {}, .ui_lo = 0, .ui_hi = 64,
+               .help = "Minimum splat size of the boundary surface: its splat hierarchy is cut "
+                       "where a splat projects to at most this (0: every leaf triangle); larger "
+                       "is coarser and faster",
+               .get = [](const RenderSettings& s) { return number_text(s.surface_px); },
+               .set = [](RenderSettings& s, double v) { s.surface_px = v; }});
   t.push_back({.name = "upload-budget", .kind = K::number, .group = G::memory, .unit = "MiB",
                .lo = 0, .hi = double(kMaxBudgetBytes) / kBytesPerMib, .choices = {}, .ui_lo = 0, .ui_hi = 256,
                .help = "Texture MiB one frame may upload (0: no limit); bricks over it are drawn "

@@ -306,7 +306,7 @@ void SliceCompositor::begin_frame(const tsp::Camera& camera, const RenderSetting
   for (double& l : light) l /= light_norm;
   surface_drawn_ = false;
   surface_stats_ = {};
-  if (has_surface() && settings.compositing == Compositing::rays) {
+  if (settings.surface && has_surface() && settings.compositing == Compositing::rays) {
     // The opaque surface first, into its own target; its picture becomes the frame's
     // background and its depths end the rays (volume_ray.frag). Never kept: the frame is whole.
     assert(!keep);

@@ -104,7 +104,8 @@ class SliceCompositor {
   /// Throws tsp::GlError.
   void set_clip(const tsp::ClipRegion& clip, const tsp::TransferFunction* surface,
                 tsp::ValueRange quantized);
-  /// The opaque surface under the volume from the next begin_frame on (rays compositing; the
+  /// The opaque surface under the volume from the next begin_frame on, in frames whose
+  /// settings.surface is on (rays compositing; the
   /// tree and TF must outlive its frames): drawn first, the rays end where they meet it; a
   /// frame with a surface is never kept (no partial-image reuse). An empty SurfaceFrame: none.
   void set_surface(const SurfaceFrame& s) { surface_ = s; }

@@ -93,6 +93,7 @@ VolumeRenderer::ReuseKey VolumeRenderer::reuse_key(const tsp::Camera& camera,
   k.clip_serial = clip_serial_;
   k.render_scale = s.render_scale;
   k.sampling_tol = s.sampling_tol;
+  k.surface = s.surface && compositor_->has_surface();  // a frame with it is never kept, nor one after
   return k;
 }
 
@@ -374,7 +375,8 @@ void VolumeRenderer::decide_reuse(Frame& f, const tsp::Camera& camera, tsp::Fram
   f.ids = brick_identities(
       tree_, f.plan, [&](int id) { return metric.mean_colour(id); }, level_pages_);
   f.key = reuse_key(camera, f.settings);
-  f.reuse = f.settings.reuse_image && !compositor_->has_surface() && f.settings.render_scale == 1 && previous_ &&
+  f.reuse = f.settings.reuse_image && !(f.settings.surface && compositor_->has_surface()) &&
+            f.settings.render_scale == 1 && previous_ &&
             previous_->key == f.key;
   if (f.reuse) {
     BrickIdentities before = previous_->ids;

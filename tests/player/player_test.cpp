@@ -863,6 +863,29 @@ TEST(Player, PausedPlayerDrawsWhatRenderDrawsForTheSameSettings) {
   }
 }
 
+// The mesh's boundary (--surface boundary, issue 31 item 2) in the window is render's picture
+// of it, and the script's `surface off` (the settings table's action) takes it away.
+TEST(Player, TheMeshBoundaryDrawsAsRenderDrawsItAndTheScriptTurnsItOff) {
+  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  const fs::path dir = tsptest::temp_dir();
+  const std::string mesh = (tsptest::test_data_dir() / "vtu" / "binary_%d.vtu").string();
+  ASSERT_EQ(run_tspplay("build " + q(mesh) + " --field f --resolution 64 -o " + q(dir / "m.tsp")).exit_code, 0);
+  const std::string surface = " --surface boundary --surface-mesh " + q(mesh) + " --surface-field c";
+  const fs::path on = dir / "on.png", off = dir / "off.png";
+  auto p = run_tspplay("play " + q(dir / "m.tsp") + " --size " + kSize + surface + " --script " +
+                       q(write_script("screenshot " + on.string() + "\nsurface off\nscreenshot " +
+                                      off.string() + "\nquit\n")));
+  ASSERT_EQ(p.exit_code, 0) << p.err;
+  auto r = run_tspplay("render " + q(dir / "m.tsp") + " --steps 0 --size " + kSize + surface + " -o " +
+                       q(dir / "r"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const tsp::Image played = tsp::read_png(on.string());
+  EXPECT_GT(covered(played), 0.005);
+  EXPECT_LT(tsp::diff_images(played, tsp::read_png((dir / "r" / "step_0000.png").string())).mean,
+            kSameFrameDeltaE);
+  EXPECT_GT(tsp::diff_images(played, tsp::read_png(off.string())).mean, kDifferentFrameDeltaE);
+}
+
 // Renders on demand: a window with nothing to change sleeps in its event wait (a generous bound
 // on its CPU share while idle, measured from /proc, not timed), and a key wakes it at once.
 TEST(Player, IdleWindowSleepsAndAKeyWakesIt) {
