@@ -10,6 +10,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "support/paths.h"
 #include "tsp/core/color.h"
@@ -108,6 +110,23 @@ TEST_F(SurfaceCli, AProbeCutsTheSurfaceAndLargerSplatsAreFewer) {
   EXPECT_LT(previous, int(frames(dir / "whole")["frames"][0]["surface_splats"]));
 }
 
+// --surface-target-ms: the minimum splat size follows the surface pass's time, at most a factor
+// 2 a frame, within [0.5, 4096] — up while slower than the target, down while faster (targets
+// no frame can miss or meet, so the direction does not depend on the machine).
+TEST_F(SurfaceCli, ATargetTimeMovesTheMinimumSplatSize) {
+  for (const auto& [target, want] : {std::pair<std::string, std::vector<double>>{"0.0001", {1, 2, 4, 8}},
+                                     {"60000", {1, 0.5, 0.5, 0.5}}}) {
+    const std::string out = "target" + target;
+    auto r = run_tspplay(render(out, "--passes 4 --surface-target-ms " + target));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const nlohmann::json j = frames(dir / out);
+    EXPECT_EQ(double(j["surface_target_ms"]), std::stod(target));
+    ASSERT_EQ(j["frames"].size(), want.size());
+    for (std::size_t i = 0; i < want.size(); ++i)
+      EXPECT_EQ(double(j["frames"][i]["surface_px"]), want[i]) << target << " frame " << i;
+  }
+}
+
 TEST_F(SurfaceCli, MisuseIsAUsageError) {
   const std::string base = "render " + q(dir / "m.tsp") + " --steps 0 --size 64x48 -o " + q(dir / "x") + " ";
   for (const std::string& bad :
@@ -115,7 +134,9 @@ TEST_F(SurfaceCli, MisuseIsAUsageError) {
         "--surface-mesh " + q(mesh),                                           // no --surface
         "--surface boundary --surface-mesh " + q(mesh) + " --compositing slices",
         "--surface boundary --surface-mesh " + q(mesh) + " --surface-px -1",
-        "--surface boundary --surface-mesh " + q(mesh) + " --surface-field nosuch"}) {
+        "--surface boundary --surface-mesh " + q(mesh) + " --surface-field nosuch",
+        "--surface-target-ms 10",                                               // no --surface
+        "--surface boundary --surface-mesh " + q(mesh) + " --surface-target-ms -1"}) {
     const auto r = run_tspplay(base + bad);
     EXPECT_NE(r.exit_code, 0) << bad;
     EXPECT_NE(r.err.find("error"), std::string::npos) << bad << ": " << r.err;
