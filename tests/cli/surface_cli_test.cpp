@@ -135,7 +135,7 @@ TEST_F(SurfaceCli, MisuseIsAUsageError) {
         "--surface boundary --surface-mesh " + q(mesh) + " --compositing slices",
         "--surface boundary --surface-mesh " + q(mesh) + " --surface-px -1",
         "--surface boundary --surface-mesh " + q(mesh) + " --surface-field nosuch",
-        "--surface-target-ms 10",                                               // no --surface
+        std::string("--surface-target-ms 10"),                                  // no --surface
         "--surface boundary --surface-mesh " + q(mesh) + " --surface-target-ms -1"}) {
     const auto r = run_tspplay(base + bad);
     EXPECT_NE(r.exit_code, 0) << bad;
