@@ -45,9 +45,9 @@ json lod_json(const LodRecord& l) {
           {"splat_px", s.splat_px},          {"splats", s.splats}};
 }
 
-json frame_json_without_surface(const FrameRecord& f) {
+json frame_json(const FrameRecord& f) {
   const FrameReport& r = f.report;
-  return {{"pass", f.pass},
+  json j = {{"pass", f.pass},
           {"step", r.step},
           {"ms", r.ms},
           {"traversal_ms", r.traversal_ms},
@@ -76,10 +76,6 @@ json frame_json_without_surface(const FrameRecord& f) {
           {"time", f.time ? json(*f.time) : json(nullptr)},
           {"time_text", f.time ? json(f.time_text) : json(nullptr)},
           {"lod", f.lod ? lod_json(*f.lod) : json(nullptr)}};
-}
-
-json frame_json(const FrameRecord& f) {
-  json j = frame_json_without_surface(f);
   if (f.surface_splats >= 0) {
     j["surface_splats"] = f.surface_splats;
     j["surface_cut_ms"] = f.surface_cut_ms;
@@ -338,15 +334,7 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
   };
   // The mesh's boundary under the volume: its splat hierarchy per step, coloured by its own TF.
   std::optional<MeshSurface> mesh_surface;
-  std::optional<tsp::TransferFunction> surface_tf;
-  if (o.settings.surface) {
-    mesh_surface.emplace(o.surface_mesh, o.surface_field.empty() ? file->metadata().field : o.surface_field,
-                         file->metadata().origin, file->metadata().spacing);
-    tsp::ValueRange r = mesh_surface->tree(o.first_step).value_range;
-    if (!(r.hi > r.lo)) r = {r.lo - 0.5, r.lo + 0.5};  // one value: any range around it
-    surface_tf = tsp::transfer_function_from_arg(o.surface_tf.empty() ? "preset:cool-to-warm" : o.surface_tf,
-                                                 r, tsp::kDefaultTfEntries);
-  }
+  if (o.settings.surface) mesh_surface.emplace(o.surface_mesh, o.surface_field, *file, o.surface_tf, o.first_step);
   double surface_px = o.settings.surface_px;  // the cut's minimum splat size (adapts to a target)
   const bool moving = o.probe_motion != std::array<double, 3>{0, 0, 0};
   if (!o.probes.empty()) set_clip(0);
@@ -390,7 +378,7 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
       request.metric = &nodes;
       request.tf = &tf;
       SliceCompositor& compositor = baseline ? baseline->compositor() : *renderer->compositor();
-      if (mesh_surface) compositor.set_surface({&mesh_surface->tree(t), &*surface_tf, surface_px});
+      if (mesh_surface) compositor.set_surface(mesh_surface->frame(t, surface_px));
       const DrawnFrame drawn = driver->draw(request);
       if (mesh_surface) {
         const SurfaceStats& ss = compositor.surface_stats();

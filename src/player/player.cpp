@@ -98,15 +98,8 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
                           ": expected 0.." + std::to_string(int(kMaxFrameDelayMs)));
   frame_delay_ms_ = options.frame_delay_ms;
   tspgl::validate(options.settings);
-  if (!options.surface_mesh.empty()) {
-    mesh_surface.emplace(options.surface_mesh,
-                         options.surface_field.empty() ? file->metadata().field : options.surface_field,
-                         file->metadata().origin, file->metadata().spacing);
-    tsp::ValueRange r = mesh_surface->tree(options.step).value_range;
-    if (!(r.hi > r.lo)) r = {r.lo - 0.5, r.lo + 0.5};  // one value: any range around it
-    surface_tf = tsp::transfer_function_from_arg(
-        options.surface_tf.empty() ? "preset:cool-to-warm" : options.surface_tf, r, tsp::kDefaultTfEntries);
-  }
+  if (!options.surface_mesh.empty())
+    mesh_surface.emplace(options.surface_mesh, options.surface_field, *file, options.surface_tf, options.step);
   state.settings = options.settings;
   for (auto [value, name] : {std::pair{options.ram_budget_mb, "--ram-budget"},
                              std::pair{options.texture_budget_mb, "--texture-budget"}})
@@ -410,7 +403,7 @@ void PlayerApp::render_volume() {
   request.metric = &frame_metric();
   request.tf = &tf;
   if (mesh_surface)
-    renderer->compositor()->set_surface({&mesh_surface->tree(state.step), &*surface_tf, fs.surface_px});
+    renderer->compositor()->set_surface(mesh_surface->frame(state.step, fs.surface_px));
   const tspgl::DrawnFrame drawn = d.draw(request);
   last = drawn.report;
   if (rung) measured_rung(last.ms);

@@ -111,7 +111,6 @@ class PlayerApp {
   /// The boundary of options' surface mesh and its colours (the first file only; File > Open
   /// of another file drops it), drawn when state.settings.surface is on.
   std::optional<tspgl::MeshSurface> mesh_surface;
-  std::optional<tsp::TransferFunction> surface_tf;
   std::unique_ptr<tsp::BrickPrefetcher>
       prefetcher;  ///< reads into renderer's brick cache; made after it
   tsp::TransferFunction tf;

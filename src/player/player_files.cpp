@@ -124,7 +124,6 @@ void PlayerApp::open_file(const std::string& path) {
   file = std::move(next);
   options_.tsp_path = path;
   mesh_surface.reset();  // the surface belongs to the file opened first
-  surface_tf.reset();
   const tsp::TspTree& tree = file->tree();
   // The TF the player started with, fitted to the new data (a map edited for other data
   // rarely suits this one).

@@ -2,16 +2,22 @@
 
 #include <algorithm>
 
+#include "tsp/metric/tf_io.h"
 #include "tsp/source/open_mesh_source.h"
 #include "tsp/surface/boundary.h"
 
 namespace tspgl {
 
 MeshSurface::MeshSurface(const std::string& input, const std::string& field,
-                         const std::array<double, 3>& origin, const std::array<double, 3>& spacing)
-    : input_(input), source_(tsp::open_mesh_source(input, field)), origin_(origin), spacing_(spacing) {}
-
-int MeshSurface::steps() const { return source_->steps(); }
+                         const tsp::TspFile& file, const std::string& tf_arg, int first_step)
+    : source_(tsp::open_mesh_source(input, field.empty() ? file.metadata().field : field)),
+      origin_(file.metadata().origin),
+      spacing_(file.metadata().spacing) {
+  tsp::ValueRange r = tree(first_step).value_range;
+  if (!(r.hi > r.lo)) r = {r.lo - 0.5, r.lo + 0.5};  // one value: any range around it
+  tf_ = tsp::transfer_function_from_arg(tf_arg.empty() ? "preset:cool-to-warm" : tf_arg, r,
+                                        tsp::kDefaultTfEntries);
+}
 
 const tsp::SplatTree& MeshSurface::tree(int t) {
   t = std::clamp(t, 0, source_->steps() - 1);
