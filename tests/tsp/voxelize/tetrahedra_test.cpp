@@ -10,6 +10,8 @@
 #include <numeric>
 #include <random>
 
+#include "support/mesh_shapes.h"
+
 namespace tsp {
 namespace {
 
@@ -23,38 +25,7 @@ double volume(const TetMesh& m, const std::array<std::int64_t, 4>& t) {
                    e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0])) / 6;
 }
 
-// An n³ box of unit hexahedra whose point ids are shuffled (so every diagonal pattern occurs).
-Mesh hex_box(int n, unsigned seed) {
-  Mesh m;
-  const int np = (n + 1) * (n + 1) * (n + 1);
-  std::vector<std::int64_t> id(static_cast<std::size_t>(np));
-  std::iota(id.begin(), id.end(), 0);
-  std::mt19937 rng(seed);
-  std::shuffle(id.begin(), id.end(), rng);
-  m.points.resize(std::size_t(3 * np));
-  auto at = [&](int x, int y, int z) { return id[std::size_t(x + (n + 1) * (y + (n + 1) * z))]; };
-  for (int z = 0; z <= n; ++z)
-    for (int y = 0; y <= n; ++y)
-      for (int x = 0; x <= n; ++x) {
-        const std::int64_t p = at(x, y, z);
-        m.points[std::size_t(3 * p)] = x;
-        m.points[std::size_t(3 * p + 1)] = y;
-        m.points[std::size_t(3 * p + 2)] = z;
-      }
-  m.offsets.push_back(0);
-  for (int z = 0; z < n; ++z)
-    for (int y = 0; y < n; ++y)
-      for (int x = 0; x < n; ++x) {
-        for (auto p : {at(x, y, z), at(x + 1, y, z), at(x + 1, y + 1, z), at(x, y + 1, z),
-                       at(x, y, z + 1), at(x + 1, y, z + 1), at(x + 1, y + 1, z + 1),
-                       at(x, y + 1, z + 1)})
-          m.connectivity.push_back(p);
-        m.offsets.push_back(std::int64_t(m.connectivity.size()));
-        m.types.push_back(CellType::hexahedron);
-      }
-  m.values.assign(std::size_t(np), 0.f);
-  return m;
-}
+using tsptest::hex_box;
 
 TEST(Tetrahedra, HexBoxIsConformingAndFillsItsVolume) {
   for (unsigned seed = 1; seed <= 5; ++seed) {
