@@ -402,7 +402,7 @@ void PlayerApp::render_volume() {
   request.settings = fs;
   request.metric = &frame_metric();
   request.tf = &tf;
-  if (mesh_surface)
+  if (mesh_surface && fs.surface)  // (a step's mesh is read only while it is shown)
     renderer->compositor()->set_surface(mesh_surface->frame(state.step, fs.surface_px));
   const tspgl::DrawnFrame drawn = d.draw(request);
   last = drawn.report;
