@@ -13,8 +13,14 @@ MeshSurface::MeshSurface(const std::string& input, const std::string& field,
     : source_(tsp::open_mesh_source(input, field.empty() ? file.metadata().field : field)),
       origin_(file.metadata().origin),
       spacing_(file.metadata().spacing) {
+  // The first step's values; where that step holds one value (a crash test's velocity before
+  // the impact), the first later step that holds more, so that the map spans what changes.
   tsp::ValueRange r = tree(first_step).value_range;
-  if (!(r.hi > r.lo)) r = {r.lo - 0.5, r.lo + 0.5};  // one value: any range around it
+  for (int t = first_step + 1; !(r.hi > r.lo) && t < source_->steps(); ++t) {
+    const tsp::ValueRange later = tree(t).value_range;
+    if (later.hi > later.lo) r = later;
+  }
+  if (!(r.hi > r.lo)) r = {r.lo - 0.5, r.lo + 0.5};  // one value throughout: any range around it
   tf_ = tsp::transfer_function_from_arg(tf_arg.empty() ? "preset:cool-to-warm" : tf_arg, r,
                                         tsp::kDefaultTfEntries);
 }

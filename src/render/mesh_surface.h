@@ -20,7 +20,8 @@ class MeshSurface {
  public:
   /// Opens the mesh series input (any open_mesh_source input) reading field ("": file's field),
   /// placed on file's grid; colours from tf_arg (a TF file or preset:NAME; "": cool-to-warm)
-  /// over the surface's values at step first_step. Throws IoError/FormatError naming the input
+  /// over the surface's values at step first_step (or the first later step holding more than
+  /// one value). Throws IoError/FormatError naming the input
   /// or the TF file, UsageError for a field the mesh lacks.
   MeshSurface(const std::string& input, const std::string& field, const tsp::TspFile& file,
               const std::string& tf_arg, int first_step);
