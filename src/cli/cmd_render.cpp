@@ -263,7 +263,7 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
                 "volume's; default: the file's field)");
   c->add_option("--surface-tf", a->surface_tf,
                 "Colours of the surface: a TF file or preset:NAME (default preset:cool-to-warm "
-                "over the surface's values at the first step)");
+                "over the surface's values at the first step that holds more than one)");
   c->add_option("--surface-target-ms", a->surface_target_ms,
                 "Hold the surface pass at this many ms: the minimum splat size adapts frame by "
                 "frame, from --surface-px (TetSplat's frame-rate knob; frames.json records it)");
