@@ -81,6 +81,20 @@ std::vector<tsp::BuildReport> build_fields_with_progress(const tsp::FieldSourceF
   return reports;
 }
 
+tsp::AdaptiveReport build_adaptive_with_progress(tsp::MeshSource& source,
+                                                 const std::string& out_path,
+                                                 tsp::AdaptiveOptions options) {
+  if (g_partition)
+    throw tsp::UsageError("--octree-error: tspplay-mpi has no adaptive build; use tspplay build");
+  const tsp::AdaptiveReport r = run_with_progress(options.build, [&](const tsp::BuildOptions& o) {
+    tsp::AdaptiveOptions with = options;
+    with.build = o;
+    return tsp::build_adaptive_tsp(source, out_path, with);
+  });
+  warn_nonfinite(r.build, "");
+  return r;
+}
+
 void print_build_summary(const std::string& out_path, const tsp::BuildReport& r) {
   auto file = tsp::TspFile::open(out_path);
   const tsp::TspTree& tree = file->tree();

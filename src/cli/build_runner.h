@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "tsp/adaptive/adaptive_build.h"
 #include "tsp/build/build.h"
 
 namespace tspcli {
@@ -28,6 +29,13 @@ std::vector<tsp::BuildReport> build_fields_with_progress(const tsp::FieldSourceF
                                                          const std::vector<std::string>& fields,
                                                          const std::string& out_path,
                                                          tsp::BuildOptions options);
+
+/// Builds out_path from a mesh series with an adaptive octree (tsp::build_adaptive_tsp) with the
+/// same progress bar and Ctrl-C handling. Throws UsageError in a build split over processes
+/// (tspplay-mpi has no adaptive build), else whatever build_adaptive_tsp throws.
+tsp::AdaptiveReport build_adaptive_with_progress(tsp::MeshSource& source,
+                                                 const std::string& out_path,
+                                                 tsp::AdaptiveOptions options);
 
 /// Prints "wrote OUT: ..." with the tree's size, ranges and throughput (reopens the file).
 void print_build_summary(const std::string& out_path, const tsp::BuildReport& report);

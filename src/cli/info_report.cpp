@@ -157,7 +157,8 @@ void print_info(const tsp::TspFile& f, bool with_nodes) {
   const auto g = o.brick_grid();
   const double mib = double(std::filesystem::file_size(f.path())) / (1024.0 * 1024.0);
   std::printf("file          %s (%.2f MiB, format version %d, %s%s)\n", f.path().c_str(), mib,
-              tsp::kTspFormatVersion, m.created_by.c_str(),
+              o.has_stops() ? tsp::kTspAdaptiveFormatVersion : tsp::kTspFormatVersion,
+              m.created_by.c_str(),
               m.build_ranks > 1
                   ? (", built by " + std::to_string(m.build_ranks) + " MPI ranks").c_str()
                   : "");
@@ -173,6 +174,17 @@ void print_info(const tsp::TspFile& f, bool with_nodes) {
   std::printf("brick         %d samples (shared layer included)\n", o.brick_size());
   std::printf("bricks        %d (%d x %d x %d)%s\n", o.brick_count(), g[0], g[1], g[2],
               m.deflate > 0 ? (", deflate level " + std::to_string(m.deflate)).c_str() : "");
+  if (o.has_stops()) {
+    int reachable = 0, stopped = 0, present = 0;
+    for (int i = 0; i < o.size(); ++i) {
+      reachable += o.reachable(i);
+      stopped += o.stopped(i);
+    }
+    for (int i = 0; i < o.stored_brick_count(); ++i) present += o.brick_present(i);
+    std::printf("adaptive      %d of %d octree nodes hold data, %d stopped above the finest "
+                "level (Leven's octree); %d of %d stored bricks present\n",
+                reachable, o.size(), stopped, present, o.stored_brick_count());
+  }
   std::printf("nodes         %d octree (depth %d) x %d time = %d TSP nodes\n", o.size(), o.depth(),
               tree.time().size(), tree.size());
   std::printf("value range   [%g, %g] (16-bit quantization)\n", tree.value_range().lo,

@@ -169,7 +169,7 @@ struct BrickPass {
   BrickPass(const TspTree& t, ScratchFile& s, ScratchFile& l, StencilScratch st, TspWriter* w,
             ValueRange r, std::vector<NodeAccum>& a, std::span<float> le, BuildPartition* p)
       : tree(t), scratch(s), levels(l), stencil(st), writer(w), range(r), acc(a),
-        level_errors(le), part(p), inside_voxels(std::size_t(t.octree().brick_count()), 0) {}
+        level_errors(le), part(p), inside_voxels(std::size_t(t.octree().stored_brick_count()), 0) {}
   const TspTree& tree;
   ScratchFile& scratch;
   ScratchFile& levels;
@@ -183,7 +183,8 @@ struct BrickPass {
   std::vector<std::uint8_t> received = std::vector<std::uint8_t>(
       std::size_t(tree.octree().stored_brick_count()), 0);  // rank 0: bricks absorbed
   std::vector<std::uint64_t> histogram = std::vector<std::uint64_t>(kHistogramBins, 0);
-  std::vector<std::int64_t> inside_voxels;  // per leaf brick: own voxels inside at some step
+  std::vector<std::int64_t> inside_voxels;  // per stored brick: own voxels inside at some step
+                                            // (leaves, and the level bricks of stopped nodes)
 
   std::mutex mutex;  // guards progress calls
   int done = 0;
@@ -267,6 +268,8 @@ struct BrickPass {
       quantize_padded(w.mask, l, stored_brick_shape(o), steps, InsideFlag{}, w.flags);
       put_inside(res.brick, w.flags, res);
     }
+    const int node = o.stored_brick_node(res.brick);
+    if (o.stopped(node)) stopped_stats(node, l, w);
     hand_over(res);
     if (remote()) {
       const auto bytes = std::as_bytes(level_errors.subspan(std::size_t(j) * steps, steps));
@@ -274,6 +277,54 @@ struct BrickPass {
       part->send(res);
     }
     report(progress, total_bytes);
+  }
+
+  // A stopped node of an adaptive octree is a leaf drawn from its level brick: its statistics
+  // come from that brick's samples inside its own box, each weighing for the voxels it stands
+  // for (own voxels / own samples), so that merging with finer siblings stays fair. w.series
+  // holds the sanitized samples, w.mask the stencil's (with one).
+  void stopped_stats(int node, const BrickLattice& l, Scratch& w) {
+    const Octree& o = tree.octree();
+    const TimeTree& time = tree.time();
+    const int steps = time.steps();
+    const Box& own_voxels = o.node(node).box;
+    Box samples, own;
+    for (int a = 0; a < 3; ++a) {
+      samples.hi[a] = l.samples[a];
+      const int f = l.factor[a];
+      own.hi[a] = std::min(l.samples[a], (own_voxels.hi[a] - l.origin[a] + f - 1) / f);
+    }
+    std::span<const std::uint8_t> use;
+    std::int64_t inside = own.count();
+    if (stencil.levels) {
+      const std::size_t per = std::size_t(samples.count());
+      w.flags.assign(per, 0);
+      for (int t = 0; t < steps; ++t)
+        for (std::size_t i = 0; i < per; ++i)
+          w.flags[i] |= w.mask[std::size_t(t) * per + i] >= 0.5f ? 1 : 0;
+      use = w.flags;
+      inside = 0;
+      for (int z = 0; z < own.hi[2]; ++z)
+        for (int y = 0; y < own.hi[1]; ++y)
+          for (int x = 0; x < own.hi[0]; ++x)
+            inside += w.flags[std::size_t(x + samples.hi[0] * (y + samples.hi[1] * z))];
+    }
+    const double weight = double(own_voxels.count()) / double(std::max<std::int64_t>(own.count(), 1));
+    std::span<NodeAccum> leaf(acc.data() + tree.id(node, 0), time.size());
+    brick_time_stats(time, samples, own, w.series, range.width(), leaf, use);
+    for (NodeAccum& a : leaf) {
+      a.moments.n *= weight;
+      a.moments.m2 *= weight;
+      a.cov_sum *= weight;
+      a.voxels = std::int64_t(std::llround(double(a.voxels) * weight));
+    }
+    inside_voxels[std::size_t(o.node_brick(node))] = std::int64_t(std::llround(double(inside) * weight));
+    // The histogram counts each sample as the voxels it stands for (rounded).
+    std::vector<std::uint64_t> h(kHistogramBins, 0);
+    add_histogram(w.series, stencil.levels ? std::span<const float>(w.mask) : std::span<const float>(),
+                  samples, own, steps, range, h);
+    const auto times = std::uint64_t(std::max<long long>(1, std::llround(weight)));
+    for (int i = 0; i < kHistogramBins; ++i) w.hist[std::size_t(i)] += h[std::size_t(i)] * times;
   }
 
   bool remote() const { return part && part->rank() != 0; }
@@ -363,7 +414,9 @@ struct BrickPass {
     parallel_for(mine, 1, threads, [&](int w, std::int64_t first, std::int64_t last) {
       for (auto k = first; k < last; ++k) {
         const std::int64_t b = rank + k * ranks;
-        if (b < bricks)
+        if (!tree.octree().brick_present(int(b)))  // below a stop (adaptive octrees): no data
+          report(progress, total_bytes);
+        else if (b < bricks)
           brick(int(b), workers[std::size_t(w)], progress, total_bytes);
         else
           level(int(b - bricks), workers[std::size_t(w)], progress, total_bytes);

@@ -26,10 +26,13 @@ struct StencilScratch {
 /// What pass 2 adds up besides the per-node accumulators.
 struct BrickPassResult {
   std::vector<std::uint64_t> histogram;     ///< over the quantization range, kHistogramBins
-  std::vector<std::int64_t> inside_voxels;  ///< per leaf brick: own voxels inside at some step
+  /// Per stored brick: own voxels inside at some step (leaf bricks, and the level bricks of
+  /// stopped nodes; 0 for the others).
+  std::vector<std::int64_t> inside_voxels;
 };
 
-/// Pass 2: reads each stored brick's series from the scratch files (and drops it), applies the
+/// Pass 2: reads each stored brick's series (skipping the bricks below a stop of an adaptive
+/// octree, whose scratch holds nothing; a stopped node's statistics come from its level brick) from the scratch files (and drops it), applies the
 /// NaN/Inf rule, quantizes it and writes it to writer, fills its leaf's accumulators in acc (by
 /// TSP node id) and adds to the histogram, on `threads` workers. With a partition, only this
 /// process's bricks: rank 0 also writes the bricks the other ranks send (their accumulators into

@@ -55,9 +55,18 @@ void ScratchFile::write(int brick, int step, std::span<const float> samples) {
 
 void ScratchFile::read_series(int brick, std::span<float> out) const {
   assert(std::int64_t(out.size()) == samples_[brick] * steps_);
+  read_floats(out, offsets_[brick]);
+}
+
+void ScratchFile::read(int brick, int step, std::span<float> out) const {
+  assert(std::int64_t(out.size()) == samples_[brick] && step >= 0 && step < steps_);
+  read_floats(out, offsets_[brick] + samples_[brick] * step);
+}
+
+void ScratchFile::read_floats(std::span<float> out, std::int64_t at) const {
   char* p = reinterpret_cast<char*>(out.data());
   std::size_t left = out.size_bytes();
-  off_t pos = off_t(offsets_[brick] * std::int64_t(sizeof(float)));
+  off_t pos = off_t(at * std::int64_t(sizeof(float)));
   while (left > 0) {
     ssize_t n = pread(fd_, p, left, pos);
     if (n < 0 && errno == EINTR) continue;

@@ -23,6 +23,8 @@ class ScratchFile {
   void write(int brick, int step, std::span<const float> samples);
   /// Reads brick b's whole series, steps × brick_samples[b] floats; thread-safe. Throws IoError.
   void read_series(int brick, std::span<float> out) const;
+  /// Reads brick b's samples at step t (brick_samples[b] floats); thread-safe. Throws IoError.
+  void read(int brick, int step, std::span<float> out) const;
   /// Drops brick b's series (after its last read): frees its page cache and cancels its pending
   /// write-back, so the scratch data never reaches the disk when memory allows. Never throws.
   void discard(int brick);
@@ -30,6 +32,7 @@ class ScratchFile {
   std::int64_t size_bytes() const { return offsets_.back() * std::int64_t(sizeof(float)); }
 
  private:
+  void read_floats(std::span<float> out, std::int64_t at) const;  // at: in floats
   int fd_ = -1;
   int steps_;
   std::string dir_;

@@ -51,8 +51,8 @@ void LodController::evaluate(const Camera& camera, int t, const TransferFunction
   proj_ = project_nodes(o, camera);
   const std::vector<NodeProjection>& proj = proj_;
   std::vector<NodeProjection> leaves(std::size_t(o.brick_count()));
-  for (int id = 0; id < o.size(); ++id)
-    if (o.node(id).is_leaf()) leaves[std::size_t(o.node(id).brick)] = proj[std::size_t(id)];
+  // Per leaf brick, its finest node's projection (below a stop too: those nodes keep their boxes).
+  for (int b = 0; b < o.brick_count(); ++b) leaves[std::size_t(b)] = proj[std::size_t(o.brick_node(b))];
   const std::vector<double> leaf_vis = leaf_visibility(tree_, t, camera, leaves, tf);
   // Full-resolution sample cost and visible area of each leaf brick, summed bottom-up (children
   // follow their parents in node order); a node's cost is its leaves' over its sample step
@@ -71,7 +71,14 @@ void LodController::evaluate(const Camera& camera, int t, const TransferFunction
       leaf_sum[std::size_t(id)] =
           clipped ? 0.0 : p.pixel_area * p.depth_voxels / spacing * (empty ? kEmptyCostShare : 1.0);
       area_sum[std::size_t(id)] = p.pixel_area;
-      vis_sum[std::size_t(id)] = p.pixel_area * leaf_vis[std::size_t(n.brick)];
+      // A stopped node (adaptive octrees) sees as its leaf bricks do on average.
+      double vis = 0;
+      int count = 0;
+      o.for_each_brick(id, [&](int b) {
+        vis += leaf_vis[std::size_t(b)];
+        ++count;
+      });
+      vis_sum[std::size_t(id)] = p.pixel_area * vis / std::max(count, 1);
     } else {
       for (int c : n.children)
         if (c >= 0) {

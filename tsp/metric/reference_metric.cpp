@@ -134,11 +134,11 @@ void ReferenceMetric::combine_internal_nodes() {
   const int tn = tree.time().size();
   // Children have larger breadth-first ids than their parent: walk ids downwards.
   for (int o = oct.size() - 1; o >= 0; --o) {
-    const OctreeNode& node = oct.node(o);
-    if (node.is_leaf()) continue;
+    // A stopped node (adaptive octrees) sums the leaves below it, read from its own brick.
+    if (oct.node(o).is_leaf() && !oct.stopped(o)) continue;
     for (int tau = 0; tau < tn; ++tau) {
       Sums total;
-      for (int c : node.children) {
+      for (int c : oct.split_children(o)) {
         if (c < 0) continue;
         const Sums& s = sums_[tree.id(c, tau)];
         total.samples += s.samples;

@@ -190,9 +190,10 @@ void check_format(const Reader& r, const std::string& path) {
     r.fail("attribute format",
            "expected \"" + std::string(layout::kFormatName) + "\", found \"" + format + "\"");
   int version = r.attr_numbers<int>(layout::kAttrVersion, H5T_NATIVE_INT, 1)[0];
-  if (version != kTspFormatVersion)
+  if (version != kTspFormatVersion && version != kTspAdaptiveFormatVersion)
     throw FormatError(path + ": .tsp format version " + std::to_string(version) +
-                      ", this tspplay reads version " + std::to_string(kTspFormatVersion) +
+                      ", this tspplay reads versions " + std::to_string(kTspFormatVersion) +
+                      " and " + std::to_string(kTspAdaptiveFormatVersion) +
                       " only; rebuild the file with this tspplay");
 }
 
@@ -290,10 +291,28 @@ std::unique_ptr<TspFile> TspFile::open(const std::string& path, const std::strin
       r.fail("attribute build_ranks", "expected 1 or more, found " + std::to_string(m.build_ranks));
   }
 
-  // The stored shape must be the one these dims and brick size produce.
+  // The stored shape must be the one these dims and brick size produce, stopped where the file
+  // says (version 3 only).
   const Octree& o = tree.octree();
   const hsize_t nb = hsize_t(o.brick_count()), no = hsize_t(o.size()),
                 ns = hsize_t(o.stored_brick_count());
+  {
+    const int version = r.attr_numbers<int>(layout::kAttrVersion, H5T_NATIVE_INT, 1)[0];
+    const bool has_stops = H5Lexists(impl->loc.get(), layout::kOctreeStopped, H5P_DEFAULT) > 0;
+    if (has_stops != (version == kTspAdaptiveFormatVersion))
+      r.fail(layout::kOctreeStopped, has_stops ? "present in a version 2 file"
+                                               : "missing (version 3 files have one)");
+    if (has_stops) {
+      auto stopped =
+          r.dataset<std::uint8_t>(layout::kOctreeStopped, {no}, H5T_NATIVE_UINT8, H5T_INTEGER);
+      for (std::size_t i = 0; i < stopped.size(); ++i)
+        if (stopped[i] > 1)
+          r.fail(r.dataset_name(layout::kOctreeStopped),
+                 "element " + std::to_string(i) + " is " + std::to_string(int(stopped[i])) +
+                     ", expected 0 or 1");
+      tree.stop_at(stopped);
+    }
+  }
   std::vector<int> samples, own, box, level, parent, children, leaf_brick, spans;
   for (int b = 0; b < o.brick_count(); ++b) {
     append_box(samples, o.brick_samples(b));
@@ -493,6 +512,46 @@ void read_chunk(hid_t dataset, hid_t mem_type, const BrickLattice& s, int brick,
     throw FormatError(what);
 }
 
+// The samples of lattice `to` made up from the samples of the coarser lattice `from` that covers
+// them: trilinear in from's samples (clamped to its last one), rounded; flags (0/1) by nearest.
+template <class T>
+void resample_lattice(std::span<const T> in, const BrickLattice& from, const BrickLattice& to,
+                      std::span<T> out, bool nearest) {
+  std::array<std::vector<int>, 3> i0;
+  std::array<std::vector<float>, 3> w;
+  for (int a = 0; a < 3; ++a)
+    for (int j = 0; j < to.samples[a]; ++j) {
+      const double u = std::clamp(double(to.origin[a] + j * to.factor[a] - from.origin[a]) /
+                                      from.factor[a], 0.0, double(from.samples[a] - 1));
+      const int k = std::min(int(u), std::max(from.samples[a] - 2, 0));
+      i0[a].push_back(k);
+      w[a].push_back(from.samples[a] > 1 ? float(u - k) : 0.f);
+    }
+  const std::size_t sx = std::size_t(from.samples[0]), sxy = sx * std::size_t(from.samples[1]);
+  const int hx = from.samples[0] > 1, hy = from.samples[1] > 1, hz = from.samples[2] > 1;
+  std::size_t o = 0;
+  for (int z = 0; z < to.samples[2]; ++z)
+    for (int y = 0; y < to.samples[1]; ++y)
+      for (int x = 0; x < to.samples[0]; ++x, ++o) {
+        const std::size_t base = std::size_t(i0[0][x]) + sx * i0[1][y] + sxy * i0[2][z];
+        const float wx = w[0][x], wy = w[1][y], wz = w[2][z];
+        if (nearest) {
+          out[o] = in[base + (wx >= 0.5f ? hx : 0) + (wy >= 0.5f ? hy * sx : 0) +
+                      (wz >= 0.5f ? hz * sxy : 0)];
+          continue;
+        }
+        auto at = [&](int dx, int dy, int dz) {
+          return float(in[base + dx * hx + dy * hy * sx + dz * hz * sxy]);
+        };
+        const float c00 = at(0, 0, 0) + wx * (at(1, 0, 0) - at(0, 0, 0));
+        const float c10 = at(0, 1, 0) + wx * (at(1, 1, 0) - at(0, 1, 0));
+        const float c01 = at(0, 0, 1) + wx * (at(1, 0, 1) - at(0, 0, 1));
+        const float c11 = at(0, 1, 1) + wx * (at(1, 1, 1) - at(0, 1, 1));
+        const float c0 = c00 + wy * (c10 - c00), c1 = c01 + wy * (c11 - c01);
+        out[o] = T(std::lround(c0 + wz * (c1 - c0)));
+      }
+}
+
 }  // namespace
 
 void TspFile::read_brick(int brick, int step, std::span<std::uint16_t> out) const {
@@ -501,6 +560,13 @@ void TspFile::read_brick(int brick, int step, std::span<std::uint16_t> out) cons
          step < impl_->tree->time().steps());
   const BrickLattice s = o.lattice(brick);
   assert(std::int64_t(out.size()) == s.count());
+  if (!o.brick_present(brick)) {  // below a stop: made up from the stopped node's brick
+    const int from = o.node_brick(o.stop_above(o.stored_brick_node(brick)));
+    std::vector<std::uint16_t> coarse(std::size_t(o.lattice(from).count()));
+    read_brick(from, step, coarse);
+    resample_lattice<std::uint16_t>(coarse, o.lattice(from), s, out, false);
+    return;
+  }
   std::lock_guard lock(hdf5_mutex());
   read_chunk(impl_->data.get(), H5T_NATIVE_UINT16, s, brick, step, out.data(),
              impl_->path + ": dataset " + layout::kBrickData + ": cannot read brick " +
@@ -514,6 +580,13 @@ void TspFile::read_inside(int brick, int step, std::span<std::uint8_t> out) cons
          step < impl_->tree->time().steps());
   const BrickLattice s = o.lattice(brick);
   assert(std::int64_t(out.size()) == s.count());
+  if (!o.brick_present(brick)) {
+    const int from = o.node_brick(o.stop_above(o.stored_brick_node(brick)));
+    std::vector<std::uint8_t> coarse(std::size_t(o.lattice(from).count()));
+    read_inside(from, step, coarse);
+    resample_lattice<std::uint8_t>(coarse, o.lattice(from), s, out, true);
+    return;
+  }
   std::lock_guard lock(hdf5_mutex());
   read_chunk(impl_->inside.get(), H5T_NATIVE_UINT8, s, brick, step, out.data(),
              impl_->path + ": dataset " + layout::kBrickInside +

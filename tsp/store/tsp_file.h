@@ -16,6 +16,10 @@ namespace tsp {
 /// Format version written by this build; readers accept exactly this version (2: LOD level
 /// bricks after the leaf bricks, spec §14).
 inline constexpr int kTspFormatVersion = 2;
+/// Version of a file whose octree stops above the finest level at some nodes (an adaptive build,
+/// `build MESH --octree-error`): version 2 plus octree/stopped. Readers accept both; an older
+/// tspplay refuses it rather than drawing the absent bricks.
+inline constexpr int kTspAdaptiveFormatVersion = 3;
 /// Bins of the value histogram stored in the file (over the quantization range).
 inline constexpr int kHistogramBins = 256;
 

@@ -70,6 +70,8 @@ inline constexpr const char* kOctreeParent = "octree/parent";      // int32 [no]
 inline constexpr const char* kOctreeChildren = "octree/children";  // int32 [no,8]
 inline constexpr const char* kOctreeBrick = "octree/brick";        // int32 [no]
 inline constexpr const char* kOctreeInside = "octree/inside";      // float32 [no], with a stencil
+// uint8 [no], version 3 only: 1 where the data ends at an internal node (adaptive builds)
+inline constexpr const char* kOctreeStopped = "octree/stopped";
 inline constexpr const char* kTime = "time";
 inline constexpr const char* kTimeSpan = "time/span";  // int32 [2T-1,2]
 inline constexpr const char* kTimeValues = "time/values";  // float64 [T], when the input names them

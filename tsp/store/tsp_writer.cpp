@@ -302,6 +302,12 @@ void TspWriter::finish(const TspTree& tree, const TspMetadata& meta) {
   write_dataset(f, p, layout::kOctreeChildren, H5T_NATIVE_INT32, H5T_STD_I32LE, {no, 8},
                 children.data());
   write_dataset(f, p, layout::kOctreeBrick, H5T_NATIVE_INT32, H5T_STD_I32LE, {no}, brick.data());
+  if (o.has_stops()) {
+    std::vector<std::uint8_t> stopped(no);
+    for (int i = 0; i < o.size(); ++i) stopped[std::size_t(i)] = o.stopped(i) ? 1 : 0;
+    write_dataset(f, p, layout::kOctreeStopped, H5T_NATIVE_UINT8, H5T_STD_U8LE, {no},
+                  stopped.data());
+  }
   if (tree.has_stencil())
     write_dataset(f, p, layout::kOctreeInside, H5T_NATIVE_FLOAT, H5T_IEEE_F32LE, {no},
                   tree.inside_fractions().data());
@@ -368,7 +374,7 @@ void TspWriter::finish(const TspTree& tree, const TspMetadata& meta) {
   // The location's attributes last: a file cut short before this point has no format tag and
   // is rejected.
   hid_t r = f;
-  const int version = kTspFormatVersion, steps = time.steps(), bs = o.brick_size();
+  const int version = o.has_stops() ? kTspAdaptiveFormatVersion : kTspFormatVersion, steps = time.steps(), bs = o.brick_size();
   const int dims[3] = {d.x, d.y, d.z};
   const ValueRange vr = tree.value_range();
   const double value_range[2] = {vr.lo, vr.hi};

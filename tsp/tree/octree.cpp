@@ -87,7 +87,7 @@ Octree::Octree(Dims dims, int brick_size) : dims_(dims), brick_size_(brick_size)
 
 int Octree::node_brick(int id) const {
   const OctreeNode& n = nodes_[std::size_t(id)];
-  return n.is_leaf() ? n.brick : node_level_brick_[std::size_t(id)];
+  return n.brick >= 0 ? n.brick : node_level_brick_[std::size_t(id)];
 }
 
 std::array<int, 3> Octree::lod_factor(int id) const {
@@ -99,7 +99,6 @@ std::array<int, 3> Octree::lod_factor(int id) const {
 
 int Octree::lod_level(int id) const {
   const OctreeNode& n = nodes_[std::size_t(id)];
-  if (n.is_leaf()) return 0;
   const int range = std::max({n.brick_hi[0] - n.brick_lo[0], n.brick_hi[1] - n.brick_lo[1],
                               n.brick_hi[2] - n.brick_lo[2]});
   int k = 0;
@@ -128,6 +127,44 @@ BrickLattice Octree::lattice(int i) const {
     l.samples[a] = (cells + l.factor[a] - 1) / l.factor[a] + 1;
   }
   return l;
+}
+
+void Octree::stop_at(std::span<const std::uint8_t> flags) {
+  if (flags.size() != nodes_.size())
+    throw UsageError("octree stops: " + std::to_string(flags.size()) + " flags for " +
+                     std::to_string(nodes_.size()) + " nodes");
+  if (split_children_.empty()) {
+    split_children_.resize(nodes_.size());
+    for (std::size_t i = 0; i < nodes_.size(); ++i) split_children_[i] = nodes_[i].children;
+  }
+  stopped_.assign(nodes_.size(), 0);
+  pruned_.assign(nodes_.size(), 0);
+  bool any = false;
+  // Parents come before their children in node order.
+  for (std::size_t i = 0; i < nodes_.size(); ++i) {
+    OctreeNode& n = nodes_[i];
+    if (n.parent >= 0 && (pruned_[std::size_t(n.parent)] || stopped_[std::size_t(n.parent)]))
+      pruned_[i] = 1;
+    n.children = split_children_[i];
+    if (node_level_brick_[i] < 0) continue;  // a finest leaf
+    n.brick = -1;
+    if (pruned_[i] || !flags[i]) continue;
+    stopped_[i] = 1;
+    any = true;
+    n.brick = node_level_brick_[i];
+    n.children = {-1, -1, -1, -1, -1, -1, -1, -1};
+  }
+  if (!any) {
+    stopped_.clear();
+    pruned_.clear();
+  }
+}
+
+int Octree::stop_above(int id) const {
+  if (stopped_.empty()) return -1;
+  for (int i = id; i >= 0; i = nodes_[std::size_t(i)].parent)
+    if (stopped_[std::size_t(i)]) return i;
+  return -1;
 }
 
 int Octree::axis_lo(int a, int k) const { return k * cells_[a]; }

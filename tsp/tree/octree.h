@@ -9,6 +9,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "tsp/core/types.h"
@@ -99,8 +100,8 @@ class Octree {
   /// Voxels between node id's samples per axis: 2^lod_level(id), except 1 along an axis the
   /// whole grid is one brick thick (its full resolution is kept).
   std::array<int, 3> lod_factor(int id) const;
-  /// LOD level of node id: 0 for leaves, otherwise log2 of the power of two at least its largest
-  /// brick range (so it grows strictly towards the root).
+  /// LOD level of node id: log2 of the power of two at least its largest brick range (0 for the
+  /// finest leaves; a stopped node keeps its level), so it grows strictly towards the root.
   int lod_level(int id) const;
   /// Largest lod_level (the root's).
   int max_lod_level() const { return lod_level(0); }
@@ -110,6 +111,29 @@ class Octree {
   }
   /// Sample lattice of stored brick i.
   BrickLattice lattice(int i) const;
+
+  // Adaptive octrees (Leven's, paper 000 §4.2; issue 31): the data ends at some internal nodes.
+  /// Makes every flagged internal node (flags: one per node, 1 = stopped) a leaf whose brick is
+  /// its level brick: its children become −1 and the nodes below it stay (ids, boxes, parents and
+  /// brick_node() unchanged) but are unreachable from the root and hold no data. Flags on leaves
+  /// and on nodes already below a stop are ignored. Throws UsageError when flags has not one
+  /// entry per node.
+  void stop_at(std::span<const std::uint8_t> flags);
+  /// True when some node is stopped.
+  bool has_stops() const { return !stopped_.empty(); }
+  /// True for a node stop_at made a leaf.
+  bool stopped(int id) const { return !stopped_.empty() && stopped_[std::size_t(id)] != 0; }
+  /// False for a node below a stopped one (unreachable, no data of its own).
+  bool reachable(int id) const { return pruned_.empty() || pruned_[std::size_t(id)] == 0; }
+  /// True when stored brick i holds data: false for the leaf and level bricks of nodes below a
+  /// stop (a reader makes up their samples from the stopped node's brick).
+  bool brick_present(int i) const { return reachable(stored_brick_node(i)); }
+  /// The stopped node above node id (itself when stopped), −1 when none.
+  int stop_above(int id) const;
+  /// Node id's children before stop_at (its children for a node never stopped).
+  const std::array<int, 8>& split_children(int id) const {
+    return stopped(id) ? split_children_[std::size_t(id)] : nodes_[std::size_t(id)].children;
+  }
 
  private:
   Dims dims_;
@@ -121,6 +145,9 @@ class Octree {
   std::vector<int> brick_node_;
   std::vector<int> level_nodes_;  // internal nodes in node order
   std::vector<int> node_level_brick_;  // per node: its level brick index, −1 for leaves
+  std::vector<std::uint8_t> stopped_;  // per node, empty when no node is stopped
+  std::vector<std::uint8_t> pruned_;   // per node: below a stopped node; empty when none
+  std::vector<std::array<int, 8>> split_children_;  // per node: children before stop_at
   int axis_lo(int a, int k) const;
   int axis_hi(int a, int k) const;
 };

@@ -32,6 +32,8 @@ class TspTree {
   TspTree(Dims dims, int steps, int brick_size);
   /// Spatial skeleton.
   const Octree& octree() const { return octree_; }
+  /// Ends the data at the flagged octree nodes (Octree::stop_at). Throws UsageError.
+  void stop_at(std::span<const std::uint8_t> flags) { octree_.stop_at(flags); }
   /// Time-tree shape shared by every octree node.
   const TimeTree& time() const { return time_; }
   /// Number of TSP nodes, octree().size() · time().size().

@@ -89,7 +89,8 @@ double median_cell_size(const TetMesh& m) {
   return *mid;
 }
 
-VoxelGrid choose_grid(const Aabb& b, double cell_size, const VoxelizeOptions& o) {
+VoxelGrid choose_grid(const Aabb& b, double cell_size, const VoxelizeOptions& o,
+                      std::int64_t max_samples) {
   if (o.resolution != 0 && o.voxel_size != 0)
     throw UsageError("--resolution and --voxel-size both given; choose one");
   if (o.resolution < 0 || (o.resolution > 0 && o.resolution < 2))
@@ -114,14 +115,14 @@ VoxelGrid choose_grid(const Aabb& b, double cell_size, const VoxelizeOptions& o)
   int n[3];
   for (int a = 0; a < 3; ++a) {
     const double cells = (b.hi[a] - b.lo[a]) / h;
-    if (!(cells < double(kMaxVoxelizedSamples)))
+    if (!(cells < double(max_samples)))
       throw UsageError("voxel size " + std::to_string(h) + " gives more than " +
-                       std::to_string(kMaxVoxelizedSamples) + " samples along an axis");
+                       std::to_string(max_samples) + " samples along an axis");
     n[a] = int(std::ceil(cells - 1e-9)) + 1;
     total *= n[a];
-    if (total > kMaxVoxelizedSamples)
+    if (total > max_samples)
       throw UsageError("voxel size " + std::to_string(h) + " gives a grid of more than " +
-                       std::to_string(kMaxVoxelizedSamples) +
+                       std::to_string(max_samples) +
                        " samples; choose a larger --voxel-size or a smaller --resolution");
     g.origin[a] = b.lo[a];
     g.spacing[a] = h;

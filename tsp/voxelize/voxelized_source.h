@@ -32,8 +32,10 @@ inline constexpr std::int64_t kMaxVoxelizedSamples = std::int64_t(1) << 31;
 
 /// The grid for meshes spanning bounds whose typical cell edge is cell_size (≤ 0: unknown,
 /// then the largest default). Throws UsageError on bad options (both given, non-positive,
-/// a grid beyond kMaxVoxelizedSamples). Never throws otherwise.
-VoxelGrid choose_grid(const Aabb& bounds, double cell_size, const VoxelizeOptions& options);
+/// a grid beyond max_samples: the uniform grid's kMaxVoxelizedSamples, more for an adaptive
+/// octree that never holds it whole). Never throws otherwise.
+VoxelGrid choose_grid(const Aabb& bounds, double cell_size, const VoxelizeOptions& options,
+                      std::int64_t max_samples = kMaxVoxelizedSamples);
 
 /// Median over cells of the cube root of the cell's volume (the sum of its tetrahedra's); 0 for
 /// a mesh without volume. Never throws.

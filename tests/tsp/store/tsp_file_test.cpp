@@ -259,7 +259,7 @@ TEST(TspFile, AVersionOneFileSaysToRebuild) {
     H5Awrite(a, H5T_NATIVE_INT, &v);
     H5Aclose(a);
   });
-  expect_format_error(path, "format version 1, this tspplay reads version 2 only; rebuild");
+  expect_format_error(path, "format version 1, this tspplay reads versions 2 and 3 only; rebuild");
 }
 
 // Level bricks read back as the level filter of the source (quantized), and their residuals as

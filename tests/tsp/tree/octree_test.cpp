@@ -110,3 +110,53 @@ TEST(Octree, CellsAreSpreadEvenlySoEdgeBricksAreNotSlivers) {
 
 }  // namespace
 }  // namespace tsp
+
+namespace tsp {
+namespace {
+
+// stop_at (adaptive octrees): a flagged internal node becomes a leaf holding its level brick, at
+// its own LOD level; the nodes below it keep their ids and boxes but are unreachable and their
+// bricks absent; a second call replaces the first; flags below a stop are ignored.
+TEST(Octree, StopAtMakesAStoppedNodeALeafOfItsLevelBrick) {
+  Octree o({29, 29, 29}, 8);  // 4 bricks per axis: root, 8 children, 64 leaves
+  ASSERT_EQ(o.size(), 73);
+  const int c = o.node(0).children[3];
+  const int level = o.lod_level(c);
+  const int level_brick = o.node_brick(c);
+  std::vector<std::uint8_t> flags(std::size_t(o.size()), 0);
+  flags[std::size_t(c)] = 1;
+  const int below = o.node(c).children[0];
+  flags[std::size_t(below)] = 1;  // under a stop: ignored
+  o.stop_at(flags);
+  EXPECT_TRUE(o.has_stops());
+  EXPECT_TRUE(o.stopped(c));
+  EXPECT_FALSE(o.stopped(below));
+  EXPECT_TRUE(o.node(c).is_leaf());
+  EXPECT_EQ(o.node(c).brick, level_brick);
+  EXPECT_EQ(o.node_brick(c), level_brick);
+  EXPECT_EQ(o.lod_level(c), level);
+  EXPECT_EQ(o.lattice(level_brick).factor[0], 1 << level);
+  for (int k : o.node(c).children) EXPECT_EQ(k, -1);
+  int unreachable = 0;
+  for (int k : o.split_children(c)) {
+    if (k < 0) continue;
+    EXPECT_FALSE(o.reachable(k));
+    EXPECT_EQ(o.stop_above(k), c);
+    EXPECT_FALSE(o.brick_present(o.node_brick(k)));
+    ++unreachable;
+  }
+  EXPECT_EQ(unreachable, 8);
+  EXPECT_TRUE(o.reachable(c));
+  EXPECT_TRUE(o.brick_present(level_brick));
+  EXPECT_EQ(o.stop_above(0), -1);
+  // Replaced: no stop at all restores the complete tree.
+  o.stop_at(std::vector<std::uint8_t>(std::size_t(o.size()), 0));
+  EXPECT_FALSE(o.has_stops());
+  EXPECT_FALSE(o.node(c).is_leaf());
+  EXPECT_EQ(o.node(c).children, o.split_children(c));
+  EXPECT_TRUE(o.reachable(below));
+  EXPECT_THROW(o.stop_at(std::vector<std::uint8_t>(3, 0)), UsageError);
+}
+
+}  // namespace
+}  // namespace tsp
