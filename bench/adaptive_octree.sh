@@ -32,7 +32,7 @@ view="--size $size --tf ${TF:-preset:filled}"
 if [ "$uniform" = 1 ]; then
   timed uniform "$tspplay" build "$mesh" --field "$field" --resolution "$res" -o "$out/uniform.tsp"
   # The same value range for every picture: the uniform file's.
-  range=$(python3 -c "import h5py,sys; f=h5py.File(sys.argv[1]); print('%r:%r' % tuple(f.attrs['value_range']))" "$out/uniform.tsp")
+  range=$(/usr/bin/python3 -c "import h5py,sys; f=h5py.File(sys.argv[1]); print('%r:%r' % tuple(f.attrs['value_range']))" "$out/uniform.tsp")
   "$tspplay" render "$out/uniform.tsp" $view --tf-range "$range" -o "$out/r_uniform" >/dev/null
 fi
 k=0
