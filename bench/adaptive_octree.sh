@@ -3,12 +3,12 @@
 # against the threshold E, and its picture against the uniform build of the same finest grid,
 # built and rendered in the same run (the baseline: ratios adaptive / uniform).
 #   bench/adaptive_octree.sh MESH FIELD RESOLUTION
-# MESH is any mesh input (a .vtu, .vtu.series, 'can_%d.hdf', ...); "graded:N:R:T" makes one first
-# (bench/graded_mesh.py: an N^3 hexahedral grid whose central 2^3 cells are split R^3, T steps,
-# field f). RESOLUTION is the finest grid's longest edge; UNIFORM=0 skips the uniform build (for
+# MESH is any mesh input (a .vtu, .vtu.series, 'can_%d.hdf', ...); "graded:N:R:T[:SIGMA[:CX,CY,CZ]]"
+# makes one first (bench/graded_mesh.py: an N^3 hexahedral grid whose central 2^3 cells are split R^3,
+# T steps, field f, a Gaussian of width SIGMA about the centre C). RESOLUTION is the finest grid's longest edge; UNIFORM=0 skips the uniform build (for
 # grids it cannot hold), and then only the adaptive rows are printed, with each build's peak
 # memory.
-# Env: TSPPLAY (build/tspplay), ERRORS ("0 0.1% 1% 5% 20%"), SIZE (640x480), TF (preset:filled),
+# Env: TSPPLAY (build/tspplay), BUILD_ARGS (more build options for both builds, e.g. "--brick 16"), ERRORS ("0 0.1% 1% 5% 20%"), SIZE (640x480), TF (preset:filled),
 #      UNIFORM (1),
 #      OUT (a temporary folder, removed unless set).
 set -euo pipefail
@@ -20,8 +20,8 @@ size=${SIZE:-640x480}
 uniform=${UNIFORM:-1}
 if [ -n "${OUT:-}" ]; then out=$OUT; mkdir -p "$out"; else out=$(mktemp -d); trap 'rm -rf "$out"' EXIT; fi
 if [[ $mesh == graded:* ]]; then
-  IFS=: read -r _ n r t <<<"$mesh"
-  /usr/bin/python3 "$(dirname "$0")/graded_mesh.py" "$n" "$r" "$t" "$out/graded" >/dev/null
+  IFS=: read -r _ n r t sigma centre <<<"$mesh"
+  /usr/bin/python3 "$(dirname "$0")/graded_mesh.py" "$n" "$r" "$t" "$out/graded" $sigma $centre >/dev/null
   mesh=$out/graded/graded.vtu.series
 fi
 timed() {  # timed NAME CMD...: runs CMD, keeps its output and "seconds peak-KiB" in NAME.*
@@ -30,14 +30,14 @@ timed() {  # timed NAME CMD...: runs CMD, keeps its output and "seconds peak-KiB
 }
 view="--size $size --tf ${TF:-preset:filled}"
 if [ "$uniform" = 1 ]; then
-  timed uniform "$tspplay" build "$mesh" --field "$field" --resolution "$res" -o "$out/uniform.tsp"
+  timed uniform "$tspplay" build "$mesh" --field "$field" --resolution "$res" ${BUILD_ARGS:-} -o "$out/uniform.tsp"
   # The same value range for every picture: the uniform file's.
   range=$(/usr/bin/python3 -c "import h5py,sys; f=h5py.File(sys.argv[1]); print('%r:%r' % tuple(f.attrs['value_range']))" "$out/uniform.tsp")
   "$tspplay" render "$out/uniform.tsp" $view --tf-range "$range" -o "$out/r_uniform" >/dev/null
 fi
 k=0
 for e in $errors; do
-  timed "a$k" "$tspplay" build "$mesh" --field "$field" --resolution "$res" --octree-error "$e" -o "$out/a$k.tsp"
+  timed "a$k" "$tspplay" build "$mesh" --field "$field" --resolution "$res" ${BUILD_ARGS:-} --octree-error "$e" -o "$out/a$k.tsp"
   if [ "$uniform" = 1 ]; then
     "$tspplay" render "$out/a$k.tsp" $view --tf-range "$range" -o "$out/r_a$k" >/dev/null
   fi

@@ -1,11 +1,12 @@
 #!/usr/bin/python3
 """A graded hexahedral mesh for bench/adaptive_octree.sh (issue 31 item 1): an N^3 grid of
 hexahedra over [0, 1]^3 whose central 2^3 cells are each split into R^3 (the finest cells are
-1/(N R) across, as a CFD mesh refined around an obstacle), with the point field "f", a narrow
-Gaussian (sigma = 1/200) that drifts along x over the steps, about 0 outside the refined block.
+1/(N R) across, as a CFD mesh refined around an obstacle), with the point field "f", a
+Gaussian (sigma = SIGMA, default 1/200: about 0 outside the refined block) that drifts along x
+over the steps from CENTER (default: the block's centre, 0.5,0.5,0.5).
 Written as STEPS .vtu files and a .vtu.series by VTK's own writer (hanging nodes at the block's
 faces: the voxelizer samples cells, not a conforming mesh).
-    /usr/bin/python3 bench/graded_mesh.py N R STEPS out_dir
+    /usr/bin/python3 bench/graded_mesh.py N R STEPS out_dir [SIGMA [CX,CY,CZ]]
 """
 import json
 import os
@@ -33,6 +34,8 @@ def hexes(lo, h, n):
 
 def main():
     n, r, steps, out = int(sys.argv[1]), int(sys.argv[2]), int(sys.argv[3]), sys.argv[4]
+    sigma = float(sys.argv[5]) if len(sys.argv) > 5 else SIGMA
+    centre = [float(v) for v in sys.argv[6].split(",")] if len(sys.argv) > 6 else [0.5] * 3
     os.makedirs(out, exist_ok=True)
     h = 1.0 / n
     lo_cell = n // 2 - 1  # the central 2^3 cells
@@ -57,8 +60,8 @@ def main():
     grid.SetCells(vtk.VTK_HEXAHEDRON, ca)
     files = []
     for t in range(steps):
-        c = np.array([0.5 + 0.002 * t, 0.5, 0.5])
-        f = np.exp(-np.sum((pts - c) ** 2, axis=1) / (2 * SIGMA ** 2)).astype(np.float32)
+        c = np.array([centre[0] + 0.002 * t, centre[1], centre[2]])
+        f = np.exp(-np.sum((pts - c) ** 2, axis=1) / (2 * sigma ** 2)).astype(np.float32)
         arr = ns.numpy_to_vtk(f, deep=True)
         arr.SetName("f")
         grid.GetPointData().RemoveArray("f")

@@ -1,6 +1,7 @@
 #include "tsp/adaptive/adaptive_build.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <optional>
 #include <vector>
@@ -124,6 +125,7 @@ struct Sampler {
     std::vector<std::int64_t> map;
     std::vector<float> values, mask, child;
     std::vector<std::uint8_t> inside;
+    std::array<std::vector<float>, 8> kid_values, kid_masks;  // an inner node's children
   };
 
   void write(int brick, int t, std::span<const float> v, std::span<const float> m) {
@@ -143,6 +145,49 @@ struct Sampler {
     else
       levels.read(brick - nb, t, v);
   }
+  void read_mask(int brick, int t, std::span<float> m) const {
+    const int nb = tree.octree().brick_count();
+    if (brick < nb)
+      leaf_masks.read(brick, t, m);
+    else
+      level_masks.read(brick - nb, t, m);
+  }
+
+  // An inner node's samples (and inside fractions) as its children's trilinear field at them:
+  // its children cover its box, so its cells need not be sampled again (the level bricks of the
+  // uniform build are likewise made from the finer field, there by a box filter).
+  void from_children(int id, int t, const BrickLattice& l, Worker& w) const {
+    const Octree& o = tree.octree();
+    const std::array<int, 8>& kids = o.node(id).children;
+    for (std::size_t k = 0; k < kids.size(); ++k) {
+      if (kids[k] < 0) continue;
+      const std::size_t n = std::size_t(o.lattice(o.node_brick(kids[k])).count());
+      w.kid_values[k].resize(n);
+      w.kid_masks[k].resize(n);
+      read(o.node_brick(kids[k]), t, w.kid_values[k]);
+      read_mask(o.node_brick(kids[k]), t, w.kid_masks[k]);
+    }
+    const Dims d = o.dims();
+    std::size_t i = 0;
+    for (int z = 0; z < l.samples[2]; ++z)
+      for (int y = 0; y < l.samples[1]; ++y)
+        for (int x = 0; x < l.samples[0]; ++x, ++i) {
+          const std::array<int, 3> p{std::min(l.origin[0] + x * l.factor[0], d[0] - 1),
+                                     std::min(l.origin[1] + y * l.factor[1], d[1] - 1),
+                                     std::min(l.origin[2] + z * l.factor[2], d[2] - 1)};
+          for (std::size_t k = 0; k < kids.size(); ++k) {
+            if (kids[k] < 0) continue;
+            const Box& b = o.node(kids[k]).box;  // its samples reach its shared upper layer
+            if (p[0] < b.lo[0] || p[0] > b.hi[0] || p[1] < b.lo[1] || p[1] > b.hi[1] ||
+                p[2] < b.lo[2] || p[2] > b.hi[2])
+              continue;
+            const BrickLattice cl = o.lattice(o.node_brick(kids[k]));
+            w.values[i] = float(trilinear(w.kid_values[k], cl, p));
+            w.mask[i] = float(trilinear(w.kid_masks[k], cl, p));
+            break;
+          }
+        }
+  }
 
   // Node id's brick at step t from its own cells, and its level error against its children's.
   void node(int id, int t, const Mesh& mesh, Worker& w) {
@@ -151,6 +196,13 @@ struct Sampler {
     const BrickLattice l = o.lattice(brick);
     const std::size_t n = std::size_t(l.count());
     w.values.assign(n, 0.f);
+    w.mask.assign(n, 0.f);
+    if (!o.node(id).is_leaf()) {
+      from_children(id, t, l, w);
+      write(brick, t, w.values, w.mask);
+      level_error(id, t, l, w);
+      return;
+    }
     w.inside.assign(n, 0);
     const std::vector<std::int64_t> cells =
         lists.get(std::int64_t(id) * scan.list_steps() + scan.list_step(t));
@@ -172,8 +224,14 @@ struct Sampler {
       }
     }
     w.mask.assign(w.inside.begin(), w.inside.end());
-    write(brick, t, w.values, w.mask);
-    if (o.node(id).is_leaf()) return;  // a finest leaf or a stopped node: level error 0
+    write(brick, t, w.values, w.mask);  // a leaf or a stopped node: level error 0
+  }
+
+  // Inner node id's level error at step t: its brick's samples w.values on lattice l against
+  // its children's.
+  void level_error(int id, int t, const BrickLattice& l, Worker& w) {
+    const Octree& o = tree.octree();
+    const int brick = o.node_brick(id);
     // RMS of (this brick's trilinear reconstruction − each child's samples) over the child's own
     // samples, plus the child's own level error, weighted by the children's voxels.
     double sum = 0, weight = 0;

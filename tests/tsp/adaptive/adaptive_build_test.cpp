@@ -165,6 +165,52 @@ TEST(AdaptiveBuild, PresentBricksMatchTheUniformBuildAndAbsentOnesReadFromTheirS
   EXPECT_GT(absent, 0);
 }
 
+// An inner node's level brick is made from its children's samples, not its cells: for a
+// trilinear field (reproduced exactly by the hexahedra and by the children's trilinear
+// reconstruction) every inner node's samples are the field at their lattice points.
+TEST(AdaptiveBuild, InnerLevelBricksAreTheFieldAtTheirSamples) {
+  auto g = [](double x, double y, double z, int t) { return 0.5 + x + 2 * y * z + 0.25 * t; };
+  std::vector<Mesh> steps;
+  for (int t = 0; t < 2; ++t) {
+    Mesh m = tsptest::hex_box(32, 3);
+    for (double& p : m.points) p /= 32;
+    for (std::int64_t p = 0; p < m.point_count(); ++p) {
+      const double* q = m.points.data() + 3 * p;
+      m.values[std::size_t(p)] = float(g(q[0], q[1], q[2], t));
+    }
+    steps.push_back(m);
+  }
+  auto file = TspFile::open(adaptive(steps, 1e-9));
+  const Octree& o = file->tree().octree();
+  const TspMetadata& md = file->metadata();
+  const Quantizer q{file->tree().value_range()};
+  int inner = 0;
+  for (int id = 0; id < o.size(); ++id) {
+    if (!o.reachable(id) || o.node(id).is_leaf()) continue;
+    ++inner;
+    const int b = o.node_brick(id);
+    const BrickLattice l = o.lattice(b);
+    ASSERT_GT(l.factor[0], 1) << "node " << id;
+    for (int t = 0; t < 2; ++t) {
+      std::vector<std::uint16_t> codes(std::size_t(l.count()));
+      file->read_brick(b, t, codes);
+      std::size_t i = 0;
+      for (int z = 0; z < l.samples[2]; ++z)
+        for (int y = 0; y < l.samples[1]; ++y)
+          for (int x = 0; x < l.samples[0]; ++x, ++i) {
+            const int v[3] = {std::min(l.origin[0] + x * l.factor[0], o.dims()[0] - 1),
+                              std::min(l.origin[1] + y * l.factor[1], o.dims()[1] - 1),
+                              std::min(l.origin[2] + z * l.factor[2], o.dims()[2] - 1)};
+            const double want = g(md.origin[0] + v[0] * md.spacing[0], md.origin[1] + v[1] * md.spacing[1],
+                                  md.origin[2] + v[2] * md.spacing[2], t);
+            ASSERT_NEAR(int(codes[i]), int(q.encode(float(want))), 1)
+                << "node " << id << " step " << t << " sample " << x << "," << y << "," << z;
+          }
+    }
+  }
+  EXPECT_EQ(inner, 1 + 8);  // no stops at E ≈ 0: the root and its children
+}
+
 // The statistics of the whole volume (the root) agree with the uniform build's: a stopped
 // node's samples weigh for the voxels they stand for.
 TEST(AdaptiveBuild, StatisticsAgreeWithTheUniformBuild) {
