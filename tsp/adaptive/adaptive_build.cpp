@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "tsp/adaptive/adaptive_octree.h"
@@ -266,8 +267,9 @@ struct Sampler {
   }
 
   // Every reachable node at every step, deepest level first (a node's level error reads its
-  // children's samples), one step's mesh in memory at a time.
-  void run(const ProgressFn& progress, int threads) {
+  // children's samples), one step's mesh in memory at a time: the last step first, from the
+  // scan's mesh `last`.
+  void run(Mesh last, const ProgressFn& progress, int threads) {
     const Octree& o = tree.octree();
     std::vector<std::vector<int>> by_level(std::size_t(o.depth()) + 1);
     int total = 0;
@@ -277,9 +279,14 @@ struct Sampler {
         ++total;
       }
     const int steps = tree.time().steps();
-    for (int t = 0; t < steps; ++t) {
-      Mesh mesh = source.read_step(t);
-      prepare_mesh(mesh, options.voxelize.cell_data);
+    for (int t = steps - 1, done_steps = 0; t >= 0; --t, ++done_steps) {
+      Mesh mesh;
+      if (t == steps - 1) {
+        mesh = std::move(last);
+      } else {
+        mesh = source.read_step(t);
+        prepare_mesh(mesh, options.voxelize.cell_data);
+      }
       std::vector<Worker> workers(std::size_t(resolve_threads(threads)));
       for (Worker& w : workers) w.map.assign(std::size_t(mesh.point_count()), -1);
       int done = 0;
@@ -289,7 +296,7 @@ struct Sampler {
           for (std::int64_t k = b; k < e; ++k) node(ids[std::size_t(k)], t, mesh, workers[std::size_t(wi)]);
         });
         done += int(ids.size());
-        if (progress) progress(kPhaseSample, std::int64_t(t) * total + done, std::int64_t(steps) * total);
+        if (progress) progress(kPhaseSample, std::int64_t(done_steps) * total + done, std::int64_t(steps) * total);
       }
     }
   }
@@ -322,7 +329,7 @@ AdaptiveReport build_adaptive_tsp(MeshSource& source, const std::string& out_pat
 
   AdaptiveReport rep;
   if (options.build.progress) options.build.progress(kPhaseOctree, 0, 1);
-  const MeshScan scan = scan_mesh(source, options.voxelize.cell_data, dir);
+  MeshScan scan = scan_mesh(source, options.voxelize.cell_data, dir);
   for (int a = 0; a < 3; ++a)
     if (!(scan.bounds.hi[a] - scan.bounds.lo[a] > 0))
       throw FormatError(source.describe() + ": the mesh is flat along " +
@@ -360,7 +367,7 @@ AdaptiveReport build_adaptive_tsp(MeshSource& source, const std::string& out_pat
   const int threads = resolve_threads(options.build.threads);
   Sampler{source, tree, grid, options, lists, scan, leaves, levels, leaf_masks, level_masks,
           tree.level_errors()}
-      .run(options.build.progress, threads);
+      .run(std::move(scan.last), options.build.progress, threads);
   rep.voxelize_seconds = watch.seconds() - rep.octree_seconds;
 
   BuildReport& br = rep.build;

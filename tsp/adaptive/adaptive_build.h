@@ -11,8 +11,9 @@
 namespace tsp {
 
 /// Largest finest grid an adaptive build accepts (samples): it is never held whole, only the
-/// octree's reachable bricks are, so the limit is the octree's (kMaxBricks, kMaxTspNodes).
-inline constexpr std::int64_t kMaxAdaptiveSamples = std::int64_t(1) << 40;
+/// octree's reachable bricks are, so the limit is the .tsp format's per step (16 GiB of float32;
+/// the uniform build's is kMaxVoxelizedSamples, a step it must hold in memory).
+inline constexpr std::int64_t kMaxAdaptiveSamples = kMaxStepSamples;
 
 /// Options of an adaptive build.
 struct AdaptiveOptions {

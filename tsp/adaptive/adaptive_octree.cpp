@@ -84,10 +84,13 @@ std::vector<double> cell_volumes(const Mesh& m) {
 // (the same cells' earlier summary) when given, whose sizes are kept. A cell's size is its
 // thinnest extent, volume / (largest box edge)²: a slab's thickness, a cube's edge, a sliver's
 // height, so thin shells (the crushing can's) count as the fine detail they are.
-void summarise(const Mesh& m, std::vector<float>& out, const std::vector<float>* with) {
+// volumes: m's cell_volumes when the caller has them.
+void summarise(const Mesh& m, std::vector<float>& out, const std::vector<float>* with,
+               const std::vector<double>* volumes = nullptr) {
   const std::int64_t n = m.cell_count();
   out.resize(std::size_t(MeshScan::kSummary * n));
-  const std::vector<double> volume = with ? std::vector<double>{} : cell_volumes(m);
+  const std::vector<double> own = with || volumes ? std::vector<double>{} : cell_volumes(m);
+  const std::vector<double>& volume = volumes ? *volumes : own;
   for (std::int64_t c = 0; c < n; ++c) {
     float l[3], h[3];
     cell_box(m, c, l, h);
@@ -100,6 +103,18 @@ void summarise(const Mesh& m, std::vector<float>& out, const std::vector<float>*
     const double edge = std::max({h[0] - l[0], h[1] - l[1], h[2] - l[2]});
     box[6] = old ? old[6] : edge > 0 ? float(volume[std::size_t(c)] / (edge * edge)) : 0.f;
   }
+}
+
+// The median cell size as median_cell_size (voxelized_source.h) computes it: the cube root of
+// the cells' volumes, over those with a volume.
+double median_size(const std::vector<double>& volumes) {
+  std::vector<double> size;
+  for (double v : volumes)
+    if (v > 0) size.push_back(std::cbrt(v));
+  if (size.empty()) return 0;
+  auto mid = size.begin() + std::ptrdiff_t(size.size() / 2);
+  std::nth_element(size.begin(), mid, size.end());
+  return *mid;
 }
 
 // Per cell of m: min and max of its finite values (min > max when none).
@@ -140,11 +155,20 @@ MeshScan scan_mesh(MeshSource& source, CellDataMode mode, const std::string& dir
     return m;
   };
   for (int t = 0; t < s.steps; ++t) {
-    const Mesh m = read(t);
+    Mesh m = read(t);
+    struct Keep {  // the last step's mesh stays with the scan, however this step ends
+      MeshScan& s;
+      Mesh& m;
+      bool last;
+      ~Keep() {
+        if (last) s.last = std::move(m);
+      }
+    } keep{s, m, t + 1 == s.steps};
     const std::int64_t n = m.cell_count();
     if (n == 0)
       throw FormatError(source.describe() + ": step " + std::to_string(t) + " has no cells");
-    if (t == 0) s.median_cell = median_cell_size(tetrahedralize(m));
+    const std::vector<double> volumes = t == 0 ? cell_volumes(m) : std::vector<double>{};
+    if (t == 0) s.median_cell = median_size(volumes);
     counts.push_back(n);
     const Aabb b = m.bounds();
     for (int a = 0; a < 3; ++a) {
@@ -176,7 +200,7 @@ MeshScan scan_mesh(MeshSource& source, CellDataMode mode, const std::string& dir
         s.summary->put(k, summary);
       }
     }
-    summarise(m, summary, nullptr);
+    summarise(m, summary, nullptr, t == 0 ? &volumes : nullptr);
     s.summary->put(t, summary);
   }
   s.cells = s.shared ? std::vector<std::int64_t>{counts[0]} : counts;
@@ -209,6 +233,15 @@ Subdivision subdivide(const Octree& octree, const VoxelGrid& grid, const MeshSca
   }
   std::vector<std::uint8_t> has_list(std::size_t(octree.size()), 0);
   has_list[0] = 1;
+  std::vector<float> summary;  // list step cached's cell summary
+  int cached = -1;
+  auto summary_of = [&](int s) -> const std::vector<float>& {
+    if (s != cached) {
+      summary = scan.summary->get(s);
+      cached = s;
+    }
+    return summary;
+  };
   // Nodes are numbered breadth-first: each level is a run of ids, its children the next run.
   for (int first = 0, last = 0; first < octree.size(); first = last) {
     const int level = octree.node(first).level;
@@ -217,7 +250,7 @@ Subdivision subdivide(const Octree& octree, const VoxelGrid& grid, const MeshSca
     // Candidates: internal nodes with cells some of which are smaller than the node's voxels.
     std::vector<char> fine(std::size_t(last - first), 0), any(fine);
     for (int s = 0; s < ls; ++s) {
-      const std::vector<float> summary = scan.summary->get(s);
+      const std::vector<float>& summary = summary_of(s);
       for (int id = first; id < last; ++id) {
         if (!has_list[std::size_t(id)] || octree.node(id).is_leaf()) continue;
         const auto f = octree.lod_factor(id);
@@ -262,7 +295,7 @@ Subdivision subdivide(const Octree& octree, const VoxelGrid& grid, const MeshSca
     }
     // The split nodes' cells go to their children, one list step's boxes in memory at a time.
     for (int s = 0; s < ls && !split.empty(); ++s) {
-      const std::vector<float> summary = scan.summary->get(s);
+      const std::vector<float>& summary = summary_of(s);
       for (int id : split) {
         const std::vector<std::int64_t> cells = lists.get(key(id, s));
         for (int c : octree.node(id).children) {

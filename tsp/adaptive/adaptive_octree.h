@@ -35,6 +35,8 @@ struct MeshScan {
   std::unique_ptr<DiskLists<float>> summary;  ///< per list step, kSummary floats per cell
   std::unique_ptr<DiskLists<float>> ranges;   ///< per step: min, max of each cell's finite
                                               ///< values (min > max when none)
+  Mesh last;                   ///< the last step's mesh (prepared), kept for the sampler's
+                               ///< first step (one read fewer)
   /// Lists per node: 1 when shared, else one per step.
   int list_steps() const { return shared ? 1 : steps; }
   /// The list step serving step t.
