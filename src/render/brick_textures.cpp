@@ -9,6 +9,14 @@
 #include "render/texture_samples.h"
 
 namespace tspgl {
+namespace {
+
+// The atlas first holds every leaf brick, or as many as this much texture when they need more
+// (an adaptive file's finest grid may hold thousands of bricks it never draws); it doubles as
+// needed.
+constexpr std::int64_t kFirstAtlasBytes = std::int64_t(256) << 20;
+
+}  // namespace
 
 void interleave_stencil(const std::uint16_t* samples, std::size_t count,
                         std::vector<std::uint16_t>& out) {
@@ -102,8 +110,13 @@ void BrickTextures::upload(const tsp::TextureKey& key) {
     write(key, it->second);
     return;
   }
-  if (free_.empty())
-    grow(std::max(2 * capacity(), bricks_.store().tree().octree().brick_count()));
+  if (free_.empty()) {
+    const std::int64_t slot_bytes =
+        std::int64_t(slot_[0]) * slot_[1] * slot_[2] * std::int64_t(sizeof(std::uint16_t)) * channels_;
+    const std::int64_t first = std::min<std::int64_t>(bricks_.store().tree().octree().brick_count(),
+                                                      std::max<std::int64_t>(1, kFirstAtlasBytes / slot_bytes));
+    grow(std::max(2 * capacity(), int(first)));
+  }
   const int slot = free_.back();
   free_.pop_back();
   write(key, slot);
