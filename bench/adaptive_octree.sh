@@ -8,11 +8,11 @@
 # T steps, field f, a Gaussian of width SIGMA about the centre C). RESOLUTION is the finest grid's longest edge; UNIFORM=0 skips the uniform build (for
 # grids it cannot hold), and then only the adaptive rows are printed, with each build's peak
 # memory.
-# Env: TSPPLAY (build/tspplay), BUILD_ARGS (more build options for both builds, e.g. "--brick 16"), ERRORS ("0 0.1% 1% 5% 20%"), SIZE (640x480), TF (preset:filled),
-#      UNIFORM (1),
-#      OUT (a temporary folder, removed unless set).
+# Env: TSPPLAY (build/tspplay), BUILD_ARGS (more build options for both builds, e.g.
+#      "--brick 16"), ERRORS ("0 0.1% 1% 5% 20%"), SIZE (640x480), TF (preset:filled),
+#      UNIFORM (1), OUT (a temporary folder, removed unless set).
 set -euo pipefail
-[ $# -ge 3 ] || { sed -n '2,12p' "$0"; exit 2; }
+[ $# -ge 3 ] || { sed -n '2,13p' "$0"; exit 2; }
 mesh=$1 field=$2 res=$3
 tspplay=${TSPPLAY:-build/tspplay}
 errors=${ERRORS:-"0 0.1% 1% 5% 20%"}

@@ -137,7 +137,9 @@ TEST(PlaybackTuner, MeasuresEachRungAgainstFullQualityAsTheRendererDrawsIt) {
     // framebuffer round a few pixels differently: within 1e-3.)
     EXPECT_NEAR(t.mean_de, mean, 1e-3) << t.rung.name;
     EXPECT_NEAR(t.max_step_de, worst, 1e-3) << t.rung.name;
-    if (t.rung.render_scale == 1) EXPECT_EQ(t.mean_de, mean) << t.rung.name;
+    if (t.rung.render_scale == 1) {
+      EXPECT_EQ(t.mean_de, mean) << t.rung.name;
+    }
     EXPECT_GT(t.ms, 0) << t.rung.name;
     if (t.rung.render_scale <= 0.5) quarter_de = std::max(quarter_de, t.mean_de);
   }
