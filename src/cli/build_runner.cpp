@@ -107,4 +107,14 @@ void print_build_summary(const std::string& out_path, const tsp::BuildReport& r)
               r.seconds > 0 ? mb / r.seconds : 0.0);
 }
 
+void print_adaptive_summary(const std::string& out_path, const tsp::AdaptiveReport& r) {
+  print_build_summary(out_path, r.build);
+  std::printf("adaptive octree (E = %g): %d of %d nodes hold data, %d stopped above the finest "
+              "level; bricks %.1f MB of the uniform build's %.1f MB; cell lists %.1f MB; "
+              "octree %.2f s, voxelizing %.2f s\n",
+              r.threshold, r.nodes, r.complete_nodes, r.stopped, double(r.brick_bytes) / 1e6,
+              double(r.complete_brick_bytes) / 1e6, double(r.cell_list_bytes) / 1e6,
+              r.octree_seconds, r.voxelize_seconds);
+}
+
 }  // namespace tspcli

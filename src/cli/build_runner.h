@@ -40,4 +40,7 @@ tsp::AdaptiveReport build_adaptive_with_progress(tsp::MeshSource& source,
 /// Prints "wrote OUT: ..." with the tree's size, ranges and throughput (reopens the file).
 void print_build_summary(const std::string& out_path, const tsp::BuildReport& report);
 
+/// print_build_summary, then "adaptive octree (E = ...): ..." with the octree's size and times.
+void print_adaptive_summary(const std::string& out_path, const tsp::AdaptiveReport& report);
+
 }  // namespace tspcli

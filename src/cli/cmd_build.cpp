@@ -26,27 +26,7 @@ struct BuildArgs {
   int threads = 0;
   std::string spacing, origin;
   std::string compress = "none";
-  std::string octree_error;  // empty: the uniform grid
 };
-
-// --octree-error E (data units) or P% (of the field's range) → the adaptive options' threshold.
-// Throws UsageError.
-void parse_octree_error(const std::string& s, tsp::AdaptiveOptions& o) {
-  const bool percent = !s.empty() && s.back() == '%';
-  const std::string number = percent ? s.substr(0, s.size() - 1) : s;
-  std::size_t used = 0;
-  double v = -1;
-  try {
-    v = std::stod(number, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != number.size() || !std::isfinite(v) || v < 0)
-    throw tsp::UsageError("--octree-error " + s +
-                          ": expected a threshold >= 0 in the field's units, or P% of its range");
-  o.error = percent ? v / 100 : v;
-  o.relative = percent;
-}
 
 // build MESH --octree-error E: Leven's adaptive octree instead of the uniform grid.
 void run_adaptive_build(const BuildArgs& a, const tsp::BuildOptions& bo) {
@@ -60,18 +40,12 @@ void run_adaptive_build(const BuildArgs& a, const tsp::BuildOptions& bo) {
                           " is not an unstructured mesh (.vtu/.vtm/.pvd/.series, VTKHDF "
                           "UnstructuredGrid); regular grids are built without it");
   tsp::AdaptiveOptions ao;
-  parse_octree_error(a.octree_error, ao);
+  octree_error(a.in, ao);
   ao.voxelize = voxelize_options(a.in, a.threads);
   ao.build = bo;
   auto source = tsp::open_mesh_source(a.input, so.field, so.allow_external, so.plot3d_grid);
   const tsp::AdaptiveReport r = build_adaptive_with_progress(*source, a.output, ao);
-  print_build_summary(a.output, r.build);
-  std::printf("adaptive octree (E = %g): %d of %d nodes hold data, %d stopped above the finest "
-              "level; bricks %.1f MB of the uniform build's %.1f MB; cell lists %.1f MB; "
-              "octree %.2f s, voxelizing %.2f s\n",
-              r.threshold, r.nodes, r.complete_nodes, r.stopped, double(r.brick_bytes) / 1e6,
-              double(r.complete_brick_bytes) / 1e6, double(r.cell_list_bytes) / 1e6,
-              r.octree_seconds, r.voxelize_seconds);
+  print_adaptive_summary(a.output, r);
 }
 
 // --compress none|deflate[:L] → the deflate level (0: none). Throws UsageError.
@@ -94,7 +68,7 @@ void run_build(const BuildArgs& a) {
   if (!a.range.empty()) bo.range = parse_range(a.range, "--range");
   if (!a.spacing.empty()) bo.spacing = parse_triple(a.spacing, "--spacing", "DX,DY,DZ");
   if (!a.origin.empty()) bo.origin = parse_triple(a.origin, "--origin", "X,Y,Z");
-  if (!a.octree_error.empty()) return run_adaptive_build(a, bo);
+  if (!a.in.octree_error.empty()) return run_adaptive_build(a, bo);
   const tsp::VoxelizeOptions vo = voxelize_options(a.in, a.threads);
   // --field A,B,C: several fields, one tree each, in one file.
   std::vector<std::string> fields;
@@ -155,11 +129,6 @@ const CommandRegistrar reg(10, [](CLI::App& app) {
                 "Brick chunks: none (default), deflate (level 4) or deflate:L, L 1..9 (byte "
                 "shuffle + deflate; smaller files, slower builds; for playback from slow disks)");
   c->add_option("--threads", a->threads, "Worker threads (default: all cores)");
-  c->add_option("--octree-error", a->octree_error,
-                "Meshes: Leven's adaptive octree instead of the uniform grid: a node splits while "
-                "some cell is smaller than its voxels and the field's spread there exceeds E "
-                "(field units) or P% of its range; the finest grid (--resolution/--voxel-size) "
-                "is never held whole");
   c->callback([a] { run_build(*a); });
 });
 

@@ -43,6 +43,7 @@ void run(PlayArgs a) {
   a.options.input.source = source_options(a.in, "");
   a.options.input.voxelize = voxelize_options(a.in, 0);
   a.options.input.key = input_key(a.in);
+  a.options.input.adaptive = octree_error(a.in, a.options.input.octree);
   // File > Open's options line: parsed by the same options, starting from the command line's.
   a.options.parse_input_options = [base = a.in](const std::string& line) {
     CLI::App parser("File > Open build options");
@@ -57,6 +58,7 @@ void run(PlayArgs a) {
     o.source = source_options(in, "");
     o.voxelize = voxelize_options(in, 0);
     o.key = input_key(in);
+    o.adaptive = octree_error(in, o.octree);
     return o;
   };
   if (a.proportions != "physical" && a.proportions != "samples")
@@ -74,6 +76,9 @@ void run(PlayArgs a) {
     tsp::BuildReport r = build_with_progress(source, out, o);
     print_build_summary(out, r);
     return r;
+  };
+  hooks.build_adaptive = [](tsp::MeshSource& mesh, const std::string& out, tsp::AdaptiveOptions o) {
+    print_adaptive_summary(out, build_adaptive_with_progress(mesh, out, o));
   };
   hooks.build_fields = [](const tsp::FieldSourceFn& open_field,
                           const std::vector<std::string>& fields, const std::string& out,

@@ -1,5 +1,7 @@
 #include "cli/input_options.h"
 
+#include <cmath>
+
 #include "cli/args.h"
 #include "tsp/core/error.h"
 #include "tsp/voxelize/voxelizer.h"
@@ -42,6 +44,11 @@ void add_input_options(CLI::App* c, InputArgs& a) {
   c->add_option("--raw-type", a.raw_type, "Raw input: element type u8|u16|f32")
       ->check(CLI::IsMember({"u8", "u16", "f32"}));
   c->add_flag("--big-endian", a.big_endian, "Raw input: big-endian samples");
+  c->add_option("--octree-error", a.octree_error,
+                "Meshes: Leven's adaptive octree instead of the uniform grid: a node splits while "
+                "some cell is smaller than its voxels and the field's spread there exceeds E "
+                "(field units) or P% of its range; the finest grid (--resolution/--voxel-size) "
+                "is never held whole");
   c->add_flag("--allow-external", a.allow_external,
               "HDF5 input: read its external links, external raw storage and virtual datasets "
               "(other files it names; refused by default)");
@@ -102,7 +109,28 @@ std::string input_key(const InputArgs& a) {
   if (a.antialias != d.antialias) add("antialias", std::to_string(a.antialias));
   if (a.jitter != d.jitter) add("jitter", a.jitter);
   if (a.xyz != d.xyz) add("xyz", a.xyz);
+  if (a.octree_error != d.octree_error) add("octree-error", a.octree_error);
   return k;
+}
+
+bool octree_error(const InputArgs& a, tsp::AdaptiveOptions& o) {
+  const std::string& s = a.octree_error;
+  if (s.empty()) return false;
+  const bool percent = s.back() == '%';
+  const std::string number = percent ? s.substr(0, s.size() - 1) : s;
+  std::size_t used = 0;
+  double v = -1;
+  try {
+    v = std::stod(number, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != number.size() || !std::isfinite(v) || v < 0)
+    throw tsp::UsageError("--octree-error " + s +
+                          ": expected a threshold >= 0 in the field's units, or P% of its range");
+  o.error = percent ? v / 100 : v;
+  o.relative = percent;
+  return true;
 }
 
 }  // namespace tspcli

@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "tsp/adaptive/adaptive_build.h"
 #include "tsp/source/volume_source.h"
 #include "tsp/voxelize/voxelized_source.h"
 
@@ -23,10 +24,11 @@ struct InputArgs {
   int antialias = 1;
   std::string jitter = "off";  ///< two-buffer: jittered sub-samples
   std::string xyz;  ///< PLOT3D grid of .q inputs
+  std::string octree_error;  ///< meshes: E or P% of Leven's adaptive octree (empty: uniform)
 };
 
 /// Adds --raw-dims, --raw-type, --big-endian, --allow-external, --resolution, --voxel-size,
-/// --cell-data, --voxelizer, --antialias, --jitter, --hex and --xyz to c, writing into a (which must outlive c).
+/// --cell-data, --voxelizer, --antialias, --jitter, --hex, --xyz and --octree-error to c, writing into a (which must outlive c).
 void add_input_options(CLI::App* c, InputArgs& a);
 
 /// The reader's options from a and field. Throws tsp::UsageError on a bad --raw-dims.
@@ -35,6 +37,10 @@ tsp::SourceOptions source_options(const InputArgs& a, const std::string& field);
 /// The voxelizer's options from a (threads: 0 for all cores). Throws tsp::UsageError when
 /// --antialias is asked of the locating voxelizer.
 tsp::VoxelizeOptions voxelize_options(const InputArgs& a, int threads);
+
+/// Whether a asks for Leven's adaptive octree (--octree-error), and its threshold into o (error,
+/// relative). Throws tsp::UsageError on a malformed or negative threshold.
+bool octree_error(const InputArgs& a, tsp::AdaptiveOptions& o);
 
 /// The options that change what a build of the input holds, as text (empty at the defaults):
 /// part of the key of a build cached for playing.

@@ -10,6 +10,7 @@
 #include "tsp/core/error.h"
 #include "tsp/hdf5/hdf5_handle.h"
 #include "tsp/hdf5/hdf5_lock.h"
+#include "tsp/source/open_mesh_source.h"
 #include "tsp/voxelize/open_input.h"
 
 namespace tspgl {
@@ -80,6 +81,24 @@ std::string prepare_play_input(const std::string& input, const PlayInputOptions&
   const fs::path builds = fs::path(out).parent_path();
   fs::create_directories(builds, ec);
   if (ec) throw tsp::IoError(builds.string() + ": cannot create the build cache: " + ec.message());
+  if (o.adaptive) {
+    if (o.field.find(',') != std::string::npos)
+      throw tsp::UsageError("--octree-error builds one field; --field " + o.field +
+                            " names several");
+    if (!tsp::is_mesh_input(input, o.source.allow_external))
+      throw tsp::UsageError("--octree-error: " + input +
+                            " is not an unstructured mesh; regular grids are built without it");
+    auto mesh = tsp::open_mesh_source(input, o.field, o.source.allow_external, o.source.plot3d_grid);
+    hooks.say("play: " + input + " is not a .tsp file; building its adaptive octree into " + out +
+              " (reused next time)");
+    tsp::AdaptiveOptions ao = o.octree;
+    ao.voxelize = o.voxelize;
+    ao.build.field_name = o.field;
+    ao.build.brick_size = 0;  // the default for the finest grid, as build picks it
+    ao.build.threads = o.voxelize.sample.threads;
+    hooks.build_adaptive(*mesh, out, ao);
+    return out;
+  }
   const auto open_field = [&](const std::string& field) {
     tsp::SourceOptions so = o.source;
     so.field = field;

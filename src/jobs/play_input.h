@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "tsp/adaptive/adaptive_build.h"
 #include "tsp/build/build.h"
 #include "tsp/source/volume_source.h"
 #include "tsp/voxelize/voxelized_source.h"
@@ -28,6 +29,8 @@ struct PlayInputOptions {
   tsp::SourceOptions source;      ///< how the input is read (its field is set per field)
   tsp::VoxelizeOptions voxelize;  ///< meshes: how they are voxelized
   std::string key;                ///< the options that change the build, as text (cache key)
+  bool adaptive = false;          ///< meshes: Leven's adaptive octree (build --octree-error)
+  tsp::AdaptiveOptions octree;    ///< its threshold (error, relative), when adaptive
 };
 
 /// Where input is built for playing with o: `DIR/builds/NAME-HASH.tsp` under cache_dir (""
@@ -46,6 +49,8 @@ struct PlayBuildHooks {
   std::function<void(const tsp::FieldSourceFn&, const std::vector<std::string>& fields,
                      const std::string& out, tsp::BuildOptions)>
       build_fields;
+  /// Leven's adaptive octree of a mesh (as `build --octree-error`).
+  std::function<void(tsp::MeshSource&, const std::string& out, tsp::AdaptiveOptions)> build_adaptive;
 };
 
 /// The .tsp file to play for input: input itself when it is a .tsp file (o.field then names one

@@ -42,6 +42,11 @@ OpenJob::OpenJob(std::string input, tspgl::PlayInputOptions o, std::string cache
       b.progress = report;
       tsp::build_tsp_fields(open_field, fields, out, b);
     };
+    hooks.build_adaptive = [report](tsp::MeshSource& mesh, const std::string& out,
+                                    tsp::AdaptiveOptions a) {
+      a.build.progress = report;
+      tsp::build_adaptive_tsp(mesh, out, a);
+    };
     std::string out = tspgl::prepare_play_input(input_, o, cache_dir, hooks);
     std::lock_guard lock(mu_);
     result_ = std::move(out);

@@ -461,6 +461,46 @@ TEST(Player, PlaysARawSeriesAndSeveralFieldsDirectly) {
   EXPECT_EQ(i["file"], h["file"]);
 }
 
+// play MESH --octree-error E builds Leven's adaptive octree into the cache (a version-3 file,
+// the same picture as the file `build --octree-error` writes), apart from the uniform build of
+// the same mesh; File > Open takes the option too.
+TEST(Player, PlaysAMeshThroughAnAdaptiveOctree) {
+  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  const fs::path dir = tsptest::temp_dir(), cache = dir / "cache", built = dir / "built.tsp";
+  const std::string mesh =
+      q(tsptest::datasets_dir() / "samples/damBreakWithObstacle/damBreakWithObstacle.vtu.series");
+  const std::string opts = " --field alpha.water --resolution 32 --octree-error 5%";
+  auto r = run_tspplay("play " + mesh + opts + " --cache-dir " + q(cache) + " --size " + kSize +
+                       " --screenshot " + q(dir / "a.png"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("building its adaptive octree into"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("adaptive octree (E = 0.05)"), std::string::npos) << r.out;
+  std::vector<fs::path> builds;
+  for (const auto& e : fs::directory_iterator(cache / "builds"))
+    if (e.path().extension() == ".tsp") builds.push_back(e.path());
+  ASSERT_EQ(builds.size(), 1u);
+  EXPECT_TRUE(tsp::TspFile::open(builds[0].string())->tree().octree().has_stops());
+  ASSERT_EQ(run_tspplay("build " + mesh + opts + " -o " + q(built)).exit_code, 0);
+  ASSERT_EQ(run_tspplay("play " + q(built) + " --size " + kSize + " --screenshot " + q(dir / "b.png"))
+                .exit_code,
+            0);
+  EXPECT_LT(tsp::diff_images(tsp::read_png((dir / "a.png").string()),
+                             tsp::read_png((dir / "b.png").string())).mean, kSameFrameDeltaE);
+  // File > Open: without the option the uniform grid (a build of its own), with it the octree
+  // built above, reused.
+  const fs::path script = write_script(
+      "open " + mesh.substr(1, mesh.size() - 2) + " alpha.water --resolution 32\nwait-frames 1\nstats " +
+      (dir / "u.json").string() + "\nopen " + mesh.substr(1, mesh.size() - 2) +
+      " alpha.water --resolution 32 --octree-error 5%\nwait-frames 1\nstats " +
+      (dir / "o.json").string() + "\nquit\n");
+  r = run_tspplay("play " + q(built) + " --cache-dir " + q(cache) + " --size " + kSize +
+                  " --script " + q(script));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string u = read_json(dir / "u.json")["file"], o = read_json(dir / "o.json")["file"];
+  EXPECT_FALSE(tsp::TspFile::open(u)->tree().octree().has_stops()) << u;
+  EXPECT_EQ(o, builds[0].string());
+}
+
 // WRF's T, W (15 staggered levels) and QVAPOR played straight from the NetCDF file: built into
 // one file, each on its own grid, switching keeps the view (issue 30).
 TEST(Player, PlaysSeveralWrfFieldsOnTheirOwnGrids) {
