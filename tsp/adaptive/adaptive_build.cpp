@@ -322,10 +322,7 @@ AdaptiveReport build_adaptive_tsp(MeshSource& source, const std::string& out_pat
   const int steps = source.steps();
   if (steps < 1) throw FormatError(source.describe() + ": no time steps");
   const std::vector<double> times = source.times();
-  for (std::size_t t = 0; t < times.size(); ++t)
-    if (!std::isfinite(times[t]))
-      throw FormatError(source.describe() + ": the time of step " + std::to_string(t) + " is " +
-                        std::to_string(times[t]) + "; step times must be finite numbers");
+  check_step_times(source.describe(), times);
 
   AdaptiveReport rep;
   if (options.build.progress) options.build.progress(kPhaseOctree, 0, 1);

@@ -105,18 +105,6 @@ void summarise(const Mesh& m, std::vector<float>& out, const std::vector<float>*
   }
 }
 
-// The median cell size as median_cell_size (voxelized_source.h) computes it: the cube root of
-// the cells' volumes, over those with a volume.
-double median_size(const std::vector<double>& volumes) {
-  std::vector<double> size;
-  for (double v : volumes)
-    if (v > 0) size.push_back(std::cbrt(v));
-  if (size.empty()) return 0;
-  auto mid = size.begin() + std::ptrdiff_t(size.size() / 2);
-  std::nth_element(size.begin(), mid, size.end());
-  return *mid;
-}
-
 // Per cell of m: min and max of its finite values (min > max when none).
 void value_ranges(const Mesh& m, std::vector<float>& out) {
   const std::int64_t n = m.cell_count();
@@ -168,7 +156,7 @@ MeshScan scan_mesh(MeshSource& source, CellDataMode mode, const std::string& dir
     if (n == 0)
       throw FormatError(source.describe() + ": step " + std::to_string(t) + " has no cells");
     const std::vector<double> volumes = t == 0 ? cell_volumes(m) : std::vector<double>{};
-    if (t == 0) s.median_cell = median_size(volumes);
+    if (t == 0) s.median_cell = median_cell_size(volumes);
     counts.push_back(n);
     const Aabb b = m.bounds();
     for (int a = 0; a < 3; ++a) {

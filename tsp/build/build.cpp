@@ -326,10 +326,7 @@ BuildReport build_field(VolumeSource& source, const TempOutput* out,
   // The .tsp reader refuses non-finite times: refuse them here, naming the input, before any
   // work (a build that wrote them would replace a good output with one nothing can read).
   const std::vector<double> times = source.times();
-  for (std::size_t t = 0; t < times.size(); ++t)
-    if (!std::isfinite(times[t]))
-      throw FormatError(source.describe() + ": the time of step " + std::to_string(t) + " is " +
-                        std::to_string(times[t]) + "; step times must be finite numbers");
+  check_step_times(source.describe(), times);
   TspTree tree(dims, steps, options.brick_size);
   const Octree& o = tree.octree();
 
@@ -406,6 +403,13 @@ BuildReport build_field(VolumeSource& source, const TempOutput* out,
 }
 
 }  // namespace
+
+void check_step_times(const std::string& what, const std::vector<double>& times) {
+  for (std::size_t t = 0; t < times.size(); ++t)
+    if (!std::isfinite(times[t]))
+      throw FormatError(what + ": the time of step " + std::to_string(t) + " is " +
+                        std::to_string(times[t]) + "; step times must be finite numbers");
+}
 
 BuildReport build_tsp_file(VolumeSource& source, const std::string& out_path,
                            const BuildOptions& options) {

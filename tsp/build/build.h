@@ -21,6 +21,10 @@ namespace tsp {
 using ProgressFn =
     std::function<void(const std::string& phase, std::int64_t done, std::int64_t total)>;
 
+/// Throws FormatError "WHAT: the time of step K is X; step times must be finite numbers" for
+/// the first non-finite time (the .tsp reader refuses them: a build refuses them first).
+void check_step_times(const std::string& what, const std::vector<double>& times);
+
 /// The brick size `tspplay build` uses unless told: the power of two nearest a quarter of the
 /// grid's longest edge, in [8, 64] — about four bricks per axis, so transparent and coherent
 /// regions split off while the one-pass ray caster crosses few bricks per ray (64³ → 16,

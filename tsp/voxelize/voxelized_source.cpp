@@ -80,8 +80,12 @@ double median_cell_size(const TetMesh& m) {
     if (c >= volume.size()) volume.resize(c + 1, 0.0);
     volume[c] += tet_volume(m, m.tets[t]);
   }
+  return median_cell_size(volume);
+}
+
+double median_cell_size(const std::vector<double>& volumes) {
   std::vector<double> size;
-  for (double v : volume)
+  for (double v : volumes)
     if (v > 0) size.push_back(std::cbrt(v));
   if (size.empty()) return 0;
   auto mid = size.begin() + std::ptrdiff_t(size.size() / 2);

@@ -5,6 +5,7 @@
 // root of the cells' volumes), held to 16–256 samples on the longest edge.
 #pragma once
 #include <memory>
+#include <vector>
 
 #include "tsp/source/mesh_source.h"
 #include "tsp/voxelize/voxelizer.h"
@@ -40,6 +41,8 @@ VoxelGrid choose_grid(const Aabb& bounds, double cell_size, const VoxelizeOption
 /// Median over cells of the cube root of the cell's volume (the sum of its tetrahedra's); 0 for
 /// a mesh without volume. Never throws.
 double median_cell_size(const TetMesh& mesh);
+/// The same median from the cells' volumes (cells of volume 0 left out). Never throws.
+double median_cell_size(const std::vector<double>& volumes);
 
 /// Wraps source (reading every step's bounds now to fix the grid). Throws what the source
 /// throws, UsageError on bad options, FormatError when the meshes have no extent or are flat
