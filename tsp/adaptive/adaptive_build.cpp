@@ -124,34 +124,28 @@ struct Sampler {
 
   struct Worker {
     std::vector<std::int64_t> map;
-    std::vector<float> values, mask, child;
+    std::vector<float> values, mask;
     std::vector<std::uint8_t> inside;
-    std::array<std::vector<float>, 8> kid_values, kid_masks;  // an inner node's children
+    // An inner node's children: their lattices, samples and inside fractions at this step.
+    std::array<BrickLattice, 8> kid_lattices;
+    std::array<std::vector<float>, 8> kid_values, kid_masks;
   };
 
+  // The scratch file holding stored brick `brick`'s samples (mask: its inside fractions), and
+  // the brick's index in it.
+  std::pair<ScratchFile*, int> slot(int brick, bool mask) const {
+    const int nb = tree.octree().brick_count();
+    if (brick < nb) return {mask ? &leaf_masks : &leaves, brick};
+    return {mask ? &level_masks : &levels, brick - nb};
+  }
   void write(int brick, int t, std::span<const float> v, std::span<const float> m) {
-    const int nb = tree.octree().brick_count();
-    if (brick < nb) {
-      leaves.write(brick, t, v);
-      leaf_masks.write(brick, t, m);
-    } else {
-      levels.write(brick - nb, t, v);
-      level_masks.write(brick - nb, t, m);
-    }
+    const auto [values, i] = slot(brick, false);
+    values->write(i, t, v);
+    slot(brick, true).first->write(i, t, m);
   }
-  void read(int brick, int t, std::span<float> v) const {
-    const int nb = tree.octree().brick_count();
-    if (brick < nb)
-      leaves.read(brick, t, v);
-    else
-      levels.read(brick - nb, t, v);
-  }
-  void read_mask(int brick, int t, std::span<float> m) const {
-    const int nb = tree.octree().brick_count();
-    if (brick < nb)
-      leaf_masks.read(brick, t, m);
-    else
-      level_masks.read(brick - nb, t, m);
+  void read(int brick, int t, std::span<float> out, bool mask) const {
+    const auto [file, i] = slot(brick, mask);
+    file->read(i, t, out);
   }
 
   // An inner node's samples (and inside fractions) as its children's trilinear field at them:
@@ -162,11 +156,12 @@ struct Sampler {
     const std::array<int, 8>& kids = o.node(id).children;
     for (std::size_t k = 0; k < kids.size(); ++k) {
       if (kids[k] < 0) continue;
-      const std::size_t n = std::size_t(o.lattice(o.node_brick(kids[k])).count());
+      w.kid_lattices[k] = o.lattice(o.node_brick(kids[k]));
+      const std::size_t n = std::size_t(w.kid_lattices[k].count());
       w.kid_values[k].resize(n);
       w.kid_masks[k].resize(n);
-      read(o.node_brick(kids[k]), t, w.kid_values[k]);
-      read_mask(o.node_brick(kids[k]), t, w.kid_masks[k]);
+      read(o.node_brick(kids[k]), t, w.kid_values[k], false);
+      read(o.node_brick(kids[k]), t, w.kid_masks[k], true);
     }
     const Dims d = o.dims();
     std::size_t i = 0;
@@ -182,9 +177,8 @@ struct Sampler {
             if (p[0] < b.lo[0] || p[0] > b.hi[0] || p[1] < b.lo[1] || p[1] > b.hi[1] ||
                 p[2] < b.lo[2] || p[2] > b.hi[2])
               continue;
-            const BrickLattice cl = o.lattice(o.node_brick(kids[k]));
-            w.values[i] = float(trilinear(w.kid_values[k], cl, p));
-            w.mask[i] = float(trilinear(w.kid_masks[k], cl, p));
+            w.values[i] = float(trilinear(w.kid_values[k], w.kid_lattices[k], p));
+            w.mask[i] = float(trilinear(w.kid_masks[k], w.kid_lattices[k], p));
             break;
           }
         }
@@ -229,20 +223,21 @@ struct Sampler {
   }
 
   // Inner node id's level error at step t: its brick's samples w.values on lattice l against
-  // its children's.
-  void level_error(int id, int t, const BrickLattice& l, Worker& w) {
+  // its children's (w.kid_*, as from_children read them).
+  void level_error(int id, int t, const BrickLattice& l, const Worker& w) {
     const Octree& o = tree.octree();
     const int brick = o.node_brick(id);
     // RMS of (this brick's trilinear reconstruction − each child's samples) over the child's own
     // samples, plus the child's own level error, weighted by the children's voxels.
     double sum = 0, weight = 0;
     const int steps = tree.time().steps();
-    for (int c : o.node(id).children) {
+    const std::array<int, 8>& kids = o.node(id).children;
+    for (std::size_t k = 0; k < kids.size(); ++k) {
+      const int c = kids[k];
       if (c < 0) continue;
       const int cb = o.node_brick(c);
-      const BrickLattice cl = o.lattice(cb);
-      w.child.resize(std::size_t(cl.count()));
-      read(cb, t, w.child);
+      const BrickLattice& cl = w.kid_lattices[k];
+      const std::vector<float>& child = w.kid_values[k];
       const Box own = own_samples(cl, o.node(c).box);
       double sq = 0;
       for (int z = 0; z < own.hi[2]; ++z)
@@ -251,7 +246,7 @@ struct Sampler {
             const double r = trilinear(w.values, l,
                                        {cl.origin[0] + x * cl.factor[0], cl.origin[1] + y * cl.factor[1],
                                         cl.origin[2] + z * cl.factor[2]});
-            const double d = r - w.child[std::size_t(x + cl.samples[0] * (y + cl.samples[1] * z))];
+            const double d = r - child[std::size_t(x + cl.samples[0] * (y + cl.samples[1] * z))];
             sq += d * d;
           }
       const double mean_sq = own.count() > 0 ? sq / double(own.count()) : 0;
