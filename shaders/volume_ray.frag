@@ -135,6 +135,17 @@ vec4 cut_sample(vec4 s, float k) {
   return vec4(s.rgb * (a / s.a), a);
 }
 
+#ifdef TSP_REFINE
+// Refinement (tsp/frame/refine.h): row 0 of tf_refine is the point lookup with each entry's piece
+// (a run of entries over which the TF is nearly straight, tsp::tf_pieces) packed into its
+// opacity as α + 2·piece; row 1 the TF corrected for a step of spacing / kRefineSamples.
+uniform sampler2D tf_refine;
+const int kRefineSamples = 6;  // tsp::kRefineSamples
+const float kPieceRow = 0.25, kFineRow = 0.75;
+float piece_of(vec4 e) { return floor(e.a * 0.5); }
+#endif
+
+
 void main() {
   RaySpan r = ray_span();
   float len = (r.depth_exit - r.depth_entry) / r.cos_theta;
@@ -188,6 +199,13 @@ void main() {
   float m_cur = 1.0;  // the sample step multiplier t_next is aligned to
   vec4 acc = vec4(0.0);
   float u_prev = -1.0;  // tf coordinate half a spacing behind the previous sample (−1: none)
+#ifdef TSP_REFINE
+  // The caster's refinement state, carried across the bricks of a run (see its loop).
+  float seg_b = 0.0, piece_prev = -1.0, fine_w = 0.0;
+  vec4 cur = vec4(-1.0), ahead = vec4(-1.0), fine_sum = vec4(0.0);
+  vec3 fine_at = vec3(0.0);
+  int fine = 0;
+#endif
   bool run_open = false;  // TSP_SEGMENTS: inside a run of full-resolution textured bricks
   bool done = false;    // the ray met the clip surface
   if (clip_on()) {      // the kept intervals, and where the ray first meets the surface
@@ -278,6 +296,8 @@ void main() {
           // coarse spacings (docs/rendering.md). A segment whose middle lies past this brick is
           // left to the next brick of the run.
           bool closing = t_out >= len;
+          vec4 next_page = page;  // the next brick of the run (where it goes on)
+          ivec3 next_c = c;
           if (!closing) {  // the run ends here unless the next brick is textured at level 0
             ivec3 cn = c;
             if (t_max.x <= t_max.y && t_max.x <= t_max.z)
@@ -288,7 +308,9 @@ void main() {
               cn.z += dir.z;
             closing = any(lessThan(cn, ivec3(0))) || any(greaterThanEqual(cn, grid));
             if (!closing) {
-              float w = texelFetch(pages, cn, 0).w;
+              next_page = texelFetch(pages, cn, 0);
+              next_c = cn;
+              float w = next_page.w;
               closing = w <= 0.5 || ((int(w + 0.5) - 1) & (kClipFlag - 1)) != 0;
             }
           }
@@ -325,6 +347,95 @@ void main() {
             q += dq * k;
           }
           t_next = b;
+#elif defined(TSP_REFINE)
+          // Refinement: the segments of the plain caster (cut where the run begins and ends),
+          // each sampled at its middle — unless the scalar there and the one at either
+          // neighbouring segment's middle fall in different pieces of the TF (a band or bend
+          // lies between them): then the segment is sampled kRefineSamples times through the
+          // fine TF and lit once, at the opacity-weighted mean of those samples' positions.
+          // One loop, one scalar and one TF fetch per pass, whatever it samples: llvmpipe runs
+          // a branch's fetches, or an inner loop, at a cost to every segment (docs/results.md).
+          // Carried across the bricks of a run: the segment [seg_b, seg_e], the previous
+          // middle's piece, this middle's lookup (cur; a < 0: not read), the
+          // next middle's (ahead), and a refinement in progress (fine samples left, their sum).
+          if (!run_open) {
+            seg_b = t;
+            piece_prev = -1.0;  // read at the run's entry first
+            cur.a = -1.0;
+            fine = 0;
+            run_open = true;
+          }
+          for (int guard = 0; guard < 4096 && acc.a < kOpaque; ++guard) {
+            float d_b = r.depth_entry + seg_b * r.cos_theta;
+            float seg_e = ((floor(d_b / spacing + 1e-4) + 1.0) * spacing - r.depth_entry) /
+                          r.cos_theta;
+            if (closing) seg_e = min(seg_e, t_out);
+            if (seg_e - seg_b < 1e-4 * dtm) {  // the run's end
+              seg_b = seg_e;
+              break;
+            }
+            float mid = 0.5 * (seg_b + seg_e);
+            if (!closing && fine == 0 && mid >= t_out) break;  // the next brick's segment
+            // This pass's sample: the run's entry, this middle, a fine sample, or the next
+            // middle (the run's end where there is no next segment).
+            int mode = piece_prev < 0.0 ? 0 : cur.a < 0.0 ? 1 : fine > 0 ? 2 : 3;
+            float ts = mode == 0 ? seg_b : mode == 1 ? mid : mode == 2
+                ? seg_b + (seg_e - seg_b) * (float(kRefineSamples - fine) + 0.5) / float(kRefineSamples)
+                : (closing && seg_e >= t_out ? seg_e
+                   : 0.5 * (seg_e + (closing ? min(seg_e + dt, t_out) : seg_e + dt)));
+            if (mode != 3 && ts >= t_out && !closing) break;  // in the next brick
+            // (The next middle may lie in the next brick of the run: read there.)
+            bool beyond = ts >= t_out;
+            vec3 off = beyond ? next_page.xyz : page.xyz;
+            vec3 b_lo = beyond ? vec3(next_c) * cell : lo;
+            vec3 tcs = ((entry + r.ray * ts) * scale + off) * atlas_scale;
+            vec2 v = texture(volume, clamp(tcs, (b_lo * scale + off) * atlas_scale,
+                                           (min(b_lo + cell, box_hi) * scale + off) *
+                                               atlas_scale)).rg;
+            vec4 e = texture(tf_refine, vec2(v.r * tf_map.x + tf_map.y,
+                                             mode == 2 ? kFineRow : kPieceRow));
+            if (use_stencil != 0 && v.g < 0.5) e = vec4(0.0, 0.0, 0.0, mode == 2 ? 0.0 : 2.0 * piece_of(e));
+            float k = (seg_e - seg_b) / dt;
+            vec4 c = vec4(0.0);
+            vec3 at = tcs;
+            bool advance = false;
+            if (mode == 0) {
+              piece_prev = piece_of(e);
+            } else if (mode == 1) {
+              cur = e;
+            } else if (mode == 2) {
+              if (k < 1.0) e = cut_sample(e, k);
+              fine_at += (1.0 - fine_sum.a) * e.a * tcs;
+              fine_w += (1.0 - fine_sum.a) * e.a;
+              fine_sum += (1.0 - fine_sum.a) * e;
+              if (--fine == 0) {
+                c = fine_sum;
+                at = fine_w > 0.0 ? fine_at / fine_w : tcs;
+                advance = true;
+              }
+            } else {
+              ahead = e;
+              float piece = piece_of(cur);
+              if (piece != piece_prev || piece != piece_of(e)) {
+                fine = kRefineSamples;
+                fine_sum = vec4(0.0);
+                fine_at = vec3(0.0);
+                fine_w = 0.0;
+              } else {
+                c = vec4(cur.rgb, cur.a - 2.0 * piece);
+                if (k < 1.0) c = cut_sample(c, k);
+                at = ((entry + r.ray * mid) * scale + page.xyz) * atlas_scale;
+                advance = true;
+              }
+            }
+            acc += (1.0 - acc.a) * shade(c, at, tc_lo, tc_hi);
+            if (advance) {
+              piece_prev = piece_of(cur);
+              cur = ahead;
+              seg_b = seg_e;
+            }
+          }
+          t_next = seg_b;
 #else
           if (!run_open) {  // the first segment, from the brick's entry to the next plane
             float d = r.depth_entry + t * r.cos_theta;

@@ -41,6 +41,9 @@ void validate(const RenderSettings& s) {
     throw tsp::UsageError("--sampling-tol " + num(s.sampling_tol) +
                           " with --preintegrated on: adaptive sampling uses the point lookup; "
                           "choose one");
+  if (!(s.refine_tol >= 0) || !std::isfinite(s.refine_tol))
+    throw tsp::UsageError("--refine-tol " + num(s.refine_tol) +
+                          ": expected a finite TF variation >= 0");
   if (!(s.render_scale >= kMinRenderScale && s.render_scale <= 1))
     throw tsp::UsageError("render scale " + num(s.render_scale) + ": expected a share in [" +
                           num(kMinRenderScale) + ", 1]");

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "tsp/frame/frame_plan.h"
+#include "tsp/frame/refine.h"
 #include "tsp/tree/traversal.h"
 
 namespace tspgl {
@@ -92,6 +93,11 @@ struct RenderSettings {
   /// tsp::kStepMultipliers whose step changes the premultiplied TF colour by at most this much
   /// (0: every brick every spacing). Excludes pre-integration.
   double sampling_tol = 0;
+  /// Refinement (rays compositing without probes, neither adaptive sampling nor
+  /// pre-integration; tsp/frame/refine.h): a segment across which the TF varies by more than
+  /// this (premultiplied colour and opacity at the spacing) is sampled tsp::kRefineSamples
+  /// times finer, so thin bands and one-voxel jumps are drawn where they lie (0: off).
+  double refine_tol = tsp::kDefaultRefineTol;
   /// Rays compositing: the mesh's boundary drawn opaque under the volume from TetSplat's splat
   /// hierarchy (render/surface_splats.h), where the caller gives the compositor one.
   bool surface = false;

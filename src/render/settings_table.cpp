@@ -63,6 +63,14 @@ std::vector<SettingSpec> make_table() {
                        "the premultiplied TF colour by at most this much (e.g. 0.005; 0: off)",
                .get = [](const RenderSettings& s) { return number_text(s.sampling_tol); },
                .set = [](RenderSettings& s, double v) { s.sampling_tol = v; }});
+  t.push_back({.name = "refine-tol", .kind = K::number, .group = G::quality,
+               .unit = "TF variation", .lo = 0, .hi = kInf, .choices = {}, .ui_lo = 0, .ui_hi = 1,
+               .help = "Refinement (rays, no probes, not with --sampling-tol or --preintegrated): "
+                       "a segment across which the premultiplied TF varies by more than this is "
+                       "sampled 8 times finer, so thin bands and sharp surfaces are drawn where "
+                       "they lie (0: off)",
+               .get = [](const RenderSettings& s) { return number_text(s.refine_tol); },
+               .set = [](RenderSettings& s, double v) { s.refine_tol = v; }});
   t.push_back({.name = "level-tf", .kind = K::toggle, .group = G::quality, .unit = {}, .lo = 0, .hi = 0,
                .choices = kToggle,
                .help = "LOD level bricks (rays) classified by the TF averaged over the spread of "

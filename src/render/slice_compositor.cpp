@@ -8,6 +8,7 @@
 #include <string>
 
 #include "gl/gl_error.h"
+#include "tsp/frame/refine.h"
 #include "tsp/frame/sample_steps.h"
 #include "tsp/metric/level_tf.h"
 
@@ -23,6 +24,7 @@ constexpr int kStepMapUnit = 5;        // texture unit of adaptive sampling's pe
 constexpr int kTfRowsUnit = 6;         // texture unit of adaptive sampling's TF rows
 constexpr int kLevelTfUnit = 7;        // texture unit of the coarse levels' TF rows
 constexpr int kSurfaceDepthUnit = 8;    // texture unit of the surface splats' depths
+constexpr int kRefineUnit = 9;          // texture unit of refinement's TF table
 // Largest opacity per voxel a flat box is given, so that ln(1 − α) stays finite.
 constexpr float kMaxFlatAlpha = 1.f - 1e-6f;
 
@@ -201,6 +203,7 @@ void SliceCompositor::set_units(const Program& p) {
   gl_.Uniform1i(p.uniform("tf_rows"), kTfRowsUnit);
   gl_.Uniform1i(p.uniform("level_tfs"), kLevelTfUnit);
   gl_.Uniform1i(p.uniform("surface_depth"), kSurfaceDepthUnit);
+  gl_.Uniform1i(p.uniform("tf_refine"), kRefineUnit);
 }
 
 void SliceCompositor::set_clip(const tsp::ClipRegion& clip, const tsp::TransferFunction* surface,
@@ -286,6 +289,9 @@ void SliceCompositor::begin_frame(const tsp::Camera& camera, const RenderSetting
   else if (plain && settings.preintegrated)
     rays_ = variant(rays_preint_, "#define TSP_CLIP 0\n#define TSP_SEGMENTS 1\n"
                                   "#define TSP_PREINT 1\n");
+  else if (plain && settings.refine_tol > 0)
+    rays_ = variant(rays_refine_, "#define TSP_CLIP 0\n#define TSP_SEGMENTS 1\n"
+                                  "#define TSP_REFINE 1\n");
   else
     rays_ = rays_base_;
   const tsp::CameraParams& view = camera.params();
@@ -373,6 +379,9 @@ void SliceCompositor::begin_frame(const tsp::Camera& camera, const RenderSetting
   if (surface_on_) surface_tf_.bind_opaque(kSurfaceTfUnit);
   tf_.bind(kTfUnit, settings.spacing);
   if (adaptive_) tf_.bind_rows(kTfRowsUnit, settings.spacing);
+  if (rays_refine_ && rays_ == &*rays_refine_) {
+    tf_.bind_refine(kRefineUnit, settings.spacing, tsp::kRefineSamples, settings.refine_tol);
+  }
   tf_.bind_levels(kLevelTfUnit, settings.spacing);  // (read by level pages with a row)
   gl_.ActiveTexture(GL_TEXTURE0 + kVolumeUnit);
   gl_.BeginQuery(GL_SAMPLES_PASSED, fragments_query_);

@@ -162,6 +162,7 @@ class SliceCompositor {
   std::optional<Program> rays_adaptive_;  ///< the caster with adaptive sampling (first use)
   /// The caster in exact segments with pre-integration (each segment's two ends).
   std::optional<Program> rays_preint_;
+  std::optional<Program> rays_refine_;
   const Program* rays_base_ = &rays_plain_;  ///< the caster set_clip chose
   const Program* rays_ = &rays_plain_;  ///< the caster in use this frame
   bool adaptive_ = false;               ///< this frame samples adaptively

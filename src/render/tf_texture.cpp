@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "tsp/frame/refine.h"
 #include "tsp/frame/sample_steps.h"
 #include "tsp/metric/level_tf.h"
 #include "tsp/metric/preintegration.h"
@@ -14,6 +15,7 @@ TfTexture::TfTexture(const GlApi& gl) : gl_(gl) {
   gl_.GenTextures(1, &table_id_);
   gl_.GenTextures(1, &rows_id_);
   gl_.GenTextures(1, &levels_id_);
+  gl_.GenTextures(1, &refine_id_);
 }
 
 TfTexture::~TfTexture() {
@@ -21,6 +23,7 @@ TfTexture::~TfTexture() {
   gl_.DeleteTextures(1, &table_id_);
   gl_.DeleteTextures(1, &rows_id_);
   gl_.DeleteTextures(1, &levels_id_);
+  gl_.DeleteTextures(1, &refine_id_);
 }
 
 void TfTexture::set(const tsp::TransferFunction& tf, tsp::ValueRange quantized,
@@ -31,6 +34,8 @@ void TfTexture::set(const tsp::TransferFunction& tf, tsp::ValueRange quantized,
   table_spacing_ = -1;
   rows_spacing_ = -1;
   levels_spacing_ = -1;
+  refine_spacing_ = -1;
+  refine_tol_ = -1;
   opaque_current_ = false;
   // A normalised code s means v = q.lo + s·q.width; its TF coordinate is (v − tf.lo)/tf.width.
   const tsp::ValueRange d = tf.domain();
@@ -97,6 +102,36 @@ void TfTexture::bind_levels(int unit, double spacing) {
                  0, GL_RGBA, GL_FLOAT, rgba.data());
   check_gl(gl_, "uploading the coarse levels' transfer functions");
   levels_spacing_ = spacing;
+}
+
+void TfTexture::bind_refine(int unit, double spacing, int samples, double tol) {
+  gl_.ActiveTexture(GLenum(GL_TEXTURE0 + unit));
+  gl_.BindTexture(GL_TEXTURE_2D, refine_id_);
+  if (spacing == refine_spacing_ && tol == refine_tol_) return;
+  // Row 0: the point lookup with each entry's piece packed into its opacity, α + 2·piece (a
+  // float keeps the opacity to 2⁻¹⁵ with the 256 pieces of a 256-entry TF at most, 2⁻¹⁰ with
+  // 4096). Row 1: the lookup for the fine step.
+  const std::vector<int> pieces = tsp::tf_pieces(tf_, spacing, tol);
+  std::vector<float> rgba;
+  rgba.reserve(std::size_t(tf_.size()) * 8);
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    const tsp::Rgba& e = tf_.entries()[i];
+    const float a = tsp::corrected_opacity(e.a, spacing);
+    rgba.insert(rgba.end(), {e.r * a, e.g * a, e.b * a, a + 2.f * float(pieces[i])});
+  }
+  for (const tsp::Rgba& e : tf_.entries()) {
+    const float a = tsp::corrected_opacity(e.a, spacing / samples);
+    rgba.insert(rgba.end(), {e.r * a, e.g * a, e.b * a, a});
+  }
+  gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, GLsizei(tf_.size()), 2, 0, GL_RGBA, GL_FLOAT,
+                 rgba.data());
+  check_gl(gl_, "uploading the refinement's transfer functions");
+  refine_spacing_ = spacing;
+  refine_tol_ = tol;
 }
 
 void TfTexture::bind_opaque(int unit) {

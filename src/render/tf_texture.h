@@ -41,6 +41,12 @@ class TfTexture {
   /// tsp::level_tf_sigma(r); re-uploads first when the TF or spacing changed. Throws
   /// tsp::GlError.
   void bind_levels(int unit, double spacing);
+  /// Binds refinement's K × 2 table (volume_ray.frag, TSP_REFINE) to texture unit `unit`: row 0
+  /// the lookup of bind() with each entry's piece (tsp::tf_pieces at spacing and tol) packed
+  /// into its opacity as α + 2·piece, row 1 the lookup of bind() for a spacing of
+  /// spacing / samples; re-uploads first when the TF, spacing or tol changed. Throws
+  /// tsp::GlError.
+  void bind_refine(int unit, double spacing, int samples, double tol);
   /// Binds the TF's colours, opaque and not premultiplied (a probe surface's lookup), to
   /// texture unit `unit`, re-uploading first when the TF changed. Throws tsp::GlError.
   void bind_opaque(int unit);
@@ -51,12 +57,14 @@ class TfTexture {
 
  private:
   const GlApi& gl_;
-  GLuint id_ = 0, table_id_ = 0, rows_id_ = 0, levels_id_ = 0;
+  GLuint id_ = 0, table_id_ = 0, rows_id_ = 0, levels_id_ = 0, refine_id_ = 0;
   double scale_ = 1, offset_ = 0;
   double spacing_ = -1;             ///< spacing the texture was corrected for (−1: stale)
   double table_spacing_ = -1;       ///< spacing the pre-integrated table was made for
   double rows_spacing_ = -1;        ///< spacing the adaptive rows were made for
   double levels_spacing_ = -1;      ///< spacing the level rows were made for
+  double refine_spacing_ = -1;      ///< spacing refinement's lookups were made for
+  double refine_tol_ = -1;          ///< tolerance refinement's pieces were cut with
   bool opaque_current_ = false;     ///< the opaque colours are uploaded (bind_opaque)
   tsp::TransferFunction tf_;        ///< the TF as given (uncorrected, not premultiplied)
   std::vector<double> prior_;       ///< per entry, the data's count there (empty: none)

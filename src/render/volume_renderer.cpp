@@ -93,6 +93,7 @@ VolumeRenderer::ReuseKey VolumeRenderer::reuse_key(const tsp::Camera& camera,
   k.clip_serial = clip_serial_;
   k.render_scale = s.render_scale;
   k.sampling_tol = s.sampling_tol;
+  k.refine_tol = s.refine_tol;
   k.surface = s.surface && compositor_->has_surface();  // a frame with it is never kept, nor one after
   return k;
 }

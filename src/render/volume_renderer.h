@@ -120,6 +120,7 @@ class VolumeRenderer {
     std::uint64_t clip_serial = 0;
     double render_scale = 1;
     double sampling_tol = 0;
+    double refine_tol = 0;
     bool surface = false;
     bool operator==(const ReuseKey&) const = default;
   };

@@ -134,12 +134,12 @@ TEST(PlaybackTuner, MeasuresEachRungAgainstFullQualityAsTheRendererDrawsIt) {
       worst = std::max(worst, de);
     }
     // (A smaller render target magnified into the probe's canvas and into the default
-    // framebuffer round a few pixels differently: within 1e-3.)
+    // framebuffer round a few pixels differently: within 1e-3. At full scale too: refinement's
+    // choice of a segment is discrete, and a brick's atlas slot — which differs between the
+    // tuner's and these draws — rounds its texture coordinates differently, which can flip it
+    // at a pixel or two.)
     EXPECT_NEAR(t.mean_de, mean, 1e-3) << t.rung.name;
     EXPECT_NEAR(t.max_step_de, worst, 1e-3) << t.rung.name;
-    if (t.rung.render_scale == 1) {
-      EXPECT_EQ(t.mean_de, mean) << t.rung.name;
-    }
     EXPECT_GT(t.ms, 0) << t.rung.name;
     if (t.rung.render_scale <= 0.5) quarter_de = std::max(quarter_de, t.mean_de);
   }
