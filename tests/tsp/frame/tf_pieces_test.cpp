@@ -79,7 +79,9 @@ TEST(TfPieces, EveryPieceStaysNearItsChordAndIsAsLongAsItCanBe) {
         for (int b = a; b <= end; ++b)
           EXPECT_LE(stray(tf, a, b, spacing), 2 * tol + 1e-6)
               << "trial " << trial << ", entries " << a << ".." << b;
-      if (i < 64) EXPECT_GT(stray(tf, start, i, spacing), tol) << "trial " << trial;
+      if (i < 64) {
+        EXPECT_GT(stray(tf, start, i, spacing), tol) << "trial " << trial;
+      }
       start = i;
     }
   }
