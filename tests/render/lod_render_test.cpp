@@ -7,8 +7,7 @@
 #include <cmath>
 
 #include "render/volume_renderer.h"
-#include "support/memory_source.h"
-#include "support/paths.h"
+#include "support/function_tsp.h"
 #include "tsp/build/build.h"
 #include "tsp/core/color.h"
 #include "tsp/lod/lod_cut.h"
@@ -30,13 +29,7 @@ struct LodScene {
   tsp::MetricResult metric;
   std::unique_ptr<tsp::WholeTreeMetric> nodes;
   LodScene(const std::string& name, tsp::Dims d, auto f, const tsp::TransferFunction& tf) {
-    auto src = tsptest::MemorySource::from_function(d, 1, f);
-    const std::string path = (tsptest::temp_dir() / (name + ".tsp")).string();
-    tsp::BuildOptions o;
-    o.brick_size = 16;
-    o.range = tsp::ValueRange{0, 1};
-    tsp::build_tsp_file(src, path, o);
-    file = tsp::TspFile::open(path);
+    file = tsp::TspFile::open(tsptest::build_function_tsp(name, d, f));
     ctx = create_offscreen_context(160, 120);
     renderer = std::make_unique<VolumeRenderer>(*ctx, *file, tsp::CachePolicy::on);
     renderer->set_transfer_function(tf);

@@ -11,8 +11,7 @@
 
 #include "render/baseline_renderer.h"
 #include "render/volume_renderer.h"
-#include "support/memory_source.h"
-#include "support/paths.h"
+#include "support/function_tsp.h"
 #include "tsp/build/build.h"
 #include "tsp/frame/refine.h"
 #include "tsp/metric/compute_errors.h"
@@ -35,13 +34,7 @@ struct RefineScene {
   std::unique_ptr<tsp::WholeTreeMetric> nodes;
   RefineScene(const std::string& name, const std::function<float(int, int, int, int)>& f,
               const tsp::TransferFunction& tf) {
-    auto src = tsptest::MemorySource::from_function({65, 65, 65}, 1, f);
-    const std::string path = (tsptest::temp_dir() / (name + ".tsp")).string();
-    tsp::BuildOptions o;
-    o.brick_size = 16;
-    o.range = tsp::ValueRange{0, 1};
-    tsp::build_tsp_file(src, path, o);
-    file = tsp::TspFile::open(path);
+    file = tsp::TspFile::open(tsptest::build_function_tsp(name, {65, 65, 65}, f));
     renderer = std::make_unique<VolumeRenderer>(*ctx, *file, tsp::CachePolicy::on);
     renderer->set_transfer_function(tf);
     baseline = std::make_unique<BaselineRenderer>(*ctx, *file);
