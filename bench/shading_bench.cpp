@@ -120,8 +120,8 @@ int main(int argc, char** argv) {
     }
     for (int c = 0; c < kConfigCount; ++c)
       if (timed[std::size_t(c)])
-        std::printf("%-14s %-22s %14.2f %13.3fx\n", tf_name.c_str(), kConfigs[c].label, median(ms[c]),
-                  median(ratio[c]));
+        std::printf("%-14s %-22s %14.2f %13.3fx\n", tf_name.c_str(), kConfigs[c].label,
+                    median(ms[c]), median(ratio[c]));
     std::fflush(stdout);
   }
   return 0;

@@ -145,7 +145,6 @@ const float kPieceRow = 0.25, kFineRow = 0.75;
 float piece_of(vec4 e) { return floor(e.a * 0.5); }
 #endif
 
-
 void main() {
   RaySpan r = ray_span();
   float len = (r.depth_exit - r.depth_entry) / r.cos_theta;

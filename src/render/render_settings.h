@@ -94,9 +94,11 @@ struct RenderSettings {
   /// (0: every brick every spacing). Excludes pre-integration.
   double sampling_tol = 0;
   /// Refinement (rays compositing without probes, neither adaptive sampling nor
-  /// pre-integration; tsp/frame/refine.h): a segment across which the TF varies by more than
-  /// this (premultiplied colour and opacity at the spacing) is sampled tsp::kRefineSamples
-  /// times finer, so thin bands and one-voxel jumps are drawn where they lie (0: off).
+  /// pre-integration; tsp/frame/refine.h): the TF is cut into pieces that stay within this of a
+  /// straight line (premultiplied colour and opacity at the spacing, tsp::tf_pieces), and a
+  /// segment whose middle falls in another piece than a neighbouring middle is sampled
+  /// tsp::kRefineSamples times finer, so thin bands and one-voxel jumps are drawn where they lie
+  /// (0: off).
   double refine_tol = tsp::kDefaultRefineTol;
   /// Rays compositing: the mesh's boundary drawn opaque under the volume from TetSplat's splat
   /// hierarchy (render/surface_splats.h), where the caller gives the compositor one.

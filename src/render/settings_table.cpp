@@ -66,9 +66,10 @@ std::vector<SettingSpec> make_table() {
   t.push_back({.name = "refine-tol", .kind = K::number, .group = G::quality,
                .unit = "TF variation", .lo = 0, .hi = kInf, .choices = {}, .ui_lo = 0, .ui_hi = 1,
                .help = "Refinement (rays, no probes, not with --sampling-tol or --preintegrated): "
-                       "a segment across which the premultiplied TF varies by more than this is "
-                       "sampled 8 times finer, so thin bands and sharp surfaces are drawn where "
-                       "they lie (0: off)",
+                       "the TF is cut into pieces that stay within this of a straight line "
+                       "(premultiplied colour and opacity); a segment whose sample falls in "
+                       "another piece than a neighbour's is sampled 6 times finer, so thin bands "
+                       "and sharp surfaces are drawn where they lie (0: off)",
                .get = [](const RenderSettings& s) { return number_text(s.refine_tol); },
                .set = [](RenderSettings& s, double v) { s.refine_tol = v; }});
   t.push_back({.name = "level-tf", .kind = K::toggle, .group = G::quality, .unit = {}, .lo = 0, .hi = 0,

@@ -283,13 +283,16 @@ void SliceCompositor::begin_frame(const tsp::Camera& camera, const RenderSetting
     }
     return &*p;
   };
+  // Refinement is the segment caster's own sampling, unless adaptive sampling or
+  // pre-integration takes its place.
+  const bool refine = plain && !adaptive_ && !settings.preintegrated && settings.refine_tol > 0;
   if (adaptive_)
     rays_ = variant(rays_adaptive_, "#define TSP_CLIP 0\n#define TSP_SEGMENTS 1\n"
                                             "#define TSP_ADAPTIVE 1\n");
   else if (plain && settings.preintegrated)
     rays_ = variant(rays_preint_, "#define TSP_CLIP 0\n#define TSP_SEGMENTS 1\n"
                                   "#define TSP_PREINT 1\n");
-  else if (plain && settings.refine_tol > 0)
+  else if (refine)
     rays_ = variant(rays_refine_, "#define TSP_CLIP 0\n#define TSP_SEGMENTS 1\n"
                                   "#define TSP_REFINE 1\n");
   else
@@ -379,9 +382,8 @@ void SliceCompositor::begin_frame(const tsp::Camera& camera, const RenderSetting
   if (surface_on_) surface_tf_.bind_opaque(kSurfaceTfUnit);
   tf_.bind(kTfUnit, settings.spacing);
   if (adaptive_) tf_.bind_rows(kTfRowsUnit, settings.spacing);
-  if (rays_refine_ && rays_ == &*rays_refine_) {
+  if (refine)
     tf_.bind_refine(kRefineUnit, settings.spacing, tsp::kRefineSamples, settings.refine_tol);
-  }
   tf_.bind_levels(kLevelTfUnit, settings.spacing);  // (read by level pages with a row)
   gl_.ActiveTexture(GL_TEXTURE0 + kVolumeUnit);
   gl_.BeginQuery(GL_SAMPLES_PASSED, fragments_query_);

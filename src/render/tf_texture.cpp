@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 
 #include "tsp/frame/refine.h"
 #include "tsp/frame/sample_steps.h"
@@ -9,6 +10,32 @@
 #include "tsp/metric/preintegration.h"
 
 namespace tspgl {
+
+namespace {
+
+// Appends entries premultiplied, their opacity corrected for `spacing` voxels (spec §9): the
+// lookup every TF texture holds.
+void append_corrected(std::vector<float>& rgba, std::span<const tsp::Rgba> entries,
+                      double spacing) {
+  for (const tsp::Rgba& e : entries) {
+    const float a = tsp::corrected_opacity(e.a, spacing);
+    rgba.insert(rgba.end(), {e.r * a, e.g * a, e.b * a, a});
+  }
+}
+
+// Uploads `rows` rows of k RGBA floats to the bound 2-D texture, nearest and clamped.
+void upload_rows(const GlApi& gl, const std::vector<float>& rgba, int k, int rows,
+                 const char* what) {
+  gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, GLsizei(k), GLsizei(rows), 0, GL_RGBA, GL_FLOAT,
+                rgba.data());
+  check_gl(gl, what);
+}
+
+}  // namespace
 
 TfTexture::TfTexture(const GlApi& gl) : gl_(gl) {
   gl_.GenTextures(1, &id_);
@@ -49,10 +76,7 @@ void TfTexture::bind(int unit, double spacing) {
   if (spacing == spacing_) return;
   std::vector<float> rgba;
   rgba.reserve(std::size_t(tf_.size()) * 4);
-  for (const tsp::Rgba& e : tf_.entries()) {
-    const float a = tsp::corrected_opacity(e.a, spacing);
-    rgba.insert(rgba.end(), {e.r * a, e.g * a, e.b * a, a});
-  }
+  append_corrected(rgba, tf_.entries(), spacing);
   gl_.TexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   gl_.TexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   gl_.TexParameteri(GL_TEXTURE_1D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -68,18 +92,9 @@ void TfTexture::bind_rows(int unit, double spacing) {
   if (spacing == rows_spacing_) return;
   std::vector<float> rgba;
   rgba.reserve(std::size_t(tf_.size()) * 4 * tsp::kStepMultipliers.size());
-  for (double m : tsp::kStepMultipliers)
-    for (const tsp::Rgba& e : tf_.entries()) {
-      const float a = tsp::corrected_opacity(e.a, spacing * m);
-      rgba.insert(rgba.end(), {e.r * a, e.g * a, e.b * a, a});
-    }
-  gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, GLsizei(tf_.size()),
-                 GLsizei(tsp::kStepMultipliers.size()), 0, GL_RGBA, GL_FLOAT, rgba.data());
-  check_gl(gl_, "uploading the adaptive sampling's transfer functions");
+  for (double m : tsp::kStepMultipliers) append_corrected(rgba, tf_.entries(), spacing * m);
+  upload_rows(gl_, rgba, tf_.size(), int(tsp::kStepMultipliers.size()),
+              "uploading the adaptive sampling's transfer functions");
   rows_spacing_ = spacing;
 }
 
@@ -90,17 +105,9 @@ void TfTexture::bind_levels(int unit, double spacing) {
   std::vector<float> rgba;
   rgba.reserve(std::size_t(tf_.size()) * 4 * tsp::kLevelTfRows);
   for (int row = 0; row < tsp::kLevelTfRows; ++row)
-    for (const tsp::Rgba& e : tsp::blurred_entries(tf_, tsp::level_tf_sigma(row), prior_)) {
-      const float a = tsp::corrected_opacity(e.a, spacing);
-      rgba.insert(rgba.end(), {e.r * a, e.g * a, e.b * a, a});
-    }
-  gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, GLsizei(tf_.size()), GLsizei(tsp::kLevelTfRows),
-                 0, GL_RGBA, GL_FLOAT, rgba.data());
-  check_gl(gl_, "uploading the coarse levels' transfer functions");
+    append_corrected(rgba, tsp::blurred_entries(tf_, tsp::level_tf_sigma(row), prior_), spacing);
+  upload_rows(gl_, rgba, tf_.size(), tsp::kLevelTfRows,
+              "uploading the coarse levels' transfer functions");
   levels_spacing_ = spacing;
 }
 
@@ -114,22 +121,10 @@ void TfTexture::bind_refine(int unit, double spacing, int samples, double tol) {
   const std::vector<int> pieces = tsp::tf_pieces(tf_, spacing, tol);
   std::vector<float> rgba;
   rgba.reserve(std::size_t(tf_.size()) * 8);
-  for (std::size_t i = 0; i < pieces.size(); ++i) {
-    const tsp::Rgba& e = tf_.entries()[i];
-    const float a = tsp::corrected_opacity(e.a, spacing);
-    rgba.insert(rgba.end(), {e.r * a, e.g * a, e.b * a, a + 2.f * float(pieces[i])});
-  }
-  for (const tsp::Rgba& e : tf_.entries()) {
-    const float a = tsp::corrected_opacity(e.a, spacing / samples);
-    rgba.insert(rgba.end(), {e.r * a, e.g * a, e.b * a, a});
-  }
-  gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, GLsizei(tf_.size()), 2, 0, GL_RGBA, GL_FLOAT,
-                 rgba.data());
-  check_gl(gl_, "uploading the refinement's transfer functions");
+  append_corrected(rgba, tf_.entries(), spacing);
+  for (std::size_t i = 0; i < pieces.size(); ++i) rgba[4 * i + 3] += 2.f * float(pieces[i]);
+  append_corrected(rgba, tf_.entries(), spacing / samples);
+  upload_rows(gl_, rgba, tf_.size(), 2, "uploading the refinement's transfer functions");
   refine_spacing_ = spacing;
   refine_tol_ = tol;
 }
