@@ -2,7 +2,8 @@
 # Installs dependencies, builds, and runs the whole test suite with ctest.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/install-deps.sh
+# --mpi: Open MPI and parallel HDF5, so tspplay-mpi is built and its tests run (CI included).
+bash scripts/install-deps.sh --mpi
 bash scripts/build.sh
 cd build
 # The window (GLFW) tests need an X display; without one, run the suite on a virtual one

@@ -95,6 +95,7 @@ namespace tspgl {
   X(PFNGLTEXIMAGE2DPROC, TexImage2D)                             \
   X(PFNGLTEXIMAGE3DPROC, TexImage3D)                             \
   X(PFNGLTEXSUBIMAGE3DPROC, TexSubImage3D)                       \
+  X(PFNGLTEXSUBIMAGE2DPROC, TexSubImage2D)                       \
   /* framebuffer objects */                                      \
   X(PFNGLGENFRAMEBUFFERSPROC, GenFramebuffers)                   \
   X(PFNGLDELETEFRAMEBUFFERSPROC, DeleteFramebuffers)             \

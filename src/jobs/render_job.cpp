@@ -67,6 +67,7 @@ json frame_json(const FrameRecord& f) {
           {"fragments", r.fragments},
           {"redrawn_percent", r.redrawn_percent},
           {"dense", r.dense},
+          {"backend", r.backend},
           {"step_multiplier", r.step_multiplier},
           {"steps_merged", {r.spans_lo, r.spans_hi}},
           {"steps_shown", {r.shown_lo, r.shown_hi}},
@@ -76,6 +77,7 @@ json frame_json(const FrameRecord& f) {
           {"time", f.time ? json(*f.time) : json(nullptr)},
           {"time_text", f.time ? json(f.time_text) : json(nullptr)},
           {"lod", f.lod ? lod_json(*f.lod) : json(nullptr)}};
+  if (!r.backend_note.empty()) j["backend_note"] = r.backend_note;
   if (f.surface_splats >= 0) {
     j["surface_splats"] = f.surface_splats;
     j["surface_cut_ms"] = f.surface_cut_ms;

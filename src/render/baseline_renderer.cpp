@@ -35,12 +35,15 @@ FrameReport BaselineRenderer::render(int step, const tsp::Camera& camera,
   RenderSettings uniform = settings;
   uniform.sampling_tol = 0;  // the non-TSP baseline samples every spacing everywhere
   compositor_.begin_frame(camera, uniform);
+  r.backend = compositor_.cpu_frame() ? "cpu" : "gl";
+  r.backend_note = compositor_.backend_note();
 
   // The whole step, assembled from the bricks and uploaded as one texture, every frame.
   tsp::Stopwatch phase;
   // With a stencil the bricks carry their flags after the codes: the volume interleaves both.
   const int channels = tree_.has_stencil() ? 2 : 1;
-  volume_.resize(std::size_t(d.count()) * std::size_t(channels));
+  if (volume_.size != std::array<int, 3>{d.x, d.y, d.z} || volume_.channels != channels)
+    volume_.allocate(d.x, d.y, d.z, channels);
   for (int b = 0; b < octree.brick_count(); ++b) {
     tsp::BrickSamples samples = bricks_.get(b, step);
     const tsp::Box s = octree.brick_samples(b);
@@ -50,18 +53,18 @@ FrameReport BaselineRenderer::render(int step, const tsp::Camera& camera,
       for (int y = s.lo[1]; y < s.hi[1]; ++y, i += std::size_t(s.size(0))) {
         const std::size_t dst = s.lo[0] + std::size_t(d.x) * (y + std::size_t(d.y) * z);
         if (channels == 1) {
-          std::memcpy(volume_.data() + dst, samples->data() + i,
+          std::memcpy(volume_.texels.data() + dst, samples->data() + i,
                       std::size_t(s.size(0)) * sizeof(std::uint16_t));
           continue;
         }
         for (int x = 0; x < s.size(0); ++x) {
-          volume_[2 * (dst + std::size_t(x))] = (*samples)[i + std::size_t(x)];
-          volume_[2 * (dst + std::size_t(x)) + 1] = (*samples)[n + i + std::size_t(x)] ? 65535 : 0;
+          volume_.texels[2 * (dst + std::size_t(x))] = (*samples)[i + std::size_t(x)];
+          volume_.texels[2 * (dst + std::size_t(x)) + 1] = (*samples)[n + i + std::size_t(x)] ? 65535 : 0;
         }
       }
   }
   if (texture_) gl.DeleteTextures(1, &texture_);
-  texture_ = create_scalar_texture(gl, d.x, d.y, d.z, volume_.data(), channels);
+  texture_ = create_scalar_texture(gl, d.x, d.y, d.z, volume_.texels.data(), channels);
   r.upload_ms = phase.lap_ms();
   r.bytes_uploaded = d.count() * std::int64_t(sizeof(std::uint16_t));
   r.textures_resident = 1;
@@ -69,7 +72,7 @@ FrameReport BaselineRenderer::render(int step, const tsp::Camera& camera,
 
   soup_.clear();
   const tsp::Box all{{0, 0, 0}, {d.x, d.y, d.z}};
-  const BrickSlot slot{texture_, {0.5f, 0.5f, 0.5f}, {d.x, d.y, d.z}};
+  const BrickSlot slot{texture_, {0.5f, 0.5f, 0.5f}, {d.x, d.y, d.z}, {1, 1, 1}, &volume_};
   if (settings.compositing == Compositing::rays) {
     // One "brick", the whole volume, for the same one-pass ray caster the TSP renderer uses.
     pages_.reset({1, 1, 1}, {std::max(d.x - 1, 1), std::max(d.y - 1, 1), std::max(d.z - 1, 1)});

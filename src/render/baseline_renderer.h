@@ -6,6 +6,7 @@
 
 #include "gl/context.h"
 #include "render/frame_report.h"
+#include "render/host_volume.h"
 #include "render/slice_compositor.h"
 #include "tsp/frame/camera.h"
 #include "tsp/metric/transfer_function.h"
@@ -42,7 +43,7 @@ class BaselineRenderer {
   tsp::BrickCache bricks_;
   SliceCompositor compositor_;
   GLuint texture_ = 0;
-  std::vector<std::uint16_t> volume_;  ///< the whole step
+  HostVolume volume_;  ///< the whole step (GL uploads it; the CPU caster reads it)
   tsp::PolygonSoup soup_;
   BrickPages pages_;
 };

@@ -67,9 +67,11 @@ void BrickTextures::write(const tsp::TextureKey& key, int slot) {
   gl_.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
   if (channels_ == 2) {
     interleave_stencil(samples->data(), std::size_t(s.count()), texels_);
+    if (mirror_) host_.write(o, s.samples[0], s.samples[1], s.samples[2], texels_.data());
     gl_.TexSubImage3D(GL_TEXTURE_3D, 0, o[0], o[1], o[2], s.samples[0], s.samples[1],
                       s.samples[2], GL_RG, GL_UNSIGNED_SHORT, texels_.data());
   } else {
+    if (mirror_) host_.write(o, s.samples[0], s.samples[1], s.samples[2], samples->data());
     gl_.TexSubImage3D(GL_TEXTURE_3D, 0, o[0], o[1], o[2], s.samples[0], s.samples[1],
                       s.samples[2], GL_RED, GL_UNSIGNED_SHORT, samples->data());
   }
@@ -98,6 +100,8 @@ void BrickTextures::grow(int min_capacity) {
   atlas_ = create_scalar_texture(gl_, grid[0] * slot_[0], grid[1] * slot_[1], grid[2] * slot_[2],
                                  nullptr, channels_);
   check_gl(gl_, "allocating the brick atlas");
+  if (mirror_)
+    host_.allocate(grid[0] * slot_[0], grid[1] * slot_[1], grid[2] * slot_[2], channels_);
   slots_.clear();
   free_.clear();
   for (int s = capacity() - 1; s >= int(resident.size()); --s) free_.push_back(s);
@@ -135,7 +139,25 @@ BrickSlot BrickTextures::at(const tsp::TextureKey& key) const {
     b.offset[a] = float(o[a]) + 0.5f - float(s.origin[a]) * b.scale[a];
     b.atlas_size[a] = grid_[a] * slot_[a];
   }
+  b.host = mirror_ ? &host_ : nullptr;
   return b;
+}
+
+void BrickTextures::set_host_mirror(bool on) {
+  if (on == mirror_) return;
+  mirror_ = on;
+  if (!on) {
+    host_ = HostVolume{};
+    return;
+  }
+  if (!atlas_) return;  // allocated with the atlas
+  host_.allocate(grid_[0] * slot_[0], grid_[1] * slot_[1], grid_[2] * slot_[2], channels_);
+  // Residents in slot order: the same copy whatever the map's order.
+  std::vector<std::pair<int, tsp::TextureKey>> resident;
+  for (const auto& [key, slot] : slots_) resident.emplace_back(slot, key);
+  std::sort(resident.begin(), resident.end(),
+            [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (const auto& [slot, key] : resident) write(key, slot);
 }
 
 void BrickTextures::erase(const tsp::TextureKey& key) {

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "gl/gl_api.h"
+#include "render/host_volume.h"
 #include "tsp/frame/sample_steps.h"
 #include "tsp/frame/texture_cache.h"
 #include "tsp/store/brick_cache.h"
@@ -35,6 +36,8 @@ struct BrickSlot {
   std::array<float, 3> offset{};     ///< atlas texel coordinate − sample coordinate · scale
   std::array<int, 3> atlas_size{};   ///< atlas extent in texels
   std::array<float, 3> scale{1, 1, 1};  ///< texels per voxel: 1 / the brick's LOD factor
+  /// The texture's texels in RAM for the CPU ray caster (null: GL only; see set_host_mirror).
+  const HostVolume* host = nullptr;
 };
 
 /// Brick textures by key, as slots of one atlas that grows (doubling, re-uploading the residents
@@ -72,6 +75,10 @@ class BrickTextures {
   int variations_count() const { return int(variations_.size()); }
   /// Number of resident keys.
   int size() const { return int(slots_.size()); }
+  /// Keeps (on) or drops (off) a copy of the atlas in RAM that the CPU ray caster reads
+  /// (BrickSlot::host); turning it on copies every resident brick. Throws what the brick store
+  /// throws.
+  void set_host_mirror(bool on);
   /// Slots the atlas holds now.
   int capacity() const { return grid_[0] * grid_[1] * grid_[2]; }
 
@@ -83,6 +90,8 @@ class BrickTextures {
   std::vector<std::uint16_t> texels_;  ///< interleaving buffer for stencilled uploads
   std::array<int, 3> grid_{};  ///< slots per axis
   GLuint atlas_ = 0;
+  bool mirror_ = false;  ///< host_ mirrors the atlas
+  HostVolume host_;
   std::vector<int> free_;      ///< free slot indices (popped from the back)
   std::unordered_map<tsp::TextureKey, int, tsp::TextureKeyHash> slots_;
   std::unordered_map<tsp::TextureKey, tsp::CellVariations, tsp::TextureKeyHash>

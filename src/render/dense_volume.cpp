@@ -23,6 +23,10 @@ std::int64_t DenseVolume::update(const std::vector<tsp::TextureKey>& keys) {
     texture_ = create_scalar_texture(gl_, d.x, d.y, d.z, nullptr, channels_);
     check_gl(gl_, "allocating the dense volume texture");
   }
+  if (mirror_ && host_.empty()) {
+    const tsp::Dims d = o.dims();
+    host_.allocate(d.x, d.y, d.z, channels_);
+  }
   if (held_.size() != keys.size()) held_.assign(keys.size(), tsp::TextureKey{-1, -1, -1});
   std::int64_t bytes = 0;
   gl_.BindTexture(GL_TEXTURE_3D, texture_);
@@ -36,9 +40,13 @@ std::int64_t DenseVolume::update(const std::vector<tsp::TextureKey>& keys) {
     const tsp::Box s = o.brick_samples(b);
     if (channels_ == 2) {
       interleave_stencil(samples->data(), std::size_t(s.count()), texels_);
+      if (mirror_) host_.write({s.lo[0], s.lo[1], s.lo[2]}, s.size(0), s.size(1), s.size(2),
+                               texels_.data());
       gl_.TexSubImage3D(GL_TEXTURE_3D, 0, s.lo[0], s.lo[1], s.lo[2], s.size(0), s.size(1),
                         s.size(2), GL_RG, GL_UNSIGNED_SHORT, texels_.data());
     } else {
+      if (mirror_) host_.write({s.lo[0], s.lo[1], s.lo[2]}, s.size(0), s.size(1), s.size(2),
+                               samples->data());
       gl_.TexSubImage3D(GL_TEXTURE_3D, 0, s.lo[0], s.lo[1], s.lo[2], s.size(0), s.size(1),
                         s.size(2), GL_RED, GL_UNSIGNED_SHORT, samples->data());
     }
@@ -50,7 +58,8 @@ std::int64_t DenseVolume::update(const std::vector<tsp::TextureKey>& keys) {
 
 BrickSlot DenseVolume::slot() const {
   const tsp::Dims d = bricks_.store().tree().octree().dims();
-  return BrickSlot{texture_, {0.5f, 0.5f, 0.5f}, {d.x, d.y, d.z}};
+  return BrickSlot{texture_, {0.5f, 0.5f, 0.5f}, {d.x, d.y, d.z}, {1, 1, 1},
+                   mirror_ ? &host_ : nullptr};
 }
 
 }  // namespace tspgl

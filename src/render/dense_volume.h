@@ -34,12 +34,22 @@ class DenseVolume {
   BrickSlot slot() const;
   /// Forgets what it holds (the next update writes every brick).
   void clear() { held_.clear(); }
+  /// Keeps a copy in RAM for the CPU ray caster (BrickSlot::host) from the next update on;
+  /// turning it on or off makes the next update write every brick.
+  void set_host_mirror(bool on) {
+    if (on == mirror_) return;
+    mirror_ = on;
+    host_ = HostVolume{};
+    held_.clear();
+  }
 
  private:
   const GlApi& gl_;
   tsp::BrickCache& bricks_;
   GLuint texture_ = 0;
   int channels_ = 1;
+  bool mirror_ = false;  ///< host_ mirrors the texture
+  HostVolume host_;
   std::vector<tsp::TextureKey> held_;  ///< per leaf brick; brick −1: nothing yet
   std::vector<std::uint16_t> texels_;
 };

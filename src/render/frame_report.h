@@ -38,6 +38,10 @@ struct FrameReport {
   std::int64_t boxes = 0;              ///< boxes drawn whole (ray cast or exact flat)
   std::int64_t fragments = 0;          ///< fragments drawn, not discarded (GL_SAMPLES_PASSED)
   double redrawn_percent = 100;        ///< share of the image drawn again (partial-image reuse)
+  /// Who cast the rays: "gl" or "cpu" (render/cpu_caster.h).
+  std::string backend = "gl";
+  /// Why a frame asked to be cast on the CPU was drawn by GL (empty: it was not).
+  std::string backend_note;
   bool dense = false;  ///< ray cast as one whole-volume texture (DenseVolume), not the brick grid
   std::int64_t deferred_textures = 0;  ///< textures left for later frames (upload_budget)
   /// True when every texture the frame needs was drawn (nothing deferred).

@@ -19,6 +19,10 @@ const char* to_string(Compositing c) {
   return c == Compositing::rays ? "rays" : c == Compositing::boxes ? "boxes" : "slices";
 }
 
+const char* to_string(Backend b) {
+  return b == Backend::cpu ? "cpu" : b == Backend::gl ? "gl" : "auto";
+}
+
 Compositing parse_compositing(const std::string& text, const std::string& option) {
   if (text == "rays") return Compositing::rays;
   if (text == "slices") return Compositing::slices;

@@ -36,6 +36,16 @@ enum class Compositing {
   rays,    ///< the whole volume ray cast in one pass over the brick grid, same slice planes
 };
 
+/// Who casts a frame's rays (rays compositing).
+enum class Backend {
+  automatic,  ///< cpu where the GL renderer is software (llvmpipe, softpipe, swrast), else gl
+  gl,         ///< the GLSL caster (shaders/volume_ray.frag)
+  cpu,        ///< the native caster (render/cpu_caster.h)
+};
+
+/// "auto", "gl" or "cpu".
+const char* to_string(Backend b);
+
 /// "slices", "boxes" or "rays".
 const char* to_string(Compositing c);
 /// Parses "slices", "boxes" or "rays"; throws tsp::UsageError naming `option` and the text.
@@ -51,6 +61,9 @@ struct RenderSettings {
   /// by later frames (FrameReport::deferred_textures > 0 until the frame is complete).
   std::int64_t upload_budget = 0;
   Compositing compositing = Compositing::rays;  ///< how textured boxes are drawn
+  /// Who casts the rays; a frame the CPU caster cannot draw is drawn by GL
+  /// (FrameReport::backend, backend_note).
+  Backend backend = Backend::automatic;
   /// Coherent (flat) nodes drawn as one box composited exactly over each ray's depth through it
   /// (true), or as flat slices every `spacing` (false: the paper's rule).
   bool exact_flat = true;

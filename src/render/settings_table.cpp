@@ -34,6 +34,7 @@ const std::vector<std::string_view> kCompositingWords{"slices", "boxes", "rays"}
 const std::vector<std::string_view> kSpanStepWords{"first", "middle", "mean"};
 const std::vector<std::string_view> kFlatWords{"slices", "exact"};
 const std::vector<std::string_view> kSurfaceWords{"off", "boundary"};
+const std::vector<std::string_view> kBackendWords{"auto", "gl", "cpu"};
 
 std::vector<SettingSpec> make_table() {
   using K = SettingKind;
@@ -96,6 +97,24 @@ std::vector<SettingSpec> make_table() {
                  s.compositing = v == 0 ? Compositing::slices
                                  : v == 1 ? Compositing::boxes : Compositing::rays;
                }});
+  t.push_back({.name = "backend", .kind = K::choice, .group = G::compositing, .unit = {}, .lo = 0, .hi = 0,
+               .choices = kBackendWords,
+               .help = "Who casts the rays: gl (the GLSL caster), cpu (the native caster in RAM, "
+                       "both cores) or auto (cpu where the GL renderer is software: llvmpipe, "
+                       "softpipe, swrast; gl on a GPU). What the cpu caster cannot draw (probes, "
+                       "pre-integration, adaptive sampling, a surface, slices or boxes) is drawn "
+                       "by gl, and frames.json says so",
+               .get = [](const RenderSettings& s) { return std::string(to_string(s.backend)); },
+               .set = [](RenderSettings& s, double v) {
+                 s.backend = v == 0 ? Backend::automatic : v == 1 ? Backend::gl : Backend::cpu;
+               }});
+  t.push_back({.name = "render-scale", .kind = K::number, .group = G::compositing,
+               .unit = "share of the pixels per axis", .lo = kMinRenderScale, .hi = 1,
+               .choices = {}, .ui_lo = kMinRenderScale, .ui_hi = 1,
+               .help = "Rays every 1/S pixels per axis, the picture magnified to the full size "
+                       "(VTK's image sample distance 1/S); 1: every pixel",
+               .get = [](const RenderSettings& s) { return number_text(s.render_scale); },
+               .set = [](RenderSettings& s, double v) { s.render_scale = v; }});
   t.push_back({.name = "preintegrated", .kind = K::toggle, .group = G::compositing, .unit = {}, .lo = 0, .hi = 0,
                .choices = kToggle,
                .help = "Pre-integrated TF lookup over each pair of neighbouring samples",

@@ -165,6 +165,7 @@ SliceCompositor::SliceCompositor(GlContext& ctx)
   for (const Program* p : {&textured_, &box_textured_}) set_units(*p);
   set_units(rays_plain_);
   gl_.GenQueries(1, &fragments_query_);
+  software_gl_ = software_renderer(ctx_.describe());
   for (GLuint* t : {&pages_, &step_map_}) {
     gl_.GenTextures(1, t);
     gl_.BindTexture(GL_TEXTURE_3D, *t);
@@ -258,6 +259,7 @@ void SliceCompositor::set_clip(const tsp::ClipRegion& clip, const tsp::TransferF
 }
 
 void SliceCompositor::set_region(const PixelRect& r, const RenderSettings& settings) {
+  region_ = {r.x0, r.y0, r.x1, r.y1};
   if (r.x1 <= r.x0 || r.y1 <= r.y0) {
     gl_.Disable(GL_SCISSOR_TEST);
     return;
@@ -297,6 +299,8 @@ void SliceCompositor::begin_frame(const tsp::Camera& camera, const RenderSetting
                                   "#define TSP_REFINE 1\n");
   else
     rays_ = rays_base_;
+  choose_backend(settings, plain);
+  region_ = {};
   const tsp::CameraParams& view = camera.params();
   output_ = {settings.viewport_origin[0], settings.viewport_origin[1], view.width, view.height};
   target_.bind(view.width, view.height, settings.render_scale);
@@ -385,8 +389,48 @@ void SliceCompositor::begin_frame(const tsp::Camera& camera, const RenderSetting
   if (refine)
     tf_.bind_refine(kRefineUnit, settings.spacing, tsp::kRefineSamples, settings.refine_tol);
   tf_.bind_levels(kLevelTfUnit, settings.spacing);  // (read by level pages with a row)
+  if (cpu_) {
+    cast_.inverse_view_projection = glm::inverse(camera.view_projection());
+    cast_.view_dir = glm::vec3(float(dir[0] / cosine), float(dir[1] / cosine), float(dir[2] / cosine));
+    cast_.ray_dir = glm::vec3(float(ray[0]), float(ray[1]), float(ray[2]));
+    cast_.eye = glm::vec3(float(eye[0]), float(eye[1]), float(eye[2]));
+    cast_.perspective = camera.perspective();
+    cast_.width = target_.width();
+    cast_.height = target_.height();
+    cast_.spacing = float(settings.spacing);
+    cast_.stencil = stencil_;
+    cast_.shade = settings.shade;
+    cast_.phong = glm::vec4(float(kAmbient), float(kDiffuse), float(kSpecular), float(kSpecularPower));
+    cast_.light_dir = glm::vec3(float(light[0]), float(light[1]), float(light[2]));
+    cast_.inv_voxel = glm::vec3(float(1 / voxel[0]), float(1 / voxel[1]), float(1 / voxel[2]));
+    cast_.tf.entries = tf_.size();
+    cast_.tf.point = tf_.point_rgba().data();
+    cast_.tf.refine = refine ? tf_.refine_rgba().data() : nullptr;
+    cast_.tf.levels = tf_.levels_rgba().data();
+    cast_.tf.scale = tf_.scale();
+    cast_.tf.offset = tf_.offset();
+  }
   gl_.ActiveTexture(GL_TEXTURE0 + kVolumeUnit);
   gl_.BeginQuery(GL_SAMPLES_PASSED, fragments_query_);
+}
+
+void SliceCompositor::choose_backend(const RenderSettings& settings, bool plain) {
+  const bool wanted = settings.backend == Backend::cpu ||
+                      (settings.backend == Backend::automatic && software_gl_);
+  std::string why;
+  if (settings.compositing != Compositing::rays)
+    why = std::string(to_string(settings.compositing)) + " compositing";
+  else if (!plain)
+    why = "clip probes";
+  else if (adaptive_)
+    why = "adaptive sampling (--sampling-tol)";
+  else if (settings.preintegrated)
+    why = "pre-integration";
+  else if (settings.surface && has_surface())
+    why = "a surface under the volume";
+  cpu_ = wanted && why.empty();
+  backend_note_ = wanted && !why.empty() ? "the cpu caster does not draw " + why + ": drawn by gl"
+                                         : std::string();
 }
 
 void SliceCompositor::upload(const tsp::PolygonSoup& soup) {
@@ -492,6 +536,13 @@ void SliceCompositor::set_pages(const BrickPages& pages, tsp::Dims dims, const t
   if (bounds) box = *bounds;
   gl_.Uniform3f(rays_->uniform("box_lo"), float(box.lo[0]), float(box.lo[1]), float(box.lo[2]));
   gl_.Uniform3f(rays_->uniform("box_hi"), float(box.hi[0]), float(box.hi[1]), float(box.hi[2]));
+  cast_.grid = g;
+  cast_.cell = c;
+  cast_.pages = pages.texels().data();
+  cast_.volume = atlas.host;
+  assert((!cpu_ || !atlas.texture || atlas.host) && "a CPU frame's textures need their texels in RAM");
+  cast_.box_lo = glm::vec3(float(box.lo[0]), float(box.lo[1]), float(box.lo[2]));
+  cast_.box_hi = glm::vec3(float(box.hi[0]), float(box.hi[1]), float(box.hi[2]));
 }
 
 void SliceCompositor::set_step_map(const std::vector<std::uint8_t>& rows, std::array<int, 3> grid,
@@ -518,6 +569,11 @@ void SliceCompositor::draw_rays() {
   // A mesh's boundary is closed and the volume lies inside it: drawn opaque and whole (no
   // probe cuts it open), it hides every ray's samples.
   if (surface_drawn_ && !clip_region_.active()) return;
+  if (cpu_) {
+    if (!cpu_pass_) cpu_pass_ = std::make_unique<CpuPass>(gl_);
+    cpu_pass_->draw(cast_, region_);
+    return;
+  }
   gl_.BindTexture(GL_TEXTURE_3D, rays_atlas_);
   rays_->use();
   gl_.Uniform1i(rays_->uniform("use_surface_depth"), surface_drawn_ ? 1 : 0);

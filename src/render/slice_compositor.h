@@ -13,6 +13,7 @@
 #include "gl/context.h"
 #include "gl/shader.h"
 #include "render/brick_textures.h"
+#include "render/cpu_pass.h"
 #include "render/frame_report.h"
 #include "render/image_reuse.h"
 #include "render/render_target.h"
@@ -146,6 +147,13 @@ class SliceCompositor {
   std::int64_t end_frame();
   /// The context.
   GlContext& context() { return ctx_; }
+  /// True when this frame's rays (since begin_frame) are cast on the CPU (settings.backend):
+  /// textured pages must then carry their texels in RAM (BrickSlot::host).
+  bool cpu_frame() const { return cpu_; }
+  /// Why this frame, asked to be cast on the CPU, is drawn by GL (empty: it is not).
+  const std::string& backend_note() const { return backend_note_; }
+  /// True when the context's GL renderer is software (where --backend auto casts on the CPU).
+  bool software_gl() const { return software_gl_; }
 
  private:
   GlContext& ctx_;
@@ -178,6 +186,14 @@ class SliceCompositor {
   bool surface_on_ = false;
   RenderTarget target_;
   std::array<int, 4> output_{};  ///< x, y, width, height of the frame in the default framebuffer
+  // The CPU caster (--backend): this frame's choice, its scene and the current region.
+  bool software_gl_ = false;
+  bool cpu_ = false;
+  std::string backend_note_;
+  CastScene cast_;
+  CastRect region_;
+  std::unique_ptr<CpuPass> cpu_pass_;  ///< made on first use
+  void choose_backend(const RenderSettings& settings, bool plain);
   std::vector<float> vertices_;
   std::vector<GLint> firsts_;
   std::vector<GLsizei> counts_;

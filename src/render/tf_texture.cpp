@@ -74,7 +74,8 @@ void TfTexture::bind(int unit, double spacing) {
   gl_.ActiveTexture(GLenum(GL_TEXTURE0 + unit));
   gl_.BindTexture(GL_TEXTURE_1D, id_);
   if (spacing == spacing_) return;
-  std::vector<float> rgba;
+  std::vector<float>& rgba = point_rgba_;
+  rgba.clear();
   rgba.reserve(std::size_t(tf_.size()) * 4);
   append_corrected(rgba, tf_.entries(), spacing);
   gl_.TexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
@@ -102,7 +103,8 @@ void TfTexture::bind_levels(int unit, double spacing) {
   gl_.ActiveTexture(GLenum(GL_TEXTURE0 + unit));
   gl_.BindTexture(GL_TEXTURE_2D, levels_id_);
   if (spacing == levels_spacing_) return;
-  std::vector<float> rgba;
+  std::vector<float>& rgba = levels_rgba_;
+  rgba.clear();
   rgba.reserve(std::size_t(tf_.size()) * 4 * tsp::kLevelTfRows);
   for (int row = 0; row < tsp::kLevelTfRows; ++row)
     append_corrected(rgba, tsp::blurred_entries(tf_, tsp::level_tf_sigma(row), prior_), spacing);
@@ -119,7 +121,8 @@ void TfTexture::bind_refine(int unit, double spacing, int samples, double tol) {
   // float keeps the opacity to 2⁻¹⁵ with the 256 pieces of a 256-entry TF at most, 2⁻¹⁰ with
   // 4096). Row 1: the lookup for the fine step.
   const std::vector<int> pieces = tsp::tf_pieces(tf_, spacing, tol);
-  std::vector<float> rgba;
+  std::vector<float>& rgba = refine_rgba_;
+  rgba.clear();
   rgba.reserve(std::size_t(tf_.size()) * 8);
   append_corrected(rgba, tf_.entries(), spacing);
   for (std::size_t i = 0; i < pieces.size(); ++i) rgba[4 * i + 3] += 2.f * float(pieces[i]);

@@ -50,6 +50,14 @@ class TfTexture {
   /// Binds the TF's colours, opaque and not premultiplied (a probe surface's lookup), to
   /// texture unit `unit`, re-uploading first when the TF changed. Throws tsp::GlError.
   void bind_opaque(int unit);
+  /// The RGBA floats bind() uploaded last (K entries): what the CPU ray caster reads.
+  const std::vector<float>& point_rgba() const { return point_rgba_; }
+  /// The K × 2 RGBA floats bind_refine() uploaded last.
+  const std::vector<float>& refine_rgba() const { return refine_rgba_; }
+  /// The K × tsp::kLevelTfRows RGBA floats bind_levels() uploaded last.
+  const std::vector<float>& levels_rgba() const { return levels_rgba_; }
+  /// Entries of the TF (K).
+  int size() const { return tf_.size(); }
   /// TF coordinate = normalised code · scale + offset (the shader's tf_map).
   float scale() const { return float(scale_); }
   /// See scale().
@@ -68,6 +76,7 @@ class TfTexture {
   bool opaque_current_ = false;     ///< the opaque colours are uploaded (bind_opaque)
   tsp::TransferFunction tf_;        ///< the TF as given (uncorrected, not premultiplied)
   std::vector<double> prior_;       ///< per entry, the data's count there (empty: none)
+  std::vector<float> point_rgba_, refine_rgba_, levels_rgba_;  ///< as last uploaded
 };
 
 }  // namespace tspgl

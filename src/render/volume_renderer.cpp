@@ -516,6 +516,12 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
   Frame f = plan(step, camera, requested, metric, stops);
   r.traversal_ms = phase.lap_ms();
   compositor_->begin_frame(camera, f.settings, f.reuse);
+  if (compositor_->cpu_frame()) {  // the CPU caster reads the textures' texels in RAM
+    textures_.set_host_mirror(true);
+    dense_.set_host_mirror(true);
+  }
+  r.backend = compositor_->cpu_frame() ? "cpu" : "gl";
+  r.backend_note = compositor_->backend_note();
   upload(f, r);
   r.upload_ms = phase.lap_ms();
   compose(f, camera, metric, r);

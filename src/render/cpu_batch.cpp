@@ -1,0 +1,243 @@
+// Compiled once per SIMD target by Highway's foreach_target (see cpu_batch.h).
+#include "render/cpu_batch.h"
+
+#include <cstring>
+#include <limits>
+
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "render/cpu_batch.cpp"
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
+#include <hwy/highway.h>
+
+HWY_BEFORE_NAMESPACE();
+namespace tspgl::detail::HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+using D = hn::CappedTag<float, kMaxBatch>;
+using DI = hn::RebindToSigned<D>;
+using V = hn::Vec<D>;
+using VI = hn::Vec<DI>;
+
+struct V3 {
+  V x, y, z;
+};
+
+// The trilinear blend (Texels::fetch) at texel positions p, lane by lane: each x-pair of texels
+// is one 32-bit gather (the texture has a spare texel at its end for the last one).
+V trilinear(const Texels& t, const V3& p) {
+  const D d;
+  const DI di;
+  const V half = hn::Set(d, 0.5f);
+  const V x = hn::Sub(p.x, half), y = hn::Sub(p.y, half), z = hn::Sub(p.z, half);
+  const VI zero = hn::Zero(di);
+  const VI ix = hn::Min(hn::Max(hn::ConvertTo(di, x), zero), hn::Set(di, t.sx - 1));
+  const VI iy = hn::Min(hn::Max(hn::ConvertTo(di, y), zero), hn::Set(di, t.sy - 1));
+  const VI iz = hn::Min(hn::Max(hn::ConvertTo(di, z), zero), hn::Set(di, t.sz - 1));
+  const V wx = hn::Sub(x, hn::ConvertTo(d, ix)), wy = hn::Sub(y, hn::ConvertTo(d, iy)),
+          wz = hn::Sub(z, hn::ConvertTo(d, iz));
+  const VI one = hn::Set(di, 1);
+  const VI iy1 = hn::Min(hn::Add(iy, one), hn::Set(di, t.sy - 1));
+  const VI iz1 = hn::Min(hn::Add(iz, one), hn::Set(di, t.sz - 1));
+  const VI sx = hn::Set(di, t.sx), sy = hn::Set(di, t.sy);
+  const VI z0 = hn::Mul(iz, sy), z1 = hn::Mul(iz1, sy);
+  const VI two = hn::Set(di, 2);
+  auto row = [&](VI yy, VI zz) {  // byte offset of texel (ix, yy, zz / sy)
+    return hn::Mul(hn::Add(ix, hn::Mul(hn::Add(yy, zz), sx)), two);
+  };
+  const auto* base = reinterpret_cast<const std::int32_t*>(t.data);
+  const VI mask = hn::Set(di, 0xFFFF);
+  auto pair = [&](VI offset, V w) {  // lerp of texels x and x + 1 at offset
+    const VI v = hn::GatherOffset(di, base, offset);
+    const V lo = hn::ConvertTo(d, hn::And(v, mask));
+    const V hi = hn::ConvertTo(d, hn::And(hn::ShiftRight<16>(v), mask));
+    return hn::MulAdd(hn::Sub(hi, lo), w, lo);
+  };
+  const V c00 = pair(row(iy, z0), wx), c10 = pair(row(iy1, z0), wx);
+  const V c01 = pair(row(iy, z1), wx), c11 = pair(row(iy1, z1), wx);
+  const V c0 = hn::MulAdd(hn::Sub(c10, c00), wy, c00), c1 = hn::MulAdd(hn::Sub(c11, c01), wy, c01);
+  return hn::Mul(hn::MulAdd(hn::Sub(c1, c0), wz, c0), hn::Set(d, kUnorm16));
+}
+
+V3 clamp3(const V3& p, const BrickView& b) {
+  const D d;
+  return {hn::Min(hn::Max(p.x, hn::Set(d, b.lo.x)), hn::Set(d, b.hi.x)),
+          hn::Min(hn::Max(p.y, hn::Set(d, b.lo.y)), hn::Set(d, b.hi.y)),
+          hn::Min(hn::Max(p.z, hn::Set(d, b.lo.z)), hn::Set(d, b.hi.z))};
+}
+
+V& axis_of(V3& p, int a) { return a == 0 ? p.x : a == 1 ? p.y : p.z; }
+
+// One gradient tap (Sampler::tap): the value one texel from p along `axis` (sign ±1), clamped
+// into the brick or read from the neighbour beyond the face, and where along the axis it was read.
+void tap(const Texels& t, const BrickView& b, const V3& p, int axis, float sign, V& value,
+         V& where) {
+  const D d;
+  V3 q = p;
+  axis_of(q, axis) = hn::Add(axis_of(q, axis), hn::Set(d, sign));
+  const V qa = axis_of(q, axis);
+  V3 c = clamp3(q, b);
+  const auto up = hn::Gt(qa, hn::Set(d, b.hi[axis]));
+  const auto out = hn::Or(up, hn::Lt(qa, hn::Set(d, b.lo[axis])));
+  const glm::vec4 bh = b.beyond_hi[std::size_t(axis)], bl = b.beyond_lo[std::size_t(axis)];
+  const V use = hn::IfThenElseZero(out, hn::IfThenElse(up, hn::Set(d, bh.w), hn::Set(d, bl.w)));
+  V& ca = axis_of(c, axis);
+  ca = hn::MulAdd(hn::Sub(qa, ca), use, ca);
+  where = ca;
+  const V3 read{
+      hn::MulAdd(hn::IfThenElse(up, hn::Set(d, bh.x), hn::Set(d, bl.x)), use, c.x),
+      hn::MulAdd(hn::IfThenElse(up, hn::Set(d, bh.y), hn::Set(d, bl.y)), use, c.y),
+      hn::MulAdd(hn::IfThenElse(up, hn::Set(d, bh.z), hn::Set(d, bl.z)), use, c.z)};
+  value = trilinear(t, read);
+}
+
+// x^power by squaring (Sampler::specular_power for whole powers below 64).
+V power(V x, int n) {
+  const D d;
+  V r = hn::Set(d, 1.f);
+  for (; n > 0; n >>= 1, x = hn::Mul(x, x))
+    if (n & 1) r = hn::Mul(r, x);
+  return r;
+}
+
+// Sampler::shade lane by lane on colours (r, g, b, a) at positions p.
+void shade_lanes(const Sampler& smp, const BrickView& b, const V3& p, V& r, V& g, V& bl,
+                 const V& a) {
+  const D d;
+  const CastScene& s = smp.s;
+  V grad[3];
+  for (int axis = 0; axis < 3; ++axis) {
+    V fv, fp, bv, bp;
+    tap(smp.tex, b, p, axis, 1.f, fv, fp);
+    tap(smp.tex, b, p, axis, -1.f, bv, bp);
+    grad[axis] = hn::Mul(hn::Div(hn::Sub(fv, bv), hn::Max(hn::Sub(fp, bp), hn::Set(d, 1e-3f))),
+                         hn::Set(d, s.inv_voxel[axis]));
+  }
+  const V len2 = hn::MulAdd(grad[0], grad[0], hn::MulAdd(grad[1], grad[1], hn::Mul(grad[2], grad[2])));
+  const V len = hn::Sqrt(len2);
+  const V dot = hn::MulAdd(grad[0], hn::Set(d, s.light_dir.x),
+                           hn::MulAdd(grad[1], hn::Set(d, s.light_dir.y),
+                                      hn::Mul(grad[2], hn::Set(d, s.light_dir.z))));
+  const V ndl = hn::Div(hn::Abs(dot), hn::Max(len, hn::Set(d, 1e-30f)));
+  const V diffuse = hn::MulAdd(hn::Set(d, s.phong.y), ndl, hn::Set(d, s.phong.x));
+  V spec;
+  const float w = s.phong.w;
+  if (w == float(int(w)) && w >= 0.f && w < 64.f) {
+    spec = power(ndl, int(w));
+  } else {  // (not the default): lane by lane
+    alignas(64) float lanes[kMaxBatch];
+    hn::Store(ndl, d, lanes);
+    for (size_t i = 0; i < hn::Lanes(d); ++i) lanes[i] = std::pow(lanes[i], w);
+    spec = hn::Load(d, lanes);
+  }
+  const V white = hn::Mul(hn::Mul(hn::Set(d, s.phong.z), spec), a);
+  // smoothstep(0, kFlatGradient, len)
+  const V tt = hn::Min(hn::Max(hn::Div(len, hn::Set(d, kFlatGradient)), hn::Zero(d)), hn::Set(d, 1.f));
+  const V fade = hn::Mul(hn::Mul(tt, tt), hn::NegMulAdd(hn::Set(d, 2.f), tt, hn::Set(d, 3.f)));
+  const auto lit_mask = hn::Gt(a, hn::Zero(d));
+  auto light = [&](V c) {
+    const V lit = hn::MulAdd(c, diffuse, white);
+    return hn::IfThenElse(lit_mask, hn::MulAdd(hn::Sub(lit, c), fade, c), c);
+  };
+  r = light(r);
+  g = light(g);
+  bl = light(bl);
+}
+
+V3 load_positions(const Positions& p, int n) {
+  const D d;
+  const auto m = hn::FirstN(d, size_t(n));
+  // Unused lanes repeat the first position (valid reads).
+  return {hn::IfThenElse(m, hn::LoadU(d, p.x), hn::Set(d, p.x[0])),
+          hn::IfThenElse(m, hn::LoadU(d, p.y), hn::Set(d, p.y[0])),
+          hn::IfThenElse(m, hn::LoadU(d, p.z), hn::Set(d, p.z[0]))};
+}
+
+void SampleBatch(const Sampler& smp, const BrickView& b, const float* row, const Positions& pos,
+                 int n, bool shade, Colours& out) {
+  const D d;
+  const DI di;
+  const size_t lanes = hn::Lanes(d);
+  for (int start = 0; start < n; start += int(lanes)) {
+    const int m = std::min(int(lanes), n - start);
+    Positions chunk;
+    std::memcpy(chunk.x, pos.x + start, sizeof(float) * size_t(m));
+    std::memcpy(chunk.y, pos.y + start, sizeof(float) * size_t(m));
+    std::memcpy(chunk.z, pos.z + start, sizeof(float) * size_t(m));
+    const V3 p = load_positions(chunk, m);
+    const V v = trilinear(smp.tex, clamp3(p, b));
+    const CastTables& tf = smp.s.tf;
+    const V u = hn::MulAdd(v, hn::Set(d, tf.scale), hn::Set(d, tf.offset));
+    const V k = hn::Max(hn::Mul(u, hn::Set(d, float(tf.entries))), hn::Set(d, -1.f));
+    const VI i = hn::Min(hn::Max(hn::ConvertTo(di, k), hn::Zero(di)), hn::Set(di, tf.entries - 1));
+    const VI i4 = hn::ShiftLeft<2>(i);
+    V r = hn::GatherIndex(d, row, i4);
+    V g = hn::GatherIndex(d, row, hn::Add(i4, hn::Set(di, 1)));
+    V bl = hn::GatherIndex(d, row, hn::Add(i4, hn::Set(di, 2)));
+    const V a = hn::GatherIndex(d, row, hn::Add(i4, hn::Set(di, 3)));
+    if (shade && smp.s.shade && !hn::AllTrue(d, hn::Le(a, hn::Zero(d))))
+      shade_lanes(smp, b, p, r, g, bl, a);
+    alignas(64) float lane_r[kMaxBatch], lane_g[kMaxBatch], lane_b[kMaxBatch], lane_a[kMaxBatch];
+    hn::Store(r, d, lane_r);
+    hn::Store(g, d, lane_g);
+    hn::Store(bl, d, lane_b);
+    hn::Store(a, d, lane_a);
+    std::memcpy(out.r + start, lane_r, sizeof(float) * size_t(m));
+    std::memcpy(out.g + start, lane_g, sizeof(float) * size_t(m));
+    std::memcpy(out.b + start, lane_b, sizeof(float) * size_t(m));
+    std::memcpy(out.a + start, lane_a, sizeof(float) * size_t(m));
+  }
+}
+
+void ShadeBatch(const Sampler& smp, const BrickView& b, const Positions& pos, int n, Colours& c) {
+  const D d;
+  const size_t lanes = hn::Lanes(d);
+  for (int start = 0; start < n; start += int(lanes)) {
+    const int m = std::min(int(lanes), n - start);
+    Positions chunk;
+    Colours in{};
+    std::memcpy(chunk.x, pos.x + start, sizeof(float) * size_t(m));
+    std::memcpy(chunk.y, pos.y + start, sizeof(float) * size_t(m));
+    std::memcpy(chunk.z, pos.z + start, sizeof(float) * size_t(m));
+    std::memcpy(in.r, c.r + start, sizeof(float) * size_t(m));
+    std::memcpy(in.g, c.g + start, sizeof(float) * size_t(m));
+    std::memcpy(in.b, c.b + start, sizeof(float) * size_t(m));
+    std::memcpy(in.a, c.a + start, sizeof(float) * size_t(m));
+    const V a = hn::Load(d, in.a);
+    if (hn::AllTrue(d, hn::Le(a, hn::Zero(d)))) continue;
+    V r = hn::Load(d, in.r), g = hn::Load(d, in.g), bl = hn::Load(d, in.b);
+    shade_lanes(smp, b, load_positions(chunk, m), r, g, bl, a);
+    hn::Store(r, d, in.r);
+    hn::Store(g, d, in.g);
+    hn::Store(bl, d, in.b);
+    std::memcpy(c.r + start, in.r, sizeof(float) * size_t(m));
+    std::memcpy(c.g + start, in.g, sizeof(float) * size_t(m));
+    std::memcpy(c.b + start, in.b, sizeof(float) * size_t(m));
+  }
+}
+
+}  // namespace tspgl::detail::HWY_NAMESPACE
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace tspgl::detail {
+
+HWY_EXPORT(SampleBatch);
+HWY_EXPORT(ShadeBatch);
+
+bool batch_ready(const Sampler& smp) {
+  if (!smp.tex.data || smp.tex.channels != 1) return false;
+  const std::int64_t texels = std::int64_t(smp.tex.sx) * smp.tex.sy * smp.tex.sz;
+  return 2 * (texels + kHostVolumePad) < std::int64_t(std::numeric_limits<std::int32_t>::max());
+}
+
+void sample_batch(const Sampler& smp, const BrickView& b, const float* row, const Positions& p,
+                  int n, bool shade, Colours& out) {
+  HWY_DYNAMIC_DISPATCH(SampleBatch)(smp, b, row, p, n, shade, out);
+}
+
+void shade_batch(const Sampler& smp, const BrickView& b, const Positions& p, int n, Colours& c) {
+  HWY_DYNAMIC_DISPATCH(ShadeBatch)(smp, b, p, n, c);
+}
+
+}  // namespace tspgl::detail
+#endif  // HWY_ONCE

@@ -1,0 +1,220 @@
+// One sample of the CPU ray caster (cpu_caster.h), written as shaders/sample_tf.glsl writes it
+// for the GL caster: a trilinear read of 16-bit texels as GL's linear filter reads them (texel
+// centres at +½, clamp to edge), the TF's nearest lookup, the opacity correction of a cut
+// segment, and Blinn–Phong from central differences that read the neighbour brick beyond a face.
+// Positions are in texel coordinates of the texture (GL's texture coordinate × its size).
+#pragma once
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+
+#include <glm/glm.hpp>
+
+#include "render/cpu_caster.h"
+
+namespace tspgl::detail {
+
+/// Opacity at or above which a ray stops (volume_ray.frag's kOpaque).
+inline constexpr float kOpaque = 0.999f;
+/// Ray parameter nudge when finding the brick a point lies in (kNudge).
+inline constexpr float kNudge = 1e-3f;
+/// Gradient length (value range per voxel) over which lighting fades in (kFlatGradient).
+inline constexpr float kFlatGradient = 1e-3f;
+/// A textured page's code: the clip flag and the unit of its TF row (BrickPages).
+inline constexpr int kClipFlag = 512, kLevelRowUnit = 1024;
+/// 1 / 65535: a 16-bit unsigned normalised texel as GL reads it.
+inline constexpr float kUnorm16 = 1.f / 65535.f;
+
+/// The 16-bit texels of one texture.
+struct Texels {
+  const std::uint16_t* data = nullptr;
+  int sx = 0, sy = 0, sz = 0, channels = 1;
+  explicit Texels(const HostVolume* v) {
+    if (!v || v->empty()) return;
+    data = v->texels.data();
+    sx = v->size[0];
+    sy = v->size[1];
+    sz = v->size[2];
+    channels = v->channels;
+  }
+
+  /// Index of texel (x, y, z), channel 0.
+  std::size_t index(int x, int y, int z) const {
+    return (std::size_t(x) + std::size_t(sx) * (std::size_t(y) + std::size_t(sy) * std::size_t(z))) *
+           std::size_t(channels);
+  }
+
+  /// The trilinear blend of channel ch at texel position p (GL_LINEAR, clamped to edge); p is
+  /// never below ½ (positions are clamped into a brick's texel box first).
+  [[gnu::always_inline]] float fetch(glm::vec3 p, int ch = 0) const {
+    const float x = p.x - 0.5f, y = p.y - 0.5f, z = p.z - 0.5f;
+    // x, y, z ≥ 0 (truncation is floor there); the clamps keep a stray position (NaN, below 0)
+    // inside the texture, as GL's clamp to edge does.
+    const int ix = std::clamp(int(x), 0, sx - 1), iy = std::clamp(int(y), 0, sy - 1),
+              iz = std::clamp(int(z), 0, sz - 1);
+    const float wx = x - float(ix), wy = y - float(iy), wz = z - float(iz);
+    const int x0 = ix, y0 = iy, z0 = iz;
+    const std::ptrdiff_t dx = ix + 1 < sx ? channels : 0;
+    const std::ptrdiff_t dy = iy + 1 < sy ? std::ptrdiff_t(sx) * channels : 0;
+    const std::ptrdiff_t dz = iz + 1 < sz ? std::ptrdiff_t(sx) * sy * channels : 0;
+    const std::uint16_t* q = data + index(x0, y0, z0) + ch;
+    const float c00 = float(q[0]) + (float(q[dx]) - float(q[0])) * wx;
+    const float c10 = float(q[dy]) + (float(q[dy + dx]) - float(q[dy])) * wx;
+    const float c01 = float(q[dz]) + (float(q[dz + dx]) - float(q[dz])) * wx;
+    const float c11 = float(q[dz + dy]) + (float(q[dz + dy + dx]) - float(q[dz + dy])) * wx;
+    const float c0 = c00 + (c10 - c00) * wy, c1 = c01 + (c11 - c01) * wy;
+    return (c0 + (c1 - c0) * wz) * kUnorm16;
+  }
+
+  /// The central differences of the trilinear field one texel either side of p along each
+  /// axis, over 2 texels (shade's gradient where no tap is clamped: lo + 1 ≤ p ≤ hi − 1), from
+  /// the 32 texels around p — each difference is the trilinear blend, with p's weights, of the
+  /// texels' own differences. Asserts the texels lie inside.
+  [[gnu::always_inline]] glm::vec3 gradient(glm::vec3 p) const {
+    const float x = p.x - 0.5f, y = p.y - 0.5f, z = p.z - 0.5f;
+    const int ix = int(x), iy = int(y), iz = int(z);
+    assert(ix >= 1 && iy >= 1 && iz >= 1 && ix + 2 < sx + 1 && iy + 2 < sy + 1 && iz + 2 < sz + 1);
+    const float wx = x - float(ix), wy = y - float(iy), wz = z - float(iz);
+    const std::ptrdiff_t dx = channels, dy = std::ptrdiff_t(sx) * channels,
+                         dz = std::ptrdiff_t(sx) * sy * channels;
+    // One past the far texel may lie beyond the texture where its weight is 0: read the texel
+    // before it instead.
+    const std::ptrdiff_t dx2 = ix + 2 < sx ? 2 * dx : dx, dy2 = iy + 2 < sy ? 2 * dy : dy,
+                         dz2 = iz + 2 < sz ? 2 * dz : dz;
+    const std::uint16_t* q = data + index(ix, iy, iz);
+    auto v = [&](std::ptrdiff_t o) { return float(q[o]); };
+    auto lerp = [](float a, float b, float w) { return a + (b - a) * w; };
+    // Along x: rows (y, z) ∈ {0, 1}², differences at x0 and x0 + 1.
+    auto row_x = [&](std::ptrdiff_t o) {
+      return lerp(v(o + dx) - v(o - dx), v(o + dx2) - v(o), wx);
+    };
+    auto row_y = [&](std::ptrdiff_t o) {
+      return lerp(v(o + dy) - v(o - dy), v(o + dy2) - v(o), wy);
+    };
+    auto row_z = [&](std::ptrdiff_t o) {
+      return lerp(v(o + dz) - v(o - dz), v(o + dz2) - v(o), wz);
+    };
+    const float gx = lerp(lerp(row_x(0), row_x(dy), wy), lerp(row_x(dz), row_x(dz + dy), wy), wz);
+    const float gy = lerp(lerp(row_y(0), row_y(dx), wx), lerp(row_y(dz), row_y(dz + dx), wx), wz);
+    const float gz = lerp(lerp(row_z(0), row_z(dx), wx), lerp(row_z(dy), row_z(dy + dx), wx), wy);
+    return glm::vec3(gx, gy, gz) * (0.5f * kUnorm16);
+  }
+
+  /// gradient()'s component along `axis` alone, where only that axis' taps are unclamped (p
+  /// inside its texel box, p ± 1 along the axis too).
+  [[gnu::always_inline]] float axis_difference(glm::vec3 p, int axis) const {
+    const glm::vec3 x = p - 0.5f;
+    const glm::ivec3 i(int(x.x), int(x.y), int(x.z));
+    const glm::vec3 w = x - glm::vec3(i);
+    const std::array<std::ptrdiff_t, 3> stride{std::ptrdiff_t(channels),
+                                               std::ptrdiff_t(sx) * channels,
+                                               std::ptrdiff_t(sx) * sy * channels};
+    const std::array<int, 3> size{sx, sy, sz};
+    const int b = axis == 0 ? 1 : 0, c = axis == 2 ? 1 : 2;  // the other two axes
+    const std::ptrdiff_t da = stride[std::size_t(axis)];
+    const std::ptrdiff_t da2 = i[axis] + 2 < size[std::size_t(axis)] ? 2 * da : da;
+    const std::ptrdiff_t db = i[b] + 1 < size[std::size_t(b)] ? stride[std::size_t(b)] : 0;
+    const std::ptrdiff_t dc = i[c] + 1 < size[std::size_t(c)] ? stride[std::size_t(c)] : 0;
+    const std::uint16_t* q = data + index(i.x, i.y, i.z);
+    auto lerp = [](float u, float v, float t) { return u + (v - u) * t; };
+    auto row = [&](std::ptrdiff_t o) {
+      return lerp(float(q[o + da]) - float(q[o - da]), float(q[o + da2]) - float(q[o]), w[axis]);
+    };
+    return lerp(lerp(row(0), row(db), w[b]), lerp(row(dc), row(dc + db), w[b]), w[c]) *
+           (0.5f * kUnorm16);
+  }
+};
+
+/// Entry of a K-entry row for tf coordinate u (GL_NEAREST, clamped).
+inline const float* lookup(const float* row, int k, float u) {
+  // Truncation, not floor: they differ only below 0, which the clamp sends to 0 either way.
+  const int i = std::clamp(int(std::max(u * float(k), -1.f)), 0, k - 1);
+  return row + 4 * i;
+}
+
+inline glm::vec4 entry(const float* e) { return {e[0], e[1], e[2], e[3]}; }
+
+/// A sample standing for k (≤ 1) of its segment: opacity 1 − (1 − α)^k, premultiplied.
+inline glm::vec4 cut_sample(glm::vec4 s, float k) {
+  if (s.a <= 0.f) return s;
+  const float a = 1.f - std::pow(std::max(1.f - s.a, 0.f), k);
+  return {glm::vec3(s) * (a / s.a), a};
+}
+
+/// What a brick's samples read: its texel box and, per face, the shift to the neighbour
+/// brick's texels (w 1 where the neighbour is a level-0 texture, else 0: one-sided).
+struct BrickView {
+  glm::vec3 lo{0}, hi{0};
+  std::array<glm::vec4, 3> beyond_lo{}, beyond_hi{};
+};
+
+/// The sampler of one cast: texels, tables and lighting.
+struct Sampler {
+  Texels tex;
+  const CastScene& s;
+  explicit Sampler(const CastScene& scene) : tex(scene.volume), s(scene) {}
+
+  float tf_coord(float v) const { return v * s.tf.scale + s.tf.offset; }
+
+  /// x^power for the specular term: by squaring when the power is a whole number below 64
+  /// (VTK's default 10), std::pow otherwise.
+  float specular_power(float x) const {
+    const float w = s.phong.w;
+    if (w != std::floor(w) || w < 0.f || w >= 64.f) return std::pow(x, w);
+    float r = 1.f;
+    for (int n = int(w); n > 0; n >>= 1, x *= x)
+      if (n & 1) r *= x;
+    return r;
+  }
+
+  /// One tap of the central differences (gradient_tap in sample_tf.glsl): the scalar one texel
+  /// from the sample along `axis` and where along that axis it was read.
+  glm::vec2 tap(glm::vec3 q, int axis, const BrickView& b) const {
+    glm::vec3 c = glm::clamp(q, b.lo, b.hi);
+    const bool up = q[axis] > b.hi[axis];
+    const glm::vec4 sh = up ? b.beyond_hi[std::size_t(axis)] : b.beyond_lo[std::size_t(axis)];
+    const float use = (up || q[axis] < b.lo[axis]) ? sh.w : 0.f;
+    c[axis] = c[axis] + (q[axis] - c[axis]) * use;
+    return {tex.fetch(c + glm::vec3(sh) * use), c[axis]};
+  }
+
+  /// c lit at texel position p (shade in sample_tf.glsl).
+  glm::vec4 shade(glm::vec4 c, glm::vec3 p, const BrickView& b) const {
+    if (!s.shade || c.a <= 0.f) return c;
+    glm::vec3 g;
+    const glm::bvec3 free_axis = glm::greaterThanEqual(p - 1.f, b.lo) && glm::lessThanEqual(p + 1.f, b.hi);
+    if (glm::all(free_axis)) {
+      g = tex.gradient(p);  // no tap clamped: the 32-texel stencil
+    } else {
+      const bool inside = glm::all(glm::greaterThanEqual(p, b.lo)) && glm::all(glm::lessThanEqual(p, b.hi));
+      for (int a = 0; a < 3; ++a) {
+        if (inside && free_axis[a]) {  // this axis' taps unclamped
+          g[a] = tex.axis_difference(p, a);
+          continue;
+        }
+        glm::vec3 e(0.f);
+        e[a] = 1.f;
+        const glm::vec2 f = tap(p + e, a, b), k = tap(p - e, a, b);
+        g[a] = (f.x - k.x) / std::max(f.y - k.y, 1e-3f);
+      }
+    }
+    g *= s.inv_voxel;
+    const float len = glm::length(g);
+    const float ndl = std::abs(glm::dot(g, s.light_dir)) / std::max(len, 1e-30f);
+    const glm::vec3 rgb(c);
+    const glm::vec3 lit =
+        rgb * (s.phong.x + s.phong.y * ndl) + glm::vec3(s.phong.z * specular_power(ndl) * c.a);
+    const float w = glm::smoothstep(0.f, kFlatGradient, len);
+    return {rgb + (lit - rgb) * w, c.a};
+  }
+
+  /// The point lookup at p (sample_point), through `row` (K entries).
+  glm::vec4 point(glm::vec3 p, const BrickView& b, const float* row) const {
+    const glm::vec3 q = glm::clamp(p, b.lo, b.hi);
+    if (s.stencil && tex.fetch(q, 1) < 0.5f) return glm::vec4(0.f);
+    return shade(entry(lookup(row, s.tf.entries, tf_coord(tex.fetch(q)))), p, b);
+  }
+};
+
+}  // namespace tspgl::detail
