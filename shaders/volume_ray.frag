@@ -202,7 +202,7 @@ void main() {
   // The caster's refinement state, carried across the bricks of a run (see its loop).
   float seg_b = 0.0, piece_prev = -1.0, fine_w = 0.0;
   vec4 cur = vec4(-1.0), ahead = vec4(-1.0), fine_sum = vec4(0.0);
-  vec3 fine_at = vec3(0.0);
+  vec3 fine_at = vec3(0.0);  // opacity-weighted sum of the fine samples' points
   int fine = 0;
 #endif
   bool run_open = false;  // TSP_SEGMENTS: inside a run of full-resolution textured bricks
@@ -404,12 +404,14 @@ void main() {
               cur = e;
             } else if (mode == 2) {
               if (k < 1.0) e = cut_sample(e, k);
-              fine_at += (1.0 - fine_sum.a) * e.a * tcs;
+              // Sample points, not texture coordinates: a segment's fine samples may lie in two
+              // bricks of the run, whose atlas slots differ.
+              fine_at += (1.0 - fine_sum.a) * e.a * (entry + r.ray * ts);
               fine_w += (1.0 - fine_sum.a) * e.a;
               fine_sum += (1.0 - fine_sum.a) * e;
               if (--fine == 0) {
                 c = fine_sum;
-                at = fine_w > 0.0 ? fine_at / fine_w : tcs;
+                at = fine_w > 0.0 ? (fine_at / fine_w * scale + page.xyz) * atlas_scale : tcs;
                 advance = true;
               }
             } else {

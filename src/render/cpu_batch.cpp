@@ -22,19 +22,23 @@ struct V3 {
   V x, y, z;
 };
 
-// The trilinear blend (Texels::fetch) at texel positions p, lane by lane: each x-pair of texels
-// is one 32-bit gather (the texture has a spare texel at its end for the last one).
-V trilinear(const Texels& t, const V3& p) {
+// The trilinear blend (Texels::fetch) at u with the texels at shift k, lane by lane: each
+// x-pair of texels is one 32-bit gather (the texture has a spare texel at its end for the last).
+V trilinear(const Texels& t, const V3& u, const V3& k) {
   const D d;
   const DI di;
-  const V half = hn::Set(d, 0.5f);
-  const V x = hn::Sub(p.x, half), y = hn::Sub(p.y, half), z = hn::Sub(p.z, half);
   const VI zero = hn::Zero(di);
-  const VI ix = hn::Min(hn::Max(hn::ConvertTo(di, x), zero), hn::Set(di, t.sx - 1));
-  const VI iy = hn::Min(hn::Max(hn::ConvertTo(di, y), zero), hn::Set(di, t.sy - 1));
-  const VI iz = hn::Min(hn::Max(hn::ConvertTo(di, z), zero), hn::Set(di, t.sz - 1));
-  const V wx = hn::Sub(x, hn::ConvertTo(d, ix)), wy = hn::Sub(y, hn::ConvertTo(d, iy)),
-          wz = hn::Sub(z, hn::ConvertTo(d, iz));
+  const V fzero = hn::Zero(d);
+  // u ≥ 0 (NaN and below 0 read as 0), where truncation is floor.
+  const V x = hn::IfThenElse(hn::Ge(u.x, fzero), u.x, fzero);
+  const V y = hn::IfThenElse(hn::Ge(u.y, fzero), u.y, fzero);
+  const V z = hn::IfThenElse(hn::Ge(u.z, fzero), u.z, fzero);
+  const VI fx = hn::ConvertTo(di, x), fy = hn::ConvertTo(di, y), fz = hn::ConvertTo(di, z);
+  const V wx = hn::Sub(x, hn::ConvertTo(d, fx)), wy = hn::Sub(y, hn::ConvertTo(d, fy)),
+          wz = hn::Sub(z, hn::ConvertTo(d, fz));
+  const VI ix = hn::Min(hn::Max(hn::Add(fx, hn::ConvertTo(di, k.x)), zero), hn::Set(di, t.sx - 1));
+  const VI iy = hn::Min(hn::Max(hn::Add(fy, hn::ConvertTo(di, k.y)), zero), hn::Set(di, t.sy - 1));
+  const VI iz = hn::Min(hn::Max(hn::Add(fz, hn::ConvertTo(di, k.z)), zero), hn::Set(di, t.sz - 1));
   const VI one = hn::Set(di, 1);
   const VI iy1 = hn::Min(hn::Add(iy, one), hn::Set(di, t.sy - 1));
   const VI iz1 = hn::Min(hn::Add(iz, one), hn::Set(di, t.sz - 1));
@@ -46,16 +50,25 @@ V trilinear(const Texels& t, const V3& p) {
   };
   const auto* base = reinterpret_cast<const std::int32_t*>(t.data);
   const VI mask = hn::Set(di, 0xFFFF);
+  // An x-pair at the texture's last column reads the next row's first texel as its second: a
+  // lane whose weight there is not 0 (u past the texture) takes the first alone.
+  const auto last_x = hn::Eq(ix, hn::Set(di, t.sx - 1));
   auto pair = [&](VI offset, V w) {  // lerp of texels x and x + 1 at offset
     const VI v = hn::GatherOffset(di, base, offset);
     const V lo = hn::ConvertTo(d, hn::And(v, mask));
-    const V hi = hn::ConvertTo(d, hn::And(hn::ShiftRight<16>(v), mask));
+    const V hi = hn::IfThenElse(hn::RebindMask(d, last_x), lo,
+                                hn::ConvertTo(d, hn::And(hn::ShiftRight<16>(v), mask)));
     return hn::MulAdd(hn::Sub(hi, lo), w, lo);
   };
   const V c00 = pair(row(iy, z0), wx), c10 = pair(row(iy1, z0), wx);
   const V c01 = pair(row(iy, z1), wx), c11 = pair(row(iy1, z1), wx);
   const V c0 = hn::MulAdd(hn::Sub(c10, c00), wy, c00), c1 = hn::MulAdd(hn::Sub(c11, c01), wy, c01);
   return hn::Mul(hn::MulAdd(hn::Sub(c1, c0), wz, c0), hn::Set(d, kUnorm16));
+}
+
+V3 broadcast(glm::vec3 v) {
+  const D d;
+  return {hn::Set(d, v.x), hn::Set(d, v.y), hn::Set(d, v.z)};
 }
 
 V3 clamp3(const V3& p, const BrickView& b) {
@@ -67,7 +80,7 @@ V3 clamp3(const V3& p, const BrickView& b) {
 
 V& axis_of(V3& p, int a) { return a == 0 ? p.x : a == 1 ? p.y : p.z; }
 
-// One gradient tap (Sampler::tap): the value one texel from p along `axis` (sign ±1), clamped
+// One gradient tap (Sampler::tap): the value one texel from u along `axis` (sign ±1), clamped
 // into the brick or read from the neighbour beyond the face, and where along the axis it was read.
 void tap(const Texels& t, const BrickView& b, const V3& p, int axis, float sign, V& value,
          V& where) {
@@ -83,11 +96,10 @@ void tap(const Texels& t, const BrickView& b, const V3& p, int axis, float sign,
   V& ca = axis_of(c, axis);
   ca = hn::MulAdd(hn::Sub(qa, ca), use, ca);
   where = ca;
-  const V3 read{
-      hn::MulAdd(hn::IfThenElse(up, hn::Set(d, bh.x), hn::Set(d, bl.x)), use, c.x),
-      hn::MulAdd(hn::IfThenElse(up, hn::Set(d, bh.y), hn::Set(d, bl.y)), use, c.y),
-      hn::MulAdd(hn::IfThenElse(up, hn::Set(d, bh.z), hn::Set(d, bl.z)), use, c.z)};
-  value = trilinear(t, read);
+  const V3 k{hn::MulAdd(hn::IfThenElse(up, hn::Set(d, bh.x), hn::Set(d, bl.x)), use, hn::Set(d, b.k.x)),
+             hn::MulAdd(hn::IfThenElse(up, hn::Set(d, bh.y), hn::Set(d, bl.y)), use, hn::Set(d, b.k.y)),
+             hn::MulAdd(hn::IfThenElse(up, hn::Set(d, bh.z), hn::Set(d, bl.z)), use, hn::Set(d, b.k.z))};
+  value = trilinear(t, c, k);
 }
 
 // x^power by squaring (Sampler::specular_power for whole powers below 64).
@@ -164,7 +176,7 @@ void SampleBatch(const Sampler& smp, const BrickView& b, const float* row, const
     std::memcpy(chunk.y, pos.y + start, sizeof(float) * size_t(m));
     std::memcpy(chunk.z, pos.z + start, sizeof(float) * size_t(m));
     const V3 p = load_positions(chunk, m);
-    const V v = trilinear(smp.tex, clamp3(p, b));
+    const V v = trilinear(smp.tex, clamp3(p, b), broadcast(b.k));
     const CastTables& tf = smp.s.tf;
     const V u = hn::MulAdd(v, hn::Set(d, tf.scale), hn::Set(d, tf.offset));
     const V k = hn::Max(hn::Mul(u, hn::Set(d, float(tf.entries))), hn::Set(d, -1.f));

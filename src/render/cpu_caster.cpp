@@ -123,7 +123,7 @@ class RayWalk {
   int ahead_n_ = 0, next_ = 0;
 
   void blend(vec4 c) { acc_ += (1.f - acc_.a) * c; }
-  vec3 texel(float t, vec3 scale, vec3 off) const { return (r_.entry + r_.dir * t) * scale + off; }
+  vec3 texel(float t, vec3 scale) const { return (r_.entry + r_.dir * t) * scale; }
   void neighbours(ivec3 c, vec4 page, bool level0, BrickView& b) const;
   void segments(float t, float t_out, float& t_next, vec3 scale, vec4 page, const BrickView& b,
                 bool closing);
@@ -152,18 +152,17 @@ void RayWalk::neighbours(ivec3 c, vec4 page, bool level0, BrickView& b) const {
 void RayWalk::segments(float t, float t_out, float& t_next, vec3 scale, vec4 page,
                        const BrickView& b, bool closing) {
   const float dt = s_.spacing / r_.cos_theta;
-  const vec3 off(page);
   const float* row = s_.tf.point;
   if (!run_open_) {
     const float d = r_.depth_entry + t * r_.cos_theta;
     float t_b = ((std::floor(d / s_.spacing) + 1.f) * s_.spacing - r_.depth_entry) / r_.cos_theta;
     if (closing) t_b = std::min(t_b, t_out);
     const float k = (t_b - t) / dt;
-    if (k > 1e-4f) blend(cut_sample(smp_.point(texel(0.5f * (t + t_b), scale, off), b, row), k));
+    if (k > 1e-4f) blend(cut_sample(smp_.point(texel(0.5f * (t + t_b), scale), b, row), k));
     t_next = t_b + 0.5f * dt;
     run_open_ = true;
   }
-  vec3 tc = texel(t_next, scale, off);
+  vec3 tc = texel(t_next, scale);
   const vec3 dtc = r_.dir * dt * scale;
   if (batch_) {
     // The whole segments, in SIMD batches: their samples at once, composited in order (the
@@ -239,13 +238,13 @@ void RayWalk::refined(float t, float t_out, vec4 page, ivec3 c, const BrickView&
                            : 0.5f * (seg_e + (closing ? std::min(seg_e + dt, t_out) : seg_e + dt)));
     if (mode != 3 && ts >= t_out && !closing) break;  // in the next brick
     const bool beyond = ts >= t_out;
-    const vec3 off = beyond ? vec3(next_page) : vec3(page);
+    const vec3 k_at = beyond ? vec3(next_page) - 0.5f : b.k;
     const vec3 b_lo = beyond ? vec3(next_c) * cell_ : lo;
-    const vec3 tcs = texel(ts, vec3(1.f), off);
-    const vec3 q = glm::clamp(tcs, b_lo + off, glm::min(b_lo + cell_, s_.box_hi) + off);
-    const float v = smp_.tex.fetch(q);
+    const vec3 tcs = texel(ts, vec3(1.f));
+    const vec3 q = glm::clamp(tcs, b_lo, glm::min(b_lo + cell_, s_.box_hi));
+    const float v = smp_.tex.fetch(q, k_at);
     vec4 e = detail::entry(detail::lookup(rows[mode == 2 ? 1 : 0], k_entries, smp_.tf_coord(v)));
-    if (s_.stencil && smp_.tex.fetch(q, 1) < 0.5f)
+    if (s_.stencil && smp_.tex.fetch(q, k_at, 1) < 0.5f)
       e = vec4(0.f, 0.f, 0.f, mode == 2 ? 0.f : 2.f * piece_of(e));
     const float k = (seg_e - seg_b_) / dt;
     vec4 col(0.f);
@@ -257,7 +256,7 @@ void RayWalk::refined(float t, float t_out, vec4 page, ivec3 c, const BrickView&
       cur_ = e;
     } else if (mode == 2) {
       if (k < 1.f) e = cut_sample(e, k);
-      fine_at_ += (1.f - fine_sum_.a) * e.a * tcs;
+      fine_at_ += (1.f - fine_sum_.a) * e.a * tcs;  // (points: the same in every brick's u)
       fine_w_ += (1.f - fine_sum_.a) * e.a;
       fine_sum_ += (1.f - fine_sum_.a) * e;
       if (--fine_ == 0) {
@@ -276,7 +275,7 @@ void RayWalk::refined(float t, float t_out, vec4 page, ivec3 c, const BrickView&
       } else {
         col = vec4(vec3(cur_), cur_.a - 2.f * piece);
         if (k < 1.f) col = cut_sample(col, k);
-        at = texel(mid, vec3(1.f), vec3(page));
+        at = texel(mid, vec3(1.f));
         advance = true;
       }
     }
@@ -301,7 +300,6 @@ int RayWalk::refined_batch(float t_out, vec4 page, const BrickView& b, bool clos
   if (next_ >= ahead_n_ || a.sb[next_] != seg_b_) {  // read the segments ahead
     const float dt = s_.spacing / r_.cos_theta;
     detail::Positions reads, mids;
-    const vec3 off(page);
     int n = 0;
     for (float sb = seg_b_; n < detail::kMaxBatch; ++n) {
       const float d_b = r_.depth_entry + sb * r_.cos_theta;
@@ -315,7 +313,7 @@ int RayWalk::refined_batch(float t_out, vec4 page, const BrickView& b, bool clos
                            ? se
                            : 0.5f * (se + (closing ? std::min(se + dt, t_out) : se + dt));
       if (ts >= t_out) break;  // read in the next brick: refined() does it
-      const vec3 r = texel(ts, vec3(1.f), off), m = texel(mid, vec3(1.f), off);
+      const vec3 r = texel(ts, vec3(1.f)), m = texel(mid, vec3(1.f));
       reads.x[n] = r.x;
       reads.y[n] = r.y;
       reads.z[n] = r.z;
@@ -408,8 +406,13 @@ vec4 RayWalk::run() {
       const float m = float(1 << std::max({lv.x, lv.y, lv.z}));
       BrickView b;
       const vec3 lo = vec3(c) * cell_;
-      b.lo = lo * scale + vec3(page);
-      b.hi = glm::min(lo + cell_, s_.box_hi) * scale + vec3(page);
+      // The slot's offset less the texel centres' ½: whole texels (k) and, for a level brick
+      // whose samples sit between its voxels, the lattice's phase (the same in every slot).
+      const vec3 shift = vec3(page) - 0.5f;
+      b.k = glm::floor(shift);
+      const vec3 phase = shift - b.k;
+      b.lo = lo * scale + phase;
+      b.hi = glm::min(lo + cell_, s_.box_hi) * scale + phase;
       if (s_.shade) neighbours(c, page, code == 0, b);
       if (m != m_cur) {  // onto this level's planes (k + ½)·m·spacing
         const float sp = s_.spacing * m;
@@ -451,7 +454,7 @@ vec4 RayWalk::run() {
                        : s_.tf.point;
         float first = t_next;
         if (first >= t_out) first = 0.5f * (t + t_out);
-        vec3 tc = texel(first, scale, vec3(page));
+        vec3 tc = texel(first, scale) + phase;
         const vec3 dtc = ray * dtm * scale;
         for (float tj = first; tj < t_out; tj += dtm) {
           const float lo_j = tj == first ? t : tj - 0.5f * dtm;

@@ -2,7 +2,11 @@
 // for the GL caster: a trilinear read of 16-bit texels as GL's linear filter reads them (texel
 // centres at +½, clamp to edge), the TF's nearest lookup, the opacity correction of a cut
 // segment, and Blinn–Phong from central differences that read the neighbour brick beyond a face.
-// Positions are in texel coordinates of the texture (GL's texture coordinate × its size).
+// Positions are a brick's sample coordinates scaled to its texels (u = p · scale: texel i of the
+// brick's lattice lies at u = its origin · scale + i) and a brick's texels start at the integer
+// shift k (GL's texel coordinate is u + k + ½). Split so, the trilinear weights come from u
+// alone and never depend on where the brick sits in the atlas: the same frame gives the same
+// bytes whatever the slots (GL's weights round with the slot's texture coordinate).
 #pragma once
 #include <algorithm>
 #include <array>
@@ -45,20 +49,19 @@ struct Texels {
            std::size_t(channels);
   }
 
-  /// The trilinear blend of channel ch at texel position p (GL_LINEAR, clamped to edge); p is
-  /// never below ½ (positions are clamped into a brick's texel box first).
-  [[gnu::always_inline]] float fetch(glm::vec3 p, int ch = 0) const {
-    const float x = p.x - 0.5f, y = p.y - 0.5f, z = p.z - 0.5f;
-    // x, y, z ≥ 0 (truncation is floor there); the clamps keep a stray position (NaN, below 0)
-    // inside the texture, as GL's clamp to edge does.
-    const int ix = std::clamp(int(x), 0, sx - 1), iy = std::clamp(int(y), 0, sy - 1),
-              iz = std::clamp(int(z), 0, sz - 1);
-    const float wx = x - float(ix), wy = y - float(iy), wz = z - float(iz);
-    const int x0 = ix, y0 = iy, z0 = iz;
+  /// The trilinear blend of channel ch at u with the brick's texels at shift k (GL_LINEAR,
+  /// clamped to edge); u is never below 0 (positions are clamped into a brick's box first; a
+  /// stray one, NaN or below 0, reads as 0).
+  [[gnu::always_inline]] float fetch(glm::vec3 u, glm::vec3 k, int ch = 0) const {
+    const float x = u.x >= 0.f ? u.x : 0.f, y = u.y >= 0.f ? u.y : 0.f, z = u.z >= 0.f ? u.z : 0.f;
+    const int fx = int(x), fy = int(y), fz = int(z);  // x, y, z ≥ 0: truncation is floor
+    const float wx = x - float(fx), wy = y - float(fy), wz = z - float(fz);
+    const int ix = std::clamp(fx + int(k.x), 0, sx - 1), iy = std::clamp(fy + int(k.y), 0, sy - 1),
+              iz = std::clamp(fz + int(k.z), 0, sz - 1);
     const std::ptrdiff_t dx = ix + 1 < sx ? channels : 0;
     const std::ptrdiff_t dy = iy + 1 < sy ? std::ptrdiff_t(sx) * channels : 0;
     const std::ptrdiff_t dz = iz + 1 < sz ? std::ptrdiff_t(sx) * sy * channels : 0;
-    const std::uint16_t* q = data + index(x0, y0, z0) + ch;
+    const std::uint16_t* q = data + index(ix, iy, iz) + ch;
     const float c00 = float(q[0]) + (float(q[dx]) - float(q[0])) * wx;
     const float c10 = float(q[dy]) + (float(q[dy + dx]) - float(q[dy])) * wx;
     const float c01 = float(q[dz]) + (float(q[dz + dx]) - float(q[dz])) * wx;
@@ -67,15 +70,15 @@ struct Texels {
     return (c0 + (c1 - c0) * wz) * kUnorm16;
   }
 
-  /// The central differences of the trilinear field one texel either side of p along each
+  /// The central differences of the trilinear field one texel either side of u along each
   /// axis, over 2 texels (shade's gradient where no tap is clamped: lo + 1 ≤ p ≤ hi − 1), from
   /// the 32 texels around p — each difference is the trilinear blend, with p's weights, of the
   /// texels' own differences. Asserts the texels lie inside.
-  [[gnu::always_inline]] glm::vec3 gradient(glm::vec3 p) const {
-    const float x = p.x - 0.5f, y = p.y - 0.5f, z = p.z - 0.5f;
-    const int ix = int(x), iy = int(y), iz = int(z);
+  [[gnu::always_inline]] glm::vec3 gradient(glm::vec3 u, glm::vec3 k) const {
+    const int fx = int(u.x), fy = int(u.y), fz = int(u.z);
+    const float wx = u.x - float(fx), wy = u.y - float(fy), wz = u.z - float(fz);
+    const int ix = fx + int(k.x), iy = fy + int(k.y), iz = fz + int(k.z);
     assert(ix >= 1 && iy >= 1 && iz >= 1 && ix + 2 < sx + 1 && iy + 2 < sy + 1 && iz + 2 < sz + 1);
-    const float wx = x - float(ix), wy = y - float(iy), wz = z - float(iz);
     const std::ptrdiff_t dx = channels, dy = std::ptrdiff_t(sx) * channels,
                          dz = std::ptrdiff_t(sx) * sy * channels;
     // One past the far texel may lie beyond the texture where its weight is 0: read the texel
@@ -103,10 +106,10 @@ struct Texels {
 
   /// gradient()'s component along `axis` alone, where only that axis' taps are unclamped (p
   /// inside its texel box, p ± 1 along the axis too).
-  [[gnu::always_inline]] float axis_difference(glm::vec3 p, int axis) const {
-    const glm::vec3 x = p - 0.5f;
-    const glm::ivec3 i(int(x.x), int(x.y), int(x.z));
-    const glm::vec3 w = x - glm::vec3(i);
+  [[gnu::always_inline]] float axis_difference(glm::vec3 u, glm::vec3 k, int axis) const {
+    const glm::ivec3 f(int(u.x), int(u.y), int(u.z));
+    const glm::vec3 w = u - glm::vec3(f);
+    const glm::ivec3 i = f + glm::ivec3(k);
     const std::array<std::ptrdiff_t, 3> stride{std::ptrdiff_t(channels),
                                                std::ptrdiff_t(sx) * channels,
                                                std::ptrdiff_t(sx) * sy * channels};
@@ -145,7 +148,8 @@ inline glm::vec4 cut_sample(glm::vec4 s, float k) {
 /// What a brick's samples read: its texel box and, per face, the shift to the neighbour
 /// brick's texels (w 1 where the neighbour is a level-0 texture, else 0: one-sided).
 struct BrickView {
-  glm::vec3 lo{0}, hi{0};
+  glm::vec3 lo{0}, hi{0};  ///< the brick's box in u (sample coordinates · scale)
+  glm::vec3 k{0};          ///< its texels' integer shift in the texture
   std::array<glm::vec4, 3> beyond_lo{}, beyond_hi{};
 };
 
@@ -176,7 +180,7 @@ struct Sampler {
     const glm::vec4 sh = up ? b.beyond_hi[std::size_t(axis)] : b.beyond_lo[std::size_t(axis)];
     const float use = (up || q[axis] < b.lo[axis]) ? sh.w : 0.f;
     c[axis] = c[axis] + (q[axis] - c[axis]) * use;
-    return {tex.fetch(c + glm::vec3(sh) * use), c[axis]};
+    return {tex.fetch(c, b.k + glm::vec3(sh) * use), c[axis]};
   }
 
   /// c lit at texel position p (shade in sample_tf.glsl).
@@ -185,12 +189,12 @@ struct Sampler {
     glm::vec3 g;
     const glm::bvec3 free_axis = glm::greaterThanEqual(p - 1.f, b.lo) && glm::lessThanEqual(p + 1.f, b.hi);
     if (glm::all(free_axis)) {
-      g = tex.gradient(p);  // no tap clamped: the 32-texel stencil
+      g = tex.gradient(p, b.k);  // no tap clamped: the 32-texel stencil
     } else {
       const bool inside = glm::all(glm::greaterThanEqual(p, b.lo)) && glm::all(glm::lessThanEqual(p, b.hi));
       for (int a = 0; a < 3; ++a) {
         if (inside && free_axis[a]) {  // this axis' taps unclamped
-          g[a] = tex.axis_difference(p, a);
+          g[a] = tex.axis_difference(p, b.k, a);
           continue;
         }
         glm::vec3 e(0.f);
@@ -212,8 +216,8 @@ struct Sampler {
   /// The point lookup at p (sample_point), through `row` (K entries).
   glm::vec4 point(glm::vec3 p, const BrickView& b, const float* row) const {
     const glm::vec3 q = glm::clamp(p, b.lo, b.hi);
-    if (s.stencil && tex.fetch(q, 1) < 0.5f) return glm::vec4(0.f);
-    return shade(entry(lookup(row, s.tf.entries, tf_coord(tex.fetch(q)))), p, b);
+    if (s.stencil && tex.fetch(q, b.k, 1) < 0.5f) return glm::vec4(0.f);
+    return shade(entry(lookup(row, s.tf.entries, tf_coord(tex.fetch(q, b.k)))), p, b);
   }
 };
 
