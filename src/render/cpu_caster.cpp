@@ -131,6 +131,7 @@ class RayWalk {
                vec4 next_page, ivec3 next_c, float& t_next);
   int refined_batch(float t_out, vec4 page, const BrickView& b, bool closing,
                     const float* piece_row);
+  bool fine_batch(float t_out, const BrickView& b, bool closing, float seg_e);
 };
 
 void RayWalk::neighbours(ivec3 c, vec4 page, bool level0, BrickView& b) const {
@@ -349,12 +350,15 @@ int RayWalk::refined_batch(float t_out, vec4 page, const BrickView& b, bool clos
     if (piece != piece_prev_ || piece != piece_of(e)) {  // refine this segment
       seg_b_ = a.sb[j];
       ahead_ = e;
-      fine_ = tsp::kRefineSamples;
-      fine_sum_ = vec4(0.f);
-      fine_at_ = vec3(0.f);
-      fine_w_ = 0.f;
-      ++next_;  // after its fine samples, segment j + 1 goes on from the batch
-      return made + 1;
+      if (!fine_batch(t_out, b, closing, a.se[j])) {  // (a fine sample in the next brick)
+        ++next_;  // after its fine samples, segment j + 1 goes on from the batch
+        fine_ = tsp::kRefineSamples;
+        fine_sum_ = vec4(0.f);
+        fine_at_ = vec3(0.f);
+        fine_w_ = 0.f;
+        return made + 1;
+      }
+      continue;
     }
     const vec4 col(a.lit.r[j], a.lit.g[j], a.lit.b[j], a.lit.a[j]);
     if (col.a > 0.f) blend(col);
@@ -363,6 +367,45 @@ int RayWalk::refined_batch(float t_out, vec4 page, const BrickView& b, bool clos
     seg_b_ = a.se[j];
   }
   return made;
+}
+
+// A refined segment [seg_b_, seg_e]'s kRefineSamples fine samples in one SIMD batch, composited
+// and lit as refined()'s fine passes composite them, then the segment closed (cur_ becomes
+// ahead_). False, with nothing done, when a fine sample lies in the next brick of the run.
+bool RayWalk::fine_batch(float t_out, const BrickView& b, bool closing, float seg_e) {
+  constexpr int kSamples = tsp::kRefineSamples;
+  const float dt = s_.spacing / r_.cos_theta;
+  detail::Positions pos;
+  float ts = seg_b_;
+  for (int i = 0; i < kSamples; ++i) {
+    ts = seg_b_ + (seg_e - seg_b_) * (float(i) + 0.5f) / float(kSamples);
+    if (ts >= t_out && !closing) return false;
+    const vec3 u = texel(ts, vec3(1.f));
+    pos.x[i] = u.x;
+    pos.y[i] = u.y;
+    pos.z[i] = u.z;
+  }
+  detail::Colours fine;
+  detail::sample_batch(smp_, b, s_.tf.refine + 4 * s_.tf.entries * kFineRow, pos, kSamples, false,
+                       fine);
+  const float k = (seg_e - seg_b_) / dt;
+  vec4 sum(0.f);
+  vec3 at_sum(0.f);
+  float w = 0.f;
+  for (int i = 0; i < kSamples; ++i) {
+    vec4 e(fine.r[i], fine.g[i], fine.b[i], fine.a[i]);
+    if (k < 1.f) e = cut_sample(e, k);
+    const vec3 u(pos.x[i], pos.y[i], pos.z[i]);
+    at_sum += (1.f - sum.a) * e.a * u;
+    w += (1.f - sum.a) * e.a;
+    sum += (1.f - sum.a) * e;
+  }
+  const vec3 at = w > 0.f ? at_sum / w : vec3(pos.x[kSamples - 1], pos.y[kSamples - 1], pos.z[kSamples - 1]);
+  if (sum.a > 0.f) blend(smp_.shade(sum, at, b));
+  piece_prev_ = piece_of(cur_);
+  cur_ = ahead_;
+  seg_b_ = seg_e;
+  return true;
 }
 
 vec4 RayWalk::run() {
