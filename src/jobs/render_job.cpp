@@ -68,6 +68,7 @@ json frame_json(const FrameRecord& f) {
           {"redrawn_percent", r.redrawn_percent},
           {"dense", r.dense},
           {"backend", r.backend},
+          {"samples", r.samples},
           {"step_multiplier", r.step_multiplier},
           {"steps_merged", {r.spans_lo, r.spans_hi}},
           {"steps_shown", {r.shown_lo, r.shown_hi}},

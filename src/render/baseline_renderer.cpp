@@ -100,6 +100,7 @@ FrameReport BaselineRenderer::render(int step, const tsp::Camera& camera,
     compositor_.draw({item});
   }
   r.fragments = compositor_.end_frame();
+  r.samples = compositor_.cpu_samples();
   r.draw_ms = phase.lap_ms();
   r.ms = frame.ms();
   r.class_percent[std::size_t(tsp::DrawClass::new_texture)] = 100.0;

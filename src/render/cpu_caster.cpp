@@ -98,6 +98,8 @@ class RayWalk {
         grid_(s.grid[0], s.grid[1], s.grid[2]) {}
 
   vec4 run();
+  /// Scalar samples read so far.
+  std::int64_t samples() const { return samples_; }
 
  private:
   const CastScene& s_;
@@ -113,6 +115,7 @@ class RayWalk {
   vec3 fine_at_{0.f};
   int fine_ = 0;
   bool run_open_ = false;
+  std::int64_t samples_ = 0;
   // refined_batch's segments ahead in this brick: their bounds, the middles read, their lit
   // colours; `next_` the first not yet composited (next_ == ahead_n_: none left).
   struct Ahead {
@@ -159,7 +162,10 @@ void RayWalk::segments(float t, float t_out, float& t_next, vec3 scale, vec4 pag
     float t_b = ((std::floor(d / s_.spacing) + 1.f) * s_.spacing - r_.depth_entry) / r_.cos_theta;
     if (closing) t_b = std::min(t_b, t_out);
     const float k = (t_b - t) / dt;
-    if (k > 1e-4f) blend(cut_sample(smp_.point(texel(0.5f * (t + t_b), scale), b, row), k));
+    if (k > 1e-4f) {
+      blend(cut_sample(smp_.point(texel(0.5f * (t + t_b), scale), b, row), k));
+      ++samples_;
+    }
     t_next = t_b + 0.5f * dt;
     run_open_ = true;
   }
@@ -183,6 +189,7 @@ void RayWalk::segments(float t, float t_out, float& t_next, vec3 scale, vec4 pag
       }
       if (n == 0) break;
       detail::sample_batch(smp_, b, row, pos, n, true, col);
+      samples_ += n;
       int used = 0;
       for (; used < n && acc_.a < kOpaque; ++used, t_next += dt, tc += dtc)
         blend(vec4(col.r[used], col.g[used], col.b[used], col.a[used]));
@@ -196,6 +203,7 @@ void RayWalk::segments(float t, float t_out, float& t_next, vec3 scale, vec4 pag
       blend(cut_sample(smp_.point(tc + dtc * (0.5f * k - 0.5f), b, row), k));
     else
       blend(smp_.point(tc, b, row));
+    ++samples_;
     tc += dtc;
   }
 }
@@ -244,6 +252,7 @@ void RayWalk::refined(float t, float t_out, vec4 page, ivec3 c, const BrickView&
     const vec3 tcs = texel(ts, vec3(1.f));
     const vec3 q = glm::clamp(tcs, b_lo, glm::min(b_lo + cell_, s_.box_hi));
     const float v = smp_.tex.fetch(q, k_at);
+    ++samples_;
     vec4 e = detail::entry(detail::lookup(rows[mode == 2 ? 1 : 0], k_entries, smp_.tf_coord(v)));
     if (s_.stencil && smp_.tex.fetch(q, k_at, 1) < 0.5f)
       e = vec4(0.f, 0.f, 0.f, mode == 2 ? 0.f : 2.f * piece_of(e));
@@ -329,6 +338,7 @@ int RayWalk::refined_batch(float t_out, vec4 page, const BrickView& b, bool clos
     next_ = 0;
     if (n == 0) return 0;
     detail::sample_batch(smp_, b, piece_row, reads, n, false, a.read);
+    samples_ += n;
     for (int j = 0; j < n; ++j) {  // segment j composites the middle read before it
       const vec4 cur =
           j == 0 ? cur_ : vec4(a.read.r[j - 1], a.read.g[j - 1], a.read.b[j - 1], a.read.a[j - 1]);
@@ -388,6 +398,7 @@ bool RayWalk::fine_batch(float t_out, const BrickView& b, bool closing, float se
   detail::Colours fine;
   detail::sample_batch(smp_, b, s_.tf.refine + 4 * s_.tf.entries * kFineRow, pos, kSamples, false,
                        fine);
+  samples_ += kSamples;
   const float k = (seg_e - seg_b_) / dt;
   vec4 sum(0.f);
   vec3 at_sum(0.f);
@@ -503,6 +514,7 @@ vec4 RayWalk::run() {
           const float lo_j = tj == first ? t : tj - 0.5f * dtm;
           const float hi_j = tj + dtm >= t_out ? t_out : tj + 0.5f * dtm;
           vec4 smp = smp_.point(tc, b, row);
+          ++samples_;
           if (smp.a > 0.f) {
             const float a = 1.f - std::pow(std::max(1.f - smp.a, 0.f), (hi_j - lo_j) / dt);
             smp = vec4(vec3(smp) * (a / smp.a), a);
@@ -543,19 +555,23 @@ vec4 RayWalk::run() {
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 [[gnu::target_clones("arch=x86-64-v3", "default"), gnu::flatten]]
 #endif
-std::int64_t cast_tile(const CastScene& scene, const Sampler& sampler, bool batch, int tx0, int ty0, int tx1,
-                       int ty1, float* rgba) {
-  std::int64_t n = 0;
+CastStats cast_tile(const CastScene& scene, const Sampler& sampler, bool batch, int tx0, int ty0,
+                    int tx1, int ty1, float* rgba) {
+  CastStats n;
   for (int py = ty0; py < ty1; ++py)
     for (int px = tx0; px < tx1; ++px) {
       float* out = rgba + (std::size_t(py) * std::size_t(scene.width) + std::size_t(px)) * 4;
       Ray r;
       vec4 acc(0.f);
-      if (pixel_ray(scene, px, py, r)) acc = RayWalk(scene, sampler, batch, r).run();
+      if (pixel_ray(scene, px, py, r)) {
+        RayWalk walk(scene, sampler, batch, r);
+        acc = walk.run();
+        n.samples += walk.samples();
+      }
       if (acc.a <= 0.f)
         acc = vec4(0.f);
       else
-        ++n;
+        ++n.pixels;
       out[0] = acc.r;
       out[1] = acc.g;
       out[2] = acc.b;
@@ -566,27 +582,30 @@ std::int64_t cast_tile(const CastScene& scene, const Sampler& sampler, bool batc
 
 }  // namespace
 
-std::int64_t cast_rays(const CastScene& scene, const CastRect& rect, int threads,
-                       std::vector<float>& rgba) {
+CastStats cast_rays(const CastScene& scene, const CastRect& rect, int threads,
+                    std::vector<float>& rgba) {
   rgba.resize(std::size_t(scene.width) * std::size_t(scene.height) * 4);
   const int x0 = std::max(rect.x0, 0), y0 = std::max(rect.y0, 0);
   const int x1 = std::min(rect.x1, scene.width), y1 = std::min(rect.y1, scene.height);
-  if (x1 <= x0 || y1 <= y0) return 0;
+  if (x1 <= x0 || y1 <= y0) return {};
   const int tiles_x = (x1 - x0 + kTile - 1) / kTile, tiles_y = (y1 - y0 + kTile - 1) / kTile;
   const Sampler sampler(scene);
   const bool batch = !scene.stencil && detail::batch_ready(sampler);
-  std::atomic<std::int64_t> drawn{0};
+  std::atomic<std::int64_t> pixels{0}, samples{0};
   tsp::parallel_for(std::int64_t(tiles_x) * tiles_y, 1, threads,
                     [&](int, std::int64_t begin, std::int64_t end) {
-    std::int64_t n = 0;
+    CastStats n;
     for (std::int64_t tile = begin; tile < end; ++tile) {
       const int tx = x0 + int(tile % tiles_x) * kTile, ty = y0 + int(tile / tiles_x) * kTile;
-      n += cast_tile(scene, sampler, batch, tx, ty, std::min(tx + kTile, x1), std::min(ty + kTile, y1),
-                     rgba.data());
+      const CastStats t = cast_tile(scene, sampler, batch, tx, ty, std::min(tx + kTile, x1),
+                                    std::min(ty + kTile, y1), rgba.data());
+      n.pixels += t.pixels;
+      n.samples += t.samples;
     }
-    drawn += n;
+    pixels += n.pixels;
+    samples += n.samples;
   });
-  return drawn.load();
+  return {pixels.load(), samples.load()};
 }
 
 }  // namespace tspgl

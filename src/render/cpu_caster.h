@@ -56,12 +56,18 @@ struct CastRect {
   int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
 };
 
+/// What one cast did.
+struct CastStats {
+  std::int64_t pixels = 0;   ///< pixels drawn (rays that composited something)
+  std::int64_t samples = 0;  ///< scalar samples read through a TF (the work a frame costs)
+};
+
 /// Casts the rays of the pixels in rect (clamped to the target) into rgba: width × height × 4
 /// premultiplied floats, rows bottom-up as GL reads them; a pixel whose ray draws nothing gets
 /// alpha 0 (and is left out, like a discarded fragment). Pixels outside rect are not touched.
-/// Returns the pixels drawn. Uses `threads` workers (0: all). Never throws but std::bad_alloc;
-/// thread-safe for distinct outputs (scene is read only).
-std::int64_t cast_rays(const CastScene& scene, const CastRect& rect, int threads,
-                       std::vector<float>& rgba);
+/// Uses `threads` workers (0: all). Never throws but std::bad_alloc; thread-safe for distinct
+/// outputs (scene is read only).
+CastStats cast_rays(const CastScene& scene, const CastRect& rect, int threads,
+                    std::vector<float>& rgba);
 
 }  // namespace tspgl

@@ -33,13 +33,13 @@ CpuPass::~CpuPass() {
   gl_.DeleteVertexArrays(1, &vao_);
 }
 
-std::int64_t CpuPass::draw(const CastScene& scene, CastRect rect) {
+CastStats CpuPass::draw(const CastScene& scene, CastRect rect) {
   if (rect.x1 <= rect.x0 || rect.y1 <= rect.y0) rect = {0, 0, scene.width, scene.height};
   rect.x0 = std::max(rect.x0, 0);
   rect.y0 = std::max(rect.y0, 0);
   rect.x1 = std::min(rect.x1, scene.width);
   rect.y1 = std::min(rect.y1, scene.height);
-  const std::int64_t drawn = cast_rays(scene, rect, 0, rgba_);
+  const CastStats drawn = cast_rays(scene, rect, 0, rgba_);
   if (rect.x1 <= rect.x0 || rect.y1 <= rect.y0) return drawn;
   gl_.ActiveTexture(GL_TEXTURE0 + kImageUnit);
   gl_.BindTexture(GL_TEXTURE_2D, texture_);

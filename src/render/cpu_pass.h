@@ -25,9 +25,9 @@ class CpuPass {
   CpuPass(const CpuPass&) = delete;
   CpuPass& operator=(const CpuPass&) = delete;
   /// Casts scene's rays in rect (the whole target when empty) and blends them over the bound
-  /// target, which must be scene.width × scene.height with blending set. Returns the pixels
-  /// drawn. Throws tsp::GlError.
-  std::int64_t draw(const CastScene& scene, CastRect rect);
+  /// target, which must be scene.width × scene.height with blending set. Returns what the
+  /// cast did. Throws tsp::GlError.
+  CastStats draw(const CastScene& scene, CastRect rect);
 
  private:
   const GlApi& gl_;

@@ -42,6 +42,8 @@ struct FrameReport {
   std::string backend = "gl";
   /// Why a frame asked to be cast on the CPU was drawn by GL (empty: it was not).
   std::string backend_note;
+  /// CPU frames: the samples the caster read through a TF (0 for GL frames).
+  std::int64_t samples = 0;
   bool dense = false;  ///< ray cast as one whole-volume texture (DenseVolume), not the brick grid
   std::int64_t deferred_textures = 0;  ///< textures left for later frames (upload_budget)
   /// True when every texture the frame needs was drawn (nothing deferred).

@@ -301,6 +301,7 @@ void SliceCompositor::begin_frame(const tsp::Camera& camera, const RenderSetting
     rays_ = rays_base_;
   choose_backend(settings, plain);
   region_ = {};
+  cpu_samples_ = 0;
   const tsp::CameraParams& view = camera.params();
   output_ = {settings.viewport_origin[0], settings.viewport_origin[1], view.width, view.height};
   target_.bind(view.width, view.height, settings.render_scale);
@@ -571,7 +572,7 @@ void SliceCompositor::draw_rays() {
   if (surface_drawn_ && !clip_region_.active()) return;
   if (cpu_) {
     if (!cpu_pass_) cpu_pass_ = std::make_unique<CpuPass>(gl_);
-    cpu_pass_->draw(cast_, region_);
+    cpu_samples_ += cpu_pass_->draw(cast_, region_).samples;
     return;
   }
   gl_.BindTexture(GL_TEXTURE_3D, rays_atlas_);

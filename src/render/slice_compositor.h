@@ -152,6 +152,8 @@ class SliceCompositor {
   bool cpu_frame() const { return cpu_; }
   /// Why this frame, asked to be cast on the CPU, is drawn by GL (empty: it is not).
   const std::string& backend_note() const { return backend_note_; }
+  /// Samples the CPU caster read since begin_frame (0 for GL frames).
+  std::int64_t cpu_samples() const { return cpu_samples_; }
   /// True when the context's GL renderer is software (where --backend auto casts on the CPU).
   bool software_gl() const { return software_gl_; }
 
@@ -189,6 +191,7 @@ class SliceCompositor {
   // The CPU caster (--backend): this frame's choice, its scene and the current region.
   bool software_gl_ = false;
   bool cpu_ = false;
+  std::int64_t cpu_samples_ = 0;
   std::string backend_note_;
   CastScene cast_;
   CastRect region_;

@@ -528,6 +528,7 @@ FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
   r.slicing_ms = phase.lap_ms();
   draw(f, camera, r);
   r.draw_ms = phase.lap_ms();
+  r.samples = compositor_->cpu_samples();
   r.ms = frame.ms();
   report(f.plan, r);
   return r;
