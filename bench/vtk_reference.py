@@ -15,8 +15,8 @@ dependencies) and a display (run under `xvfb-run -a -s "-screen 0 1280x1024x24"`
         [--shade on|off]
 
 With --search 1,3 it judges VTK as tspplay's bench judges our renderers (docs/bench.md): the
-reference is VTK's own CPU caster at 0.25-voxel sample distance; every mapper × --spacings value
-is rendered, its mean ΔE against the reference measured with `tspplay diff`, and for each target
+reference is VTK's own CPU caster at 0.25-voxel sample distance (image sample distance 1); every
+mapper × --spacings × --image-sample-distances value is rendered (lit with --shade on), its mean ΔE against the reference measured with `tspplay diff`, and for each target
 the fastest configuration within it is VTK's best. With --against report.json --tsp FILE.tsp
 --tf-arg preset:NAME, the bench's Table-4 TSP winners for the same TF are timed head to head with
 VTK's best, alternating for --rounds rounds (`tspplay render` with the row's render_options), and
@@ -158,20 +158,28 @@ def search(a, series, colour, opacity, dims, az, el, width, height, first):
     targets = [float(v) for v in a.search.split(",")]
     spacings = [float(v) for v in a.spacings.split(",")]
     steps = list(range(first, first + len(series)))
-    pipes = {k: make_pipeline(k, colour, opacity, dims, az, el, width, height) for k in kinds}
+    shade = a.shade == "on"
+    isds = [float(v) for v in a.image_sample_distances.split(",")]
+    pipes = {k: make_pipeline(k, colour, opacity, dims, az, el, width, height, shade) for k in kinds}
     ref_dir = os.path.join(a.out, "reference")
-    ref_pipe = pipes.get("cpu") or make_pipeline("cpu", colour, opacity, dims, az, el, width, height)
+    ref_pipe = pipes.get("cpu") or make_pipeline("cpu", colour, opacity, dims, az, el, width, height,
+                                                 shade)
+    ref_pipe[1].SetImageSampleDistance(1.0)
     render_series(*ref_pipe, series, a.field, dims, 0.25, ref_dir, first)
     configs = []
     for kind in kinds:
-        for sp in spacings:
-            d = os.path.join(a.out, "%s_%g" % (kind, sp))
-            times = render_series(*pipes[kind], series, a.field, dims, sp, d, first)
-            steady = times[1:] if len(times) > 1 else times
-            de = mean_delta_e(a.tspplay, d, ref_dir, steps)
-            configs.append({"mapper": kind, "spacing": sp, "median_ms": statistics.median(steady),
-                            "mean_delta_e": de})
-            print("%s spacing %g: %.2f ms, mean dE %.3f" % (kind, sp, configs[-1]["median_ms"], de))
+        for isd in isds:
+            # Rays every isd pixels, the picture interpolated up (ParaView's "image reduction").
+            pipes[kind][1].SetImageSampleDistance(isd)
+            for sp in spacings:
+                d = os.path.join(a.out, "%s_%g_isd%g" % (kind, sp, isd))
+                times = render_series(*pipes[kind], series, a.field, dims, sp, d, first)
+                steady = times[1:] if len(times) > 1 else times
+                de = mean_delta_e(a.tspplay, d, ref_dir, steps)
+                configs.append({"mapper": kind, "spacing": sp, "image_sample_distance": isd,
+                                "median_ms": statistics.median(steady), "mean_delta_e": de})
+                print("%s spacing %g isd %g: %.2f ms, mean dE %.3f" % (
+                    kind, sp, isd, configs[-1]["median_ms"], de))
     best = {}
     for t in targets:
         ok = [c for c in configs if c["mean_delta_e"] <= t]
@@ -192,6 +200,7 @@ def search(a, series, colour, opacity, dims, az, el, width, height, first):
             b = best[t]
             for r in rows:
                 vtk_ms, tsp_ms = [], []
+                pipes[b["mapper"]][1].SetImageSampleDistance(b["image_sample_distance"])
                 for _ in range(a.rounds):
                     times = render_series(*pipes[b["mapper"]], series, a.field, dims, b["spacing"],
                                           "", first)
@@ -227,6 +236,9 @@ def main():
                    help="light the volume (VTK's default coefficients and headlight)")
     p.add_argument("--search", default="", help="target mean dE values, e.g. 1,3")
     p.add_argument("--spacings", default="0.25,0.5,1,1.5,2,3,4,6,8")
+    p.add_argument("--image-sample-distances", default="1,1.5,2,3",
+                   help="VTK's image sample distances searched with every spacing (rays every N "
+                        "pixels)")
     p.add_argument("--tspplay", default=os.path.join(os.path.dirname(os.path.abspath(__file__)),
                                                      "..", "build", "tspplay"))
     p.add_argument("--against", default="", help="a tspplay bench report.json")

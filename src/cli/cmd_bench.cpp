@@ -24,6 +24,7 @@ struct BenchArgs {
   std::vector<std::string> tfs;
   std::string metrics = "scalar,approximate,perceptual,reference", targets = "1,3";
   int search_steps = 8, search_iterations = 10, passes = 2, timed_candidates = 3, rounds = 3;
+  std::string render_scales = "1";
   std::string compositings = "slices,boxes,rays", spacings = "0.5,1,1.5,2,3,4,6,8",
               baseline_spacings = "0.25,0.5,0.75,1,1.5,2,3,4,6,8", compositing = "rays", preintegration = "off",
               lod_levels = "0", sampling_tols = "0", tolerance_rules = "equal,temporal";
@@ -101,6 +102,12 @@ void run(const BenchArgs& a) {
   for (const std::string& l : split(a.lod_levels))
     o.tsp_grid.lod_levels.push_back(int(parse_integer(l, "--lod-levels", 0, 16, "levels 0..16")));
   o.baseline_grid.spacings = parse_spacings(a.baseline_spacings, "--baseline-spacings");
+  o.tsp_grid.render_scales = o.baseline_grid.render_scales =
+      parse_spacings(a.render_scales, "--render-scales");
+  for (double v : o.tsp_grid.render_scales)
+    if (!(v >= tspgl::kMinRenderScale && v <= 1))
+      throw tsp::UsageError("--render-scales " + a.render_scales + ": expected scales in [" +
+                            std::to_string(tspgl::kMinRenderScale).substr(0, 4) + ", 1], e.g. 1,0.5");
   o.tsp_grid.sampling_tols.clear();
   for (const std::string& t : split(a.sampling_tols)) {
     char* end = nullptr;
@@ -198,6 +205,9 @@ const CommandRegistrar reg(45, [](CLI::App& app) {
                 "(default off)");
   c->add_option("--rounds", a->rounds,
                 "Head-to-head rounds timing the reference and each winner in turn (default 3)");
+  c->add_option("--render-scales", a->render_scales,
+                 "Render scales both Table-4 searches try with every spacing, e.g. 1,0.5 (rays every "
+                 "1/S pixels, VTK's image sample distance; default 1)");
   c->add_option("--baseline-spacings", a->baseline_spacings,
                 "Baseline spacings the Table-4 search tries (default 0.25,0.5,0.75,1,1.5,2,3,4,6,8)");
   c->add_option("--timed-candidates", a->timed_candidates,

@@ -47,6 +47,7 @@ void apply(const Knobs& k, RenderSettings& settings) {
   settings.tol = tolerances(k);
   settings.preintegrated = k.preintegrated;
   settings.sampling_tol = k.baseline ? 0 : k.sampling_tol;
+  settings.render_scale = k.render_scale;
 }
 
 std::vector<Knobs> grid_cells(const KnobGrid& grid, bool baseline) {
@@ -61,16 +62,18 @@ std::vector<Knobs> grid_cells(const KnobGrid& grid, bool baseline) {
         for (bool pre : grid.preintegration)
           for (Compositing c : grid.compositings) {
             if (st > 0 && (pre || c != Compositing::rays)) continue;  // adaptive: rays, point lookup
-            for (double s : grid.spacings) {
-              Knobs& k = out.emplace_back();
-              k.baseline = baseline;
-              k.compositing = c;
-              k.spacing = s;
-              k.preintegrated = pre;
-              k.lod_level = level;
-              k.sampling_tol = st;
-              k.rule = rule;
-            }
+            for (double s : grid.spacings)
+              for (double scale : grid.render_scales) {
+                Knobs& k = out.emplace_back();
+                k.baseline = baseline;
+                k.compositing = c;
+                k.spacing = s;
+                k.preintegrated = pre;
+                k.lod_level = level;
+                k.sampling_tol = st;
+                k.rule = rule;
+                k.render_scale = scale;
+              }
           }
   return out;
 }
@@ -87,6 +90,7 @@ std::string render_options(const Knobs& k, tsp::Metric metric) {
   if (k.preintegrated) out += " " + opt("preintegrated");
   if (!k.baseline && k.sampling_tol > 0) out += " " + opt("sampling-tol");
   if (!k.baseline && k.lod_level > 0) out += " --lod " + std::to_string(k.lod_level);
+  if (k.render_scale != 1) out += " " + opt("render-scale");
   if (!k.baseline)
     out += std::string(" --metric ") + tsp::to_string(metric) + " " + opt("spatial-tol") + " " +
            opt("temporal-tol");

@@ -36,6 +36,7 @@ struct Knobs {
   bool preintegrated = false;                   ///< pre-integrated TF lookup
   int lod_level = 0;  ///< TSP: an LOD level drawn everywhere (render --lod K; 0: full resolution)
   double sampling_tol = 0;  ///< TSP, rays: adaptive sampling's tolerance (0: off)
+  double render_scale = 1;  ///< rays every 1/render_scale pixels (RenderSettings::render_scale)
   /// Every knob equal.
   bool operator==(const Knobs&) const = default;
 };
@@ -46,7 +47,7 @@ void apply(const Knobs& k, RenderSettings& settings);
 
 /// The exact `tspplay render` options that draw k (with --metric for the TSP renderer), e.g.
 /// "--compositing rays --spacing 2 --metric approximate --spatial-tol 0.01 --temporal-tol 0.01"
-/// (and "--preintegrated on", "--sampling-tol X" when set).
+/// (and "--preintegrated on", "--sampling-tol X", "--render-scale S" when set).
 /// Numbers are written with 17 significant digits, so they parse back to the same doubles.
 std::string render_options(const Knobs& k, tsp::Metric metric);
 
@@ -70,6 +71,8 @@ struct KnobGrid {
   std::vector<Compositing> compositings{Compositing::slices, Compositing::boxes,
                                         Compositing::rays};
   std::vector<double> spacings{0.5, 1, 1.5, 2, 3, 4};
+  /// Render scales tried with every spacing (VTK's image sample distance is 1 / scale).
+  std::vector<double> render_scales{1};
   std::vector<bool> preintegration{false};  ///< TF lookups tried (point, pre-integrated)
   std::vector<int> lod_levels{0};  ///< TSP only: LOD levels drawn everywhere (0: full resolution)
   /// TSP only: adaptive sampling tolerances (0: off), tried with rays and the point lookup.

@@ -168,8 +168,12 @@ TEST_F(BenchCli, Table4RowsReRenderWithinTheirTargets) {
     EXPECT_EQ(options.find("--baseline") == 0, r["renderer"] == "baseline") << options;
     const double de = rerendered_mean_delta_e(tsp, options, ref);
     EXPECT_LE(de, target) << who << " target " << target << ": " << options;
-    // Not bit-exact: the re-render's bricks sit in other atlas slots, so texel weights round
-    // differently (a few 1e-6 ΔE).
+    // The same command draws the same bytes every time. The table's value was measured inside
+    // bench, where the bricks sit in other atlas slots: GL's texel weights round with the slot's
+    // texture coordinate (up to 1e-4 ΔE, which made this test fail one run in three). The CPU
+    // caster, which --backend auto picks on llvmpipe, takes its weights from the sample grid
+    // alone (cpu_caster_test: the same bytes wherever the bricks sit); what remains is below
+    // 1e-5 on this scene.
     EXPECT_NEAR(de, r["mean_delta_e"].get<double>(), 1e-4) << options;
     EXPECT_GT(r["median_ms"].get<double>(), 0);
   }
