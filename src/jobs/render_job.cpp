@@ -67,7 +67,7 @@ json frame_json(const FrameRecord& f) {
           {"fragments", r.fragments},
           {"redrawn_percent", r.redrawn_percent},
           {"dense", r.dense},
-          {"backend", r.backend},
+          {"caster", r.backend},
           {"samples", r.samples},
           {"step_multiplier", r.step_multiplier},
           {"steps_merged", {r.spans_lo, r.spans_hi}},
@@ -78,7 +78,7 @@ json frame_json(const FrameRecord& f) {
           {"time", f.time ? json(*f.time) : json(nullptr)},
           {"time_text", f.time ? json(f.time_text) : json(nullptr)},
           {"lod", f.lod ? lod_json(*f.lod) : json(nullptr)}};
-  if (!r.backend_note.empty()) j["backend_note"] = r.backend_note;
+  if (!r.backend_note.empty()) j["caster_note"] = r.backend_note;
   if (f.surface_splats >= 0) {
     j["surface_splats"] = f.surface_splats;
     j["surface_cut_ms"] = f.surface_cut_ms;
@@ -399,6 +399,12 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
       if (drawn.lod) rec.lod = LodRecord{o.lod == LodMode::adaptive ? o.target_ms : 0, *drawn.lod};
       rec.ram_bytes = (baseline ? baseline->brick_cache() : renderer->brick_cache()).stats().resident_bytes;
       rec.rss_bytes = tsp::resident_bytes();
+      // A frame the chosen back end cannot draw is drawn by the other: said once, and in the
+      // frame's record (caster_note).
+      if (!rec.report.backend_note.empty() &&
+          std::find(result.warnings.begin(), result.warnings.end(), rec.report.backend_note) ==
+              result.warnings.end())
+        result.warnings.push_back(rec.report.backend_note);
       result.frames.push_back(rec);
       // The last pass's images win; earlier passes only measure.
       const bool png = !dir.empty() && o.write_images && pass == o.passes;

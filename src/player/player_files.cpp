@@ -296,8 +296,8 @@ void PlayerApp::write_stats(const std::string& path) const {
   j["mean_frame_ms"] = mean;
   j["fps"] = mean > 0 ? 1000.0 / mean : 0.0;
   j["render_ms"] = last.ms;
-  j["backend"] = last.backend;  // who cast the last frame's rays: gl or cpu
-  if (!last.backend_note.empty()) j["backend_note"] = last.backend_note;
+  j["caster"] = last.backend;  // who cast the last frame's rays: gl or cpu ("backend": the setting)
+  if (!last.backend_note.empty()) j["caster_note"] = last.backend_note;
   j["fragments"] = last.fragments;          // drawn by the last frame (0 when it reused the image)
   j["picture_fragments"] = picture_fragments_;  // of the frame that drew the picture shown
   j["redrawn_percent"] = last.redrawn_percent;

@@ -4,6 +4,7 @@
 // picture close to the full one.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -45,9 +46,9 @@ class BackendCli : public ::testing::Test {
 
 TEST_F(BackendCli, FramesSayWhoDrewThemAndTheBackEndsAgree) {
   const fs::path cpu = *dir_ / "cpu", gl = *dir_ / "gl";
-  EXPECT_EQ(frame(render("--backend cpu", cpu))["backend"], "cpu");
+  EXPECT_EQ(frame(render("--backend cpu", cpu))["caster"], "cpu");
   EXPECT_GT(frame(render("--backend cpu", cpu))["samples"].get<long long>(), 0);
-  EXPECT_EQ(frame(render("--backend gl", gl))["backend"], "gl");
+  EXPECT_EQ(frame(render("--backend gl", gl))["caster"], "gl");
   const tsp::DiffStats d = tsp::diff_images(tsp::read_png((cpu / "step_0001.png").string()),
                                             tsp::read_png((gl / "step_0001.png").string()));
   EXPECT_LT(d.mean, 0.05);
@@ -55,9 +56,17 @@ TEST_F(BackendCli, FramesSayWhoDrewThemAndTheBackEndsAgree) {
 }
 
 TEST_F(BackendCli, WhatTheCpuCasterCannotDrawIsDrawnByGlWithANote) {
+  const auto r = run_tspplay("render " + quote(*dir_ / "s.tsp") +
+                             " --steps 1:2 --size 160x120 --backend cpu --preintegrated on -o " +
+                             quote(*dir_ / "pre_warn"));
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  const std::string note = "the cpu caster does not draw pre-integration: drawn by gl";
+  const std::size_t at = r.err.find(note);
+  EXPECT_NE(at, std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find(note, at + 1), std::string::npos) << "said once: " << r.err;
   const json j = render("--backend cpu --preintegrated on", *dir_ / "pre");
-  EXPECT_EQ(frame(j)["backend"], "gl");
-  EXPECT_NE(frame(j)["backend_note"].get<std::string>().find("pre-integration"), std::string::npos)
+  EXPECT_EQ(frame(j)["caster"], "gl");
+  EXPECT_NE(frame(j)["caster_note"].get<std::string>().find("pre-integration"), std::string::npos)
       << frame(j);
 }
 
@@ -83,6 +92,23 @@ TEST_F(BackendCli, HalfTheRaysDrawAPictureCloseToTheFullOne) {
                              quote(*dir_ / "bad_scale"));
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_NE(r.err.find("--render-scale"), std::string::npos) << r.err;
+}
+
+TEST_F(BackendCli, ThePlayerSwitchesCastersByScriptAndSaysWhoDrew) {
+  if (!std::getenv("DISPLAY")) GTEST_SKIP() << "no display (scripts/test.sh runs the suite under Xvfb)";
+  const fs::path script = *dir_ / "backend.txt";
+  std::ofstream(script) << "backend gl\nwait-frames 2\nstats " << (*dir_ / "gl.json").string()
+                        << "\nbackend cpu\nwait-frames 2\nstats " << (*dir_ / "cpu.json").string()
+                        << "\nquit\n";
+  const auto r = run_tspplay("play " + quote(*dir_ / "s.tsp") + " --size 320x240 --script " +
+                             quote(script));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* who : {"gl", "cpu"}) {
+    std::ifstream in(*dir_ / (std::string(who) + ".json"));
+    const json j = json::parse(in);
+    EXPECT_EQ(j["backend"], who);
+    EXPECT_EQ(j["caster"], who);
+  }
 }
 
 }  // namespace
