@@ -6,6 +6,7 @@
 
 #include "gl/gl_error.h"
 #include "jobs/render_job.h"
+#include "tsp/core/interrupt.h"
 #include "tsp/report/image_diff.h"
 
 namespace tspgl {
@@ -53,6 +54,8 @@ std::pair<tsp::Image, double> ImageProbe::render_step(const RenderSettings& s, i
 
 std::pair<tsp::Image, double> ImageProbe::draw(Drawing& d, const RenderSettings& s, std::size_t i) {
   assert(i < steps_.size());
+  // Every search and calibration draws through here: a SIGINT/SIGTERM stops them within a frame.
+  tsp::throw_if_interrupted();
   ctx_.make_current();  // the caller's context (a render job in between may have made its own)
   const CanvasScope scope(canvas_);
   FrameRequest r;

@@ -95,7 +95,7 @@ TEST_F(BackendCli, HalfTheRaysDrawAPictureCloseToTheFullOne) {
 }
 
 TEST_F(BackendCli, ThePlayerSwitchesCastersByScriptAndSaysWhoDrew) {
-  if (!std::getenv("DISPLAY")) GTEST_SKIP() << "no display (scripts/test.sh runs the suite under Xvfb)";
+  TSPTEST_REQUIRE(std::getenv("DISPLAY"), "no display (scripts/test.sh runs the suite under Xvfb)");
   const fs::path script = *dir_ / "backend.txt";
   std::ofstream(script) << "backend gl\nwait-frames 2\nstats " << (*dir_ / "gl.json").string()
                         << "\nbackend cpu\nwait-frames 2\nstats " << (*dir_ / "cpu.json").string()

@@ -136,8 +136,9 @@ TEST(HostileCli, BenchRoundsAndScriptFieldsAreChecked) {
   const auto script = dir / "field.txt";
   std::ofstream(script) << "field nosuchfield\nquit\n";
   auto p = run_tspplay("play " + quote(tsp_path) + " --size 32x24 --script " + quote(script));
-  if (p.err.find("no display") != std::string::npos || p.err.find("GLFW") != std::string::npos)
-    GTEST_SKIP() << "no display (run under xvfb-run): " << p.err;
+  TSPTEST_REQUIRE(p.err.find("no display") == std::string::npos &&
+                     p.err.find("GLFW") == std::string::npos,
+                 "no display (run under xvfb-run): " << p.err);
   EXPECT_EQ(p.exit_code, 2) << p.err;
   EXPECT_NE(p.err.find("field.txt:1: field 'nosuchfield'"), std::string::npos) << p.err;
 }

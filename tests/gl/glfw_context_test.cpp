@@ -5,6 +5,7 @@
 #include "gl/context.h"
 #include "gl/gl_error.h"
 #include "gl/shader.h"
+#include "support/paths.h"
 
 namespace {
 
@@ -17,7 +18,7 @@ bool have_display() {
 constexpr int kW = 96, kH = 64;
 
 TEST(GlfwContext, HiddenWindowGivesA33CoreContextThatClearsAndReadsBack) {
-  if (!have_display()) GTEST_SKIP() << "no DISPLAY/WAYLAND_DISPLAY (run under xvfb-run)";
+  TSPTEST_REQUIRE(have_display(), "no DISPLAY/WAYLAND_DISPLAY (run under xvfb-run)");
   auto ctx = tspgl::create_window_context(kW, kH, "tspplay test", false);
   EXPECT_EQ(ctx->width(), kW);
   EXPECT_EQ(ctx->height(), kH);
@@ -48,7 +49,7 @@ TEST(GlfwContext, HiddenWindowGivesA33CoreContextThatClearsAndReadsBack) {
 }
 
 TEST(GlfwContext, TwoWindowsInTurnReinitialiseGlfw) {
-  if (!have_display()) GTEST_SKIP() << "no DISPLAY/WAYLAND_DISPLAY (run under xvfb-run)";
+  TSPTEST_REQUIRE(have_display(), "no DISPLAY/WAYLAND_DISPLAY (run under xvfb-run)");
   for (int k = 0; k < 2; ++k) {
     auto ctx = tspgl::create_window_context(16, 16, "tspplay test", false);
     ctx->make_current();

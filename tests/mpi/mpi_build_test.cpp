@@ -26,7 +26,7 @@ tsptest::RunResult run_mpi(int ranks, const std::string& args) {
 }
 
 TEST(MpiBuild, RanksWriteTheSerialFile) {
-  if (!have_mpi()) GTEST_SKIP() << "MPI not found at configure time (install-deps.sh --mpi)";
+  TSPTEST_REQUIRE(have_mpi(), "MPI not found at configure time (install-deps.sh --mpi)");
   const fs::path dir = tsptest::temp_dir();
   const fs::path in = dir / "two.h5", vortex = dir / "vortex.h5", serial = dir / "serial.tsp";
   // Uneven dims: partial bricks at the far faces; 5 steps: an uneven time tree. Two fields in
@@ -56,7 +56,7 @@ TEST(MpiBuild, RanksWriteTheSerialFile) {
 }
 
 TEST(MpiBuild, MeshWithStencil) {
-  if (!have_mpi()) GTEST_SKIP() << "MPI not found at configure time (install-deps.sh --mpi)";
+  TSPTEST_REQUIRE(have_mpi(), "MPI not found at configure time (install-deps.sh --mpi)");
   const fs::path dir = tsptest::temp_dir();
   const fs::path in = tsptest::datasets_dir() / "samples/damBreakWithObstacle/"
                                                 "damBreakWithObstacle.vtu.series";
@@ -70,7 +70,7 @@ TEST(MpiBuild, MeshWithStencil) {
 }
 
 TEST(MpiBuild, FailureNamesTheRankAndLeavesNoOutput) {
-  if (!have_mpi()) GTEST_SKIP() << "MPI not found at configure time (install-deps.sh --mpi)";
+  TSPTEST_REQUIRE(have_mpi(), "MPI not found at configure time (install-deps.sh --mpi)");
   const fs::path dir = tsptest::temp_dir();
   const fs::path out = dir / "out.tsp";
   const auto r = run_mpi(2, "build " + quote(dir / "missing.h5") + " -o " + quote(out));
@@ -86,7 +86,7 @@ TEST(MpiBuild, FailureNamesTheRankAndLeavesNoOutput) {
 // with rank 1's error, no output appears, and the next build of the same output removes the
 // hidden temporary the killed rank 0 left.
 TEST(MpiBuild, RankFailingMidBuildLeavesNoOutput) {
-  if (!have_mpi()) GTEST_SKIP() << "MPI not found at configure time (install-deps.sh --mpi)";
+  TSPTEST_REQUIRE(have_mpi(), "MPI not found at configure time (install-deps.sh --mpi)");
   const fs::path dir = tsptest::temp_dir();
   for (const char* f : {"ascii.pvd", "ascii_0.vti", "ascii_1.vti", "ascii_2.vti"})
     fs::copy_file(tsptest::test_data_dir() / "vti" / f, dir / f);

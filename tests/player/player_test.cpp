@@ -89,7 +89,7 @@ tsp::Image render_step(const fs::path& tsp, int step, const std::string& tf = "p
 }
 
 TEST(Player, ScreenshotShowsTheVolumeAtTheRequestedStep) {
-  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
   fs::path tsp = make_tsp(), shot = tsptest::temp_dir() / "shot.png";
   auto r = run_tspplay("play " + q(tsp) + " --step 2 --size " + kSize + " --screenshot " + q(shot));
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -102,7 +102,7 @@ TEST(Player, ScreenshotShowsTheVolumeAtTheRequestedStep) {
 }
 
 TEST(Player, ScriptedScrubShowsEachStepAndATfEditChangesThePicture) {
-  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
   fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
   fs::path s0 = dir / "s0.png", s3 = dir / "s3.png", s3f = dir / "s3f.png";
   fs::path script = write_script("# scrub, then edit the TF\nscreenshot " + s0.string() +
@@ -122,7 +122,7 @@ TEST(Player, ScriptedScrubShowsEachStepAndATfEditChangesThePicture) {
 // Real X key events (xdotool) at two frames a second: five quick taps of → move five steps and
 // a tap of Space starts playback — none is lost between frames (the GLFW key queue).
 TEST(Player, QuickKeyTapsAreNotLostWhenFramesAreSlow) {
-  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
   ASSERT_EQ(std::system("command -v xdotool > /dev/null"), 0)
       << "xdotool missing (scripts/install-deps.sh installs it)";
   fs::path dir = tsptest::temp_dir(), out = dir / "keys.out", tsp = dir / "k.tsp";
@@ -159,7 +159,7 @@ TEST(Player, QuickKeyTapsAreNotLostWhenFramesAreSlow) {
 // and first moves fall into one frame), release: the point moves with the mouse. (800 tall: the
 // canvas wholly inside the window below the Settings panel's rows.)
 TEST(Player, DraggingATransferFunctionHandleMovesIt) {
-  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
   ASSERT_EQ(std::system("command -v xdotool > /dev/null"), 0)
       << "xdotool missing (scripts/install-deps.sh installs it)";
   fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
@@ -196,7 +196,7 @@ TEST(Player, DraggingATransferFunctionHandleMovesIt) {
 
 // play on an HDF5 input: built into the cache folder first (saying so), reused the second time.
 TEST(Player, PlaysARawInputThroughTheBuildCache) {
-  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
   const fs::path dir = tsptest::temp_dir(), h5 = dir / "raw.h5", cache = dir / "cache";
   ASSERT_EQ(run_tspplay("generate shock -o " + q(h5) + " --dims 20,18,16 --steps 3").exit_code, 0);
   const std::string args = "play " + q(h5) + " --field shock --cache-dir " + q(cache) +
@@ -222,7 +222,7 @@ TEST(Player, PlaysARawInputThroughTheBuildCache) {
 // The outline box is drawn over the volume by default (the UI screenshot holds it): a hint of
 // where the data is even when the TF shows nothing.
 TEST(Player, OutlineShowsInTheUiScreenshot) {
-  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
   fs::path tsp = make_tsp(), dir = tsptest::temp_dir(), shot = dir / "ui.png";
   fs::path script = write_script("wait-frames 2\nscreenshot-ui " + shot.string() + "\nquit\n");
   auto r = run_tspplay("play " + q(tsp) + " --size 900x600 --script " + q(script));
@@ -238,7 +238,7 @@ TEST(Player, OutlineShowsInTheUiScreenshot) {
 }
 
 TEST(Player, TracePrintsEachAppliedChange) {
-  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
   fs::path tsp = make_tsp(), dir = tsptest::temp_dir(), shot = dir / "trace.png";
   fs::path script = write_script("step 1\nstep 3\ntolerance 0.2 0.1\ntf preset:filled\n"
                                  "metric scalar\nplay\nwait-frames 2\npause\nscreenshot " +
@@ -259,7 +259,7 @@ TEST(Player, TracePrintsEachAppliedChange) {
 // pre-integration set matches `tspplay render` with the same options, and `stats` reports them
 // with frame times and fragments.
 TEST(Player, ScriptedKnobsMatchRenderAndStatsReportThem) {
-  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
   fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
   fs::path shot = dir / "k.png", stats = dir / "stats.json";
   fs::path script = write_script("step 1\ncompositing slices\nspacing 2\npreintegrated on\n"
@@ -302,7 +302,7 @@ std::string orbit_then_idle_script(const fs::path& dir, const fs::path& shot) {
 // software renderer reaches), and once input stops it refines to full quality: the screenshot
 // (which waits for that) matches the player with LOD off and `tspplay render`.
 TEST(Player, LodHoldsTheTargetWhileOrbitingAndRefinesToFullQualityWhenIdle) {
-  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
   fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
   const std::string text = orbit_then_idle_script(dir, dir / "lod.png");
   auto r = run_tspplay("play " + q(tsp) + " --size " + kSize + " --script " + q(write_script(text)));
@@ -326,7 +326,7 @@ TEST(Player, LodHoldsTheTargetWhileOrbitingAndRefinesToFullQualityWhenIdle) {
 // never drawn at a smaller render target (splats instead, when even the root is too slow); idle,
 // it refines to the same full-quality picture as with LOD off, with no splat left.
 TEST(Player, SplatFallbackKeepsFullSizeAndRefinesToFullQuality) {
-  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
   fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
   const std::string text = orbit_then_idle_script(dir, dir / "splat.png");
   auto r = run_tspplay("play " + q(tsp) + " --size " + kSize + " --lod-fallback splats --script " +
@@ -374,7 +374,7 @@ TEST(Player, StepOutOfRangeAndMissingFilesAreErrors) {
 
 // A tiny upload budget spreads the uploads over frames; the screenshot waits for the complete one.
 TEST(Player, ScreenshotWaitsForTheCompleteFrameUnderAnUploadBudget) {
-  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
   fs::path tsp = make_tsp(), shot = tsptest::temp_dir() / "shot.png";
   auto r = run_tspplay("play " + q(tsp) + " --step 1 --upload-budget 0.000001 --size " + kSize +
                        " --screenshot " + q(shot));
@@ -387,7 +387,7 @@ TEST(Player, ScreenshotWaitsForTheCompleteFrameUnderAnUploadBudget) {
 // The UI panels are drawn beside the volume (ImGui's OpenGL3 back end works in the window), and
 // the volume-only screenshot of the same frame has none of them.
 TEST(Player, ScreenshotUiShowsThePanelsOverTheVolume) {
-  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
   fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
   fs::path vol = dir / "vol.png", ui = dir / "ui.png";
   fs::path script = write_script("step 1\nscreenshot " + vol.string() + "\nscreenshot-ui " +
@@ -410,7 +410,7 @@ nlohmann::json read_json(const fs::path& p) {
 // plays without a separate build, a different grid size is another cached build, and
 // --field A,B builds both fields into one file (the first shown, the other in the field menu).
 TEST(Player, PlaysARawSeriesAndSeveralFieldsDirectly) {
-  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
   const fs::path dir = tsptest::temp_dir(), cache = dir / "cache";
   for (int t = 0; t < 3; ++t) {
     std::vector<float> v(8 * 6 * 4);
@@ -465,7 +465,7 @@ TEST(Player, PlaysARawSeriesAndSeveralFieldsDirectly) {
 // the same picture as the file `build --octree-error` writes), apart from the uniform build of
 // the same mesh; File > Open takes the option too.
 TEST(Player, PlaysAMeshThroughAnAdaptiveOctree) {
-  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
   const fs::path dir = tsptest::temp_dir(), cache = dir / "cache", built = dir / "built.tsp";
   const std::string mesh =
       q(tsptest::datasets_dir() / "samples/damBreakWithObstacle/damBreakWithObstacle.vtu.series");
@@ -504,7 +504,7 @@ TEST(Player, PlaysAMeshThroughAnAdaptiveOctree) {
 // WRF's T, W (15 staggered levels) and QVAPOR played straight from the NetCDF file: built into
 // one file, each on its own grid, switching keeps the view (issue 30).
 TEST(Player, PlaysSeveralWrfFieldsOnTheirOwnGrids) {
-  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
   const fs::path wrf = tsptest::shared_data_dir() / "wrf-katrina" / "ci_test_file.nc";
   if (!fs::exists(wrf)) GTEST_SKIP() << "shared data absent: " << wrf;
   const fs::path dir = tsptest::temp_dir();
@@ -552,7 +552,7 @@ TEST(Player, PlaysSeveralWrfFieldsOnTheirOwnGrids) {
 // view's size (stats say where it is) and matches `tspplay render` at that size; hidden panels
 // (Tab, or `panels off`) give the volume the whole window.
 TEST(Player, DockedPanelsLeaveTheVolumeItsOwnViewAndTabHidesThem) {
-  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
   fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
   fs::path script = write_script("step 1\nwait-frames 2\nstats " + (dir / "d.json").string() +
                                  "\nscreenshot " + (dir / "d.png").string() + "\nscreenshot-ui " +
@@ -588,7 +588,7 @@ TEST(Player, DockedPanelsLeaveTheVolumeItsOwnViewAndTabHidesThem) {
 // File > Open from a script: another .tsp plays at once; a raw input is built into the cache
 // folder first (on a thread; the script waits), then plays; the picture is the new file's.
 TEST(Player, OpenSwitchesToAnotherFileAndBuildsARawInputFirst) {
-  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
   const fs::path dir = tsptest::temp_dir(), other = dir / "v.tsp", h5 = dir / "raw.h5";
   ASSERT_EQ(run_tspplay("generate vortex -o " + q(dir / "v.h5") + " --dims 24,22,20 --steps 3")
                 .exit_code, 0);
@@ -621,7 +621,7 @@ TEST(Player, OpenSwitchesToAnotherFileAndBuildsARawInputFirst) {
 // in the trace) while the old file keeps playing; a valid input that needs building is built
 // and played; `open X` right before `quit` still reports X's failure.
 TEST(Player, OpenNeverAbortsAndReportsEveryFailure) {
-  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
   const fs::path dir = tsptest::temp_dir(), tsp = make_tsp(), h5 = dir / "raw.h5";
   ASSERT_EQ(run_tspplay("generate vortex -o " + q(h5) + " --dims 20,18,16 --steps 3").exit_code, 0);
   std::ofstream(dir / "bad.vtu") << "<VTKFile type=\"UnstructuredGrid\"><Unstructured";
@@ -681,7 +681,7 @@ TEST(Player, OpenNeverAbortsAndReportsEveryFailure) {
 // The record button's script action: the volume as played, with its annotations, in real time
 // (25 frames a second of wall time), decoded by ffprobe; an unknown extension is refused.
 TEST(Player, RecordWritesAMovieOfWhatIsPlayed) {
-  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
   ASSERT_EQ(std::system("command -v ffprobe > /dev/null"), 0)
       << "ffmpeg missing (scripts/install-deps.sh installs it)";
   fs::path tsp = make_tsp(), dir = tsptest::temp_dir(), movie = dir / "rec.mp4";
@@ -716,7 +716,7 @@ TEST(Player, RecordWritesAMovieOfWhatIsPlayed) {
 // "every step": playback shows each step in turn even when frames are slower than the speed
 // asks (here 100 ms a frame at 60 steps a second); without it steps are dropped to keep time.
 TEST(Player, EveryStepPlaybackSkipsNoStep) {
-  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
   const fs::path dir = tsptest::temp_dir(), tsp = dir / "e.tsp";
   ASSERT_EQ(run_tspplay("generate shock -o " + q(dir / "e.h5") + " --dims 16,14,12 --steps 12")
                 .exit_code, 0);
@@ -745,7 +745,7 @@ TEST(Player, EveryStepPlaybackSkipsNoStep) {
 // The timeline's marks: after one pass over every step with prefetch, each step's bricks are in
 // memory (ready 1); a fresh player has only the shown step ready.
 TEST(Player, TimelineMarksTheStepsWhoseBricksAreInMemory) {
-  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
   fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
   std::string text = "lod off\ntf preset:filled\nwait-frames 3\nstats " + (dir / "a.json").string() + "\n";
   for (int k = 0; k < 4; ++k) text += "step " + std::to_string(k) + "\nwait-frames 1\n";
@@ -763,7 +763,7 @@ TEST(Player, TimelineMarksTheStepsWhoseBricksAreInMemory) {
 // Physical proportions in the player: a file with tall voxels (and --scale) shows as render
 // shows it.
 TEST(Player, ShowsThePhysicalProportionsAsRenderDoes) {
-  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
   const fs::path dir = tsptest::temp_dir(), tall = dir / "tall.tsp";
   ASSERT_EQ(run_tspplay("generate shock -o " + q(dir / "t.h5") + " --dims 30,28,26 --steps 2")
                 .exit_code, 0);
@@ -788,7 +788,7 @@ TEST(Player, ShowsThePhysicalProportionsAsRenderDoes) {
 // own TF; switching back finds the first field's textures still resident; stats say which field
 // and how long the switch took to its first complete frame.
 TEST(Player, SwitchesFieldsLiveEachWithItsOwnTransferFunction) {
-  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
   const fs::path dir = tsptest::temp_dir(), h5 = dir / "two.h5", tsp = dir / "two.tsp";
   ASSERT_EQ(run_tspplay("generate shock -o " + q(dir / "a.h5") + " --dims 24,20,18 --steps 3")
                 .exit_code, 0);
@@ -843,7 +843,7 @@ TEST(Player, SwitchesFieldsLiveEachWithItsOwnTransferFunction) {
 // Clip probes from a script: the picture is render's with the same --probe options, the removed
 // voxels are counted as clipped, and moving a probe changes the picture (and counts as input).
 TEST(Player, ProbesClipAsRenderDoesAndMoveFromTheScript) {
-  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
   fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
   const std::string probe = "sphere:8,8,7,7", plane = "plane:0,0,1,9";  // in the first brick
   // (LOD off: with the cut, a uniform node across the surface stays whole and is clipped per
@@ -879,7 +879,7 @@ TEST(Player, ProbesClipAsRenderDoesAndMoveFromTheScript) {
 // `render` give the same picture — the defaults (lit), slices at spacing 2 with a temporal
 // tolerance (unlit), a sphere probe with its surface, rays with pre-integration (unlit).
 TEST(Player, PausedPlayerDrawsWhatRenderDrawsForTheSameSettings) {
-  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
   const fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
   const std::vector<std::string> configurations = {
       "", "--shade off --compositing slices --spacing 2 --temporal-tol 0.02",
@@ -906,7 +906,7 @@ TEST(Player, PausedPlayerDrawsWhatRenderDrawsForTheSameSettings) {
 // The mesh's boundary (--surface boundary, issue 31 item 2) in the window is render's picture
 // of it, and the script's `surface off` (the settings table's action) takes it away.
 TEST(Player, TheMeshBoundaryDrawsAsRenderDrawsItAndTheScriptTurnsItOff) {
-  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
   const fs::path dir = tsptest::temp_dir();
   const std::string mesh = (tsptest::test_data_dir() / "vtu" / "binary_%d.vtu").string();
   ASSERT_EQ(run_tspplay("build " + q(mesh) + " --field f --resolution 64 -o " + q(dir / "m.tsp")).exit_code, 0);
@@ -929,7 +929,7 @@ TEST(Player, TheMeshBoundaryDrawsAsRenderDrawsItAndTheScriptTurnsItOff) {
 // Renders on demand: a window with nothing to change sleeps in its event wait (a generous bound
 // on its CPU share while idle, measured from /proc, not timed), and a key wakes it at once.
 TEST(Player, IdleWindowSleepsAndAKeyWakesIt) {
-  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
   ASSERT_EQ(std::system("command -v xdotool > /dev/null"), 0)
       << "xdotool missing (scripts/install-deps.sh installs it)";
   const fs::path tsp = make_tsp(), dir = tsptest::temp_dir(), out = dir / "idle.out";
@@ -969,7 +969,7 @@ TEST(Player, IdleWindowSleepsAndAKeyWakesIt) {
 // fits the period (each frame held 100 ms, at 24 steps/s), "keep quality" plays the fastest rung
 // within the target and "keep rate" the fastest rung of all; quality 0 brings the LOD cut back.
 TEST(Player, PlayingAtAQualityTargetDrawsTheTunedRungWithinTheTarget) {
-  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
   const fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
   auto run = [&](const std::string& head, const std::string& tag, const std::string& extra) {
     const fs::path script = write_script(
@@ -1027,7 +1027,7 @@ TEST(Player, PlayingAtAQualityTargetDrawsTheTunedRungWithinTheTarget) {
 // A step shown while playing is complete, however small the upload budget (which spreads uploads
 // over frames while interacting): late rather than with holes of bricks left for later frames.
 TEST(Player, StepsShownWhilePlayingHaveNoHolesUnderAnUploadBudget) {
-  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
   const fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
   // (No quality target: every frame at full quality, the picture `render` draws.)
   const fs::path script = write_script("lod off\nquality 0\ncache off\nplay\nwait-seconds 0.5\nstats " +
@@ -1053,7 +1053,7 @@ TEST(Player, StepsShownWhilePlayingHaveNoHolesUnderAnUploadBudget) {
 // supported" when a calibration left another context current) and the paused picture is
 // `render`'s full-quality one.
 TEST(Player, QualitySliderKeepsTheWindowDrawingAndTabWorking) {
-  if (!window_possible()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
   ASSERT_EQ(std::system("command -v xdotool > /dev/null"), 0)
       << "xdotool missing (scripts/install-deps.sh installs it)";
   const fs::path tsp = make_tsp(), dir = tsptest::temp_dir(), out = dir / "q.out";

@@ -30,7 +30,7 @@ TEST(Recorder, FramesAreDueAtTheMovieRateFromTheStart) {
 }
 
 TEST(Recorder, TheMovieLastsAsLongAsTheRecording) {
-  if (std::system("command -v ffmpeg > /dev/null") != 0) GTEST_SKIP() << "no ffmpeg";
+  TSPTEST_REQUIRE(std::system("command -v ffmpeg > /dev/null") == 0, "no ffmpeg");
   const fs::path out = tsptest::temp_dir() / "r.gif";
   constexpr int kFps = 25;
   Recorder r(out, 8, 6, kFps, 100.0);

@@ -1,3 +1,4 @@
+#include <cstdlib>
 #include "support/paths.h"
 
 #include <gtest/gtest.h>
@@ -13,6 +14,10 @@ namespace fs = std::filesystem;
 
 namespace tsptest {
 fs::path test_data_dir() { return TSP_TEST_DATA_DIR; }
+bool under_ci() {
+  const char* ci = std::getenv("CI");
+  return ci && (std::string(ci) == "true" || std::string(ci) == "1");
+}
 fs::path shared_data_dir() { return TSP_SHARED_DATA_DIR; }
 fs::path datasets_dir() { return TSP_DATASETS_DIR; }
 fs::path tspplay_bin() { return TSPPLAY_BIN; }

@@ -35,4 +35,17 @@ std::filesystem::path mpiexec_bin();
 RunResult run_command(const std::string& command);
 /// Runs `tspplay ARGS` through /bin/sh (args are passed as-is: quote them) and captures its output.
 RunResult run_tspplay(const std::string& args);
+/// True under CI (the environment's CI is "true" or "1"): there a missing display, MPI or tool a
+/// test needs fails the test instead of skipping it (TSPTEST_REQUIRE).
+bool under_ci();
 }  // namespace tsptest
+
+/// Goes on when cond holds; otherwise skips the test with `why` — or, under CI (under_ci()),
+/// fails it: the suite there has every display, MPI and tool scripts/test.sh installs.
+#define TSPTEST_REQUIRE(cond, why)                                        \
+  do {                                                                    \
+    if (!(cond)) {                                                        \
+      if (tsptest::under_ci()) FAIL() << "CI needs this test to run: " << why; \
+      GTEST_SKIP() << why;                                                \
+    }                                                                     \
+  } while (0)
