@@ -12,7 +12,7 @@
 #include "render/baseline_renderer.h"
 #include "render/cpu_pass.h"
 #include "render/volume_renderer.h"
-#include "support/function_tsp.h"
+#include "support/function_scene.h"
 #include "tsp/lod/lod_cut.h"
 #include "tsp/metric/compute_errors.h"
 #include "tsp/report/image_diff.h"
@@ -38,31 +38,13 @@ tsp::TransferFunction scene_tf() {
   return tsp::TransferFunction::from_points({0, 1}, pts);
 }
 
-struct CrossScene {
-  std::unique_ptr<tsp::TspFile> file;
-  std::unique_ptr<GlContext> ctx = create_offscreen_context(200, 150);
-  std::unique_ptr<VolumeRenderer> renderer;
-  std::unique_ptr<BaselineRenderer> baseline;
-  tsp::MetricResult metric;
-  std::unique_ptr<tsp::WholeTreeMetric> nodes;
-  CrossScene() {
-    file = tsp::TspFile::open(tsptest::build_function_tsp("cpu_cross", {65, 65, 65}, field));
-    renderer = std::make_unique<VolumeRenderer>(*ctx, *file, tsp::CachePolicy::on);
-    renderer->set_transfer_function(scene_tf());
-    baseline = std::make_unique<BaselineRenderer>(*ctx, *file);
-    baseline->set_transfer_function(scene_tf());
-    metric = tsp::compute_errors(tsp::Metric::reference, file->tree(), scene_tf(), file.get(), 0);
-    nodes = std::make_unique<tsp::WholeTreeMetric>(metric);
-  }
+struct CrossScene : tsptest::FunctionScene {
+  CrossScene() : FunctionScene("cpu_cross", field, scene_tf()) {}
   tsp::Camera camera(bool perspective = false, bool eye_inside = false) const {
     tsp::CameraParams p;
-    p.azimuth_deg = 30;
-    p.elevation_deg = 20;
-    p.width = ctx->width();
-    p.height = ctx->height();
     p.projection = perspective ? tsp::Projection::perspective : tsp::Projection::orthographic;
     if (eye_inside) p.eye = std::array<double, 3>{40, 20, 36};
-    return tsp::Camera(file->tree().octree().dims(), p);
+    return FunctionScene::camera(p);
   }
   FrameReport last;
   tsp::Image frame(RenderSettings s, Backend b, const tsp::Camera& cam, const tsp::LodCut* cut = nullptr) {

@@ -11,7 +11,7 @@
 
 #include "render/baseline_renderer.h"
 #include "render/volume_renderer.h"
-#include "support/function_tsp.h"
+#include "support/function_scene.h"
 #include "tsp/build/build.h"
 #include "tsp/frame/refine.h"
 #include "tsp/metric/compute_errors.h"
@@ -25,31 +25,8 @@ constexpr double kReferenceSpacing = 1.0 / 16;
 
 // One 65³ volume (bricks of 16) through tf, with the TSP renderer at zero tolerance and the
 // baseline.
-struct RefineScene {
-  std::unique_ptr<tsp::TspFile> file;
-  std::unique_ptr<GlContext> ctx = create_offscreen_context(200, 150);
-  std::unique_ptr<VolumeRenderer> renderer;
-  std::unique_ptr<BaselineRenderer> baseline;
-  tsp::MetricResult metric;
-  std::unique_ptr<tsp::WholeTreeMetric> nodes;
-  RefineScene(const std::string& name, const std::function<float(int, int, int, int)>& f,
-              const tsp::TransferFunction& tf) {
-    file = tsp::TspFile::open(tsptest::build_function_tsp(name, {65, 65, 65}, f));
-    renderer = std::make_unique<VolumeRenderer>(*ctx, *file, tsp::CachePolicy::on);
-    renderer->set_transfer_function(tf);
-    baseline = std::make_unique<BaselineRenderer>(*ctx, *file);
-    baseline->set_transfer_function(tf);
-    metric = tsp::compute_errors(tsp::Metric::reference, file->tree(), tf, file.get(), 0);
-    nodes = std::make_unique<tsp::WholeTreeMetric>(metric);
-  }
-  tsp::Camera camera() const {
-    tsp::CameraParams p;
-    p.azimuth_deg = 30;
-    p.elevation_deg = 20;
-    p.width = ctx->width();
-    p.height = ctx->height();
-    return tsp::Camera(file->tree().octree().dims(), p);
-  }
+struct RefineScene : tsptest::FunctionScene {
+  using FunctionScene::FunctionScene;
   tsp::Image frame(double refine_tol, bool dense, bool shade) {
     RenderSettings s;
     s.refine_tol = refine_tol;

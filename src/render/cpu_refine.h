@@ -1,0 +1,222 @@
+// Refinement's passes of the CPU caster's walk (volume_ray.frag's TSP_REFINE loop), in their
+// own file: the scalar loop, the SIMD look-ahead of the segments ahead and a refined segment's
+// fine samples in one batch. Internal: included by cpu_caster.cpp only, so the walk's clones
+// (cast_tile) inline it.
+#pragma once
+#include "render/cpu_walk.h"
+#include "tsp/frame/refine.h"
+
+namespace tspgl::detail {
+
+// Refinement (volume_ray.frag, TSP_REFINE): one pass per scalar read, as the shader's loop.
+inline void RayWalk::refined(float t, float t_out, vec4 page, ivec3 c, const BrickView& b, bool closing,
+                      vec4 next_page, ivec3 next_c, float& t_next) {
+  const float dt = s_.spacing / r_.cos_theta;
+  const int k_entries = s_.tf.entries;
+  const float* rows[2] = {s_.tf.refine + 4 * k_entries * kPieceRow,
+                          s_.tf.refine + 4 * k_entries * kFineRow};
+  const vec3 lo = vec3(c) * cell_;
+  constexpr int kSamples = tsp::kRefineSamples;
+  ahead_n_ = next_ = 0;  // the segments read ahead belong to the last brick
+  if (!run_open_) {
+    seg_b_ = t;
+    piece_prev_ = -1.f;
+    cur_.a = -1.f;
+    fine_ = 0;
+    run_open_ = true;
+  }
+  for (int guard = 0; guard < 4096 && acc_.a < kOpaque; ++guard) {
+    const float d_b = r_.depth_entry + seg_b_ * r_.cos_theta;
+    float seg_e = ((std::floor(d_b / s_.spacing + 1e-4f) + 1.f) * s_.spacing - r_.depth_entry) /
+                  r_.cos_theta;
+    if (closing) seg_e = std::min(seg_e, t_out);
+    if (seg_e - seg_b_ < 1e-4f * dt) {  // the run's end
+      seg_b_ = seg_e;
+      break;
+    }
+    const float mid = 0.5f * (seg_b_ + seg_e);
+    if (!closing && fine_ == 0 && mid >= t_out) break;  // the next brick's segment
+    const int mode = piece_prev_ < 0.f ? 0 : cur_.a < 0.f ? 1 : fine_ > 0 ? 2 : 3;
+    if (mode == 3 && batch_ && refined_batch(t_out, page, b, closing, rows[0]) > 0) continue;
+    const float ts =
+        mode == 0 ? seg_b_
+        : mode == 1 ? mid
+        : mode == 2 ? seg_b_ + (seg_e - seg_b_) * (float(kSamples - fine_) + 0.5f) / float(kSamples)
+                    : (closing && seg_e >= t_out
+                           ? seg_e
+                           : 0.5f * (seg_e + (closing ? std::min(seg_e + dt, t_out) : seg_e + dt)));
+    if (mode != 3 && ts >= t_out && !closing) break;  // in the next brick
+    const bool beyond = ts >= t_out;
+    const vec3 k_at = beyond ? vec3(next_page) - 0.5f : b.k;
+    const vec3 b_lo = beyond ? vec3(next_c) * cell_ : lo;
+    const vec3 tcs = texel(ts, vec3(1.f));
+    const vec3 q = glm::clamp(tcs, b_lo, glm::min(b_lo + cell_, s_.box_hi));
+    const float v = smp_.tex.fetch(q, k_at);
+    ++samples_;
+    vec4 e = entry(lookup(rows[mode == 2 ? 1 : 0], k_entries, smp_.tf_coord(v)));
+    if (s_.stencil && smp_.tex.fetch(q, k_at, 1) < 0.5f)
+      e = vec4(0.f, 0.f, 0.f, mode == 2 ? 0.f : 2.f * piece_of(e));
+    const float k = (seg_e - seg_b_) / dt;
+    vec4 col(0.f);
+    vec3 at = tcs;
+    bool advance = false;
+    if (mode == 0) {
+      piece_prev_ = piece_of(e);
+    } else if (mode == 1) {
+      cur_ = e;
+    } else if (mode == 2) {
+      if (k < 1.f) e = cut_sample(e, k);
+      fine_at_ += (1.f - fine_sum_.a) * e.a * tcs;  // (points: the same in every brick's u)
+      fine_w_ += (1.f - fine_sum_.a) * e.a;
+      fine_sum_ += (1.f - fine_sum_.a) * e;
+      if (--fine_ == 0) {
+        col = fine_sum_;
+        at = fine_w_ > 0.f ? fine_at_ / fine_w_ : tcs;
+        advance = true;
+      }
+    } else {
+      ahead_ = e;
+      const float piece = piece_of(cur_);
+      if (piece != piece_prev_ || piece != piece_of(e)) {
+        fine_ = kSamples;
+        fine_sum_ = vec4(0.f);
+        fine_at_ = vec3(0.f);
+        fine_w_ = 0.f;
+      } else {
+        col = vec4(vec3(cur_), cur_.a - 2.f * piece);
+        if (k < 1.f) col = cut_sample(col, k);
+        at = texel(mid, vec3(1.f));
+        advance = true;
+      }
+    }
+    if (col.a > 0.f) blend(smp_.shade(col, at, b));
+    if (advance) {
+      piece_prev_ = piece_of(cur_);
+      cur_ = ahead_;
+      seg_b_ = seg_e;
+    }
+  }
+  t_next = seg_b_;
+}
+
+// Refinement's passes that read the next middle (mode 3) for as many segments ahead as a batch
+// holds, in SIMD: the middles' lookups at once, then the segments' lit colours at once, then
+// the passes replayed in order as refined() would make them — up to the first segment that is
+// refined (left in its state: the fine samples follow in refined()), the ray's opacity, or a
+// middle in the next brick. Returns the passes made (0: none, refined() makes this one).
+inline int RayWalk::refined_batch(float t_out, vec4 /*page*/, const BrickView& b, bool closing,
+                           const float* piece_row) {
+  Ahead& a = batch_ahead_;
+  if (next_ >= ahead_n_ || a.sb[next_] != seg_b_) {  // read the segments ahead
+    const float dt = s_.spacing / r_.cos_theta;
+    Positions reads, mids;
+    int n = 0;
+    for (float sb = seg_b_; n < kMaxBatch; ++n) {
+      const float d_b = r_.depth_entry + sb * r_.cos_theta;
+      float se = ((std::floor(d_b / s_.spacing + 1e-4f) + 1.f) * s_.spacing - r_.depth_entry) /
+                 r_.cos_theta;
+      if (closing) se = std::min(se, t_out);
+      if (se - sb < 1e-4f * dt) break;  // the run's end
+      const float mid = 0.5f * (sb + se);
+      if (!closing && mid >= t_out) break;  // the next brick's segment
+      const float ts = closing && se >= t_out
+                           ? se
+                           : 0.5f * (se + (closing ? std::min(se + dt, t_out) : se + dt));
+      if (ts >= t_out) break;  // read in the next brick: refined() does it
+      const vec3 r = texel(ts, vec3(1.f)), m = texel(mid, vec3(1.f));
+      reads.x[n] = r.x;
+      reads.y[n] = r.y;
+      reads.z[n] = r.z;
+      mids.x[n] = m.x;
+      mids.y[n] = m.y;
+      mids.z[n] = m.z;
+      a.sb[n] = sb;
+      a.se[n] = se;
+      sb = se;
+    }
+    ahead_n_ = n;
+    next_ = 0;
+    if (n == 0) return 0;
+    sample_batch(smp_, b, piece_row, reads, n, false, a.read);
+    samples_ += n;
+    for (int j = 0; j < n; ++j) {  // segment j composites the middle read before it
+      const vec4 cur =
+          j == 0 ? cur_ : vec4(a.read.r[j - 1], a.read.g[j - 1], a.read.b[j - 1], a.read.a[j - 1]);
+      vec4 col(vec3(cur), cur.a - 2.f * piece_of(cur));
+      const float k = (a.se[j] - a.sb[j]) / dt;
+      if (k < 1.f) col = cut_sample(col, k);
+      a.lit.r[j] = col.r;
+      a.lit.g[j] = col.g;
+      a.lit.b[j] = col.b;
+      a.lit.a[j] = col.a;
+    }
+    if (s_.shade) shade_batch(smp_, b, mids, n, a.lit);
+  }
+  int made = 0;
+  for (; next_ < ahead_n_ && acc_.a < kOpaque; ++made, ++next_) {
+    const int j = next_;
+    const vec4 e(a.read.r[j], a.read.g[j], a.read.b[j], a.read.a[j]);
+    const float piece = piece_of(cur_);
+    if (piece != piece_prev_ || piece != piece_of(e)) {  // refine this segment
+      seg_b_ = a.sb[j];
+      ahead_ = e;
+      if (!fine_batch(t_out, b, closing, a.se[j])) {  // (a fine sample in the next brick)
+        ++next_;  // after its fine samples, segment j + 1 goes on from the batch
+        fine_ = tsp::kRefineSamples;
+        fine_sum_ = vec4(0.f);
+        fine_at_ = vec3(0.f);
+        fine_w_ = 0.f;
+        return made + 1;
+      }
+      continue;
+    }
+    const vec4 col(a.lit.r[j], a.lit.g[j], a.lit.b[j], a.lit.a[j]);
+    if (col.a > 0.f) blend(col);
+    piece_prev_ = piece;
+    cur_ = e;
+    seg_b_ = a.se[j];
+  }
+  return made;
+}
+
+// A refined segment [seg_b_, seg_e]'s kRefineSamples fine samples in one SIMD batch, composited
+// and lit as refined()'s fine passes composite them, then the segment closed (cur_ becomes
+// ahead_). False, with nothing done, when a fine sample lies in the next brick of the run.
+inline bool RayWalk::fine_batch(float t_out, const BrickView& b, bool closing, float seg_e) {
+  constexpr int kSamples = tsp::kRefineSamples;
+  const float dt = s_.spacing / r_.cos_theta;
+  Positions pos;
+  float ts = seg_b_;
+  for (int i = 0; i < kSamples; ++i) {
+    ts = seg_b_ + (seg_e - seg_b_) * (float(i) + 0.5f) / float(kSamples);
+    if (ts >= t_out && !closing) return false;
+    const vec3 u = texel(ts, vec3(1.f));
+    pos.x[i] = u.x;
+    pos.y[i] = u.y;
+    pos.z[i] = u.z;
+  }
+  Colours fine;
+  sample_batch(smp_, b, s_.tf.refine + 4 * s_.tf.entries * kFineRow, pos, kSamples, false,
+                       fine);
+  samples_ += kSamples;
+  const float k = (seg_e - seg_b_) / dt;
+  vec4 sum(0.f);
+  vec3 at_sum(0.f);
+  float w = 0.f;
+  for (int i = 0; i < kSamples; ++i) {
+    vec4 e(fine.r[i], fine.g[i], fine.b[i], fine.a[i]);
+    if (k < 1.f) e = cut_sample(e, k);
+    const vec3 u(pos.x[i], pos.y[i], pos.z[i]);
+    at_sum += (1.f - sum.a) * e.a * u;
+    w += (1.f - sum.a) * e.a;
+    sum += (1.f - sum.a) * e;
+  }
+  const vec3 at = w > 0.f ? at_sum / w : vec3(pos.x[kSamples - 1], pos.y[kSamples - 1], pos.z[kSamples - 1]);
+  if (sum.a > 0.f) blend(smp_.shade(sum, at, b));
+  piece_prev_ = piece_of(cur_);
+  cur_ = ahead_;
+  seg_b_ = seg_e;
+  return true;
+}
+
+}  // namespace tspgl::detail
