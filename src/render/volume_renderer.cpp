@@ -94,6 +94,7 @@ VolumeRenderer::ReuseKey VolumeRenderer::reuse_key(const tsp::Camera& camera,
   k.render_scale = s.render_scale;
   k.sampling_tol = s.sampling_tol;
   k.refine_tol = s.refine_tol;
+  k.backend = s.backend;  // the casters' pictures differ in the last bit: never mixed
   k.surface = s.surface && compositor_->has_surface();  // a frame with it is never kept, nor one after
   return k;
 }

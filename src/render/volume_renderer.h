@@ -119,6 +119,7 @@ class VolumeRenderer {
     std::uint64_t tf_serial = 0;
     std::uint64_t clip_serial = 0;
     double render_scale = 1;
+    Backend backend = Backend::automatic;
     double sampling_tol = 0;
     double refine_tol = 0;
     bool surface = false;

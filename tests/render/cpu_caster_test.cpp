@@ -173,6 +173,25 @@ TEST(CpuCaster, TheSameFrameIsTheSameBytesWhereverItsBricksSit) {
   }
 }
 
+TEST(CpuCaster, SwitchingCastersRedrawsTheWholePicture) {
+  // Partial-image reuse keeps pixels only when nothing changed: a frame cast by the other back
+  // end is drawn whole, so the picture is that caster's (a paused player switching --backend).
+  CrossScene& sc = scene();
+  RenderSettings s;
+  s.reuse_image = true;
+  for (Backend first : {Backend::cpu, Backend::gl}) {
+    const Backend second = first == Backend::cpu ? Backend::gl : Backend::cpu;
+    s.backend = first;
+    sc.renderer->render(0, sc.camera(), s, *sc.nodes);
+    s.backend = second;
+    const FrameReport r = sc.renderer->render(0, sc.camera(), s, *sc.nodes);
+    EXPECT_EQ(r.redrawn_percent, 100) << to_string(second);
+    EXPECT_EQ(r.backend, to_string(second));
+    const tsp::Image switched = sc.ctx->read_pixels();
+    EXPECT_EQ(switched.rgba, sc.frame(s, second, sc.camera()).rgba) << to_string(second);
+  }
+}
+
 TEST(CpuCaster, TheSameFrameTwiceIsTheSameBytes) {
   CrossScene& sc = scene();
   for (Backend b : {Backend::cpu, Backend::gl}) {
