@@ -45,6 +45,7 @@ BrickSamples BrickCache::get(int brick, int step) {
   }
   if (auto it = loading_.find(key); it != loading_.end()) {
     const std::shared_future<BrickSamples> pending = it->second;
+    ++stats_.waited;
     lock.unlock();
     BrickSamples s = pending.get();  // rethrows the reader's exception
     lock.lock();

@@ -30,6 +30,7 @@ using BrickSamples = std::shared_ptr<const std::vector<std::uint16_t>>;
 /// Counters since construction (or since the last clear() for the resident ones).
 struct BrickCacheStats {
   std::int64_t hits = 0;        ///< get() served without reading the store
+  std::int64_t waited = 0;      ///< of the hits, get() that waited for another's read of the key
   std::int64_t misses = 0;      ///< get() that read the store
   std::int64_t prefetched = 0;  ///< bricks read by prefetch()
   std::int64_t bytes_read = 0;  ///< bytes read from the store (misses and prefetches)

@@ -190,7 +190,8 @@ TEST(BrickCache, ConcurrentGetsOfOneMissingBrickReadItOnce) {
   gated.wait_started(1);  // the first get is inside read_brick; the others must wait for it
   for (int i = 1; i < kThreads; ++i)
     results.push_back(std::async(std::launch::async, [&] { return cache.get(7, 4); }));
-  std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  // Every other get has found the read in progress (a latch on the cache's count, no sleep).
+  while (cache.stats().waited < kThreads - 1) std::this_thread::yield();
   gated.open();
   const std::vector<std::uint16_t> want = direct(store, 7, 4);
   for (auto& r : results) EXPECT_EQ(*r.get(), want);
@@ -198,6 +199,7 @@ TEST(BrickCache, ConcurrentGetsOfOneMissingBrickReadItOnce) {
   const BrickCacheStats s = cache.stats();
   EXPECT_EQ(s.misses, 1);
   EXPECT_EQ(s.hits, kThreads - 1);
+  EXPECT_EQ(s.waited, kThreads - 1);
   EXPECT_EQ(s.bytes_read, kEntry);
 }
 
@@ -211,7 +213,7 @@ TEST(BrickCache, WaitersOfAFailingReadGetItsError) {
   gated.wait_started(1);
   for (int i = 0; i < 3; ++i)
     results.push_back(std::async(std::launch::async, [&] { return cache.get(3, 2); }));
-  std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  while (cache.stats().waited < 3) std::this_thread::yield();  // all three wait on the read
   gated.open();
   for (auto& r : results) EXPECT_THROW(r.get(), IoError);
   EXPECT_FALSE(cache.contains(3, 2));
