@@ -65,16 +65,14 @@ void BrickTextures::write(const tsp::TextureKey& key, int slot) {
   const auto o = slot_origin(slot);
   gl_.BindTexture(GL_TEXTURE_3D, atlas_);
   gl_.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  const std::uint16_t* texels = samples->data();
   if (channels_ == 2) {
     interleave_stencil(samples->data(), std::size_t(s.count()), texels_);
-    if (mirror_) host_.write(o, s.samples[0], s.samples[1], s.samples[2], texels_.data());
-    gl_.TexSubImage3D(GL_TEXTURE_3D, 0, o[0], o[1], o[2], s.samples[0], s.samples[1],
-                      s.samples[2], GL_RG, GL_UNSIGNED_SHORT, texels_.data());
-  } else {
-    if (mirror_) host_.write(o, s.samples[0], s.samples[1], s.samples[2], samples->data());
-    gl_.TexSubImage3D(GL_TEXTURE_3D, 0, o[0], o[1], o[2], s.samples[0], s.samples[1],
-                      s.samples[2], GL_RED, GL_UNSIGNED_SHORT, samples->data());
+    texels = texels_.data();
   }
+  if (mirror_) host_.write(o, s.samples[0], s.samples[1], s.samples[2], texels);
+  gl_.TexSubImage3D(GL_TEXTURE_3D, 0, o[0], o[1], o[2], s.samples[0], s.samples[1], s.samples[2],
+                    channels_ == 2 ? GL_RG : GL_RED, GL_UNSIGNED_SHORT, texels);
   slots_[key] = slot;
 }
 

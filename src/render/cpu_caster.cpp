@@ -30,7 +30,7 @@ void RayWalk::neighbours(ivec3 c, vec4 page, bool level0, BrickView& b) const {
 
 // The plain segment caster: the run's first segment cut at its entry, then each segment at its
 // middle, the run's last cut where it ends.
-void RayWalk::segments(float t, float t_out, float& t_next, vec3 scale, vec4 /*page*/,
+void RayWalk::segments(float t, float t_out, float& t_next, vec3 scale,
                        const BrickView& b, bool closing) {
   const float dt = s_.spacing / r_.cos_theta;
   const float* row = s_.tf.point;
@@ -164,7 +164,7 @@ vec4 RayWalk::run() {
         if (refine)
           refined(t, t_out, page, c, b, closing, next_page, next_c, t_next);
         else
-          segments(t, t_out, t_next, scale, page, b, closing);
+          segments(t, t_out, t_next, scale, b, closing);
         if (closing) run_open_ = false;
       } else {
         // A level brick: each sample stands for its slab of the ray inside the brick.

@@ -37,7 +37,7 @@ inline void RayWalk::refined(float t, float t_out, vec4 page, ivec3 c, const Bri
     const float mid = 0.5f * (seg_b_ + seg_e);
     if (!closing && fine_ == 0 && mid >= t_out) break;  // the next brick's segment
     const int mode = piece_prev_ < 0.f ? 0 : cur_.a < 0.f ? 1 : fine_ > 0 ? 2 : 3;
-    if (mode == 3 && batch_ && refined_batch(t_out, page, b, closing, rows[0]) > 0) continue;
+    if (mode == 3 && batch_ && refined_batch(t_out, b, closing, rows[0]) > 0) continue;
     const float ts =
         mode == 0 ? seg_b_
         : mode == 1 ? mid
@@ -104,7 +104,7 @@ inline void RayWalk::refined(float t, float t_out, vec4 page, ivec3 c, const Bri
 // the passes replayed in order as refined() would make them — up to the first segment that is
 // refined (left in its state: the fine samples follow in refined()), the ray's opacity, or a
 // middle in the next brick. Returns the passes made (0: none, refined() makes this one).
-inline int RayWalk::refined_batch(float t_out, vec4 /*page*/, const BrickView& b, bool closing,
+inline int RayWalk::refined_batch(float t_out, const BrickView& b, bool closing,
                            const float* piece_row) {
   Ahead& a = batch_ahead_;
   if (next_ >= ahead_n_ || a.sb[next_] != seg_b_) {  // read the segments ahead

@@ -119,11 +119,11 @@ class RayWalk {
   void blend(vec4 c) { acc_ += (1.f - acc_.a) * c; }
   vec3 texel(float t, vec3 scale) const { return (r_.entry + r_.dir * t) * scale; }
   void neighbours(ivec3 c, vec4 page, bool level0, BrickView& b) const;
-  void segments(float t, float t_out, float& t_next, vec3 scale, vec4 page, const BrickView& b,
+  void segments(float t, float t_out, float& t_next, vec3 scale, const BrickView& b,
                 bool closing);
   void refined(float t, float t_out, vec4 page, ivec3 c, const BrickView& b, bool closing,
                vec4 next_page, ivec3 next_c, float& t_next);
-  int refined_batch(float t_out, vec4 page, const BrickView& b, bool closing,
+  int refined_batch(float t_out, const BrickView& b, bool closing,
                     const float* piece_row);
   bool fine_batch(float t_out, const BrickView& b, bool closing, float seg_e);
 };

@@ -38,18 +38,14 @@ std::int64_t DenseVolume::update(const std::vector<tsp::TextureKey>& keys) {
     if (held_[std::size_t(b)] == k) continue;
     tsp::BrickSamples samples = texture_samples(bricks_, k);
     const tsp::Box s = o.brick_samples(b);
+    const std::uint16_t* texels = samples->data();
     if (channels_ == 2) {
       interleave_stencil(samples->data(), std::size_t(s.count()), texels_);
-      if (mirror_) host_.write({s.lo[0], s.lo[1], s.lo[2]}, s.size(0), s.size(1), s.size(2),
-                               texels_.data());
-      gl_.TexSubImage3D(GL_TEXTURE_3D, 0, s.lo[0], s.lo[1], s.lo[2], s.size(0), s.size(1),
-                        s.size(2), GL_RG, GL_UNSIGNED_SHORT, texels_.data());
-    } else {
-      if (mirror_) host_.write({s.lo[0], s.lo[1], s.lo[2]}, s.size(0), s.size(1), s.size(2),
-                               samples->data());
-      gl_.TexSubImage3D(GL_TEXTURE_3D, 0, s.lo[0], s.lo[1], s.lo[2], s.size(0), s.size(1),
-                        s.size(2), GL_RED, GL_UNSIGNED_SHORT, samples->data());
+      texels = texels_.data();
     }
+    if (mirror_) host_.write({s.lo[0], s.lo[1], s.lo[2]}, s.size(0), s.size(1), s.size(2), texels);
+    gl_.TexSubImage3D(GL_TEXTURE_3D, 0, s.lo[0], s.lo[1], s.lo[2], s.size(0), s.size(1), s.size(2),
+                      channels_ == 2 ? GL_RG : GL_RED, GL_UNSIGNED_SHORT, texels);
     held_[std::size_t(b)] = k;
     bytes += s.count() * std::int64_t(sizeof(std::uint16_t)) * channels_;
   }
