@@ -11,8 +11,10 @@
 
 #include "cli/args.h"
 #include "cli/commands.h"
+#include "cli/progress_bar.h"
 #include "jobs/bench_job.h"
 #include "tsp/core/error.h"
+#include "tsp/core/stopwatch.h"
 #include "tsp/core/temp_output.h"
 
 namespace tspcli {
@@ -133,9 +135,15 @@ void run(const BenchArgs& a) {
 
   // One line per run on stdout (a log that survives redirection), a counter on a terminal.
   const bool tty = isatty(STDERR_FILENO) == 1;
-  auto report = tspgl::run_bench(o, [tty](const std::string& phase, int done, int total) {
+  // The time left is estimated from the runs done so far (runs differ in cost: a rough guide).
+  const tsp::Stopwatch watch;
+  auto report = tspgl::run_bench(o, [tty, &watch](const std::string& phase, int done, int total) {
     if (tty) std::fprintf(stderr, "\r\x1b[K");
-    std::printf("[%3d/%d] %s\n", done, total, phase.c_str());
+    const double s = watch.seconds();
+    const std::string left =
+        done > 0 ? ", about " + clock_text(s / done * (total - done)) + " left" : "";
+    std::printf("[%3d/%d] %s  (%s elapsed%s)\n", done, total, phase.c_str(),
+                clock_text(s).c_str(), left.c_str());
     std::fflush(stdout);
   });
   std::printf("\nTable 3 (zero tolerance, median ms of pass %d):\n", o.passes);

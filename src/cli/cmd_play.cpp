@@ -51,6 +51,10 @@ void run(PlayArgs a) {
     add_input_options(&parser, in);
     try {
       parser.parse(line, false);
+    } catch (const CLI::CallForHelp&) {  // (CLI11's what() would say "caught in your main")
+      throw tsp::UsageError("build options '" + line +
+                            "': --help asks for help, not a build; the options an input "
+                            "opened here takes are:\n" + parser.help());
     } catch (const CLI::ParseError& e) {
       throw tsp::UsageError("build options '" + line + "': " + e.what());
     }

@@ -1,5 +1,6 @@
 // tspplay render run.tsp --tf tf.json [...] -o frames/: headless frames and frames.json.
 #include <array>
+#include <cstdlib>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -10,6 +11,7 @@
 #include "cli/args.h"
 #include "cli/commands.h"
 #include "cli/settings_options.h"
+#include "jobs/calibration.h"
 #include "jobs/movie.h"
 #include "cli/progress_bar.h"
 #include "jobs/render_job.h"
@@ -276,7 +278,18 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
                 "it (frames.json records ram_mib and rss_mib per frame)");
   c->add_option("--quality", a->quality,
                 "Mean dE target against the full-quality picture: picks the fastest calibrated "
-                "compositing, spacing, tolerances and pre-integration (calibrates once, cached)");
+                "compositing, spacing, tolerances and pre-integration (calibrates once, cached)")
+      ->check(CLI::Validator(
+          [](std::string& text) -> std::string {
+            // (0 is how the job reads "not asked", so a given 0 is refused here, not ignored.)
+            char* end = nullptr;
+            const double de = std::strtod(text.c_str(), &end);
+            if (end == text.c_str() || *end != 0 || !(de > 0 && de <= tspgl::kMaxQualityDe))
+              return "expected a mean dE in (0, " + std::to_string(int(tspgl::kMaxQualityDe)) +
+                     "], got " + text;
+            return "";
+          },
+          "DE"));
   c->add_option("--save-tf", a->save_tf,
                 "Also write the transfer function used (a preset resolved over the data's range) "
                 "as JSON, e.g. for bench/vtk_reference.py");

@@ -12,6 +12,8 @@ constexpr double kRedrawIntervalMs = 100;  // at most 10 redraws a second
 constexpr int kBarWidth = 30;
 constexpr double kMegabyte = 1e6;
 
+}  // namespace
+
 std::string clock_text(double seconds) {
   long s = std::lround(std::max(0.0, seconds));
   char buf[32];
@@ -21,7 +23,6 @@ std::string clock_text(double seconds) {
     std::snprintf(buf, sizeof buf, "%ld:%02ld", s / 60, s % 60);
   return buf;
 }
-}  // namespace
 
 ProgressBar::ProgressBar() : ProgressBar(stderr, isatty(STDERR_FILENO) == 1) {}
 

@@ -7,6 +7,9 @@
 
 namespace tspcli {
 
+/// seconds as M:SS, or H:MM:SS from an hour on (negative: 0:00). Never throws.
+std::string clock_text(double seconds);
+
 /// Redraws at most 10 times a second; silent when the stream is not a TTY. Not thread-safe:
 /// feed it from one thread at a time (the builder's progress callback is serialized).
 class ProgressBar {

@@ -13,6 +13,7 @@
 #include "jobs/image_probe.h"
 #include "jobs/render_job.h"
 #include "tsp/core/error.h"
+#include "tsp/core/input_file.h"
 #include "tsp/core/json_read.h"
 #include "tsp/core/json_text.h"
 #include "tsp/core/stopwatch.h"
@@ -28,6 +29,8 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 // Bumped whenever what a calibration measures changes, so old cache files are recomputed.
+// Largest calibration cache read (a real one is a few kilobytes: one point per grid cell).
+constexpr std::int64_t kMaxCalibrationBytes = std::int64_t(16) << 20;
 constexpr int kCalibrationVersion = 5;  // 2: the key holds the voxel size; 3: frames skip
                                          // transparent children (--skip-transparent on); 4: rays
                                          // sample exact segments, spans textured by their mean;
@@ -100,10 +103,13 @@ json key_of(const CalibrationRequest& r, const tsp::TransferFunction& tf,
 }
 
 std::optional<Calibration> read_cache(const fs::path& file, const json& key) {
-  std::ifstream in(file);
-  if (!in) return std::nullopt;
+  std::error_code ec;
+  if (!fs::exists(fs::symlink_status(file, ec))) return std::nullopt;
   try {
-    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    // Through the input gate: a FIFO, a device or a file larger than any calibration is refused
+    // before a byte is read, and recomputed.
+    const std::string text =
+        tsp::read_input_file(file.string(), "calibration cache", kMaxCalibrationBytes);
     Calibration c = calibration_from_json(tsp::parse_json(text, file.string()), file.string());
     if (c.key != key) return std::nullopt;
     return c;
@@ -233,7 +239,13 @@ void Calibrator::finish() {
   if (ec)
     throw tsp::IoError(path.parent_path().string() +
                        ": cannot create the calibration cache directory: " + ec.message());
-  tsp::write_file_atomically(path.string(), tsp::json_text(to_json(calibration_), 1) + "\n");
+  // A link planted at the entry's name is replaced, never written through; a FIFO, device or
+  // empty folder there (the cache folder is ours) is removed first.
+  if (const auto st = fs::symlink_status(path, ec);
+      fs::exists(st) && !fs::is_regular_file(st) && !fs::is_symlink(st))
+    fs::remove(path, ec);
+  tsp::write_file_atomically(path.string(), tsp::json_text(to_json(calibration_), 1) + "\n",
+                             tsp::OutputLinks::replace);
 }
 
 bool Calibrator::advance(double budget_ms, const CalibrationProgress& progress) {

@@ -6,6 +6,9 @@
 #include <memory>
 #include <mutex>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include "jobs/calibration.h"
 #include "tsp/core/error.h"
 #include "tsp/hdf5/hdf5_handle.h"
@@ -24,6 +27,14 @@ std::uint64_t fnv1a(const std::string& text) {
   std::uint64_t h = 1469598103934665603ull;
   for (unsigned char c : text) h = (h ^ c) * 1099511628211ull;
   return h;
+}
+
+// Creates the folder the cache entry out goes in. Throws tsp::IoError.
+void make_builds_folder(const std::string& out) {
+  std::error_code ec;
+  const fs::path builds = fs::path(out).parent_path();
+  fs::create_directories(builds, ec);
+  if (ec) throw tsp::IoError(builds.string() + ": cannot create the build cache: " + ec.message());
 }
 
 }  // namespace
@@ -53,13 +64,18 @@ bool has_input_extension(const std::string& name) {
 }
 
 std::string play_cache_path(const std::string& input, const PlayInputOptions& o,
-                            const std::string& cache_dir) {
+                            const std::string& cache_dir, const std::vector<std::string>& files) {
   std::error_code ec;
   const fs::path abs = fs::absolute(input, ec);
   std::string key = abs.string() + "|" + o.field + o.key;
-  if (fs::is_regular_file(input, ec))  // (a pattern names no one file: its path alone)
-    key += "|" + std::to_string(fs::file_size(input, ec)) + "|" +
-           std::to_string(fs::last_write_time(input, ec).time_since_epoch().count());
+  std::vector<std::string> read = files;
+  read.push_back(input);  // (a pattern names no one file: then its path alone)
+  for (const std::string& f : read) {
+    struct stat st;
+    if (::stat(f.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) continue;
+    key += "|" + fs::absolute(f, ec).string() + "|" + std::to_string(st.st_size) + "|" +
+           std::to_string(st.st_mtim.tv_sec) + "." + std::to_string(st.st_mtim.tv_nsec);
+  }
   const std::string dir = cache_dir.empty() ? default_calibration_dir() : cache_dir;
   if (dir.empty())
     throw tsp::UsageError(input + " is not a .tsp file and there is no cache folder to build it "
@@ -69,56 +85,98 @@ std::string play_cache_path(const std::string& input, const PlayInputOptions& o,
   return (fs::path(dir) / "builds" / (abs.filename().string() + "-" + hash + ".tsp")).string();
 }
 
-std::string prepare_play_input(const std::string& input, const PlayInputOptions& o,
-                               const std::string& cache_dir, const PlayBuildHooks& hooks) {
-  if (is_tsp_file(input)) return input;  // (a field then picks one of its fields)
-  const std::string out = play_cache_path(input, o, cache_dir);
-  if (is_tsp_file(out)) {
+namespace {
+
+// True when the cache entry out is one to play: a regular file (not a link) of this user holding
+// a .tsp. Anything else found there (a link, another user's file, a FIFO, an empty folder, a
+// file that is not a .tsp) is removed, never followed, so the build puts its own file in its
+// place; what cannot be removed is refused. Throws tsp::IoError.
+bool reuse_cache_entry(const std::string& out, const PlayBuildHooks& hooks) {
+  struct stat st;
+  if (::lstat(out.c_str(), &st) != 0) return false;  // nothing there yet
+  if (S_ISREG(st.st_mode) && st.st_uid == ::geteuid() && is_tsp_file(out)) return true;
+  const char* what = S_ISLNK(st.st_mode)   ? "a symbolic link"
+                     : S_ISDIR(st.st_mode) ? "a folder"
+                     : !S_ISREG(st.st_mode) ? "not a regular file (a FIFO, socket or device)"
+                     : st.st_uid != ::geteuid() ? "a file of another user"
+                                                : "not a .tsp file";
+  std::error_code ec;
+  fs::remove(out, ec);  // a link itself, never its target; a folder only when empty
+  if (ec)
+    throw tsp::IoError(out + ": the build cache entry is " + what + " and cannot be removed (" +
+                       ec.message() + "); remove it, or play with --cache-dir DIR");
+  hooks.say("play: the build cache entry " + out + " was " + std::string(what) +
+            "; building the input anew in its place");
+  return false;
+}
+
+// "A,B,C" as its names; empty for one name.
+std::vector<std::string> field_list(const std::string& field) {
+  std::vector<std::string> fields;
+  for (std::size_t p = 0; field.find(',') != std::string::npos && p <= field.size();) {
+    std::size_t c = field.find(',', p);
+    if (c == std::string::npos) c = field.size();
+    fields.push_back(field.substr(p, c - p));
+    p = c + 1;
+  }
+  return fields;
+}
+
+std::string prepare_adaptive(const std::string& input, const PlayInputOptions& o,
+                             const std::string& cache_dir, const PlayBuildHooks& hooks) {
+  if (o.field.find(',') != std::string::npos)
+    throw tsp::UsageError("--octree-error builds one field; --field " + o.field +
+                          " names several");
+  if (!tsp::is_mesh_input(input, o.source.allow_external))
+    throw tsp::UsageError("--octree-error: " + input +
+                          " is not an unstructured mesh; regular grids are built without it");
+  auto mesh = tsp::open_mesh_source(input, o.field, o.source.allow_external, o.source.plot3d_grid);
+  const std::string out = play_cache_path(input, o, cache_dir, mesh->files());
+  if (reuse_cache_entry(out, hooks)) {
     hooks.say("play: " + input + " is not a .tsp file; playing " + out + ", built from it earlier");
     return out;
   }
-  std::error_code ec;
-  const fs::path builds = fs::path(out).parent_path();
-  fs::create_directories(builds, ec);
-  if (ec) throw tsp::IoError(builds.string() + ": cannot create the build cache: " + ec.message());
-  if (o.adaptive) {
-    if (o.field.find(',') != std::string::npos)
-      throw tsp::UsageError("--octree-error builds one field; --field " + o.field +
-                            " names several");
-    if (!tsp::is_mesh_input(input, o.source.allow_external))
-      throw tsp::UsageError("--octree-error: " + input +
-                            " is not an unstructured mesh; regular grids are built without it");
-    auto mesh = tsp::open_mesh_source(input, o.field, o.source.allow_external, o.source.plot3d_grid);
-    hooks.say("play: " + input + " is not a .tsp file; building its adaptive octree into " + out +
-              " (reused next time)");
-    tsp::AdaptiveOptions ao = o.octree;
-    ao.voxelize = o.voxelize;
-    ao.build.field_name = o.field;
-    ao.build.brick_size = 0;  // the default for the finest grid, as build picks it
-    ao.build.threads = o.voxelize.sample.threads;
-    hooks.build_adaptive(*mesh, out, ao);
-    return out;
-  }
+  make_builds_folder(out);
+  hooks.say("play: " + input + " is not a .tsp file; building its adaptive octree into " + out +
+            " (reused next time)");
+  tsp::AdaptiveOptions ao = o.octree;
+  ao.voxelize = o.voxelize;
+  ao.build.field_name = o.field;
+  ao.build.brick_size = 0;  // the default for the finest grid, as build picks it
+  ao.build.threads = o.voxelize.sample.threads;
+  ao.build.output_links = tsp::OutputLinks::replace;
+  hooks.build_adaptive(*mesh, out, ao);
+  return out;
+}
+
+}  // namespace
+
+std::string prepare_play_input(const std::string& input, const PlayInputOptions& o,
+                               const std::string& cache_dir, const PlayBuildHooks& hooks) {
+  if (is_tsp_file(input)) return input;  // (a field then picks one of its fields)
+  if (o.adaptive) return prepare_adaptive(input, o, cache_dir, hooks);
   const auto open_field = [&](const std::string& field) {
     tsp::SourceOptions so = o.source;
     so.field = field;
     return tsp::open_input(input, so, o.voxelize);
   };
   // --field A,B,C: several fields, one tree each (the first shown), as `build` does.
-  std::vector<std::string> fields;
-  for (std::size_t p = 0; o.field.find(',') != std::string::npos && p <= o.field.size();) {
-    std::size_t c = o.field.find(',', p);
-    if (c == std::string::npos) c = o.field.size();
-    fields.push_back(o.field.substr(p, c - p));
-    p = c + 1;
-  }
+  const std::vector<std::string> fields = field_list(o.field);
   std::unique_ptr<tsp::VolumeSource> first = open_field(fields.empty() ? o.field : fields[0]);
+  // Keyed by every file the source reads (series members, blocks, grid and solutions).
+  const std::string out = play_cache_path(input, o, cache_dir, first->files());
+  if (reuse_cache_entry(out, hooks)) {
+    hooks.say("play: " + input + " is not a .tsp file; playing " + out + ", built from it earlier");
+    return out;
+  }
+  make_builds_folder(out);
   hooks.say("play: " + input + " is not a .tsp file; building it into " + out +
             " (reused next time)");
   tsp::BuildOptions bo;
   bo.field_name = o.field;
   bo.brick_size = tsp::default_brick_size(first->dims());
   bo.threads = o.voxelize.sample.threads;
+  bo.output_links = tsp::OutputLinks::replace;
   if (fields.empty()) {
     hooks.build(*first, out, bo);
     return out;

@@ -34,10 +34,12 @@ struct PlayInputOptions {
 };
 
 /// Where input is built for playing with o: `DIR/builds/NAME-HASH.tsp` under cache_dir (""
-/// : default_calibration_dir()), the hash over the input's absolute path, size, modification
-/// time, the field and o.key. Throws tsp::UsageError when there is no cache folder.
+/// : default_calibration_dir()), the hash over the input's absolute path, the field, o.key and
+/// the absolute path, size and modification time (ns) of input and of every file in files (the
+/// source's files(): series members, blocks, grid and solutions). Throws tsp::UsageError when
+/// there is no cache folder.
 std::string play_cache_path(const std::string& input, const PlayInputOptions& o,
-                            const std::string& cache_dir);
+                            const std::string& cache_dir, const std::vector<std::string>& files);
 
 /// How a build for playing reports: `say` gets one line of text, `build` runs the build (a
 /// progress bar, a cancel button) and returns its report.
@@ -55,8 +57,10 @@ struct PlayBuildHooks {
 
 /// The .tsp file to play for input: input itself when it is a .tsp file (o.field then names one
 /// of its fields, for the player), else play_cache_path's file, built with o (one field, or
-/// several into one file) and build's defaults unless it exists. Throws what opening or
-/// building the input throws.
+/// several into one file) and build's defaults unless it exists. An entry that is not a regular
+/// .tsp file of this user (a planted link, a FIFO, another user's file) is replaced, never
+/// written through. Throws what opening or building the input throws, tsp::IoError when the entry
+/// cannot be replaced.
 std::string prepare_play_input(const std::string& input, const PlayInputOptions& o,
                                const std::string& cache_dir, const PlayBuildHooks& hooks);
 

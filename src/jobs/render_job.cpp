@@ -301,6 +301,15 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
   const RenderSettings& settings = o.settings;
 
   const fs::path dir = folder ? fs::path(folder->tmp()) : fs::path();
+  // A write into the folder that fails (a full disk) names the folder the user gave, not its
+  // hidden temporary.
+  const auto into_folder = [&folder](const auto& write) {
+    try {
+      write();
+    } catch (const tsp::IoError& e) {
+      throw tsp::IoError(folder->as_shown(e.what()));
+    }
+  };
 
   tsp::MetricResult metric;
   if (!o.baseline) {
@@ -414,7 +423,7 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
           annotate_frame(pixels, camera, tree.octree().dims(), tf, t,
                          rec.time ? std::optional<std::string>(rec.time_text) : std::nullopt);
         if (o.on_frame) o.on_frame(rec, pixels);
-        if (png) tsp::write_png(step_png(dir, t), pixels);
+        if (png) into_folder([&] { tsp::write_png(step_png(dir, t), pixels); });
       }
       if (progress) progress(int(result.frames.size()), total);
     }
@@ -458,7 +467,9 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
                       {"calibrated_max_step_delta_e", result.quality_calibrated_de},
                       {"calibration_file", result.calibration_file}};
     j["median_ms"] = median_frame_ms(result, o.passes);
-    tsp::write_file_atomically((dir / "frames.json").string(), tsp::json_text(j, 2) + "\n");
+    into_folder([&] {
+      tsp::write_file_atomically((dir / "frames.json").string(), tsp::json_text(j, 2) + "\n");
+    });
   }
   if (movie) {  // the last pass's frames, in the order rendered
     std::vector<fs::path> frames;

@@ -33,6 +33,10 @@ class MeshSurface {
   SurfaceFrame frame(int t, double min_px) { return {&tree(t), &tf_, min_px}; }
 
  private:
+  /// Refuses (tsp::UsageError naming both files) a mesh whose steps differ from file's, or whose
+  /// box at first_step lies outside file's grid or spans much less of it.
+  void check_matches(const std::string& input, const tsp::TspFile& file, int first_step);
+
   std::unique_ptr<tsp::MeshSource> source_;
   std::array<double, 3> origin_, spacing_;
   int step_ = -1;

@@ -2,6 +2,11 @@
 // issue promises, SVG that parses, and Table 4's tolerances checked by rendering them again
 // through `tspplay render` and `tspplay diff`.
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <cstdlib>
 
 #include <filesystem>
 #include <fstream>
@@ -9,6 +14,7 @@
 #include <nlohmann/json.hpp>
 #include <pugixml.hpp>
 #include <sstream>
+#include <utility>
 
 #include "support/paths.h"
 
@@ -72,6 +78,45 @@ class BenchCli : public ::testing::Test {
   static inline fs::path* dir_ = nullptr;
   static inline std::string* out_ = nullptr;
 };
+
+// Runs `tspplay args` with stdout on a pipe, sends SIGTERM as soon as a line holding marker is
+// printed (bench prints each phase as it starts), and returns the exit code (-1: the marker never
+// came, or no normal exit) and stderr. No sleep decides when the signal comes.
+std::pair<int, std::string> terminate_at(const std::string& args, const std::string& marker) {
+  const fs::path err = tsptest::temp_dir() / "stderr.txt";
+  const std::string cmd =
+      "echo $$; exec " + q(tsptest::tspplay_bin()) + " " + args + " 2>" + q(err) + " </dev/null";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) return {-1, "popen failed"};
+  char line[4096];
+  pid_t pid = 0;
+  bool sent = false;
+  while (std::fgets(line, sizeof line, pipe)) {
+    if (pid == 0) {
+      pid = pid_t(std::atol(line));
+    } else if (!sent && std::string(line).find(marker) != std::string::npos) {
+      ::kill(pid, SIGTERM);
+      sent = true;
+    }
+  }
+  const int status = pclose(pipe);
+  const int code = sent && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream in(err);
+  return {code, std::string(std::istreambuf_iterator<char>(in), {})};
+}
+
+TEST_F(BenchCli, SigtermInEveryPhaseEndsItLeavingNoReport) {
+  // Issue 48: a SIGTERM during the knob search was ignored for minutes. Each phase's frames,
+  // and the one parallel-for, check for it.
+  for (const char* phase : {"reference pictures", "baseline knob search", "head to head"}) {
+    const fs::path out = *dir_ / "stopped";
+    const auto [code, err] =
+        terminate_at("bench " + q(*dir_ / "s.tsp") + " " + kArgs + " -o " + q(out), phase);
+    EXPECT_EQ(code, 1) << phase << ": " << err;
+    EXPECT_NE(err.find("interrupted by SIGTERM"), std::string::npos) << phase << ": " << err;
+    EXPECT_FALSE(fs::exists(out / "report.json")) << phase;
+  }
+}
 
 TEST_F(BenchCli, WritesEveryFileWithItsColumns) {
   const fs::path r = *dir_ / "report";

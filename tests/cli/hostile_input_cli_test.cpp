@@ -15,6 +15,7 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "support/paths.h"
@@ -290,6 +291,19 @@ TEST(HostileInputCli, AHugeFieldListIsCheckedForDuplicatesInBoundedTime) {
   EXPECT_TRUE(has(r.err, "the field 'field7' is listed twice")) << r.err.substr(0, 500);
 }
 
+// Issue 48: --field with 1000 names opened and walked the input once per name (400 names: 17 s);
+// more than a file holds is refused before anything is opened.
+TEST(HostileInputCli, AFieldListLongerThanAFileHoldsIsRefusedAtOnce) {
+  const fs::path dir = tsptest::temp_dir();
+  ASSERT_EQ(run("generate shock -o " + quote(dir / "s.h5") + " --dims 8 --steps 2").exit_code, 0);
+  std::string names = "shock";
+  for (int i = 1; i < 1000; ++i) names += ",f" + std::to_string(i);
+  auto r = run("build " + quote(dir / "s.h5") + " --field " + names + " -o " + quote(dir / "f.tsp"));
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_TRUE(has(r.err, "1000 fields named; one .tsp file holds at most 64")) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "f.tsp"));
+}
+
 // A PNG header declaring 16384 x 16384 (1 GiB of RGBA) is refused before anything is decoded.
 TEST(HostileInputCli, APngDeclaringAHugeImageIsRefusedBeforeDecoding) {
   const fs::path png = tsptest::test_data_dir() / "../../fuzz/corpus/png/huge_header.png";
@@ -308,6 +322,23 @@ TEST(HostileInputCli, GeneratedGridsTooLargeForMemoryAreUsageErrors) {
           " --dims 1024,1024,1024 --steps 4096");
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_TRUE(has(r.err, "more than the 68719476736")) << r.err;
+}
+
+TEST(HostileInputCli, SpacingsThatCannotBeDrawnAreRefusedNamingTheAxis) {
+  // A denormal step, or two normal steps 1e600 apart: accepted, every frame would be blank.
+  const fs::path dir = tsptest::temp_dir();
+  ASSERT_EQ(run("generate shock -o " + quote(dir / "s.h5") + " --dims 8 --steps 1").exit_code, 0);
+  for (const auto& [spacing, why] :
+       {std::pair<std::string, std::string>{"5e-324,1,1", "x spacing 4.94066e-324 is not a positive normal"},
+        {"1e300,1e-300,1", "differ by a factor"},
+        {"1,inf,1", "three finite numbers"}}) {
+    auto r = run("build " + quote(dir / "s.h5") + " --spacing " + spacing + " -o " +
+                 quote(dir / "s.tsp"));
+    EXPECT_EQ(r.exit_code, 2) << spacing << ": " << r.err;
+    EXPECT_TRUE(has(r.err, "--spacing")) << r.err;
+    EXPECT_TRUE(has(r.err, why)) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "s.tsp"));
+  }
 }
 
 TEST(HostileInputCli, ATransferFunctionRangeOfInfiniteWidthIsRefused) {

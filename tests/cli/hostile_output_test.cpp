@@ -1,7 +1,7 @@
 // Hostile outputs end to end (issue 28 items 1-5): an existing device node or FIFO at the output
 // path is refused and kept; an output that is an input is refused and the input kept; a failed
 // ffmpeg keeps the old movie; a failed or interrupted re-render keeps the old folder of frames;
-// a failed build keeps the old .tsp and names the input.
+// a failed build keeps the old .tsp and names the input; a full disk names the folder asked for.
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <hdf5.h>
@@ -223,6 +223,22 @@ TEST(HostileOutput, AFailedMovieOrRenderKeepsTheOldMovieAndFrames) {
   EXPECT_EQ(tsptest::read_file(dir / "in" / "m.gif"), "GIF89a-new");
   EXPECT_TRUE(fs::exists(dir / "in" / "step_0000.png"));
   EXPECT_TRUE(temporaries(dir / "in").empty());
+}
+
+TEST(HostileOutput, AFullDiskNamesTheFolderAskedForNotItsTemporary) {
+  // A 4 KiB file size limit (SIGXFSZ ignored) fails the PNG writes as a full disk would
+  // (EFBIG); stderr, a few lines, stays under it.
+  const fs::path dir = tsptest::temp_dir();
+  const fs::path tsp = small_tsp(dir);
+  const fs::path out = dir / "frames";
+  const auto r = tsptest::run_command("trap '' XFSZ; ulimit -f 8; " +
+                                      quote(tsptest::tspplay_bin()) + " render " + quote(tsp) +
+                                      " --size 640x480 -o " + quote(out));
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find(out.string() + "/"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find(".tmp-"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_TRUE(temporaries(dir).empty());
 }
 
 // Issue 28 item 5: SIGINT (or SIGTERM) killed render by the signal, leaving partial frames and

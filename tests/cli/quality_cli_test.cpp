@@ -3,6 +3,7 @@
 // and reused, a corrupt cache is recomputed, and conflicting or unreachable requests are clear
 // errors.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -124,6 +125,36 @@ TEST_F(QualityCli, ConflictsAndUnreachableTargetsAreClearErrors) {
   EXPECT_EQ(c.exit_code, 2);
   EXPECT_NE(c.err.find("--quality"), std::string::npos) << c.err;
   EXPECT_FALSE(fs::exists(*dir_ / "e2" / "frames.json"));
+}
+
+TEST_F(QualityCli, ACacheEntryThatIsALinkIsReplacedNeverFollowed) {
+  // Another user of a shared cache folder plants, at the entry's name, a link to a FIFO: read
+  // through the input gate it must not hang the reader, and the new entry must replace the link,
+  // never write through it (here the FIFO; as well any file of the victim's).
+  const fs::path cache = *dir_ / "cache3";
+  const std::string cmd = "render " + q(*dir_ / "s.tsp") + " " + kView +
+                          " --steps 0:1 --quality 3 --calibration-dir " + q(cache) + " -o ";
+  auto a = run_tspplay(cmd + q(*dir_ / "l1"));
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  const fs::path file = fs::directory_iterator(cache)->path();
+  const fs::path fifo = *dir_ / "victim.fifo";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  fs::remove(file);
+  fs::create_symlink(fifo, file);
+  auto b = run_tspplay(cmd + q(*dir_ / "l2"));  // a plain open would block on the FIFO forever
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  EXPECT_TRUE(fs::is_fifo(fifo)) << "the link's target was replaced";
+  EXPECT_FALSE(fs::is_symlink(file));
+  std::ifstream in(file);
+  EXPECT_NO_THROW(json::parse(in));
+}
+
+TEST_F(QualityCli, AQualityOfZeroIsRefusedNotIgnored) {
+  // (0 is how the job reads "not asked": given on the command line it is an error, as -1 is.)
+  auto r = run_tspplay("render " + q(*dir_ / "s.tsp") + " --quality 0 -o " + q(*dir_ / "z"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("expected a mean dE in (0, 50]"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(*dir_ / "z"));
 }
 
 }  // namespace

@@ -144,4 +144,32 @@ TEST_F(SurfaceCli, MisuseIsAUsageError) {
   }
 }
 
+TEST_F(SurfaceCli, AMeshThatIsNotTheFilesIsRefusedNamingBoth) {
+  // Another mesh: one step of the three, then a tetrahedron elsewhere over three steps.
+  for (int t = 0; t < 3; ++t)
+    std::ofstream(dir / ("far_" + std::to_string(t) + ".vtu")) << R"(<VTKFile type="UnstructuredGrid" version="0.1" byte_order="LittleEndian">
+<UnstructuredGrid><Piece NumberOfPoints="4" NumberOfCells="1">
+<PointData><DataArray type="Float32" Name="f" format="ascii">0 1 2 3</DataArray></PointData>
+<CellData><DataArray type="Float32" Name="c" format="ascii">5</DataArray></CellData>
+<Points><DataArray type="Float32" NumberOfComponents="3" format="ascii">100 100 100 101 100 100 100 101 100 100 100 101</DataArray></Points>
+<Cells><DataArray type="Int32" Name="connectivity" format="ascii">0 1 2 3</DataArray>
+<DataArray type="Int32" Name="offsets" format="ascii">4</DataArray>
+<DataArray type="UInt8" Name="types" format="ascii">10</DataArray></Cells>
+</Piece></UnstructuredGrid></VTKFile>
+)";
+  const std::string one_step = (tsptest::test_data_dir() / "vtu" / "binary_0.vtu").string();
+  const std::string far = (dir / "far_%d.vtu").string();
+  for (const auto& [other, why] : {std::pair{one_step, std::string("steps")},
+                                   std::pair{far, std::string("along x the mesh spans")}}) {
+    const auto r = run_tspplay("render " + q(dir / "m.tsp") + " --steps 0 --size 64x48 "
+                               "--surface boundary --surface-field c --surface-mesh " + q(other) +
+                               " -o " + q(dir / "x"));
+    EXPECT_EQ(r.exit_code, 2) << other << ": " << r.err;
+    EXPECT_NE(r.err.find(why), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(other), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find((dir / "m.tsp").string()), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "x"));
+  }
+}
+
 }  // namespace

@@ -312,7 +312,7 @@ AdaptiveReport build_adaptive_tsp(MeshSource& source, const std::string& out_pat
       throw UsageError("--range: expected finite LO < HI");
   }
   const InputGuard inputs(source.files());
-  TempOutput out(out_path);
+  TempOutput out(out_path, options.build.output_links);
   const std::string dir = output_directory(out_path);
   const int steps = source.steps();
   if (steps < 1) throw FormatError(source.describe() + ": no time steps");

@@ -7,6 +7,8 @@
 #include <deque>
 #include <limits>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "tsp/build/brick_pass.h"
@@ -15,6 +17,7 @@
 #include "tsp/build/slab_prefetcher.h"
 #include "tsp/core/background_worker.h"
 #include "tsp/core/error.h"
+#include "tsp/core/geometry.h"
 #include "tsp/core/parallel_for.h"
 #include "tsp/core/stopwatch.h"
 #include "tsp/core/temp_output.h"
@@ -302,14 +305,26 @@ void check_options(const std::string& out_path, const BuildOptions& options) {
   if (options.threads < 0)
     throw UsageError("--threads " + std::to_string(options.threads) + ": expected 0 or more");
   if (out_path.empty()) throw UsageError("no output file given (-o)");
-  for (std::size_t a = 0; a < 3; ++a) {
-    if (options.spacing && !(std::isfinite((*options.spacing)[a]) && (*options.spacing)[a] > 0))
-      throw UsageError("--spacing: expected three positive, finite voxel sizes, found " +
-                       std::to_string((*options.spacing)[a]));
-    if (options.origin && !std::isfinite((*options.origin)[a]))
-      throw UsageError("--origin: expected three finite coordinates, found " +
-                       std::to_string((*options.origin)[a]));
-  }
+  if (options.spacing)
+    if (const std::string why = spacing_problem({0, 0, 0}, *options.spacing); !why.empty())
+      throw UsageError("--spacing: expected three positive voxel sizes that can be drawn: " + why);
+  if (options.origin)
+    if (const std::string why = spacing_problem(*options.origin, {1, 1, 1}); !why.empty())
+      throw UsageError("--origin: expected three finite coordinates: " + why);
+}
+
+// The grid's origin and spacing as the file will hold them: the options' or the source's,
+// refused naming the source when they cannot be drawn. Throws FormatError.
+std::pair<std::array<double, 3>, std::array<double, 3>> checked_grid(const VolumeSource& source,
+                                                                      const BuildOptions& o) {
+  const std::array<double, 3> origin = o.origin.value_or(source.origin());
+  const std::array<double, 3> spacing = o.spacing.value_or(source.spacing());
+  if (const std::string why = spacing_problem(origin, spacing); !why.empty())
+    throw FormatError(source.describe() + ": its grid's origin (" + std::to_string(origin[0]) +
+                      ", " + std::to_string(origin[1]) + ", " + std::to_string(origin[2]) +
+                      ") or voxel spacing cannot be drawn: " + why +
+                      " (give --spacing DX,DY,DZ and --origin X,Y,Z)");
+  return {origin, spacing};
 }
 
 // Builds one field of source into the temporary output out (field_index 0: the file's root,
@@ -323,6 +338,7 @@ BuildReport build_field(VolumeSource& source, const TempOutput* out,
   const Dims dims = source.dims();
   const int steps = source.steps();
   if (steps < 1) throw FormatError(source.describe() + ": no time steps");
+  (void)checked_grid(source, options);  // before any work, as the times below
   // The .tsp reader refuses non-finite times: refuse them here, naming the input, before any
   // work (a build that wrote them would replace a good output with one nothing can read).
   const std::vector<double> times = source.times();
@@ -390,11 +406,10 @@ BuildReport build_field(VolumeSource& source, const TempOutput* out,
     meta.nonfinite_count = report.nonfinite_count;
     meta.histogram = pass.histogram;
     meta.created_by = "tspplay " TSPPLAY_VERSION;
-    meta.origin = options.origin.value_or(source.origin());
+    std::tie(meta.origin, meta.spacing) = checked_grid(source, options);
     meta.times = source.times();
     if (meta.times.size() != std::size_t(steps)) meta.times.clear();  // a reader's slip: none
     if (!meta.times.empty()) meta.time_units = source.time_units();
-    meta.spacing = options.spacing.value_or(source.spacing());
     meta.build_ranks = part ? part->ranks() : 1;
     writer.finish(tree, meta);
   }
@@ -416,7 +431,7 @@ BuildReport build_tsp_file(VolumeSource& source, const std::string& out_path,
   check_options(out_path, options);
   const InputGuard inputs(source.files());
   std::optional<TempOutput> out;
-  if (!writes_nothing(options)) out.emplace(out_path);
+  if (!writes_nothing(options)) out.emplace(out_path, options.output_links);
   BuildReport r =
       build_field(source, out ? &*out : nullptr, output_directory(out_path), 0, options);
   if (out) out->commit();
@@ -429,6 +444,11 @@ std::vector<BuildReport> build_tsp_fields(const FieldSourceFn& open_field,
                                           const BuildOptions& options) {
   check_options(out_path, options);
   if (fields.empty()) throw UsageError("--field: no field named");
+  // Checked before any input is opened: each field opens and walks the input once.
+  if (fields.size() > std::size_t(kMaxBuildFields))
+    throw UsageError("--field: " + std::to_string(fields.size()) + " fields named; one .tsp file "
+                     "holds at most " + std::to_string(kMaxBuildFields) +
+                     " (build the others into another file)");
   for (std::size_t i = 0; i < fields.size(); ++i) {
     if (fields[i].empty() || fields[i].find('\n') != std::string::npos)
       throw UsageError("--field: field " + std::to_string(i + 1) +
@@ -445,7 +465,7 @@ std::vector<BuildReport> build_tsp_fields(const FieldSourceFn& open_field,
     std::unique_ptr<VolumeSource> source = open_field(fields[k]);
     if (k == 0) {
       for (const std::string& f : source->files()) inputs.add(f);
-      if (!writes_nothing(options)) out.emplace(out_path);
+      if (!writes_nothing(options)) out.emplace(out_path, options.output_links);
       steps0 = source->steps();
     } else if (source->steps() != steps0) {
       throw FormatError(source->describe() + ": field " + fields[k] + " has " +

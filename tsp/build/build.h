@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "tsp/build/build_partition.h"
+#include "tsp/core/temp_output.h"
 #include "tsp/core/types.h"
 #include "tsp/source/volume_source.h"
 
@@ -47,6 +48,9 @@ struct BuildOptions {
   /// 1–9: brick chunks compressed with shuffle + deflate at that level (`build --compress`);
   /// 0: stored as is. Readers need nothing (HDF5 decompresses). Checked by the build.
   int deflate = 0;
+  /// What an out_path that is a symbolic link replaces: its target (`build -o link`), or the
+  /// link itself (play's build cache, where another user may have planted it).
+  OutputLinks output_links = OutputLinks::follow;
 };
 
 /// What a build did, for the CLI and the benchmark.
@@ -57,6 +61,10 @@ struct BuildReport {
   ValueRange data_range;             ///< finite min/max of the input ({0, 0} when none)
   ValueRange value_range;            ///< quantization range written to the file
 };
+
+/// Most fields build_tsp_fields puts in one file (each opens and walks the input once: 1000
+/// names took minutes).
+inline constexpr int kMaxBuildFields = 64;
 
 /// Opens the source of one named field of the input (build_tsp_fields).
 using FieldSourceFn = std::function<std::unique_ptr<VolumeSource>(const std::string& field)>;

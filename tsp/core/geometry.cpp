@@ -2,11 +2,19 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace tsp {
 
 namespace {
 constexpr double kHuge = 1e300;
+
+// x as %g ("5e-324", "inf", "1e+06").
+std::string number_text(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", x);
+  return buf;
+}
 }  // namespace
 
 Aabb empty_aabb() { return Aabb{{kHuge, kHuge, kHuge}, {-kHuge, -kHuge, -kHuge}}; }
@@ -50,6 +58,26 @@ std::array<double, 3> centre(const Aabb& box) {
 
 double diagonal(const Aabb& box) {
   return std::hypot(box.hi[0] - box.lo[0], box.hi[1] - box.lo[1], box.hi[2] - box.lo[2]);
+}
+
+std::string spacing_problem(const std::array<double, 3>& origin,
+                            const std::array<double, 3>& spacing) {
+  static constexpr const char* kAxis[] = {"x", "y", "z"};
+  double lo = spacing[0], hi = spacing[0];
+  for (std::size_t a = 0; a < 3; ++a) {
+    const std::string name = kAxis[a];
+    if (!std::isfinite(origin[a])) return "the " + name + " origin " + number_text(origin[a]) +
+                                          " is not a finite number";
+    if (!(std::isnormal(spacing[a]) && spacing[a] > 0))
+      return "the " + name + " spacing " + number_text(spacing[a]) +
+             " is not a positive normal number";
+    lo = std::min(lo, spacing[a]);
+    hi = std::max(hi, spacing[a]);
+  }
+  if (hi / lo > kMaxSpacingRatio)
+    return "the spacings differ by a factor " + number_text(hi / lo) + ", more than " +
+           number_text(kMaxSpacingRatio) + " (the thinnest axis would draw as nothing)";
+  return "";
 }
 
 }  // namespace tsp

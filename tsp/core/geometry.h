@@ -2,6 +2,7 @@
 // voxel box covers, shared by the slicers, the renderer and later the clipping probes.
 #pragma once
 #include <array>
+#include <string>
 
 #include "tsp/core/types.h"
 
@@ -32,5 +33,15 @@ double diagonal(const Aabb& box);
 /// The geometric box of voxel box `box` in a volume of dims d: [lo, min(hi, D − 1)] per axis, so
 /// that bricks and octree nodes tile [0, D − 1]³ with shared faces.
 Aabb geometric_box(const Box& box, const Dims& d);
+
+/// Largest ratio between a grid's largest and smallest voxel size that is drawn: beyond it the
+/// thin axis rounds to nothing when the box is fitted to the view (every frame blank).
+inline constexpr double kMaxSpacingRatio = 1e6;
+
+/// Why a grid's origin and voxel spacing cannot be drawn, "" when they can: every spacing a
+/// positive normal number (no zero, denormal, infinity or NaN), every origin finite, the
+/// largest spacing within kMaxSpacingRatio of the smallest. Never throws.
+std::string spacing_problem(const std::array<double, 3>& origin,
+                            const std::array<double, 3>& spacing);
 
 }  // namespace tsp

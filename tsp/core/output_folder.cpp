@@ -79,6 +79,13 @@ int remove_stale_temporary_folders(const std::string& dir) {
   return removed;
 }
 
+std::string OutputFolder::as_shown(std::string text) const {
+  for (std::size_t at = 0; !tmp_.empty() && (at = text.find(tmp_, at)) != std::string::npos;
+       at += shown_.size())
+    text.replace(at, tmp_.size(), shown_);
+  return text;
+}
+
 OutputFolder::OutputFolder(const std::string& dir, BelongsToSet belongs)
     : shown_(dir), belongs_(std::move(belongs)) {
   fs::path p = normalized(dir);

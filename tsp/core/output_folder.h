@@ -30,6 +30,9 @@ class OutputFolder {
   OutputFolder& operator=(const OutputFolder&) = delete;
   /// The folder to write the new set into.
   const std::string& tmp() const { return tmp_; }
+  /// text (an error message) with the temporary folder's path replaced by the folder as given,
+  /// so that a failed write names the folder the user asked for. Never throws but bad_alloc.
+  std::string as_shown(std::string text) const;
   /// Carries the entries outside the set over, swaps the new folder in (renameat2
   /// RENAME_EXCHANGE, one atomic step) and removes the old set. Throws Interrupted (nothing
   /// replaced) once SIGINT/SIGTERM arrived, IoError when a step fails (the old folder is then

@@ -8,6 +8,8 @@
 #include <thread>
 #include <vector>
 
+#include "tsp/core/interrupt.h"
+
 namespace tsp {
 
 int resolve_threads(int threads) {
@@ -31,8 +33,10 @@ void parallel_for(std::int64_t n, std::int64_t grain, int threads, const ChunkFn
   std::mutex error_mutex;
   auto run = [&](int worker) {
     try {
-      for (std::int64_t first; !failed && (first = next.fetch_add(grain)) < n;)
+      for (std::int64_t first; !failed && (first = next.fetch_add(grain)) < n;) {
+        throw_if_interrupted();  // every long loop of the library stops within one chunk
         body(worker, first, std::min(n, first + grain));
+      }
     } catch (...) {
       std::lock_guard lock(error_mutex);
       if (!error) error = std::current_exception();

@@ -22,7 +22,9 @@ using ChunkFn = std::function<void(int worker, std::int64_t begin, std::int64_t 
 /// chunk exactly once, the chunks handed out in increasing order to whichever worker is free;
 /// returns when all are done. One worker never runs two chunks at once, so state indexed by
 /// worker needs no lock. If a body throws, no new chunk starts, and the first exception is
-/// rethrown once every worker has stopped. Thread-safe to call from several threads; body
+/// rethrown once every worker has stopped. Once SIGINT/SIGTERM arrived under an InterruptScope
+/// (tsp/core/interrupt.h) no new chunk starts and Interrupted is thrown, so every loop built on
+/// it stops within one chunk. Thread-safe to call from several threads; body
 /// must be safe to run concurrently on disjoint chunks.
 void parallel_for(std::int64_t n, std::int64_t grain, int threads, const ChunkFn& body);
 

@@ -127,11 +127,15 @@ int remove_stale_temporaries(const std::string& out_path) {
   return removed;
 }
 
-TempOutput::TempOutput(const std::string& out_path) : shown_(out_path), final_(out_path) {
-  check_output_path(out_path);
+TempOutput::TempOutput(const std::string& out_path, OutputLinks links)
+    : shown_(out_path), final_(out_path), links_(links) {
   std::error_code ec;
+  // Under OutputLinks::replace a link is replaced by rename() whatever it points at, so only
+  // the link itself is checked.
+  const bool replace_link = links == OutputLinks::replace && fs::is_symlink(out_path, ec);
+  if (!replace_link) check_output_path(out_path);
   // A link to an existing file: the file is replaced and the link kept.
-  if (fs::is_symlink(out_path, ec) && fs::exists(out_path, ec)) {
+  if (links == OutputLinks::follow && fs::is_symlink(out_path, ec) && fs::exists(out_path, ec)) {
     const fs::path target = fs::canonical(out_path, ec);
     if (!ec) final_ = target.string();
   }
@@ -178,15 +182,17 @@ TempOutput::~TempOutput() {
 
 void TempOutput::commit() {
   throw_if_interrupted();
-  check_output_path(final_);  // nothing put a device or FIFO there meanwhile
+  // Nothing put a device or FIFO there meanwhile (a link there is replaced itself, unfollowed).
+  std::error_code ec;
+  if (links_ == OutputLinks::follow || !fs::is_symlink(final_, ec)) check_output_path(final_);
   if (std::rename(tmp_.c_str(), final_.c_str()) != 0)
     throw IoError(shown_ + ": cannot rename the finished file into place (" +
                   std::strerror(errno) + ")");
   committed_ = true;
 }
 
-void write_file_atomically(const std::string& path, const std::string& text) {
-  TempOutput out(path);
+void write_file_atomically(const std::string& path, const std::string& text, OutputLinks links) {
+  TempOutput out(path, links);
   std::ofstream f(out.tmp(), std::ios::binary | std::ios::trunc);
   f << text;
   f.close();

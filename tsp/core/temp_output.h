@@ -10,6 +10,13 @@
 
 namespace tsp {
 
+/// What an output at a symbolic link replaces.
+enum class OutputLinks {
+  follow,   ///< the link's target (the link kept): a user's `-o link.png` writes where it points
+  replace,  ///< the link itself, its target untouched: cache entries, where another user may
+            ///< have planted the link
+};
+
 /// The files the running command reads, for the guard's lifetime: no TempOutput or OutputFolder
 /// may replace any of them (compared by device and inode, links followed). Paths that do not
 /// exist are skipped (a file that does not exist cannot be read). Thread-safe.
@@ -45,9 +52,10 @@ class TempOutput {
  public:
   /// Checks out_path (check_output_path) and that its directory exists, removes stale
   /// `.NAME.tmp-*` files of the same name (see above), and creates a locked, empty
-  /// `.NAME.tmp-XXXXXX` there. A symbolic link to a regular file is written through: its target
-  /// is replaced, the link kept. Throws UsageError (an input) or IoError.
-  explicit TempOutput(const std::string& out_path);
+  /// `.NAME.tmp-XXXXXX` there. A symbolic link to a regular file is written through (its target
+  /// replaced, the link kept) under OutputLinks::follow; under OutputLinks::replace the link
+  /// itself is replaced, whatever it points at. Throws UsageError (an input) or IoError.
+  explicit TempOutput(const std::string& out_path, OutputLinks links = OutputLinks::follow);
   /// Removes the temporary file unless committed.
   ~TempOutput();
   TempOutput(const TempOutput&) = delete;
@@ -64,6 +72,7 @@ class TempOutput {
  private:
   std::string shown_;  ///< out_path as given, for messages
   std::string final_, tmp_, dir_;
+  OutputLinks links_;
   int lock_fd_ = -1;  ///< holds the lock that marks the temporary as in use
   bool committed_ = false;
 };
@@ -83,6 +92,7 @@ bool try_lock(int fd);
 
 /// Writes text to path atomically (temporary name, renamed when complete). Throws what TempOutput
 /// throws, IoError when the write fails.
-void write_file_atomically(const std::string& path, const std::string& text);
+void write_file_atomically(const std::string& path, const std::string& text,
+                           OutputLinks links = OutputLinks::follow);
 
 }  // namespace tsp

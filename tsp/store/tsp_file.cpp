@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "tsp/core/error.h"
+#include "tsp/core/geometry.h"
 #include "tsp/hdf5/hdf5_handle.h"
 #include "tsp/hdf5/hdf5_lock.h"
 #include "tsp/hdf5/hdf5_values.h"
@@ -149,12 +150,11 @@ Aabb field_box(const Reader& r) {
     const auto o = r.attr_numbers<double>(layout::kAttrOrigin, H5T_NATIVE_DOUBLE, 3);
     const auto h = r.attr_numbers<double>(layout::kAttrSpacing, H5T_NATIVE_DOUBLE, 3);
     for (int a = 0; a < 3; ++a) {
-      if (!std::isfinite(o[std::size_t(a)]) || !std::isfinite(h[std::size_t(a)]) ||
-          !(h[std::size_t(a)] > 0))
-        r.fail("attributes origin/spacing", "expected finite values and spacings > 0");
       org[std::size_t(a)] = o[std::size_t(a)];
       sp[std::size_t(a)] = h[std::size_t(a)];
     }
+    if (const std::string why = spacing_problem(org, sp); !why.empty())
+      r.fail("attributes origin/spacing", "expected finite values and spacings that can be drawn: " + why);
   }
   Aabb b;
   for (int a = 0; a < 3; ++a) {
@@ -375,11 +375,11 @@ std::unique_ptr<TspFile> TspFile::open(const std::string& path, const std::strin
     auto org = r.attr_numbers<double>(layout::kAttrOrigin, H5T_NATIVE_DOUBLE, 3);
     auto sp = r.attr_numbers<double>(layout::kAttrSpacing, H5T_NATIVE_DOUBLE, 3);
     for (int a = 0; a < 3; ++a) {
-      if (!std::isfinite(org[a]) || !std::isfinite(sp[a]) || !(sp[a] > 0))
-        r.fail("attributes origin/spacing", "expected finite values and spacings > 0");
       m.origin[a] = org[a];
       m.spacing[a] = sp[a];
     }
+    if (const std::string why = spacing_problem(m.origin, m.spacing); !why.empty())
+      r.fail("attributes origin/spacing", "expected finite values and spacings that can be drawn: " + why);
   }
 
   if (H5Lexists(impl->loc.get(), layout::kTimeValues, H5P_DEFAULT) > 0) {
@@ -500,16 +500,25 @@ int TspFile::field_index() const {
 namespace {
 
 // One stored brick of a [brick, step, z, y, x] dataset into out (its lattice's samples, memory
-// type mem_type); the caller holds hdf5_mutex(). Throws FormatError with `what` on failure.
+// type mem_type); the caller holds hdf5_mutex(). Throws FormatError starting with `what` ("FILE:
+// dataset D: brick N at step T") when the brick has no chunk (HDF5 would hand back its fill
+// value, zeros, as if they were data) or cannot be read, with `why` the likely cause.
 void read_chunk(hid_t dataset, hid_t mem_type, const BrickLattice& s, int brick, int step,
-                void* out, const std::string& what) {
+                void* out, const std::string& what, const std::string& why) {
   hsize_t start[5] = {hsize_t(brick), hsize_t(step), 0, 0, 0};
   hsize_t count[5] = {1, 1, hsize_t(s.samples[2]), hsize_t(s.samples[1]), hsize_t(s.samples[0])};
+  unsigned filters = 0;
+  haddr_t address = HADDR_UNDEF;
+  hsize_t stored = 0;
+  if (H5Dget_chunk_info_by_coord(dataset, start, &filters, &address, &stored) >= 0 &&
+      (address == HADDR_UNDEF || stored == 0))
+    throw FormatError(what + " is marked present but has no stored chunk (the file is "
+                             "incomplete, or was not written by tspplay)");
   Handle fspace(H5Dget_space(dataset));
   Handle mspace(H5Screate_simple(3, count + 2, nullptr));
   if (H5Sselect_hyperslab(fspace.get(), H5S_SELECT_SET, start, nullptr, count, nullptr) < 0 ||
       H5Dread(dataset, mem_type, mspace.get(), fspace.get(), H5P_DEFAULT, out) < 0)
-    throw FormatError(what);
+    throw FormatError(what + ": cannot be read (" + why + ")");
 }
 
 // The samples of lattice `to` made up from the samples of the coarser lattice `from` that covers
@@ -569,9 +578,9 @@ void TspFile::read_brick(int brick, int step, std::span<std::uint16_t> out) cons
   }
   std::lock_guard lock(hdf5_mutex());
   read_chunk(impl_->data.get(), H5T_NATIVE_UINT16, s, brick, step, out.data(),
-             impl_->path + ": dataset " + layout::kBrickData + ": cannot read brick " +
-                 std::to_string(brick) + " at step " + std::to_string(step) +
-                 " (checksum mismatch: the brick is corrupted, or the file is truncated)");
+             impl_->path + ": dataset " + layout::kBrickData + ": brick " +
+                 std::to_string(brick) + " at step " + std::to_string(step),
+             "checksum mismatch: the brick is corrupted, or the file is truncated");
 }
 
 void TspFile::read_inside(int brick, int step, std::span<std::uint8_t> out) const {
@@ -589,9 +598,9 @@ void TspFile::read_inside(int brick, int step, std::span<std::uint8_t> out) cons
   }
   std::lock_guard lock(hdf5_mutex());
   read_chunk(impl_->inside.get(), H5T_NATIVE_UINT8, s, brick, step, out.data(),
-             impl_->path + ": dataset " + layout::kBrickInside +
-                 ": cannot read the stencil of brick " + std::to_string(brick) + " at step " +
-                 std::to_string(step) + " (corrupted or truncated)");
+             impl_->path + ": dataset " + layout::kBrickInside + ": the stencil of brick " +
+                 std::to_string(brick) + " at step " + std::to_string(step),
+             "corrupted or truncated");
 }
 
 }  // namespace tsp

@@ -73,6 +73,23 @@ TEST(TempOutput, ALinkIsWrittenThroughAndKept) {
   EXPECT_EQ(tsptest::read_file(dir / "target" / "f.json"), "new");
 }
 
+TEST(TempOutput, UnderReplaceALinkIsReplacedAndItsTargetUntouched) {
+  // A cache entry: another user may plant a link at its name, to a file of the victim's or to
+  // a device; the link itself goes, whatever it points at.
+  const fs::path dir = tsptest::temp_dir();
+  write(dir / "victim.txt", "precious");
+  fs::create_symlink(dir / "victim.txt", dir / "entry.json");
+  fs::create_symlink("/dev/null", dir / "dev.json");
+  write_file_atomically((dir / "entry.json").string(), "cache", OutputLinks::replace);
+  write_file_atomically((dir / "dev.json").string(), "cache", OutputLinks::replace);
+  EXPECT_EQ(tsptest::read_file(dir / "victim.txt"), "precious");
+  for (const char* name : {"entry.json", "dev.json"}) {
+    EXPECT_FALSE(fs::is_symlink(dir / name)) << name;
+    EXPECT_EQ(tsptest::read_file(dir / name), "cache") << name;
+  }
+  EXPECT_EQ(hidden_entries(dir), 0);
+}
+
 TEST(TempOutput, NothingIsCommittedAfterAnInterruption) {
   const fs::path dir = tsptest::temp_dir();
   write(dir / "out.txt", "old");

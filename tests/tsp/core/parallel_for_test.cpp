@@ -1,16 +1,20 @@
 // The one parallel-for: every index exactly once in chunks of the grain, per-worker state, the
-// worker count, errors rethrown after every worker stopped, and empty ranges.
+// worker count, errors rethrown after every worker stopped, interruptions (SIGINT/SIGTERM) ending
+// it within a chunk per worker, and empty ranges.
 #include "tsp/core/parallel_for.h"
 
 #include <gtest/gtest.h>
 
+#include <signal.h>
+
 #include <atomic>
-#include <chrono>
 #include <mutex>
 #include <set>
 #include <stdexcept>
 #include <thread>
 #include <vector>
+
+#include "tsp/core/interrupt.h"
 
 namespace {
 
@@ -82,16 +86,39 @@ TEST(ParallelFor, PerWorkerStateNeedsNoLock) {
 TEST(ParallelFor, FirstErrorIsRethrownAndLaterChunksDoNotStart) {
   for (int threads : {1, 3}) {
     std::atomic<int> ran{0};
+    std::atomic<bool> thrown{false};
     EXPECT_THROW(parallel_for(200, 1, threads,
                               [&](int, std::int64_t b, std::int64_t) {
                                 ++ran;
-                                if (b == 10) throw std::runtime_error("chunk 10 failed");
-                                std::this_thread::sleep_for(std::chrono::microseconds(500));
+                                if (b == 10) {
+                                  thrown = true;
+                                  throw std::runtime_error("chunk 10 failed");
+                                }
+                                // Later chunks hold their worker until the error (a latch, no
+                                // sleep), so none can race through the rest meanwhile.
+                                while (b > 10 && !thrown) std::this_thread::yield();
                               }),
                  std::runtime_error);
     // Only the chunks already handed out when the error happened ran: far fewer than all.
     EXPECT_LT(ran.load(), 100);
     EXPECT_GE(ran.load(), 11);
+  }
+}
+
+TEST(ParallelFor, AnInterruptionStopsItWithinOneChunkPerWorker) {
+  for (int threads : {1, 3}) {
+    std::atomic<int> ran{0};
+    EXPECT_THROW(parallel_for(200, 1, threads,
+                              [&](int, std::int64_t b, std::int64_t) {
+                                ++ran;
+                                if (b == 10) tsp::detail::simulate_interrupt(SIGTERM);
+                                while (b > 10 && !tsp::interrupted()) std::this_thread::yield();
+                              }),
+                 tsp::Interrupted);
+    tsp::detail::clear_interrupt();
+    // Chunks 0..10, and at most one more already started by each other worker.
+    EXPECT_GE(ran.load(), 11);
+    EXPECT_LE(ran.load(), 10 + threads);
   }
 }
 

@@ -12,6 +12,7 @@
 
 #include "support/memory_source.h"
 #include "support/paths.h"
+#include "support/reader_formula.h"
 #include "tsp/build/build.h"
 #include "tsp/build/level_filter.h"
 #include "tsp/core/error.h"
@@ -497,6 +498,63 @@ TEST(TspFile, CorruptedBrickIsReportedByIndexAndStep) {
     EXPECT_NE(m.find("brick 2 at step 3"), std::string::npos) << m;
     EXPECT_NE(m.find("checksum"), std::string::npos) << m;
   }
+}
+
+TEST(TspFile, SpacingsThatCannotBeDrawnAreRefused) {
+  // A denormal, or two normal spacings 1e600 apart: every frame would be blank.
+  for (const std::array<double, 3>& sp : {std::array<double, 3>{5e-324, 1, 1},
+                                          std::array<double, 3>{1e300, 1e-300, 1},
+                                          std::array<double, 3>{1, 0, 1}}) {
+    auto path = built_file();
+    edit_file(path, [&](hid_t f) {
+      hid_t a = H5Aopen(f, "spacing", H5P_DEFAULT);
+      ASSERT_GE(a, 0);
+      H5Awrite(a, H5T_NATIVE_DOUBLE, sp.data());
+      H5Aclose(a);
+    });
+    expect_format_error(path, "spacing");
+  }
+}
+
+TEST(TspFile, APresentBrickWithoutAChunkIsAFormatErrorNotZeros) {
+  // The data set rewritten without the chunk of brick 2 at step 3: HDF5 would read its fill
+  // value (zeros) as if it were data.
+  auto path = built_file({21, 14, 9}, 5, 8);
+  edit_file(path, [&](hid_t f) {
+    hid_t ds = H5Dopen2(f, "/bricks/data", H5P_DEFAULT);
+    hid_t space = H5Dget_space(ds), dcpl = H5Dget_create_plist(ds);
+    hsize_t dims[5];
+    H5Sget_simple_extent_dims(space, dims, nullptr);
+    std::vector<std::uint16_t> all(std::size_t(dims[0] * dims[1] * dims[2] * dims[3] * dims[4]));
+    ASSERT_GE(H5Dread(ds, H5T_NATIVE_UINT16, H5S_ALL, H5S_ALL, H5P_DEFAULT, all.data()), 0);
+    hid_t copy = H5Dcreate2(f, "/bricks/copy", H5T_STD_U16LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+    ASSERT_GE(copy, 0);
+    hsize_t count[5] = {1, 1, dims[2], dims[3], dims[4]};
+    hid_t mem = H5Screate_simple(3, count + 2, nullptr);
+    const std::size_t per = std::size_t(dims[2] * dims[3] * dims[4]);
+    for (hsize_t b = 0; b < dims[0]; ++b)
+      for (hsize_t t = 0; t < dims[1]; ++t) {
+        if (b == 2 && t == 3) continue;
+        hsize_t start[5] = {b, t, 0, 0, 0};
+        H5Sselect_hyperslab(space, H5S_SELECT_SET, start, nullptr, count, nullptr);
+        ASSERT_GE(H5Dwrite(copy, H5T_NATIVE_UINT16, mem, space, H5P_DEFAULT,
+                           all.data() + (b * dims[1] + t) * per), 0);
+      }
+    H5Sclose(mem);
+    H5Dclose(copy);
+    H5Pclose(dcpl);
+    H5Sclose(space);
+    H5Dclose(ds);
+    ASSERT_GE(H5Ldelete(f, "/bricks/data", H5P_DEFAULT), 0);
+    ASSERT_GE(H5Lmove(f, "/bricks/copy", f, "/bricks/data", H5P_DEFAULT, H5P_DEFAULT), 0);
+  });
+  auto f = TspFile::open(path);
+  std::vector<std::uint16_t> codes(std::size_t(f->tree().octree().brick_samples(2).count()));
+  EXPECT_NO_THROW(f->read_brick(2, 2, codes));
+  const std::string m = tsptest::error_of<FormatError>([&] { f->read_brick(2, 3, codes); });
+  EXPECT_NE(m.find("brick 2 at step 3"), std::string::npos) << m;
+  EXPECT_NE(m.find("no stored chunk"), std::string::npos) << m;
+  EXPECT_NE(m.find(path), std::string::npos) << m;
 }
 
 }  // namespace
