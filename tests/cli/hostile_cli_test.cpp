@@ -3,14 +3,14 @@
 // and nothing left behind by a killed build.
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <poll.h>
+#include <sys/inotify.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <thread>
 
 #include "support/paths.h"
 
@@ -148,6 +148,10 @@ TEST(HostileCli, KilledBuildLeavesNothingAfterTheNextBuild) {
   const auto h5 = dir / "big.h5";
   ASSERT_EQ(run_tspplay("generate shock -o " + quote(h5) + " --dims 96 --steps 24").exit_code, 0);
   const auto out = dir / "run.tsp";
+  // Told by the kernel when the build creates its temporary (inotify), not by polling.
+  const int watch = inotify_init1(IN_CLOEXEC);
+  ASSERT_GE(watch, 0);
+  ASSERT_GE(inotify_add_watch(watch, dir.c_str(), IN_CREATE), 0);
   const pid_t pid = fork();
   ASSERT_GE(pid, 0);
   if (pid == 0) {
@@ -162,13 +166,26 @@ TEST(HostileCli, KilledBuildLeavesNothingAfterTheNextBuild) {
       n += e.path().filename().string().rfind(".run.tsp.tmp-", 0) == 0;
     return n;
   };
-  // Kill it once its temporary exists (pass 2 writes the output).
-  for (int i = 0; i < 400 && temporaries() == 0; ++i)
-    std::this_thread::sleep_for(std::chrono::milliseconds(25));
+  constexpr int kGuardMs = 120000;  // a guard against a hang, not a timing: never reached
+  // Kill it as soon as its temporary exists (pass 2 writes the output; a 96³ × 24 build takes
+  // far longer than a kill).
+  alignas(inotify_event) char events[4096];
+  for (bool created = false; !created;) {
+    pollfd ready{watch, POLLIN, 0};
+    ASSERT_EQ(poll(&ready, 1, kGuardMs), 1) << "no temporary within the guard: the build failed?";
+    const ssize_t n = read(watch, events, sizeof events);
+    ASSERT_GT(n, 0);
+    for (ssize_t at = 0; at < n;) {
+      const auto* e = reinterpret_cast<const inotify_event*>(events + at);
+      created |= e->len > 0 && std::string(e->name).rfind(".run.tsp.tmp-", 0) == 0;
+      at += ssize_t(sizeof(inotify_event) + e->len);
+    }
+  }
+  close(watch);
   kill(pid, SIGKILL);
   int status = 0;
   waitpid(pid, &status, 0);
-  if (!WIFSIGNALED(status)) GTEST_SKIP() << "the build finished before it could be killed";
+  ASSERT_TRUE(WIFSIGNALED(status)) << "the build finished before it could be killed";
   EXPECT_EQ(temporaries(), 1);
   EXPECT_FALSE(fs::exists(out));
   auto r = run_tspplay("build " + quote(h5) + " --field shock --brick 16 -o " + quote(out));
