@@ -174,7 +174,9 @@ const CommandRegistrar reg(35, [](CLI::App& app) {
                 "How the cut is chosen: error (holds --target-fps, default) or LaMar's selection "
                 "filters distance[:K] and fov[:K] (as for render; the panel's 'cut by')");
   c->add_option("--speed", a->options.speed,
-                "Playback speed, steps per second (default 24, a movie's rate; 0.25 to 60)");
+                "Playback speed, steps per second, 0.25 to 60 (default: the series in about 4 s, "
+                "at most 24, a movie's rate). Steps are shown in order, slower if frames are "
+                "slow, unless the script or panel picks skip steps");
   c->add_option("--quality", a->options.quality,
                 "While playing: mean dE target against the full-quality picture (default 1; "
                 "0: off, the LOD cut holds the rate). Each frame draws the cheapest-needed rung "

@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <thread>
 
 #include "gl/gl_error.h"
@@ -113,11 +114,12 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
                           std::to_string(int(kMaxTargetFps)) + " frames per second");
   state.lod_on = options.lod;
   state.target_fps = float(options.target_fps);
-  if (!(options.speed >= kMinSpeed && options.speed <= kMaxSpeed))
+  if (options.speed != 0 && !(options.speed >= kMinSpeed && options.speed <= kMaxSpeed))
     throw tsp::UsageError("--speed " + std::to_string(options.speed) + ": expected " +
                           std::to_string(kMinSpeed).substr(0, 4) + " to " +
                           std::to_string(int(kMaxSpeed)) + " steps per second");
-  state.speed = options.speed;
+  speed_chosen_ = options.speed != 0;
+  state.speed = speed_chosen_ ? options.speed : default_speed(steps());
   if (!(options.quality >= 0 && options.quality <= tspgl::kMaxQualityDe))
     throw tsp::UsageError("--quality " + std::to_string(options.quality) +
                           ": expected a mean dE in [0, " +
@@ -145,6 +147,7 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
   }
   lazy_ = std::make_unique<tsp::LazyErrors>(tree, state.metric, tf);
   set_tf(tf, true);
+  tf_label = tf_label_of(options.tf);
   ready.assign(std::size_t(tree.time().steps()), -1.f);
   for (double k : options.scale)
     if (!(k > 0) || !(k <= tspgl::kMaxScale))
@@ -302,7 +305,14 @@ void PlayerApp::set_tf(const tsp::TransferFunction& next, bool resample_points) 
   if (renderer) renderer->set_transfer_function(tf);
 }
 
+std::string tf_label_of(const std::string& tf_arg) {
+  if (tf_arg.empty()) return "auto";
+  if (tf_arg.rfind("preset:", 0) == 0) return tf_arg.substr(7);
+  return std::filesystem::path(tf_arg).filename().string();
+}
+
 void PlayerApp::apply_tf_points() {
+  tf_label = "edited";
   std::vector<tsp::TfPoint> sorted = tf_points;
   std::stable_sort(sorted.begin(), sorted.end(),
                    [](const tsp::TfPoint& a, const tsp::TfPoint& b) { return a.x < b.x; });

@@ -22,6 +22,15 @@ inline constexpr double kDefaultPlayerUploadMib = 16;
 /// The settings the player starts with: render's defaults but kDefaultPlayerUploadMib.
 tspgl::RenderSettings default_player_settings();
 
+/// The playback speed a series of `steps` steps gets unless one is chosen: the whole series in
+/// about kDefaultLoopSeconds, at most kDefaultMaxSpeed steps a second (a movie's rate) and at
+/// least kMinSpeed — a 6-step series does not loop six times a second. Never throws.
+double default_speed(int steps);
+/// Seconds one pass over a short series takes at the default speed.
+inline constexpr double kDefaultLoopSeconds = 4;
+/// The default speed's ceiling, steps per second.
+inline constexpr double kDefaultMaxSpeed = 24;
+
 /// Everything `tspplay play` takes.
 struct PlayerOptions {
   std::string tsp_path;              ///< the .tsp file
@@ -44,7 +53,7 @@ struct PlayerOptions {
   double texture_budget_mb = 512; ///< --texture-budget: textures resident, MiB
   bool lod = true;                ///< --lod on|off: the adaptive LOD cut
   double target_fps = 30;         ///< --target-fps: held while interacting, in [1, 240]
-  double speed = 24;              ///< --speed: playback, steps per second (a movie's rate)
+  double speed = 0;               ///< --speed: playback, steps per second (0: default_speed)
   /// --quality: mean ΔE target while playing (0: none, the LOD cut holds the rate), tuned when
   /// playing starts.
   double quality = kDefaultPlayingQuality;

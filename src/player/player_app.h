@@ -90,6 +90,10 @@ struct FrameSample {
   double ms = 0;    ///< whole frame (render + UI + swap)
 };
 
+/// How the preset combo names the map a --tf / `tf` argument gives: "auto" for none, NAME for
+/// preset:NAME, else the file's name. Never throws but bad_alloc.
+std::string tf_label_of(const std::string& tf_arg);
+
 /// The window player.
 class PlayerApp {
  public:
@@ -115,6 +119,9 @@ class PlayerApp {
       prefetcher;  ///< reads into renderer's brick cache; made after it
   tsp::TransferFunction tf;
   std::vector<tsp::TfPoint> tf_points;  ///< the editor's control points
+  /// The map in use as the preset combo names it: a preset's name, a TF file's name, or
+  /// "edited" once its points were edited.
+  std::string tf_label = "auto";
   std::string tf_path = "tf.json";      ///< load/save path in the editor
   std::string quality_note;   ///< what the last quality pick chose
   float tol_max = 1;  ///< upper end of the tolerance sliders (largest error of a step)
@@ -343,6 +350,7 @@ class PlayerApp {
   bool quit_ = false;
   bool imgui_ = false;
   double play_accum_ = 0;
+  bool speed_chosen_ = false;  ///< --speed or a speed command: kept; else default_speed per file
   int prefetched_for_ = -1;  ///< step whose successors were last requested
   int prefetched_cut_ = -1;  ///< cut size whose likely splits were last requested
   double start_s_ = 0, last_frame_s_ = 0;

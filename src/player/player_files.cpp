@@ -132,7 +132,9 @@ void PlayerApp::open_file(const std::string& path) {
   lazy_ = std::make_unique<tsp::LazyErrors>(tree, state.metric, tf);
   reference_version_ = ~std::uint64_t(0);
   set_tf(tf, true);
+  tf_label = tf_label_of(options_.tf);
   state.step = 0;
+  if (!speed_chosen_) state.speed = default_speed(tree.time().steps());
   state.playing = false;
   focus.reset();
   state.settings.tol = {0, 0};
@@ -308,6 +310,7 @@ void PlayerApp::write_stats(const std::string& path) const {
   for (const tsp::TfPoint& p : tf_points) points.push_back({p.x, p.c.a});
   j["tf_points"] = points;
   j["tf_domain"] = {tf.domain().lo, tf.domain().hi};
+  j["tf"] = tf_label;  // the map in use, as the preset combo names it
   j["quality"] = quality_note;
   j["frames_drawn"] = frames_drawn_;
   j["playback"] = playback_json();

@@ -132,6 +132,7 @@ void PlayerApp::apply(const ScriptAction& a) {
       break;
     case Kind::speed:
       state.speed = a.value;
+      speed_chosen_ = true;  // kept when another file opens
       break;
     case Kind::loop:
       state.loop = a.flag;
@@ -141,6 +142,7 @@ void PlayerApp::apply(const ScriptAction& a) {
       set_tf(tsp::transfer_function_from_arg(a.text, file->tree().value_range(), tf.size(), {},
                                              &histogram),
              true);
+      tf_label = tf_label_of(a.text);
       break;
     }
     case Kind::tf_range: {  // the map as it is, stretched over the chosen range

@@ -22,6 +22,10 @@ constexpr double kMaxFrameDt = 0.25;  // a stalled frame does not skip many step
 constexpr double kMaxStepBacklog = 2;
 }  // namespace
 
+double default_speed(int steps) {
+  return std::clamp(double(steps) / kDefaultLoopSeconds, kMinSpeed, kDefaultMaxSpeed);
+}
+
 void PlayerApp::advance_playback(double dt) {
   if (!state.playing) {
     play_accum_ = 0;

@@ -21,7 +21,8 @@ struct PlayerState {
   int step = 0;             ///< the step shown
   bool playing = false;     ///< playback running
   bool loop = true;         ///< playback wraps at the end
-  bool every_step = false;  ///< playback shows every step (slower than real time if need be)
+  bool every_step = true;   ///< playback shows every step in order (slower than the speed if
+                            ///< frames are slow); false: real time, skipping steps
   double speed = 5;         ///< playback, steps per second
   tsp::CameraParams camera;                       ///< the view
   tspgl::RenderSettings settings;                 ///< the settings table's knobs

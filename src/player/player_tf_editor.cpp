@@ -175,20 +175,19 @@ void tf_section(PlayerApp& app) {
   }
   if (edited) app.apply_tf_points();  // lazy metric: only touched nodes recompute next frame
 
-  static int preset = 0;
-  const std::vector<std::string> names = tsp::preset_names();
-  std::vector<const char*> cnames;
-  for (const auto& s : names) cnames.push_back(s.c_str());
+  // The combo names the map in use and applies a preset when one is chosen (over the map's
+  // present domain).
   ImGui::SetNextItemWidth(120);
-  ImGui::Combo("##preset", &preset, cnames.data(), int(cnames.size()));
-  ImGui::SameLine();
-  if (ImGui::Button("apply preset"))
-  {
-    const tsp::ValueHistogram histogram = tsp::histogram_of(*app.file);
-    app.set_tf(tsp::preset_transfer_function(names[std::size_t(preset)], d, app.tf.size(),
-                                             &histogram),
-               true);
+  if (ImGui::BeginCombo("##preset", app.tf_label.c_str())) {
+    for (const std::string& name : tsp::preset_names())
+      if (ImGui::Selectable(name.c_str(), name == app.tf_label)) {
+        const tsp::ValueHistogram histogram = tsp::histogram_of(*app.file);
+        app.set_tf(tsp::preset_transfer_function(name, d, app.tf.size(), &histogram), true);
+        app.tf_label = name;
+      }
+    ImGui::EndCombo();
   }
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("the colour map in use; choose a preset to apply it");
   ImGui::SameLine();
   if (ImGui::Button("fit to data")) {  // the map as it is, stretched over the data's range
     app.set_tf(tsp::rescaled(app.tf, d), true);
@@ -233,6 +232,7 @@ void tf_section(PlayerApp& app) {
       const tsp::ValueHistogram histogram = tsp::histogram_of(*app.file);
       app.set_tf(tsp::transfer_function_from_arg(app.tf_path, d, app.tf.size(), {}, &histogram),
                  true);
+      app.tf_label = tf_label_of(app.tf_path);
       const std::string w = tsp::tf_range_warning(app.tf, app.file->metadata().data_range);
       app.status = w.empty() ? "loaded " + app.tf_path : "loaded " + app.tf_path + "; " + w;
     }

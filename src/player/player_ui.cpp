@@ -39,6 +39,8 @@ constexpr float kHudPlotHeight = 60.f;
 constexpr float kLabelWidth = 130.f;  // room for a settings label, pixels
 constexpr float kReadyStripHeight = 5.f;  // the timeline's readiness marks, pixels
 constexpr double kBytesPerMiB = 1 << 20;
+// Playback showing fewer steps a second than this share of the speed says it plays slower.
+constexpr double kSlowPlaybackShare = 0.9;
 constexpr const char* kMetricNames[] = {"scalar", "reference", "approximate", "perceptual"};
 // In tspgl::Compositing order.
 constexpr const char* kClassNames[] = {"not rendered", "untextured", "reused texture",
@@ -83,6 +85,20 @@ void help(PlayerApp& app) {
 
 }  // namespace
 
+namespace {
+// What playback reaches: "playing at 9.0 steps/s of 24" when it shows every step slower than
+// the speed asks (frames are slower than the steps), else the steps shown per second.
+std::string shown_rate_text(const PlayerApp& app) {
+  const double shown = app.steps_shown_per_s();
+  char text[96];
+  if (app.state.every_step && shown < kSlowPlaybackShare * app.state.speed)
+    std::snprintf(text, sizeof text, "playing at %.1f steps/s of %.3g", shown, app.state.speed);
+  else
+    std::snprintf(text, sizeof text, "%.1f shown/s", shown);
+  return text;
+}
+}  // namespace
+
 void timeline_section(PlayerApp& app) {
   using Kind = ScriptAction::Kind;
   const int last = app.steps() - 1;
@@ -99,10 +115,11 @@ void timeline_section(PlayerApp& app) {
   ImGui::SameLine();
   if (bool loop = app.state.loop; ImGui::Checkbox("loop", &loop)) app.command(command_of(Kind::loop, loop));
   ImGui::SameLine();
-  if (bool every = app.state.every_step; ImGui::Checkbox("every step", &every))
-    app.command(command_of(Kind::every_step, every));
+  if (bool skip = !app.state.every_step; ImGui::Checkbox("skip steps", &skip))
+    app.command(command_of(Kind::every_step, !skip));
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("show every step while playing, slower than the speed if frames are slow");
+    ImGui::SetTooltip("real time: skip steps to keep the speed when frames are slower than it\n"
+                      "(off: every step in order, playing slower if need be)");
   ImGui::SameLine();
   float speed = float(app.state.speed);
   ImGui::SetNextItemWidth(140);
@@ -114,7 +131,7 @@ void timeline_section(PlayerApp& app) {
   }
   if (app.state.playing) {  // the rate the window reaches: distinct steps drawn per second
     ImGui::SameLine();
-    ImGui::Text("%.1f shown/s", app.steps_shown_per_s());
+    ImGui::TextUnformatted(shown_rate_text(app).c_str());
     ImGui::SameLine();
     ImGui::TextUnformatted(playback_text(app).c_str());
   }

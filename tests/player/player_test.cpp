@@ -713,9 +713,10 @@ TEST(Player, RecordWritesAMovieOfWhatIsPlayed) {
             1);
 }
 
-// "every step": playback shows each step in turn even when frames are slower than the speed
-// asks (here 100 ms a frame at 60 steps a second); without it steps are dropped to keep time.
-TEST(Player, EveryStepPlaybackSkipsNoStep) {
+// Playback shows each step in turn by default even when frames are slower than the speed asks
+// (here 100 ms a frame at 60 steps a second); with "skip steps" (every-step off) steps are
+// dropped to keep time. Unless chosen, the speed suits the series: 12 steps in about 4 s.
+TEST(Player, PlaybackShowsEveryStepInOrderUnlessAskedToSkip) {
   TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
   const fs::path dir = tsptest::temp_dir(), tsp = dir / "e.tsp";
   ASSERT_EQ(run_tspplay("generate shock -o " + q(dir / "e.h5") + " --dims 16,14,12 --steps 12")
@@ -724,8 +725,8 @@ TEST(Player, EveryStepPlaybackSkipsNoStep) {
   auto steps_seen = [&](const std::string& every) {
     auto r = run_tspplay("play " + q(tsp) + " --size " + kSize +
                          " --trace --frame-delay-ms 100 --script " +
-                         q(write_script("every-step " + every +
-                                        "\nloop off\nspeed 60\nplay\nwait-seconds 2\nquit\n")));
+                         q(write_script((every.empty() ? "" : "every-step " + every + "\n") +
+                                        "loop off\nspeed 60\nplay\nwait-seconds 2\nquit\n")));
     EXPECT_EQ(r.exit_code, 0) << r.err;
     std::vector<int> seen;
     for (std::size_t p = r.out.find("trace: step "); p != std::string::npos;
@@ -733,9 +734,18 @@ TEST(Player, EveryStepPlaybackSkipsNoStep) {
       seen.push_back(std::stoi(r.out.substr(p + 12)));
     return seen;
   };
-  const std::vector<int> every = steps_seen("on");
+  const std::vector<int> every = steps_seen("");  // the default
   ASSERT_GE(every.size(), 6u);
   for (std::size_t i = 1; i < every.size(); ++i) EXPECT_EQ(every[i], every[i - 1] + 1) << i;
+  auto r = run_tspplay("play " + q(tsp) + " --size " + kSize + " --script " +
+                       q(write_script("stats " + (dir / "s.json").string() +
+                                      "\ntf preset:filled\nstats " + (dir / "t.json").string() +
+                                      "\nquit\n")));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_DOUBLE_EQ(read_json(dir / "s.json")["playback"]["speed"].get<double>(), 3.0);
+  // The preset combo names the map in use (issue 47 item 3): the default, then the one chosen.
+  EXPECT_EQ(read_json(dir / "s.json")["tf"], "auto");
+  EXPECT_EQ(read_json(dir / "t.json")["tf"], "filled");
   const std::vector<int> real_time = steps_seen("off");
   bool skipped = false;
   for (std::size_t i = 1; i < real_time.size(); ++i) skipped |= real_time[i] > real_time[i - 1] + 1;
