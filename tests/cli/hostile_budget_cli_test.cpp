@@ -124,6 +124,54 @@ TEST(HostileBudgetCli, AZlibVtsDeclaringHugeGridIsRefusedBeforeDecoding) {
   EXPECT_EQ(fs::file_size(vts), size);
 }
 
+// 12³ points on the unit cube with its 8 corners moved out to ±1e7 (x mirrored, so the corner
+// cells twist): the corner hexahedra's boxes cover the whole grid and Newton's method ran long
+// at each of their voxels, finding none (23–30 s). Those iterations count against the visit
+// budget now.
+TEST(HostileBudgetCli, StretchedHexahedraAreRefusedByTheWeightedVisitBudget) {
+  const fs::path dir = tsptest::temp_dir(), vts = dir / "stretched.vts";
+  constexpr int kN = 12;
+  constexpr double kFar = 1e7;
+  write_vts(vts, kN, [](std::vector<double>& xyz) {
+    for (int k : {0, kN - 1})
+      for (int j : {0, kN - 1})
+        for (int i : {0, kN - 1}) {
+          const std::size_t p = 3 * std::size_t(i + kN * (j + kN * k));
+          const int c[3] = {i, j, k};
+          for (int a = 0; a < 3; ++a)
+            xyz[p + std::size_t(a)] = (c[a] != 0) == (a == 0) ? -kFar : kFar;
+        }
+  });
+  auto r = run("build " + quote(vts) + " -o " + quote(dir / "o.tsp"));
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_TRUE(has(r.err, "stretched.vts") && has(r.err, "Newton iteration counting") &&
+              has(r.err, "--hex tetrahedra"))
+      << r.err;
+  EXPECT_FALSE(fs::exists(dir / "o.tsp"));
+  // The same grid unstretched builds.
+  write_vts(dir / "plain.vts", kN, [](std::vector<double>&) {});
+  r = run("build " + quote(dir / "plain.vts") + " -o " + quote(dir / "plain.tsp"));
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+}
+
+// A lattice of 30³ hexahedra (162,000 tetrahedra) tiling a small cube, voxelized at 96³ with
+// the two-buffer voxelizer's 5³ = 125 passes: within the visit budget once, far beyond it 125
+// times. Refused before sampling, the message naming the factor; --antialias 1 builds.
+TEST(HostileBudgetCli, AntialiasPassesCountAgainstTheVisitBudget) {
+  const fs::path dir = tsptest::temp_dir(), vts = dir / "cube.vts";
+  write_vts(vts, 31, [](std::vector<double>& xyz) {
+    for (double& v : xyz) v *= 1e-3;
+  });
+  const std::string common = "build " + quote(vts) + " --voxelizer two-buffer --resolution 96";
+  auto r = run(common + " --antialias 5 -o " + quote(dir / "o.tsp"));
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_TRUE(has(r.err, "cube.vts") && has(r.err, "counted 125 times for --antialias 5"))
+      << r.err;
+  EXPECT_FALSE(fs::exists(dir / "o.tsp"));
+  r = run(common + " --antialias 1 -o " + quote(dir / "one.tsp"));
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+}
+
 // A series whose second step has a point at -inf (or NaN): named by file and point like any
 // bad point, never "voxel size inf" as a usage error.
 TEST(HostileBudgetCli, NonFiniteCoordinatesInALaterStepAreNamedByFileAndPoint) {
