@@ -282,7 +282,7 @@ void PlayerApp::apply(const ScriptAction& a) {
 }
 
 // Runs actions until one needs frames to pass: a screenshot (saved after this frame's render),
-// wait-frames or quit.
+// a wait of more than 0 frames or seconds, or quit.
 void PlayerApp::run_script() {
   // An open waits for its build, a quality target for its playback tuning.
   if (!pending_shot_.empty() || open_job_ || tuner_) return;
@@ -295,9 +295,7 @@ void PlayerApp::run_script() {
     const ScriptAction& a = script_[script_pos_++];
     apply(a);
     if (options_.trace) trace_changes();  // each action's effect on its own line
-    if (a.kind == ScriptAction::Kind::screenshot || a.kind == ScriptAction::Kind::screenshot_ui ||
-        a.kind == ScriptAction::Kind::wait_frames || a.kind == ScriptAction::Kind::wait_seconds)
-      break;
+    if (waits_for_frames(a)) break;
     if (open_job_ || tuner_) break;  // the next actions wait for the build or the tuning
   }
 }

@@ -248,6 +248,20 @@ ScriptAction step_command(int t) {
   return a;
 }
 
+bool waits_for_frames(const ScriptAction& a) {
+  switch (a.kind) {
+    case Kind::screenshot:
+    case Kind::screenshot_ui:
+      return true;
+    case Kind::wait_frames:
+      return a.number > 0;
+    case Kind::wait_seconds:
+      return a.value > 0;
+    default:
+      return false;
+  }
+}
+
 void validate(const ScriptAction& a) {
   auto fail = [](const std::string& what) { throw tsp::UsageError(what); };
   switch (a.kind) {

@@ -73,6 +73,11 @@ ScriptAction command_of(ScriptAction::Kind kind, bool flag = false);
 /// The command "go to step t". Never throws.
 ScriptAction step_command(int t);
 
+/// True when the script stops after action a until frames pass: a screenshot, `wait-frames N`
+/// with N > 0 or `wait-seconds S` with S > 0 (a wait of 0 is free: it used to cost a frame, and
+/// a script of a million `wait-frames 0` lines ran for 45 minutes). Never throws.
+bool waits_for_frames(const ScriptAction& a);
+
 /// Checks an action's values (speed, tolerances, view, zoom, waits, targets, render settings)
 /// whoever made it — a script line, a key or a panel: the one validation of player commands.
 /// Throws tsp::UsageError naming the action and what it accepts.

@@ -237,6 +237,21 @@ TEST(Player, OutlineShowsInTheUiScreenshot) {
   EXPECT_GT(outline, 100);
 }
 
+// Issue 48: `wait-frames 0` is free. 100,000 such lines cost a frame each (minutes); now they
+// run in the frame that reads them, and the stats written after them count almost no frames.
+TEST(Player, WaitFramesZeroCostsNoFrame) {
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
+  fs::path tsp = make_tsp(), dir = tsptest::temp_dir(), stats = dir / "s.json";
+  std::string text;
+  for (int i = 0; i < 100000; ++i) text += "wait-frames 0\n";
+  text += "stats " + stats.string() + "\nquit\n";
+  auto r = tsptest::run_command("timeout 120 " + q(tsptest::tspplay_bin()) + " play " + q(tsp) +
+                                " --size 64x48 --script " + q(write_script(text)));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(tsptest::read_file(stats));
+  EXPECT_LT(j.at("frames").get<int>(), 10) << j.dump();
+}
+
 TEST(Player, TracePrintsEachAppliedChange) {
   TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
   fs::path tsp = make_tsp(), dir = tsptest::temp_dir(), shot = dir / "trace.png";

@@ -228,4 +228,17 @@ TEST(PlayerScript, CommandsFromKeysAndPanelsAreValidatedByTheSameRules) {
             ScriptAction::Kind::reset_camera);
 }
 
+// Issue 48: a wait of 0 frames or seconds lets the script go on in the same frame (a million
+// `wait-frames 0` lines cost a frame each, 45 minutes); screenshots and real waits stop it.
+TEST(PlayerScript, WaitsOfZeroCostNoFrame) {
+  using tspplayer::waits_for_frames;
+  const auto a = parse_script(
+      "wait-frames 0\nwait-seconds 0\nwait-frames 1\nwait-seconds 0.5\nscreenshot a.png\n"
+      "screenshot-ui b.png\nstep 2\nquit\n",
+      "w.txt");
+  ASSERT_EQ(a.size(), 8u);
+  const bool expected[8] = {false, false, true, true, true, true, false, false};
+  for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ(waits_for_frames(a[i]), expected[i]) << i;
+}
+
 }  // namespace

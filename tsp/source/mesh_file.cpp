@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 
 #include "tsp/core/error.h"
 #include "tsp/source/series_list.h"
@@ -39,13 +40,22 @@ int components_of(const pugi::xml_node& array, const std::string& where) {
 }
 
 std::vector<float> piece_points(const VtkDocument& doc, const pugi::xml_node& piece,
-                                std::int64_t np, const std::string& where) {
+                                std::int64_t np, const std::string& where,
+                                std::uint64_t max_ratio) {
   pugi::xml_node pts = piece.child("Points").child("DataArray");
   if (!pts) throw FormatError(where + ": no <Points> DataArray");
   if (components_of(pts, where + ", Points") != 3)
     throw FormatError(where + ": Points have " + pts.attribute("NumberOfComponents").value() +
                       " components, expected 3");
-  return doc.floats(pts, std::uint64_t(np) * 3);
+  std::vector<float> xyz = doc.floats(pts, std::uint64_t(np) * 3, max_ratio);
+  // Here, not only in check_mesh: a later step's bounds are read without its cells, and an
+  // infinite coordinate there became an infinite voxel size.
+  for (std::size_t i = 0; i < xyz.size(); ++i)
+    if (!std::isfinite(xyz[i]))
+      throw FormatError(where + ": point " + std::to_string(i / 3) +
+                        " has a non-finite coordinate (" + std::string(1, char('x' + i % 3)) +
+                        " = " + std::to_string(xyz[i]) + ")");
+  return xyz;
 }
 
 MeshField resolve_field(const pugi::xml_node& piece, const FieldSpec& spec,

@@ -46,9 +46,11 @@ std::int64_t count_attribute(const pugi::xml_node& piece, const char* name,
                              const std::string& where);
 /// An array's NumberOfComponents, 1..64. Throws FormatError naming where.
 int components_of(const pugi::xml_node& array, const std::string& where);
-/// A piece's points, np × 3 coordinates. Throws FormatError naming where.
+/// A piece's points, np × 3 coordinates (zlib data inflating at most max_ratio:1). Throws
+/// FormatError naming where.
 std::vector<float> piece_points(const VtkDocument& doc, const pugi::xml_node& piece,
-                                std::int64_t np, const std::string& where);
+                                std::int64_t np, const std::string& where,
+                                std::uint64_t max_ratio = vtkxml::kMaxInflateRatio);
 /// Resolves spec against the first piece's PointData and CellData (see MeshFile::resolve).
 MeshField resolve_field(const pugi::xml_node& piece, const FieldSpec& spec,
                         const std::string& path);

@@ -10,6 +10,11 @@ namespace {
 // Most points one piece may declare (the file's arrays must then hold them, checked before any
 // allocation); keeps the products of the extent's sizes far from overflow.
 constexpr double kMaxPiecePoints = double(std::int64_t(1) << 40);
+// Most a piece's zlib-compressed Points may inflate. Every point becomes a hexahedron of about
+// 100 bytes in memory (its coordinates as doubles, 8 connectivity entries, an offset, a type,
+// a value), so the deflate limit of 1032:1 let a 432 KB file declaring 300^3 points take 7.5 GB;
+// real grids' coordinates compress 3-5:1 (a uniform grid stored as a .vts about 4.5:1).
+constexpr std::uint64_t kMaxPointsInflateRatio = 64;
 
 // A piece's points per axis from its Extent; refuses extents without volume. Throws
 // FormatError naming where.
@@ -69,7 +74,8 @@ Aabb VtsFile::bounds() const {
     const std::string pw = path() + ", piece " + std::to_string(index++);
     std::int64_t n[3];
     piece_dims(piece, pw, n);
-    const std::vector<float> xyz = detail::piece_points(doc_, piece, n[0] * n[1] * n[2], pw);
+    const std::vector<float> xyz =
+        detail::piece_points(doc_, piece, n[0] * n[1] * n[2], pw, kMaxPointsInflateRatio);
     all.points.insert(all.points.end(), xyz.begin(), xyz.end());
   }
   return all.bounds();
@@ -88,7 +94,8 @@ Mesh VtsFile::read(const MeshField& f) const {
     const std::int64_t nc = (n[0] - 1) * (n[1] - 1) * (n[2] - 1);
     const std::int64_t base = m.point_count();
     // Points first: the array's size check bounds what the cells below allocate.
-    const std::vector<float> xyz = detail::piece_points(doc_, piece, np, pw);
+    const std::vector<float> xyz =
+        detail::piece_points(doc_, piece, np, pw, kMaxPointsInflateRatio);
     const std::vector<float> v = detail::piece_values(doc_, piece, f, f.cells ? nc : np, pw);
     m.points.insert(m.points.end(), xyz.begin(), xyz.end());
     append_structured_hexahedra(m, n, base);

@@ -32,6 +32,9 @@ constexpr double kDegenerate = 1e-14;
 // coordinates that counts as converged.
 constexpr int kNewtonIterations = 16;
 constexpr double kNewtonTolerance = 1e-12;
+// Work found while sampling (Newton iterations) is added to the shared visit count in batches
+// of at least this many visits, and the budget checked then.
+constexpr std::int64_t kChargeBatch = 1 << 14;
 // Binning runs over this many contiguous blocks of cells per worker (their bins are read in
 // block order, so every bin stays in cell order).
 constexpr int kBinBlocksPerWorker = 4;
@@ -90,6 +93,21 @@ inline void voxel_range(double a, double b, const VoxelGrid& g, int ax, int& lo,
 // A bin entry: t ≥ 0 is tetrahedron t, −1 − c the whole hexahedron c.
 using Item = std::int64_t;
 
+// One worker's Newton work while it samples hexahedra: visits not yet added to the shared
+// count, and iterations run (for the stats), all and those of solves that found no voxel.
+struct HexWork {
+  std::int64_t pending = 0;
+  std::int64_t iterations = 0;
+  std::int64_t missed = 0;
+  // Adds a row's iterations; only those that found nothing are charged (the others find each
+  // voxel once, work bounded by the grid).
+  void add(std::int64_t all, std::int64_t wasted) {
+    iterations += all;
+    missed += wasted;
+    pending += wasted * kNewtonIterationVisits;
+  }
+};
+
 struct Voxelizer {
   const Mesh& mesh;
   const TetMesh& tets;
@@ -101,10 +119,23 @@ struct Voxelizer {
   // How far a voxel's sub-samples reach from its centre (the scan voxelizer's K > 1): cells
   // are binned to the voxels whose sub-samples, not only centres, they may hold.
   std::array<double, 3> margin{0, 0, 0};
-  // The visits binned so far over all workers, and the most allowed (kVisitsPerItem).
+  // The visits binned so far over all workers, and the most allowed (kVisitsPerItem), each
+  // weighted by its cost: a binned visit costs visit_cost (K³ for the scan and two-buffer
+  // voxelizers, whose every visit samples K³ sub-samples or passes), a Newton iteration that
+  // finds no voxel kNewtonIterationVisits more, counted as it runs.
   std::int64_t budget = 0;
+  std::int64_t visit_cost = 1;
   mutable std::atomic<std::int64_t> visits{0};
   bool over_budget() const { return visits.load(std::memory_order_relaxed) > budget; }
+  // Adds the work's pending visits to the shared count once they make a batch (or with force);
+  // true when the budget is spent.
+  bool charge(HexWork& work, bool force = false) const {
+    if (work.pending >= kChargeBatch || (force && work.pending > 0)) {
+      visits.fetch_add(work.pending, std::memory_order_relaxed);
+      work.pending = 0;
+    }
+    return over_budget();
+  }
 
   Vec3 tet_point(std::int64_t p) const {
     const double* x = tets.points.data() + 3 * p;
@@ -148,7 +179,7 @@ struct Voxelizer {
           bins[std::size_t(tx + tiles.n[0] * (ty + tiles.n[1] * tz))].push_back(item);
         }
     st.visits += item_visits;
-    visits.fetch_add(item_visits, std::memory_order_relaxed);
+    visits.fetch_add(item_visits * visit_cost, std::memory_order_relaxed);
   }
 
   // Bins the cells [first, last) (tetrahedra [tet_first, …) belong to them in order).
@@ -256,7 +287,9 @@ struct Voxelizer {
     return found;
   }
 
-  std::int64_t sample_hex(std::int64_t c, const int t0[3], const int t1[3]) const {
+  // Samples hexahedron c's voxels in tile [t0, t1], charging its Newton iterations to work;
+  // stops early when the budget is spent.
+  std::int64_t sample_hex(std::int64_t c, const int t0[3], const int t1[3], HexWork& work) const {
     std::int64_t g[8];
     hex_points(c, g);
     double x[8][3], mn[3], mx[3];
@@ -304,8 +337,14 @@ struct Voxelizer {
     double ai[3][3] = {};
     if (affine && !detail::inverse3(a, ai, kDegenerate * size * size * size)) return 0;
     double xi[3] = {0.5, 0.5, 0.5};
+    std::int64_t iterations = 0, missed = 0;  // this row's, and those that found no voxel
     for (int z = lo[2]; z <= hi[2]; ++z)
-      for (int y = lo[1]; y <= hi[1]; ++y)
+      for (int y = lo[1]; y <= hi[1]; ++y) {
+        if (iterations > 0) {  // the last row's Newton work
+          work.add(iterations, missed);
+          iterations = missed = 0;
+          if (charge(work)) return found;
+        }
         for (int xv = lo[0]; xv <= hi[0]; ++xv) {
           const std::size_t i = std::size_t(xv + std::int64_t(d.x) * (y + std::int64_t(d.y) * z));
           if (inside[i]) continue;
@@ -319,7 +358,9 @@ struct Voxelizer {
             for (int r = 0; r < 3; ++r)
               xi[r] = mx[r] > mn[r] ? (p[r] - mn[r]) / (mx[r] - mn[r]) : 0.5;
           }
+          int used = 0;
           for (int it = 0; it < kNewtonIterations && !converged; ++it) {
+            ++used;
             // Residual x(ξ) − p and Jacobian ∂x/∂ξ of the trilinear map.
             double r[3] = {-p[0], -p[1], -p[2]}, jm[3][3] = {};
             for (int k = 0; k < 8; ++k) {
@@ -341,12 +382,17 @@ struct Voxelizer {
                                    ji[1][0] * r[0] + ji[1][1] * r[1] + ji[1][2] * r[2],
                                    ji[2][0] * r[0] + ji[2][1] * r[1] + ji[2][2] * r[2]};
             for (int a = 0; a < 3; ++a) xi[a] -= dxi[a];
-            converged = std::fabs(dxi[0]) + std::fabs(dxi[1]) + std::fabs(dxi[2]) < kNewtonTolerance;
+            converged =
+                std::fabs(dxi[0]) + std::fabs(dxi[1]) + std::fabs(dxi[2]) < kNewtonTolerance;
           }
-          if (!converged) continue;
-          bool in = true;
-          for (int a = 0; a < 3; ++a) in &= xi[a] >= -kInsideTolerance && xi[a] <= 1 + kInsideTolerance;
-          if (!in) continue;
+          iterations += used;
+          bool in = converged;
+          for (int a = 0; a < 3; ++a)
+            in &= xi[a] >= -kInsideTolerance && xi[a] <= 1 + kInsideTolerance;
+          if (!in) {
+            missed += used;
+            continue;
+          }
           double value = cell_value;
           if (!mesh.cell_values) {  // trilinear, as nested interpolations along ξ, η, ζ
             const double b0 = v[0] + xi[0] * (v[1] - v[0]), b1 = v[3] + xi[0] * (v[2] - v[3]);
@@ -358,6 +404,8 @@ struct Voxelizer {
           inside[i] = 1;
           ++found;
         }
+      }
+    work.add(iterations, missed);
     return found;
   }
 };
@@ -377,7 +425,7 @@ VoxelizeStats voxelize(const Mesh& mesh, const VoxelGrid& grid, std::span<float>
   const bool whole_hex = !scan && !two && options.hex == HexSampling::isoparametric;
   const bool all_hex = whole_hex && std::all_of(mesh.types.begin(), mesh.types.end(), is_hexahedral);
   const TetMesh tets = all_hex ? TetMesh{} : tetrahedralize(mesh, whole_hex);
-  Voxelizer vx{mesh, tets, grid, values, inside, whole_hex, {}, {}, 0, {}};
+  Voxelizer vx{mesh, tets, grid, values, inside, whole_hex, {}, {}, 0, 1, {}};
   if (scan)
     for (int a = 0; a < 3; ++a)
       vx.margin[std::size_t(a)] = (0.5 - 0.5 / options.antialias) * grid.spacing[std::size_t(a)];
@@ -388,6 +436,8 @@ VoxelizeStats voxelize(const Mesh& mesh, const VoxelGrid& grid, std::span<float>
   stats.tets = std::int64_t(tets.tets.size());
   for (CellType t : mesh.types) stats.hexahedra += whole_hex && is_hexahedral(t);
   vx.budget = std::max(kMinVisitBudget, kVisitsPerItem * (d.count() + stats.tets + stats.hexahedra));
+  if (scan || two) vx.visit_cost = std::int64_t(options.antialias) * options.antialias *
+                                   options.antialias;
 
   // Bin, in parallel over contiguous blocks of cells; read in block order, every tile's bins list
   // its cells (and a cell's tetrahedra) in index order.
@@ -414,16 +464,25 @@ VoxelizeStats voxelize(const Mesh& mesh, const VoxelGrid& grid, std::span<float>
     stats.tile_entries += s.tile_entries;
     stats.visits += s.visits;
   }
-  if (vx.over_budget())
+  if (vx.over_budget()) {
+    const std::string passes =
+        vx.visit_cost > 1 ? ", each visit counted " + std::to_string(vx.visit_cost) +
+                                " times for --antialias " + std::to_string(options.antialias) +
+                                "'s sub-samples"
+                          : std::string();
     throw FormatError(
         "the cells' bounding boxes cover more than " + std::to_string(vx.budget) +
         " voxels in all (" + std::to_string(kVisitsPerItem) + " per voxel of the " +
-        to_string(d) + " grid and per cell's tetrahedron; stopped after " +
+        to_string(d) + " grid and per cell's tetrahedron" + passes + "; stopped after " +
         std::to_string(vx.visits.load()) + "): cells overlap far more than a mesh that tiles "
-        "space (many copies of large cells?); refused rather than voxelized for hours");
+        "space (many copies of large cells?), or the grid or --antialias asks for more work "
+        "than the mesh can justify; refused rather than voxelized for hours");
+  }
 
   // Sample: tiles in parallel; in each, cells in index order, the first containing one wins.
   std::vector<std::int64_t> inside_count(std::size_t(vx.tiles.count()), 0);
+  std::vector<std::int64_t> newton_count(std::size_t(vx.tiles.count()), 0);
+  std::vector<std::int64_t> missed_count(std::size_t(vx.tiles.count()), 0);
   detail::ScanBuffers acc;
   if (scan) {
     acc.k = options.antialias;
@@ -449,17 +508,36 @@ VoxelizeStats voxelize(const Mesh& mesh, const VoxelGrid& grid, std::span<float>
       // The blocks' bins in block order: the tile's items in cell order, never merged.
       // Counted locally: neighbouring tiles' counters share a cache line across workers.
       std::int64_t found = 0;
+      HexWork work;
       for (auto& block : block_bins) {
-        for (Item item : block[std::size_t(ti)])
+        for (Item item : block[std::size_t(ti)]) {
+          if (vx.over_budget()) break;  // (Newton's work, in another tile or this one)
           found += scan        ? detail::scan_tet(tets, item, grid, t0, t1, acc)
                    : two       ? detail::two_buffer_tet(tets, item, grid, t0, t1, passes)
                    : item >= 0 ? vx.sample_tet(item, t0, t1)
-                               : vx.sample_hex(-1 - item, t0, t1);
+                               : vx.sample_hex(-1 - item, t0, t1, work);
+          vx.charge(work);
+        }
         std::vector<Item>().swap(block[std::size_t(ti)]);
       }
+      vx.charge(work, true);
       inside_count[std::size_t(ti)] = found;
+      newton_count[std::size_t(ti)] = work.iterations;
+      missed_count[std::size_t(ti)] = work.missed;
     }
   });
+  for (std::int64_t n : newton_count) stats.newton_iterations += n;
+  for (std::int64_t n : missed_count) stats.newton_missed += n;
+  if (vx.over_budget())
+    throw FormatError(
+        "locating the voxels in the hexahedra took more than " + std::to_string(vx.budget) +
+        " visits' work (" + std::to_string(kVisitsPerItem) + " per voxel of the " + to_string(d) +
+        " grid and per cell, a Newton iteration counting " +
+        std::to_string(kNewtonIterationVisits) + "; stopped after " +
+        std::to_string(stats.newton_iterations) +
+        " iterations): hexahedra far from parallelepipeds (stretched or twisted cells?) make "
+        "Newton's method run long at every voxel of their boxes; refused rather than voxelized "
+        "for minutes (--hex tetrahedra samples them through their tetrahedra)");
   if (scan) {
     // The accumulation buffer to voxels: inside when at least half the sub-samples are.
     const int all = acc.k * acc.k * acc.k;

@@ -192,7 +192,8 @@ VtkDocument::VtkDocument(const std::string& path, const std::string& type, bool 
 }
 
 std::vector<unsigned char> VtkDocument::payload(const pugi::xml_node& array, std::uint64_t count,
-                                                vtkxml::ElemType& type, std::string& ascii) const {
+                                                vtkxml::ElemType& type, std::string& ascii,
+                                                std::uint64_t max_ratio) const {
   const std::string awhere = array_where(path_, array);
   type = vtkxml::parse_elem_type(array.attribute("type").value(), awhere);
   std::uint64_t bytes = 0;
@@ -210,7 +211,7 @@ std::vector<unsigned char> VtkDocument::payload(const pugi::xml_node& array, std
   }
   if (format == "binary") {
     std::vector<unsigned char> raw = vtkxml::base64_decode(array.text().get(), awhere);
-    return vtkxml::unpack_binary(raw, layout_, bytes, awhere);
+    return vtkxml::unpack_binary(raw, layout_, bytes, awhere, max_ratio);
   }
   if (format != "appended")
     throw FormatError(awhere + ": format \"" + format + "\", expected ascii, binary or appended");
@@ -231,17 +232,18 @@ std::vector<unsigned char> VtkDocument::payload(const pugi::xml_node& array, std
                           : std::min(appended_end_, appended_ + std::size_t(*next));
     std::vector<unsigned char> raw =
         vtkxml::base64_decode(std::string_view(content_).substr(start, end - start), awhere);
-    return vtkxml::unpack_binary(raw, layout_, bytes, awhere);
+    return vtkxml::unpack_binary(raw, layout_, bytes, awhere, max_ratio);
   }
   std::span<const unsigned char> raw(
       reinterpret_cast<const unsigned char*>(content_.data()) + start, appended_end_ - start);
-  return vtkxml::unpack_binary(raw, layout_, bytes, awhere);
+  return vtkxml::unpack_binary(raw, layout_, bytes, awhere, max_ratio);
 }
 
-std::vector<float> VtkDocument::floats(const pugi::xml_node& array, std::uint64_t count) const {
+std::vector<float> VtkDocument::floats(const pugi::xml_node& array, std::uint64_t count,
+                                       std::uint64_t max_ratio) const {
   vtkxml::ElemType type;
   std::string ascii;
-  std::vector<unsigned char> bytes = payload(array, count, type, ascii);
+  std::vector<unsigned char> bytes = payload(array, count, type, ascii, max_ratio);
   std::vector<float> out(static_cast<std::size_t>(count));
   if (bytes.empty() && count > 0)
     vtkxml::parse_ascii(ascii, out, array_where(path_, array));

@@ -31,16 +31,19 @@ class VtkDocument {
   const vtkxml::BinaryLayout& layout() const { return layout_; }
 
   /// Decodes `count` elements of array (ascii, inline base64 or appended) into floats. Checks
-  /// that the file can hold count elements before allocating; throws FormatError naming the
-  /// file and the array on truncated, corrupt or mis-sized data.
-  std::vector<float> floats(const pugi::xml_node& array, std::uint64_t count) const;
+  /// that the file can hold count elements before allocating (zlib data: at most max_ratio:1
+  /// over its compressed blocks); throws FormatError naming the file and the array on
+  /// truncated, corrupt or mis-sized data.
+  std::vector<float> floats(const pugi::xml_node& array, std::uint64_t count,
+                            std::uint64_t max_ratio = vtkxml::kMaxInflateRatio) const;
   /// Decodes `count` integer elements of array exactly (as int64); throws like floats(), and
   /// when the array's type is a float type or an unsigned value exceeds the int64 range.
   std::vector<std::int64_t> integers(const pugi::xml_node& array, std::uint64_t count) const;
 
  private:
   std::vector<unsigned char> payload(const pugi::xml_node& array, std::uint64_t count,
-                                     vtkxml::ElemType& type, std::string& ascii) const;
+                                     vtkxml::ElemType& type, std::string& ascii,
+                                     std::uint64_t max_ratio = vtkxml::kMaxInflateRatio) const;
 
   std::string path_;
   std::string content_;  // file bytes (up to the appended block when header-only)

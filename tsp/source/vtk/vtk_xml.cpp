@@ -2,6 +2,7 @@
 
 #include <zlib.h>
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cctype>
@@ -46,9 +47,6 @@ float saturate(double v) {
   if (v < -kMax) return -std::numeric_limits<float>::infinity();
   return static_cast<float>(v);
 }
-
-// Deflate cannot expand data by more than about 1032:1; a header claiming more lies.
-constexpr std::uint64_t kMaxInflateRatio = 1032;
 
 // Element i of type T in file byte order (swap: the other order than this machine's).
 template <typename T>
@@ -180,7 +178,7 @@ std::vector<unsigned char> base64_decode(std::string_view text, const std::strin
 
 std::vector<unsigned char> unpack_binary(std::span<const unsigned char> bytes,
                                          const BinaryLayout& layout, std::uint64_t expected_bytes,
-                                         const std::string& where) {
+                                         const std::string& where, std::uint64_t max_ratio) {
   const int ws = layout.header64 ? 8 : 4;
   auto word = [&](std::uint64_t index) -> std::uint64_t {
     if (index >= bytes.size() / ws)
@@ -218,6 +216,20 @@ std::vector<unsigned char> unpack_binary(std::span<const unsigned char> bytes,
   if (blocks > bytes.size() / ws - 3 || bytes.size() / ws < 3)
     throw FormatError(where + ": zlib header lists " + std::to_string(blocks) +
                       " blocks but the data holds only " + std::to_string(bytes.size()) + " bytes");
+  // What the array stores: its header, table and compressed blocks (a block that runs past the
+  // data is reported below; the sum saturates at the data's size).
+  std::uint64_t stored = (3 + blocks) * ws;
+  for (std::uint64_t b = 0; b < blocks; ++b)
+    stored = std::min<std::uint64_t>(stored + std::min<std::uint64_t>(word(3 + b), bytes.size()),
+                                     bytes.size());
+  std::uint64_t allowed = 0;
+  if (!__builtin_mul_overflow(max_ratio, stored, &allowed) && total > allowed + max_ratio)
+    throw FormatError(where + ": expected " + std::to_string(expected_bytes) +
+                      " bytes of data, found " + std::to_string(stored) +
+                      " bytes of zlib blocks to inflate them from (" +
+                      std::to_string(total / std::max<std::uint64_t>(stored, 1)) +
+                      ":1, more than the " + std::to_string(max_ratio) +
+                      ":1 accepted here); refused before decoding");
   std::vector<unsigned char> out(total);
   std::uint64_t src = (3 + blocks) * ws;
   for (std::uint64_t b = 0; b < blocks; ++b) {

@@ -32,13 +32,19 @@ struct BinaryLayout {
 /// FormatError naming `where` on a character outside the base64 alphabet.
 std::vector<unsigned char> base64_decode(std::string_view text, const std::string& where);
 
+/// Deflate cannot expand data by more than about 1032:1; a zlib header claiming more lies.
+inline constexpr std::uint64_t kMaxInflateRatio = 1032;
+
 /// Unpacks one binary DataArray that starts at bytes[0] with its UInt32/UInt64 header:
 /// uncompressed [nbytes][data] or zlib [nblocks][blocksize][lastsize][csize…][blocks…].
 /// Returns exactly expected_bytes of data. Throws FormatError naming `where` when the header
-/// disagrees with expected_bytes, the bytes are truncated or a block does not inflate.
+/// disagrees with expected_bytes, the bytes are truncated, a block does not inflate, or zlib
+/// data would inflate more than max_ratio:1 over its compressed blocks (checked from the
+/// header, before anything is allocated or inflated).
 std::vector<unsigned char> unpack_binary(std::span<const unsigned char> bytes,
                                          const BinaryLayout& layout, std::uint64_t expected_bytes,
-                                         const std::string& where);
+                                         const std::string& where,
+                                         std::uint64_t max_ratio = kMaxInflateRatio);
 
 /// Converts out.size() elements of type t stored in bytes (file byte order) to floats.
 /// Values outside the float range become ±inf. Never throws; bytes must hold them all.
