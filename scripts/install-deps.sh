@@ -12,6 +12,7 @@ PKGS=(
   libgtest-dev libgmock-dev libbenchmark-dev
   liblcms2-dev libpng-dev libglm-dev libosmesa6-dev libglfw3-dev libimgui-dev
   libhwy-dev  # Google Highway: the CPU ray caster's SIMD lanes, dispatched at run time
+  libegl-dev libegl-mesa0  # EGL: render --gl egl (a GPU without a display; Mesa's llvmpipe here)
   libgl-dev  # <GL/glcorearb.h>: the GL 3.3 core types and enums of our loader (src/gl/gl_api.h)
   xvfb xauth  # xvfb-run: a virtual X display for the GLFW (window) tests when DISPLAY is unset
   ffmpeg      # movies: render --movie, the demo's movie, and the suite's movie test

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -24,14 +25,42 @@ struct BenchArgs {
   std::string field;
   std::string file, out, steps, size = "640x480", view = "30,20";
   std::vector<std::string> tfs;
-  std::string metrics = "scalar,approximate,perceptual,reference", targets = "1,3";
-  int search_steps = 8, search_iterations = 10, passes = 2, timed_candidates = 3, rounds = 3;
+  std::string targets = "1,3";
+  int passes = 2, timed_candidates = 3, rounds = 3;
+  // Unless given, from the sweep (kQuickSweep or kFullSweep).
+  std::string sweep = "quick", metrics, compositings, spacings, baseline_spacings;
+  std::optional<int> search_steps, search_iterations;
   std::string render_scales = "1";
-  std::string compositings = "slices,boxes,rays", spacings = "0.5,1,1.5,2,3,4,6,8",
-              baseline_spacings = "0.25,0.5,0.75,1,1.5,2,3,4,6,8", compositing = "rays", preintegration = "off",
-              lod_levels = "0", sampling_tols = "0", tolerance_rules = "equal,temporal";
+  std::string gl = "auto";  ///< --gl
+  int gpu = -1;             ///< --gpu
+  std::string compositing = "rays", preintegration = "off", lod_levels = "0", sampling_tols = "0",
+              tolerance_rules = "equal,temporal";
   double spacing = tspgl::kDefaultSliceSpacing, reference_spacing = 0.25;
 };
+
+// The searches' defaults: `--sweep quick` (the default) finishes in minutes on a 64³ series on
+// two cores, `--sweep full` is the paper's grid (over 20 minutes there). Options given win.
+struct Sweep {
+  const char *metrics, *compositings, *spacings, *baseline_spacings;
+  int search_steps, search_iterations;
+};
+constexpr Sweep kQuickSweep{"approximate", "rays", "1,2,4", "0.5,1,2,4", 4, 8};
+constexpr Sweep kFullSweep{"scalar,approximate,perceptual,reference", "slices,boxes,rays",
+                           "0.5,1,1.5,2,3,4,6,8", "0.25,0.5,0.75,1,1.5,2,3,4,6,8", 8, 10};
+
+// a's sweep-dependent options, filled from its sweep where not given. Throws UsageError.
+BenchArgs with_sweep(BenchArgs a) {
+  if (a.sweep != "quick" && a.sweep != "full")
+    throw tsp::UsageError("--sweep " + a.sweep + ": expected quick or full");
+  const Sweep& s = a.sweep == "full" ? kFullSweep : kQuickSweep;
+  if (a.metrics.empty()) a.metrics = s.metrics;
+  if (a.compositings.empty()) a.compositings = s.compositings;
+  if (a.spacings.empty()) a.spacings = s.spacings;
+  if (a.baseline_spacings.empty()) a.baseline_spacings = s.baseline_spacings;
+  if (!a.search_steps) a.search_steps = s.search_steps;
+  if (!a.search_iterations) a.search_iterations = s.search_iterations;
+  return a;
+}
 
 std::vector<std::string> split(const std::string& text) {
   std::vector<std::string> out;
@@ -58,7 +87,8 @@ double parse_target(const std::string& text) {
   return v;
 }
 
-void run(const BenchArgs& a) {
+void run(const BenchArgs& given) {
+  const BenchArgs a = with_sweep(given);
   std::vector<std::string> inputs = a.tfs;  // the report never replaces the file or a TF
   inputs.push_back(a.file);
   const tsp::InputGuard guard(inputs);
@@ -84,9 +114,12 @@ void run(const BenchArgs& a) {
   for (const std::string& m : split(a.metrics)) o.metrics.push_back(tsp::parse_metric(m));
   o.targets.clear();
   for (const std::string& t : split(a.targets)) o.targets.push_back(parse_target(t));
-  o.search_steps = a.search_steps;
-  o.search_iterations = a.search_iterations;
+  o.search_steps = *a.search_steps;
+  o.search_iterations = *a.search_iterations;
   o.passes = a.passes;
+  o.sweep = a.sweep;
+  o.gl = tspgl::parse_headless_gl(a.gl, "--gl");
+  o.gpu = a.gpu;
   o.timed_candidates = a.timed_candidates;
   o.head_to_head_rounds = a.rounds;
   if (o.timed_candidates < 1)
@@ -186,18 +219,25 @@ const CommandRegistrar reg(45, [](CLI::App& app) {
   c->add_option("--steps", a->steps, "Steps A:B (inclusive), A: or A (default: all)");
   c->add_option("--size", a->size, "Image size WxH (default 640x480)");
   c->add_option("--view", a->view, "Azimuth,elevation in degrees (default 30,20)");
-  c->add_option("--metrics", a->metrics, "Comma-separated metrics (default all four)");
+  c->add_option("--sweep", a->sweep,
+                "How much the searches try unless their options are given: quick (default: "
+                "--metrics approximate --compositings rays --spacings 1,2,4 --baseline-spacings "
+                "0.5,1,2,4 --search-steps 4 --search-iterations 8; minutes) or full (all four "
+                "metrics, three compositings, eight and ten spacings, 8 steps, 10 iterations)");
+  c->add_option("--metrics", a->metrics, "Comma-separated metrics (default: the sweep's)");
   c->add_option("--targets", a->targets, "Target mean dE values for Table 4 (default 1,3)");
-  c->add_option("--search-steps", a->search_steps, "Steps rendered per search probe (default 8)");
-  c->add_option("--search-iterations", a->search_iterations, "Bisection steps (default 10)");
+  c->add_option("--search-steps", a->search_steps,
+                "Steps rendered per search probe (default: the sweep's, 4 or 8)");
+  c->add_option("--search-iterations", a->search_iterations,
+                "Bisection steps (default: the sweep's, 8 or 10)");
   c->add_option("--passes", a->passes, "Timed passes over the steps; the last counts (default 2)");
   c->add_option("--compositing", a->compositing, "Table 3's compositing: slices|boxes|rays (default rays)");
   c->add_option("--spacing", a->spacing, "Table 3's slice spacing in voxels (default 0.5)");
   c->add_option("--reference-spacing", a->reference_spacing,
                 "Spacing of the full-quality reference picture (baseline, slices; default 0.25)");
   c->add_option("--compositings", a->compositings,
-                "Compositings the Table-4 search tries (default slices,boxes,rays)");
-  c->add_option("--spacings", a->spacings, "TSP spacings the Table-4 search tries (default 0.5,1,1.5,2,3,4,6,8)");
+                "Compositings the Table-4 search tries (default: the sweep's)");
+  c->add_option("--spacings", a->spacings, "TSP spacings the Table-4 search tries (default: the sweep's)");
   c->add_option("--lod-levels", a->lod_levels,
                 "LOD levels the TSP search draws everywhere, e.g. 0,1,2 (default 0: full "
                 "resolution; each adds a search of every compositing and spacing)");
@@ -217,7 +257,9 @@ const CommandRegistrar reg(45, [](CLI::App& app) {
                  "Render scales both Table-4 searches try with every spacing, e.g. 1,0.5 (rays every "
                  "1/S pixels, VTK's image sample distance; default 1)");
   c->add_option("--baseline-spacings", a->baseline_spacings,
-                "Baseline spacings the Table-4 search tries (default 0.25,0.5,0.75,1,1.5,2,3,4,6,8)");
+                "Baseline spacings the Table-4 search tries (default: the sweep's)");
+  c->add_option("--gl", a->gl, "Which GL draws: auto, egl or osmesa (as render's --gl)");
+  c->add_option("--gpu", a->gpu, "EGL device index to draw on (as render's --gpu)");
   c->add_option("--timed-candidates", a->timed_candidates,
                 "Fastest probed configurations timed per target and renderer (default 3)");
   c->callback([a] { run(*a); });

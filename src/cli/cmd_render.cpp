@@ -48,6 +48,8 @@ struct RenderArgs {
   std::vector<std::string> probes;
   std::string probe_op = "intersect", probe_surface = "off", probe_tf, probe_motion;
   std::string surface_mesh, surface_field, surface_tf;
+  std::string gl = "auto";  ///< --gl: auto|egl|osmesa
+  int gpu = -1;             ///< --gpu: EGL device index
   double surface_target_ms = 0;
 };
 
@@ -78,6 +80,8 @@ void run(const RenderArgs& a) {
   o.camera.projection =
       a.perspective == "on" ? tsp::Projection::perspective : tsp::Projection::orthographic;
   o.passes = a.passes;
+  o.gl = tspgl::parse_headless_gl(a.gl, "--gl");
+  o.gpu = a.gpu;
   if (a.quality != 0)
     for (const std::string& given : a.settings.given())
       for (const char* knob : kQualityKnobs)
@@ -272,6 +276,12 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
   c->add_option("--scale", a->scale,
                 "SX,SY,SZ: stretch each axis by this factor (e.g. 1,1,20 exaggerates height)");
   c->add_option("--passes", a->passes, "Play the steps this many times (default 1)");
+  c->add_option("--gl", a->gl,
+                "Which GL draws: auto (EGL on a GPU when one is found, else OSMesa), egl (EGL, on "
+                "Mesa's software device where there is no GPU) or osmesa; a request EGL cannot "
+                "serve falls back to OSMesa with a warning (frames.json: context)");
+  c->add_option("--gpu", a->gpu,
+                "EGL device index to draw on (default: TSPPLAY_EGL_DEVICE, else the first GPU)");
   c->add_option("--texture-budget", a->texture_budget_mb, "Texture cache budget in MiB (default 512)");
   c->add_option("--ram-budget", a->ram_budget_mb,
                 "Bricks held in RAM, MiB (default 1024): a file larger than RAM streams through "
@@ -336,6 +346,7 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
                  {"Surface", {"--surface-mesh", "--surface-field", "--surface-tf",
                               "--surface-target-ms"}},
                  {"Memory", {"--texture-budget", "--ram-budget"}},
+                 {"GL", {"--gl", "--gpu"}},
                  {"Diagnostics", {"--baseline", "--cache"}}});
   c->callback([a] { run(*a); });
 });

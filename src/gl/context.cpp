@@ -62,6 +62,8 @@ tsp::Image GlContext::read_pixels(int x, int y, int w, int h) {
   return img;
 }
 
+std::string GlContext::vendor() const { return gl_string(gl_, GL_VENDOR); }
+
 std::string GlContext::describe() const {
   return gl_string(gl_, GL_RENDERER) + ", OpenGL " + gl_string(gl_, GL_VERSION);
 }

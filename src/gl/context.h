@@ -1,6 +1,6 @@
 // src/gl: OpenGL contexts, our loader and shaders; may include tsp/.
-// An OpenGL 3.3 core context with its default framebuffer: offscreen (OSMesa, headless; used by
-// `tspplay render` and the tests) or a window (GLFW; used by the player).
+// An OpenGL 3.3 core context with its default framebuffer: offscreen (OSMesa or EGL, headless;
+// used by `tspplay render` and the tests: gl/headless.h) or a window (GLFW; used by the player).
 #pragma once
 #include <memory>
 #include <string>
@@ -27,6 +27,8 @@ class GlContext {
   /// The back end's get-proc-address (OSMesaGetProcAddress or glfwGetProcAddress), for other
   /// loaders such as Dear ImGui's.
   virtual GetProcAddress proc_address_function() const = 0;
+  /// What kind of context this is, for reports: "OSMesa", "EGL device 0 (software)", "GLFW".
+  virtual std::string kind() const = 0;
   /// Shows the back buffer (windows); nothing offscreen.
   virtual void swap_buffers() {}
   /// Processes pending window events (windows); nothing offscreen.
@@ -57,6 +59,8 @@ class GlContext {
   int canvas_height() const { return canvas_.fbo ? canvas_.height : height(); }
   /// "RENDERER, GL VERSION" of the context, for reports.
   std::string describe() const;
+  /// GL_VENDOR of the context, for reports.
+  std::string vendor() const;
 
  protected:
   GlContext() = default;

@@ -86,6 +86,7 @@ class GlfwContext final : public GlContext {
     return h;
   }
   GetProcAddress proc_address_function() const override { return &glfwGetProcAddress; }
+  std::string kind() const override { return "GLFW"; }
   void swap_buffers() override { glfwSwapBuffers(window_); }
   void poll_events() override { glfwPollEvents(); }
   void wait_events(double timeout_s) override { glfwWaitEventsTimeout(timeout_s); }

@@ -84,6 +84,7 @@ class OsmesaContext final : public GlContext {
   int width() const override { return width_; }
   int height() const override { return height_; }
   GetProcAddress proc_address_function() const override { return &OSMesaGetProcAddress; }
+  std::string kind() const override { return "OSMesa"; }
 
  private:
   int width_, height_;

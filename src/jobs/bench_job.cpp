@@ -1,6 +1,7 @@
 #include "jobs/bench_job.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
@@ -333,6 +334,8 @@ json run_bench(const BenchOptions& options, const BenchProgress& progress) {
   base.last_step = last;
   base.camera = o.camera;
   base.passes = o.passes;
+  base.gl = o.gl;
+  base.gpu = o.gpu;
 
   json header;
   header["file"] = o.tsp_path;
@@ -342,6 +345,7 @@ json run_bench(const BenchOptions& options, const BenchProgress& progress) {
   header["size"] = {o.camera.width, o.camera.height};
   header["view"] = {o.camera.azimuth_deg, o.camera.elevation_deg};
   header["passes"] = o.passes;
+  header["sweep"] = o.sweep;
   header["targets"] = o.targets;
   header["search_steps"] = sample;
   header["search_iterations"] = o.search_iterations;
@@ -374,7 +378,9 @@ json run_bench(const BenchOptions& options, const BenchProgress& progress) {
 
   // The probes' pictures: on a canvas of one offscreen context (the head-to-head timings run
   // render jobs, each on a context of its own).
-  auto ctx = create_offscreen_context(o.camera.width, o.camera.height);
+  std::string gl_note;
+  auto ctx = create_headless_context(o.camera.width, o.camera.height, o.gl, o.gpu, &gl_note);
+  if (!gl_note.empty()) std::fprintf(stderr, "tspplay: warning: %s\n", gl_note.c_str());
   for (std::size_t k = 0; k < tfs.size(); ++k)
     TfBench(*ctx, o, *file, tfs[k], o.tfs[k], base, sample, report, tick).run(dir);
   if (progress) progress("done", total, total);

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "gl/headless.h"
 #include "jobs/knob_search.h"
 #include "jobs/tolerance_search.h"
 #include "tsp/frame/camera.h"
@@ -42,6 +43,9 @@ struct BenchOptions {
                     {0.5, 1, 1.5, 2, 3, 4, 6, 8}};  ///< TSP search (tolerance per cell)
   int timed_candidates = 3;   ///< fastest probes per target and renderer timed for real
   int head_to_head_rounds = 3;  ///< rounds timing the reference and every winner in turn
+  std::string sweep = "quick";  ///< --sweep the defaults came from (for the report)
+  HeadlessGl gl = HeadlessGl::automatic;  ///< --gl: which GL draws (gl/headless.h)
+  int gpu = -1;                           ///< --gpu: EGL device index (−1: by gl's rule)
 };
 
 /// Progress: a line of text describing the phase, runs done and runs total.

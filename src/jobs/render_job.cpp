@@ -293,8 +293,13 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
   RenderJobResult result;
   if (std::string w = tsp::tf_range_warning(tf, file->metadata().data_range); !w.empty())
     result.warnings.push_back(w);
-  auto ctx = create_offscreen_context(options.camera.width, options.camera.height);
+  std::string gl_note;
+  auto ctx = create_headless_context(options.camera.width, options.camera.height, options.gl,
+                                     options.gpu, &gl_note);
+  if (!gl_note.empty()) result.warnings.push_back(gl_note);
   result.renderer = ctx->describe();
+  result.gl_vendor = ctx->vendor();
+  result.context = ctx->kind();
   const RenderJobOptions o =
       options.quality != 0 ? with_quality(*ctx, options, *file, tf, result, calibration_progress)
                            : options;
@@ -435,6 +440,8 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
     for (const FrameRecord& f : result.frames) j["frames"].push_back(frame_json(f));
     j["file"] = o.tsp_path;
     j["renderer"] = result.renderer;
+    j["gl_vendor"] = result.gl_vendor;
+    j["context"] = result.context;
     j["mode"] = o.baseline ? "baseline" : "tsp";
     j["metric"] = o.baseline ? "none" : tsp::to_string(o.metric);
     j["metric_ms"] = result.metric_ms;

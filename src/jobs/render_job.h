@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "gl/headless.h"
 #include "render/frame_driver.h"
 #include "render/frame_report.h"
 #include "tsp/metric/tf_io.h"
@@ -30,6 +31,8 @@ using FrameSink = std::function<void(const FrameRecord&, const tsp::Image&)>;
 /// Everything `tspplay render` takes.
 struct RenderJobOptions {
   std::string tsp_path;                       ///< the .tsp file
+  HeadlessGl gl = HeadlessGl::automatic;      ///< --gl: EGL or OSMesa (gl/headless.h)
+  int gpu = -1;                               ///< --gpu: EGL device index (−1: by --gl's rule)
   std::string field;                          ///< --field: one of its fields ("": the first)
   std::string tf = "preset:auto";             ///< --tf: a file or preset:NAME
   tsp::TfRangeChoice tf_range;                ///< --tf-range: where the TF sits over the data
@@ -139,6 +142,8 @@ struct RenderJobResult {
   std::vector<FrameRecord> frames;
   double metric_ms = 0;   ///< whole-tree metric computation before the first frame
   std::string renderer;   ///< the GL renderer string
+  std::string gl_vendor;  ///< the GL vendor string
+  std::string context;    ///< what drew: "OSMesa" or "EGL device N (name)" (GlContext::kind)
   std::string quality_options;   ///< with --quality: the render options it picked
   double quality_calibrated_de = 0;  ///< their largest per-step mean ΔE on the calibration steps
   std::string calibration_file;  ///< the cache file read or written ("" without a cache)

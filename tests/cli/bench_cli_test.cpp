@@ -143,8 +143,9 @@ TEST_F(BenchCli, ReportHasEveryKey) {
   for (const char* k :
        {"file", "dims", "brick_size", "steps", "size", "view", "passes", "targets", "search_steps",
         "tolerance_rule", "renderer", "table3", "table4", "table5", "searches", "plots",
-        "reference", "baseline_grid", "tsp_grid", "table3_knobs", "timed_candidates"})
+        "reference", "baseline_grid", "tsp_grid", "table3_knobs", "timed_candidates", "sweep"})
     EXPECT_TRUE(j.contains(k)) << k;
+  EXPECT_EQ(j["sweep"], "quick");  // the default; the options given override its grid
   EXPECT_EQ(j["search_steps"], json({1, 2}));
   ASSERT_EQ(j["table3"].size(), 5u);
   for (const json& r : j["table3"]) {
@@ -234,6 +235,9 @@ TEST(BenchCliErrors, BadInputIsAClearErrorAndWritesNothing) {
   auto t = run_tspplay("bench " + q(dir / "missing.tsp") + " --targets 1,x -o " + q(dir / "rep"));
   EXPECT_EQ(t.exit_code, 2);
   EXPECT_NE(t.err.find("--targets"), std::string::npos) << t.err;
+  auto s = run_tspplay("bench " + q(dir / "missing.tsp") + " --sweep most -o " + q(dir / "rep"));
+  EXPECT_EQ(s.exit_code, 2);
+  EXPECT_NE(s.err.find("--sweep most: expected quick or full"), std::string::npos) << s.err;
   EXPECT_FALSE(fs::exists(dir / "rep"));
 }
 
