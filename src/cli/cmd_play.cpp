@@ -104,6 +104,7 @@ void run(PlayArgs a) {
     throw tsp::UsageError("--surface boundary is drawn with --compositing rays");
   tspgl::PlayInputOptions input = a.options.input;
   input.field = a.field;
+  a.options.input_path = a.options.tsp_path;  // (File > Open starts in its folder)
   a.options.tsp_path = tspgl::prepare_play_input(a.options.tsp_path, input, a.cache_dir, hooks);
   a.options.field = tsp ? a.field : "";  // a .tsp: the field shown first; an input: the one built
   tspplayer::run_player(a.options);

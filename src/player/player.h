@@ -34,6 +34,7 @@ inline constexpr double kDefaultMaxSpeed = 24;
 /// Everything `tspplay play` takes.
 struct PlayerOptions {
   std::string tsp_path;              ///< the .tsp file
+  std::string input_path;            ///< the input as given (an .h5 built into tsp_path; "": tsp_path)
   std::string field;                 ///< --field: the field shown first ("": the file's first)
   std::string cache_dir;             ///< --cache-dir: where File > Open builds inputs ("": default)
   tspgl::PlayInputOptions input;     ///< how File > Open reads and builds inputs: play's input options

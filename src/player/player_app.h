@@ -247,6 +247,9 @@ class PlayerApp {
   void save_tf_as(const std::string& path);
   /// The file being played.
   const std::string& tsp_path() const { return options_.tsp_path; }
+  /// Where File > Open starts: the folder of the input last opened, as the user named it (not
+  /// the cache folder it was built into).
+  std::string open_folder() const;
   /// Shows another field of the file (its own TF, kept per field; its bricks stream in through
   /// its own caches, kept while another field is shown). Throws tsp::UsageError for a field
   /// the file does not have, tsp::Error when it cannot be opened; nothing changes then.

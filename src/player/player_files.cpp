@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 
 #include "jobs/annotate.h"
@@ -42,8 +43,14 @@ void open_failed(std::string& status, bool trace, const std::string& input, cons
 
 }  // namespace
 
+std::string PlayerApp::open_folder() const {
+  const std::string& given = options_.input_path.empty() ? options_.tsp_path : options_.input_path;
+  return std::filesystem::path(given).parent_path().string();
+}
+
 void PlayerApp::open_input(const std::string& input, const std::string& field,
                            const std::string& build_options) {
+  options_.input_path = input;  // the next File > Open starts beside it
   if (open_job_) {
     open_failed(status, options_.trace, input, "still opening " + open_job_->input());
     return;
@@ -279,6 +286,7 @@ void PlayerApp::write_stats(const std::string& path) const {
   j["view"] = {layout.view.x, layout.view.y, layout.view.w, layout.view.h};
   j["docked"] = layout.docked;
   j["file"] = options_.tsp_path;
+  j["open_folder"] = open_folder();  // where File > Open starts
   j["field"] = file->fields()[std::size_t(file->field_index())];
   j["fields"] = file->fields();
   j["field_switch_ms"] = field_switch_ms;

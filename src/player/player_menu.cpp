@@ -128,7 +128,7 @@ void open_dialog(PlayerApp& app) {
   if (s.want_open) {
     s.want_open = false;
     std::error_code ec;
-    fs::path start = fs::path(app.tsp_path()).parent_path();
+    fs::path start = app.open_folder();
     if (start.empty() || !fs::is_directory(start, ec)) start = fs::current_path(ec);
     s.listing.read(fs::absolute(start, ec));
     copy(s.open_path, sizeof s.open_path, s.listing.dir.string() + "/");
@@ -169,7 +169,13 @@ void open_dialog(PlayerApp& app) {
                    "All files\0"))
     s.all_files = shown == 1;
   ImGui::SetNextItemWidth(-60);
-  ImGui::InputText("path", s.open_path, sizeof s.open_path);
+  // A folder typed (or pasted) into the path is shown in the list above.
+  if (ImGui::InputText("path", s.open_path, sizeof s.open_path)) {
+    std::error_code ec;
+    const fs::path typed = fs::weakly_canonical(fs::path(s.open_path), ec);
+    if (!ec && fs::is_directory(typed, ec) && typed != fs::weakly_canonical(s.listing.dir, ec))
+      s.listing.read(typed);
+  }
   ImGui::SetNextItemWidth(200);
   ImGui::InputText("field (inputs with several)", s.field, sizeof s.field);
   ImGui::SetNextItemWidth(-60);

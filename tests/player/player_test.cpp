@@ -208,9 +208,15 @@ TEST(Player, PlaysARawInputThroughTheBuildCache) {
   int built = 0;
   for (const auto& e : fs::directory_iterator(cache / "builds")) built += e.path().extension() == ".tsp";
   EXPECT_EQ(built, 1);
-  r = run_tspplay(args + q(dir / "b.png"));
+  // The second time reuses the build; File > Open starts beside the input, not in the cache
+  // (issue 47 item 6).
+  r = run_tspplay("play " + q(h5) + " --field shock --cache-dir " + q(cache) + " --size " + kSize +
+                  " --script " + q(write_script("stats " + (dir / "s.json").string() + "\nquit\n")));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("built from it earlier"), std::string::npos) << r.out;
+  EXPECT_EQ(nlohmann::json::parse(tsptest::read_file(dir / "s.json"))["open_folder"], dir.string());
+  r = run_tspplay(args + q(dir / "b.png"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_LT(tsp::diff_images(tsp::read_png((dir / "a.png").string()),
                              tsp::read_png((dir / "b.png").string())).mean, kSameFrameDeltaE);
   // --field names a raw input's field, or one of a .tsp file's fields.
