@@ -17,10 +17,12 @@ namespace tspgl {
 inline constexpr unsigned char kOutlineColour[3] = {200, 200, 200};
 
 /// Draws the annotations into img (the frame camera drew, of a volume of dims): outline, axes,
-/// legend over the TF's domain, and "step N" (with "  t = TIME" when time, the step's time as
-/// tsp::format_time writes it, is given). Never throws.
+/// legend over the TF's domain titled with field (when not empty), and "step N" (with "  t =
+/// TIME" when time, the step's time as tsp::format_time writes it, is given). The one export
+/// look: render --annotate, the player's S and its movies. Never throws.
 void annotate_frame(tsp::Image& img, const tsp::Camera& camera, tsp::Dims dims,
-                    const tsp::TransferFunction& tf, int step, const std::optional<std::string>& time);
+                    const tsp::TransferFunction& tf, int step, const std::optional<std::string>& time,
+                    const std::string& field = "");
 
 /// Writes text at (x, y) (top-left, 1 pixel per font dot × scale) in colour rgb; characters
 /// without a glyph are skipped. Never throws.

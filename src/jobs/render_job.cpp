@@ -426,7 +426,8 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
         tsp::Image pixels = ctx->read_pixels();
         if (o.annotate)
           annotate_frame(pixels, camera, tree.octree().dims(), tf, t,
-                         rec.time ? std::optional<std::string>(rec.time_text) : std::nullopt);
+                         rec.time ? std::optional<std::string>(rec.time_text) : std::nullopt,
+                         file->fields()[std::size_t(file->field_index())]);
         if (o.on_frame) o.on_frame(rec, pixels);
         if (png) into_folder([&] { tsp::write_png(step_png(dir, t), pixels); });
       }

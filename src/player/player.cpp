@@ -514,11 +514,10 @@ void PlayerApp::frame() {
   if (shot_now && !pending_with_ui_) save_pending_shot();
   if (save_requested_) {
     save_requested_ = false;
-    char name[64];
-    std::snprintf(name, sizeof name, "tspplay_step_%04d.png", state.step);
+    const std::string name = export_name();
     try {
-      tsp::write_png(name, read_view());
-      status = std::string("saved ") + name;
+      tsp::write_png(name, export_view());
+      status = "saved " + name;
     } catch (const tsp::Error& e) {
       status = e.what();
     }

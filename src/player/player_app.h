@@ -277,6 +277,12 @@ class PlayerApp {
   void save_pending_shot();
   /// The volume's pixels as shown (the layout's view rectangle), top row first.
   tsp::Image read_view();
+  /// The one export look of S and the recorder: read_view() with the annotations (outline,
+  /// axes, legend titled with the field, step and time) unless they are turned off.
+  tsp::Image export_view();
+  /// S's file name: NAME_FIELD_step_NNNN.png in the working directory (NAME: the input as the
+  /// user named it), with -2, -3, … rather than over an existing file.
+  std::string export_name() const;
   /// Swaps in the .tsp file at path (File > Open): new tree, renderer, metric, TF and camera.
   void open_file(const std::string& path);
   void poll_open();                  // a finished File > Open build: play it or report

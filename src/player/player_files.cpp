@@ -243,7 +243,7 @@ void PlayerApp::stop_recording() {
 
 // The volume as shown, with the outline, axes, legend and step drawn in (as render --annotate):
 // repeated or skipped so that the movie keeps the wall-clock time of what was played.
-void PlayerApp::record_frame(double now_s) {
+tsp::Image PlayerApp::export_view() {
   tsp::Image img = read_view();
   if (state.annotations) {
     const auto& times = file->metadata().times;
@@ -252,8 +252,29 @@ void PlayerApp::record_frame(double now_s) {
                           times.empty() ? std::nullopt
                                         : std::optional<std::string>(tsp::format_time(
                                               times[std::size_t(state.step)],
-                                              file->metadata().time_units)));
+                                              file->metadata().time_units)),
+                          field());
   }
+  return img;
+}
+
+std::string PlayerApp::export_name() const {
+  // NAME_FIELD_step_NNNN.png in the working directory, never over an earlier one.
+  const std::string given = options_.input_path.empty() ? options_.tsp_path : options_.input_path;
+  std::string stem = std::filesystem::path(given).stem().string();
+  if (stem.empty()) stem = "tspplay";
+  char step[32];
+  std::snprintf(step, sizeof step, "_step_%04d", state.step);
+  const std::string base = stem + "_" + field() + step;
+  std::string name = base + ".png";
+  std::error_code ec;
+  for (int k = 2; std::filesystem::exists(std::filesystem::symlink_status(name, ec)); ++k)
+    name = base + "-" + std::to_string(k) + ".png";
+  return name;
+}
+
+void PlayerApp::record_frame(double now_s) {
+  tsp::Image img = export_view();
   try {
     recorder_->frame(img, now_s);
   } catch (const tsp::UsageError&) {  // the view changed size: keep the movie so far

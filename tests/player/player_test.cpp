@@ -131,7 +131,7 @@ TEST(Player, QuickKeyTapsAreNotLostWhenFramesAreSlow) {
   ASSERT_EQ(run_tspplay("build " + q(dir / "k.h5") + " --field shock -o " + q(tsp)).exit_code, 0);
   fs::path script = write_script("wait-seconds 6\nquit\n");
   const std::string cmd =
-      "(" + q(tsptest::tspplay_bin()) + " play " + q(tsp) + " --size " + kSize +
+      "cd " + q(dir) + " && (" + q(tsptest::tspplay_bin()) + " play " + q(tsp) + " --size " + kSize +
       " --trace --frame-delay-ms 500 --script " + q(script) + " > " + q(out) + " 2>&1 &\n" +
       "w=$(xdotool search --sync --name " + q("tspplay - " + tsp.string()) + " | head -1)\n"
       "sleep 1\n"
@@ -140,6 +140,7 @@ TEST(Player, QuickKeyTapsAreNotLostWhenFramesAreSlow) {
       "xdotool key --window \"$w\" space\n"
       "sleep 1\n"
       "xdotool key --window \"$w\" r\n"
+      "xdotool key --window \"$w\" s\n"
       "wait)\n";
   ASSERT_EQ(run_bash(dir / "keys.sh", cmd), 0);
   const std::string log = tsptest::read_file(out);
@@ -148,6 +149,22 @@ TEST(Player, QuickKeyTapsAreNotLostWhenFramesAreSlow) {
   EXPECT_NE(log.find("trace: playing"), std::string::npos) << log;
   EXPECT_LT(log.find("trace: step 5\n"), log.find("trace: playing")) << log;
   EXPECT_NE(log.find("trace: camera reset"), std::string::npos) << log;  // R
+  // S saves the view with the export's annotations, named by dataset, field and step, in the
+  // working directory (issue 47 item 9).
+  int saved = 0;
+  for (const auto& e : fs::directory_iterator(dir)) {
+    const std::string name = e.path().filename().string();
+    if (name.rfind("k_shock_step_", 0) != 0 || e.path().extension() != ".png") continue;
+    ++saved;
+    const tsp::Image img = tsp::read_png(e.path().string());
+    int outline = 0;  // pixels of the outline's colour (the volume is never this grey)
+    for (int y = 0; y < img.height; ++y)
+      for (int x = 0; x < img.width; ++x)
+        outline += img.at(x, y)[0] == 200 && img.at(x, y)[1] == 200 && img.at(x, y)[2] == 200;
+    EXPECT_GT(outline, 20) << name;
+  }
+  EXPECT_EQ(saved, 1) << log;
+  EXPECT_NE(log.find("saved k_shock_step_"), std::string::npos) << log;
   // play --help lists the controls from the same table as the F1 overlay.
   const auto help = run_tspplay("play --help");
   for (const char* k : {"space", "reset the camera", "F1 or ?", "TF editor: drag a handle"})
