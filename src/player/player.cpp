@@ -166,7 +166,7 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
     apply(fit);
   }
 
-  ctx = tspgl::create_window_context(options.width, options.height, "tspplay - " + options.tsp_path,
+  ctx = tspgl::create_window_context(options.width, options.height, "tspplay - " + (options.input_path.empty() ? options.tsp_path : options.input_path),
                                      true);
   make_renderer();
 
@@ -554,9 +554,12 @@ bool PlayerApp::busy() const {
   // the script's clock (run() waits at most until wait_until_s_).
   const bool script_running =
       (script_pos_ < script_.size() && clock_.seconds() >= wait_until_s_) || wait_frames_ > 0;
-  return quit_ || state.playing || settle_frames_ > 0 || script_running || !pending_shot_.empty() ||
+  // Playing draws a frame when a step is due, not in between: a frame faster than the step
+  // period would draw the same step again, and a coarse playing rung is not refined meanwhile.
+  const bool step_due = state.playing && until_next_step() <= 0;
+  return quit_ || step_due || settle_frames_ > 0 || script_running || !pending_shot_.empty() ||
          save_requested_ || tuner_ || open_job_ || recorder_ || !last.complete() ||
-         (state.lod_on && !full_quality()) || switch_started_s_ >= 0;
+         (!state.playing && state.lod_on && !full_quality()) || switch_started_s_ >= 0;
 }
 
 void PlayerApp::run() {
@@ -568,7 +571,8 @@ void PlayerApp::run() {
     if (!busy()) {
       const std::uint64_t before = events_;
       const double to_script = wait_until_s_ - clock_.seconds();
-      ctx->wait_events(to_script > 0 ? std::min(kIdleWaitSeconds, to_script) : kIdleWaitSeconds);
+      ctx->wait_events(std::min({to_script > 0 ? to_script : kIdleWaitSeconds, kIdleWaitSeconds,
+                                  until_next_step()}));
       if (events_ == before && !busy()) {
         ++idle_waits_;
         continue;

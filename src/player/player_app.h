@@ -166,6 +166,8 @@ class PlayerApp {
   std::int64_t picture_fragments() const { return picture_fragments_; }
   /// Distinct steps drawn per second over the last 2 s (playback's real rate).
   double steps_shown_per_s() const;
+  /// Seconds until playback's next step is due (0: due now); kIdleWaitSeconds when paused.
+  double until_next_step() const;
   /// The playback tuning in progress, if any (for its progress bar).
   const tspgl::PlaybackTuner* tuning() const { return tuner_.get(); }
   /// The rung playing draws (meaningful while playing_rung()).

@@ -158,7 +158,9 @@ void PlayerApp::open_file(const std::string& path) {
   initial_camera = state.camera;
   make_renderer();
   update_tol_max();
-  glfwSetWindowTitle(static_cast<GLFWwindow*>(ctx->native_window()), ("tspplay - " + path).c_str());
+  // The input as the user named it (an .h5 built into the cache), not the cache entry.
+  const std::string shown = options_.input_path.empty() ? path : options_.input_path;
+  glfwSetWindowTitle(static_cast<GLFWwindow*>(ctx->native_window()), ("tspplay - " + shown).c_str());
   status = "playing " + path;
   std::printf("opened %s (%d steps)\n", path.c_str(), steps());
   std::fflush(stdout);

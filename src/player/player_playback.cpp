@@ -15,7 +15,9 @@ namespace tspplayer {
 namespace {
 // The ratio of window to probe time is kept within these bounds (one odd frame cannot swing it).
 constexpr double kMinTimeRatio = 0.25, kMaxTimeRatio = 8;
-constexpr double kMaxFrameDt = 0.25;  // a stalled frame does not skip many steps at once
+// A stalled frame does not skip many steps at once: a frame counts at most this long, or one and
+// a half step periods at slow speeds (the window sleeps until a step is due, a period apart).
+constexpr double kMaxFrameDt = 1.0, kMaxFramePeriods = 1.5;
 // A frame shows the next step, not the one the clock has reached, while the clock is at most this
 // many steps ahead: one slow frame among fast ones is caught up by the next frames instead of
 // skipping a step; frames slower than the steps skip steps to keep time.
@@ -31,7 +33,7 @@ void PlayerApp::advance_playback(double dt) {
     play_accum_ = 0;
     return;
   }
-  play_accum_ += std::min(dt, kMaxFrameDt) * state.speed;
+  play_accum_ += std::min(dt, std::max(kMaxFrameDt, kMaxFramePeriods / state.speed)) * state.speed;
   // Every step: at most one step a frame, however slow the frames (no step is skipped).
   if (state.every_step) play_accum_ = std::min(play_accum_, 1.0);
   int advance = 0;
@@ -55,6 +57,12 @@ void PlayerApp::advance_playback(double dt) {
       break;
     }
   }
+}
+
+double PlayerApp::until_next_step() const {
+  if (!state.playing) return kIdleWaitSeconds;
+  const double pending = play_accum_ + (clock_.seconds() - last_frame_s_) * state.speed;
+  return pending >= 1 ? 0.0 : (1 - pending) / std::max(state.speed, 1e-3);
 }
 
 double PlayerApp::steps_shown_per_s() const {

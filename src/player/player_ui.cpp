@@ -102,7 +102,10 @@ std::string shown_rate_text(const PlayerApp& app) {
 void timeline_section(PlayerApp& app) {
   using Kind = ScriptAction::Kind;
   const int last = app.steps() - 1;
-  if (ImGui::Button(app.state.playing ? "Pause" : "Play"))
+  // As wide as its wider label, so that the controls beside it do not move when it flips.
+  const float play_width =
+      ImGui::CalcTextSize("Pause").x + 2 * ImGui::GetStyle().FramePadding.x;
+  if (ImGui::Button(app.state.playing ? "Pause" : "Play", ImVec2(play_width, 0)))
     app.command(command_of(app.state.playing ? Kind::pause : Kind::play));
   ImGui::SameLine();
   if (ImGui::Button("|<")) app.command(step_command(0));
