@@ -106,7 +106,7 @@ json render_frames(const fs::path& tsp_path, const fs::path& tf_path, const fs::
   tsp_settings.tol = {kDemoTolerance, kDemoTolerance};
   tsp_settings.spacing = kDemoSpacing;
   out["tsp_settings"] = tspgl::settings_json(tsp_settings);
-  std::printf("\nrendering %dx%d frames headless (OSMesa):\n", o.camera.width, o.camera.height);
+  std::printf("\nrendering %dx%d frames headless:\n", o.camera.width, o.camera.height);
   for (bool baseline : {false, true}) {
     o.baseline = baseline;
     o.settings = baseline ? tspgl::RenderSettings{} : tsp_settings;
@@ -114,12 +114,14 @@ json render_frames(const fs::path& tsp_path, const fs::path& tf_path, const fs::
     tspgl::RenderJobResult r = tspgl::run_render_job(o);
     const double first = tspgl::median_frame_ms(r, 1), second = tspgl::median_frame_ms(r, 2);
     const std::string backend = r.frames.empty() ? "" : r.frames.back().report.backend;
-    std::printf("  %-9s median %7.2f ms a frame (first pass %7.2f ms, %s caster) -> %s/\n",
-                baseline ? "baseline" : "tsp", second, first, backend.c_str(), o.out_dir.c_str());
+    std::printf("  %-9s median %7.2f ms a frame (first pass %7.2f ms, %s caster, %s) -> %s/\n",
+                baseline ? "baseline" : "tsp", second, first, backend.c_str(), r.context.c_str(),
+                o.out_dir.c_str());
     out[baseline ? "baseline" : "tsp"] = {{"median_ms", second},
                                           {"first_pass_median_ms", first},
                                           {"frames_dir", o.out_dir},
                                           {"renderer", r.renderer},
+                                          {"context", r.context},
                                           {"backend", backend}};
   }
   const double speedup = double(out["baseline"]["median_ms"]) / double(out["tsp"]["median_ms"]);

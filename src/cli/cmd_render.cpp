@@ -212,7 +212,7 @@ void run(const RenderArgs& a) {
 }
 
 const CommandRegistrar reg(30, [](CLI::App& app) {
-  auto* c = app.add_subcommand("render", "Render steps headless (OSMesa) to PNGs and frames.json");
+  auto* c = app.add_subcommand("render", "Render steps headless (EGL or OSMesa: --gl) to PNGs and frames.json");
   auto a = std::make_shared<RenderArgs>();
   c->add_option("file", a->file, "The .tsp file")->required();
   c->add_option("--field", a->field, "A file with several fields: this one (default: the first)");
