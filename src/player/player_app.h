@@ -378,6 +378,11 @@ class PlayerApp {
     bool operator==(const TuneKey&) const = default;
   };
   TuneKey tune_key() const;
+  /// What a tuning at view depends on, for the tuning cache on disk (jobs/tuning_cache.h).
+  nlohmann::json tuning_disk_key(const tsp::CameraParams& view) const;
+  nlohmann::json tuning_cache_key_;  ///< the running or last tuning's disk key
+  std::string tuning_cache_file_;    ///< where it is kept ("": no cache folder)
+  bool tuning_from_cache_ = false;   ///< the last tuning was read from disk
   std::unique_ptr<tspgl::PlaybackTuner> tuner_;  ///< probing the ladder, while it runs
   TuneKey tuning_for_, tuned_for_;              ///< what the running / last tuning is for
   std::vector<tspgl::TunedRung> tuned_;         ///< the last complete tuning's rungs

@@ -351,7 +351,9 @@ void PlayerApp::write_stats(const std::string& path) const {
                  {"pictures_done", tuner_ ? tuner_->pictures_done() : 0},
                  {"pictures_total", tuner_ ? tuner_->pictures_total() : 0},
                  {"seconds", tuning_s_},
-                 {"frames_while_tuning", frames_while_tuning_}};
+                 {"frames_while_tuning", frames_while_tuning_},
+                 {"from_cache", tuning_from_cache_},  // read from disk: no probing this run
+                 {"cache_file", tuning_cache_file_}};
   j["lod"] = {{"on", state.lod_on},
               {"target_fps", state.target_fps},
               {"refining", refining},

@@ -7,7 +7,13 @@
 #include <cmath>
 #include <cstdio>
 
+#include <sys/stat.h>
+
+#include <filesystem>
+
+#include "jobs/tuning_cache.h"
 #include "player/player_app.h"
+#include "render/settings_table.h"
 #include "tsp/core/error.h"
 
 namespace tspplayer {
@@ -70,6 +76,30 @@ double PlayerApp::steps_shown_per_s() const {
   return span > 0 ? double(shown_at_s_.size()) / span : 0.0;
 }
 
+nlohmann::json PlayerApp::tuning_disk_key(const tsp::CameraParams& view) const {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path canon = fs::weakly_canonical(options_.tsp_path, ec);
+  struct stat st {};
+  ::stat(options_.tsp_path.c_str(), &st);
+  std::string tf_text = std::to_string(tf.domain().lo) + " " + std::to_string(tf.domain().hi);
+  char buf[64];
+  for (const tsp::Rgba& e : tf.entries()) {
+    std::snprintf(buf, sizeof buf, " %.6g %.6g %.6g %.6g", e.r, e.g, e.b, e.a);
+    tf_text += buf;
+  }
+  return {{"file", canon.string()},
+          {"bytes", std::int64_t(st.st_size)},
+          {"mtime", std::to_string(st.st_mtim.tv_sec) + "." + std::to_string(st.st_mtim.tv_nsec)},
+          {"field", field()},
+          {"tf", tf_text},
+          {"metric", tsp::to_string(state.metric)},
+          {"settings", tspgl::settings_json(state.settings)},
+          {"size", {view.width, view.height}},
+          {"view", {view.azimuth_deg, view.elevation_deg, view.zoom, view.pan[0], view.pan[1]}},
+          {"perspective", view.projection == tsp::Projection::perspective}};
+}
+
 PlayerApp::TuneKey PlayerApp::tune_key() const {
   TuneKey k;
   k.file = file.get();
@@ -103,6 +133,19 @@ void PlayerApp::start_tuning() {
   view.width = std::max(1, int(std::lround(key.width * shrink)));
   view.height = std::max(1, int(std::lround(key.height * shrink)));
   tuner_.reset();
+  // A tuning of the same data, map and view kept on disk from an earlier run: played at once.
+  tuning_cache_key_ = tuning_disk_key(view);
+  tuning_cache_file_ = tspgl::tuning_cache_path(tuning_cache_key_, options_.cache_dir);
+  if (auto cached = tspgl::read_tuning(tuning_cache_file_, tuning_cache_key_)) {
+    tuned_ = std::move(*cached);
+    tuned_for_ = key;
+    tuning_s_ = 0;
+    tuning_from_cache_ = true;
+    rung_frames_.assign(tuned_.size(), 0);
+    rung_ = {};
+    rung_for_ = {};
+    return;
+  }
   try {
     tuner_ = std::make_unique<tspgl::PlaybackTuner>(*ctx, *file, tf, frame_metric(), view,
                                                     state.settings);
@@ -139,6 +182,14 @@ void PlayerApp::advance_tuning() {
   tuned_for_ = tuning_for_;
   tuner_.reset();
   tuning_s_ = clock_.seconds() - tuning_started_s_;
+  tuning_from_cache_ = false;
+  if (!tuning_cache_file_.empty()) {
+    try {
+      tspgl::write_tuning(tuning_cache_file_, tuning_cache_key_, tuned_);
+    } catch (const tsp::Error& e) {  // playing goes on; the next run tunes again
+      status = std::string("playback tuning not kept: ") + e.what();
+    }
+  }
   rung_frames_.assign(tuned_.size(), 0);
   rung_ = {};
   rung_for_ = {};

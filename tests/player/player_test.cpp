@@ -790,6 +790,31 @@ TEST(Player, PlaybackShowsEveryStepInOrderUnlessAskedToSkip) {
   EXPECT_TRUE(skipped);
 }
 
+// A playback tuning is kept on disk per file, map, settings and view: the second window on the
+// same data plays at its tuned rung at once, probing nothing (issue 47 item 1).
+TEST(Player, ATuningIsKeptOnDiskAndReusedByTheNextWindow) {
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
+  const fs::path tsp = make_tsp(), dir = tsptest::temp_dir(), cache = dir / "cache";
+  auto run = [&](const std::string& stats) {
+    return run_tspplay("play " + q(tsp) + " --size " + kSize + " --cache-dir " + q(cache) +
+                       " --script " +
+                       q(write_script("quality 1\nstats " + (dir / stats).string() + "\nquit\n")));
+  };
+  auto a = run("a.json");
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  const nlohmann::json ta = read_json(dir / "a.json")["tuning"];
+  EXPECT_FALSE(ta["from_cache"].get<bool>()) << ta;
+  EXPECT_GT(ta["seconds"].get<double>(), 0) << ta;
+  ASSERT_TRUE(fs::is_regular_file(ta["cache_file"].get<std::string>())) << ta;
+  EXPECT_EQ(fs::path(ta["cache_file"].get<std::string>()).parent_path(), cache / "tuning");
+  auto b = run("b.json");
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  const nlohmann::json jb = read_json(dir / "b.json");
+  EXPECT_TRUE(jb["tuning"]["from_cache"].get<bool>()) << jb["tuning"];
+  EXPECT_EQ(jb["tuning"]["frames_while_tuning"].get<int>(), 0);
+  EXPECT_EQ(jb["playback"]["ladder"], read_json(dir / "a.json")["playback"]["ladder"]);
+}
+
 // The timeline's marks: after one pass over every step with prefetch, each step's bricks are in
 // memory (ready 1); a fresh player has only the shown step ready.
 TEST(Player, TimelineMarksTheStepsWhoseBricksAreInMemory) {
