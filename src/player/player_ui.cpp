@@ -135,8 +135,8 @@ void timeline_section(PlayerApp& app) {
   if (app.state.playing) {  // the rate the window reaches: distinct steps drawn per second
     ImGui::SameLine();
     ImGui::TextUnformatted(shown_rate_text(app).c_str());
-    ImGui::SameLine();
-    ImGui::TextUnformatted(playback_text(app).c_str());
+    // The rung and why, on a line of its own that wraps (beside the slider it ran off the panel).
+    ImGui::TextWrapped("%s", playback_text(app).c_str());
   }
   int step = app.state.step;
   ImGui::SetNextItemWidth(-1);
