@@ -101,6 +101,7 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
   tspgl::validate(options.settings);
   if (!options.surface_mesh.empty())
     mesh_surface.emplace(options.surface_mesh, options.surface_field, *file, options.surface_tf, options.step);
+  surface_mesh_ = options.surface_mesh;
   state.settings = options.settings;
   for (auto [value, name] : {std::pair{options.ram_budget_mb, "--ram-budget"},
                              std::pair{options.texture_budget_mb, "--texture-budget"}})

@@ -115,6 +115,10 @@ class PlayerApp {
   /// The boundary of options' surface mesh and its colours (the first file only; File > Open
   /// of another file drops it), drawn when state.settings.surface is on.
   std::optional<tspgl::MeshSurface> mesh_surface;
+  std::string surface_mesh_;  ///< the mesh mesh_surface was read from ("": none)
+  /// Turning the surface on without one: reads the played input's boundary when it is a mesh,
+  /// else says what is needed and turns it off again.
+  void offer_surface();
   std::unique_ptr<tsp::BrickPrefetcher>
       prefetcher;  ///< reads into renderer's brick cache; made after it
   tsp::TransferFunction tf;

@@ -131,6 +131,7 @@ void PlayerApp::open_file(const std::string& path) {
   file = std::move(next);
   options_.tsp_path = path;
   mesh_surface.reset();  // the surface belongs to the file opened first
+  surface_mesh_.clear();
   const tsp::TspTree& tree = file->tree();
   // The TF the player started with, fitted to the new data (a map edited for other data
   // rarely suits this one).
@@ -310,6 +311,8 @@ void PlayerApp::write_stats(const std::string& path) const {
   j["docked"] = layout.docked;
   j["file"] = options_.tsp_path;
   j["open_folder"] = open_folder();  // where File > Open starts
+  j["surface_mesh"] = surface_mesh_;  // the mesh whose boundary is drawn ("": none)
+  j["status"] = status;
   j["field"] = file->fields()[std::size_t(file->field_index())];
   j["fields"] = file->fields();
   j["field_switch_ms"] = field_switch_ms;

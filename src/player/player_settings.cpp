@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "player/player_app.h"
+#include "tsp/source/open_mesh_source.h"
 #include "render/settings_table.h"
 #include "tsp/core/error.h"
 
@@ -61,6 +62,30 @@ void PlayerApp::set_setting(const std::string& name, const std::string& text) {
   } else {
     state.settings = next;
   }
+  if (state.settings.surface && !mesh_surface) offer_surface();
+}
+
+void PlayerApp::offer_surface() {
+  // The boundary of the mesh this file was built from, when the input played is that mesh;
+  // otherwise the control says what it needs and goes back off (it never silently does nothing).
+  const std::string& input = options_.input_path;
+  std::string why;
+  if (!input.empty() && tsp::is_mesh_input(input, options_.input.source.allow_external)) {
+    try {
+      mesh_surface.emplace(input, options_.surface_field, *file, options_.surface_tf, state.step);
+      surface_mesh_ = input;
+      status = "surface: the boundary of " + input + ", the mesh this file was built from";
+      return;
+    } catch (const tsp::Error& e) {
+      why = e.what();
+    }
+  } else {
+    why = "surface boundary needs the mesh the file was built from: play the mesh itself "
+          "(tspplay play MESH), or start with --surface-mesh MESH";
+  }
+  state.settings.surface = false;
+  status = why;
+  if (options_.trace) std::printf("trace: surface refused: %s\n", why.c_str());
 }
 
 void PlayerApp::set_cache(bool on, double budget_mb) {

@@ -997,6 +997,25 @@ TEST(Player, TheMeshBoundaryDrawsAsRenderDrawsItAndTheScriptTurnsItOff) {
   EXPECT_LT(tsp::diff_images(played, tsp::read_png((dir / "r" / "step_0000.png").string())).mean,
             kSameFrameDeltaE);
   EXPECT_GT(tsp::diff_images(played, tsp::read_png(off.string())).mean, kDifferentFrameDeltaE);
+  // Turned on in a window started without --surface (issue 47 item 3): on a .tsp the control
+  // says what it needs and goes back off; on the mesh played itself it reads that mesh.
+  const auto stats_after = [&](const std::string& input, const std::string& extra,
+                               const std::string& name) {
+    auto s = run_tspplay("play " + q(input) + extra + " --size " + kSize + " --cache-dir " +
+                         q(dir / "cache") + " --script " +
+                         q(write_script("surface boundary\nstats " + (dir / name).string() +
+                                        "\nquit\n")));
+    EXPECT_EQ(s.exit_code, 0) << s.err;
+    return read_json(dir / name);
+  };
+  const nlohmann::json t = stats_after((dir / "m.tsp").string(), "", "t.json");
+  EXPECT_EQ(t["surface"], "off");
+  EXPECT_EQ(t["surface_mesh"], "");
+  EXPECT_NE(t["status"].get<std::string>().find("needs the mesh the file was built from"),
+            std::string::npos) << t["status"];
+  const nlohmann::json m = stats_after(mesh, " --field f", "m.json");
+  EXPECT_EQ(m["surface"], "boundary");
+  EXPECT_EQ(m["surface_mesh"], mesh);
 }
 
 // Renders on demand: a window with nothing to change sleeps in its event wait (a generous bound
