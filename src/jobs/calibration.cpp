@@ -10,6 +10,7 @@
 #include <limits>
 #include <sstream>
 
+#include "jobs/cache_key.h"
 #include "jobs/image_probe.h"
 #include "jobs/render_job.h"
 #include "tsp/core/error.h"
@@ -28,28 +29,14 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-// Bumped whenever what a calibration measures changes, so old cache files are recomputed.
 // Largest calibration cache read (a real one is a few kilobytes: one point per grid cell).
 constexpr std::int64_t kMaxCalibrationBytes = std::int64_t(16) << 20;
+// Bumped whenever what a calibration measures changes, so old cache files are recomputed.
 constexpr int kCalibrationVersion = 5;  // 2: the key holds the voxel size; 3: frames skip
                                          // transparent children (--skip-transparent on); 4: rays
                                          // sample exact segments, spans textured by their mean;
                                          // 5: lit by default, levels drawn with their TF rows
 
-std::uint64_t fnv1a(const std::string& s) {
-  std::uint64_t h = 1469598103934665603ull;
-  for (unsigned char c : s) {
-    h ^= c;
-    h *= 1099511628211ull;
-  }
-  return h;
-}
-
-std::string hex(std::uint64_t v) {
-  char buf[20];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
-  return buf;
-}
 
 json knobs_json(const Knobs& k) {
   return {{"compositing", to_string(k.compositing)},
@@ -82,7 +69,7 @@ json key_of(const CalibrationRequest& r, const tsp::TransferFunction& tf,
           {"file_bytes", std::int64_t(bytes)},
           {"file_mtime", std::int64_t(mtime)},
           {"field", r.field},
-          {"tf", hex(fnv1a(tf_text.str()))},
+          {"tf", key_hash(tf_text.str())},
           {"metric", tsp::to_string(r.metric)},
           {"size", {c.width, c.height}},
           {"view", {c.azimuth_deg, c.elevation_deg}},
@@ -186,7 +173,7 @@ Calibrator::Calibrator(GlContext& ctx, const CalibrationRequest& r,
   calibration_.key = key_of(r, tf, steps_);
   const std::string dir = r.cache_dir.empty() ? default_calibration_dir() : r.cache_dir;
   if (dir != "-" && !dir.empty())
-    cache_file_ = (fs::path(dir) / ("calibration-" + hex(fnv1a(tsp::json_text(calibration_.key))) +
+    cache_file_ = (fs::path(dir) / ("calibration-" + key_hash(tsp::json_text(calibration_.key)) +
                                     ".json")).string();
   if (!cache_file_.empty())
     if (auto cached = read_cache(cache_file_, calibration_.key)) {
@@ -239,11 +226,7 @@ void Calibrator::finish() {
   if (ec)
     throw tsp::IoError(path.parent_path().string() +
                        ": cannot create the calibration cache directory: " + ec.message());
-  // A link planted at the entry's name is replaced, never written through; a FIFO, device or
-  // empty folder there (the cache folder is ours) is removed first.
-  if (const auto st = fs::symlink_status(path, ec);
-      fs::exists(st) && !fs::is_regular_file(st) && !fs::is_symlink(st))
-    fs::remove(path, ec);
+  // A link, FIFO or device planted at the entry's name is replaced, never written through.
   tsp::write_file_atomically(path.string(), tsp::json_text(to_json(calibration_), 1) + "\n",
                              tsp::OutputLinks::replace);
 }

@@ -9,6 +9,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "jobs/cache_key.h"
 #include "jobs/calibration.h"
 #include "tsp/core/error.h"
 #include "tsp/hdf5/hdf5_handle.h"
@@ -21,13 +22,6 @@ namespace tspgl {
 namespace fs = std::filesystem;
 
 namespace {
-
-// FNV-1a of text, for cache names.
-std::uint64_t fnv1a(const std::string& text) {
-  std::uint64_t h = 1469598103934665603ull;
-  for (unsigned char c : text) h = (h ^ c) * 1099511628211ull;
-  return h;
-}
 
 // Creates the folder the cache entry out goes in. Throws tsp::IoError.
 void make_builds_folder(const std::string& out) {
@@ -80,9 +74,8 @@ std::string play_cache_path(const std::string& input, const PlayInputOptions& o,
   if (dir.empty())
     throw tsp::UsageError(input + " is not a .tsp file and there is no cache folder to build it "
                           "into (set HOME, XDG_CACHE_HOME or --cache-dir)");
-  char hash[17];
-  std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(fnv1a(key)));
-  return (fs::path(dir) / "builds" / (abs.filename().string() + "-" + hash + ".tsp")).string();
+  return (fs::path(dir) / "builds" / (abs.filename().string() + "-" + key_hash(key) + ".tsp"))
+      .string();
 }
 
 namespace {

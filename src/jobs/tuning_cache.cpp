@@ -5,6 +5,7 @@
 #include <cstring>
 #include <filesystem>
 
+#include "jobs/cache_key.h"
 #include "jobs/calibration.h"
 #include "tsp/core/error.h"
 #include "tsp/core/input_file.h"
@@ -21,21 +22,13 @@ namespace {
 // Largest entry read (a real one is a few hundred bytes: one line per rung).
 constexpr std::int64_t kMaxTuningBytes = std::int64_t(1) << 20;
 
-std::uint64_t fnv1a(const std::string& text) {
-  std::uint64_t h = 1469598103934665603ull;
-  for (unsigned char c : text) h = (h ^ c) * 1099511628211ull;
-  return h;
-}
-
 }  // namespace
 
 std::string tuning_cache_path(const nlohmann::json& key, const std::string& dir) {
   const std::string root = dir.empty() ? default_calibration_dir() : dir;
   if (root.empty() || root == "-") return "";
-  char name[48];
-  std::snprintf(name, sizeof name, "tuning-%016llx.json",
-                static_cast<unsigned long long>(fnv1a(tsp::json_text(key))));
-  return (fs::path(root) / "tuning" / name).string();
+  return (fs::path(root) / "tuning" / ("tuning-" + key_hash(tsp::json_text(key)) + ".json"))
+      .string();
 }
 
 std::optional<std::vector<TunedRung>> read_tuning(const std::string& path,
@@ -85,10 +78,6 @@ void write_tuning(const std::string& path, const nlohmann::json& key,
   if (ec)
     throw tsp::IoError(fs::path(path).parent_path().string() +
                        ": cannot create the tuning cache folder: " + ec.message());
-  // (The cache folder is ours: a FIFO or empty folder planted at the name goes first.)
-  if (const auto st = fs::symlink_status(path, ec);
-      fs::exists(st) && !fs::is_regular_file(st) && !fs::is_symlink(st))
-    fs::remove(path, ec);
   tsp::write_file_atomically(path, tsp::json_text(j, 1) + "\n", tsp::OutputLinks::replace);
 }
 

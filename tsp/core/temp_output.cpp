@@ -127,13 +127,20 @@ int remove_stale_temporaries(const std::string& out_path) {
   return removed;
 }
 
+namespace {
+// Under OutputLinks::replace, whatever non-folder entry is at path (a link, a FIFO, a device) is
+// replaced by rename() itself, never opened or followed: it needs no check.
+bool replaced_as_is(const std::string& path, OutputLinks links) {
+  std::error_code ec;
+  const fs::file_status st = fs::symlink_status(path, ec);
+  return links == OutputLinks::replace && fs::exists(st) && !fs::is_directory(st);
+}
+}  // namespace
+
 TempOutput::TempOutput(const std::string& out_path, OutputLinks links)
     : shown_(out_path), final_(out_path), links_(links) {
   std::error_code ec;
-  // Under OutputLinks::replace a link is replaced by rename() whatever it points at, so only
-  // the link itself is checked.
-  const bool replace_link = links == OutputLinks::replace && fs::is_symlink(out_path, ec);
-  if (!replace_link) check_output_path(out_path);
+  if (!replaced_as_is(out_path, links)) check_output_path(out_path);
   // A link to an existing file: the file is replaced and the link kept.
   if (links == OutputLinks::follow && fs::is_symlink(out_path, ec) && fs::exists(out_path, ec)) {
     const fs::path target = fs::canonical(out_path, ec);
@@ -182,9 +189,8 @@ TempOutput::~TempOutput() {
 
 void TempOutput::commit() {
   throw_if_interrupted();
-  // Nothing put a device or FIFO there meanwhile (a link there is replaced itself, unfollowed).
-  std::error_code ec;
-  if (links_ == OutputLinks::follow || !fs::is_symlink(final_, ec)) check_output_path(final_);
+  // Nothing put a device or FIFO there meanwhile (under replace: whatever is there goes).
+  if (!replaced_as_is(final_, links_)) check_output_path(final_);
   if (std::rename(tmp_.c_str(), final_.c_str()) != 0)
     throw IoError(shown_ + ": cannot rename the finished file into place (" +
                   std::strerror(errno) + ")");

@@ -13,8 +13,8 @@ namespace tsp {
 /// What an output at a symbolic link replaces.
 enum class OutputLinks {
   follow,   ///< the link's target (the link kept): a user's `-o link.png` writes where it points
-  replace,  ///< the link itself, its target untouched: cache entries, where another user may
-            ///< have planted the link
+  replace,  ///< the link itself, its target untouched, and likewise a FIFO or device there:
+            ///< cache entries, where another user may have planted them
 };
 
 /// The files the running command reads, for the guard's lifetime: no TempOutput or OutputFolder
@@ -53,8 +53,8 @@ class TempOutput {
   /// Checks out_path (check_output_path) and that its directory exists, removes stale
   /// `.NAME.tmp-*` files of the same name (see above), and creates a locked, empty
   /// `.NAME.tmp-XXXXXX` there. A symbolic link to a regular file is written through (its target
-  /// replaced, the link kept) under OutputLinks::follow; under OutputLinks::replace the link
-  /// itself is replaced, whatever it points at. Throws UsageError (an input) or IoError.
+  /// replaced, the link kept) under OutputLinks::follow; under OutputLinks::replace the entry
+  /// itself (a link whatever it points at, a FIFO, a device; not a folder) is replaced. Throws UsageError (an input) or IoError.
   explicit TempOutput(const std::string& out_path, OutputLinks links = OutputLinks::follow);
   /// Removes the temporary file unless committed.
   ~TempOutput();
