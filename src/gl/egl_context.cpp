@@ -74,7 +74,13 @@ EglDevice describe_device(const DeviceApi& api, EGLDeviceEXT d, int index) {
   return e;
 }
 
-EGLint egl_error() { return eglGetError(); }
+std::vector<EglDevice> describe_devices(const DeviceApi& api,
+                                        const std::vector<EGLDeviceEXT>& handles) {
+  std::vector<EglDevice> out;
+  for (std::size_t i = 0; i < handles.size(); ++i)
+    out.push_back(describe_device(api, handles[i], int(i)));
+  return out;
+}
 
 std::string hex(EGLint code) {
   char buf[16];
@@ -93,7 +99,7 @@ class EglContext final : public GlContext {
     display_ = api.platform_display(EGL_PLATFORM_DEVICE_EXT, device, nullptr);
     EGLint major = 0, minor = 0;
     if (display_ == EGL_NO_DISPLAY || !eglInitialize(display_, &major, &minor))
-      throw tsp::GlError(kind_ + ": eglInitialize failed (" + hex(egl_error()) + ")");
+      throw tsp::GlError(kind_ + ": eglInitialize failed (" + hex(eglGetError()) + ")");
     // clang-format off
     const EGLint config_attribs[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT,
                                      EGL_RED_SIZE, 8, EGL_GREEN_SIZE, 8, EGL_BLUE_SIZE, 8,
@@ -110,15 +116,15 @@ class EglContext final : public GlContext {
     if (!eglChooseConfig(display_, config_attribs, &config, 1, &configs) || configs < 1)
       throw tsp::GlError(kind_ + ": no RGBA8 + depth pbuffer configuration for desktop OpenGL");
     if (!eglBindAPI(EGL_OPENGL_API))
-      throw tsp::GlError(kind_ + ": desktop OpenGL is not available (" + hex(egl_error()) + ")");
+      throw tsp::GlError(kind_ + ": desktop OpenGL is not available (" + hex(eglGetError()) + ")");
     context_ = eglCreateContext(display_, config, EGL_NO_CONTEXT, context_attribs);
     if (context_ == EGL_NO_CONTEXT)
-      throw tsp::GlError(kind_ + ": no OpenGL 3.3 core profile context (" + hex(egl_error()) +
+      throw tsp::GlError(kind_ + ": no OpenGL 3.3 core profile context (" + hex(eglGetError()) +
                          ")");
     surface_ = eglCreatePbufferSurface(display_, config, surface_attribs);
     if (surface_ == EGL_NO_SURFACE)
       throw tsp::GlError(kind_ + ": no " + std::to_string(w) + "x" + std::to_string(h) +
-                         " pbuffer (" + hex(egl_error()) + ")");
+                         " pbuffer (" + hex(eglGetError()) + ")");
     make_current();
     load(&egl_proc, kind_);
   }
@@ -134,7 +140,7 @@ class EglContext final : public GlContext {
 
   void make_current() override {
     if (!eglMakeCurrent(display_, surface_, surface_, context_))
-      throw tsp::GlError(kind_ + ": eglMakeCurrent failed (" + hex(egl_error()) + ")");
+      throw tsp::GlError(kind_ + ": eglMakeCurrent failed (" + hex(eglGetError()) + ")");
   }
   int width() const override { return width_; }
   int height() const override { return height_; }
@@ -188,11 +194,7 @@ HeadlessGl parse_headless_gl(const std::string& text, const std::string& option)
 std::vector<EglDevice> egl_devices() {
 #if TSPPLAY_HAS_EGL
   const DeviceApi api = device_api();
-  std::vector<EglDevice> out;
-  const std::vector<EGLDeviceEXT> handles = device_handles(api);
-  for (std::size_t i = 0; i < handles.size(); ++i)
-    out.push_back(describe_device(api, handles[i], int(i)));
-  return out;
+  return describe_devices(api, device_handles(api));
 #else
   return {};
 #endif
@@ -209,9 +211,7 @@ std::unique_ptr<GlContext> create_headless_context(int width, int height, Headle
 #if TSPPLAY_HAS_EGL
   const DeviceApi api = device_api();
   const std::vector<EGLDeviceEXT> handles = device_handles(api);
-  std::vector<EglDevice> devices;
-  for (std::size_t i = 0; i < handles.size(); ++i)
-    devices.push_back(describe_device(api, handles[i], int(i)));
+  const std::vector<EglDevice> devices = describe_devices(api, handles);
   int pick = asked;
   if (pick < 0)
     for (const EglDevice& d : devices)

@@ -115,18 +115,6 @@ std::vector<std::string> field_list(const std::string& field) {
   return fields;
 }
 
-// The files input reads, found cheaply: a mesh series is listed without reading or voxelizing a
-// step (a cached build is then played at once, as before its files were in the key).
-std::vector<std::string> input_files(const std::string& input, const PlayInputOptions& o,
-                                     const std::string& field) {
-  if (tsp::is_mesh_input(input, o.source.allow_external))
-    return tsp::open_mesh_source(input, field, o.source.allow_external, o.source.plot3d_grid)
-        ->files();
-  tsp::SourceOptions so = o.source;
-  so.field = field;
-  return tsp::open_input(input, so, o.voxelize)->files();
-}
-
 std::string prepare_adaptive(const std::string& input, const PlayInputOptions& o,
                              const std::string& cache_dir, const PlayBuildHooks& hooks) {
   if (o.field.find(',') != std::string::npos)
@@ -168,14 +156,24 @@ std::string prepare_play_input(const std::string& input, const PlayInputOptions&
   // --field A,B,C: several fields, one tree each (the first shown), as `build` does.
   const std::vector<std::string> fields = field_list(o.field);
   const std::string first_field = fields.empty() ? o.field : fields[0];
-  // Keyed by every file the source reads (series members, blocks, grid and solutions).
-  const std::string out =
-      play_cache_path(input, o, cache_dir, input_files(input, o, first_field));
+  // Keyed by every file the source reads (series members, blocks, grid and solutions). A mesh
+  // series is listed through its mesh source, without reading or voxelizing a step, so that a
+  // cached build plays at once; a grid's source is opened once and kept for the build.
+  std::unique_ptr<tsp::VolumeSource> first;
+  std::vector<std::string> files;
+  if (tsp::is_mesh_input(input, o.source.allow_external)) {
+    files = tsp::open_mesh_source(input, first_field, o.source.allow_external,
+                                  o.source.plot3d_grid)->files();
+  } else {
+    first = open_field(first_field);
+    files = first->files();
+  }
+  const std::string out = play_cache_path(input, o, cache_dir, files);
   if (reuse_cache_entry(out, hooks)) {
     hooks.say("play: " + input + " is not a .tsp file; playing " + out + ", built from it earlier");
     return out;
   }
-  std::unique_ptr<tsp::VolumeSource> first = open_field(first_field);
+  if (!first) first = open_field(first_field);
   make_builds_folder(out);
   hooks.say("play: " + input + " is not a .tsp file; building it into " + out +
             " (reused next time)");
