@@ -24,7 +24,7 @@ struct V3 {
 
 // The trilinear blend (Texels::fetch) at u with the texels at shift k, lane by lane: each
 // x-pair of texels is one 32-bit gather (the texture has a spare texel at its end for the last).
-V trilinear(const Texels& t, const V3& u, const V3& k) {
+HWY_INLINE V trilinear(const Texels& t, const V3& u, const V3& k) {
   const D d;
   const DI di;
   const VI zero = hn::Zero(di);
@@ -39,15 +39,12 @@ V trilinear(const Texels& t, const V3& u, const V3& k) {
   const VI ix = hn::Min(hn::Max(hn::Add(fx, hn::ConvertTo(di, k.x)), zero), hn::Set(di, t.sx - 1));
   const VI iy = hn::Min(hn::Max(hn::Add(fy, hn::ConvertTo(di, k.y)), zero), hn::Set(di, t.sy - 1));
   const VI iz = hn::Min(hn::Max(hn::Add(fz, hn::ConvertTo(di, k.z)), zero), hn::Set(di, t.sz - 1));
-  const VI one = hn::Set(di, 1);
-  const VI iy1 = hn::Min(hn::Add(iy, one), hn::Set(di, t.sy - 1));
-  const VI iz1 = hn::Min(hn::Add(iz, one), hn::Set(di, t.sz - 1));
+  // Byte offsets: texel (ix, iy, iz), and the steps to the next row and slice (0 at the
+  // texture's last row or slice: clamp to edge).
   const VI sx = hn::Set(di, t.sx), sy = hn::Set(di, t.sy);
-  const VI z0 = hn::Mul(iz, sy), z1 = hn::Mul(iz1, sy);
-  const VI two = hn::Set(di, 2);
-  auto row = [&](VI yy, VI zz) {  // byte offset of texel (ix, yy, zz / sy)
-    return hn::Mul(hn::Add(ix, hn::Mul(hn::Add(yy, zz), sx)), two);
-  };
+  const VI at = hn::ShiftLeft<1>(hn::Add(ix, hn::Mul(hn::Add(iy, hn::Mul(iz, sy)), sx)));
+  const VI dy = hn::IfThenElseZero(hn::Lt(iy, hn::Set(di, t.sy - 1)), hn::Set(di, 2 * t.sx));
+  const VI dz = hn::IfThenElseZero(hn::Lt(iz, hn::Set(di, t.sz - 1)), hn::Set(di, 2 * t.sx * t.sy));
   const auto* base = reinterpret_cast<const std::int32_t*>(t.data);
   const VI mask = hn::Set(di, 0xFFFF);
   // An x-pair at the texture's last column reads the next row's first texel as its second: a
@@ -60,8 +57,9 @@ V trilinear(const Texels& t, const V3& u, const V3& k) {
                                 hn::ConvertTo(d, hn::And(hn::ShiftRight<16>(v), mask)));
     return hn::MulAdd(hn::Sub(hi, lo), w, lo);
   };
-  const V c00 = pair(row(iy, z0), wx), c10 = pair(row(iy1, z0), wx);
-  const V c01 = pair(row(iy, z1), wx), c11 = pair(row(iy1, z1), wx);
+  const VI at_z = hn::Add(at, dz);
+  const V c00 = pair(at, wx), c10 = pair(hn::Add(at, dy), wx);
+  const V c01 = pair(at_z, wx), c11 = pair(hn::Add(at_z, dy), wx);
   const V c0 = hn::MulAdd(hn::Sub(c10, c00), wy, c00), c1 = hn::MulAdd(hn::Sub(c11, c01), wy, c01);
   return hn::Mul(hn::MulAdd(hn::Sub(c1, c0), wz, c0), hn::Set(d, kUnorm16));
 }
@@ -82,7 +80,7 @@ V& axis_of(V3& p, int a) { return a == 0 ? p.x : a == 1 ? p.y : p.z; }
 
 // One gradient tap (Sampler::tap): the value one texel from u along `axis` (sign ±1), clamped
 // into the brick or read from the neighbour beyond the face, and where along the axis it was read.
-void tap(const Texels& t, const BrickView& b, const V3& p, int axis, float sign, V& value,
+HWY_INLINE void tap(const Texels& t, const BrickView& b, const V3& p, int axis, float sign, V& value,
          V& where) {
   const D d;
   V3 q = p;
@@ -155,13 +153,14 @@ void shade_lanes(const Sampler& smp, const BrickView& b, const V3& p, V& r, V& g
   bl = light(bl);
 }
 
-V3 load_positions(const Positions& p, int n) {
+// The n positions from `start` (a multiple of the lanes); unused lanes repeat the first
+// position (valid reads).
+HWY_INLINE V3 load_positions(const Positions& p, int start, int n) {
   const D d;
   const auto m = hn::FirstN(d, size_t(n));
-  // Unused lanes repeat the first position (valid reads).
-  return {hn::IfThenElse(m, hn::LoadU(d, p.x), hn::Set(d, p.x[0])),
-          hn::IfThenElse(m, hn::LoadU(d, p.y), hn::Set(d, p.y[0])),
-          hn::IfThenElse(m, hn::LoadU(d, p.z), hn::Set(d, p.z[0]))};
+  return {hn::IfThenElse(m, hn::Load(d, p.x + start), hn::Set(d, p.x[start])),
+          hn::IfThenElse(m, hn::Load(d, p.y + start), hn::Set(d, p.y[start])),
+          hn::IfThenElse(m, hn::Load(d, p.z + start), hn::Set(d, p.z[start]))};
 }
 
 void SampleBatch(const Sampler& smp, const BrickView& b, const float* row, const Positions& pos,
@@ -171,11 +170,7 @@ void SampleBatch(const Sampler& smp, const BrickView& b, const float* row, const
   const size_t lanes = hn::Lanes(d);
   for (int start = 0; start < n; start += int(lanes)) {
     const int m = std::min(int(lanes), n - start);
-    Positions chunk;
-    std::memcpy(chunk.x, pos.x + start, sizeof(float) * size_t(m));
-    std::memcpy(chunk.y, pos.y + start, sizeof(float) * size_t(m));
-    std::memcpy(chunk.z, pos.z + start, sizeof(float) * size_t(m));
-    const V3 p = load_positions(chunk, m);
+    const V3 p = load_positions(pos, start, m);
     const V v = trilinear(smp.tex, clamp3(p, b), broadcast(b.k));
     const CastTables& tf = smp.s.tf;
     const V u = hn::MulAdd(v, hn::Set(d, tf.scale), hn::Set(d, tf.offset));
@@ -188,15 +183,11 @@ void SampleBatch(const Sampler& smp, const BrickView& b, const float* row, const
     const V a = hn::GatherIndex(d, row, hn::Add(i4, hn::Set(di, 3)));
     if (shade && smp.s.shade && !hn::AllTrue(d, hn::Le(a, hn::Zero(d))))
       shade_lanes(smp, b, p, r, g, bl, a);
-    alignas(64) float lane_r[kMaxBatch], lane_g[kMaxBatch], lane_b[kMaxBatch], lane_a[kMaxBatch];
-    hn::Store(r, d, lane_r);
-    hn::Store(g, d, lane_g);
-    hn::Store(bl, d, lane_b);
-    hn::Store(a, d, lane_a);
-    std::memcpy(out.r + start, lane_r, sizeof(float) * size_t(m));
-    std::memcpy(out.g + start, lane_g, sizeof(float) * size_t(m));
-    std::memcpy(out.b + start, lane_b, sizeof(float) * size_t(m));
-    std::memcpy(out.a + start, lane_a, sizeof(float) * size_t(m));
+    // (kMaxBatch is a multiple of the lanes: whole vectors fit; lanes past n are not read.)
+    hn::Store(r, d, out.r + start);
+    hn::Store(g, d, out.g + start);
+    hn::Store(bl, d, out.b + start);
+    hn::Store(a, d, out.a + start);
   }
 }
 
@@ -205,25 +196,14 @@ void ShadeBatch(const Sampler& smp, const BrickView& b, const Positions& pos, in
   const size_t lanes = hn::Lanes(d);
   for (int start = 0; start < n; start += int(lanes)) {
     const int m = std::min(int(lanes), n - start);
-    Positions chunk;
-    Colours in{};
-    std::memcpy(chunk.x, pos.x + start, sizeof(float) * size_t(m));
-    std::memcpy(chunk.y, pos.y + start, sizeof(float) * size_t(m));
-    std::memcpy(chunk.z, pos.z + start, sizeof(float) * size_t(m));
-    std::memcpy(in.r, c.r + start, sizeof(float) * size_t(m));
-    std::memcpy(in.g, c.g + start, sizeof(float) * size_t(m));
-    std::memcpy(in.b, c.b + start, sizeof(float) * size_t(m));
-    std::memcpy(in.a, c.a + start, sizeof(float) * size_t(m));
-    const V a = hn::Load(d, in.a);
+    // Lanes past n are transparent: never lit, never read back.
+    const V a = hn::IfThenElseZero(hn::FirstN(d, size_t(m)), hn::Load(d, c.a + start));
     if (hn::AllTrue(d, hn::Le(a, hn::Zero(d)))) continue;
-    V r = hn::Load(d, in.r), g = hn::Load(d, in.g), bl = hn::Load(d, in.b);
-    shade_lanes(smp, b, load_positions(chunk, m), r, g, bl, a);
-    hn::Store(r, d, in.r);
-    hn::Store(g, d, in.g);
-    hn::Store(bl, d, in.b);
-    std::memcpy(c.r + start, in.r, sizeof(float) * size_t(m));
-    std::memcpy(c.g + start, in.g, sizeof(float) * size_t(m));
-    std::memcpy(c.b + start, in.b, sizeof(float) * size_t(m));
+    V r = hn::Load(d, c.r + start), g = hn::Load(d, c.g + start), bl = hn::Load(d, c.b + start);
+    shade_lanes(smp, b, load_positions(pos, start, m), r, g, bl, a);
+    hn::Store(r, d, c.r + start);
+    hn::Store(g, d, c.g + start);
+    hn::Store(bl, d, c.b + start);
   }
 }
 

@@ -111,10 +111,13 @@ inline int RayWalk::refined_batch(float t_out, const BrickView& b, bool closing,
     const float dt = s_.spacing / r_.cos_theta;
     Positions reads, mids;
     int n = 0;
-    for (float sb = seg_b_; n < kMaxBatch; ++n) {
-      const float d_b = r_.depth_entry + sb * r_.cos_theta;
-      float se = ((std::floor(d_b / s_.spacing + 1e-4f) + 1.f) * s_.spacing - r_.depth_entry) /
-                 r_.cos_theta;
+    // The segments end on the planes of depth (plane · spacing): the first plane past seg_b_
+    // as refined() finds it, then one plane a segment, each end from its plane alone (no
+    // chain of divisions and floors from one segment to the next).
+    const float inv_cos = 1.f / r_.cos_theta;
+    float plane = std::floor((r_.depth_entry + seg_b_ * r_.cos_theta) / s_.spacing + 1e-4f) + 1.f;
+    for (float sb = seg_b_; n < kMaxBatch; ++n, plane += 1.f) {
+      float se = (plane * s_.spacing - r_.depth_entry) * inv_cos;
       if (closing) se = std::min(se, t_out);
       if (se - sb < 1e-4f * dt) break;  // the run's end
       const float mid = 0.5f * (sb + se);
