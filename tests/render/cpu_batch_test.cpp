@@ -57,11 +57,13 @@ struct BatchScene {
   }
 };
 
-// Positions: inside, on faces, a texel beyond them, and at the texture's far corner.
+// Positions: deep inside, inside, on faces, a texel beyond them, and at the texture's far corner.
 std::vector<glm::vec3> positions() {
   std::mt19937 rng(11);
-  std::uniform_real_distribution<float> in(0.f, 8.f), edge(-0.6f, 0.6f);
+  std::uniform_real_distribution<float> in(0.f, 8.f), edge(-0.6f, 0.6f), deep(1.5f, 6.5f);
   std::vector<glm::vec3> p;
+  // First, batches whose taps all lie inside (the 32-texel stencil's path).
+  for (int i = 0; i < 48; ++i) p.push_back({deep(rng), deep(rng), deep(rng)});
   for (int i = 0; i < 200; ++i) p.push_back({in(rng), in(rng), in(rng)});
   for (int i = 0; i < 100; ++i) p.push_back({8.f + edge(rng), in(rng), in(rng)});
   for (int i = 0; i < 100; ++i) p.push_back({in(rng), edge(rng), 8.f + edge(rng)});
