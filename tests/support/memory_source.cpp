@@ -35,10 +35,24 @@ void MemorySource::read_slab(int t, int z0, int z1, std::span<float> out) {
   const std::int64_t plane = std::int64_t(dims_.x) * dims_.y;
   assert(t >= 0 && t < steps() && 0 <= z0 && z0 < z1 && z1 <= dims_.z &&
          std::int64_t(out.size()) == plane * (z1 - z0));
-  ++slab_reads_;
+  {
+    const std::lock_guard<std::mutex> lock(slab_reads_->m);
+    ++slab_reads_->n;
+  }
+  slab_reads_->changed.notify_all();
   if (t == fail_at_)
     throw tsp::IoError(describe() + ": step " + std::to_string(t) + ": simulated read failure");
   std::copy(steps_[t].begin() + z0 * plane, steps_[t].begin() + z1 * plane, out.begin());
+}
+
+int MemorySource::slab_reads() const {
+  const std::lock_guard<std::mutex> lock(slab_reads_->m);
+  return slab_reads_->n;
+}
+
+void MemorySource::wait_for_slab_reads(int n) const {
+  std::unique_lock<std::mutex> lock(slab_reads_->m);
+  slab_reads_->changed.wait(lock, [&] { return slab_reads_->n >= n; });
 }
 
 }  // namespace tsptest

@@ -1,6 +1,9 @@
 // An in-memory VolumeSource for tests: per-step float vectors, optionally failing at a step.
 #pragma once
+#include <condition_variable>
 #include <functional>
+#include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -26,8 +29,10 @@ class MemorySource : public tsp::VolumeSource {
   void read_slab(int t, int z0, int z1, std::span<float> out) override;
   /// Whether a builder may read slabs (read_slab) instead of whole steps; false at first.
   void set_reads_slabs(bool on) { reads_slabs_ = on; }
-  /// Number of read_slab calls so far.
-  int slab_reads() const { return slab_reads_; }
+  /// Number of read_slab calls so far (made on any thread). Thread-safe.
+  int slab_reads() const;
+  /// Blocks until read_slab has been called at least n times (on any thread). Thread-safe.
+  void wait_for_slab_reads(int n) const;
   /// Sample (x, y, z) of step t.
   float at(int x, int y, int z, int t) const {
     return steps_[t][x + std::size_t(dims_.x) * (y + std::size_t(dims_.y) * z)];
@@ -43,7 +48,13 @@ class MemorySource : public tsp::VolumeSource {
   int fail_at_;
   int reads_ = 0;
   bool reads_slabs_ = false;
-  int slab_reads_ = 0;
+  // read_slab's count, shared with waiting threads (the source itself stays movable).
+  struct Count {
+    std::mutex m;
+    std::condition_variable changed;
+    int n = 0;
+  };
+  std::shared_ptr<Count> slab_reads_ = std::make_shared<Count>();
 };
 
 }  // namespace tsptest

@@ -12,7 +12,6 @@
 #include <functional>
 #include <limits>
 #include <mutex>
-#include <chrono>
 #include <memory>
 #include <string>
 #include <thread>
@@ -243,14 +242,37 @@ TEST(PartitionBuild, SeveralFields) {
   for (int ranks : {2, 3}) {
     SCOPED_TRACE(ranks);
     const fs::path out = dir / ("split" + std::to_string(ranks) + ".tsp");
+    // Rank 1 runs ahead (3 ranks): rank 2 computes its bricks of the first field only once
+    // rank 1 has sent its own and opened the second field, so rank 0 receives the second
+    // field's messages while it still waits for the first's bricks from rank 2. (The fields'
+    // input scans are combined across ranks: no rank can be a whole field ahead.)
+    std::mutex m;
+    std::condition_variable opened;
+    bool rank1_on_second = false, held = false;
     run_ranks(ranks, [&](int r, tsp::BuildPartition& part) {
       tsp::BuildOptions o = options;
       o.partition = &part;
-      // Rank 1 runs ahead: it sends the next fields' bricks while rank 0 still waits for the
-      // first field's bricks of the slowed ranks.
-      if (r != 1) std::this_thread::sleep_for(std::chrono::milliseconds(100));
-      tsp::build_tsp_fields(open_field, fields, out.string(), o);
+      if (ranks == 3 && r == 2)
+        o.progress = [&](const std::string& phase, std::int64_t, std::int64_t) {
+          if (phase.rfind(fields[0] + " ", 0) != 0 || phase.find("bricks") == std::string::npos)
+            return;
+          std::unique_lock<std::mutex> lock(m);
+          held = true;
+          opened.wait(lock, [&] { return rank1_on_second; });
+        };
+      auto open_in_order = [&](const std::string& f) {
+        if (r == 1 && f == fields[1]) {
+          {
+            const std::lock_guard<std::mutex> lock(m);
+            rank1_on_second = true;
+          }
+          opened.notify_all();
+        }
+        return open_field(f);
+      };
+      tsp::build_tsp_fields(open_in_order, fields, out.string(), o);
     });
+    EXPECT_EQ(held, ranks == 3);  // rank 2 did wait for rank 1 to run ahead
     for (const std::string& f : fields)
       tsptest::expect_same_build(dir / "serial.tsp", out, ranks, f);
   }
