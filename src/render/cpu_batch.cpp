@@ -148,24 +148,21 @@ HWY_INLINE V3 gradient_stencil(const Texels& t, const V3& u, const V3& k) {
   // Along x: each core row's differences at x and x + 1, blended with p's weights.
   auto row_x = [&](const Row& r) { return lerp(hn::Sub(r.x1, r.m1), hn::Sub(r.x2, r.x0), wx); };
   const V gx = lerp(lerp(row_x(r00), row_x(r10), wy), lerp(row_x(r01), row_x(r11), wy), wz);
-  // Along y, at columns x and x + 1 of slices z and z + 1: rows y − 1 and y + 2 beside the core.
-  const Pair ym0 = pair(hn::Sub(at, vrow)), ym1 = pair(hn::Sub(a01, vrow));
-  const Pair yp0 = pair(hn::Add(at, dy2)), yp1 = pair(hn::Add(a01, dy2));
-  auto col_y = [&](V below, V here, V next, V beyond) {
-    return lerp(hn::Sub(next, below), hn::Sub(beyond, here), wy);
+  // Along y (z), at columns x and x + 1 of the core rows o0 and o1 (their here and next rows
+  // h, n): the rows one step before and past next read beside them; w along the axis, w_outer
+  // across it.
+  auto cross_axis = [&](VI o0, VI o1, VI step, VI step2, const Row& h0, const Row& n0,
+                        const Row& h1, const Row& n1, V w, V w_outer) {
+    const Pair m0 = pair(hn::Sub(o0, step)), m1 = pair(hn::Sub(o1, step));
+    const Pair p0 = pair(hn::Add(o0, step2)), p1 = pair(hn::Add(o1, step2));
+    auto col = [&](V below, V here, V next, V beyond) {
+      return lerp(hn::Sub(next, below), hn::Sub(beyond, here), w);
+    };
+    return lerp(lerp(col(m0.x0, h0.x0, n0.x0, p0.x0), col(m0.x1, h0.x1, n0.x1, p0.x1), wx),
+                lerp(col(m1.x0, h1.x0, n1.x0, p1.x0), col(m1.x1, h1.x1, n1.x1, p1.x1), wx), w_outer);
   };
-  const V gy = lerp(lerp(col_y(ym0.x0, r00.x0, r10.x0, yp0.x0), col_y(ym0.x1, r00.x1, r10.x1, yp0.x1), wx),
-                    lerp(col_y(ym1.x0, r01.x0, r11.x0, yp1.x0), col_y(ym1.x1, r01.x1, r11.x1, yp1.x1), wx),
-                    wz);
-  // Along z, at columns x and x + 1 of rows y and y + 1: slices z − 1 and z + 2 beside the core.
-  const Pair zm0 = pair(hn::Sub(at, vslice)), zm1 = pair(hn::Sub(a10, vslice));
-  const Pair zp0 = pair(hn::Add(at, dz2)), zp1 = pair(hn::Add(a10, dz2));
-  auto col_z = [&](V below, V here, V next, V beyond) {
-    return lerp(hn::Sub(next, below), hn::Sub(beyond, here), wz);
-  };
-  const V gz = lerp(lerp(col_z(zm0.x0, r00.x0, r01.x0, zp0.x0), col_z(zm0.x1, r00.x1, r01.x1, zp0.x1), wx),
-                    lerp(col_z(zm1.x0, r10.x0, r11.x0, zp1.x0), col_z(zm1.x1, r10.x1, r11.x1, zp1.x1), wx),
-                    wy);
+  const V gy = cross_axis(at, a01, vrow, dy2, r00, r10, r01, r11, wy, wz);
+  const V gz = cross_axis(at, a10, vslice, dz2, r00, r01, r10, r11, wz, wy);
   const V scale = hn::Set(d, 0.5f * kUnorm16);
   return {hn::Mul(gx, scale), hn::Mul(gy, scale), hn::Mul(gz, scale)};
 }
