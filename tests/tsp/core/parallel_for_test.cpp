@@ -84,25 +84,36 @@ TEST(ParallelFor, PerWorkerStateNeedsNoLock) {
 }
 
 TEST(ParallelFor, FirstErrorIsRethrownAndLaterChunksDoNotStart) {
-  for (int threads : {1, 3}) {
-    std::atomic<int> ran{0};
-    std::atomic<bool> thrown{false};
-    EXPECT_THROW(parallel_for(200, 1, threads,
-                              [&](int, std::int64_t b, std::int64_t) {
-                                ++ran;
-                                if (b == 10) {
-                                  thrown = true;
-                                  throw std::runtime_error("chunk 10 failed");
-                                }
-                                // Later chunks hold their worker until the error (a latch, no
-                                // sleep), so none can race through the rest meanwhile.
-                                while (b > 10 && !thrown) std::this_thread::yield();
-                              }),
-                 std::runtime_error);
-    // Only the chunks already handed out when the error happened ran: far fewer than all.
-    EXPECT_LT(ran.load(), 100);
-    EXPECT_GE(ran.load(), 11);
+  // One worker: chunks 0 … 10 ran, chunk 10 threw, nothing after it started.
+  std::atomic<int> ran{0};
+  try {
+    parallel_for(200, 1, 1, [&](int, std::int64_t b, std::int64_t) {
+      ++ran;
+      if (b == 10) throw std::runtime_error("chunk 10 failed");
+    });
+    ADD_FAILURE() << "no error rethrown";
+  } catch (const std::runtime_error& e) {
+    EXPECT_STREQ(e.what(), "chunk 10 failed");
   }
+  EXPECT_EQ(ran.load(), 11);
+  // Three workers: the only error is rethrown, after every chunk up to it ran. How many later
+  // chunks the others start before the failing worker has recorded its error depends on the
+  // scheduler (trivial chunks can outrun the unwinding), so it is not asserted here; stopping
+  // within one chunk per worker is asserted by the interruption test below, whose flag is set
+  // before any waiting chunk goes on.
+  ran = 0;
+  std::atomic<bool> reached{false};
+  EXPECT_THROW(parallel_for(200, 1, 3,
+                            [&](int, std::int64_t b, std::int64_t) {
+                              ++ran;
+                              if (b == 10) {
+                                reached = true;
+                                throw std::runtime_error("chunk 10 failed");
+                              }
+                            }),
+               std::runtime_error);
+  EXPECT_TRUE(reached.load());
+  EXPECT_GE(ran.load(), 11);
 }
 
 TEST(ParallelFor, AnInterruptionStopsItWithinOneChunkPerWorker) {
