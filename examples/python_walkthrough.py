@@ -32,7 +32,7 @@ nodes = f.nodes()
 print("TSP nodes", len(nodes["mean"]), "root spatial error", nodes["spatial_error"][0])
 
 # 3. Eight frames, as numpy RGBA images (the pixels `tspplay render` writes).
-tf = tspplay.TransferFunction.preset("inferno")
+tf = tspplay.TransferFunction.preset("auto")  # opacity where the data is rare
 frames = f.render(steps=range(0, 16, 2), tf=tf, size=(320, 240), view=(30, 20))
 print(len(frames), "frames", frames[0].shape, "median", f"{frames.info['median_ms']:.1f} ms",
       "caster", frames.reports[0]["caster"])

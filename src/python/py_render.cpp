@@ -208,8 +208,9 @@ void bind_render(py::module_& m) {
     namespace fs = std::filesystem;
     std::error_code ec;
     if (fs::exists(TSPPLAY_BUILD_BIN, ec)) return std::string(TSPPLAY_BUILD_BIN);
-    return std::string(TSPPLAY_INSTALL_BIN);
-  }, "The tspplay executable `play` runs (the build tree's, else the installed one).");
+    if (fs::exists(TSPPLAY_INSTALL_BIN, ec)) return std::string(TSPPLAY_INSTALL_BIN);
+    return std::string("tspplay");  // from PATH
+  }, "The tspplay executable `play` runs (the build tree's, the installed one, or PATH's).");
 }
 
 }  // namespace tsppy
