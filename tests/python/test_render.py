@@ -1,5 +1,6 @@
 """File.render, metrics, diff, movies and transfer functions against the CLI's outputs."""
 import json
+import os
 import shutil
 import subprocess
 import sys
@@ -175,3 +176,32 @@ def test_transfer_functions(built, cli, tmp_path):
             tspplay.TransferFunction.from_matplotlib("magma")
     else:
         assert tspplay.TransferFunction.from_matplotlib("magma").table()[1].shape == (256, 4)
+
+
+@pytest.mark.skipif(not os.environ.get("DISPLAY"), reason="needs an X display (scripts/test.sh runs one)")
+def test_play_opens_the_window_on_an_array(series, tmp_path):
+    shot = tmp_path / "shot.png"
+    tspplay.play(series[:3], cache_dir=tmp_path / "cache", screenshot=shot, size=(160, 120))
+    assert tspplay.read_png(str(shot)).shape == (120, 160, 4)
+    cached = list((tmp_path / "cache").iterdir())
+    assert len(cached) == 1 and cached[0].suffix == ".tsp"
+    # The same samples again: the cached tree is played, not rebuilt.
+    mtime = cached[0].stat().st_mtime_ns
+    tspplay.play(series[:3].copy(), cache_dir=tmp_path / "cache", screenshot=shot, size=(160, 120))
+    assert cached[0].stat().st_mtime_ns == mtime
+
+
+def test_renders_from_two_threads_at_once_give_the_sequential_pictures(built):
+    sequential = {k: built.render(steps=k, size=SIZE)[0] for k in (1, 4)}
+    concurrent = {}
+
+    def render(k):
+        concurrent[k] = built.render(steps=k, size=SIZE)[0]
+
+    threads = [threading.Thread(target=render, args=(k,)) for k in sequential]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    for k, img in sequential.items():
+        assert concurrent[k].tobytes() == img.tobytes()
