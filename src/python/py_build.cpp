@@ -98,6 +98,11 @@ void check_finite(std::span<const float> out, int t, tsp::Dims d, int z0) {
     }
 }
 
+// Planes per slab an array hands the builder: the builder's own choice (a quarter of a brick
+// layer) took 8x more passes of its slab loop than an HDF5 input chunked 64 planes deep and built
+// ~15 % slower (docs/results.md); 64 planes cost at most 64 planes of buffer.
+constexpr int kSlabPlanes = 64;
+
 // What every in-memory source reports besides the samples.
 struct SeriesInfo {
   std::vector<double> times;
@@ -133,6 +138,7 @@ class ArraySource final : public tsp::VolumeSource {
   std::string describe() const override { return info_.name; }
   void read_step(int t, std::span<float> out) override { read_slab(t, 0, dims_.z, out); }
   bool reads_slabs() const override { return true; }
+  int slab_alignment() const override { return kSlabPlanes; }
   void read_slab(int t, int z0, int z1, std::span<float> out) override {
     copy_planes(views_[std::size_t(t)], dims_, z0, z1, out);
     if (info_.refuse_nonfinite) check_finite(out, t, dims_, z0);
