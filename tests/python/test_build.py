@@ -149,3 +149,23 @@ def test_interrupted_build_writes_nothing(series, tmp_path):
     with pytest.raises(KeyboardInterrupt):
         tspplay.build(series, out, brick=8, progress=ctrl_c)
     assert os.listdir(tmp_path) == []
+
+
+def test_python_exceptions_from_the_data_or_the_callback_pass_through(tmp_path):
+    out = tmp_path / "e.tsp"
+
+    def crashing():
+        for t in range(4):
+            if t == 2:
+                raise ValueError("simulation crashed at step 2")
+            yield np.full((16, 16, 16), t, np.float32)
+
+    with pytest.raises(ValueError, match="crashed at step 2"):
+        tspplay.build(crashing(), out, steps=4)
+
+    def refuse(phase, done, total):
+        raise RuntimeError("stop from the callback")
+
+    with pytest.raises(RuntimeError, match="stop from the callback"):
+        tspplay.build(np.ones((3, 16, 16, 16), np.float32), out, progress=refuse)
+    assert os.listdir(tmp_path) == []
