@@ -17,6 +17,9 @@ PKGS=(
   xvfb xauth  # xvfb-run: a virtual X display for the GLFW (window) tests when DISPLAY is unset
   ffmpeg      # movies: render --movie, the demo's movie, and the suite's movie test
   xdotool     # real X key and mouse events for the player tests under Xvfb
+  pybind11-dev python3-dev  # the Python module tspplay (src/python, docs/python.md)
+  python3-pytest python3-numpy python3-xarray  # its tests (tests/python)
+  python3-h5py  # bench/python_build.py reads the HDF5 series it compares against
 )
 for a in "$@"; do
   # Open MPI's compiler wrappers and launcher, and parallel HDF5 (tspplay-mpi's own build of

@@ -14,167 +14,21 @@
 #include "jobs/calibration.h"
 #include "jobs/movie.h"
 #include "cli/progress_bar.h"
+#include "cli/render_args.h"
 #include "jobs/render_job.h"
 #include "tsp/core/error.h"
 
 namespace tspcli {
 namespace {
 
-namespace fs = std::filesystem;
-
-/// Largest --target-fps (as play's).
-constexpr double kMaxTargetFps = 240;
-
-struct RenderArgs {
-  std::string field;
-  std::string file, tf = "preset:auto", out, steps, size = "640x480", view = "30,20", movie,
-              tf_range;
-  int fps = tspgl::kMovieFps;
-  std::string annotate = "off";
-  std::string metric = "approximate", cache = "on";
+// `render`'s options: the text options (cli/render_args.h) and the settings table's.
+struct RenderCliArgs : RenderArgs {
   SettingsOptions settings;  ///< every knob of the settings table
-  int passes = 1;
-  double texture_budget_mb = double(tspgl::kDefaultTextureBudget) / (1 << 20);
-  double ram_budget_mb = double(tspgl::kDefaultBrickBudget) / (1 << 20);
-  std::string baseline = "off", perspective = "off";
-  double quality = 0;
-  std::string calibration_dir, save_tf;
-  std::string lod;       ///< off|auto|K|splat:PX ("": off, or auto with --target-ms)
-  std::string lod_fallback = "scale";
-  double target_ms = 0, target_fps = 0, orbit = 0;
-  int split_limit = tsp::LodOptions{}.split_limit;
-  std::string focus, lod_filter = "error", eye;
-  std::string proportions = "physical", scale;
-  std::vector<std::string> probes;
-  std::string probe_op = "intersect", probe_surface = "off", probe_tf, probe_motion;
-  std::string surface_mesh, surface_field, surface_tf;
-  std::string gl = "auto";  ///< --gl: auto|egl|osmesa
-  int gpu = -1;             ///< --gpu: EGL device index
-  double surface_target_ms = 0;
 };
 
-/// The knobs --quality picks itself (giving one of them with it is an error).
-constexpr const char* kQualityKnobs[] = {"--spatial-tol", "--temporal-tol", "--spacing",
-                                         "--compositing", "--preintegrated", "--sampling-tol"};
-
-void run(const RenderArgs& a) {
-  tspgl::RenderJobOptions o;
-  o.tsp_path = a.file;
-  o.field = a.field;
-  o.tf = a.tf;
-  o.tf_range = tsp::parse_tf_range(a.tf_range);
-  o.annotate = a.annotate == "on";
-  o.out_dir = a.out;
-  const StepRange steps = parse_steps(a.steps);
-  o.first_step = steps.first;
-  o.last_step = steps.last;
-  o.step_stride = steps.stride;
-  o.settings = a.settings.apply();
-  o.metric = tsp::parse_metric(a.metric);
-  o.cache = a.cache == "off" ? tsp::CachePolicy::off : tsp::CachePolicy::on;
-  o.baseline = a.baseline == "on";
-  std::tie(o.camera.width, o.camera.height) = parse_size(a.size);
-  auto view = tsp::parse_view_angles(a.view);
-  o.camera.azimuth_deg = view[0];
-  o.camera.elevation_deg = view[1];
-  o.camera.projection =
-      a.perspective == "on" ? tsp::Projection::perspective : tsp::Projection::orthographic;
-  o.passes = a.passes;
-  o.gl = tspgl::parse_headless_gl(a.gl, "--gl");
-  o.gpu = a.gpu;
-  if (a.quality != 0)
-    for (const std::string& given : a.settings.given())
-      for (const char* knob : kQualityKnobs)
-        if (given == knob)
-          throw tsp::UsageError("--quality picks compositing, spacing, tolerances and "
-                                "pre-integration itself: drop " + given);
-  if (a.quality != 0 && o.baseline)
-    throw tsp::UsageError("--quality is for the TSP renderer: drop --baseline");
-  o.quality = a.quality;
-  o.calibration_dir = a.calibration_dir;
-  o.save_tf = a.save_tf;
-  const std::string lod =
-      a.lod.empty() ? (a.target_ms > 0 || a.target_fps > 0 ? "auto" : "off") : a.lod;
-  if (lod == "off") {
-    o.lod = tspgl::LodMode::off;
-  } else if (lod == "auto") {
-    o.lod = tspgl::LodMode::adaptive;
-  } else if (lod.rfind("splat:", 0) == 0) {
-    o.lod = tspgl::LodMode::splat;
-    o.splat_px = parse_number(lod.substr(6), "--lod splat:PX");
-    if (!(o.splat_px >= 0))
-      throw tsp::UsageError("--lod " + lod + ": expected a minimum splat size of 0 pixels or more");
-  } else {
-    o.lod = tspgl::LodMode::fixed;
-    o.lod_level = int(parse_integer(lod, "--lod", 0, 30, "off, auto or a level 0 to 30"));
-  }
-  if (a.target_fps != 0) {  // the player's unit; --target-ms is the same target as a frame time
-    if (a.target_ms != 0)
-      throw tsp::UsageError("--target-fps and --target-ms set the same target: give one");
-    if (!(a.target_fps >= 1 && a.target_fps <= kMaxTargetFps))
-      throw tsp::UsageError("--target-fps " + std::to_string(a.target_fps) + ": expected 1 to " +
-                            std::to_string(int(kMaxTargetFps)) + " frames per second");
-    o.target_ms = 1000.0 / a.target_fps;
-  } else {
-    o.target_ms = a.target_ms;
-  }
-  o.orbit_deg = a.orbit;
-  if (a.split_limit < 1) throw tsp::UsageError("--split-limit " + std::to_string(a.split_limit) +
-                                               ": expected at least 1 split per frame");
-  o.lod_options.split_limit = a.split_limit;
-  o.lod_options.fallback = tsp::parse_lod_fallback(a.lod_fallback, "--lod-fallback");
-  if (!a.focus.empty()) o.lod_options.focus = parse_triple(a.focus, "--focus", "X,Y,Z in voxels");
-  o.lod_filter = tsp::parse_lod_filter(a.lod_filter, "--lod-filter");
-  if (o.lod_filter.kind != tsp::LodFilter::error) {  // LaMar's filters choose the cut themselves
-    if (!a.lod.empty() || a.target_ms != 0 || a.target_fps != 0)
-      throw tsp::UsageError("--lod-filter " + a.lod_filter +
-                            " chooses the cut from where the tiles lie: drop --lod, --target-ms "
-                            "and --target-fps (--lod-filter error is the error-driven cut)");
-    o.lod = tspgl::LodMode::filter;
-  }
-  if (!a.eye.empty()) {  // a placed eye looks along the view's direction, in perspective
-    const auto e = parse_triple(a.eye, "--eye", "X,Y,Z in voxels");
-    o.camera.eye = std::array<double, 3>{e[0], e[1], e[2]};
-    o.camera.projection = tsp::Projection::perspective;
-  }
-  if (a.proportions != "physical" && a.proportions != "samples")
-    throw tsp::UsageError("--proportions '" + a.proportions + "': expected physical or samples");
-  o.physical_proportions = a.proportions == "physical";
-  for (const std::string& p : a.probes) o.probes.push_back(tsp::parse_probe(p));
-  o.probe_op = tsp::parse_probe_op(a.probe_op);
-  o.probe_surface = a.probe_surface == "on";
-  o.probe_tf = a.probe_tf;
-  o.surface_mesh = a.surface_mesh;
-  o.surface_field = a.surface_field;
-  o.surface_tf = a.surface_tf;
-  o.surface_target_ms = a.surface_target_ms;
-  if (!a.probe_motion.empty())
-    o.probe_motion = parse_triple(a.probe_motion, "--probe-motion", "DX,DY,DZ per frame");
-  if (!a.scale.empty())
-    o.scale = parse_triple(a.scale, "--scale", "SX,SY,SZ, factors on the voxel spacing");
+void run(const RenderCliArgs& a) {
   if (a.out.empty()) throw tsp::UsageError("-o: the output directory must not be empty");
-  if (!(a.texture_budget_mb > 0) || !(a.texture_budget_mb <= double(tspgl::kMaxBudgetBytes >> 20)))
-    throw tsp::UsageError("--texture-budget " + std::to_string(a.texture_budget_mb) +
-                          ": expected a budget in (0, " +
-                          std::to_string(tspgl::kMaxBudgetBytes >> 20) + "] MiB");
-  o.texture_budget = std::max<std::int64_t>(1, std::int64_t(a.texture_budget_mb * (1 << 20)));
-  if (!(a.ram_budget_mb > 0) || !(a.ram_budget_mb <= double(tspgl::kMaxBudgetBytes >> 20)))
-    throw tsp::UsageError("--ram-budget " + std::to_string(a.ram_budget_mb) +
-                          ": expected a budget in (0, " +
-                          std::to_string(tspgl::kMaxBudgetBytes >> 20) + "] MiB");
-  o.ram_budget = std::max<std::int64_t>(1, std::int64_t(a.ram_budget_mb * (1 << 20)));
-
-  if (!a.movie.empty()) {  // checked before rendering: a bad movie request wastes no frames
-    tspgl::check_movie_name(a.movie, "--movie");
-    if (a.fps < 1 || a.fps > 120)
-      throw tsp::UsageError("--fps " + std::to_string(a.fps) + ": expected 1..120");
-    if (!tspgl::find_on_path("ffmpeg"))
-      throw tsp::IoError("--movie " + a.movie +
-                         ": ffmpeg is not on PATH (apt-get install ffmpeg; scripts/install-deps.sh "
-                         "installs it)");
-    o.movie = a.movie;
-    o.fps = a.fps;
-  }
+  const tspgl::RenderJobOptions o = render_job_options(a, a.settings.apply(), a.settings.given());
 
   ProgressBar bar;
   auto result = tspgl::run_render_job(
@@ -213,7 +67,7 @@ void run(const RenderArgs& a) {
 
 const CommandRegistrar reg(30, [](CLI::App& app) {
   auto* c = app.add_subcommand("render", "Render steps headless (EGL or OSMesa: --gl) to PNGs and frames.json");
-  auto a = std::make_shared<RenderArgs>();
+  auto a = std::make_shared<RenderCliArgs>();
   c->add_option("file", a->file, "The .tsp file")->required();
   c->add_option("--field", a->field, "A file with several fields: this one (default: the first)");
   c->add_option("--tf", a->tf,

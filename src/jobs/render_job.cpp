@@ -45,7 +45,9 @@ json lod_json(const LodRecord& l) {
           {"splat_px", s.splat_px},          {"splats", s.splats}};
 }
 
-json frame_json(const FrameRecord& f) {
+}  // namespace
+
+nlohmann::json frame_json(const FrameRecord& f) {
   const FrameReport& r = f.report;
   json j = {{"pass", f.pass},
           {"step", r.step},
@@ -87,8 +89,6 @@ json frame_json(const FrameRecord& f) {
   }
   return j;
 }
-
-}  // namespace
 
 bool is_frame_set_name(const std::string& name) {
   if (name == "frames.json") return true;

@@ -4,6 +4,7 @@
 #pragma once
 #include <filesystem>
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -163,6 +164,9 @@ RenderJobResult run_render_job(
 /// The inclusive step range [first, last] of path's tree (last −1: the final step), validated;
 /// returns last. Throws tsp::UsageError naming the file and its steps.
 int checked_last_step(const tsp::TspTree& tree, int first, int last, const std::string& path);
+
+/// One frame's entry of frames.json (step, timings, classes, caster, LOD, …). Never throws.
+nlohmann::json frame_json(const FrameRecord& f);
 
 /// Whether name belongs to a render's frame set (step_NNNN.png, frames.json): what replacing the
 /// output folder drops; other files there are kept. Never throws.

@@ -1,0 +1,63 @@
+// `tspplay render`'s options as text, and their one mapping onto the job's options: the CLI and
+// the Python module (src/python) both go through render_job_options, so every check and message
+// is the same.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "jobs/movie.h"
+#include "jobs/render_job.h"
+#include "render/render_settings.h"
+
+namespace tspcli {
+
+/// `render`'s options besides the settings table, as the command line gives them (text, as
+/// typed; numbers where CLI11 parses them). The defaults are the command's.
+struct RenderArgs {
+  std::string field;
+  std::string file, tf = "preset:auto", out, steps, size = "640x480", view = "30,20", movie,
+              tf_range;
+  int fps = tspgl::kMovieFps;
+  std::string annotate = "off";
+  std::string metric = "approximate", cache = "on";
+  int passes = 1;
+  double texture_budget_mb = double(tspgl::kDefaultTextureBudget) / (1 << 20);
+  double ram_budget_mb = double(tspgl::kDefaultBrickBudget) / (1 << 20);
+  std::string baseline = "off", perspective = "off";
+  double quality = 0;
+  std::string calibration_dir, save_tf;
+  std::string lod;       ///< off|auto|K|splat:PX ("": off, or auto with --target-ms)
+  std::string lod_fallback = "scale";
+  double target_ms = 0, target_fps = 0, orbit = 0;
+  int split_limit = tsp::LodOptions{}.split_limit;
+  std::string focus, lod_filter = "error", eye;
+  std::string proportions = "physical", scale;
+  std::vector<std::string> probes;
+  std::string probe_op = "intersect", probe_surface = "off", probe_tf, probe_motion;
+  std::string surface_mesh, surface_field, surface_tf;
+  std::string gl = "auto";  ///< --gl: auto|egl|osmesa
+  int gpu = -1;             ///< --gpu: EGL device index
+  double surface_target_ms = 0;
+};
+
+/// Largest --target-fps (as play's).
+inline constexpr double kMaxTargetFps = 240;
+
+/// The long names of RenderArgs' options, as `render` takes them ("tf-range", "probe", …; the
+/// input file is "file", -o is "output"). Never throws.
+std::vector<std::string> render_arg_names();
+
+/// Sets option `name` (a render_arg_names() entry) of a from text as the command line would:
+/// numbers parsed whole (tsp::UsageError naming --NAME otherwise), "probe" appended. Returns
+/// false, changing nothing, for an unknown name.
+bool set_render_arg(RenderArgs& a, const std::string& name, const std::string& text);
+
+/// The job `render` runs for a, drawn with settings (the settings table's knobs, already parsed
+/// and validated); given_settings: the table's options given explicitly ("--spacing", …), which
+/// --quality refuses. Checks every option but -o (empty: no frames folder) (and, with --movie, that ffmpeg is on PATH) before
+/// anything is opened. Throws tsp::UsageError naming the option, the text and what it accepts;
+/// tsp::IoError when --movie has no ffmpeg. Never touches files otherwise; thread-safe.
+tspgl::RenderJobOptions render_job_options(const RenderArgs& a, const tspgl::RenderSettings& settings,
+                                           const std::vector<std::string>& given_settings);
+
+}  // namespace tspcli
