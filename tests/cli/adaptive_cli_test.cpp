@@ -17,7 +17,7 @@ using tsptest::run_tspplay;
 
 namespace {
 
-std::string q(const fs::path& p) { return tsptest::quote(p); }
+using tsptest::q;
 
 fs::path dam() {
   return tsptest::datasets_dir() / "samples/damBreakWithObstacle/damBreakWithObstacle.vtu.series";

@@ -24,7 +24,7 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 using tsptest::run_tspplay;
 
-std::string q(const fs::path& p) { return tsptest::quote(p); }
+using tsptest::q;
 
 json read_json(const fs::path& p) {
   std::ifstream in(p);

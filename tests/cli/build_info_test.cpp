@@ -19,7 +19,7 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 using tsptest::run_tspplay;
 
-std::string q(const fs::path& p) { return tsptest::quote(p); }
+using tsptest::q;
 
 fs::path katrina() {
   return tsptest::shared_data_dir() / "wrf-katrina" / "ci_test_file.nc";

@@ -23,7 +23,7 @@ using tsptest::run_tspplay;
 
 namespace {
 
-std::string q(const fs::path& p) { return tsptest::quote(p); }
+using tsptest::q;
 
 // ΔE above which a pixel shows something; the last step's 99th percentile must pass
 // kPictureDeltaE (more than 1 % of the pixels show something).

@@ -21,7 +21,7 @@ tsp::Image random_image(int w, int h, unsigned seed) {
   return img;
 }
 
-std::string q(const fs::path& p) { return tsptest::quote(p); }
+using tsptest::q;
 
 struct Pair {
   fs::path dir, a, b;

@@ -14,7 +14,7 @@ namespace {
 namespace fs = std::filesystem;
 using tsptest::run_tspplay;
 
-std::string q(const fs::path& p) { return tsptest::quote(p); }
+using tsptest::q;
 
 TEST(GenerateCli, ListNamesEveryDataset) {
   auto r = run_tspplay("generate --list");

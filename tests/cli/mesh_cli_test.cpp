@@ -16,7 +16,7 @@ namespace {
 namespace fs = std::filesystem;
 using tsptest::run_tspplay;
 
-std::string q(const fs::path& p) { return tsptest::quote(p); }
+using tsptest::q;
 
 // Runs of lit pixels along row y.
 int lit_runs(const tsp::Image& img, int y) {

@@ -19,7 +19,7 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 using tsptest::run_tspplay;
 
-std::string q(const fs::path& p) { return tsptest::quote(p); }
+using tsptest::q;
 
 std::string step_png(int t) {
   char name[32];

@@ -22,7 +22,7 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 using tsptest::run_tspplay;
 
-std::string q(const fs::path& p) { return tsptest::quote(p); }
+using tsptest::q;
 
 fs::path make_tsp() {
   fs::path dir = tsptest::temp_dir();

@@ -22,7 +22,7 @@ using tsptest::run_tspplay;
 
 namespace {
 
-std::string q(const fs::path& p) { return tsptest::quote(p); }
+using tsptest::q;
 
 nlohmann::json frames(const fs::path& dir) {
   std::ifstream in(dir / "frames.json");

@@ -9,6 +9,7 @@
 #include "render/volume_renderer.h"
 #include "support/memory_source.h"
 #include "support/paths.h"
+#include "support/render_scene.h"
 #include "tsp/build/build.h"
 #include "tsp/core/color.h"
 #include "tsp/lod/lod_cut.h"
@@ -20,41 +21,15 @@
 namespace tspgl {
 namespace {
 
-std::string build(tsp::VolumeSource& src, const std::string& name) {
-  const std::string path = (tsptest::temp_dir() / (name + ".tsp")).string();
-  tsp::BuildOptions o;
-  o.brick_size = 16;
-  o.range = tsp::ValueRange{0, 1};
-  tsp::build_tsp_file(src, path, o);
-  return path;
-}
+using tsptest::RenderScene;
 
-struct Scene {
-  std::unique_ptr<tsp::TspFile> file;
-  std::unique_ptr<GlContext> ctx;
-  std::unique_ptr<VolumeRenderer> renderer;
-  tsp::MetricResult metric;
-  tsp::WholeTreeMetric nodes{metric};
-  Scene(const std::string& path, const tsp::TransferFunction& tf, int w, int h)
-      : file(tsp::TspFile::open(path)), ctx(create_offscreen_context(w, h)) {
-    renderer = std::make_unique<VolumeRenderer>(*ctx, *file, tsp::CachePolicy::on);
-    renderer->set_transfer_function(tf);
-    metric = tsp::compute_errors(tsp::Metric::reference, file->tree(), tf, file.get(), 0);
-  }
-  // Looking along +y (x to the right, z up), orthographic.
-  tsp::Camera camera() const {
-    tsp::CameraParams p;
-    p.azimuth_deg = 0;
-    p.elevation_deg = 0;
-    p.width = ctx->width();
-    p.height = ctx->height();
-    return tsp::Camera(file->tree().octree().dims(), p);
-  }
-  tsp::Image frame(const RenderSettings& s) {
-    renderer->render(0, camera(), s, nodes);
-    return ctx->read_pixels();
-  }
-};
+// Looking along +y (x to the right, z up), orthographic.
+tsp::Camera side_camera(const RenderScene& sc) { return sc.camera(0, 0); }
+
+// The scene's TSP frame of step 0 from the side.
+tsp::Image side_frame(RenderScene& sc, const RenderSettings& s) {
+  return sc.frame(0, side_camera(sc), s);
+}
 
 // Window coordinates (pixels, y up) of a point in sample coordinates.
 glm::dvec2 project(const tsp::Camera& cam, glm::dvec3 p) {
@@ -74,11 +49,11 @@ TEST(Shading, LitSphereFollowsTheHeadlightTerm) {
                                (z - kCentre) * (z - kCentre));
     return float(std::clamp(0.5 + (kRadius - r) / 80, 0.0, 1.0));
   });
-  const std::string path = build(src, "lit_sphere");
+  const std::string path = tsptest::build_tsp(src, "lit_sphere", tsp::ValueRange{0, 1});
   tsp::TransferFunction tf({0, 1}, 256);
   for (int j = 0; j < 256; ++j) tf.set_entry(j, {1, 1, 1, j >= 128 ? 1.f : 0.f});
-  Scene scene(path, tf, 300, 300);
-  const tsp::Camera cam = scene.camera();
+  RenderScene scene(path, tf, tsp::CachePolicy::on, 300, 300);
+  const tsp::Camera cam = side_camera(scene);
   const glm::dvec2 centre = project(cam, {kCentre, kCentre, kCentre});
   const double radius_px =
       glm::length(project(cam, {kCentre + kRadius, kCentre, kCentre}) - centre);
@@ -113,9 +88,9 @@ TEST(Shading, LitSphereFollowsTheHeadlightTerm) {
       s.compositing = comp;
       s.preintegrated = preintegrated;
       s.shade = true;
-      const tsp::Image lit = scene.frame(s);
+      const tsp::Image lit = side_frame(scene, s);
       s.shade = false;
-      check(lit, scene.frame(s), 0.01, 0.05,  // 2.5 and 13 of 255
+      check(lit, side_frame(scene, s), 0.01, 0.05,  // 2.5 and 13 of 255
             std::string(to_string(comp)) + (preintegrated ? " pre" : ""));
     }
   }
@@ -147,10 +122,10 @@ TEST(Shading, PreintegratedSegmentAtCoarseSpacingMatchesItsFormula) {
   auto src = tsptest::MemorySource::from_function({17, 5, 17}, 1, [](int, int y, int, int) {
     return float(kFront + (kBack - kFront) * y / kSpacing);
   });
-  const std::string path = build(src, "two_value_segment");
+  const std::string path = tsptest::build_tsp(src, "two_value_segment", tsp::ValueRange{0, 1});
   tsp::TransferFunction tf({0, 1}, 16);
   for (int j = 0; j < 16; ++j) tf.set_entry(j, {0.2f, 0.9f, 0.4f, j == 4 ? 0.8f : 0.f});
-  Scene scene(path, tf, 120, 90);
+  RenderScene scene(path, tf, tsp::CachePolicy::on, 120, 90);
   const tsp::Rgba c = tsp::integrate_segment(tf, kFront, kBack, kSpacing);
   ASSERT_GT(c.a, 0.1);
   const tsp::Luv want = tsp::srgb8_to_luv(std::uint8_t(std::lround(255 * c.r)),
@@ -164,7 +139,7 @@ TEST(Shading, PreintegratedSegmentAtCoarseSpacingMatchesItsFormula) {
       s.preintegrated = preintegrated;
       s.refine_tol = 0;
       s.shade = false;  // the formula is the unlit segment (the ramp's gradient would light it)
-      const tsp::Image img = scene.frame(s);
+      const tsp::Image img = side_frame(scene, s);
       const std::uint8_t* px = img.at(img.width / 2 + 3, img.height / 2 + 2);
       if (!preintegrated) {
         EXPECT_EQ(px[0] + px[1] + px[2], 0) << to_string(comp);

@@ -20,6 +20,8 @@ std::string read_file(const std::filesystem::path& p);
 
 /// p in single quotes, for the shell command lines run_tspplay takes.
 inline std::string quote(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
+/// quote(p), short for the many command lines tests write.
+inline std::string q(const std::filesystem::path& p) { return quote(p); }
 
 /// Result of running a command line: exit code and captured stdout/stderr.
 struct RunResult {

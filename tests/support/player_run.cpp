@@ -1,0 +1,85 @@
+#include "support/player_run.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
+
+#include "gl/context.h"
+#include "support/paths.h"
+#include "tsp/core/error.h"
+
+namespace tsptest::player {
+
+namespace fs = std::filesystem;
+
+bool window_possible() {
+  try {
+    auto ctx = tspgl::create_window_context(16, 16, "probe", false);
+    return true;
+  } catch (const tsp::Error&) {
+    return false;
+  }
+}
+
+int run_bash(const fs::path& script, const std::string& text) {
+  std::ofstream(script) << text;
+  return std::system(("bash " + q(script)).c_str());
+}
+
+fs::path make_tsp() {
+  fs::path dir = tsptest::temp_dir();
+  auto g = run_tspplay("generate shock -o " + q(dir / "s.h5") + " --dims 30,28,26 --steps 4");
+  EXPECT_EQ(g.exit_code, 0) << g.err;
+  auto b =
+      run_tspplay("build " + q(dir / "s.h5") + " --field shock --brick 16 -o " + q(dir / "s.tsp"));
+  EXPECT_EQ(b.exit_code, 0) << b.err;
+  return dir / "s.tsp";
+}
+
+fs::path write_script(const std::string& text) {
+  fs::path p = tsptest::temp_dir() / "actions.txt";
+  std::ofstream(p) << text;
+  return p;
+}
+
+double covered(const tsp::Image& im) {
+  std::int64_t n = 0;
+  for (int y = 0; y < im.height; ++y)
+    for (int x = 0; x < im.width; ++x) {
+      const std::uint8_t* p = im.at(x, y);
+      if (p[0] + p[1] + p[2] > 6) ++n;
+    }
+  return double(n) / double(im.width * im.height);
+}
+
+tsp::Image render_step(const fs::path& tsp, int step, const std::string& tf) {
+  fs::path out = tsptest::temp_dir() / "frames";
+  auto r = run_tspplay("render " + q(tsp) + " --tf " + tf + " --steps " + std::to_string(step) +
+                       " --size " + kSize + " -o " + q(out));
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  char name[32];
+  std::snprintf(name, sizeof name, "step_%04d.png", step);
+  return tsp::read_png((out / name).string());
+}
+
+std::string read_text(const fs::path& p) {
+  std::ifstream in(p);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+nlohmann::json read_json(const fs::path& p) {
+  std::ifstream in(p);
+  return nlohmann::json::parse(in);
+}
+
+std::string orbit_then_idle_script(const fs::path& dir, const fs::path& shot) {
+  std::string text = "tf preset:filled\ntarget-fps 240\nview 30 20\nwait-frames 2\n";
+  for (int k = 1; k <= 12; ++k) text += "view " + std::to_string(30 + 5 * k) + " 20\nwait-frames 1\n";
+  return text + "stats " + (dir / "moving.json").string() + "\nview 30 20\nwait-seconds 1.5\nstats " +
+         (dir / "idle.json").string() + "\nscreenshot " + shot.string() + "\nquit\n";
+}
+
+}  // namespace tsptest::player

@@ -1,0 +1,44 @@
+// What the window player's tests share (tests/player/player*_test.cpp): the picture size and ΔE
+// bounds they compare with, a small .tsp, scripts for --script and for bash (xdotool), and
+// `tspplay render` of one step to compare a screenshot with.
+#pragma once
+#include <filesystem>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "tsp/report/image.h"
+
+namespace tsptest::player {
+
+/// The window and render size the player tests use.
+inline constexpr const char* kSize = "128x96";
+/// Same view, TF and metric as `render`'s defaults: frames match up to blending noise.
+inline constexpr double kSameFrameDeltaE = 0.5;
+/// Above this, two frames differ.
+inline constexpr double kDifferentFrameDeltaE = 1.0;
+
+/// True when a GLFW window can be opened (a display is there).
+bool window_possible();
+/// Writes a bash script (the player in the background, xdotool driving it) and runs it; returns
+/// its exit status.
+int run_bash(const std::filesystem::path& script, const std::string& text);
+/// A 30×28×26 × 4-step shock built into a .tsp with bricks of 16 (in a fresh temporary folder).
+std::filesystem::path make_tsp();
+/// Writes a --script file (in a fresh temporary folder) and returns its path.
+std::filesystem::path write_script(const std::string& text);
+/// Share of pixels that are not the black background.
+double covered(const tsp::Image& im);
+/// `tspplay render` of one step at kSize with TF tf.
+tsp::Image render_step(const std::filesystem::path& tsp, int step,
+                       const std::string& tf = "preset:auto");
+/// A whole text file.
+std::string read_text(const std::filesystem::path& p);
+/// A JSON file (stats, frames.json).
+nlohmann::json read_json(const std::filesystem::path& p);
+/// A script that orbits at a target no software renderer reaches (stats in dir/moving.json),
+/// then stops and waits (dir/idle.json) and takes a screenshot, which waits for full quality.
+std::string orbit_then_idle_script(const std::filesystem::path& dir,
+                                   const std::filesystem::path& shot);
+
+}  // namespace tsptest::player
