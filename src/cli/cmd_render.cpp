@@ -1,5 +1,6 @@
 // tspplay render run.tsp --tf tf.json [...] -o frames/: headless frames and frames.json.
 #include <array>
+#include <utility>
 #include <cstdlib>
 #include <cstdio>
 #include <filesystem>
@@ -15,6 +16,7 @@
 #include "jobs/movie.h"
 #include "cli/progress_bar.h"
 #include "jobs/render_job.h"
+#include "tsp/core/json_text.h"
 #include "tsp/core/error.h"
 
 namespace tspcli {
@@ -51,7 +53,31 @@ struct RenderArgs {
   std::string gl = "auto";  ///< --gl: auto|egl|osmesa
   int gpu = -1;             ///< --gpu: EGL device index
   double surface_target_ms = 0;
+  /// tspplay-mpi render's protocol (docs/mpi.md; hidden options): --mpi-check checks everything
+  /// and prints what the driver needs as JSON; --mpi-part R/N with --mpi-dir DIR draws part R of
+  /// N into DIR (no movie; --save-tf, by part 0, to DIR.tf.json).
+  bool mpi_check = false;
+  std::string mpi_part, mpi_dir;
 };
+
+/// The part R and part count N of --mpi-part R/N. Throws tsp::UsageError.
+std::pair<int, int> parse_part(const std::string& text) {
+  const std::size_t slash = text.find('/');
+  if (slash == std::string::npos)
+    throw tsp::UsageError("--mpi-part " + text + ": expected R/N");
+  const int parts = int(parse_integer(text.substr(slash + 1), "--mpi-part", 1, 1 << 20, "R/N"));
+  const int part = int(parse_integer(text.substr(0, slash), "--mpi-part", 0, parts - 1, "R/N"));
+  return {part, parts};
+}
+
+/// --mpi-check's answer on standard output: the outputs rank 0 of tspplay-mpi makes and the
+/// inputs they must not be.
+void print_check(const RenderArgs& a) {
+  const nlohmann::json j = {{"out", a.out}, {"movie", a.movie}, {"fps", a.fps},
+                            {"save_tf", a.save_tf}, {"passes", a.passes},
+                            {"inputs", {a.file, a.tf, a.probe_tf, a.surface_mesh, a.surface_tf}}};
+  std::printf("%s\n", tsp::json_text(j).c_str());
+}
 
 /// The knobs --quality picks itself (giving one of them with it is an error).
 constexpr const char* kQualityKnobs[] = {"--spatial-tol", "--temporal-tol", "--spacing",
@@ -164,7 +190,15 @@ void run(const RenderArgs& a) {
                           std::to_string(tspgl::kMaxBudgetBytes >> 20) + "] MiB");
   o.ram_budget = std::max<std::int64_t>(1, std::int64_t(a.ram_budget_mb * (1 << 20)));
 
-  if (!a.movie.empty()) {  // checked before rendering: a bad movie request wastes no frames
+  const bool part = !a.mpi_part.empty();
+  if (part != !a.mpi_dir.empty()) throw tsp::UsageError("--mpi-part and --mpi-dir go together");
+  if (part) {  // a part of tspplay-mpi render: its rank 0 checked -o and makes the movie
+    std::tie(o.part, o.parts) = parse_part(a.mpi_part);
+    o.out_dir = a.mpi_dir;
+    if (!a.save_tf.empty()) o.save_tf = o.part == 0 ? a.mpi_dir + ".tf.json" : "";
+  }
+  o.check_only = a.mpi_check;
+  if (!a.movie.empty() && !part) {  // checked before rendering: a bad movie request wastes no frames
     tspgl::check_movie_name(a.movie, "--movie");
     if (a.fps < 1 || a.fps > 120)
       throw tsp::UsageError("--fps " + std::to_string(a.fps) + ": expected 1..120");
@@ -176,6 +210,11 @@ void run(const RenderArgs& a) {
     o.fps = a.fps;
   }
 
+  if (o.check_only) {
+    tspgl::run_render_job(o);
+    print_check(a);
+    return;
+  }
   ProgressBar bar;
   auto result = tspgl::run_render_job(
       o, [&bar](int done, int total) { bar.update("render", done, total); },
@@ -333,6 +372,9 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
   c->add_option("--calibration-dir", a->calibration_dir,
                 "Where --quality caches calibrations (default $TSPPLAY_CACHE_DIR, "
                 "$XDG_CACHE_HOME/tspplay or ~/.cache/tspplay; - for none)");
+  c->add_flag("--mpi-check", a->mpi_check)->group("");  // tspplay-mpi render's protocol
+  c->add_option("--mpi-part", a->mpi_part)->group("");
+  c->add_option("--mpi-dir", a->mpi_dir)->group("");
   a->settings.add_to(c);
   set_groups(c, {{"Input/output", {"--field", "--tf", "--output", "--tf-range", "--annotate",
                                    "--movie", "--fps", "--steps", "--passes", "--save-tf"}},
