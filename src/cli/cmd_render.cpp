@@ -70,6 +70,20 @@ std::pair<int, int> parse_part(const std::string& text) {
   return {part, parts};
 }
 
+/// Applies --mpi-check, --mpi-part and --mpi-dir to o; returns whether this is a part (whose
+/// tspplay-mpi rank 0 checked -o and makes the movie). Throws tsp::UsageError.
+bool apply_mpi_protocol(const RenderArgs& a, tspgl::RenderJobOptions& o) {
+  const bool part = !a.mpi_part.empty();
+  if (part != !a.mpi_dir.empty()) throw tsp::UsageError("--mpi-part and --mpi-dir go together");
+  if (part) {
+    std::tie(o.part, o.parts) = parse_part(a.mpi_part);
+    o.out_dir = a.mpi_dir;
+    if (!a.save_tf.empty()) o.save_tf = o.part == 0 ? a.mpi_dir + ".tf.json" : "";
+  }
+  o.check_only = a.mpi_check;
+  return part;
+}
+
 /// --mpi-check's answer on standard output: the outputs rank 0 of tspplay-mpi makes and the
 /// inputs they must not be.
 void print_check(const RenderArgs& a) {
@@ -190,14 +204,7 @@ void run(const RenderArgs& a) {
                           std::to_string(tspgl::kMaxBudgetBytes >> 20) + "] MiB");
   o.ram_budget = std::max<std::int64_t>(1, std::int64_t(a.ram_budget_mb * (1 << 20)));
 
-  const bool part = !a.mpi_part.empty();
-  if (part != !a.mpi_dir.empty()) throw tsp::UsageError("--mpi-part and --mpi-dir go together");
-  if (part) {  // a part of tspplay-mpi render: its rank 0 checked -o and makes the movie
-    std::tie(o.part, o.parts) = parse_part(a.mpi_part);
-    o.out_dir = a.mpi_dir;
-    if (!a.save_tf.empty()) o.save_tf = o.part == 0 ? a.mpi_dir + ".tf.json" : "";
-  }
-  o.check_only = a.mpi_check;
+  const bool part = apply_mpi_protocol(a, o);
   if (!a.movie.empty() && !part) {  // checked before rendering: a bad movie request wastes no frames
     tspgl::check_movie_name(a.movie, "--movie");
     if (a.fps < 1 || a.fps > 120)
