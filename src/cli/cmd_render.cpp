@@ -1,5 +1,6 @@
 // tspplay render run.tsp --tf tf.json [...] -o frames/: headless frames and frames.json.
 #include <array>
+#include <utility>
 #include <cstdlib>
 #include <cstdio>
 #include <filesystem>
@@ -16,6 +17,7 @@
 #include "cli/progress_bar.h"
 #include "cli/render_args.h"
 #include "jobs/render_job.h"
+#include "tsp/core/json_text.h"
 #include "tsp/core/error.h"
 
 namespace tspcli {
@@ -24,12 +26,57 @@ namespace {
 // `render`'s options: the text options (cli/render_args.h) and the settings table's.
 struct RenderCliArgs : RenderArgs {
   SettingsOptions settings;  ///< every knob of the settings table
+  /// tspplay-mpi render's protocol (docs/mpi.md; hidden options): --mpi-check checks everything
+  /// and prints what the driver needs as JSON; --mpi-part R/N with --mpi-dir DIR draws part R of
+  /// N into DIR (no movie; --save-tf, by part 0, to DIR.tf.json).
+  bool mpi_check = false;
+  std::string mpi_part, mpi_dir;
 };
+
+/// The part R and part count N of --mpi-part R/N. Throws tsp::UsageError.
+std::pair<int, int> parse_part(const std::string& text) {
+  const std::size_t slash = text.find('/');
+  if (slash == std::string::npos)
+    throw tsp::UsageError("--mpi-part " + text + ": expected R/N");
+  const int parts = int(parse_integer(text.substr(slash + 1), "--mpi-part", 1, 1 << 20, "R/N"));
+  const int part = int(parse_integer(text.substr(0, slash), "--mpi-part", 0, parts - 1, "R/N"));
+  return {part, parts};
+}
+
+/// Applies --mpi-check, --mpi-part and --mpi-dir to o; returns whether this is a part (whose
+/// tspplay-mpi rank 0 checked -o and makes the movie). Throws tsp::UsageError.
+bool apply_mpi_protocol(const RenderCliArgs& a, tspgl::RenderJobOptions& o) {
+  const bool part = !a.mpi_part.empty();
+  if (part != !a.mpi_dir.empty()) throw tsp::UsageError("--mpi-part and --mpi-dir go together");
+  if (part) {
+    std::tie(o.part, o.parts) = parse_part(a.mpi_part);
+    o.out_dir = a.mpi_dir;
+    if (!a.save_tf.empty()) o.save_tf = o.part == 0 ? a.mpi_dir + ".tf.json" : "";
+    o.movie.clear();  // rank 0 of tspplay-mpi encodes the whole movie
+  }
+  o.check_only = a.mpi_check;
+  return part;
+}
+
+/// --mpi-check's answer on standard output: the outputs rank 0 of tspplay-mpi makes and the
+/// inputs they must not be.
+void print_check(const RenderCliArgs& a) {
+  const nlohmann::json j = {{"out", a.out}, {"movie", a.movie}, {"fps", a.fps},
+                            {"save_tf", a.save_tf}, {"passes", a.passes},
+                            {"inputs", {a.file, a.tf, a.probe_tf, a.surface_mesh, a.surface_tf}}};
+  std::printf("%s\n", tsp::json_text(j).c_str());
+}
 
 void run(const RenderCliArgs& a) {
   if (a.out.empty()) throw tsp::UsageError("-o: the output directory must not be empty");
-  const tspgl::RenderJobOptions o = render_job_options(a, a.settings.apply(), a.settings.given());
+  tspgl::RenderJobOptions o = render_job_options(a, a.settings.apply(), a.settings.given());
+  apply_mpi_protocol(a, o);
 
+  if (o.check_only) {
+    tspgl::run_render_job(o);
+    print_check(a);
+    return;
+  }
   ProgressBar bar;
   auto result = tspgl::run_render_job(
       o, [&bar](int done, int total) { bar.update("render", done, total); },
@@ -187,6 +234,9 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
   c->add_option("--calibration-dir", a->calibration_dir,
                 "Where --quality caches calibrations (default $TSPPLAY_CACHE_DIR, "
                 "$XDG_CACHE_HOME/tspplay or ~/.cache/tspplay; - for none)");
+  c->add_flag("--mpi-check", a->mpi_check)->group("");  // tspplay-mpi render's protocol
+  c->add_option("--mpi-part", a->mpi_part)->group("");
+  c->add_option("--mpi-dir", a->mpi_dir)->group("");
   a->settings.add_to(c);
   set_groups(c, {{"Input/output", {"--field", "--tf", "--output", "--tf-range", "--annotate",
                                    "--movie", "--fps", "--steps", "--passes", "--save-tf"}},

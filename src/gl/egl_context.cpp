@@ -171,6 +171,16 @@ int asked_device(int device) {
   return int(v);
 }
 
+// TSPPLAY_EGL_DEVICE_SLOT (set by tspplay-mpi render: the rank's index on its node), else 0; a
+// value that is not a small non-negative integer counts as 0. Never throws.
+int device_slot() {
+  const char* env = std::getenv("TSPPLAY_EGL_DEVICE_SLOT");
+  if (!env || !*env) return 0;
+  char* end = nullptr;
+  const long v = std::strtol(env, &end, 10);
+  return *end == '\0' && v >= 0 && v < (1 << 20) ? int(v) : 0;
+}
+
 std::string device_list(const std::vector<EglDevice>& devices) {
   std::string s;
   for (const EglDevice& d : devices)
@@ -213,12 +223,12 @@ std::unique_ptr<GlContext> create_headless_context(int width, int height, Headle
   const std::vector<EGLDeviceEXT> handles = device_handles(api);
   const std::vector<EglDevice> devices = describe_devices(api, handles);
   int pick = asked;
-  if (pick < 0)
+  if (pick < 0) {  // the first GPU, or with a slot (one per MPI rank on a node) GPU slot mod GPUs
+    std::vector<int> gpus;
     for (const EglDevice& d : devices)
-      if (!d.software) {
-        pick = d.index;
-        break;
-      }
+      if (!d.software) gpus.push_back(d.index);
+    if (!gpus.empty()) pick = gpus[std::size_t(device_slot()) % gpus.size()];
+  }
   if (pick < 0 && gl == HeadlessGl::egl && !devices.empty()) pick = 0;
   if (!api.ok()) {
     why = "EGL has no device enumeration (EGL_EXT_device_enumeration, EGL_EXT_platform_device)";

@@ -81,6 +81,7 @@ nlohmann::json frame_json(const FrameRecord& f) {
           {"time_text", f.time ? json(f.time_text) : json(nullptr)},
           {"lod", f.lod ? lod_json(*f.lod) : json(nullptr)}};
   if (!r.backend_note.empty()) j["caster_note"] = r.backend_note;
+  if (f.rank >= 0) j["rank"] = f.rank;
   if (f.surface_splats >= 0) {
     j["surface_splats"] = f.surface_splats;
     j["surface_cut_ms"] = f.surface_cut_ms;
@@ -90,23 +91,6 @@ nlohmann::json frame_json(const FrameRecord& f) {
   return j;
 }
 
-bool is_frame_set_name(const std::string& name) {
-  if (name == "frames.json") return true;
-  constexpr std::size_t kDigits = 4;  // step_%04d.png: four digits or more
-  const std::string head = "step_", tail = ".png";
-  if (name.size() < head.size() + kDigits + tail.size() || name.rfind(head, 0) != 0 ||
-      name.compare(name.size() - tail.size(), tail.size(), tail) != 0)
-    return false;
-  for (std::size_t i = head.size(); i < name.size() - tail.size(); ++i)
-    if (name[i] < '0' || name[i] > '9') return false;
-  return true;
-}
-
-std::string step_png(const fs::path& dir, int step) {
-  char name[32];
-  std::snprintf(name, sizeof name, "step_%04d.png", step);
-  return (dir / name).string();
-}
 
 fs::path make_output_dir(const std::string& out) {
   // The folder is made, its parent must exist (as for build's -o): a mistyped path fails
@@ -132,12 +116,6 @@ int checked_last_step(const tsp::TspTree& tree, int first, int last, const std::
     throw tsp::UsageError("--steps " + std::to_string(first) + ":" + std::to_string(last) + ": " +
                           path + " has steps 0.." + std::to_string(steps - 1));
   return last;
-}
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(v.size() / 2), v.end());
-  return v[v.size() / 2];
 }
 
 double median_frame_ms(const RenderJobResult& result, int pass) {
@@ -290,9 +268,13 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
     check_movie_name(options.movie, "--movie");
     movie.emplace(options.movie);
   }
+  if (options.parts < 0 || (options.parts > 0 && (options.part < 0 || options.part >= options.parts)))
+    throw tsp::UsageError("part " + std::to_string(options.part) + " of " +
+                          std::to_string(options.parts) + ": expected 0 <= part < parts");
   RenderJobResult result;
   if (std::string w = tsp::tf_range_warning(tf, file->metadata().data_range); !w.empty())
     result.warnings.push_back(w);
+  if (options.check_only && options.quality == 0) return result;
   std::string gl_note;
   auto ctx = create_headless_context(options.camera.width, options.camera.height, options.gl,
                                      options.gpu, &gl_note);
@@ -303,6 +285,7 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
   const RenderJobOptions o =
       options.quality != 0 ? with_quality(*ctx, options, *file, tf, result, calibration_progress)
                            : options;
+  if (options.check_only) return result;  // the calibration is cached for the parts
   const RenderSettings& settings = o.settings;
 
   const fs::path dir = folder ? fs::path(folder->tmp()) : fs::path();
@@ -359,7 +342,11 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
   if (o.step_stride < 1)
     throw tsp::UsageError("--steps: the stride must be 1 or more, got " +
                           std::to_string(o.step_stride));
-  const int total = o.passes * ((last - o.first_step) / o.step_stride + 1);
+  const int per_pass = (last - o.first_step) / o.step_stride + 1;
+  // A split render's part draws frames [block.first, block.second) of every pass.
+  const auto block = o.parts > 0 ? part_frames(per_pass, o.part, o.parts)
+                                 : std::pair<int, int>{0, per_pass};
+  const int total = o.passes * (block.second - block.first);
   // The frames' driver, with the LOD cut: one level everywhere, the controller's or splats.
   const int lod_level = std::min(o.lod_level, tree.octree().max_lod_level());  // --lod K, clamped
   LodSpec lod;
@@ -377,15 +364,13 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
   for (int pass = 1; pass <= o.passes; ++pass) {
     for (int t = o.first_step; t <= last; t += o.step_stride, ++frame_index) {
       tsp::throw_if_interrupted();
-      FrameRecord rec;
-      rec.pass = pass;
+      const int in_pass = (t - o.first_step) / o.step_stride;
+      const bool mine = in_pass >= block.first && in_pass < block.second;
+      // Another part's frame: skipped, or with a cut that carries over, replayed (up to this
+      // part's last frame) so that this part's frames are drawn with the whole render's cuts.
+      if (!mine && (pass == o.passes && in_pass >= block.second)) continue;
       tsp::CameraParams params = o.camera;
       params.azimuth_deg += o.orbit_deg * frame_index;
-      rec.azimuth_deg = params.azimuth_deg;
-      if (!file->metadata().times.empty()) {
-        rec.time = file->metadata().times[std::size_t(t)];
-        rec.time_text = tsp::format_time(*rec.time, file->metadata().time_units);
-      }
       const tsp::Camera camera(tree.octree().dims(), params);
       if (moving && !o.probes.empty() && frame_index > 0) set_clip(frame_index);
       FrameRequest request;
@@ -394,6 +379,18 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
       request.settings = settings;
       request.metric = &nodes;
       request.tf = &tf;
+      if (!mine) {
+        driver->advance(request);
+        continue;
+      }
+      FrameRecord rec;
+      rec.pass = pass;
+      if (o.parts > 0) rec.rank = o.part;
+      rec.azimuth_deg = params.azimuth_deg;
+      if (!file->metadata().times.empty()) {
+        rec.time = file->metadata().times[std::size_t(t)];
+        rec.time_text = tsp::format_time(*rec.time, file->metadata().time_units);
+      }
       SliceCompositor& compositor = baseline ? baseline->compositor() : *renderer->compositor();
       if (mesh_surface) compositor.set_surface(mesh_surface->frame(t, surface_px));
       const DrawnFrame drawn = driver->draw(request);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "gl/headless.h"
+#include "jobs/frame_set.h"
 #include "render/frame_driver.h"
 #include "render/frame_report.h"
 #include "tsp/metric/tf_io.h"
@@ -91,6 +92,14 @@ struct RenderJobOptions {
   tsp::LodOptions lod_options;                ///< split/merge limits, min error, focus
   double orbit_deg = 0;                       ///< --orbit: azimuth advance per frame
   FrameSink on_frame;                         ///< called after every frame; may be empty
+  /// Stop once every option, input and output is checked (nothing written, no GL context; with
+  /// --quality the calibration is made, and cached, first): tspplay-mpi render's first step.
+  bool check_only = false;
+  /// A render split over `parts` processes (tspplay-mpi render; 0: not split): this one draws
+  /// only the frames part_frames gives part `part` in every pass, each frame's record saying
+  /// "rank": part. Every other frame is skipped but still counted, so the TF, the orbit, the
+  /// probes' motion and the steps are those of the whole render.
+  int part = 0, parts = 0;
 };
 
 /// What the LOD cut did in one frame (frames.json's "lod").
@@ -136,6 +145,7 @@ struct FrameRecord {
   double surface_cut_ms = 0;       ///< --surface: choosing the cut and filling its buffer
   double surface_ms = 0;           ///< --surface: the whole surface pass
   double surface_px = 0;           ///< --surface: the minimum splat size it was cut at
+  int rank = -1;                   ///< the part that drew it in a split render (−1: not split)
 };
 
 /// What a job did.
@@ -168,20 +178,9 @@ int checked_last_step(const tsp::TspTree& tree, int first, int last, const std::
 /// One frame's entry of frames.json (step, timings, classes, caster, LOD, …). Never throws.
 nlohmann::json frame_json(const FrameRecord& f);
 
-/// Whether name belongs to a render's frame set (step_NNNN.png, frames.json): what replacing the
-/// output folder drops; other files there are kept. Never throws.
-bool is_frame_set_name(const std::string& name);
-
-/// The PNG path of step under dir: dir/step_NNNN.png. Never throws.
-std::string step_png(const std::filesystem::path& dir, int step);
-
 /// Makes the output folder out (bench -o) if it is not there; its parent must exist.
 /// Throws tsp::IoError naming the missing parent or the folder that cannot be made.
 std::filesystem::path make_output_dir(const std::string& out);
-
-/// The upper median of v (the element at index size/2 once sorted; 0 for none), as every
-/// frame-time summary of the jobs reports it. Never throws.
-double median(std::vector<double> v);
 
 /// Median of the frames' `ms` in pass `pass` (0: all passes).
 double median_frame_ms(const RenderJobResult& result, int pass = 0);

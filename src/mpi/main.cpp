@@ -1,5 +1,6 @@
-// tspplay-mpi: `build` split over MPI ranks (docs/mpi.md). main only sets up MPI, parses and
-// dispatches; the build is tspplay's own (src/cli/cmd_build.cpp) with a tsp::BuildPartition.
+// tspplay-mpi: `build` and `render` split over MPI ranks (docs/mpi.md). main only sets up MPI,
+// parses and dispatches; the build is tspplay's own (src/cli/cmd_build.cpp) with a
+// tsp::BuildPartition, render runs the serial tspplay on every rank (src/mpi/render_driver.h).
 #include <mpi.h>
 #include <sched.h>
 
@@ -8,10 +9,12 @@
 #include <exception>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "cli/build_runner.h"
 #include "cli/commands.h"
 #include "mpi/mpi_partition.h"
+#include "mpi/render_driver.h"
 #include "tsp/core/error.h"
 
 namespace {
@@ -46,13 +49,25 @@ int main(int argc, char** argv) {
   const int rank = partition.rank(), ranks = partition.ranks();
   if (provided < MPI_THREAD_MULTIPLE)
     abort_job(rank, ranks, "error", "the MPI library does not provide MPI_THREAD_MULTIPLE", 1);
-  tspcli::set_build_partition(&partition, default_threads(partition.ranks_on_node()));
+  const int threads = default_threads(partition.ranks_on_node());
+  // render runs the serial tspplay on every rank (the renderer cannot link parallel HDF5): its
+  // arguments go through untouched, to be checked by that command.
+  if (argc > 1 && std::string(argv[1]) == "render") {
+    const int code = tspmpi::run_render(MPI_COMM_WORLD, threads,
+                                        std::vector<std::string>(argv + 2, argv + argc));
+    MPI_Finalize();
+    return code;
+  }
+  tspcli::set_build_partition(&partition, threads);
 
   CLI::App app{"tspplay-mpi " TSPPLAY_VERSION
-               " - build .tsp files with MPI: mpirun -np N tspplay-mpi build INPUT -o OUT.tsp"};
+               " - build .tsp files and render movies with MPI: mpirun -np N tspplay-mpi build "
+               "INPUT -o OUT.tsp, mpirun -np N tspplay-mpi render FILE -o frames/ [--movie M]"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "tspplay-mpi " TSPPLAY_VERSION);
   tspcli::add_all_commands(app);
+  app.add_subcommand("render", "Render steps split over the ranks (tspplay render's options; "
+                               "render --help)");  // listed only: handled above
   int code = 0;
   try {
     app.parse(argc, argv);

@@ -37,6 +37,26 @@ tsp::LodStops FrameDriver::current_stops() const {
   return {};
 }
 
+tsp::LodFrameStats FrameDriver::update_cut(const FrameRequest& r) {
+  assert(r.tf && r.camera && controller_);
+  tsp::LodFrameStats st = controller_->update(*r.camera, r.step, *r.tf, r.settings.spacing,
+                                              renderer_->clip_sides());
+  if (lod_.converge) {  // untimed: refine until a round splits nothing
+    int splits = st.splits;
+    while (st.splits > 0) {
+      st = controller_->update(*r.camera, r.step, *r.tf, r.settings.spacing,
+                               renderer_->clip_sides());
+      splits += st.splits;
+    }
+    st.splits = splits;
+  }
+  return st;
+}
+
+void FrameDriver::advance(const FrameRequest& r) {
+  if (renderer_ && controller_ && lod_.mode == LodMode::adaptive && lod_.converge) update_cut(r);
+}
+
 DrawnFrame FrameDriver::draw(const FrameRequest& r) {
   assert(r.camera);
   DrawnFrame out;
@@ -73,18 +93,7 @@ DrawnFrame FrameDriver::draw(const FrameRequest& r) {
       out.lod = tsp::cut_stats(*filter_cut_);
       break;
     case LodMode::adaptive: {
-      assert(r.tf);
-      tsp::LodFrameStats st = controller_->update(*r.camera, r.step, *r.tf, r.settings.spacing,
-                                                  renderer_->clip_sides());
-      if (lod_.converge) {  // untimed: refine until a round splits nothing
-        int splits = st.splits;
-        while (st.splits > 0) {
-          st = controller_->update(*r.camera, r.step, *r.tf, r.settings.spacing,
-                                   renderer_->clip_sides());
-          splits += st.splits;
-        }
-        st.splits = splits;
-      }
+      const tsp::LodFrameStats st = update_cut(r);
       stops = controller_->stops();
       if (controller_->splatting()) out.settings.compositing = Compositing::boxes;
       out.settings.render_scale = controller_->render_scale();

@@ -62,6 +62,12 @@ class FrameDriver {
 
   /// Draws r. Throws what the renderers throw (tsp::Error on brick reads, tsp::GlError).
   DrawnFrame draw(const FrameRequest& r);
+  /// Moves the cut on as draw(r) would, without drawing: an untimed adaptive cut (converge)
+  /// depends on every frame before, so a split render's part (tspplay-mpi render) replays the
+  /// frames it skips to draw its own with the whole render's cuts. The other modes keep nothing
+  /// between frames that changes a picture (a timed cut follows measured times: not
+  /// reproducible), so nothing is done. Never throws.
+  void advance(const FrameRequest& r);
   /// Replaces the LOD spec: the adaptive controller is kept when the mode stays adaptive (its
   /// cut and cost model; the new options apply from the next frame), else made anew. Never
   /// throws.
@@ -83,6 +89,9 @@ class FrameDriver {
   std::optional<tsp::LodCut> filter_cut_;  // the filter's cut of the last frame
   std::unique_ptr<tsp::LodController> controller_;
   tsp::SplatCut splats_;
+
+  // The adaptive controller's update(s) for r (converged when untimed).
+  tsp::LodFrameStats update_cut(const FrameRequest& r);
 };
 
 }  // namespace tspgl

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cassert>
+#include <cstdlib>
 #include <exception>
 #include <mutex>
 #include <thread>
@@ -14,6 +15,15 @@ namespace tsp {
 
 int resolve_threads(int threads) {
   if (threads > 0) return threads;
+  // TSPPLAY_THREADS (a positive count) caps "all": tspplay-mpi render gives each rank's render
+  // its share of the node's cores.
+  static const int from_env = [] {
+    const char* v = std::getenv("TSPPLAY_THREADS");
+    char* end = nullptr;
+    const long n = v ? std::strtol(v, &end, 10) : 0;
+    return v && end != v && *end == 0 && n > 0 && n <= 4096 ? int(n) : 0;
+  }();
+  if (from_env > 0) return from_env;
   return std::max(1, int(std::thread::hardware_concurrency()));
 }
 

@@ -6,8 +6,9 @@
 
 namespace tsp {
 
-/// Worker threads for a request of `threads` (0 or less: all hardware threads), at least 1.
-/// Never throws; thread-safe.
+/// Worker threads for a request of `threads` (0 or less: all hardware threads, or the
+/// environment's TSPPLAY_THREADS when it is a positive count), at least 1. Never throws;
+/// thread-safe.
 int resolve_threads(int threads);
 
 /// Workers parallel_for(n, grain, threads, …) runs: resolve_threads(threads), at most one per
