@@ -383,8 +383,9 @@ void main() {
                 : (closing && seg_e >= t_out ? seg_e
                    : 0.5 * (seg_e + (closing ? min(seg_e + dt, t_out) : seg_e + dt)));
             if (mode != 3 && ts >= t_out && !closing) break;  // in the next brick
-            // (The next middle may lie in the next brick of the run: read there.)
-            bool beyond = ts >= t_out;
+            // (The next middle may lie in the next brick of the run: read there. A closing
+            // brick has none: its run's last read, at t_out, is on its own face.)
+            bool beyond = ts >= t_out && !closing;
             vec3 off = beyond ? next_page.xyz : page.xyz;
             vec3 b_lo = beyond ? vec3(next_c) * cell : lo;
             vec3 tcs = ((entry + r.ray * ts) * scale + off) * atlas_scale;

@@ -46,7 +46,11 @@ inline void RayWalk::refined(float t, float t_out, vec4 page, ivec3 c, const Bri
                            ? seg_e
                            : 0.5f * (seg_e + (closing ? std::min(seg_e + dt, t_out) : seg_e + dt)));
     if (mode != 3 && ts >= t_out && !closing) break;  // in the next brick
-    const bool beyond = ts >= t_out;
+    // (In the next brick of the run; a closing brick has none: the run's last read, at t_out,
+    // is on its own face. Reading "beyond" there took the next page's offset, an empty or flat
+    // page's, and read whatever sat at that place in the atlas: pictures that changed with the
+    // frames drawn before.)
+    const bool beyond = ts >= t_out && !closing;
     const vec3 k_at = beyond ? vec3(next_page) - 0.5f : b.k;
     const vec3 b_lo = beyond ? vec3(next_c) * cell_ : lo;
     const vec3 tcs = texel(ts, vec3(1.f));
