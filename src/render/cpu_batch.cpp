@@ -1,7 +1,6 @@
 // Compiled once per SIMD target by Highway's foreach_target (see cpu_batch.h).
 #include "render/cpu_batch.h"
 
-#include <cstring>
 #include <limits>
 
 #undef HWY_TARGET_INCLUDE

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "support/mpi_run.h"
 #include "support/paths.h"
 #include "support/tsp_compare.h"
 
@@ -16,14 +17,8 @@ namespace {
 namespace fs = std::filesystem;
 using tsptest::quote;
 
-bool have_mpi() { return !tsptest::tspplay_mpi_bin().empty() && !tsptest::mpiexec_bin().empty(); }
-
-// `mpirun -np N tspplay-mpi ARGS`, as root and with more ranks than cores where needed.
-tsptest::RunResult run_mpi(int ranks, const std::string& args) {
-  return tsptest::run_command(quote(tsptest::mpiexec_bin()) +
-                              " --oversubscribe --allow-run-as-root -np " + std::to_string(ranks) +
-                              " " + quote(tsptest::tspplay_mpi_bin()) + " " + args);
-}
+using tsptest::have_mpi;
+using tsptest::run_mpi;
 
 TEST(MpiBuild, RanksWriteTheSerialFile) {
   TSPTEST_REQUIRE(have_mpi(), "MPI not found at configure time (install-deps.sh --mpi)");

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "support/mpi_run.h"
 #include "support/paths.h"
 
 namespace {
@@ -20,13 +21,8 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 using tsptest::quote;
 
-bool have_mpi() { return !tsptest::tspplay_mpi_bin().empty() && !tsptest::mpiexec_bin().empty(); }
-
-tsptest::RunResult run_mpi(int ranks, const std::string& args) {
-  return tsptest::run_command(quote(tsptest::mpiexec_bin()) +
-                              " --oversubscribe --allow-run-as-root -np " + std::to_string(ranks) +
-                              " " + quote(tsptest::tspplay_mpi_bin()) + " " + args);
-}
+using tsptest::have_mpi;
+using tsptest::run_mpi;
 
 // Every file of dir by name, with its bytes.
 std::map<std::string, std::string> files_of(const fs::path& dir) {
