@@ -35,9 +35,7 @@ const CommandRegistrar reg(60, [](CLI::App& app) {
     const tsp::DiffStats s = tsp::diff_images(ia, ib, a->out.empty() ? nullptr : &diff, a->a, a->b);
     if (!a->out.empty()) tsp::write_png(a->out, diff);
     if (a->json) {
-      nlohmann::json j = {{"mean", s.mean},     {"p99", s.p99},     {"max", s.max},
-                          {"pixels", s.pixels}, {"width", s.width}, {"height", s.height}};
-      std::cout << tsp::json_text(j, 2) << "\n";
+      std::cout << tsp::json_text(nlohmann::json(s), 2) << "\n";
     } else {
       std::printf("%dx%d pixels, ΔE*uv (CIE L*u*v*): mean %.4f  p99 %.4f  max %.4f\n", s.width,
                   s.height, s.mean, s.p99, s.max);

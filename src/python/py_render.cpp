@@ -182,13 +182,7 @@ void bind_render(py::module_& m) {
           py::gil_scoped_release release;
           s = tsp::diff_images(ia, ib, want_image ? &out : nullptr);
         }
-        py::dict d;
-        d["mean"] = s.mean;
-        d["p99"] = s.p99;
-        d["max"] = s.max;
-        d["pixels"] = s.pixels;
-        d["width"] = s.width;
-        d["height"] = s.height;
+        py::dict d = to_python(nlohmann::json(s)).cast<py::dict>();
         if (want_image) d["image"] = image_array(std::move(out));
         return d;
       },

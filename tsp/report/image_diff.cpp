@@ -1,5 +1,7 @@
 #include "tsp/report/image_diff.h"
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -93,6 +95,11 @@ DiffStats diff_images(const Image& a, const Image& b, Image* diff_image, const s
   std::nth_element(de.begin(), nth, de.end());
   s.p99 = *nth;
   return s;
+}
+
+void to_json(nlohmann::json& j, const DiffStats& s) {
+  j = {{"mean", s.mean},     {"p99", s.p99},     {"max", s.max},
+       {"pixels", s.pixels}, {"width", s.width}, {"height", s.height}};
 }
 
 }  // namespace tsp

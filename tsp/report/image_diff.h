@@ -4,6 +4,8 @@
 #include <cstdint>
 #include <string>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include "tsp/report/image.h"
 
 namespace tsp {
@@ -16,6 +18,10 @@ struct DiffStats {
   std::int64_t pixels = 0;    ///< number of pixels compared
   int width = 0, height = 0;  ///< size of both images
 };
+
+/// s as JSON (mean, p99, max, pixels, width, height): what `diff --json` prints and Python's
+/// tspplay.diff returns. Never throws.
+void to_json(nlohmann::json& j, const DiffStats& s);
 
 /// ΔE that maps to white in the difference image (grey level = min(255, round(ΔE·255/10))).
 inline constexpr double kDiffImageFullScale = 10.0;
