@@ -2,12 +2,12 @@
 // A textured brick ray cast: samples on the slice planes dot(p, view_dir) = (k + ½)·spacing that
 // fall in [entry, exit) (the samples its slices would take), composited front to back with the
 // same premultiplied, spacing-corrected TF lookup as slicing, stopping once the ray is opaque.
-// The result is blended over what lies behind. (box_ray.glsl and sample_tf.glsl are prepended.)
+// The result is blended over what lies behind. (The shared constants, box_ray.glsl and
+// sample_tf.glsl are prepended.)
 uniform float spacing;
 uniform vec3 tex_origin;  // −(atlas texel coordinate − sample coordinate)
 uniform vec3 tex_scale;   // 1 / atlas size
 uniform vec3 tex_lo, tex_hi;  // the brick's own box in texture coordinates
-const float kOpaque = 0.999;
 out vec4 colour;
 void main() {
   RaySpan r = ray_span();

@@ -8,8 +8,8 @@
 // TSP_CLIP (defined before this file) is 0 in the caster without probes: clip_on() is then the
 // constant false and all of this is compiled away; 2 in the caster for an intersection, which
 // only cuts each ray to kept_interval() once (clip_on() false there too) and draws the surface,
-// if on, where the ray enters or leaves that interval.
-const int kMaxProbes = 8;
+// if on, where the ray enters or leaves that interval. kMaxProbes (tsp::ClipRegion's) is written
+// before this file (glsl_constants(), src/render/ray_programs.h).
 const float kFar = 1e30;
 uniform int clip_count;                // 0: no clipping
 uniform int clip_op;                   // 0 intersect, 1 union, 2 subtract (the first minus the rest)

@@ -16,7 +16,6 @@ uniform int use_shading;
 uniform vec4 phong;                  // ambient, diffuse, specular, specular power
 uniform vec3 light_dir;              // unit, towards the viewer (the headlight), world axes
 uniform vec3 inv_voxel;              // 1 / the world size of a voxel per axis
-const float kFlatGradient = 1e-3;    // value range per voxel below which lighting fades out
 
 // Blinn–Phong with a headlight (light and view along the central ray, so the half vector is the
 // light): c lit by the normal from the scalar's central differences one texel either side of

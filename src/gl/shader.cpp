@@ -110,4 +110,14 @@ Program load_program(const GlApi& gl, const std::string& vertex_name,
                        shader_source(fragment_name));
 }
 
+Program load_program_with(const GlApi& gl, const std::string& vertex_name,
+                          const std::string& fragment_name,
+                          const std::vector<std::string>& includes, const std::string& prelude) {
+  std::string frag = shader_source(fragment_name), inserted = prelude;
+  for (const std::string& name : includes) inserted += shader_source(name);
+  const std::size_t eol = frag.find('\n');
+  frag.insert(eol == std::string::npos ? frag.size() : eol + 1, inserted);
+  return build_program(gl, vertex_name + " + " + fragment_name, shader_source(vertex_name), frag);
+}
+
 }  // namespace tspgl

@@ -3,6 +3,7 @@
 #pragma once
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "gl/gl_api.h"
 
@@ -53,5 +54,12 @@ Program build_program(const GlApi& gl, const std::string& label, std::string_vie
 /// Throws tsp::GlError, tsp::IoError, tsp::UsageError.
 Program load_program(const GlApi& gl, const std::string& vertex_name,
                      const std::string& fragment_name);
+
+/// build_program on vertex_name and fragment_name with `prelude` (e.g. #define lines) and then
+/// the GLSL files `includes`, in order, inserted after the fragment shader's #version line.
+/// Throws tsp::GlError, tsp::IoError, tsp::UsageError.
+Program load_program_with(const GlApi& gl, const std::string& vertex_name,
+                          const std::string& fragment_name,
+                          const std::vector<std::string>& includes, const std::string& prelude = "");
 
 }  // namespace tspgl

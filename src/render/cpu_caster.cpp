@@ -85,6 +85,94 @@ void RayWalk::segments(float t, float t_out, float& t_next, vec3 scale,
   }
 }
 
+bool RayWalk::run_closes(ivec3 c, vec4 page, float t_out, vec3 t_max, ivec3 dir,
+                         vec4& next_page, ivec3& next_c) const {
+  bool closing = t_out >= r_.len;
+  next_page = page;
+  next_c = c;
+  if (!closing) {
+    ivec3 cn = c;
+    if (t_max.x <= t_max.y && t_max.x <= t_max.z)
+      cn.x += dir.x;
+    else if (t_max.y <= t_max.z)
+      cn.y += dir.y;
+    else
+      cn.z += dir.z;
+    closing = !inside(s_, cn);
+    if (!closing) {
+      next_page = page_at(s_, cn);
+      next_c = cn;
+      closing = !level0_textured(next_page);
+    }
+  }
+  return closing;
+}
+
+// A level brick (ray_levels.glsl): each sample stands for its slab of the ray inside the brick.
+void RayWalk::level_brick(float t, float t_out, float& t_next, float dtm, vec3 scale,
+                          vec3 phase, const BrickView& b, int tf_row) {
+  run_open_ = false;
+  const float dt = s_.spacing / r_.cos_theta;
+  const float* row = tf_row > 0
+                         ? s_.tf.levels + 4 * std::size_t(s_.tf.entries) * std::size_t(tf_row)
+                         : s_.tf.point;
+  float first = t_next;
+  if (first >= t_out) first = 0.5f * (t + t_out);
+  vec3 tc = texel(first, scale) + phase;
+  const vec3 dtc = r_.dir * dtm * scale;
+  for (float tj = first; tj < t_out; tj += dtm) {
+    const float lo_j = tj == first ? t : tj - 0.5f * dtm;
+    const float hi_j = tj + dtm >= t_out ? t_out : tj + 0.5f * dtm;
+    ++samples_;
+    blend(cut_sample(smp_.point(tc, b, row), (hi_j - lo_j) / dt));
+    if (acc_.a >= kOpaque) break;
+    tc += dtc;
+  }
+  if (t_next < t_out) t_next += std::ceil((t_out - t_next) / dtm) * dtm;
+}
+
+// A textured brick (volume_ray.frag's textured_brick): onto its level's planes, its texels' box,
+// then its samples — the run's segments (plain or refined) or a level brick's slabs.
+void RayWalk::textured_brick(ivec3 c, vec4 page, float t, float t_out, vec3 t_max, ivec3 dir,
+                             float& t_next, float& m_cur) {
+  int code = int(page.w + 0.5f) - 1;
+  const int tf_row = code / kLevelRowUnit;
+  code &= kClipFlag - 1;
+  const ivec3 lv(code & 7, (code >> 3) & 7, (code >> 6) & 7);
+  const vec3 scale(1.f / float(1 << lv.x), 1.f / float(1 << lv.y), 1.f / float(1 << lv.z));
+  const float m = float(1 << std::max({lv.x, lv.y, lv.z}));
+  BrickView b;
+  const vec3 lo = vec3(c) * cell_;
+  // The slot's offset less the texel centres' ½: whole texels (k) and, for a level brick whose
+  // samples sit between its voxels, the lattice's phase (the same in every slot).
+  const vec3 shift = vec3(page) - 0.5f;
+  b.k = glm::floor(shift);
+  const vec3 phase = shift - b.k;
+  b.lo = lo * scale + phase;
+  b.hi = glm::min(lo + cell_, s_.box_hi) * scale + phase;
+  if (s_.shade) neighbours(c, page, code == 0, b);
+  if (m != m_cur) {  // onto this level's planes (k + ½)·m·spacing
+    const float sp = s_.spacing * m;
+    const float d = r_.depth_entry + t * r_.cos_theta;
+    t_next = ((std::ceil(d / sp - 0.5f) + 0.5f) * sp - r_.depth_entry) / r_.cos_theta;
+    m_cur = m;
+  }
+  if (m != 1.f) {
+    level_brick(t, t_out, t_next, s_.spacing / r_.cos_theta * m, scale, phase, b, tf_row);
+    return;
+  }
+  vec4 next_page;
+  ivec3 next_c;
+  const bool closing = run_closes(c, page, t_out, t_max, dir, next_page, next_c);
+  if (s_.tf.refine != nullptr)
+    refined(t, t_out, c, b, closing, next_page, next_c, t_next);
+  else
+    segments(t, t_out, t_next, scale, b, closing);
+  if (closing) run_open_ = false;
+}
+
+// The walk (volume_ray.frag's main without clip code): a 3-D DDA over the brick grid that leaps
+// over cubes of empty bricks, composites flat bricks exactly and samples textured ones.
 vec4 RayWalk::run() {
   const vec3 ray = r_.dir;
   const vec3 inv = 1.f / glm::max(glm::abs(ray), vec3(1e-12f));
@@ -100,7 +188,6 @@ vec4 RayWalk::run() {
   float t_next = ((std::ceil(r_.depth_entry / s_.spacing - 0.5f) + 0.5f) * s_.spacing -
                   r_.depth_entry) / r_.cos_theta;
   float m_cur = 1;
-  const bool refine = s_.tf.refine != nullptr;
   const int max_steps = grid_.x + grid_.y + grid_.z + 2;
   for (int i = 0; i < max_steps; ++i) {
     const vec4 page = page_at(s_, c);
@@ -118,79 +205,7 @@ vec4 RayWalk::run() {
     }
     const float t_out = std::min({t_max.x, t_max.y, t_max.z, len});
     if (page.w > 0.5f) {
-      int code = int(page.w + 0.5f) - 1;
-      const int tf_row = code / detail::kLevelRowUnit;
-      code &= detail::kClipFlag - 1;
-      const ivec3 lv(code & 7, (code >> 3) & 7, (code >> 6) & 7);
-      const vec3 scale(1.f / float(1 << lv.x), 1.f / float(1 << lv.y), 1.f / float(1 << lv.z));
-      const float m = float(1 << std::max({lv.x, lv.y, lv.z}));
-      BrickView b;
-      const vec3 lo = vec3(c) * cell_;
-      // The slot's offset less the texel centres' ½: whole texels (k) and, for a level brick
-      // whose samples sit between its voxels, the lattice's phase (the same in every slot).
-      const vec3 shift = vec3(page) - 0.5f;
-      b.k = glm::floor(shift);
-      const vec3 phase = shift - b.k;
-      b.lo = lo * scale + phase;
-      b.hi = glm::min(lo + cell_, s_.box_hi) * scale + phase;
-      if (s_.shade) neighbours(c, page, code == 0, b);
-      if (m != m_cur) {  // onto this level's planes (k + ½)·m·spacing
-        const float sp = s_.spacing * m;
-        const float d = r_.depth_entry + t * r_.cos_theta;
-        t_next = ((std::ceil(d / sp - 0.5f) + 0.5f) * sp - r_.depth_entry) / r_.cos_theta;
-        m_cur = m;
-      }
-      const float dtm = dt * m;
-      if (m == 1.f) {
-        // Does the run of full-resolution textured bricks go on past this one?
-        bool closing = t_out >= len;
-        vec4 next_page = page;
-        ivec3 next_c = c;
-        if (!closing) {
-          ivec3 cn = c;
-          if (t_max.x <= t_max.y && t_max.x <= t_max.z)
-            cn.x += dir.x;
-          else if (t_max.y <= t_max.z)
-            cn.y += dir.y;
-          else
-            cn.z += dir.z;
-          closing = !inside(s_, cn);
-          if (!closing) {
-            next_page = page_at(s_, cn);
-            next_c = cn;
-            closing = !level0_textured(next_page);
-          }
-        }
-        if (refine)
-          refined(t, t_out, page, c, b, closing, next_page, next_c, t_next);
-        else
-          segments(t, t_out, t_next, scale, b, closing);
-        if (closing) run_open_ = false;
-      } else {
-        // A level brick: each sample stands for its slab of the ray inside the brick.
-        run_open_ = false;
-        const float* row =
-            tf_row > 0 ? s_.tf.levels + 4 * std::size_t(s_.tf.entries) * std::size_t(tf_row)
-                       : s_.tf.point;
-        float first = t_next;
-        if (first >= t_out) first = 0.5f * (t + t_out);
-        vec3 tc = texel(first, scale) + phase;
-        const vec3 dtc = ray * dtm * scale;
-        for (float tj = first; tj < t_out; tj += dtm) {
-          const float lo_j = tj == first ? t : tj - 0.5f * dtm;
-          const float hi_j = tj + dtm >= t_out ? t_out : tj + 0.5f * dtm;
-          vec4 smp = smp_.point(tc, b, row);
-          ++samples_;
-          if (smp.a > 0.f) {
-            const float a = 1.f - std::pow(std::max(1.f - smp.a, 0.f), (hi_j - lo_j) / dt);
-            smp = vec4(vec3(smp) * (a / smp.a), a);
-          }
-          blend(smp);
-          if (acc_.a >= kOpaque) break;
-          tc += dtc;
-        }
-        if (t_next < t_out) t_next += std::ceil((t_out - t_next) / dtm) * dtm;
-      }
+      textured_brick(c, page, t, t_out, t_max, dir, t_next, m_cur);
     } else {  // flat: the exact exponential over the ray's depth through the brick
       const float a = 1.f - std::exp(page.w * (t_out - t) * r_.cos_theta);
       blend(vec4(vec3(page) * a, a));

@@ -9,8 +9,8 @@
 namespace tspgl::detail {
 
 // Refinement (volume_ray.frag, TSP_REFINE): one pass per scalar read, as the shader's loop.
-inline void RayWalk::refined(float t, float t_out, vec4 page, ivec3 c, const BrickView& b, bool closing,
-                      vec4 next_page, ivec3 next_c, float& t_next) {
+inline void RayWalk::refined(float t, float t_out, ivec3 c, const BrickView& b, bool closing,
+                             vec4 next_page, ivec3 next_c, float& t_next) {
   const float dt = s_.spacing / r_.cos_theta;
   const int k_entries = s_.tf.entries;
   const float* rows[2] = {s_.tf.refine + 4 * k_entries * kPieceRow,

@@ -16,17 +16,16 @@
 #include <glm/glm.hpp>
 
 #include "render/cpu_caster.h"
+#include "render/ray_constants.h"
 
 namespace tspgl::detail {
 
-/// Opacity at or above which a ray stops (volume_ray.frag's kOpaque).
-inline constexpr float kOpaque = 0.999f;
-/// Ray parameter nudge when finding the brick a point lies in (kNudge).
-inline constexpr float kNudge = 1e-3f;
-/// Gradient length (value range per voxel) over which lighting fades in (kFlatGradient).
-inline constexpr float kFlatGradient = 1e-3f;
-/// A textured page's code: the clip flag and the unit of its TF row (BrickPages).
-inline constexpr int kClipFlag = 512, kLevelRowUnit = 1024;
+// The constants both casters share (ray_constants.h; the GLSL gets the same values).
+using ray::kClipFlag;
+using ray::kFlatGradient;
+using ray::kLevelRowUnit;
+using ray::kNudge;
+using ray::kOpaque;
 /// 1 / 65535: a 16-bit unsigned normalised texel as GL reads it.
 inline constexpr float kUnorm16 = 1.f / 65535.f;
 

@@ -119,9 +119,16 @@ class RayWalk {
   void blend(vec4 c) { acc_ += (1.f - acc_.a) * c; }
   vec3 texel(float t, vec3 scale) const { return (r_.entry + r_.dir * t) * scale; }
   void neighbours(ivec3 c, vec4 page, bool level0, BrickView& b) const;
+  // The walk's parts, as volume_ray.frag's (docs/rendering.md, "The caster in parts").
+  bool run_closes(ivec3 c, vec4 page, float t_out, vec3 t_max, ivec3 dir, vec4& next_page,
+                  ivec3& next_c) const;
+  void textured_brick(ivec3 c, vec4 page, float t, float t_out, vec3 t_max, ivec3 dir,
+                      float& t_next, float& m_cur);
+  void level_brick(float t, float t_out, float& t_next, float dtm, vec3 scale, vec3 phase,
+                   const BrickView& b, int tf_row);
   void segments(float t, float t_out, float& t_next, vec3 scale, const BrickView& b,
                 bool closing);
-  void refined(float t, float t_out, vec4 page, ivec3 c, const BrickView& b, bool closing,
+  void refined(float t, float t_out, ivec3 c, const BrickView& b, bool closing,
                vec4 next_page, ivec3 next_c, float& t_next);
   int refined_batch(float t_out, const BrickView& b, bool closing,
                     const float* piece_row);

@@ -37,19 +37,6 @@ void clear(const GlApi& gl, const RenderSettings& settings) {
   gl.Clear(GL_COLOR_BUFFER_BIT);
 }
 
-// A program of vertex_name and fragment_name with `defines` and then the GLSL files `includes`
-// inserted, in order, after the fragment shader's #version line.
-Program load_program_with(const GlApi& gl, const std::string& vertex_name,
-                          const std::string& fragment_name,
-                          std::initializer_list<const char*> includes,
-                          const std::string& defines = "") {
-  std::string frag = shader_source(fragment_name), inserted = defines;
-  for (const char* name : includes) inserted += shader_source(name);
-  const std::size_t eol = frag.find('\n');
-  frag.insert(eol == std::string::npos ? frag.size() : eol + 1, inserted);
-  return build_program(gl, vertex_name + " + " + fragment_name, shader_source(vertex_name), frag);
-}
-
 // The unit cube's 12 triangles, counter-clockwise seen from outside.
 std::vector<float> cube_triangles() {
   static constexpr int kFaces[6][4] = {{0, 2, 6, 4}, {1, 5, 7, 3}, {0, 4, 5, 1},
@@ -136,14 +123,13 @@ std::array<float, 4> flat_colour(const tsp::Rgba& c, double spacing) {
 SliceCompositor::SliceCompositor(GlContext& ctx)
     : ctx_(ctx),
       gl_(ctx.gl()),
-      textured_(load_program_with(ctx.gl(), "slice.vert", "slice_textured.frag", {"sample_tf.glsl"})),
+      textured_(load_program_with(ctx.gl(), "slice.vert", "slice_textured.frag",
+                                  {"sample_tf.glsl"}, glsl_constants())),
       flat_(load_program(ctx.gl(), "slice.vert", "slice_flat.frag")),
       box_textured_(load_program_with(ctx.gl(), "box.vert", "box_textured.frag",
-                                      {"box_ray.glsl", "sample_tf.glsl"})),
+                                      {"box_ray.glsl", "sample_tf.glsl"}, glsl_constants())),
       box_flat_(load_program_with(ctx.gl(), "box.vert", "box_flat.frag", {"box_ray.glsl"})),
-      rays_plain_(load_program_with(ctx.gl(), "box.vert", "volume_ray.frag",
-                                    {"box_ray.glsl", "sample_tf.glsl", "clip.glsl"},
-                                    "#define TSP_CLIP 0\n#define TSP_SEGMENTS 1\n")),
+      ray_programs_(ctx.gl(), [this](const Program& p) { set_units(p); }),
       tf_(ctx.gl()),
       surface_tf_(ctx.gl()),
       target_(ctx) {
@@ -163,7 +149,7 @@ SliceCompositor::SliceCompositor(GlContext& ctx)
   gl_.EnableVertexAttribArray(0);
   gl_.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
   for (const Program* p : {&textured_, &box_textured_}) set_units(*p);
-  set_units(rays_plain_);
+  rays_ = &ray_programs_.get(RayVariant::segments);
   gl_.GenQueries(1, &fragments_query_);
   software_gl_ = software_renderer(ctx_.describe());
   for (GLuint* t : {&pages_, &step_map_}) {
@@ -211,20 +197,15 @@ void SliceCompositor::set_clip(const tsp::ClipRegion& clip, const tsp::TransferF
                                tsp::ValueRange quantized) {
   clip_region_ = clip;
   const int n = int(clip.probes().size());
-  // The clipping caster is its own program, built the first time a probe is used: its code
+  // The clipping caster is its own variant, built the first time a probe is used: its code
   // costs llvmpipe's shader compiler seconds, which frames without probes should not pay.
-  // An intersection keeps one interval of each ray: a leaner program that cuts the ray to it
+  // An intersection keeps one interval of each ray: a leaner variant that cuts the ray to it
   // and draws the surface at its ends (the general one costs llvmpipe about twice per pixel and
   // more per sample, since every branch runs under a mask).
-  const bool cut = n > 0 && clip.op() == tsp::ProbeOp::intersect;
-  std::optional<Program>& variant = cut ? rays_cut_ : rays_clip_;
-  if (n > 0 && !variant) {
-    variant.emplace(load_program_with(gl_, "box.vert", "volume_ray.frag",
-                                      {"box_ray.glsl", "sample_tf.glsl", "clip.glsl"},
-                                      cut ? "#define TSP_CLIP 2\n" : "#define TSP_CLIP 1\n"));
-    set_units(*variant);
-  }
-  rays_base_ = rays_ = n > 0 ? &*variant : &rays_plain_;
+  clipping_ = n > 0;
+  clip_variant_ = clip.op() == tsp::ProbeOp::intersect ? RayVariant::clipped_interval
+                                                        : RayVariant::clipped;
+  rays_ = &ray_programs_.get(clipping_ ? clip_variant_ : RayVariant::segments);
   rays_->use();
   gl_.Uniform1i(rays_->uniform("clip_count"), n);
   surface_on_ = n > 0 && surface;
@@ -272,33 +253,20 @@ void SliceCompositor::set_region(const PixelRect& r, const RenderSettings& setti
 void SliceCompositor::begin_frame(const tsp::Camera& camera, const RenderSettings& settings,
                                   bool keep) {
   ctx_.make_current();
-  // Without probes the caster samples in exact segments (TSP_SEGMENTS); pre-integration (the
-  // table read at each segment's two ends) and adaptive sampling have their own variants of
-  // it, made on first use.
-  const bool plain = rays_base_ == &rays_plain_;
+  // Without probes the caster samples in exact segments; pre-integration (the table read at
+  // each segment's two ends), adaptive sampling and refinement have their own variants of it,
+  // made on first use. Adaptive sampling takes the place of pre-integration, and either that of
+  // refinement.
+  const bool plain = !clipping_;
   adaptive_ = settings.sampling_tol > 0 && plain;
-  auto variant = [&](std::optional<Program>& p, const char* defines) -> const Program* {
-    if (!p) {
-      p.emplace(load_program_with(gl_, "box.vert", "volume_ray.frag",
-                                  {"box_ray.glsl", "sample_tf.glsl", "clip.glsl"}, defines));
-      set_units(*p);
-    }
-    return &*p;
-  };
-  // Refinement is the segment caster's own sampling, unless adaptive sampling or
-  // pre-integration takes its place.
-  const bool refine = plain && !adaptive_ && !settings.preintegrated && settings.refine_tol > 0;
-  if (adaptive_)
-    rays_ = variant(rays_adaptive_, "#define TSP_CLIP 0\n#define TSP_SEGMENTS 1\n"
-                                            "#define TSP_ADAPTIVE 1\n");
-  else if (plain && settings.preintegrated)
-    rays_ = variant(rays_preint_, "#define TSP_CLIP 0\n#define TSP_SEGMENTS 1\n"
-                                  "#define TSP_PREINT 1\n");
-  else if (refine)
-    rays_ = variant(rays_refine_, "#define TSP_CLIP 0\n#define TSP_SEGMENTS 1\n"
-                                  "#define TSP_REFINE 1\n");
-  else
-    rays_ = rays_base_;
+  RayVariant v = clip_variant_;
+  if (plain)
+    v = adaptive_                 ? RayVariant::adaptive
+        : settings.preintegrated  ? RayVariant::preintegrated
+        : settings.refine_tol > 0 ? RayVariant::refined
+                                  : RayVariant::segments;
+  rays_ = &ray_programs_.get(v);
+  const bool refine = v == RayVariant::refined;
   choose_backend(settings, plain);
   region_ = {};
   cpu_samples_ = 0;

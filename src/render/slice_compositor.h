@@ -16,6 +16,8 @@
 #include "render/cpu_pass.h"
 #include "render/frame_report.h"
 #include "render/image_reuse.h"
+#include "render/ray_constants.h"
+#include "render/ray_programs.h"
 #include "render/render_target.h"
 #include "render/surface_splats.h"
 #include "render/tf_texture.h"
@@ -58,9 +60,9 @@ class BrickPages {
   /// (tsp/metric/level_tf.h) instead of the TF.
   void set_textured(int b, const BrickSlot& slot, bool clipped = false, int tf_row = 0);
   /// Added to a textured page's code when its samples are tested against the clip solid.
-  static constexpr int kClipFlag = 512;
+  static constexpr int kClipFlag = ray::kClipFlag;
   /// A textured page's code carries its TF row times this.
-  static constexpr int kLevelRowUnit = 1024;
+  static constexpr int kLevelRowUnit = ray::kLevelRowUnit;
   /// After the last set_*: gives every empty brick the radius of the cube of empty bricks centred
   /// on it (Chebyshev distance to the nearest non-empty brick − 1, at most kMaxLeapRadius), which
   /// the ray caster leaps over.
@@ -165,16 +167,11 @@ class SliceCompositor {
   bool surface_drawn_ = false;                     // this frame's rays stop at the surface
   tsp::ClipRegion clip_region_;                    // the last set_clip's solid
   const GlApi& gl_;
-  Program textured_, flat_, box_textured_, box_flat_, rays_plain_;
-  std::optional<Program> rays_clip_;  ///< the caster with the clip code (made on first use)
-  /// The caster for an intersection without a surface: each ray cut to its one kept interval.
-  std::optional<Program> rays_cut_;
-  std::optional<Program> rays_adaptive_;  ///< the caster with adaptive sampling (first use)
-  /// The caster in exact segments with pre-integration (each segment's two ends).
-  std::optional<Program> rays_preint_;
-  std::optional<Program> rays_refine_;
-  const Program* rays_base_ = &rays_plain_;  ///< the caster set_clip chose
-  const Program* rays_ = &rays_plain_;  ///< the caster in use this frame
+  Program textured_, flat_, box_textured_, box_flat_;
+  RayPrograms ray_programs_;  ///< the caster's variants, each built on first use
+  bool clipping_ = false;     ///< set_clip chose a clip variant (probes are set)
+  RayVariant clip_variant_ = RayVariant::clipped;  ///< which one
+  const Program* rays_ = nullptr;  ///< the caster in use this frame
   bool adaptive_ = false;               ///< this frame samples adaptively
   GLuint step_map_ = 0;                 ///< per leaf brick: multiplier, TF row coordinate
   std::vector<float> step_texels_;
