@@ -35,52 +35,21 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-json lod_json(const LodRecord& l) {
-  const tsp::LodFrameStats& s = l.stats;
-  return {{"target_ms", l.target_ms},        {"cut_size", s.cut_size},
-          {"nodes_per_level", s.nodes_per_level}, {"splits", s.splits},
-          {"merges", s.merges},              {"texture_bytes", s.texture_bytes},
-          {"cost", s.cost},                  {"predicted_ms", s.predicted_ms},
-          {"max_error", s.max_error},     {"render_scale", s.render_scale},
-          {"splat_px", s.splat_px},          {"splats", s.splats}};
-}
-
 }  // namespace
 
-nlohmann::json frame_json(const FrameRecord& f) {
-  const FrameReport& r = f.report;
-  json j = {{"pass", f.pass},
-          {"step", r.step},
-          {"ms", r.ms},
-          {"traversal_ms", r.traversal_ms},
-          {"slicing_ms", r.slicing_ms},
-          {"upload_ms", r.upload_ms},
-          {"draw_ms", r.draw_ms},
-          {"not_rendered", r.class_percent[0]},
-          {"untextured", r.class_percent[1]},
-          {"reused_texture", r.class_percent[2]},
-          {"new_texture", r.class_percent[3]},
-          {"clipped", r.class_percent[4]},
-          {"bytes_uploaded", r.bytes_uploaded},
-          {"textures_resident", r.textures_resident},
-          {"texture_bytes", r.texture_bytes},
-          {"polygons", r.polygons},
-          {"boxes", r.boxes},
-          {"fragments", r.fragments},
-          {"redrawn_percent", r.redrawn_percent},
-          {"dense", r.dense},
-          {"caster", r.backend},
-          {"samples", r.samples},
-          {"step_multiplier", r.step_multiplier},
-          {"steps_merged", {r.spans_lo, r.spans_hi}},
-          {"steps_shown", {r.shown_lo, r.shown_hi}},
-          {"azimuth_deg", f.azimuth_deg},
-          {"ram_mib", double(f.ram_bytes) / (1 << 20)},
-          {"rss_mib", double(f.rss_bytes) / (1 << 20)},
-          {"time", f.time ? json(*f.time) : json(nullptr)},
-          {"time_text", f.time ? json(f.time_text) : json(nullptr)},
-          {"lod", f.lod ? lod_json(*f.lod) : json(nullptr)}};
-  if (!r.backend_note.empty()) j["caster_note"] = r.backend_note;
+void to_json(nlohmann::json& j, const FrameRecord& f) {
+  j = f.report;
+  j["pass"] = f.pass;
+  j["azimuth_deg"] = f.azimuth_deg;
+  j["ram_mib"] = double(f.ram_bytes) / (1 << 20);
+  j["rss_mib"] = double(f.rss_bytes) / (1 << 20);
+  j["time"] = f.time ? json(*f.time) : json(nullptr);
+  j["time_text"] = f.time ? json(f.time_text) : json(nullptr);
+  j["lod"] = nullptr;
+  if (f.lod) {
+    j["lod"] = f.lod->stats;
+    j["lod"]["target_ms"] = f.lod->target_ms;
+  }
   if (f.rank >= 0) j["rank"] = f.rank;
   if (f.surface_splats >= 0) {
     j["surface_splats"] = f.surface_splats;
@@ -88,7 +57,6 @@ nlohmann::json frame_json(const FrameRecord& f) {
     j["surface_ms"] = f.surface_ms;
     j["surface_px"] = f.surface_px;
   }
-  return j;
 }
 
 
@@ -185,74 +153,353 @@ void place_field(tsp::CameraParams& c, const tsp::TspFile& file, const std::arra
   }
 }
 
-RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderProgress& progress,
-                               const CalibrationProgress& calibration_progress) {
-  RenderJobOptions options = requested;
-  // Options first: nothing is opened or rendered with a bad one.
-  if (options.quality != 0 && !(options.quality > 0 && options.quality <= kMaxQualityDe))
-    throw tsp::UsageError("--quality " + std::to_string(options.quality) +
+namespace {
+
+// The options' checks that need no file.
+void check_options(const RenderJobOptions& o) {
+  if (o.quality != 0 && !(o.quality > 0 && o.quality <= kMaxQualityDe))
+    throw tsp::UsageError("--quality " + std::to_string(o.quality) +
                           ": expected a mean dE in (0, " + std::to_string(int(kMaxQualityDe)) + "]");
-  if (options.passes < 1 || options.passes > kMaxPasses)
-    throw tsp::UsageError("--passes " + std::to_string(options.passes) + ": expected 1 to " +
+  if (o.passes < 1 || o.passes > kMaxPasses)
+    throw tsp::UsageError("--passes " + std::to_string(o.passes) + ": expected 1 to " +
                           std::to_string(kMaxPasses));
-  validate(options.settings);
-  validate_budget(options.texture_budget, "--texture-budget");
-  validate_budget(options.ram_budget, "--ram-budget");
-  if (!(options.target_ms >= 0) || options.target_ms > kMaxTargetMs)
-    throw tsp::UsageError("--target-ms " + std::to_string(options.target_ms) +
+  validate(o.settings);
+  validate_budget(o.texture_budget, "--texture-budget");
+  validate_budget(o.ram_budget, "--ram-budget");
+  if (!(o.target_ms >= 0) || o.target_ms > kMaxTargetMs)
+    throw tsp::UsageError("--target-ms " + std::to_string(o.target_ms) +
                           ": expected a frame time in (0, " + std::to_string(int(kMaxTargetMs)) +
                           "] ms");
-  if (options.target_ms > 0 && options.lod != LodMode::adaptive)
+  if (o.target_ms > 0 && o.lod != LodMode::adaptive)
     throw tsp::UsageError("--target-ms needs --lod auto (the adaptive cut holds the target)");
-  if (options.lod != LodMode::off && options.baseline)
+  if (o.lod != LodMode::off && o.baseline)
     throw tsp::UsageError("--lod is for the TSP renderer: drop --baseline");
-  if (!options.probes.empty() && options.baseline)
+  if (!o.probes.empty() && o.baseline)
     throw tsp::UsageError("--probe is for the TSP renderer: drop --baseline");
-  if ((options.probe_surface || !options.probe_tf.empty() ||
-       options.probe_motion != std::array<double, 3>{0, 0, 0}) &&
-      options.probes.empty())
+  if ((o.probe_surface || !o.probe_tf.empty() ||
+       o.probe_motion != std::array<double, 3>{0, 0, 0}) &&
+      o.probes.empty())
     throw tsp::UsageError("--probe-surface/--probe-tf/--probe-motion need a --probe");
-  for (double d : options.probe_motion)
+  for (double d : o.probe_motion)
     if (!std::isfinite(d)) throw tsp::UsageError("--probe-motion: expected finite numbers");
-  if (options.lod == LodMode::fixed && options.lod_level < 0)
-    throw tsp::UsageError("--lod " + std::to_string(options.lod_level) +
+  if (o.lod == LodMode::fixed && o.lod_level < 0)
+    throw tsp::UsageError("--lod " + std::to_string(o.lod_level) +
                           ": expected off, auto or a level >= 0");
-  if (!std::isfinite(options.orbit_deg) || std::fabs(options.orbit_deg) > 360)
-    throw tsp::UsageError("--orbit " + std::to_string(options.orbit_deg) +
+  if (!std::isfinite(o.orbit_deg) || std::fabs(o.orbit_deg) > 360)
+    throw tsp::UsageError("--orbit " + std::to_string(o.orbit_deg) +
                           ": expected degrees per frame in [-360, 360]");
-  for (double k : options.scale)
+  for (double k : o.scale)
     if (!(k > 0) || !(k <= kMaxScale))
       throw tsp::UsageError("--scale: expected three factors in (0, " +
                             std::to_string(int(kMaxScale)) + "], found " + std::to_string(k));
-  if (!options.settings.surface &&
-      (!options.surface_mesh.empty() || !options.surface_field.empty() || !options.surface_tf.empty()))
+  if (!o.settings.surface &&
+      (!o.surface_mesh.empty() || !o.surface_field.empty() || !o.surface_tf.empty()))
     throw tsp::UsageError("--surface-mesh/--surface-field/--surface-tf need --surface boundary");
-  if (options.settings.surface && options.surface_mesh.empty())
+  if (o.settings.surface && o.surface_mesh.empty())
     throw tsp::UsageError("--surface boundary needs --surface-mesh, the mesh series the file was "
                           "built from");
-  if (options.settings.surface && options.settings.compositing != Compositing::rays)
+  if (o.settings.surface && o.settings.compositing != Compositing::rays)
     throw tsp::UsageError("--surface boundary is drawn with --compositing rays");
-  if (!(options.surface_target_ms >= 0) || options.surface_target_ms > kMaxTargetMs)
-    throw tsp::UsageError("--surface-target-ms " + std::to_string(options.surface_target_ms) +
+  if (!(o.surface_target_ms >= 0) || o.surface_target_ms > kMaxTargetMs)
+    throw tsp::UsageError("--surface-target-ms " + std::to_string(o.surface_target_ms) +
                           ": expected a time in (0, " + std::to_string(int(kMaxTargetMs)) + "] ms");
-  if (options.surface_target_ms > 0 && !options.settings.surface)
+  if (o.surface_target_ms > 0 && !o.settings.surface)
     throw tsp::UsageError("--surface-target-ms needs --surface boundary");
-  auto file = tsp::TspFile::open(options.tsp_path, options.field);
-  const tsp::TspTree& tree = file->tree();
-  // Physical proportions: the file's voxel spacing (times --scale) shapes the view.
-  place_field(options.camera, *file, options.scale, options.physical_proportions);
-  const int last = checked_last_step(tree, options.first_step, options.last_step, options.tsp_path);
+  if (o.step_stride < 1)
+    throw tsp::UsageError("--steps: the stride must be 1 or more, got " +
+                          std::to_string(o.step_stride));
+  if (o.parts < 0 || (o.parts > 0 && (o.part < 0 || o.part >= o.parts)))
+    throw tsp::UsageError("part " + std::to_string(o.part) + " of " +
+                          std::to_string(o.parts) + ": expected 0 <= part < parts");
+}
+
+// The LOD cut the driver draws with: --lod K (clamped to the file's levels), auto, splats or a
+// selection filter.
+LodSpec lod_spec(const RenderJobOptions& o, int lod_level) {
+  LodSpec lod;
+  lod.mode = o.lod;
+  lod.level = lod_level;
+  lod.splat_px = o.splat_px;
+  lod.filter = o.lod_filter;
+  lod.options = o.lod_options;
+  lod.options.target_ms = o.target_ms;
+  if (lod.options.texture_budget == 0) lod.options.texture_budget = o.texture_budget;
+  lod.converge = o.target_ms <= 0;  // untimed: a converged cut every frame
+  return lod;
+}
+
+// The surface pass's figures into rec; with --surface-target-ms, the next frame's splat size:
+// splats ∝ 1 / size², so the size that would have taken the target, a step at a time.
+void record_surface(const SurfaceStats& ss, const RenderJobOptions& o, FrameRecord& rec,
+                    double& surface_px) {
+  rec.surface_splats = ss.splats;
+  rec.surface_cut_ms = ss.cut_ms;
+  rec.surface_ms = ss.ms;
+  rec.surface_px = surface_px;
+  if (o.surface_target_ms > 0 && ss.ms > 0)
+    surface_px = std::clamp(surface_px * std::clamp(std::sqrt(ss.ms / o.surface_target_ms),
+                                                    1 / kSurfacePxStep, kSurfacePxStep),
+                            kMinSurfacePx, kMaxSurfacePx);
+}
+
+// frames.json: every frame and what the frames were drawn with.
+json frames_json(const RenderJobOptions& o, const RenderJobResult& result,
+                 const tsp::TspFile& file, int lod_level) {
+  const tsp::TspTree& tree = file.tree();
+  const RenderSettings& settings = o.settings;
+  json j;
+  j["frames"] = json::array();
+  for (const FrameRecord& f : result.frames) j["frames"].push_back(f);
+  j["file"] = o.tsp_path;
+  j["renderer"] = result.renderer;
+  j["gl_vendor"] = result.gl_vendor;
+  j["context"] = result.context;
+  j["mode"] = o.baseline ? "baseline" : "tsp";
+  j["metric"] = o.baseline ? "none" : tsp::to_string(o.metric);
+  j["metric_ms"] = result.metric_ms;
+  j["cache"] = o.cache == tsp::CachePolicy::on ? "on" : "off";
+  j["size"] = {o.camera.width, o.camera.height};
+  j["view"] = {o.camera.azimuth_deg, o.camera.elevation_deg};
+  j["projection"] = o.camera.projection == tsp::Projection::perspective ? "perspective"
+                                                                        : "orthographic";
+  j.update(settings_json(settings));  // every knob of the settings table
+  j["lod"] = o.lod == LodMode::off     ? json("off")
+             : o.lod == LodMode::fixed ? json(lod_level)
+             : o.lod == LodMode::splat ? json("splat:" + json(o.splat_px).dump())
+             : o.lod == LodMode::filter ? json("filter")
+                                        : json("auto");
+  j["lod_filter"] = o.lod == LodMode::filter ? tsp::to_string(o.lod_filter.kind) : "error";
+  j["lod_filter_k"] = o.lod_filter.scale;
+  if (o.camera.eye) j["eye"] = *o.camera.eye;
+  j["target_ms"] = o.target_ms;
+  j["lod_fallback"] = tsp::to_string(o.lod_options.fallback);
+  j["orbit_deg"] = o.orbit_deg;
+  j["lod_levels"] = tree.octree().max_lod_level() + 1;
+  if (o.settings.surface) {
+    j["surface_mesh"] = o.surface_mesh;
+    j["surface_field"] = o.surface_field.empty() ? file.metadata().field : o.surface_field;
+    j["surface_target_ms"] = o.surface_target_ms;
+  }
+  if (o.quality > 0)
+    j["quality"] = {{"target_delta_e", o.quality},
+                    {"render_options", result.quality_options},
+                    {"calibrated_max_step_delta_e", result.quality_calibrated_de},
+                    {"calibration_file", result.calibration_file}};
+  j["median_ms"] = median_frame_ms(result, o.passes);
+  return j;
+}
+
+}  // namespace
+
+namespace {
+
+// What draws the job's frames: the TSP renderer (with the metric, the clip solid and the mesh's
+// surface) or the non-TSP baseline, and the one frame driver over it.
+class FrameSource {
+ public:
+  FrameSource(GlContext& ctx, const RenderJobOptions& o, tsp::TspFile& file,
+              const tsp::TransferFunction& tf, const tsp::TransferFunction& probe_tf,
+              int lod_level, RenderJobResult& result)
+      : o_(o), file_(file) {
+    if (o.baseline) {
+      baseline_ = std::make_unique<BaselineRenderer>(ctx, file, o.ram_budget);
+      baseline_->set_transfer_function(tf);
+      nodes_.emplace(metric_);
+      driver_ = std::make_unique<FrameDriver>(*baseline_);
+      return;
+    }
+    const tsp::Stopwatch watch;
+    metric_ = tsp::compute_errors(o.metric, file.tree(), tf, &file, 0);
+    result.metric_ms = watch.ms();
+    nodes_.emplace(metric_);
+    renderer_ = std::make_unique<VolumeRenderer>(ctx, file, o.cache, o.texture_budget,
+                                                 o.ram_budget);
+    renderer_->set_transfer_function(tf);
+    if (o.probe_surface) probe_tf_ = probe_tf;
+    // The mesh's boundary under the volume: its splat hierarchy per step, coloured by its TF.
+    if (o.settings.surface)
+      mesh_surface_.emplace(o.surface_mesh, o.surface_field, file, o.surface_tf, o.first_step);
+    if (!o.probes.empty()) place_probes(0);
+    driver_ = std::make_unique<FrameDriver>(*renderer_, lod_spec(o, lod_level));
+  }
+
+  /// The node errors the frames read (empty for the baseline).
+  tsp::FrameMetric* metric() { return &*nodes_; }
+
+  /// The clip solid of frame `frame`, in the file's physical coordinates: with probe_motion
+  /// its probes move every frame (a plane along its normal's share of the motion).
+  void place_probes(int frame) {
+    if (o_.probes.empty() ||
+        (frame > 0 && o_.probe_motion == std::array<double, 3>{0, 0, 0}))
+      return;
+    std::vector<tsp::Probe> probes = o_.probes;
+    for (tsp::Probe& p : probes)
+      tsp::move_probe(p, {o_.probe_motion[0] * frame, o_.probe_motion[1] * frame,
+                          o_.probe_motion[2] * frame});
+    renderer_->set_clip(tsp::ClipRegion(probes, o_.probe_op, file_.metadata().origin,
+                                        file_.metadata().spacing),
+                        probe_tf_);
+  }
+
+  /// Another part's frame: only what carries over to the next (the LOD cut).
+  void advance(const FrameRequest& request) { driver_->advance(request); }
+
+  /// Draws step request.step into rec (its report, LOD, surface and memory figures).
+  void draw(const FrameRequest& request, FrameRecord& rec) {
+    SliceCompositor& compositor =
+        baseline_ ? baseline_->compositor() : *renderer_->compositor();
+    if (mesh_surface_) compositor.set_surface(mesh_surface_->frame(request.step, surface_px_));
+    const DrawnFrame drawn = driver_->draw(request);
+    if (mesh_surface_) record_surface(compositor.surface_stats(), o_, rec, surface_px_);
+    rec.report = drawn.report;
+    if (drawn.lod)
+      rec.lod = LodRecord{o_.lod == LodMode::adaptive ? o_.target_ms : 0, *drawn.lod};
+    rec.ram_bytes = (baseline_ ? baseline_->brick_cache() : renderer_->brick_cache())
+                        .stats()
+                        .resident_bytes;
+    rec.rss_bytes = tsp::resident_bytes();
+  }
+
+ private:
+  const RenderJobOptions& o_;
+  tsp::TspFile& file_;
+  tsp::MetricResult metric_;
+  std::optional<tsp::WholeTreeMetric> nodes_;
+  std::unique_ptr<VolumeRenderer> renderer_;
+  std::unique_ptr<BaselineRenderer> baseline_;
+  std::optional<tsp::TransferFunction> probe_tf_;  ///< the clip surface's colours (if drawn)
+  std::optional<MeshSurface> mesh_surface_;
+  double surface_px_ = o_.settings.surface_px;  ///< the cut's minimum splat size (adapts)
+  std::unique_ptr<FrameDriver> driver_;
+};
+
+// The job's input: the file, its last step, and the TF and where it sits.
+struct JobInput {
+  std::unique_ptr<tsp::TspFile> file;
+  int last = 0;
+  tsp::ValueRange tf_domain;
+  tsp::ValueHistogram histogram;
+  std::optional<tsp::TransferFunction> tf;
+};
+
+// Opens the file and builds the TF; places the camera (physical proportions: the file's voxel
+// spacing, times --scale, shapes the view).
+JobInput open_input(RenderJobOptions& options) {
+  JobInput in;
+  in.file = tsp::TspFile::open(options.tsp_path, options.field);
+  const tsp::TspFile& file = *in.file;
+  const tsp::TspTree& tree = file.tree();
+  place_field(options.camera, file, options.scale, options.physical_proportions);
+  in.last = checked_last_step(tree, options.first_step, options.last_step, options.tsp_path);
   // Where the TF sits: --tf-range visible takes what this view shows of the first step.
-  const tsp::ValueRange tf_domain =
+  in.tf_domain =
       options.tf_range.mode == tsp::TfRangeChoice::Mode::visible
           ? visible_value_range(tree, options.first_step,
                                 tsp::Camera(tree.octree().dims(), options.camera),
                                 tsp::ClipRegion(options.probes, options.probe_op,
-                                                file->metadata().origin, file->metadata().spacing))
-          : tsp::tf_domain_of(options.tf_range, *file, options.first_step);
-  const tsp::ValueHistogram histogram = tsp::histogram_of(*file);
-  const tsp::TransferFunction tf = tsp::transfer_function_from_arg(
-      options.tf, tf_domain, tsp::kDefaultTfEntries, options.tf_range, &histogram);
+                                                file.metadata().origin, file.metadata().spacing))
+          : tsp::tf_domain_of(options.tf_range, file, options.first_step);
+  in.histogram = tsp::histogram_of(file);
+  in.tf = tsp::transfer_function_from_arg(options.tf, in.tf_domain, tsp::kDefaultTfEntries,
+                                          options.tf_range, &in.histogram);
+  return in;
+}
+
+// Writes into the job's folder; a write that fails (a full disk) names the folder the user
+// gave, not its hidden temporary.
+template <typename Write>
+void into_folder(const tsp::OutputFolder& folder, const Write& write) {
+  try {
+    write();
+  } catch (const tsp::IoError& e) {
+    throw tsp::IoError(folder.as_shown(e.what()));
+  }
+}
+
+// Draws every frame of the job (all passes; a split render's part draws its own block and
+// replays the others' cuts) into result, and the last pass's PNGs into the folder.
+void draw_frames(GlContext& ctx, const RenderJobOptions& o, const JobInput& in,
+                 const tsp::OutputFolder* folder, const RenderProgress& progress,
+                 RenderJobResult& result) {
+  const tsp::TspFile& file = *in.file;
+  const tsp::TspTree& tree = file.tree();
+  const tsp::TransferFunction& tf = *in.tf;
+  const tsp::TransferFunction probe_tf =
+      o.probe_surface && !o.probe_tf.empty()
+          ? tsp::transfer_function_from_arg(o.probe_tf, in.tf_domain, tsp::kDefaultTfEntries,
+                                            o.tf_range, &in.histogram)
+          : tf;
+  const int lod_level = std::min(o.lod_level, tree.octree().max_lod_level());  // --lod K
+  FrameSource source(ctx, o, *in.file, tf, probe_tf, lod_level, result);
+  const int per_pass = (in.last - o.first_step) / o.step_stride + 1;
+  // A split render's part draws frames [block.first, block.second) of every pass.
+  const auto block = o.parts > 0 ? part_frames(per_pass, o.part, o.parts)
+                                 : std::pair<int, int>{0, per_pass};
+  const int total = o.passes * (block.second - block.first);
+  int frame_index = 0;
+  for (int pass = 1; pass <= o.passes; ++pass) {
+    for (int t = o.first_step; t <= in.last; t += o.step_stride, ++frame_index) {
+      tsp::throw_if_interrupted();
+      const int in_pass = (t - o.first_step) / o.step_stride;
+      const bool mine = in_pass >= block.first && in_pass < block.second;
+      // Another part's frame: skipped, or with a cut that carries over, replayed (up to this
+      // part's last frame) so that this part's frames are drawn with the whole render's cuts.
+      if (!mine && (pass == o.passes && in_pass >= block.second)) continue;
+      tsp::CameraParams params = o.camera;
+      params.azimuth_deg += o.orbit_deg * frame_index;
+      const tsp::Camera camera(tree.octree().dims(), params);
+      if (frame_index > 0) source.place_probes(frame_index);  // (frame 0's: set up)
+      FrameRequest request;
+      request.step = t;
+      request.camera = &camera;
+      request.settings = o.settings;
+      request.metric = source.metric();
+      request.tf = &tf;
+      if (!mine) {
+        source.advance(request);
+        continue;
+      }
+      FrameRecord rec;
+      rec.pass = pass;
+      if (o.parts > 0) rec.rank = o.part;
+      rec.azimuth_deg = params.azimuth_deg;
+      if (!file.metadata().times.empty()) {
+        rec.time = file.metadata().times[std::size_t(t)];
+        rec.time_text = tsp::format_time(*rec.time, file.metadata().time_units);
+      }
+      source.draw(request, rec);
+      // A frame the chosen back end cannot draw is drawn by the other: said once, and in the
+      // frame's record (caster_note).
+      if (!rec.report.backend_note.empty() &&
+          std::find(result.warnings.begin(), result.warnings.end(), rec.report.backend_note) ==
+              result.warnings.end())
+        result.warnings.push_back(rec.report.backend_note);
+      result.frames.push_back(rec);
+      // The last pass's images win; earlier passes only measure.
+      const bool png = folder && o.write_images && pass == o.passes;
+      if (png || o.on_frame) {
+        tsp::Image pixels = ctx.read_pixels();
+        if (o.annotate)
+          annotate_frame(pixels, camera, tree.octree().dims(), tf, t,
+                         rec.time ? std::optional<std::string>(rec.time_text) : std::nullopt,
+                         file.fields()[std::size_t(file.field_index())]);
+        if (o.on_frame) o.on_frame(rec, pixels);
+        if (png)
+          into_folder(*folder, [&] { tsp::write_png(step_png(folder->tmp(), t), pixels); });
+      }
+      if (progress) progress(int(result.frames.size()), total);
+    }
+  }
+}
+
+}  // namespace
+
+RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderProgress& progress,
+                               const CalibrationProgress& calibration_progress) {
+  RenderJobOptions options = requested;
+  check_options(options);  // nothing is opened or rendered with a bad option
+  const JobInput in = open_input(options);
+  const tsp::TransferFunction& tf = *in.tf;
   // Every output is checked before any work and replaced only when the whole job succeeded.
   const tsp::InputGuard inputs({options.tsp_path, options.tf, options.probe_tf, options.surface_mesh,
                                 options.surface_tf});
@@ -268,11 +515,8 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
     check_movie_name(options.movie, "--movie");
     movie.emplace(options.movie);
   }
-  if (options.parts < 0 || (options.parts > 0 && (options.part < 0 || options.part >= options.parts)))
-    throw tsp::UsageError("part " + std::to_string(options.part) + " of " +
-                          std::to_string(options.parts) + ": expected 0 <= part < parts");
   RenderJobResult result;
-  if (std::string w = tsp::tf_range_warning(tf, file->metadata().data_range); !w.empty())
+  if (std::string w = tsp::tf_range_warning(tf, in.file->metadata().data_range); !w.empty())
     result.warnings.push_back(w);
   if (options.check_only && options.quality == 0) return result;
   std::string gl_note;
@@ -283,203 +527,22 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
   result.gl_vendor = ctx->vendor();
   result.context = ctx->kind();
   const RenderJobOptions o =
-      options.quality != 0 ? with_quality(*ctx, options, *file, tf, result, calibration_progress)
+      options.quality != 0 ? with_quality(*ctx, options, *in.file, tf, result, calibration_progress)
                            : options;
   if (options.check_only) return result;  // the calibration is cached for the parts
-  const RenderSettings& settings = o.settings;
-
-  const fs::path dir = folder ? fs::path(folder->tmp()) : fs::path();
-  // A write into the folder that fails (a full disk) names the folder the user gave, not its
-  // hidden temporary.
-  const auto into_folder = [&folder](const auto& write) {
-    try {
-      write();
-    } catch (const tsp::IoError& e) {
-      throw tsp::IoError(folder->as_shown(e.what()));
-    }
-  };
-
-  tsp::MetricResult metric;
-  if (!o.baseline) {
-    const tsp::Stopwatch watch;
-    metric = tsp::compute_errors(o.metric, tree, tf, file.get(), 0);
-    result.metric_ms = watch.ms();
-  }
-  std::unique_ptr<VolumeRenderer> renderer;
-  std::unique_ptr<BaselineRenderer> baseline;
-  if (o.baseline)
-    baseline = std::make_unique<BaselineRenderer>(*ctx, *file, o.ram_budget);
-  else
-    renderer = std::make_unique<VolumeRenderer>(*ctx, *file, o.cache, o.texture_budget,
-                                                o.ram_budget);
-  if (baseline) baseline->set_transfer_function(tf);
-  if (renderer) renderer->set_transfer_function(tf);
-  // The clip solid, in the file's physical coordinates; with probe_motion its probes move
-  // every frame (a plane along its normal's share of the motion).
-  std::optional<tsp::TransferFunction> surface;
-  if (o.probe_surface)
-    surface = o.probe_tf.empty() ? tf
-                                 : tsp::transfer_function_from_arg(
-                                       o.probe_tf,
-                                       tf_domain,
-                                       tsp::kDefaultTfEntries, o.tf_range, &histogram);
-  auto set_clip = [&](int frame) {
-    std::vector<tsp::Probe> probes = o.probes;
-    for (tsp::Probe& p : probes) tsp::move_probe(p, {o.probe_motion[0] * frame,
-                                                     o.probe_motion[1] * frame,
-                                                     o.probe_motion[2] * frame});
-    renderer->set_clip(tsp::ClipRegion(probes, o.probe_op, file->metadata().origin,
-                                       file->metadata().spacing),
-                       surface);
-  };
-  // The mesh's boundary under the volume: its splat hierarchy per step, coloured by its own TF.
-  std::optional<MeshSurface> mesh_surface;
-  if (o.settings.surface) mesh_surface.emplace(o.surface_mesh, o.surface_field, *file, o.surface_tf, o.first_step);
-  double surface_px = o.settings.surface_px;  // the cut's minimum splat size (adapts to a target)
-  const bool moving = o.probe_motion != std::array<double, 3>{0, 0, 0};
-  if (!o.probes.empty()) set_clip(0);
-  tsp::WholeTreeMetric nodes(metric);
-  if (o.step_stride < 1)
-    throw tsp::UsageError("--steps: the stride must be 1 or more, got " +
-                          std::to_string(o.step_stride));
-  const int per_pass = (last - o.first_step) / o.step_stride + 1;
-  // A split render's part draws frames [block.first, block.second) of every pass.
-  const auto block = o.parts > 0 ? part_frames(per_pass, o.part, o.parts)
-                                 : std::pair<int, int>{0, per_pass};
-  const int total = o.passes * (block.second - block.first);
-  // The frames' driver, with the LOD cut: one level everywhere, the controller's or splats.
-  const int lod_level = std::min(o.lod_level, tree.octree().max_lod_level());  // --lod K, clamped
-  LodSpec lod;
-  lod.mode = o.lod;
-  lod.level = lod_level;
-  lod.splat_px = o.splat_px;
-  lod.filter = o.lod_filter;
-  lod.options = o.lod_options;
-  lod.options.target_ms = o.target_ms;
-  if (lod.options.texture_budget == 0) lod.options.texture_budget = o.texture_budget;
-  lod.converge = o.target_ms <= 0;  // untimed: a converged cut every frame
-  std::unique_ptr<FrameDriver> driver = baseline ? std::make_unique<FrameDriver>(*baseline)
-                                                 : std::make_unique<FrameDriver>(*renderer, lod);
-  int frame_index = 0;
-  for (int pass = 1; pass <= o.passes; ++pass) {
-    for (int t = o.first_step; t <= last; t += o.step_stride, ++frame_index) {
-      tsp::throw_if_interrupted();
-      const int in_pass = (t - o.first_step) / o.step_stride;
-      const bool mine = in_pass >= block.first && in_pass < block.second;
-      // Another part's frame: skipped, or with a cut that carries over, replayed (up to this
-      // part's last frame) so that this part's frames are drawn with the whole render's cuts.
-      if (!mine && (pass == o.passes && in_pass >= block.second)) continue;
-      tsp::CameraParams params = o.camera;
-      params.azimuth_deg += o.orbit_deg * frame_index;
-      const tsp::Camera camera(tree.octree().dims(), params);
-      if (moving && !o.probes.empty() && frame_index > 0) set_clip(frame_index);
-      FrameRequest request;
-      request.step = t;
-      request.camera = &camera;
-      request.settings = settings;
-      request.metric = &nodes;
-      request.tf = &tf;
-      if (!mine) {
-        driver->advance(request);
-        continue;
-      }
-      FrameRecord rec;
-      rec.pass = pass;
-      if (o.parts > 0) rec.rank = o.part;
-      rec.azimuth_deg = params.azimuth_deg;
-      if (!file->metadata().times.empty()) {
-        rec.time = file->metadata().times[std::size_t(t)];
-        rec.time_text = tsp::format_time(*rec.time, file->metadata().time_units);
-      }
-      SliceCompositor& compositor = baseline ? baseline->compositor() : *renderer->compositor();
-      if (mesh_surface) compositor.set_surface(mesh_surface->frame(t, surface_px));
-      const DrawnFrame drawn = driver->draw(request);
-      if (mesh_surface) {
-        const SurfaceStats& ss = compositor.surface_stats();
-        rec.surface_splats = ss.splats;
-        rec.surface_cut_ms = ss.cut_ms;
-        rec.surface_ms = ss.ms;
-        rec.surface_px = surface_px;
-        // Splats ∝ 1 / size²: the size that would have taken the target, a step at a time.
-        if (o.surface_target_ms > 0 && ss.ms > 0)
-          surface_px = std::clamp(surface_px * std::clamp(std::sqrt(ss.ms / o.surface_target_ms),
-                                                          1 / kSurfacePxStep, kSurfacePxStep),
-                                  kMinSurfacePx, kMaxSurfacePx);
-      }
-      rec.report = drawn.report;
-      if (drawn.lod) rec.lod = LodRecord{o.lod == LodMode::adaptive ? o.target_ms : 0, *drawn.lod};
-      rec.ram_bytes = (baseline ? baseline->brick_cache() : renderer->brick_cache()).stats().resident_bytes;
-      rec.rss_bytes = tsp::resident_bytes();
-      // A frame the chosen back end cannot draw is drawn by the other: said once, and in the
-      // frame's record (caster_note).
-      if (!rec.report.backend_note.empty() &&
-          std::find(result.warnings.begin(), result.warnings.end(), rec.report.backend_note) ==
-              result.warnings.end())
-        result.warnings.push_back(rec.report.backend_note);
-      result.frames.push_back(rec);
-      // The last pass's images win; earlier passes only measure.
-      const bool png = !dir.empty() && o.write_images && pass == o.passes;
-      if (png || o.on_frame) {
-        tsp::Image pixels = ctx->read_pixels();
-        if (o.annotate)
-          annotate_frame(pixels, camera, tree.octree().dims(), tf, t,
-                         rec.time ? std::optional<std::string>(rec.time_text) : std::nullopt,
-                         file->fields()[std::size_t(file->field_index())]);
-        if (o.on_frame) o.on_frame(rec, pixels);
-        if (png) into_folder([&] { tsp::write_png(step_png(dir, t), pixels); });
-      }
-      if (progress) progress(int(result.frames.size()), total);
-    }
-  }
-
-  if (!dir.empty()) {
-    json j;
-    j["frames"] = json::array();
-    for (const FrameRecord& f : result.frames) j["frames"].push_back(frame_json(f));
-    j["file"] = o.tsp_path;
-    j["renderer"] = result.renderer;
-    j["gl_vendor"] = result.gl_vendor;
-    j["context"] = result.context;
-    j["mode"] = o.baseline ? "baseline" : "tsp";
-    j["metric"] = o.baseline ? "none" : tsp::to_string(o.metric);
-    j["metric_ms"] = result.metric_ms;
-    j["cache"] = o.cache == tsp::CachePolicy::on ? "on" : "off";
-    j["size"] = {o.camera.width, o.camera.height};
-    j["view"] = {o.camera.azimuth_deg, o.camera.elevation_deg};
-    j["projection"] = o.camera.projection == tsp::Projection::perspective ? "perspective"
-                                                                          : "orthographic";
-    j.update(settings_json(settings));  // every knob of the settings table
-    j["lod"] = o.lod == LodMode::off     ? json("off")
-               : o.lod == LodMode::fixed ? json(lod_level)
-               : o.lod == LodMode::splat ? json("splat:" + json(o.splat_px).dump())
-               : o.lod == LodMode::filter ? json("filter")
-                                          : json("auto");
-    j["lod_filter"] = o.lod == LodMode::filter ? tsp::to_string(o.lod_filter.kind) : "error";
-    j["lod_filter_k"] = o.lod_filter.scale;
-    if (o.camera.eye) j["eye"] = *o.camera.eye;
-    j["target_ms"] = o.target_ms;
-    j["lod_fallback"] = tsp::to_string(o.lod_options.fallback);
-    j["orbit_deg"] = o.orbit_deg;
-    j["lod_levels"] = tree.octree().max_lod_level() + 1;
-    if (o.settings.surface) {
-      j["surface_mesh"] = o.surface_mesh;
-      j["surface_field"] = o.surface_field.empty() ? file->metadata().field : o.surface_field;
-      j["surface_target_ms"] = o.surface_target_ms;
-    }
-    if (o.quality > 0)
-      j["quality"] = {{"target_delta_e", o.quality},
-                      {"render_options", result.quality_options},
-                      {"calibrated_max_step_delta_e", result.quality_calibrated_de},
-                      {"calibration_file", result.calibration_file}};
-    j["median_ms"] = median_frame_ms(result, o.passes);
-    into_folder([&] {
-      tsp::write_file_atomically((dir / "frames.json").string(), tsp::json_text(j, 2) + "\n");
+  draw_frames(*ctx, o, in, folder ? &*folder : nullptr, progress, result);
+  if (folder) {
+    const int lod_level = std::min(o.lod_level, in.file->tree().octree().max_lod_level());
+    const json j = frames_json(o, result, *in.file, lod_level);
+    into_folder(*folder, [&] {
+      tsp::write_file_atomically((fs::path(folder->tmp()) / "frames.json").string(),
+                                 tsp::json_text(j, 2) + "\n");
     });
   }
   if (movie) {  // the last pass's frames, in the order rendered
     std::vector<fs::path> frames;
     for (const FrameRecord& f : result.frames)
-      if (f.pass == o.passes) frames.push_back(step_png(dir, f.report.step));
+      if (f.pass == o.passes) frames.push_back(step_png(folder->tmp(), f.report.step));
     encode_movie_into(frames, *movie, o.movie, o.fps);
   }
   if (saved_tf) saved_tf->commit();

@@ -175,8 +175,9 @@ RenderJobResult run_render_job(
 /// returns last. Throws tsp::UsageError naming the file and its steps.
 int checked_last_step(const tsp::TspTree& tree, int first, int last, const std::string& path);
 
-/// One frame's entry of frames.json (step, timings, classes, caster, LOD, …). Never throws.
-nlohmann::json frame_json(const FrameRecord& f);
+/// One frame's entry of frames.json: its FrameReport's keys (to_json in frame_report.h) and
+/// the record's own (pass, azimuth, time, memory, LOD, rank, surface). Never throws but bad_alloc.
+void to_json(nlohmann::json& j, const FrameRecord& f);
 
 /// Makes the output folder out (bench -o) if it is not there; its parent must exist.
 /// Throws tsp::IoError naming the missing parent or the folder that cannot be made.

@@ -98,7 +98,7 @@ py::dict run_job(tspgl::RenderJobOptions o, const py::object& progress) {
     job_ms = watch.ms();
   }
   py::list frames, pictures;
-  for (const tspgl::FrameRecord& f : r.frames) frames.append(to_python(tspgl::frame_json(f)));
+  for (const tspgl::FrameRecord& f : r.frames) frames.append(to_python(nlohmann::json(f)));
   for (tsp::Image& img : images) pictures.append(image_array(std::move(img)));
   py::dict d;
   d["images"] = pictures;

@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <string>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include "render/render_settings.h"
 #include "tsp/frame/frame_plan.h"
 #include "tsp/tree/traversal.h"
@@ -49,5 +51,10 @@ struct FrameReport {
   /// True when every texture the frame needs was drawn (nothing deferred).
   bool complete() const { return deferred_textures == 0; }
 };
+
+/// FrameReport as JSON: frames.json's keys for a frame (ms, the *_ms phases, the five Table-5
+/// classes by name, caster and caster_note, samples, steps_merged, steps_shown, …), used by
+/// frames.json, the player's stats and the bench's report alike. Never throws but bad_alloc.
+void to_json(nlohmann::json& j, const FrameReport& r);
 
 }  // namespace tspgl

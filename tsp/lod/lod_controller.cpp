@@ -1,5 +1,7 @@
 #include "tsp/lod/lod_controller.h"
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <queue>
@@ -334,6 +336,15 @@ void LodController::measured(double ms) {
   scale_of_last_ = scale_of_frame_;
   // The model is fitted on full-size frames only (a smaller target changes every pixel's cost).
   if (last_cost_ >= 0 && scale_of_frame_ >= 1) model_.add(last_cost_, ms);
+}
+
+void to_json(nlohmann::json& j, const LodFrameStats& s) {
+  j = {{"cut_size", s.cut_size},         {"nodes_per_level", s.nodes_per_level},
+       {"splits", s.splits},             {"merges", s.merges},
+       {"texture_bytes", s.texture_bytes}, {"cost", s.cost},
+       {"predicted_ms", s.predicted_ms}, {"max_error", s.max_error},
+       {"render_scale", s.render_scale}, {"splat_px", s.splat_px},
+       {"splats", s.splats}};
 }
 
 }  // namespace tsp

@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include "tsp/frame/camera.h"
 #include "tsp/lod/cost_model.h"
 #include "tsp/lod/lod_cut.h"
@@ -63,6 +65,10 @@ struct LodFrameStats {
   double splat_px = 0;
   int splats = 0;
 };
+
+/// LodFrameStats as JSON, one key per field with the field's name (frames.json's "lod", the
+/// player's stats). Never throws but std::bad_alloc.
+void to_json(nlohmann::json& j, const LodFrameStats& s);
 
 /// A cut's size, nodes per level and texture bytes (the rest zero: no update made it). Never
 /// throws.
