@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "render/frame_report.h"
 #include "tsp/core/json_text.h"
 #include "tsp/core/temp_output.h"
 
@@ -29,11 +30,11 @@ std::string fmt(double v) {
 }
 
 json timing_json(const Timing& t) {
-  return {{"median_ms", t.median_ms},    {"first_pass_median_ms", t.first_pass_median_ms},
-          {"metric_ms", t.metric_ms},    {"steps", t.steps},
-          {"step_ms", t.step_ms},        {"not_rendered", t.classes[0]},
-          {"untextured", t.classes[1]},  {"reused_texture", t.classes[2]},
-          {"new_texture", t.classes[3]}, {"bytes_uploaded_per_frame", t.bytes_uploaded}};
+  json j = {{"median_ms", t.median_ms}, {"first_pass_median_ms", t.first_pass_median_ms},
+            {"metric_ms", t.metric_ms}, {"steps", t.steps},
+            {"step_ms", t.step_ms},     {"bytes_uploaded_per_frame", t.bytes_uploaded}};
+  tspgl::add_class_shares(j, t.classes);
+  return j;
 }
 
 BenchReport::BenchReport(json header) : report_(std::move(header)) {
@@ -120,15 +121,13 @@ void BenchReport::add_classes(const std::string& tf, const std::string& metric, 
   t5_ << csv(tf) << ',' << metric << ',' << cache << ',' << fmt(tol) << ','
       << (target > 0 ? fmt(target) : "") << ',' << fmt(t.classes[0]) << ',' << fmt(t.classes[1])
       << ',' << fmt(t.classes[2]) << ',' << fmt(t.classes[3]) << '\n';
-  report_["table5"].push_back({{"tf", tf},
-                               {"metric", metric},
-                               {"cache", cache},
-                               {"tolerance", tol},
-                               {"target_delta_e", target > 0 ? json(target) : json()},
-                               {"not_rendered", t.classes[0]},
-                               {"untextured", t.classes[1]},
-                               {"reused_texture", t.classes[2]},
-                               {"new_texture", t.classes[3]}});
+  json row = {{"tf", tf},
+              {"metric", metric},
+              {"cache", cache},
+              {"tolerance", tol},
+              {"target_delta_e", target > 0 ? json(target) : json()}};
+  tspgl::add_class_shares(row, t.classes);
+  report_["table5"].push_back(row);
 }
 
 void BenchReport::add_plot(const std::string& file) { report_["plots"].push_back(file); }

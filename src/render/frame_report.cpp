@@ -11,11 +11,6 @@ void to_json(nlohmann::json& j, const FrameReport& r) {
        {"slicing_ms", r.slicing_ms},
        {"upload_ms", r.upload_ms},
        {"draw_ms", r.draw_ms},
-       {"not_rendered", r.class_percent[0]},
-       {"untextured", r.class_percent[1]},
-       {"reused_texture", r.class_percent[2]},
-       {"new_texture", r.class_percent[3]},
-       {"clipped", r.class_percent[4]},
        {"bytes_uploaded", r.bytes_uploaded},
        {"textures_resident", r.textures_resident},
        {"texture_bytes", r.texture_bytes},
@@ -30,7 +25,13 @@ void to_json(nlohmann::json& j, const FrameReport& r) {
        {"step_multiplier", r.step_multiplier},
        {"steps_merged", {r.spans_lo, r.spans_hi}},
        {"steps_shown", {r.shown_lo, r.shown_hi}}};
+  add_class_shares(j, r.class_percent);
   if (!r.backend_note.empty()) j["caster_note"] = r.backend_note;
+}
+
+void add_class_shares(nlohmann::json& j, std::span<const double> shares) {
+  for (std::size_t c = 0; c < shares.size() && c < std::size_t(tsp::kDrawClassCount); ++c)
+    j[tsp::to_string(tsp::DrawClass(c))] = shares[c];
 }
 
 }  // namespace tspgl

@@ -4,6 +4,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <span>
 #include <string>
 
 #include <nlohmann/json_fwd.hpp>
@@ -56,5 +57,10 @@ struct FrameReport {
 /// classes by name, caster and caster_note, samples, steps_merged, steps_shown, …), used by
 /// frames.json, the player's stats and the bench's report alike. Never throws but bad_alloc.
 void to_json(nlohmann::json& j, const FrameReport& r);
+
+/// Adds the Table-5 classes' shares (percent, in DrawClass order: the first shares.size() of
+/// them) to the object j, each keyed by tsp::to_string(DrawClass) ("not_rendered", …): the one
+/// writer of those keys for frames.json, the bench's report and the player's stats.
+void add_class_shares(nlohmann::json& j, std::span<const double> shares);
 
 }  // namespace tspgl
