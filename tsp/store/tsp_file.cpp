@@ -13,112 +13,14 @@
 #include "tsp/hdf5/hdf5_lock.h"
 #include "tsp/hdf5/hdf5_values.h"
 #include "tsp/store/tsp_layout.h"
+#include "tsp/store/tsp_reader.h"
 
 namespace tsp {
 
 namespace {
 
+using detail::Reader;
 using h5::Handle;
-
-std::string shape_text(const std::vector<hsize_t>& s) {
-  std::ostringstream o;
-  o << "[";
-  for (std::size_t i = 0; i < s.size(); ++i) o << (i ? "," : "") << s[i];
-  o << "]";
-  return o.str();
-}
-
-// Reads the .tsp layout of one open file, turning every inconsistency into a FormatError that
-// names the file and the object.
-class Reader {
- public:
-  /// file: the field's location (the root group or fields/K); prefix: its path for messages.
-  Reader(const std::string& path, hid_t file, std::string prefix = "/")
-      : path_(path), file_(file), prefix_(std::move(prefix)) {}
-
-  /// "dataset /NAME" (with the field's group) for messages.
-  std::string dataset_name(const char* name) const { return "dataset " + prefix_ + name; }
-
-  [[noreturn]] void fail(const std::string& what, const std::string& msg) const {
-    throw FormatError(path_ + ": " + what + ": " + msg);
-  }
-
-  bool has_attr(const char* name) const { return H5Aexists(file_, name) > 0; }
-
-  Handle open_attr(const char* name) const {
-    if (!has_attr(name)) fail(std::string("attribute ") + name, "missing");
-    Handle a(H5Aopen(file_, name, H5P_DEFAULT));
-    if (!a) fail(std::string("attribute ") + name, "cannot be opened");
-    return a;
-  }
-
-  // The one string-attribute reader (hdf5/hdf5_values); a missing one is an error here.
-  std::string attr_string(const char* name) const {
-    if (!has_attr(name)) fail(std::string("attribute ") + name, "missing");
-    return *io::string_attribute(file_, name, path_);
-  }
-
-  template <class T>
-  std::vector<T> attr_numbers(const char* name, hid_t mem_type, hssize_t count) const {
-    Handle a = open_attr(name);
-    Handle type(H5Aget_type(a.get()));
-    if (!io::is_standard_numeric_type(type.get()))
-      fail(std::string("attribute ") + name, "expected numbers of a standard integer or float type");
-    Handle space(H5Aget_space(a.get()));
-    hssize_t n = H5Sget_simple_extent_npoints(space.get());
-    if (n != count)
-      fail(std::string("attribute ") + name,
-           "expected " + std::to_string(count) + " value(s), found " + std::to_string(n));
-    std::vector<T> v(static_cast<std::size_t>(count));
-    if (H5Aread(a.get(), mem_type, v.data()) < 0)
-      fail(std::string("attribute ") + name, "unreadable");
-    return v;
-  }
-
-  Handle open_dataset(const char* name, const std::vector<hsize_t>& shape, H5T_class_t cls) const {
-    if (!h5::exists(file_, name)) fail(dataset_name(name), "missing");
-    Handle ds(H5Dopen2(file_, name, H5P_DEFAULT));
-    if (!ds) fail(dataset_name(name), "cannot be opened");
-    auto found = h5::dataset_shape(ds.get());
-    if (found != shape)
-      fail(dataset_name(name),
-           "expected shape " + shape_text(shape) + ", found " + shape_text(found));
-    Handle type(H5Dget_type(ds.get()));
-    if (H5Tget_class(type.get()) != cls || !io::is_standard_numeric_type(type.get()))
-      fail(dataset_name(name),
-           cls == H5T_FLOAT ? "expected floating-point values of a standard type"
-                            : "expected integers of a standard type");
-    return ds;
-  }
-
-  template <class T>
-  std::vector<T> dataset(const char* name, const std::vector<hsize_t>& shape, hid_t mem_type,
-                         H5T_class_t cls) const {
-    Handle ds = open_dataset(name, shape, cls);
-    std::size_t n = 1;
-    for (hsize_t d : shape) n *= d;
-    std::vector<T> v(n);
-    if (n > 0 && H5Dread(ds.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()) < 0)
-      fail(dataset_name(name), "unreadable (truncated or corrupt file?)");
-    return v;
-  }
-
-  template <class T>
-  void expect_equal(const char* name, const std::vector<T>& found,
-                    const std::vector<T>& want) const {
-    if (found.size() != want.size()) fail(dataset_name(name), "wrong size");
-    for (std::size_t i = 0; i < want.size(); ++i)
-      if (found[i] != want[i])
-        fail(dataset_name(name),
-             "element " + std::to_string(i) + " is " + std::to_string(found[i]) + ", expected " +
-                 std::to_string(want[i]) + " for the file's dims and brick size");
-  }
-
- private:
-  std::string path_;
-  hid_t file_;
-  std::string prefix_;
-};
 
 void append_box(std::vector<int>& v, const Box& b) {
   v.insert(v.end(), {b.lo[0], b.lo[1], b.lo[2], b.hi[0], b.hi[1], b.hi[2]});
@@ -139,34 +41,6 @@ struct TspFile::Impl {
   Aabb frame;  ///< every field's physical box, united
 };
 
-namespace {
-
-// Field loc's physical box, origin .. origin + (dims − 1)·spacing, from its attributes (the
-// origin and spacing default to 0 and 1). Throws FormatError naming the field's group.
-Aabb field_box(const Reader& r) {
-  const auto dims = r.attr_numbers<int>(layout::kAttrDims, H5T_NATIVE_INT, 3);
-  std::array<double, 3> org{0, 0, 0}, sp{1, 1, 1};
-  if (r.has_attr(layout::kAttrOrigin) || r.has_attr(layout::kAttrSpacing)) {
-    const auto o = r.attr_numbers<double>(layout::kAttrOrigin, H5T_NATIVE_DOUBLE, 3);
-    const auto h = r.attr_numbers<double>(layout::kAttrSpacing, H5T_NATIVE_DOUBLE, 3);
-    for (int a = 0; a < 3; ++a) {
-      org[std::size_t(a)] = o[std::size_t(a)];
-      sp[std::size_t(a)] = h[std::size_t(a)];
-    }
-    if (const std::string why = spacing_problem(org, sp); !why.empty())
-      r.fail("attributes origin/spacing", "expected finite values and spacings that can be drawn: " + why);
-  }
-  Aabb b;
-  for (int a = 0; a < 3; ++a) {
-    if (dims[std::size_t(a)] < 1) r.fail("attribute dims", "expected sizes >= 1");
-    b.lo[a] = org[std::size_t(a)];
-    b.hi[a] = org[std::size_t(a)] + (dims[std::size_t(a)] - 1) * sp[std::size_t(a)];
-  }
-  return b;
-}
-
-}  // namespace
-
 TspFile::TspFile(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 
 TspFile::~TspFile() {
@@ -178,24 +52,6 @@ TspFile::~TspFile() {
 }
 
 namespace {
-
-// Checks the format tag and version of a field's location. Throws FormatError.
-void check_format(const Reader& r, const std::string& path) {
-  if (!r.has_attr(layout::kAttrFormat))
-    throw FormatError(path +
-                      ": not a tspplay .tsp file (HDF5 without a 'format' attribute; "
-                      "an unfinished build or another kind of file)");
-  std::string format = r.attr_string(layout::kAttrFormat);
-  if (format != layout::kFormatName)
-    r.fail("attribute format",
-           "expected \"" + std::string(layout::kFormatName) + "\", found \"" + format + "\"");
-  int version = r.attr_numbers<int>(layout::kAttrVersion, H5T_NATIVE_INT, 1)[0];
-  if (version != kTspFormatVersion && version != kTspAdaptiveFormatVersion)
-    throw FormatError(path + ": .tsp format version " + std::to_string(version) +
-                      ", this tspplay reads versions " + std::to_string(kTspFormatVersion) +
-                      " and " + std::to_string(kTspAdaptiveFormatVersion) +
-                      " only; rebuild the file with this tspplay");
-}
 
 std::vector<std::string> split_lines(const std::string& text) {
   std::vector<std::string> out;
@@ -211,15 +67,12 @@ std::vector<std::string> split_lines(const std::string& text) {
 
 }  // namespace
 
-std::unique_ptr<TspFile> TspFile::open(const std::string& path, const std::string& field) {
-  std::lock_guard lock(hdf5_mutex());
-  auto impl = std::make_unique<Impl>();
-  impl->path = path;
-  impl->file = h5::open_file_readonly(path);
-  Handle root_group(H5Gopen2(impl->file.get(), "/", H5P_DEFAULT));
-  const Reader root(path, root_group.get());
-  check_format(root, path);
-  // The fields: the root's own, then fields/1, fields/2, … (files with several).
+namespace {
+
+// The fields (the root's own, then fields/1, fields/2, …: files with several), the one asked
+// for (empty: the first) and its location. Returns its path prefix for messages.
+std::string select_field(TspFile::Impl* impl, Handle& root_group, const Reader& root,
+                         const std::string& path, const std::string& field) {
   impl->fields = root.has_attr(layout::kAttrFields)
                      ? split_lines(root.attr_string(layout::kAttrFields))
                      : std::vector<std::string>{root.attr_string(layout::kAttrField)};
@@ -250,12 +103,15 @@ std::unique_ptr<TspFile> TspFile::open(const std::string& path, const std::strin
     if (!impl->loc) root.fail("group /" + group, "cannot be opened");
     prefix = "/" + group + "/";
   }
-  const Reader r(path, impl->loc.get(), prefix);
-  if (impl->field_index > 0) check_format(r, path);
+  return prefix;
+}
 
+// The grid and tree (dims, steps, brick size), the value and data ranges and the build's
+// attributes.
+void read_grid(TspFile::Impl* impl, const Reader& r, const Reader& root, const std::string& path) {
   auto dims = r.attr_numbers<int>(layout::kAttrDims, H5T_NATIVE_INT, 3);
-  int steps = r.attr_numbers<int>(layout::kAttrSteps, H5T_NATIVE_INT, 1)[0];
-  int brick = r.attr_numbers<int>(layout::kAttrBrickSize, H5T_NATIVE_INT, 1)[0];
+  const int steps = r.attr_numbers<int>(layout::kAttrSteps, H5T_NATIVE_INT, 1)[0];
+  const int brick = r.attr_numbers<int>(layout::kAttrBrickSize, H5T_NATIVE_INT, 1)[0];
   // Fields may lie on different grids (their own dims, origin, spacing, brick size) but play
   // over the same steps.
   if (impl->field_index > 0 && steps != root.attr_numbers<int>(layout::kAttrSteps, H5T_NATIVE_INT, 1)[0])
@@ -291,11 +147,15 @@ std::unique_ptr<TspFile> TspFile::open(const std::string& path, const std::strin
       r.fail("attribute build_ranks", "expected 1 or more, found " + std::to_string(m.build_ranks));
   }
 
-  // The stored shape must be the one these dims and brick size produce, stopped where the file
-  // says (version 3 only).
+}
+
+// The octree and time tree as stored must be the ones the dims and brick size produce, stopped
+// where the file says (version 3 only); the level bricks' residuals.
+void check_layout(TspFile::Impl* impl, const Reader& r) {
+  TspTree& tree = *impl->tree;
+  const int steps = tree.time().steps();
   const Octree& o = tree.octree();
-  const hsize_t nb = hsize_t(o.brick_count()), no = hsize_t(o.size()),
-                ns = hsize_t(o.stored_brick_count());
+  const hsize_t nb = hsize_t(o.brick_count()), no = hsize_t(o.size());
   {
     const int version = r.attr_numbers<int>(layout::kAttrVersion, H5T_NATIVE_INT, 1)[0];
     const bool has_stops = H5Lexists(impl->loc.get(), layout::kOctreeStopped, H5P_DEFAULT) > 0;
@@ -361,6 +221,15 @@ std::unique_ptr<TspFile> TspFile::open(const std::string& path, const std::strin
                  ", expected a finite RMS residual >= 0");
   std::copy(level_error.begin(), level_error.end(), tree.level_errors().begin());
 
+}
+
+// The stencil's inside fractions, the physical origin and spacing and the steps' times. Returns
+// whether the file has a stencil.
+bool read_geometry(TspFile::Impl* impl, const Reader& r) {
+  TspTree& tree = *impl->tree;
+  TspMetadata& m = impl->meta;
+  const int steps = tree.time().steps();
+  const hsize_t no = hsize_t(tree.octree().size());
   const bool stencil = H5Lexists(impl->loc.get(), layout::kOctreeInside, H5P_DEFAULT) > 0;
   if (stencil) {
     auto inside = r.dataset<float>(layout::kOctreeInside, {no}, H5T_NATIVE_FLOAT, H5T_FLOAT);
@@ -396,6 +265,11 @@ std::unique_ptr<TspFile> TspFile::open(const std::string& path, const std::strin
         *to = io::string_attribute(values.get(), name, r.dataset_name(layout::kTimeValues)).value_or("");
   }
 
+  return stencil;
+}
+
+// Every node's statistics, checked to be what the builder can write.
+void read_stats(TspTree& tree, const Reader& r, bool stencil) {
   const std::vector<hsize_t> n = {hsize_t(tree.size())};
   auto mean = r.dataset<double>(layout::kStatsMean, n, H5T_NATIVE_DOUBLE, H5T_FLOAT);
   auto sd = r.dataset<double>(layout::kStatsStd, n, H5T_NATIVE_DOUBLE, H5T_FLOAT);
@@ -431,6 +305,14 @@ std::unique_ptr<TspFile> TspFile::open(const std::string& path, const std::strin
     s.spatial_error = es[i];
     s.temporal_error = et[i];
   }
+}
+
+// The bricks' datasets (scalar codes, the stencil's flags) and the histogram.
+void open_bricks(TspFile::Impl* impl, const Reader& r, bool stencil) {
+  const Octree& o = impl->tree->octree();
+  TspMetadata& m = impl->meta;
+  const int steps = impl->tree->time().steps();
+  const hsize_t ns = hsize_t(o.stored_brick_count());
   m.histogram = r.dataset<std::uint64_t>(layout::kHistogram, {hsize_t(kHistogramBins)},
                                          H5T_NATIVE_UINT64, H5T_INTEGER);
 
@@ -458,9 +340,13 @@ std::unique_ptr<TspFile> TspFile::open(const std::string& path, const std::strin
     if (H5Tget_size(itype.get()) != 1)
       r.fail(r.dataset_name(layout::kBrickInside), "expected 8-bit flags");
   }
-  // The frame: this field's box, united with every other field's (attributes only; a field
-  // whose group is missing or broken is that field's error when it is opened, not this one's).
-  impl->frame = field_box(r);
+}
+
+// The frame: this field's box, united with every other field's (attributes only; a field whose
+// group is missing or broken is that field's error when it is opened, not this one's).
+Aabb united_frame(const TspFile::Impl* impl, const Reader& r) {
+  Aabb frame = detail::field_box(r);
+  const std::string& path = impl->path;
   for (std::size_t k = 0; k < impl->fields.size(); ++k) {
     if (int(k) == impl->field_index) continue;
     const std::string group = k == 0 ? std::string("/") : layout::field_group(int(k));
@@ -470,12 +356,34 @@ std::unique_ptr<TspFile> TspFile::open(const std::string& path, const std::strin
     try {
       const Aabb b = field_box(Reader(path, g.get(), k == 0 ? "/" : "/" + group + "/"));
       for (int a = 0; a < 3; ++a) {
-        impl->frame.lo[a] = std::min(impl->frame.lo[a], b.lo[a]);
-        impl->frame.hi[a] = std::max(impl->frame.hi[a], b.hi[a]);
+        frame.lo[a] = std::min(frame.lo[a], b.lo[a]);
+        frame.hi[a] = std::max(frame.hi[a], b.hi[a]);
       }
     } catch (const FormatError&) {
     }
   }
+  return frame;
+}
+
+}  // namespace
+
+std::unique_ptr<TspFile> TspFile::open(const std::string& path, const std::string& field) {
+  std::lock_guard lock(hdf5_mutex());
+  auto impl = std::make_unique<Impl>();
+  impl->path = path;
+  impl->file = h5::open_file_readonly(path);
+  Handle root_group(H5Gopen2(impl->file.get(), "/", H5P_DEFAULT));
+  const Reader root(path, root_group.get());
+  detail::check_format(root, path);
+  const std::string prefix = select_field(impl.get(), root_group, root, path, field);
+  const Reader r(path, impl->loc.get(), prefix);
+  if (impl->field_index > 0) detail::check_format(r, path);
+  read_grid(impl.get(), r, root, path);
+  check_layout(impl.get(), r);
+  const bool stencil = read_geometry(impl.get(), r);
+  read_stats(*impl->tree, r, stencil);
+  open_bricks(impl.get(), r, stencil);
+  impl->frame = united_frame(impl.get(), r);
   return std::unique_ptr<TspFile>(new TspFile(std::move(impl)));
 }
 

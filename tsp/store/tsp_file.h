@@ -70,8 +70,10 @@ class TspFile : public BrickStore {
   /// IoError/FormatError.
   void read_inside(int brick, int step, std::span<std::uint8_t> out) const override;
 
- private:
+  /// The open file's state (opaque: defined and read in tsp_file.cpp).
   struct Impl;
+
+ private:
   explicit TspFile(std::unique_ptr<Impl> impl);
   std::unique_ptr<Impl> impl_;
 };
