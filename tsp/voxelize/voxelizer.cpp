@@ -412,6 +412,102 @@ struct Voxelizer {
 
 }  // namespace
 
+namespace {
+
+// Bins every cell (and a cell's tetrahedra) into the tiles its box meets, in parallel over
+// contiguous blocks of cells; read in block order, every tile's bins list its items in index
+// order. Adds the tile tests, entries and visits to stats.
+std::vector<std::vector<std::vector<Item>>> bin_items(Voxelizer& vx, const TetMesh& tets,
+                                                      int threads, VoxelizeStats& stats) {
+  const Mesh& mesh = vx.mesh;
+  const std::int64_t nc = mesh.cell_count();
+  const int blocks = int(std::min<std::int64_t>(
+      std::max<std::int64_t>(nc, 1), std::int64_t(resolve_threads(threads)) * kBinBlocksPerWorker));
+  std::vector<std::int64_t> tet_first(std::size_t(nc) + 1, 0);  // first tetrahedron of cell c
+  for (std::size_t t = 0; t < tets.tets.size(); ++t) ++tet_first[std::size_t(tets.cell[t]) + 1];
+  for (std::size_t c = 0; c < std::size_t(nc); ++c) tet_first[c + 1] += tet_first[c];
+  std::vector<std::vector<std::vector<Item>>> block_bins(static_cast<std::size_t>(blocks));
+  std::vector<VoxelizeStats> block_stats(static_cast<std::size_t>(blocks));
+  parallel_for(blocks, 1, threads, [&](int, std::int64_t first, std::int64_t last) {
+    for (std::int64_t b = first; b < last; ++b) {
+      const std::int64_t c0 = nc * b / blocks, c1 = nc * (b + 1) / blocks;
+      auto& bins = block_bins[std::size_t(b)];
+      bins.resize(std::size_t(vx.tiles.count()));
+      VoxelizeStats st;  // local: neighbouring blocks' stats share a cache line
+      vx.bin_cells(c0, c1, tet_first[std::size_t(c0)], bins, st);
+      block_stats[std::size_t(b)] = st;
+    }
+  });
+  for (const VoxelizeStats& s : block_stats) {
+    stats.tile_tests += s.tile_tests;
+    stats.tile_entries += s.tile_entries;
+    stats.visits += s.visits;
+  }
+  return block_bins;
+}
+
+// The binning's visits over the budget: too much overlap, or too fine a grid or --antialias.
+FormatError binning_over_budget(const Voxelizer& vx, Dims d, int antialias) {
+  const std::string passes =
+      vx.visit_cost > 1 ? ", each visit counted " + std::to_string(vx.visit_cost) +
+                              " times for --antialias " + std::to_string(antialias) +
+                              "'s sub-samples"
+                        : std::string();
+  return FormatError(
+      "the cells' bounding boxes cover more than " + std::to_string(vx.budget) +
+      " voxels in all (" + std::to_string(kVisitsPerItem) + " per voxel of the " +
+      to_string(d) + " grid and per cell's tetrahedron" + passes + "; stopped after " +
+      std::to_string(vx.visits.load()) + "): cells overlap far more than a mesh that tiles "
+      "space (many copies of large cells?), or the grid or --antialias asks for more work "
+      "than the mesh can justify; refused rather than voxelized for hours");
+}
+
+// Newton's work over the budget: hexahedra far from parallelepipeds.
+FormatError newton_over_budget(const Voxelizer& vx, Dims d, std::int64_t iterations) {
+  return FormatError(
+      "locating the voxels in the hexahedra took more than " + std::to_string(vx.budget) +
+      " visits' work (" + std::to_string(kVisitsPerItem) + " per voxel of the " + to_string(d) +
+      " grid and per cell, a Newton iteration counting " +
+      std::to_string(kNewtonIterationVisits) + "; stopped after " + std::to_string(iterations) +
+      " iterations): hexahedra far from parallelepipeds (stretched or twisted cells?) make "
+      "Newton's method run long at every voxel of their boxes; refused rather than voxelized "
+      "for minutes (--hex tetrahedra samples them through their tetrahedra)");
+}
+
+// The scan converter's accumulation buffer to voxels: inside when at least half the
+// sub-samples are. Returns the voxels inside.
+std::int64_t resolve_scan(const detail::ScanBuffers& acc, std::span<float> values,
+                          std::span<std::uint8_t> inside) {
+  std::int64_t count = 0;
+  const int all = acc.k * acc.k * acc.k;
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    const int n = std::popcount(acc.taken[i]);
+    if (2 * n < all) continue;
+    values[i] = float(acc.sum[i] / n);
+    inside[i] = 1;
+    ++count;
+  }
+  return count;
+}
+
+// The two-buffer voxelizer's passes to voxels: inside when at least half of them hit. Returns
+// the voxels inside.
+std::int64_t resolve_passes(const detail::PassBuffers& passes, std::span<float> values,
+                            std::span<std::uint8_t> inside) {
+  std::int64_t count = 0;
+  const int all = int(passes.offset.size());
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    const int n = std::popcount(passes.taken[i][0]) + std::popcount(passes.taken[i][1]);
+    if (2 * n < all) continue;
+    values[i] = float(passes.sum[i] / n);
+    inside[i] = 1;
+    ++count;
+  }
+  return count;
+}
+
+}  // namespace
+
 VoxelizeStats voxelize(const Mesh& mesh, const VoxelGrid& grid, std::span<float> values,
                        std::span<std::uint8_t> inside, const SampleOptions& options) {
   const Dims d = grid.dims;
@@ -439,46 +535,8 @@ VoxelizeStats voxelize(const Mesh& mesh, const VoxelGrid& grid, std::span<float>
   if (scan || two) vx.visit_cost = std::int64_t(options.antialias) * options.antialias *
                                    options.antialias;
 
-  // Bin, in parallel over contiguous blocks of cells; read in block order, every tile's bins list
-  // its cells (and a cell's tetrahedra) in index order.
-  const std::int64_t nc = mesh.cell_count();
-  const int blocks = int(std::min<std::int64_t>(
-      std::max<std::int64_t>(nc, 1), std::int64_t(resolve_threads(threads)) * kBinBlocksPerWorker));
-  std::vector<std::int64_t> tet_first(std::size_t(nc) + 1, 0);  // first tetrahedron of cell c
-  for (std::size_t t = 0; t < tets.tets.size(); ++t) ++tet_first[std::size_t(tets.cell[t]) + 1];
-  for (std::size_t c = 0; c < std::size_t(nc); ++c) tet_first[c + 1] += tet_first[c];
-  std::vector<std::vector<std::vector<Item>>> block_bins(static_cast<std::size_t>(blocks));
-  std::vector<VoxelizeStats> block_stats(static_cast<std::size_t>(blocks));
-  parallel_for(blocks, 1, threads, [&](int, std::int64_t first, std::int64_t last) {
-    for (std::int64_t b = first; b < last; ++b) {
-      const std::int64_t c0 = nc * b / blocks, c1 = nc * (b + 1) / blocks;
-      auto& bins = block_bins[std::size_t(b)];
-      bins.resize(std::size_t(vx.tiles.count()));
-      VoxelizeStats st;  // local: neighbouring blocks' stats share a cache line
-      vx.bin_cells(c0, c1, tet_first[std::size_t(c0)], bins, st);
-      block_stats[std::size_t(b)] = st;
-    }
-  });
-  for (const VoxelizeStats& s : block_stats) {
-    stats.tile_tests += s.tile_tests;
-    stats.tile_entries += s.tile_entries;
-    stats.visits += s.visits;
-  }
-  if (vx.over_budget()) {
-    const std::string passes =
-        vx.visit_cost > 1 ? ", each visit counted " + std::to_string(vx.visit_cost) +
-                                " times for --antialias " + std::to_string(options.antialias) +
-                                "'s sub-samples"
-                          : std::string();
-    throw FormatError(
-        "the cells' bounding boxes cover more than " + std::to_string(vx.budget) +
-        " voxels in all (" + std::to_string(kVisitsPerItem) + " per voxel of the " +
-        to_string(d) + " grid and per cell's tetrahedron" + passes + "; stopped after " +
-        std::to_string(vx.visits.load()) + "): cells overlap far more than a mesh that tiles "
-        "space (many copies of large cells?), or the grid or --antialias asks for more work "
-        "than the mesh can justify; refused rather than voxelized for hours");
-  }
-
+  auto block_bins = bin_items(vx, tets, threads, stats);
+  if (vx.over_budget()) throw binning_over_budget(vx, d, options.antialias);
   // Sample: tiles in parallel; in each, cells in index order, the first containing one wins.
   std::vector<std::int64_t> inside_count(std::size_t(vx.tiles.count()), 0);
   std::vector<std::int64_t> newton_count(std::size_t(vx.tiles.count()), 0);
@@ -528,76 +586,15 @@ VoxelizeStats voxelize(const Mesh& mesh, const VoxelGrid& grid, std::span<float>
   });
   for (std::int64_t n : newton_count) stats.newton_iterations += n;
   for (std::int64_t n : missed_count) stats.newton_missed += n;
-  if (vx.over_budget())
-    throw FormatError(
-        "locating the voxels in the hexahedra took more than " + std::to_string(vx.budget) +
-        " visits' work (" + std::to_string(kVisitsPerItem) + " per voxel of the " + to_string(d) +
-        " grid and per cell, a Newton iteration counting " +
-        std::to_string(kNewtonIterationVisits) + "; stopped after " +
-        std::to_string(stats.newton_iterations) +
-        " iterations): hexahedra far from parallelepipeds (stretched or twisted cells?) make "
-        "Newton's method run long at every voxel of their boxes; refused rather than voxelized "
-        "for minutes (--hex tetrahedra samples them through their tetrahedra)");
-  if (scan) {
-    // The accumulation buffer to voxels: inside when at least half the sub-samples are.
-    const int all = acc.k * acc.k * acc.k;
-    for (std::size_t i = 0; i < values.size(); ++i) {
-      const int n = std::popcount(acc.taken[i]);
-      if (2 * n < all) continue;
-      values[i] = float(acc.sum[i] / n);
-      inside[i] = 1;
-      ++stats.inside;
-    }
-  } else if (two) {
-    // The passes to voxels: inside when at least half of them hit.
-    const int all = int(passes.offset.size());
-    for (std::size_t i = 0; i < values.size(); ++i) {
-      const int n = std::popcount(passes.taken[i][0]) + std::popcount(passes.taken[i][1]);
-      if (2 * n < all) continue;
-      values[i] = float(passes.sum[i] / n);
-      inside[i] = 1;
-      ++stats.inside;
-    }
-  } else {
+  if (vx.over_budget()) throw newton_over_budget(vx, d, stats.newton_iterations);
+  if (scan)
+    stats.inside = resolve_scan(acc, values, inside);
+  else if (two)
+    stats.inside = resolve_passes(passes, values, inside);
+  else
     for (std::int64_t c : inside_count) stats.inside += c;
-  }
   pad_outside(values, inside, d);
   return stats;
-}
-
-void pad_outside(std::span<float> values, std::span<const std::uint8_t> inside, Dims d) {
-  const std::size_t n = values.size();
-  const std::int64_t sx = 1, sy = d.x, sz = std::int64_t(d.x) * d.y;
-  // The breadth-first search starts from the inside voxels on the boundary (those with an
-  // outside neighbour), in index order; inside voxels deeper in are never reached from outside
-  // before them.
-  std::vector<std::int64_t> queue;
-  std::vector<std::uint8_t> reached(inside.begin(), inside.end());
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!inside[i]) continue;
-    const std::int64_t j = std::int64_t(i);
-    const int x = int(j % d.x), y = int(j / sy % d.y), z = int(j / sz);
-    const bool edge = (x > 0 && !inside[i - 1]) || (x + 1 < d.x && !inside[i + 1]) ||
-                      (y > 0 && !inside[std::size_t(j - sy)]) ||
-                      (y + 1 < d.y && !inside[std::size_t(j + sy)]) ||
-                      (z > 0 && !inside[std::size_t(j - sz)]) ||
-                      (z + 1 < d.z && !inside[std::size_t(j + sz)]);
-    if (edge) queue.push_back(j);
-  }
-  if (queue.empty()) return;
-  for (std::size_t head = 0; head < queue.size(); ++head) {
-    const std::int64_t i = queue[head];
-    const int x = int(i % d.x), y = int(i / sy % d.y), z = int(i / sz);
-    const std::int64_t nb[6] = {x > 0 ? i - sx : -1,       x + 1 < d.x ? i + sx : -1,
-                                y > 0 ? i - sy : -1,       y + 1 < d.y ? i + sy : -1,
-                                z > 0 ? i - sz : -1,       z + 1 < d.z ? i + sz : -1};
-    for (std::int64_t j : nb) {
-      if (j < 0 || reached[std::size_t(j)]) continue;
-      reached[std::size_t(j)] = 1;
-      values[std::size_t(j)] = values[std::size_t(i)];
-      queue.push_back(j);
-    }
-  }
 }
 
 }  // namespace tsp
