@@ -25,12 +25,6 @@ constexpr int kTfRowsUnit = 6;         // texture unit of adaptive sampling's TF
 constexpr int kLevelTfUnit = 7;        // texture unit of the coarse levels' TF rows
 constexpr int kSurfaceDepthUnit = 8;    // texture unit of the surface splats' depths
 constexpr int kRefineUnit = 9;          // texture unit of refinement's TF table
-// Largest opacity per voxel a flat box is given, so that ln(1 − α) stays finite.
-constexpr float kMaxFlatAlpha = 1.f - 1e-6f;
-
-// ln(1 − α) of a flat colour's opacity per voxel, what the flat shaders exponentiate.
-float log_transmittance(float alpha) { return std::log1p(-std::clamp(alpha, 0.f, kMaxFlatAlpha)); }
-
 // Clears the bound target (or the scissored part of it) to the opaque background.
 void clear(const GlApi& gl, const RenderSettings& settings) {
   gl.ClearColor(settings.background[0], settings.background[1], settings.background[2], 1.f);
@@ -49,71 +43,6 @@ std::vector<float> cube_triangles() {
 }
 constexpr GLsizei kCubeVertices = 36;
 }  // namespace
-
-void BrickPages::reset(std::array<int, 3> grid, std::array<int, 3> cell) {
-  grid_ = grid;
-  cell_ = cell;
-  const std::size_t n = std::size_t(grid[0]) * grid[1] * grid[2];
-  texels_.assign(4 * n, 0.f);
-  atlas_ = {};
-}
-
-void BrickPages::set_flat(int b, const tsp::Rgba& c) {
-  if (!(c.a >= kMinFlatAlpha)) return;
-  float* f = &texels_[4 * std::size_t(b)];
-  f[0] = c.r;
-  f[1] = c.g;
-  f[2] = c.b;
-  f[3] = log_transmittance(c.a);
-}
-
-void BrickPages::set_textured(int b, const BrickSlot& slot, bool clipped, int tf_row) {
-  assert(tf_row >= 0 && tf_row < tsp::kLevelTfRows);
-  atlas_ = slot;
-  float* w = &texels_[4 * std::size_t(b)];
-  w[0] = slot.offset[0];
-  w[1] = slot.offset[1];
-  w[2] = slot.offset[2];
-  // w = 1 + lx + 8·ly + 64·lz with l = log2 of the LOD factor per axis (volume_ray.frag).
-  int code = 0;
-  for (int a = 2; a >= 0; --a) {
-    const int l = std::clamp(int(std::lround(-std::log2(double(slot.scale[a])))), 0,
-                             kMaxPageLevel);
-    code = code * (kMaxPageLevel + 1) + l;
-  }
-  // + kClipFlag: the clip surface may cross it (its samples are tested against the solid).
-  // + row · kLevelRowUnit: a level brick's TF row (exact in a float: below 2^24).
-  w[3] = 1.f + float(code + (clipped ? kClipFlag : 0) + tf_row * kLevelRowUnit);
-}
-
-void BrickPages::finish() {
-  // Chebyshev distance to the nearest non-empty brick, capped, by separable passes: the L∞
-  // distance is a min over axes of nested maxima, d(p) = min_z max(|Δz|, min_y max(|Δy|,
-  // min_x |Δx|)), and the cap bounds each pass's window.
-  constexpr int kCap = kMaxLeapRadius + 1;
-  const int nx = grid_[0], ny = grid_[1], nz = grid_[2];
-  const auto at = [&](int x, int y, int z) { return std::size_t(x) + nx * (y + std::size_t(ny) * z); };
-  std::vector<int> d(std::size_t(nx) * ny * nz), e(d.size());
-  for (std::size_t i = 0; i < d.size(); ++i) d[i] = texels_[4 * i + 3] != 0.f ? 0 : kCap;
-  const std::array<int, 3> stride{1, nx, nx * ny};
-  for (int a = 0; a < 3; ++a) {
-    for (int z = 0; z < nz; ++z)
-      for (int y = 0; y < ny; ++y)
-        for (int x = 0; x < nx; ++x) {
-          const int p = a == 0 ? x : a == 1 ? y : z, n = grid_[a];
-          const std::size_t i = at(x, y, z);
-          int best = d[i];
-          for (int k = 1; k < best && k < kCap; ++k) {
-            if (p - k >= 0) best = std::min(best, std::max(k, d[i - k * std::size_t(stride[a])]));
-            if (p + k < n) best = std::min(best, std::max(k, d[i + k * std::size_t(stride[a])]));
-          }
-          e[i] = best;
-        }
-    d.swap(e);
-  }
-  for (std::size_t i = 0; i < d.size(); ++i)
-    if (texels_[4 * i + 3] == 0.f) texels_[4 * i] = float(std::max(0, d[i] - 1));
-}
 
 std::array<float, 4> flat_colour(const tsp::Rgba& c, double spacing) {
   const float a = tsp::corrected_opacity(c.a, spacing);
@@ -266,26 +195,48 @@ void SliceCompositor::begin_frame(const tsp::Camera& camera, const RenderSetting
         : settings.refine_tol > 0 ? RayVariant::refined
                                   : RayVariant::segments;
   rays_ = &ray_programs_.get(v);
-  const bool refine = v == RayVariant::refined;
   choose_backend(settings, plain);
   region_ = {};
   cpu_samples_ = 0;
-  const tsp::CameraParams& view = camera.params();
-  output_ = {settings.viewport_origin[0], settings.viewport_origin[1], view.width, view.height};
-  target_.bind(view.width, view.height, settings.render_scale);
+  const tsp::CameraParams& params = camera.params();
+  output_ = {settings.viewport_origin[0], settings.viewport_origin[1], params.width,
+             params.height};
+  target_.bind(params.width, params.height, settings.render_scale);
   gl_.Disable(GL_SCISSOR_TEST);
   if (!keep) clear(gl_, settings);
-  const auto dir = camera.direction(), eye = camera.eye(), ray = camera.ray_direction();
-  const double cosine = camera.ray_cosine();
+  const FrameView view = frame_view(camera);
+  draw_surface_under(camera, settings, view, keep);
+  set_frame_uniforms(camera, settings, view, v == RayVariant::refined);
+  if (cpu_) set_cast_scene(camera, settings, view, v == RayVariant::refined);
+  gl_.ActiveTexture(GL_TEXTURE0 + kVolumeUnit);
+  gl_.BeginQuery(GL_SAMPLES_PASSED, fragments_query_);
+}
+
+SliceCompositor::FrameView SliceCompositor::frame_view(const tsp::Camera& camera) {
+  FrameView f;
+  f.dir = camera.direction();
+  f.eye = camera.eye();
+  f.ray = camera.ray_direction();
+  f.cosine = camera.ray_cosine();
   // The headlight: towards the viewer along the central ray, in world axes (the sample grid
   // stretched by the voxel size), where the shader takes the gradient too.
   // Voxel sizes normalised so the smallest is 1: the shader's gradients are per voxel.
-  std::array<double, 3> voxel = view.voxel_size;
-  const double smallest = std::min({voxel[0], voxel[1], voxel[2]});
-  for (double& v : voxel) v /= smallest;
-  std::array<double, 3> light{-ray[0] * voxel[0], -ray[1] * voxel[1], -ray[2] * voxel[2]};
-  const double light_norm = std::hypot(light[0], light[1], light[2]);
-  for (double& l : light) l /= light_norm;
+  f.voxel = camera.params().voxel_size;
+  const double smallest = std::min({f.voxel[0], f.voxel[1], f.voxel[2]});
+  for (double& v : f.voxel) v /= smallest;
+  f.light = {-f.ray[0] * f.voxel[0], -f.ray[1] * f.voxel[1], -f.ray[2] * f.voxel[2]};
+  const double light_norm = std::hypot(f.light[0], f.light[1], f.light[2]);
+  for (double& l : f.light) l /= light_norm;
+  return f;
+}
+
+void SliceCompositor::draw_surface_under(const tsp::Camera& camera, const RenderSettings& settings,
+                                         const FrameView& f, bool keep) {
+  const tsp::CameraParams& view = camera.params();
+  const auto& dir = f.dir;
+  const double cosine = f.cosine;
+  const auto& voxel = f.voxel;
+  const auto& light = f.light;
   surface_drawn_ = false;
   surface_stats_ = {};
   if (settings.surface && has_surface() && settings.compositing == Compositing::rays) {
@@ -305,6 +256,16 @@ void SliceCompositor::begin_frame(const tsp::Camera& camera, const RenderSetting
     gl_.BindTexture(GL_TEXTURE_2D, surface_splats_->depth_texture());
     surface_drawn_ = true;
   }
+}
+
+void SliceCompositor::set_frame_uniforms(const tsp::Camera& camera, const RenderSettings& settings,
+                                         const FrameView& f, bool refine) {
+  const auto& dir = f.dir;
+  const auto& eye = f.eye;
+  const auto& ray = f.ray;
+  const double cosine = f.cosine;
+  const auto& voxel = f.voxel;
+  const auto& light = f.light;
   gl_.Disable(GL_DEPTH_TEST);
   gl_.Disable(GL_CULL_FACE);
   gl_.Enable(GL_BLEND);
@@ -358,29 +319,35 @@ void SliceCompositor::begin_frame(const tsp::Camera& camera, const RenderSetting
   if (refine)
     tf_.bind_refine(kRefineUnit, settings.spacing, tsp::kRefineSamples, settings.refine_tol);
   tf_.bind_levels(kLevelTfUnit, settings.spacing);  // (read by level pages with a row)
-  if (cpu_) {
-    cast_.inverse_view_projection = glm::inverse(camera.view_projection());
-    cast_.view_dir = glm::vec3(float(dir[0] / cosine), float(dir[1] / cosine), float(dir[2] / cosine));
-    cast_.ray_dir = glm::vec3(float(ray[0]), float(ray[1]), float(ray[2]));
-    cast_.eye = glm::vec3(float(eye[0]), float(eye[1]), float(eye[2]));
-    cast_.perspective = camera.perspective();
-    cast_.width = target_.width();
-    cast_.height = target_.height();
-    cast_.spacing = float(settings.spacing);
-    cast_.stencil = stencil_;
-    cast_.shade = settings.shade;
-    cast_.phong = glm::vec4(float(kAmbient), float(kDiffuse), float(kSpecular), float(kSpecularPower));
-    cast_.light_dir = glm::vec3(float(light[0]), float(light[1]), float(light[2]));
-    cast_.inv_voxel = glm::vec3(float(1 / voxel[0]), float(1 / voxel[1]), float(1 / voxel[2]));
-    cast_.tf.entries = tf_.size();
-    cast_.tf.point = tf_.point_rgba().data();
-    cast_.tf.refine = refine ? tf_.refine_rgba().data() : nullptr;
-    cast_.tf.levels = tf_.levels_rgba().data();
-    cast_.tf.scale = tf_.scale();
-    cast_.tf.offset = tf_.offset();
-  }
-  gl_.ActiveTexture(GL_TEXTURE0 + kVolumeUnit);
-  gl_.BeginQuery(GL_SAMPLES_PASSED, fragments_query_);
+}
+
+void SliceCompositor::set_cast_scene(const tsp::Camera& camera, const RenderSettings& settings,
+                                     const FrameView& f, bool refine) {
+  const auto& dir = f.dir;
+  const auto& eye = f.eye;
+  const auto& ray = f.ray;
+  const double cosine = f.cosine;
+  const auto& voxel = f.voxel;
+  const auto& light = f.light;
+  cast_.inverse_view_projection = glm::inverse(camera.view_projection());
+  cast_.view_dir = glm::vec3(float(dir[0] / cosine), float(dir[1] / cosine), float(dir[2] / cosine));
+  cast_.ray_dir = glm::vec3(float(ray[0]), float(ray[1]), float(ray[2]));
+  cast_.eye = glm::vec3(float(eye[0]), float(eye[1]), float(eye[2]));
+  cast_.perspective = camera.perspective();
+  cast_.width = target_.width();
+  cast_.height = target_.height();
+  cast_.spacing = float(settings.spacing);
+  cast_.stencil = stencil_;
+  cast_.shade = settings.shade;
+  cast_.phong = glm::vec4(float(kAmbient), float(kDiffuse), float(kSpecular), float(kSpecularPower));
+  cast_.light_dir = glm::vec3(float(light[0]), float(light[1]), float(light[2]));
+  cast_.inv_voxel = glm::vec3(float(1 / voxel[0]), float(1 / voxel[1]), float(1 / voxel[2]));
+  cast_.tf.entries = tf_.size();
+  cast_.tf.point = tf_.point_rgba().data();
+  cast_.tf.refine = refine ? tf_.refine_rgba().data() : nullptr;
+  cast_.tf.levels = tf_.levels_rgba().data();
+  cast_.tf.scale = tf_.scale();
+  cast_.tf.offset = tf_.offset();
 }
 
 void SliceCompositor::choose_backend(const RenderSettings& settings, bool plain) {

@@ -12,6 +12,7 @@
 
 #include "gl/context.h"
 #include "gl/shader.h"
+#include "render/brick_pages.h"
 #include "render/brick_textures.h"
 #include "render/cpu_pass.h"
 #include "render/frame_report.h"
@@ -37,50 +38,6 @@ struct DrawItem {
   bool as_box = false;  ///< drawn once as a box: ray cast (textured) or exact (flat)
   tsp::Aabb bounds;     ///< the box (box items)
   tsp::Rgba flat;       ///< colour and opacity per voxel of depth (flat box items)
-};
-
-/// What the one-pass ray caster finds in each brick of the grid it walks (the TSP renderer's
-/// frame plan, or the baseline's single "brick", the whole volume).
-class BrickPages {
- public:
-  /// Opacity per voxel below which a flat brick is drawn as empty (invisible at any depth the
-  /// limits allow: 1 − (1 − 1e-7)^65536 < 0.01).
-  static constexpr float kMinFlatAlpha = 1e-7f;
-  /// Largest log2 LOD factor per axis a textured page encodes (factor 128).
-  static constexpr int kMaxPageLevel = 7;
-  /// Largest leap radius, in bricks.
-  static constexpr int kMaxLeapRadius = 8;
-  /// Every brick empty: a grid of bricks covering `cell` sample spacings each, per axis.
-  void reset(std::array<int, 3> grid, std::array<int, 3> cell);
-  /// Brick b drawn flat in c (opacity per voxel of depth; below kMinFlatAlpha it stays empty).
-  void set_flat(int b, const tsp::Rgba& c);
-  /// Brick b sampled from slot (a leaf's, or a level brick's covering b: slot.scale < 1); with
-  /// clipped, the clip surface may cross it and the ray caster tests its samples; a level
-  /// brick's tf_row > 0 (< tsp::kLevelTfRows) samples that row of the levels' TF table
-  /// (tsp/metric/level_tf.h) instead of the TF.
-  void set_textured(int b, const BrickSlot& slot, bool clipped = false, int tf_row = 0);
-  /// Added to a textured page's code when its samples are tested against the clip solid.
-  static constexpr int kClipFlag = ray::kClipFlag;
-  /// A textured page's code carries its TF row times this.
-  static constexpr int kLevelRowUnit = ray::kLevelRowUnit;
-  /// After the last set_*: gives every empty brick the radius of the cube of empty bricks centred
-  /// on it (Chebyshev distance to the nearest non-empty brick − 1, at most kMaxLeapRadius), which
-  /// the ray caster leaps over.
-  void finish();
-  /// Bricks per axis.
-  const std::array<int, 3>& grid() const { return grid_; }
-  /// Sample spacings one brick covers per axis.
-  const std::array<int, 3>& cell() const { return cell_; }
-  /// Per brick, four floats: textured (atlas offset xyz, 1 + LOD code), flat (rgb, ln(1 − α) < 0) or empty
-  /// (leap radius, 0, 0, 0).
-  const std::vector<float>& texels() const { return texels_; }
-  /// The atlas the textured bricks read (0: none).
-  const BrickSlot& atlas() const { return atlas_; }
-
- private:
-  std::array<int, 3> grid_{}, cell_{};
-  std::vector<float> texels_;
-  BrickSlot atlas_;
 };
 
 /// The premultiplied colour of a flat slice of c for slice spacing `spacing`. Never throws.
@@ -194,6 +151,20 @@ class SliceCompositor {
   CastRect region_;
   std::unique_ptr<CpuPass> cpu_pass_;  ///< made on first use
   void choose_backend(const RenderSettings& settings, bool plain);
+  // begin_frame's parts: the camera's directions and headlight, the surface drawn under the
+  // volume, every program's per-frame uniforms and TF tables, the CPU caster's scene.
+  struct FrameView {
+    std::array<double, 3> dir{}, eye{}, ray{};
+    double cosine = 1;
+    std::array<double, 3> voxel{}, light{};  ///< voxel sizes (smallest 1), the headlight
+  };
+  static FrameView frame_view(const tsp::Camera& camera);
+  void draw_surface_under(const tsp::Camera& camera, const RenderSettings& settings,
+                          const FrameView& f, bool keep);
+  void set_frame_uniforms(const tsp::Camera& camera, const RenderSettings& settings,
+                          const FrameView& f, bool refine);
+  void set_cast_scene(const tsp::Camera& camera, const RenderSettings& settings,
+                      const FrameView& f, bool refine);
   std::vector<float> vertices_;
   std::vector<GLint> firsts_;
   std::vector<GLsizei> counts_;
