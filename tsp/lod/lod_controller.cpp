@@ -169,124 +169,164 @@ void LodController::adapt_scale(bool coarsest) {
     scale_ = std::clamp(want, kMinScale, 1.0);
 }
 
+namespace {
+
+// One update's work on the cut: the split queue (largest error first), the merge queue
+// (smallest first), the cut's running cost, and predictions anchored at the last measured frame
+// — its cost then (its view and step) and its time — moving by the model's slope, so the
+// intercept's lag and bias do not matter and a change of view or step (this frame's costs) is
+// predicted: ms(c) = last_ms + b·(c − last_cost).
+class CutPlanner {
+ public:
+  CutPlanner(LodCut& cut, const Octree& o, const std::vector<double>& cost,
+             const std::vector<double>& error, const LodOptions& options,
+             const CostModel& model, double last_ms, double last_cost)
+      : cut_(cut), o_(o), node_cost_(cost), error_(error), options_(options), model_(model),
+        last_ms_(last_ms), anchor_(last_cost), timed_(options.target_ms > 0),
+        // Timed, the first frame (no measurement yet) keeps the coarsest cut.
+        informed_(timed_ && model.ready() && last_ms > 0 && last_cost >= 0),
+        target_(options.target_ms), low_((1 - kDeadBand) * target_),
+        high_((1 + kDeadBand) * target_) {
+    for (int id : cut_.nodes()) cost_ += node_cost_[std::size_t(id)];
+    for (int id : cut_.nodes()) {
+      if (cut_.can_split(id)) splits_.push({error_[std::size_t(id)], id});
+      push_merge(o_.node(id).parent);
+    }
+  }
+
+  // Over the band: merges the least useful parents first — but not below the band unless far
+  // over (one merge near the root can halve the frame).
+  void merge_over_band() {
+    while (informed_ && predict(cost_) > high_ && !merges_.empty() &&
+           merges_done_ < options_.merge_limit) {
+      const auto [e, id] = merges_.top();
+      merges_.pop();
+      if (!cut_.can_merge(id)) continue;
+      const double after = cost_ + node_cost_[std::size_t(id)] - children_cost(id);
+      if (predict(after) < low_ && predict(cost_) < kFarOver * target_) break;
+      do_merge(id);
+    }
+  }
+
+  // Under budget: splits the most useful nodes, swapping one merge for a much better split.
+  void split_under_budget() {
+    const std::int64_t brick_bytes = brick_slot_bytes(o_);
+    while (!splits_.empty() && splits_done_ < options_.split_limit) {
+      const auto [e, id] = splits_.top();
+      if (!cut_.can_split(id)) {
+        splits_.pop();
+        continue;
+      }
+      // Error 0 (uniform, transparent, hidden) never splits; below min_error only with time
+      // left.
+      if (!(e > 0) || (e <= options_.min_error && !(informed_ && predict(cost_) < low_))) break;
+      const double after = cost_ - node_cost_[std::size_t(id)] + children_cost(id);
+      const bool over_textures =
+          options_.texture_budget > 0 &&
+          std::int64_t(cut_.size() - 1 + children_count(id)) * brick_bytes >
+              options_.texture_budget;
+      if (!split_fits(after) || over_textures) {
+        while (!merges_.empty() && !cut_.can_merge(merges_.top().second)) merges_.pop();
+        if (merges_.empty() || merges_done_ >= options_.merge_limit ||
+            merges_.top().first * kSwapGain > e)
+          break;
+        const int m = merges_.top().second;
+        merges_.pop();
+        if (o_.node(id).parent == m || m == id) break;  // never undo the split being paid for
+        do_merge(m);
+        continue;
+      }
+      splits_.pop();
+      cost_ = after;
+      cut_.split(id);
+      ++splits_done_;
+      for (int k : o_.node(id).children)
+        if (k >= 0 && cut_.can_split(k)) splits_.push({error_[std::size_t(k)], k});
+      push_merge(id);
+    }
+  }
+
+  double cost() const { return cost_; }
+  int splits_done() const { return splits_done_; }
+  int merges_done() const { return merges_done_; }
+
+ private:
+  using Item = std::pair<double, int>;
+  LodCut& cut_;
+  const Octree& o_;
+  const std::vector<double>& node_cost_;
+  const std::vector<double>& error_;
+  const LodOptions& options_;
+  const CostModel& model_;
+  double last_ms_, anchor_;
+  bool timed_, informed_;
+  double target_, low_, high_;
+  double cost_ = 0;
+  int splits_done_ = 0, merges_done_ = 0;
+  std::priority_queue<Item> splits_;                                       // largest first
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> merges_;  // smallest first
+
+  double predict(double c) const {
+    const double anchored = last_ms_ + model_.slope() * (c - anchor_);
+    return kAnchorShare * anchored + (1 - kAnchorShare) * model_.predict(c);
+  }
+  // A split fits when it stays under the target, or within the band's top when the cut is
+  // below the band (the first split from a fast coarse cut may overshoot a little). After the
+  // first of a frame, splits add at most kMaxGrowth of the drawn frame's cost: a refinement
+  // takes a few frames, and a model that underestimates a big change cannot overshoot by much.
+  bool split_fits(double after) const {
+    if (!timed_) return true;
+    if (!informed_) return false;
+    if (splits_done_ > 0 && after > (1 + kMaxGrowth) * std::max(anchor_, cost_)) return false;
+    return predict(after) <= target_ || (predict(cost_) < low_ && predict(after) <= high_);
+  }
+  double children_cost(int id) const {
+    double c = 0;
+    for (int k : o_.node(id).children)
+      if (k >= 0) c += node_cost_[std::size_t(k)];
+    return c;
+  }
+  int children_count(int id) const {
+    int n = 0;
+    for (int k : o_.node(id).children) n += k >= 0;
+    return n;
+  }
+  void push_merge(int id) {
+    if (id >= 0 && cut_.can_merge(id)) merges_.push({error_[std::size_t(id)], id});
+  }
+  void do_merge(int id) {
+    cost_ += node_cost_[std::size_t(id)] - children_cost(id);
+    cut_.merge(id);
+    ++merges_done_;
+    splits_.push({error_[std::size_t(id)], id});
+    push_merge(o_.node(id).parent);
+  }
+};
+
+}  // namespace
+
 LodFrameStats LodController::update(const Camera& camera, int t, const TransferFunction& tf,
                                     double spacing, ClipSides clip) {
-  const Octree& o = tree_.octree();
   const TfColourSlopes slopes(tf);
   evaluate(camera, t, tf, slopes, spacing, clip);
-  int splits_done = 0, merges_done = 0;
-  double cost = 0;
-  for (int id : cut_.nodes()) cost += cost_[std::size_t(id)];
-  const auto children_cost = [&](int id) {
-    double c = 0;
-    for (int k : o.node(id).children)
-      if (k >= 0) c += cost_[std::size_t(k)];
-    return c;
-  };
-  const auto children_count = [&](int id) {
-    int n = 0;
-    for (int k : o.node(id).children) n += k >= 0;
-    return n;
-  };
-  const std::int64_t brick_bytes = brick_slot_bytes(o);
-  const bool timed = options_.target_ms > 0;
-  // Timed, the first frame (no measurement yet) keeps the coarsest cut. Then predictions are
-  // anchored at the last measured frame — its cost then (its view and step) and its time — and
-  // move by the model's slope, so the intercept's lag and bias do not matter, and a change of
-  // view or step (this frame's costs) is predicted: ms(c) = last_ms + b·(c − last_cost).
-  const double target = options_.target_ms;
-  const bool informed = timed && model_.ready() && last_ms_ > 0 && last_cost_ >= 0;
-  const double anchor = last_cost_;
-  const auto predict = [&](double c) {
-    const double anchored = last_ms_ + model_.slope() * (c - anchor);
-    return kAnchorShare * anchored + (1 - kAnchorShare) * model_.predict(c);
-  };
-  const double low = (1 - kDeadBand) * target, high = (1 + kDeadBand) * target;
-  // A split fits when it stays under the target, or within the band's top when the cut is below
-  // the band (the first split from a fast coarse cut may overshoot a little). After the first of
-  // a frame, splits add at most kMaxGrowth of the drawn frame's cost: a refinement takes a few
-  // frames, and a model that underestimates a big change cannot overshoot by much.
-  const auto split_fits = [&](double after) {
-    if (!timed) return true;
-    if (!informed) return false;
-    if (splits_done > 0 && after > (1 + kMaxGrowth) * std::max(anchor, cost)) return false;
-    return predict(after) <= target || (predict(cost) < low && predict(after) <= high);
-  };
-
-  using Item = std::pair<double, int>;
-  std::priority_queue<Item> splits;                                       // largest first
-  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> merges;  // smallest first
-  auto push_merge = [&](int id) {
-    if (id >= 0 && cut_.can_merge(id)) merges.push({error_[std::size_t(id)], id});
-  };
-  for (int id : cut_.nodes()) {
-    if (cut_.can_split(id)) splits.push({error_[std::size_t(id)], id});
-    push_merge(o.node(id).parent);
-  }
-  auto do_merge = [&](int id) {
-    cost += cost_[std::size_t(id)] - children_cost(id);
-    cut_.merge(id);
-    ++merges_done;
-    splits.push({error_[std::size_t(id)], id});
-    push_merge(o.node(id).parent);
-  };
-  // Over the band: merge the least useful parents first — but not below the band unless far over
-  // (one merge near the root can halve the frame).
-  while (informed && predict(cost) > high && !merges.empty() &&
-         merges_done < options_.merge_limit) {
-    const auto [e, id] = merges.top();
-    merges.pop();
-    if (!cut_.can_merge(id)) continue;
-    const double after = cost + cost_[std::size_t(id)] - children_cost(id);
-    if (predict(after) < low && predict(cost) < kFarOver * target) break;
-    do_merge(id);
-  }
+  CutPlanner plan(cut_, tree_.octree(), cost_, error_, options_, model_, last_ms_, last_cost_);
+  plan.merge_over_band();
   // At the coarsest cut and still over: a smaller render target, or splats; no split until the
   // frame is back at full size and textured.
-  if (timed && options_.fallback == LodFallback::splats) {
+  if (options_.target_ms > 0 && options_.fallback == LodFallback::splats) {
     scale_ = 1;
     adapt_splats(clip);
   } else {
     splatting_ = false;
     adapt_scale(last_coarsest_);
   }
-  // Under budget: split the most useful nodes, swapping one merge for a much better split.
-  while (scale_ >= 1 && !splatting_ && !splits.empty() && splits_done < options_.split_limit) {
-    const auto [e, id] = splits.top();
-    if (!cut_.can_split(id)) {
-      splits.pop();
-      continue;
-    }
-    // Error 0 (uniform, transparent, hidden) never splits; below min_error only with time left.
-    if (!(e > 0) || (e <= options_.min_error && !(informed && predict(cost) < low))) break;
-    const double after = cost - cost_[std::size_t(id)] + children_cost(id);
-    const bool over_textures =
-        options_.texture_budget > 0 &&
-        std::int64_t(cut_.size() - 1 + children_count(id)) * brick_bytes > options_.texture_budget;
-    if (!split_fits(after) || over_textures) {
-      while (!merges.empty() && !cut_.can_merge(merges.top().second)) merges.pop();
-      if (merges.empty() || merges_done >= options_.merge_limit ||
-          merges.top().first * kSwapGain > e)
-        break;
-      const int m = merges.top().second;
-      merges.pop();
-      if (o.node(id).parent == m || m == id) break;  // never undo the split being paid for
-      do_merge(m);
-      continue;
-    }
-    splits.pop();
-    cost = after;
-    cut_.split(id);
-    ++splits_done;
-    for (int k : o.node(id).children)
-      if (k >= 0 && cut_.can_split(k)) splits.push({error_[std::size_t(k)], k});
-    push_merge(id);
-  }
+  if (scale_ >= 1 && !splatting_) plan.split_under_budget();
+  const double cost = plan.cost();
   last_cost_ = cost;
   last_coarsest_ = cut_.size() == 1;
   LodFrameStats st = cut_stats(cut_);
-  st.splits = splits_done;
-  st.merges = merges_done;
+  st.splits = plan.splits_done();
+  st.merges = plan.merges_done();
   st.cost = cost;
   st.predicted_ms = model_.ready() ? model_.predict(cost) : 0;
   st.render_scale = scale_;
