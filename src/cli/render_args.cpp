@@ -108,6 +108,79 @@ bool set_render_arg(RenderArgs& a, const std::string& name, const std::string& t
   return false;
 }
 
+namespace {
+
+// --lod, --target-fps/--target-ms, --split-limit, --lod-fallback, --focus and --lod-filter.
+void set_lod_options(const RenderArgs& a, tspgl::RenderJobOptions& o) {
+  const std::string lod =
+      a.lod.empty() ? (a.target_ms > 0 || a.target_fps > 0 ? "auto" : "off") : a.lod;
+  if (lod == "off") {
+    o.lod = tspgl::LodMode::off;
+  } else if (lod == "auto") {
+    o.lod = tspgl::LodMode::adaptive;
+  } else if (lod.rfind("splat:", 0) == 0) {
+    o.lod = tspgl::LodMode::splat;
+    o.splat_px = parse_number(lod.substr(6), "--lod splat:PX");
+    if (!(o.splat_px >= 0))
+      throw tsp::UsageError("--lod " + lod + ": expected a minimum splat size of 0 pixels or more");
+  } else {
+    o.lod = tspgl::LodMode::fixed;
+    o.lod_level = int(parse_integer(lod, "--lod", 0, 30, "off, auto or a level 0 to 30"));
+  }
+  if (a.target_fps != 0) {  // the player's unit; --target-ms is the same target as a frame time
+    if (a.target_ms != 0)
+      throw tsp::UsageError("--target-fps and --target-ms set the same target: give one");
+    if (!(a.target_fps >= 1 && a.target_fps <= kMaxTargetFps))
+      throw tsp::UsageError("--target-fps " + std::to_string(a.target_fps) + ": expected 1 to " +
+                            std::to_string(int(kMaxTargetFps)) + " frames per second");
+    o.target_ms = 1000.0 / a.target_fps;
+  } else {
+    o.target_ms = a.target_ms;
+  }
+  o.orbit_deg = a.orbit;
+  if (a.split_limit < 1) throw tsp::UsageError("--split-limit " + std::to_string(a.split_limit) +
+                                               ": expected at least 1 split per frame");
+  o.lod_options.split_limit = a.split_limit;
+  o.lod_options.fallback = tsp::parse_lod_fallback(a.lod_fallback, "--lod-fallback");
+  if (!a.focus.empty()) o.lod_options.focus = parse_triple(a.focus, "--focus", "X,Y,Z in voxels");
+  o.lod_filter = tsp::parse_lod_filter(a.lod_filter, "--lod-filter");
+  if (o.lod_filter.kind != tsp::LodFilter::error) {  // LaMar's filters choose the cut themselves
+    if (!a.lod.empty() || a.target_ms != 0 || a.target_fps != 0)
+      throw tsp::UsageError("--lod-filter " + a.lod_filter +
+                            " chooses the cut from where the tiles lie: drop --lod, --target-ms "
+                            "and --target-fps (--lod-filter error is the error-driven cut)");
+    o.lod = tspgl::LodMode::filter;
+  }
+}
+
+// The RAM and texture budgets, and the movie (checked before rendering: a bad movie request
+// wastes no frames).
+void set_budgets_and_movie(const RenderArgs& a, tspgl::RenderJobOptions& o) {
+  if (!(a.texture_budget_mb > 0) || !(a.texture_budget_mb <= double(tspgl::kMaxBudgetBytes >> 20)))
+    throw tsp::UsageError("--texture-budget " + std::to_string(a.texture_budget_mb) +
+                          ": expected a budget in (0, " +
+                          std::to_string(tspgl::kMaxBudgetBytes >> 20) + "] MiB");
+  o.texture_budget = std::max<std::int64_t>(1, std::int64_t(a.texture_budget_mb * (1 << 20)));
+  if (!(a.ram_budget_mb > 0) || !(a.ram_budget_mb <= double(tspgl::kMaxBudgetBytes >> 20)))
+    throw tsp::UsageError("--ram-budget " + std::to_string(a.ram_budget_mb) +
+                          ": expected a budget in (0, " +
+                          std::to_string(tspgl::kMaxBudgetBytes >> 20) + "] MiB");
+  o.ram_budget = std::max<std::int64_t>(1, std::int64_t(a.ram_budget_mb * (1 << 20)));
+  if (!a.movie.empty()) {
+    tspgl::check_movie_name(a.movie, "--movie");
+    if (a.fps < 1 || a.fps > 120)
+      throw tsp::UsageError("--fps " + std::to_string(a.fps) + ": expected 1..120");
+    if (!tspgl::find_on_path("ffmpeg"))
+      throw tsp::IoError("--movie " + a.movie +
+                         ": ffmpeg is not on PATH (apt-get install ffmpeg; scripts/install-deps.sh "
+                         "installs it)");
+    o.movie = a.movie;
+    o.fps = a.fps;
+  }
+}
+
+}  // namespace
+
 tspgl::RenderJobOptions render_job_options(const RenderArgs& a, const tspgl::RenderSettings& settings,
                                            const std::vector<std::string>& given_settings) {
   check_on_off(a.annotate, "--annotate");
@@ -150,45 +223,7 @@ tspgl::RenderJobOptions render_job_options(const RenderArgs& a, const tspgl::Ren
   o.quality = a.quality;
   o.calibration_dir = a.calibration_dir;
   o.save_tf = a.save_tf;
-  const std::string lod =
-      a.lod.empty() ? (a.target_ms > 0 || a.target_fps > 0 ? "auto" : "off") : a.lod;
-  if (lod == "off") {
-    o.lod = tspgl::LodMode::off;
-  } else if (lod == "auto") {
-    o.lod = tspgl::LodMode::adaptive;
-  } else if (lod.rfind("splat:", 0) == 0) {
-    o.lod = tspgl::LodMode::splat;
-    o.splat_px = parse_number(lod.substr(6), "--lod splat:PX");
-    if (!(o.splat_px >= 0))
-      throw tsp::UsageError("--lod " + lod + ": expected a minimum splat size of 0 pixels or more");
-  } else {
-    o.lod = tspgl::LodMode::fixed;
-    o.lod_level = int(parse_integer(lod, "--lod", 0, 30, "off, auto or a level 0 to 30"));
-  }
-  if (a.target_fps != 0) {  // the player's unit; --target-ms is the same target as a frame time
-    if (a.target_ms != 0)
-      throw tsp::UsageError("--target-fps and --target-ms set the same target: give one");
-    if (!(a.target_fps >= 1 && a.target_fps <= kMaxTargetFps))
-      throw tsp::UsageError("--target-fps " + std::to_string(a.target_fps) + ": expected 1 to " +
-                            std::to_string(int(kMaxTargetFps)) + " frames per second");
-    o.target_ms = 1000.0 / a.target_fps;
-  } else {
-    o.target_ms = a.target_ms;
-  }
-  o.orbit_deg = a.orbit;
-  if (a.split_limit < 1) throw tsp::UsageError("--split-limit " + std::to_string(a.split_limit) +
-                                               ": expected at least 1 split per frame");
-  o.lod_options.split_limit = a.split_limit;
-  o.lod_options.fallback = tsp::parse_lod_fallback(a.lod_fallback, "--lod-fallback");
-  if (!a.focus.empty()) o.lod_options.focus = parse_triple(a.focus, "--focus", "X,Y,Z in voxels");
-  o.lod_filter = tsp::parse_lod_filter(a.lod_filter, "--lod-filter");
-  if (o.lod_filter.kind != tsp::LodFilter::error) {  // LaMar's filters choose the cut themselves
-    if (!a.lod.empty() || a.target_ms != 0 || a.target_fps != 0)
-      throw tsp::UsageError("--lod-filter " + a.lod_filter +
-                            " chooses the cut from where the tiles lie: drop --lod, --target-ms "
-                            "and --target-fps (--lod-filter error is the error-driven cut)");
-    o.lod = tspgl::LodMode::filter;
-  }
+  set_lod_options(a, o);
   if (!a.eye.empty()) {  // a placed eye looks along the view's direction, in perspective
     const auto e = parse_triple(a.eye, "--eye", "X,Y,Z in voxels");
     o.camera.eye = std::array<double, 3>{e[0], e[1], e[2]};
@@ -209,28 +244,7 @@ tspgl::RenderJobOptions render_job_options(const RenderArgs& a, const tspgl::Ren
     o.probe_motion = parse_triple(a.probe_motion, "--probe-motion", "DX,DY,DZ per frame");
   if (!a.scale.empty())
     o.scale = parse_triple(a.scale, "--scale", "SX,SY,SZ, factors on the voxel spacing");
-  if (!(a.texture_budget_mb > 0) || !(a.texture_budget_mb <= double(tspgl::kMaxBudgetBytes >> 20)))
-    throw tsp::UsageError("--texture-budget " + std::to_string(a.texture_budget_mb) +
-                          ": expected a budget in (0, " +
-                          std::to_string(tspgl::kMaxBudgetBytes >> 20) + "] MiB");
-  o.texture_budget = std::max<std::int64_t>(1, std::int64_t(a.texture_budget_mb * (1 << 20)));
-  if (!(a.ram_budget_mb > 0) || !(a.ram_budget_mb <= double(tspgl::kMaxBudgetBytes >> 20)))
-    throw tsp::UsageError("--ram-budget " + std::to_string(a.ram_budget_mb) +
-                          ": expected a budget in (0, " +
-                          std::to_string(tspgl::kMaxBudgetBytes >> 20) + "] MiB");
-  o.ram_budget = std::max<std::int64_t>(1, std::int64_t(a.ram_budget_mb * (1 << 20)));
-
-  if (!a.movie.empty()) {  // checked before rendering: a bad movie request wastes no frames
-    tspgl::check_movie_name(a.movie, "--movie");
-    if (a.fps < 1 || a.fps > 120)
-      throw tsp::UsageError("--fps " + std::to_string(a.fps) + ": expected 1..120");
-    if (!tspgl::find_on_path("ffmpeg"))
-      throw tsp::IoError("--movie " + a.movie +
-                         ": ffmpeg is not on PATH (apt-get install ffmpeg; scripts/install-deps.sh "
-                         "installs it)");
-    o.movie = a.movie;
-    o.fps = a.fps;
-  }
+  set_budgets_and_movie(a, o);
   return o;
 }
 
