@@ -265,15 +265,12 @@ void TspWriter::end_collective(bool finisher) {
   w.loc = open_field_group(w.file.get(), w.path, w.field_index);
 }
 
-void TspWriter::finish(const TspTree& tree, const TspMetadata& meta) {
-  std::lock_guard lock(hdf5_mutex());
-  Impl& w = *impl_;
-  const std::string& p = w.path;
-  hid_t f = w.loc.get();
-  const Octree& o = tree.octree();
-  const Dims d = o.dims();
+namespace {
 
-  // Shape of the tree, as the reader recomputes and checks it.
+// The shape of the tree (bricks, octree, stops, stencil fractions, level bricks and their
+// residuals), as the reader recomputes and checks it.
+void write_shape(hid_t f, const std::string& p, const TspTree& tree) {
+  const Octree& o = tree.octree();
   const int nb = o.brick_count();
   std::vector<std::array<int, 6>> samples(nb), own(nb);
   for (int b = 0; b < nb; ++b) {
@@ -330,7 +327,10 @@ void TspWriter::finish(const TspTree& tree, const TspMetadata& meta) {
   assert(tree.level_errors().size() == nl * hsize_t(tree.time().steps()));
   write_dataset(f, p, layout::kLevelError, H5T_NATIVE_FLOAT, H5T_IEEE_F32LE,
                 {nl, hsize_t(tree.time().steps())}, tree.level_errors().data());
-  const TimeTree& time = tree.time();
+}
+
+// The time tree's spans and the steps' times with their units.
+void write_times(hid_t f, const std::string& p, const TimeTree& time, const TspMetadata& meta) {
   std::vector<std::array<int, 2>> spans(time.size());
   for (int i = 0; i < time.size(); ++i) spans[i] = {time.span(i).t0, time.span(i).t1};
   write_dataset(f, p, layout::kTimeSpan, H5T_NATIVE_INT32, H5T_STD_I32LE, {hsize_t(time.size()), 2},
@@ -348,7 +348,10 @@ void TspWriter::finish(const TspTree& tree, const TspMetadata& meta) {
     units_attr(layout::kAttrTimeCalendar, meta.time_units.calendar);
   }
 
-  // Statistics by TSP node id.
+}
+
+// Statistics by TSP node id, and the histogram.
+void write_stats(hid_t f, const std::string& p, const TspTree& tree, const TspMetadata& meta) {
   const std::size_t n = std::size_t(tree.size());
   std::vector<double> mean(n), sd(n);
   std::vector<float> mn(n), mx(n), es(n), et(n);
@@ -371,8 +374,14 @@ void TspWriter::finish(const TspTree& tree, const TspMetadata& meta) {
   write_dataset(f, p, layout::kHistogram, H5T_NATIVE_UINT64, H5T_STD_U64LE,
                 {hsize_t(meta.histogram.size())}, meta.histogram.data());
 
-  // The location's attributes last: a file cut short before this point has no format tag and
-  // is rejected.
+}
+
+// The location's attributes: format, version, grid, ranges, build and rules.
+void write_attributes(hid_t f, const std::string& p, const TspTree& tree,
+                      const TspMetadata& meta) {
+  const Octree& o = tree.octree();
+  const Dims d = o.dims();
+  const TimeTree& time = tree.time();
   hid_t r = f;
   const int version = o.has_stops() ? kTspAdaptiveFormatVersion : kTspFormatVersion, steps = time.steps(), bs = o.brick_size();
   const int dims[3] = {d.x, d.y, d.z};
@@ -399,6 +408,21 @@ void TspWriter::finish(const TspTree& tree, const TspMetadata& meta) {
   write_attr_string(r, p, layout::kAttrNodeId, layout::kNodeIdRule);
   write_attr_string(r, p, layout::kAttrLevelRule, layout::kLevelRule);
 
+}
+
+}  // namespace
+
+void TspWriter::finish(const TspTree& tree, const TspMetadata& meta) {
+  std::lock_guard lock(hdf5_mutex());
+  Impl& w = *impl_;
+  const std::string& p = w.path;
+  hid_t f = w.loc.get();
+  write_shape(f, p, tree);
+  write_times(f, p, tree.time(), meta);
+  write_stats(f, p, tree, meta);
+  // The location's attributes last: a file cut short before this point has no format tag and
+  // is rejected.
+  write_attributes(f, p, tree, meta);
   w.data.reset();
   w.inside.reset();
   if (H5Fflush(w.file.get(), H5F_SCOPE_GLOBAL) < 0)
