@@ -132,13 +132,11 @@ bool is_vtkhdf(hid_t file) {
   return obj && H5Iget_type(obj.get()) == H5I_GROUP;
 }
 
-std::unique_ptr<VolumeSource> open_vtkhdf_source(const std::string& path, h5::Handle file,
-                                                 const SourceOptions& options) {
-  const std::string where = path + ", group /VTKHDF";
-  Handle root(H5Gopen2(file.get(), kRoot, H5P_DEFAULT));
-  if (!root) throw FormatError(where + ": cannot be opened");
+namespace {
 
-  auto version = numeric_attribute(root.get(), "Version", where);
+// The root group's Version (1.x or 2.x) and Type (ImageData; version 1 files may omit it).
+void check_vtkhdf_header(hid_t root_group, hid_t file, const std::string& where) {
+  auto version = numeric_attribute(root_group, "Version", where);
   if (!version || version->size() != 2)
     throw FormatError(where + ": attribute Version missing or not [major, minor]");
   if (!((*version)[0] >= 1 && (*version)[0] <= kMaxMajorVersion)) {
@@ -147,12 +145,12 @@ std::unique_ptr<VolumeSource> open_vtkhdf_source(const std::string& path, h5::Ha
     std::snprintf(text, sizeof text, "%g.%g", (*version)[0], (*version)[1]);
     throw FormatError(where + ": VTKHDF version " + text + ", expected major version 1 or 2");
   }
-  auto type = string_attribute(root.get(), "Type", where);
+  auto type = string_attribute(root_group, "Type", where);
   if (!type) {
     // Version 1.x files may omit Type; VTK deduces it from what the group holds.
-    if (H5Aexists(root.get(), "WholeExtent") > 0)
+    if (H5Aexists(root_group, "WholeExtent") > 0)
       type = "ImageData";
-    else if (h5::exists(file.get(), "/VTKHDF/NumberOfConnectivityIds"))
+    else if (h5::exists(file, "/VTKHDF/NumberOfConnectivityIds"))
       type = "UnstructuredGrid";
     else
       throw FormatError(where + ": attribute Type missing, expected \"ImageData\"");
@@ -160,10 +158,16 @@ std::unique_ptr<VolumeSource> open_vtkhdf_source(const std::string& path, h5::Ha
   if (*type != "ImageData")
     throw FormatError(where + ": VTKHDF Type is \"" + *type +
                       "\", expected \"ImageData\" (only image data is a regular grid)");
-  auto extent_values = numeric_attribute(root.get(), "WholeExtent", where);
+}
+
+using Extent = std::array<long long, 6>;
+
+// WholeExtent: six integers, lo <= hi per axis.
+Extent read_extent(hid_t root_group, const std::string& where) {
+  auto extent_values = numeric_attribute(root_group, "WholeExtent", where);
   if (!extent_values || extent_values->size() != 6)
     throw FormatError(where + ": attribute WholeExtent missing or not 6 integers");
-  long long extent[6];
+  Extent extent{};
   for (int i = 0; i < 6; ++i) {
     double v = (*extent_values)[std::size_t(i)];
     if (v != std::floor(v) || std::fabs(v) > INT_MAX)
@@ -176,9 +180,15 @@ std::unique_ptr<VolumeSource> open_vtkhdf_source(const std::string& path, h5::Ha
                         std::to_string(extent[2 * a]) + ", " + std::to_string(extent[2 * a + 1]) +
                         "], expected lo <= hi");
 
-  // Pick the array.
-  const std::vector<std::string> point_arrays = h5::datasets_in(file.get(), "/VTKHDF/PointData");
-  const std::vector<std::string> cell_arrays = h5::datasets_in(file.get(), "/VTKHDF/CellData");
+  return extent;
+}
+
+// The array to read: --field's, else the only point array, the only cell array, or the
+// active scalars. Returns its name and whether it is cell data.
+std::pair<std::string, bool> pick_array(hid_t file, const std::string& field,
+                                        const std::string& where) {
+  const std::vector<std::string> point_arrays = h5::datasets_in(file, "/VTKHDF/PointData");
+  const std::vector<std::string> cell_arrays = h5::datasets_in(file, "/VTKHDF/CellData");
   auto contains = [](const std::vector<std::string>& v, const std::string& n) {
     for (const auto& s : v)
       if (s == n) return true;
@@ -187,14 +197,14 @@ std::unique_ptr<VolumeSource> open_vtkhdf_source(const std::string& path, h5::Ha
   const std::string listing =
       "PointData: " + join(point_arrays) + "; CellData: " + join(cell_arrays);
   bool cells = false;
-  std::string name = options.field;
+  std::string name = field;
   if (name.empty()) {
     if (point_arrays.size() == 1) {
       name = point_arrays[0];
     } else if (point_arrays.empty() && cell_arrays.size() == 1) {
       name = cell_arrays[0];
       cells = true;
-    } else if (auto scalars = active_scalars(file.get(), where);
+    } else if (auto scalars = active_scalars(file, where);
                scalars && contains(point_arrays, *scalars)) {
       name = *scalars;
     } else {
@@ -207,6 +217,56 @@ std::unique_ptr<VolumeSource> open_vtkhdf_source(const std::string& path, h5::Ha
   } else {
     throw FormatError(where + ": field '" + name + "' not found; available arrays: " + listing);
   }
+  return {name, cells};
+}
+
+// The time steps (group /VTKHDF/Steps): how many, and each one's index in the array's time
+// axis (the offsets table, or 0, 1, 2, …).
+struct StepTable {
+  bool transient = false;
+  int steps = 1;
+  std::vector<long long> offsets;
+};
+StepTable read_step_table(hid_t file, const std::string& kind, const std::string& name,
+                          const long long n[3], const std::string& path,
+                          const std::string& where) {
+  StepTable st;
+  st.transient = h5::exists(file, "/VTKHDF/Steps");
+  if (st.transient) {
+    Handle steps(H5Gopen2(file, "/VTKHDF/Steps", H5P_DEFAULT));
+    if (!steps) throw FormatError(where + ": Steps cannot be opened as a group");
+    auto ns = numeric_attribute(steps.get(), "NSteps", where + "/Steps");
+    if (!ns || ns->size() != 1 || (*ns)[0] < 1 || (*ns)[0] != std::floor((*ns)[0]) ||
+        (*ns)[0] > INT_MAX)
+      throw FormatError(where + "/Steps: attribute NSteps missing or not a positive integer");
+    check_grid(n[0], n[1], n[2], std::int64_t((*ns)[0]), where + "/Steps, NSteps");
+    st.steps = int((*ns)[0]);
+    const std::string table = "/VTKHDF/Steps/" + kind + "Offsets/" + name;
+    if (h5::exists(file, table)) {
+      st.offsets = read_index_table(file, table, path);
+      if (st.offsets.size() < std::size_t(st.steps))
+        throw FormatError(path + ": " + table + " has " + std::to_string(st.offsets.size()) +
+                          " entries, expected NSteps = " + std::to_string(st.steps));
+      st.offsets.resize(std::size_t(st.steps));
+    } else {
+      for (int t = 0; t < st.steps; ++t) st.offsets.push_back(t);
+    }
+  }
+
+  return st;
+}
+
+}  // namespace
+
+std::unique_ptr<VolumeSource> open_vtkhdf_source(const std::string& path, h5::Handle file,
+                                                 const SourceOptions& options) {
+  const std::string where = path + ", group /VTKHDF";
+  Handle root(H5Gopen2(file.get(), kRoot, H5P_DEFAULT));
+  if (!root) throw FormatError(where + ": cannot be opened");
+
+  check_vtkhdf_header(root.get(), file.get(), where);
+  const Extent extent = read_extent(root.get(), where);
+  const auto [name, cells] = pick_array(file.get(), options.field, where);
   const std::string kind = cells ? "CellData" : "PointData";
   const std::string array_path = std::string(kRoot) + "/" + kind + "/" + name;
   const std::string awhere = path + ", dataset " + array_path;
@@ -227,29 +287,10 @@ std::unique_ptr<VolumeSource> open_vtkhdf_source(const std::string& path, h5::Ha
   spatial.push_back(hsize_t(n[0]));
 
   // Time steps.
-  bool transient = h5::exists(file.get(), "/VTKHDF/Steps");
-  std::vector<long long> offsets;
-  int nsteps = 1;
-  if (transient) {
-    Handle steps(H5Gopen2(file.get(), "/VTKHDF/Steps", H5P_DEFAULT));
-    if (!steps) throw FormatError(where + ": Steps cannot be opened as a group");
-    auto ns = numeric_attribute(steps.get(), "NSteps", where + "/Steps");
-    if (!ns || ns->size() != 1 || (*ns)[0] < 1 || (*ns)[0] != std::floor((*ns)[0]) ||
-        (*ns)[0] > INT_MAX)
-      throw FormatError(where + "/Steps: attribute NSteps missing or not a positive integer");
-    check_grid(n[0], n[1], n[2], std::int64_t((*ns)[0]), where + "/Steps, NSteps");
-    nsteps = int((*ns)[0]);
-    const std::string table = "/VTKHDF/Steps/" + kind + "Offsets/" + name;
-    if (h5::exists(file.get(), table)) {
-      offsets = read_index_table(file.get(), table, path);
-      if (offsets.size() < std::size_t(nsteps))
-        throw FormatError(path + ": " + table + " has " + std::to_string(offsets.size()) +
-                          " entries, expected NSteps = " + std::to_string(nsteps));
-      offsets.resize(std::size_t(nsteps));
-    } else {
-      for (int t = 0; t < nsteps; ++t) offsets.push_back(t);
-    }
-  }
+  const StepTable st = read_step_table(file.get(), kind, name, n, path, where);
+  const bool transient = st.transient;
+  const int nsteps = st.steps;
+  const std::vector<long long>& offsets = st.offsets;
 
   // Check the array's shape: [time,] spatial... [, components].
   Handle ds(H5Dopen2(file.get(), array_path.c_str(), H5P_DEFAULT));
