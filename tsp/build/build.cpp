@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <deque>
+#include <functional>
 #include <limits>
 #include <string>
 #include <tuple>
@@ -70,11 +71,142 @@ int slab_planes(const VolumeSource& source, const Octree& octree) {
   return align > 1 ? (planes + align - 1) / align * align : planes;
 }
 
+// One process's reading side of pass 1, a step at a time: each slab of planes is held while a
+// brick or a level stream still needs it; each leaf brick's samples are copied out as soon as
+// the planes it covers are in, each level brick is filtered (and its residual summed) by a
+// LevelStream fed the same planes in z order, so only the planes a window or a brick still
+// needs are held, never the whole step. What is done goes to `deliver`.
+class StepScatter {
+ public:
+  /// Where a brick's samples (or stencil flags) at a step go: stored brick index, step, mask or
+  /// values, the samples, a level brick's residual.
+  using Deliver =
+      std::function<void(int stored, int t, bool is_mask, const std::vector<float>& v, float r)>;
+
+  StepScatter(const Octree& octree, bool masks, const std::optional<ValueRange>& clamp,
+              Deliver deliver)
+      : octree_(octree), d_(octree.dims()), n_(octree.brick_count()),
+        nl_(octree.level_brick_count()), deliver_(std::move(deliver)),
+        samples_(static_cast<std::size_t>(n_)), scattered_(static_cast<std::size_t>(n_)),
+        bricks_(kWorkers) {
+    // One stream per level brick for its values, one more for its stencil.
+    for (int j = 0; j < nl_; ++j) {
+      const BrickLattice l = octree.lattice(n_ + j);
+      values_.emplace_back(d_, l, octree.node(octree.stored_brick_node(n_ + j)).box, clamp);
+      if (masks) masks_.emplace_back(d_, l, std::nullopt, std::nullopt);
+    }
+    for (int b = 0; b < n_; ++b) samples_[std::size_t(b)] = octree.brick_samples(b);
+  }
+
+  /// Step t, from prefetch's slabs (the next ones it holds are this step's, in z order), with
+  /// `leaves_masked` when leaf bricks carry a stencil. at_plane(end) after each slab.
+  void step(int t, SlabPrefetcher& prefetch, bool leaves_masked,
+            const std::function<void(int end)>& at_plane) {
+    for (LevelStream& s : values_) s.restart();
+    for (LevelStream& s : masks_) s.restart();
+    std::fill(scattered_.begin(), scattered_.end(), 0);
+    held_.clear();
+    for (int end = 0; end < d_.z;) {
+      Slab slab = prefetch.next();
+      assert(slab.step == t && slab.z0 == end);
+      end = slab.z1;
+      held_.push_back(std::move(slab));
+      ready_.clear();  // this round's work: leaf bricks, then level streams (j + n)
+      for (int b = 0; b < n_; ++b)
+        if (!scattered_[std::size_t(b)] && samples_[std::size_t(b)].hi[2] <= end) {
+          scattered_[std::size_t(b)] = 1;
+          ready_.push_back(b);
+        }
+      for (int j = 0; j < nl_; ++j)
+        if (!values_[std::size_t(j)].done() ||
+            (!masks_.empty() && !masks_[std::size_t(j)].done()))
+          ready_.push_back(n_ + j);
+      // Copying into the page cache is kernel time that parallelises: two workers split each
+      // slab's work (pwrite at fixed offsets needs no ordering).
+      parallel_for(kWorkers, 1, kWorkers, [&](int w, std::int64_t first, std::int64_t) {
+        for (auto k = std::size_t(first); k < ready_.size(); k += kWorkers)
+          work(t, ready_[k], end, leaves_masked, bricks_[std::size_t(w)]);
+      });
+      drop_slabs(end);
+      if (at_plane) at_plane(end);
+    }
+    assert(std::all_of(values_.begin(), values_.end(), [](auto& s) { return s.done(); }));
+  }
+
+ private:
+  static constexpr int kWorkers = 2;
+  const Octree& octree_;
+  const Dims d_;
+  const int n_, nl_;
+  Deliver deliver_;
+  std::vector<Box> samples_;  // each leaf brick's samples, for the planes
+  std::vector<LevelStream> values_, masks_;
+  std::vector<char> scattered_;
+  std::vector<int> ready_;
+  std::vector<std::vector<float>> bricks_;  // per worker
+  std::deque<Slab> held_;  // the step's slabs still needed, in z order
+
+  const float* plane(int z, bool mask) const {
+    for (const Slab& s : held_)
+      if (z >= s.z0 && z < s.z1) return mask ? s.mask_plane(z) : s.plane(z);
+    assert(false && "a plane that is no longer held");
+    return nullptr;
+  }
+
+  // Leaf brick b's samples (or stencil flags) at step t, copied out of the held planes.
+  void scatter(int t, int b, bool is_mask, std::vector<float>& brick) {
+    const Box& s = samples_[std::size_t(b)];
+    brick.resize(std::size_t(s.count()));
+    float* out = brick.data();
+    const std::size_t row = std::size_t(s.size(0));
+    for (int z = s.lo[2]; z < s.hi[2]; ++z) {
+      const float* p = plane(z, is_mask);
+      for (int y = s.lo[1]; y < s.hi[1]; ++y, out += row)
+        std::memcpy(out, p + s.lo[0] + std::int64_t(d_.x) * y, row * sizeof(float));
+    }
+    deliver_(b, t, is_mask, brick, 0.f);
+  }
+
+  // One item of a round: leaf brick i, or level brick i − n fed the planes up to end.
+  void work(int t, int i, int end, bool leaves_masked, std::vector<float>& brick) {
+    if (i < n_) {
+      scatter(t, i, false, brick);
+      if (leaves_masked) scatter(t, i, true, brick);
+      return;
+    }
+    const LevelStream::PlaneFn value_plane = [this](int z) { return plane(z, false); };
+    LevelStream& v = values_[std::size_t(i - n_)];
+    if (!v.done()) {
+      v.feed(value_plane, end);
+      if (v.done()) {
+        deliver_(i, t, false, v.samples(), float(v.residual()));
+        v.release();
+      }
+    }
+    if (masks_.empty()) return;
+    LevelStream& m = masks_[std::size_t(i - n_)];
+    if (m.done()) return;
+    m.feed([this](int z) { return plane(z, true); }, end);
+    if (m.done()) {
+      deliver_(i, t, true, m.samples(), 0.f);
+      m.release();
+    }
+  }
+
+  // Drops the slabs below every plane a brick or stream still needs.
+  void drop_slabs(int end) {
+    int keep = end;
+    for (int b = 0; b < n_; ++b)
+      if (!scattered_[std::size_t(b)]) keep = std::min(keep, samples_[std::size_t(b)].lo[2]);
+    for (const LevelStream& s : values_) keep = std::min(keep, s.needs_from());
+    for (const LevelStream& s : masks_) keep = std::min(keep, s.needs_from());
+    while (!held_.empty() && held_.front().z1 <= keep) held_.pop_front();
+  }
+};
+
 // Pass 1: every step once, in order, read in slabs of slab_planes() planes (or whole, where the
-// source cannot read part of a step); each brick's samples go to its place in the scratch file as
-// soon as the planes it covers are in. Each level brick is filtered (and its residual summed) by
-// a LevelStream fed the same planes in z order, so only the planes a window or a brick still
-// needs are held, never the whole step; the level bricks go to levels, their residuals to
+// source cannot read part of a step), scattered by a StepScatter: the leaf bricks' samples go
+// to their place in the scratch file, the level bricks to levels, their residuals to
 // level_errors ([level brick][step]). With a partition, this process reads its steps (t mod
 // ranks = rank) and sends each other process's bricks at those steps to it, while a receiving
 // thread stores what the others send of this process's bricks; the scans are then combined, so
@@ -139,103 +271,12 @@ InputScan scatter_steps(VolumeSource& source, const Octree& octree, ScratchFile&
                                       : std::span<const float>());
         },
         rank, ranks);
-    // One stream per level brick for its values, one more for its stencil.
-    std::vector<LevelStream> values, masks;
-    for (int j = 0; j < nl; ++j) {
-      const BrickLattice l = octree.lattice(n + j);
-      values.emplace_back(d, l, octree.node(octree.stored_brick_node(n + j)).box, clamp);
-      if (stencil.levels) masks.emplace_back(d, l, std::nullopt, std::nullopt);
-    }
-    // Copying into the page cache is kernel time that parallelises: two workers split each
-    // slab's work (pwrite at fixed offsets needs no ordering).
-    constexpr int kWorkers = 2;
-    std::vector<std::vector<float>> bricks(kWorkers);
-    std::deque<Slab> held;  // the step's slabs still needed, in z order
-    auto plane_of = [&held](bool mask) {
-      return [&held, mask](int z) {
-        for (const Slab& s : held)
-          if (z >= s.z0 && z < s.z1) return mask ? s.mask_plane(z) : s.plane(z);
-        assert(false && "a plane that is no longer held");
-        return static_cast<const float*>(nullptr);
-      };
-    };
-    const LevelStream::PlaneFn value_plane = plane_of(false), mask_plane = plane_of(true);
-    std::vector<Box> samples(static_cast<std::size_t>(n));  // each brick's samples, for the planes
-    for (int b = 0; b < n; ++b) samples[std::size_t(b)] = octree.brick_samples(b);
-    auto scatter = [&](int t, int b, bool is_mask, std::vector<float>& brick) {
-      const Box& s = samples[std::size_t(b)];
-      brick.resize(std::size_t(s.count()));
-      float* out = brick.data();
-      const std::size_t row = std::size_t(s.size(0));
-      const LevelStream::PlaneFn& plane = is_mask ? mask_plane : value_plane;
-      for (int z = s.lo[2]; z < s.hi[2]; ++z) {
-        const float* p = plane(z);
-        for (int y = s.lo[1]; y < s.hi[1]; ++y, out += row)
-          std::memcpy(out, p + s.lo[0] + std::int64_t(d.x) * y, row * sizeof(float));
-      }
-      deliver(b, t, is_mask, brick, 0.f);
-    };
-    std::vector<char> scattered(static_cast<std::size_t>(n));
-    std::vector<int> ready;  // this round's work: leaf bricks, then level streams (j + n)
-    for (int t = rank; t < steps; t += ranks) {
-      for (LevelStream& s : values) s.restart();
-      for (LevelStream& s : masks) s.restart();
-      std::fill(scattered.begin(), scattered.end(), 0);
-      held.clear();
-      for (int end = 0; end < d.z;) {
-        Slab slab = prefetch.next();
-        assert(slab.step == t && slab.z0 == end);
-        end = slab.z1;
-        held.push_back(std::move(slab));
-        ready.clear();
-        for (int b = 0; b < n; ++b)
-          if (!scattered[std::size_t(b)] && samples[std::size_t(b)].hi[2] <= end) {
-            scattered[std::size_t(b)] = 1;
-            ready.push_back(b);
-          }
-        for (int j = 0; j < nl; ++j)
-          if (!values[std::size_t(j)].done() ||
-              (stencil.levels && !masks[std::size_t(j)].done()))
-            ready.push_back(n + j);
-        parallel_for(kWorkers, 1, kWorkers, [&](int w, std::int64_t first, std::int64_t) {
-          std::vector<float>& brick = bricks[std::size_t(w)];
-          for (auto k = std::size_t(first); k < ready.size(); k += kWorkers) {
-            const int i = ready[k];
-            if (i < n) {
-              scatter(t, i, false, brick);
-              if (stencil.leaves) scatter(t, i, true, brick);
-              continue;
-            }
-            LevelStream& v = values[std::size_t(i - n)];
-            if (!v.done()) {
-              v.feed(value_plane, end);
-              if (v.done()) {
-                deliver(i, t, false, v.samples(), float(v.residual()));
-                v.release();
-              }
-            }
-            if (!stencil.levels) continue;
-            LevelStream& m = masks[std::size_t(i - n)];
-            if (m.done()) continue;
-            m.feed(mask_plane, end);
-            if (m.done()) {
-              deliver(i, t, true, m.samples(), 0.f);
-              m.release();
-            }
-          }
-        });
-        // Drop the slabs below every plane a brick or stream still needs.
-        int keep = end;
-        for (int b = 0; b < n; ++b)
-          if (!scattered[std::size_t(b)]) keep = std::min(keep, samples[std::size_t(b)].lo[2]);
-        for (const LevelStream& s : values) keep = std::min(keep, s.needs_from());
-        for (const LevelStream& s : masks) keep = std::min(keep, s.needs_from());
-        while (!held.empty() && held.front().z1 <= keep) held.pop_front();
+    StepScatter scatter(octree, stencil.levels != nullptr, clamp, deliver);
+    for (int t = rank; t < steps; t += ranks)
+      scatter.step(t, prefetch, stencil.leaves != nullptr, [&](int end) {
         if (progress)
           progress(kPhaseRead, (std::int64_t(t) * d.z + end) * plane_bytes, total_bytes);
-      }
-      assert(std::all_of(values.begin(), values.end(), [](auto& s) { return s.done(); }));
-    }
+      });
   }
   receiver.wait();
   if (part) part->combine_scan(scan.lo, scan.hi, scan.nonfinite);
