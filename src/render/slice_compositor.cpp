@@ -233,10 +233,6 @@ SliceCompositor::FrameView SliceCompositor::frame_view(const tsp::Camera& camera
 void SliceCompositor::draw_surface_under(const tsp::Camera& camera, const RenderSettings& settings,
                                          const FrameView& f, bool keep) {
   const tsp::CameraParams& view = camera.params();
-  const auto& dir = f.dir;
-  const double cosine = f.cosine;
-  const auto& voxel = f.voxel;
-  const auto& light = f.light;
   surface_drawn_ = false;
   surface_stats_ = {};
   if (settings.surface && has_surface() && settings.compositing == Compositing::rays) {
@@ -246,8 +242,8 @@ void SliceCompositor::draw_surface_under(const tsp::Camera& camera, const Render
     if (!surface_splats_) surface_splats_ = std::make_unique<SurfaceSplats>(ctx_);
     surface_stats_ = surface_splats_->draw(
         surface_, camera, clip_region_, target_.width(), target_.height(), settings.background,
-        settings.shade, light, {1 / voxel[0], 1 / voxel[1], 1 / voxel[2]},
-        {dir[0] / cosine, dir[1] / cosine, dir[2] / cosine});
+        settings.shade, f.light, {1 / f.voxel[0], 1 / f.voxel[1], 1 / f.voxel[2]},
+        {f.dir[0] / f.cosine, f.dir[1] / f.cosine, f.dir[2] / f.cosine});
     gl_.BindFramebuffer(GL_DRAW_FRAMEBUFFER, target_.framebuffer());
     gl_.BlitFramebuffer(0, 0, target_.width(), target_.height(), 0, 0, target_.width(),
                         target_.height(), GL_COLOR_BUFFER_BIT, GL_NEAREST);
@@ -260,12 +256,6 @@ void SliceCompositor::draw_surface_under(const tsp::Camera& camera, const Render
 
 void SliceCompositor::set_frame_uniforms(const tsp::Camera& camera, const RenderSettings& settings,
                                          const FrameView& f, bool refine) {
-  const auto& dir = f.dir;
-  const auto& eye = f.eye;
-  const auto& ray = f.ray;
-  const double cosine = f.cosine;
-  const auto& voxel = f.voxel;
-  const auto& light = f.light;
   gl_.Disable(GL_DEPTH_TEST);
   gl_.Disable(GL_CULL_FACE);
   gl_.Enable(GL_BLEND);
@@ -279,13 +269,13 @@ void SliceCompositor::set_frame_uniforms(const tsp::Camera& camera, const Render
   }
   for (const Program* p : std::initializer_list<const Program*>{&box_textured_, &box_flat_, rays_}) {
     p->use();
-    // Depth in the shaders is measured along direction() / ray_cosine(): along the central ray
-    // it is ray length, so planes `spacing` apart in it take samples `spacing` apart along the
-    // rays, and flat opacity accumulates per voxel of ray (the same for cubic voxels).
-    gl_.Uniform3f(p->uniform("view_dir"), float(dir[0] / cosine), float(dir[1] / cosine),
-                  float(dir[2] / cosine));
-    gl_.Uniform3f(p->uniform("ray_dir"), float(ray[0]), float(ray[1]), float(ray[2]));
-    gl_.Uniform3f(p->uniform("eye"), float(eye[0]), float(eye[1]), float(eye[2]));
+    // Depth in the shaders is measured along direction() / ray_cosine(): along the central f.ray
+    // it is f.ray length, so planes `spacing` apart in it take samples `spacing` apart along the
+    // rays, and flat opacity accumulates per f.voxel of f.ray (the same for cubic voxels).
+    gl_.Uniform3f(p->uniform("view_dir"), float(f.dir[0] / f.cosine), float(f.dir[1] / f.cosine),
+                  float(f.dir[2] / f.cosine));
+    gl_.Uniform3f(p->uniform("ray_dir"), float(f.ray[0]), float(f.ray[1]), float(f.ray[2]));
+    gl_.Uniform3f(p->uniform("eye"), float(f.eye[0]), float(f.eye[1]), float(f.eye[2]));
     gl_.Uniform1i(p->uniform("perspective"), camera.perspective() ? 1 : 0);
   }
   for (const Program* p : std::initializer_list<const Program*>{&textured_, &box_textured_, rays_}) {
@@ -303,15 +293,15 @@ void SliceCompositor::set_frame_uniforms(const tsp::Camera& camera, const Render
     gl_.Uniform1i(p->uniform("use_shading"), settings.shade ? 1 : 0);
     gl_.Uniform4f(p->uniform("phong"), float(kAmbient), float(kDiffuse), float(kSpecular),
                   float(kSpecularPower));
-    gl_.Uniform3f(p->uniform("light_dir"), float(light[0]), float(light[1]), float(light[2]));
-    gl_.Uniform3f(p->uniform("inv_voxel"), float(1 / voxel[0]), float(1 / voxel[1]),
-                  float(1 / voxel[2]));
+    gl_.Uniform3f(p->uniform("light_dir"), float(f.light[0]), float(f.light[1]), float(f.light[2]));
+    gl_.Uniform3f(p->uniform("inv_voxel"), float(1 / f.voxel[0]), float(1 / f.voxel[1]),
+                  float(1 / f.voxel[2]));
   }
-  // The back sample of a slice lies where the (central) ray meets the next plane, one spacing
+  // The back sample of a slice lies where the (central) f.ray meets the next plane, one spacing
   // along it.
   textured_.use();
-  gl_.Uniform3f(textured_.uniform("back_step"), float(ray[0] * settings.spacing),
-                float(ray[1] * settings.spacing), float(ray[2] * settings.spacing));
+  gl_.Uniform3f(textured_.uniform("back_step"), float(f.ray[0] * settings.spacing),
+                float(f.ray[1] * settings.spacing), float(f.ray[2] * settings.spacing));
   if (settings.preintegrated) tf_.bind_preintegrated(kPreintegratedUnit, settings.spacing);
   if (surface_on_) surface_tf_.bind_opaque(kSurfaceTfUnit);
   tf_.bind(kTfUnit, settings.spacing);
@@ -323,16 +313,10 @@ void SliceCompositor::set_frame_uniforms(const tsp::Camera& camera, const Render
 
 void SliceCompositor::set_cast_scene(const tsp::Camera& camera, const RenderSettings& settings,
                                      const FrameView& f, bool refine) {
-  const auto& dir = f.dir;
-  const auto& eye = f.eye;
-  const auto& ray = f.ray;
-  const double cosine = f.cosine;
-  const auto& voxel = f.voxel;
-  const auto& light = f.light;
   cast_.inverse_view_projection = glm::inverse(camera.view_projection());
-  cast_.view_dir = glm::vec3(float(dir[0] / cosine), float(dir[1] / cosine), float(dir[2] / cosine));
-  cast_.ray_dir = glm::vec3(float(ray[0]), float(ray[1]), float(ray[2]));
-  cast_.eye = glm::vec3(float(eye[0]), float(eye[1]), float(eye[2]));
+  cast_.view_dir = glm::vec3(float(f.dir[0] / f.cosine), float(f.dir[1] / f.cosine), float(f.dir[2] / f.cosine));
+  cast_.ray_dir = glm::vec3(float(f.ray[0]), float(f.ray[1]), float(f.ray[2]));
+  cast_.eye = glm::vec3(float(f.eye[0]), float(f.eye[1]), float(f.eye[2]));
   cast_.perspective = camera.perspective();
   cast_.width = target_.width();
   cast_.height = target_.height();
@@ -340,8 +324,8 @@ void SliceCompositor::set_cast_scene(const tsp::Camera& camera, const RenderSett
   cast_.stencil = stencil_;
   cast_.shade = settings.shade;
   cast_.phong = glm::vec4(float(kAmbient), float(kDiffuse), float(kSpecular), float(kSpecularPower));
-  cast_.light_dir = glm::vec3(float(light[0]), float(light[1]), float(light[2]));
-  cast_.inv_voxel = glm::vec3(float(1 / voxel[0]), float(1 / voxel[1]), float(1 / voxel[2]));
+  cast_.light_dir = glm::vec3(float(f.light[0]), float(f.light[1]), float(f.light[2]));
+  cast_.inv_voxel = glm::vec3(float(1 / f.voxel[0]), float(1 / f.voxel[1]), float(1 / f.voxel[2]));
   cast_.tf.entries = tf_.size();
   cast_.tf.point = tf_.point_rgba().data();
   cast_.tf.refine = refine ? tf_.refine_rgba().data() : nullptr;
