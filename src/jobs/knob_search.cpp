@@ -61,7 +61,11 @@ std::vector<Knobs> grid_cells(const KnobGrid& grid, bool baseline) {
       for (double st : sampling)
         for (bool pre : grid.preintegration)
           for (Compositing c : grid.compositings) {
-            if (st > 0 && (pre || c != Compositing::rays)) continue;  // adaptive: rays, point lookup
+            RenderSettings asked;
+            asked.sampling_tol = st;
+            asked.preintegrated = pre;
+            // Adaptive sampling is a mode of the rays, and excludes pre-integration.
+            if (!sampling_conflict(asked).empty() || (st > 0 && c != Compositing::rays)) continue;
             for (double s : grid.spacings)
               for (double scale : grid.render_scales) {
                 Knobs& k = out.emplace_back();

@@ -383,7 +383,6 @@ void PlayerApp::render_volume() {
     return;  // minimised
   const tsp::Camera cam(file->tree().octree().dims(), state.camera);
   tspgl::RenderSettings fs = state.settings;
-  if (fs.preintegrated) fs.sampling_tol = 0;  // the two exclude each other
   // Playing, a step's frame uploads all it needs: shown late when its bricks are late, never
   // with holes of bricks left for later frames (the upload budget keeps interaction smooth).
   if (state.playing) fs.upload_budget = 0;

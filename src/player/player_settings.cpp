@@ -55,6 +55,8 @@ void PlayerApp::set_setting(const std::string& name, const std::string& text) {
   if (!spec) throw tsp::UsageError("no render setting '" + name + "'");
   tspgl::RenderSettings next = state.settings;
   tspgl::set_setting(next, *spec, text, name);
+  // The knob just changed wins over one it excludes, and the status line says so.
+  if (std::string off = tspgl::settle_sampling(next, name); !off.empty()) status = off;
   if (next.tol != state.settings.tol || next.span_step != state.settings.span_step ||
       next.skip_transparent != state.settings.skip_transparent) {
     state.settings = next;

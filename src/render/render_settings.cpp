@@ -41,10 +41,7 @@ void validate(const RenderSettings& s) {
   if (!(s.sampling_tol >= 0) || !std::isfinite(s.sampling_tol))
     throw tsp::UsageError("--sampling-tol " + num(s.sampling_tol) +
                           ": expected a finite colour change per step >= 0");
-  if (s.sampling_tol > 0 && s.preintegrated)
-    throw tsp::UsageError("--sampling-tol " + num(s.sampling_tol) +
-                          " with --preintegrated on: adaptive sampling uses the point lookup; "
-                          "choose one");
+  if (const std::string why = sampling_conflict(s); !why.empty()) throw tsp::UsageError(why);
   if (!(s.refine_tol >= 0) || !std::isfinite(s.refine_tol))
     throw tsp::UsageError("--refine-tol " + num(s.refine_tol) +
                           ": expected a finite TF variation >= 0");
@@ -54,6 +51,28 @@ void validate(const RenderSettings& s) {
   if (s.upload_budget < 0 || s.upload_budget > kMaxBudgetBytes)
     throw tsp::UsageError("upload budget " + std::to_string(s.upload_budget) +
                           " bytes: expected 0 (no limit) to " + std::to_string(kMaxBudgetBytes));
+}
+
+SamplingMode resolve_sampling(const RenderSettings& s) {
+  if (s.sampling_tol > 0) return SamplingMode::adaptive;
+  if (s.preintegrated) return SamplingMode::preintegrated;
+  return s.refine_tol > 0 ? SamplingMode::refined : SamplingMode::segments;
+}
+
+std::string sampling_conflict(const RenderSettings& s) {
+  if (!(s.sampling_tol > 0 && s.preintegrated)) return "";
+  return "--sampling-tol " + num(s.sampling_tol) +
+         " with --preintegrated on: adaptive sampling uses the point lookup; choose one";
+}
+
+std::string settle_sampling(RenderSettings& s, const std::string& changed) {
+  if (sampling_conflict(s).empty()) return "";
+  if (changed == "preintegrated") {
+    s.sampling_tol = 0;
+    return "adaptive sampling turned off: pre-integration is on (the two exclude each other)";
+  }
+  s.preintegrated = false;
+  return "pre-integration turned off: adaptive sampling is on (the two exclude each other)";
 }
 
 void validate_budget(std::int64_t bytes, const std::string& what) {

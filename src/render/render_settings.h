@@ -133,6 +133,27 @@ inline constexpr double kMinRenderScale = 0.25;
 /// budget is in [0, kMaxBudgetBytes].
 void validate(const RenderSettings& s);
 
+/// How a frame's full-resolution rays sample (rays compositing without probes): the knobs'
+/// one reading, with the rule that the three modes exclude each other.
+enum class SamplingMode {
+  segments,       ///< one sample per segment at its middle (refine_tol 0)
+  preintegrated,  ///< the pre-integrated table between each segment's two ends
+  adaptive,       ///< segments of m spacings (sampling_tol > 0)
+  refined,        ///< segments refined where the TF bends (refine_tol > 0, the default)
+};
+/// The mode s asks for: adaptive when sampling_tol > 0, else pre-integrated, else refined when
+/// refine_tol > 0, else plain segments — refinement yields to either other mode; adaptive
+/// sampling and pre-integration together are refused by validate() (sampling_conflict). Never
+/// throws.
+SamplingMode resolve_sampling(const RenderSettings& s);
+/// Why s's sampling knobs cannot hold together (adaptive sampling with pre-integration), or ""
+/// when they can: the one message for that rule. Never throws but bad_alloc.
+std::string sampling_conflict(const RenderSettings& s);
+/// Settles a conflict the way a user who just changed one knob means it: the knob named
+/// `changed` ("preintegrated" or "sampling-tol") wins, the other is turned off. Returns what was
+/// turned off, for the status line ("" when nothing was). Never throws but bad_alloc.
+std::string settle_sampling(RenderSettings& s, const std::string& changed);
+
 /// Throws tsp::UsageError unless bytes is in [1, kMaxBudgetBytes]; `what` names the option.
 void validate_budget(std::int64_t bytes, const std::string& what);
 

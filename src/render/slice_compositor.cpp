@@ -184,16 +184,16 @@ void SliceCompositor::begin_frame(const tsp::Camera& camera, const RenderSetting
   ctx_.make_current();
   // Without probes the caster samples in exact segments; pre-integration (the table read at
   // each segment's two ends), adaptive sampling and refinement have their own variants of it,
-  // made on first use. Adaptive sampling takes the place of pre-integration, and either that of
-  // refinement.
+  // made on first use, as resolve_sampling reads the knobs.
   const bool plain = !clipping_;
   adaptive_ = settings.sampling_tol > 0 && plain;
   RayVariant v = clip_variant_;
-  if (plain)
-    v = adaptive_                 ? RayVariant::adaptive
-        : settings.preintegrated  ? RayVariant::preintegrated
-        : settings.refine_tol > 0 ? RayVariant::refined
-                                  : RayVariant::segments;
+  if (plain) switch (resolve_sampling(settings)) {
+      case SamplingMode::adaptive: v = RayVariant::adaptive; break;
+      case SamplingMode::preintegrated: v = RayVariant::preintegrated; break;
+      case SamplingMode::refined: v = RayVariant::refined; break;
+      case SamplingMode::segments: v = RayVariant::segments; break;
+    }
   rays_ = &ray_programs_.get(v);
   choose_backend(settings, plain);
   region_ = {};

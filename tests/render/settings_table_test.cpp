@@ -6,6 +6,7 @@
 #include <set>
 #include <sstream>
 
+#include "render/render_settings.h"
 #include "render/settings_table.h"
 #include "tsp/core/error.h"
 
@@ -123,6 +124,41 @@ TEST(SettingsTable, RefusesValuesOutsideTheRowNamingIt) {
             "--upload-budget '': expected a number in [0, 1.04858e+06] (MiB)");
   // A long value is quoted in part.
   EXPECT_LT(error_of("flat", std::string(5000, 'x')).size(), 120u);
+}
+
+// The sampling knobs' one reading: adaptive before pre-integration before refinement, the
+// conflict refused by validate with the one message, and settled in favour of the knob just
+// changed (the player's set command).
+TEST(SamplingMode, ResolvedInOnePlaceWithOneConflictMessage) {
+  RenderSettings s;
+  s.refine_tol = 0;
+  EXPECT_EQ(resolve_sampling(s), SamplingMode::segments);
+  s.refine_tol = 0.02;
+  EXPECT_EQ(resolve_sampling(s), SamplingMode::refined);
+  s.preintegrated = true;
+  EXPECT_EQ(resolve_sampling(s), SamplingMode::preintegrated);
+  EXPECT_EQ(sampling_conflict(s), "");
+  s.sampling_tol = 0.5;
+  EXPECT_EQ(resolve_sampling(s), SamplingMode::adaptive);
+  const std::string why = sampling_conflict(s);
+  EXPECT_EQ(why, "--sampling-tol 0.5 with --preintegrated on: adaptive sampling uses the point "
+                 "lookup; choose one");
+  try {
+    validate(s);
+    ADD_FAILURE() << "validate accepted adaptive sampling with pre-integration";
+  } catch (const tsp::UsageError& e) {
+    EXPECT_EQ(std::string(e.what()), why);
+  }
+  RenderSettings a = s, b = s;
+  EXPECT_NE(settle_sampling(a, "preintegrated"), "");
+  EXPECT_TRUE(a.preintegrated);
+  EXPECT_EQ(a.sampling_tol, 0);
+  EXPECT_NE(settle_sampling(b, "sampling-tol"), "");
+  EXPECT_FALSE(b.preintegrated);
+  EXPECT_EQ(b.sampling_tol, 0.5);
+  EXPECT_EQ(settle_sampling(a, "preintegrated"), "");  // nothing left to settle
+  EXPECT_NO_THROW(validate(a));
+  EXPECT_NO_THROW(validate(b));
 }
 
 }  // namespace
