@@ -12,6 +12,7 @@
 
 #include "cli/args.h"
 #include "cli/commands.h"
+#include "cli/session_options.h"
 #include "cli/progress_bar.h"
 #include "jobs/bench_job.h"
 #include "tsp/core/error.h"
@@ -212,13 +213,12 @@ const CommandRegistrar reg(45, [](CLI::App& app) {
   auto* c = app.add_subcommand("bench", "Reproduce the paper's Tables 3, 4 and 5 with plots");
   auto a = std::make_shared<BenchArgs>();
   c->add_option("file", a->file, "The .tsp file")->required();
-  c->add_option("--field", a->field, "A file with several fields: this one (default: the first)");
-  c->add_option("--tf", a->tfs,
-                "Transfer function(s): JSON files or preset:NAME (default preset:sparse)");
+  add_session_option(c, "--field", a->field, "");
+  add_session_option(c, "--tf", a->tfs, "preset:sparse");
   c->add_option("-o,--output", a->out, "Report directory (CSV, JSON, SVG)")->required();
   c->add_option("--steps", a->steps, "Steps A:B (inclusive), A: or A (default: all)");
-  c->add_option("--size", a->size, "Image size WxH (default 640x480)");
-  c->add_option("--view", a->view, "Azimuth,elevation in degrees (default 30,20)");
+  add_session_option(c, "--size", a->size, "640x480");
+  add_session_option(c, "--view", a->view, "30,20");
   c->add_option("--sweep", a->sweep,
                 "How much the searches try unless their options are given: quick (default: "
                 "--metrics approximate --compositings rays --spacings 1,2,4 --baseline-spacings "
@@ -258,8 +258,8 @@ const CommandRegistrar reg(45, [](CLI::App& app) {
                  "1/S pixels, VTK's image sample distance; default 1)");
   c->add_option("--baseline-spacings", a->baseline_spacings,
                 "Baseline spacings the Table-4 search tries (default: the sweep's)");
-  c->add_option("--gl", a->gl, "Which GL draws: auto, egl or osmesa (as render's --gl)");
-  c->add_option("--gpu", a->gpu, "EGL device index to draw on (as render's --gpu)");
+  add_session_option(c, "--gl", a->gl, "auto");
+  add_session_option(c, "--gpu", a->gpu, "");
   c->add_option("--timed-candidates", a->timed_candidates,
                 "Fastest probed configurations timed per target and renderer (default 3)");
   c->callback([a] { run(*a); });

@@ -11,6 +11,7 @@
 
 #include "cli/args.h"
 #include "cli/commands.h"
+#include "cli/session_options.h"
 #include "cli/settings_options.h"
 #include "jobs/calibration.h"
 #include "jobs/movie.h"
@@ -116,16 +117,10 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
   auto* c = app.add_subcommand("render", "Render steps headless (EGL or OSMesa: --gl) to PNGs and frames.json");
   auto a = std::make_shared<RenderCliArgs>();
   c->add_option("file", a->file, "The .tsp file")->required();
-  c->add_option("--field", a->field, "A file with several fields: this one (default: the first)");
-  c->add_option("--tf", a->tf,
-                "Transfer function: a JSON file or preset:NAME (default preset:auto, built from "
-                "the data's histogram)");
+  add_session_option(c, "--field", a->field, "");
+  add_session_option(c, "--tf", a->tf, "preset:auto");
   c->add_option("-o,--output", a->out, "Directory for step_NNNN.png and frames.json")->required();
-  c->add_option("--tf-range", a->tf_range,
-                "Where the TF sits over the data: auto (presets and normalised [0,1] maps "
-                "stretched over the data, other files as written), data, file, histogram (the "
-                "1st to 99th percentile of the samples), step (the range of the first step drawn), "
-                "visible (what this view and the probes show of it) or LO:HI");
+  add_session_option(c, "--tf-range", a->tf_range, "auto");
   on_off_option(c, "--annotate", a->annotate,
               "Draw the outline box, an axes triad, a colour legend with ticks and the step (and "
               "time) into every frame (and so into --movie)");
@@ -139,57 +134,33 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
   c->add_option("--cache", a->cache, "Texture cache on|off (default on)")
       ->check(CLI::IsMember({"on", "off"}));
   on_off_option(c, "--baseline", a->baseline, "Render without the TSP tree (the non-TSP reference)");
-  c->add_option("--size", a->size, "Image size WxH (default 640x480)");
-  c->add_option("--view", a->view, "Azimuth,elevation in degrees (default 30,20)");
+  add_session_option(c, "--size", a->size, "640x480");
+  add_session_option(c, "--view", a->view, "30,20");
   on_off_option(c, "--perspective", a->perspective, "Perspective projection (off: orthographic)");
-  c->add_option("--proportions", a->proportions,
-                "physical (default: the file's voxel spacing shapes the view) or samples (cubic "
-                "voxels)");
-  c->add_option("--probe", a->probes,
-                "Clip probe in physical coordinates, repeatable: plane:A,B,C,D (keeps "
-                "A*x+B*y+C*z <= D), sphere:X,Y,Z,R or box:X,Y,Z,HX,HY,HZ[,AX,AY,AZ] (half sizes, "
-                "rotation in degrees); the volume outside their combination is not drawn");
-  c->add_option("--probe-op", a->probe_op,
-                "How the probes combine: intersect (default), union or subtract (the first "
-                "minus the others)")
+  add_session_option(c, "--proportions", a->proportions, "physical");
+  add_session_option(c, "--probe", a->probes, "");
+  add_session_option(c, "--probe-op", a->probe_op, "intersect")
       ->check(CLI::IsMember({"intersect", "union", "subtract"}));
-  c->add_option("--probe-surface", a->probe_surface,
-                "on: draw the clip surface opaque, coloured by the data through --probe-tf and "
-                "shaded by its normal; off (default): pure clipping")
+  add_session_option(c, "--probe-surface", a->probe_surface, "off")
       ->check(CLI::IsMember({"on", "off"}));
   c->add_option("--probe-motion", a->probe_motion,
                 "DX,DY,DZ: every probe moves this far each frame (physical units; a plane along "
                 "its normal), e.g. to sweep a slice through the data");
   c->add_option("--probe-tf", a->probe_tf,
                 "Colours of the clip surface: a TF file or preset:NAME (default: --tf's)");
-  c->add_option("--surface-mesh", a->surface_mesh,
-                "The mesh series the file was built from (any build input: .vtu, .pvd, "
-                ".vtm.series, 'can_%d.hdf', ...), whose boundary --surface draws");
-  c->add_option("--surface-field", a->surface_field,
-                "The field the surface shows (any of the mesh's, e.g. another than the "
-                "volume's; default: the file's field)");
-  c->add_option("--surface-tf", a->surface_tf,
-                "Colours of the surface: a TF file or preset:NAME (default preset:cool-to-warm "
-                "over the surface's values at the first step that holds more than one)");
+  add_session_option(c, "--surface-mesh", a->surface_mesh, "");
+  add_session_option(c, "--surface-field", a->surface_field, "the file's field");
+  add_session_option(c, "--surface-tf", a->surface_tf, "");
   c->add_option("--surface-target-ms", a->surface_target_ms,
                 "Hold the surface pass at this many ms: the minimum splat size adapts frame by "
                 "frame, from --surface-px (TetSplat's frame-rate knob; frames.json records it)");
-  c->add_option("--scale", a->scale,
-                "SX,SY,SZ: stretch each axis by this factor (e.g. 1,1,20 exaggerates height)");
+  add_session_option(c, "--scale", a->scale, "");
   c->add_option("--passes", a->passes, "Play the steps this many times (default 1)");
-  c->add_option("--gl", a->gl,
-                "Which GL draws: auto (EGL on a GPU when one is found, else OSMesa), egl (EGL, on "
-                "Mesa's software device where there is no GPU) or osmesa; a request EGL cannot "
-                "serve falls back to OSMesa with a warning (frames.json: context)");
-  c->add_option("--gpu", a->gpu,
-                "EGL device index to draw on (default: TSPPLAY_EGL_DEVICE, else the first GPU)");
-  c->add_option("--texture-budget", a->texture_budget_mb, "Texture cache budget in MiB (default 512)");
-  c->add_option("--ram-budget", a->ram_budget_mb,
-                "Bricks held in RAM, MiB (default 1024): a file larger than RAM streams through "
-                "it (frames.json records ram_mib and rss_mib per frame)");
-  c->add_option("--quality", a->quality,
-                "Mean dE target against the full-quality picture: picks the fastest calibrated "
-                "compositing, spacing, tolerances and pre-integration (calibrates once, cached)")
+  add_session_option(c, "--gl", a->gl, "auto");
+  add_session_option(c, "--gpu", a->gpu, "");
+  add_session_option(c, "--texture-budget", a->texture_budget_mb, "512");
+  add_session_option(c, "--ram-budget", a->ram_budget_mb, "1024");
+  add_session_option(c, "--quality", a->quality, "0")
       ->check(CLI::Validator(
           [](std::string& text) -> std::string {
             // (0 is how the job reads "not asked", so a given 0 is refused here, not ignored.)
@@ -204,28 +175,16 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
   c->add_option("--save-tf", a->save_tf,
                 "Also write the transfer function used (a preset resolved over the data's range) "
                 "as JSON, e.g. for bench/vtk_reference.py");
-  c->add_option("--lod", a->lod,
-                "Spatial level of detail: off (full resolution: the default, so frames are "
-                "reproducible; play's default is on, for interaction), K (level K everywhere; 0 = "
-                "full), auto (the adaptive cut; default with --target-fps) or splat:PX (every node drawn "
-                "as one splat of its mean colour and opacity, split while its children project to "
-                "PX pixels or more)");
-  c->add_option("--lod-fallback", a->lod_fallback,
-                "--lod auto, when even the coarsest cut misses the target: scale (a smaller "
-                "render target, default) or splats (a splat cut whose minimum size adapts)");
-  c->add_option("--target-fps", a->target_fps,
-                "Frames per second --lod auto holds by adapting the cut (as play's --target-fps)");
+  add_session_option(c, "--lod", a->lod, "off, or auto with --target-fps");
+  add_session_option(c, "--lod-fallback", a->lod_fallback, "scale");
+  add_session_option(c, "--target-fps", a->target_fps, "off");
   c->add_option("--target-ms", a->target_ms,
                 "The same target as a frame time in ms (kept for older scripts)")
       ->group("");  // hidden: one unit per concept in --help
   c->add_option("--orbit", a->orbit, "Advance the azimuth this many degrees every frame");
   c->add_option("--split-limit", a->split_limit,
                 "--lod auto: most node splits per frame (default 8)");
-  c->add_option("--lod-filter", a->lod_filter,
-                "How the cut is chosen: error (the error-driven cut of --lod auto), or LaMar's "
-                "selection filters distance[:K] (a tile drawn when the eye is more than K times "
-                "its diagonal away) and fov[:K] (drawn when it subtends less than half the field "
-                "of view over K; outside the view: not refined); default error");
+  add_session_option(c, "--lod-filter", a->lod_filter, "error");
   c->add_option("--eye", a->eye,
                 "Place the eye at X,Y,Z in voxels (inside the volume or out), looking along "
                 "--view's direction; implies --perspective");
@@ -238,19 +197,14 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
   c->add_option("--mpi-part", a->mpi_part)->group("");
   c->add_option("--mpi-dir", a->mpi_dir)->group("");
   a->settings.add_to(c);
-  set_groups(c, {{"Input/output", {"--field", "--tf", "--output", "--tf-range", "--annotate",
-                                   "--movie", "--fps", "--steps", "--passes", "--save-tf"}},
-                 {"Camera", {"--size", "--view", "--perspective", "--eye", "--proportions", "--scale",
-                             "--orbit"}},
-                 {"Quality", {"--metric", "--quality", "--calibration-dir"}},
-                 {"LOD", {"--lod", "--lod-filter", "--lod-fallback", "--target-fps", "--split-limit",
-                          "--focus"}},
-                 {"Probes", {"--probe", "--probe-op", "--probe-surface", "--probe-motion",
-                             "--probe-tf"}},
-                 {"Surface", {"--surface-mesh", "--surface-field", "--surface-tf",
-                              "--surface-target-ms"}},
-                 {"Memory", {"--texture-budget", "--ram-budget"}},
-                 {"GL", {"--gl", "--gpu"}},
+  // (The session options are in their table's groups: session_options.h.)
+  set_groups(c, {{"Input/output",
+                  {"--output", "--annotate", "--movie", "--fps", "--steps", "--passes", "--save-tf"}},
+                 {"Camera", {"--perspective", "--eye", "--orbit"}},
+                 {"Quality", {"--metric", "--calibration-dir"}},
+                 {"LOD", {"--split-limit", "--focus"}},
+                 {"Probes", {"--probe-motion", "--probe-tf"}},
+                 {"Surface", {"--surface-target-ms"}},
                  {"Diagnostics", {"--baseline", "--cache"}}});
   c->callback([a] { run(*a); });
 });

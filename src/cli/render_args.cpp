@@ -1,5 +1,7 @@
 #include "cli/render_args.h"
 
+#include "cli/session_options.h"
+
 #include <algorithm>
 #include <array>
 #include <cstdint>
@@ -113,7 +115,7 @@ namespace {
 // --lod, --target-fps/--target-ms, --split-limit, --lod-fallback, --focus and --lod-filter.
 void set_lod_options(const RenderArgs& a, tspgl::RenderJobOptions& o) {
   const std::string lod =
-      a.lod.empty() ? (a.target_ms > 0 || a.target_fps > 0 ? "auto" : "off") : a.lod;
+      a.lod.empty() ? (a.target_ms > 0 || a.target_fps > 0 ? "auto" : "off") : lod_word(a.lod);
   if (lod == "off") {
     o.lod = tspgl::LodMode::off;
   } else if (lod == "auto") {
