@@ -71,6 +71,7 @@ void run(PlayArgs a) {
   a.options.probe_surface = a.probe_surface == "on";
   if (!a.scale.empty())
     a.options.scale = parse_triple(a.scale, "--scale", "SX,SY,SZ, factors on the voxel spacing");
+  a.options.scale_given = !a.scale.empty();
   tspgl::PlayBuildHooks hooks;
   hooks.say = [](const std::string& line) {
     std::printf("%s\n", line.c_str());

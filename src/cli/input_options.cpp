@@ -4,6 +4,7 @@
 
 #include "cli/args.h"
 #include "tsp/core/error.h"
+#include "tsp/source/level_resample.h"
 #include "tsp/voxelize/voxelizer.h"
 
 namespace tspcli {
@@ -49,6 +50,12 @@ void add_input_options(CLI::App* c, InputArgs& a) {
                 "some cell is smaller than its voxels and the field's spread there exceeds E "
                 "(field units) or P% of its range; the finest grid (--resolution/--voxel-size) "
                 "is never held whole");
+  c->add_option("--vertical-levels", a.vertical_levels,
+                "WRF input: its uneven levels resampled at their heights (the geopotential of "
+                "each step) onto a uniform grid: finest (the thinnest layer's spacing, at most " +
+                    std::to_string(tsp::kFinestLevelsCap) +
+                    " levels; default), N levels, a spacing such as 50m, or native (the levels "
+                    "as stored, at their mean spacing)");
   c->add_flag("--allow-external", a.allow_external,
               "HDF5 input: read its external links, external raw storage and virtual datasets "
               "(other files it names; refused by default)");
@@ -64,6 +71,7 @@ tsp::SourceOptions source_options(const InputArgs& a, const std::string& field) 
   so.raw_big_endian = a.big_endian;
   so.allow_external = a.allow_external;
   so.plot3d_grid = a.xyz;
+  so.vertical = tsp::parse_vertical_levels(a.vertical_levels, "--vertical-levels");
   return so;
 }
 
@@ -110,6 +118,9 @@ std::string input_key(const InputArgs& a) {
   if (a.jitter != d.jitter) add("jitter", a.jitter);
   if (a.xyz != d.xyz) add("xyz", a.xyz);
   if (a.octree_error != d.octree_error) add("octree-error", a.octree_error);
+  // Always, the default too: a WRF file built before its levels were resampled at their
+  // heights (by an older tspplay, the same other options) is not reused.
+  add("vertical-levels", a.vertical_levels);
   return k;
 }
 

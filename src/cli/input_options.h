@@ -25,13 +25,16 @@ struct InputArgs {
   std::string jitter = "off";  ///< two-buffer: jittered sub-samples
   std::string xyz;  ///< PLOT3D grid of .q inputs
   std::string octree_error;  ///< meshes: E or P% of Leven's adaptive octree (empty: uniform)
+  std::string vertical_levels = "finest";  ///< WRF: finest|native|N|Dm (tsp::VerticalLevels)
 };
 
 /// Adds --raw-dims, --raw-type, --big-endian, --allow-external, --resolution, --voxel-size,
-/// --cell-data, --voxelizer, --antialias, --jitter, --hex, --xyz and --octree-error to c, writing into a (which must outlive c).
+/// --cell-data, --voxelizer, --antialias, --jitter, --hex, --xyz, --octree-error and
+/// --vertical-levels to c, writing into a (which must outlive c).
 void add_input_options(CLI::App* c, InputArgs& a);
 
-/// The reader's options from a and field. Throws tsp::UsageError on a bad --raw-dims.
+/// The reader's options from a and field. Throws tsp::UsageError on a bad --raw-dims or
+/// --vertical-levels.
 tsp::SourceOptions source_options(const InputArgs& a, const std::string& field);
 
 /// The voxelizer's options from a (threads: 0 for all cores). Throws tsp::UsageError when
@@ -42,8 +45,8 @@ tsp::VoxelizeOptions voxelize_options(const InputArgs& a, int threads);
 /// relative). Throws tsp::UsageError on a malformed or negative threshold.
 bool octree_error(const InputArgs& a, tsp::AdaptiveOptions& o);
 
-/// The options that change what a build of the input holds, as text (empty at the defaults):
-/// part of the key of a build cached for playing.
+/// The options that change what a build of the input holds, as text (at the defaults only
+/// --vertical-levels): part of the key of a build cached for playing.
 std::string input_key(const InputArgs& a);
 
 }  // namespace tspcli

@@ -114,7 +114,7 @@ void draw_text(tsp::Image& img, int x, int y, const std::string& text, const uns
 
 void annotate_frame(tsp::Image& img, const tsp::Camera& camera, tsp::Dims d,
                     const tsp::TransferFunction& tf, int step, const std::optional<std::string>& time,
-                    const std::string& field) {
+                    const std::string& field, const std::string& stretch) {
   const int w = img.width, h = img.height;
   // Outline: the 12 edges of the volume's box [0, D − 1].
   const double hi[3] = {double(std::max(d.x - 1, 1)), double(std::max(d.y - 1, 1)),
@@ -168,6 +168,7 @@ void annotate_frame(tsp::Image& img, const tsp::Camera& camera, tsp::Dims d,
   std::string label = "step " + std::to_string(step);
   if (time) label += "  t = " + *time;
   draw_text(img, 8, 8, label, kText, 2);
+  if (!stretch.empty()) draw_text(img, 8, 26, stretch, kAxis[2], 2);
 }
 
 }  // namespace tspgl

@@ -19,6 +19,7 @@
 #include "tsp/core/error.h"
 #include "tsp/core/interrupt.h"
 #include "tsp/core/json_text.h"
+#include "tsp/frame/exaggeration.h"
 #include "tsp/core/memory_use.h"
 #include "tsp/core/stopwatch.h"
 #include "tsp/core/output_folder.h"
@@ -482,7 +483,8 @@ void draw_frames(GlContext& ctx, const RenderJobOptions& o, const JobInput& in,
         if (o.annotate)
           annotate_frame(pixels, camera, tree.octree().dims(), tf, t,
                          rec.time ? std::optional<std::string>(rec.time_text) : std::nullopt,
-                         file.fields()[std::size_t(file.field_index())]);
+                         file.fields()[std::size_t(file.field_index())],
+                         o.physical_proportions ? tsp::exaggeration_text(o.scale, true) : "");
         if (o.on_frame) o.on_frame(rec, pixels);
         if (png)
           into_folder(*folder, [&] { tsp::write_png(step_png(folder->tmp(), t), pixels); });

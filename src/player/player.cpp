@@ -22,6 +22,7 @@
 #include "tsp/core/error.h"
 #include "tsp/core/interrupt.h"
 #include "tsp/core/stopwatch.h"
+#include "tsp/frame/exaggeration.h"
 #include "tsp/metric/compute_errors.h"
 #include "tsp/metric/tf_io.h"
 #include "tsp/report/image.h"
@@ -154,6 +155,9 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
     if (!(k > 0) || !(k <= tspgl::kMaxScale))
       throw tsp::UsageError("--scale: expected three factors in (0, " +
                             std::to_string(int(tspgl::kMaxScale)) + "], found " + std::to_string(k));
+  // A flat domain (WRF's 480 km × 6 km) opens stretched in height, named on screen ("z × 30").
+  if (!options.scale_given && options.physical_proportions)
+    options_.scale = tsp::vertical_exaggeration(file->frame());
   place_camera(state.camera);
   for (const std::string& text : options.probes) state.probes.push_back(tsp::parse_probe(text));
   state.probe_op = tsp::parse_probe_op(options.probe_op);
@@ -270,6 +274,10 @@ void PlayerApp::place_camera(tsp::CameraParams& c) const {
 
 void PlayerApp::set_scale(const std::array<double, 3>& scale) {
   options_.scale = scale;
+  if (options_.trace) {
+    std::printf("trace: axis scale %g,%g,%g\n", scale[0], scale[1], scale[2]);
+    std::fflush(stdout);
+  }
   place_camera(state.camera);
   place_camera(initial_camera);
 }

@@ -73,6 +73,7 @@ struct PlayerOptions {
   std::string surface_mesh;
   std::string surface_field;  ///< --surface-field: the field it shows ("": the file's)
   std::string surface_tf;     ///< --surface-tf: its colours ("": cool-to-warm over its values)
+  bool scale_given = false;   ///< --scale was given: no automatic vertical exaggeration
 };
 
 /// Opens the window and runs until it is closed, the script quits or the screenshot is saved.

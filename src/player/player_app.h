@@ -211,6 +211,8 @@ class PlayerApp {
   void set_scale(const std::array<double, 3>& scale);
   /// The axis stretch (--scale).
   const std::array<double, 3>& scale() const { return options_.scale; }
+  /// True with --trace (stdout lines that tests read).
+  bool tracing() const { return options_.trace; }
   /// Saves the current volume frame as PNG (path chosen from the step) and reports it in status.
   void request_save();
   /// True when the last frame is at full quality: LOD off, or the idle refinement left no node

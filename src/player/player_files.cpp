@@ -19,6 +19,7 @@
 #include "tsp/core/memory_use.h"
 #include "tsp/core/temp_output.h"
 #include "tsp/core/error.h"
+#include "tsp/frame/exaggeration.h"
 #include "tsp/metric/tf_io.h"
 
 namespace tspplayer {
@@ -154,7 +155,9 @@ void PlayerApp::open_file(const std::string& path) {
   ready.assign(std::size_t(tree.time().steps()), -1.f);
   ready_next_ = 0;
   state.camera = tsp::CameraParams{};
-  options_.scale = {1, 1, 1};  // the last file's exaggeration rarely suits this one
+  // The last file's exaggeration rarely suits this one: a flat one gets its own.
+  options_.scale = options_.physical_proportions ? tsp::vertical_exaggeration(file->frame())
+                                                 : std::array<double, 3>{1, 1, 1};
   place_camera(state.camera);
   initial_camera = state.camera;
   make_renderer();
@@ -256,7 +259,7 @@ tsp::Image PlayerApp::export_view() {
                                         : std::optional<std::string>(tsp::format_time(
                                               times[std::size_t(state.step)],
                                               file->metadata().time_units)),
-                          field());
+                          field(), tsp::exaggeration_text(options_.scale, true));
   }
   return img;
 }
@@ -320,6 +323,8 @@ void PlayerApp::write_stats(const std::string& path) const {
   for (const tsp::Probe& p : state.probes) jp.push_back(tsp::to_string(p));
   j["probes"] = jp;
   j["probe_op"] = tsp::to_string(state.probe_op);
+  j["axis_scale"] = options_.scale;  // the stretch per axis, automatic for a flat domain
+  j["exaggeration"] = tsp::exaggeration_text(options_.scale);  // as the picture names it
   j["ram_mib"] = double(renderer->brick_cache().stats().resident_bytes) / (1 << 20);
   j["rss_mib"] = double(tsp::resident_bytes()) / (1 << 20);
   j["peak_rss_mib"] = double(tsp::peak_resident_bytes()) / (1 << 20);

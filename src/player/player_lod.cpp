@@ -12,6 +12,8 @@
 #include <string>
 #include <glm/glm.hpp>
 
+#include "tsp/frame/exaggeration.h"
+
 namespace tspplayer {
 
 namespace {
@@ -224,6 +226,10 @@ void PlayerApp::draw_annotations(const tsp::Camera& cam) {
                   tsp::format_time(times[std::size_t(state.step)], file->metadata().time_units).c_str());
   dl->AddText(ImVec2(float(v.x) + float(v.w) * 0.5f - 40, float(v.y) + 8),
               IM_COL32(235, 235, 235, 255), label);
+  // A stretched axis is named under it ("z × 30"): heights are not to scale.
+  if (const std::string k = tsp::exaggeration_text(options_.scale); !k.empty())
+    dl->AddText(ImVec2(float(v.x) + float(v.w) * 0.5f - 40, float(v.y) + 8 + ImGui::GetFontSize()),
+                IM_COL32(80, 120, 255, 255), k.c_str());
   draw_legend(dl, v, tf, field());
   dl->PopClipRect();
 }

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <string>
 
+#include "player/axis_scale_field.h"
 #include "player/controls.h"
 #include "player/player_app.h"
 #include "player/player_ui.h"
@@ -382,11 +383,7 @@ void settings_section(PlayerApp& app) {
   }
 
   // Physical proportions from the file's voxel spacing, stretched per axis (e.g. height).
-  float scale[3] = {float(app.scale()[0]), float(app.scale()[1]), float(app.scale()[2])};
-  if (ImGui::DragFloat3("axis scale", scale, 0.02f, 0.05f, 100.f, "%.2f",
-                        ImGuiSliderFlags_Logarithmic))
-    app.set_scale({std::clamp(double(scale[0]), 0.05, 100.0), std::clamp(double(scale[1]), 0.05, 100.0),
-                   std::clamp(double(scale[2]), 0.05, 100.0)});
+  axis_scale_field(app);
   int proj = app.state.camera.projection == tsp::Projection::perspective;
   ImGui::RadioButton("orthographic", &proj, 0);
   ImGui::SameLine();

@@ -25,7 +25,8 @@ fs::path katrina() {
   return tsptest::shared_data_dir() / "wrf-katrina" / "ci_test_file.nc";
 }
 
-// Every step of the input, read through the library's reader (not through the .tsp file).
+// Every step of the input, read through the library's reader (not through the .tsp file); WRF
+// files with their levels as stored (--vertical-levels native: no stencil, every sample counts).
 struct Series {
   tsp::Dims dims;
   std::vector<std::vector<float>> steps;
@@ -37,6 +38,7 @@ struct Series {
 Series read_all(const std::string& input, const std::string& field) {
   tsp::SourceOptions o;
   o.field = field;
+  o.vertical.mode = tsp::VerticalLevels::Mode::native;
   auto src = tsp::open_source(input, o);
   Series s{src->dims(), {}};
   for (int t = 0; t < src->steps(); ++t) {
@@ -140,7 +142,8 @@ TEST(BuildInfoCli, GeneratedSeriesMatchesBruteForce) {
 TEST(BuildInfoCli, KatrinaTemperature) {
   if (!fs::exists(katrina())) GTEST_SKIP() << "shared data absent: " << katrina();
   const fs::path dir = tsptest::temp_dir();
-  auto r = run_tspplay("build " + q(katrina()) + " --field T -o " + q(dir / "t.tsp"));
+  auto r = run_tspplay("build " + q(katrina()) + " --field T --vertical-levels native -o " +
+                       q(dir / "t.tsp"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const json j = info_json(dir / "t.tsp");
   EXPECT_EQ(j["dims"], json({48, 48, 14}));
@@ -184,12 +187,13 @@ TEST(BuildInfoCli, CfTimeUnitsShowAsDates) {
   EXPECT_EQ(frames[1]["time_text"], "2000-01-01 06:00");
 }
 
-// WRF's T (mass points, 14 levels) and W (staggered, 15 levels) in one file: each keeps its
-// grid, W half a layer below T, and both render in one frame.
+// WRF's T (mass points, 14 levels) and W (staggered, 15 levels) in one file, as stored: each
+// keeps its grid, W half a layer below T, and both render in one frame.
 TEST(BuildInfoCli, StaggeredWrfFieldsKeepTheirGrids) {
   if (!fs::exists(katrina())) GTEST_SKIP() << "shared data absent: " << katrina();
   const fs::path dir = tsptest::temp_dir();
-  auto r = run_tspplay("build " + q(katrina()) + " --field T,W -o " + q(dir / "tw.tsp"));
+  auto r = run_tspplay("build " + q(katrina()) + " --field T,W --vertical-levels native -o " +
+                       q(dir / "tw.tsp"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const json t = info_json(dir / "tw.tsp", " --field T");
   const json w = info_json(dir / "tw.tsp", " --nodes --field W");
@@ -202,6 +206,41 @@ TEST(BuildInfoCli, StaggeredWrfFieldsKeepTheirGrids) {
   for (const char* f : {"T", "W"})
     EXPECT_EQ(run_tspplay("render " + q(dir / "tw.tsp") + " --field " + f + " --size 32x24 -o " +
                           q(dir / f)).exit_code, 0) << f;
+}
+
+// WRF's levels at their heights (the default): T's 14 uneven levels resampled from the
+// geopotential to 78 planes 72.9 m apart (tests/tsp/source/level_resample_test.cpp checks the
+// values), said by info's source line; the voxels beyond a column's levels are outside (the
+// stencil). W, on the staggered levels, gets its own grid from the ground up.
+TEST(BuildInfoCli, WrfLevelsAtTheirHeights) {
+  if (!fs::exists(katrina())) GTEST_SKIP() << "shared data absent: " << katrina();
+  const fs::path dir = tsptest::temp_dir();
+  auto r = run_tspplay("build " + q(katrina()) + " --field T,W -o " + q(dir / "tw.tsp"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json t = info_json(dir / "tw.tsp", " --field T");
+  EXPECT_EQ(t["dims"], json({48, 48, 78}));
+  EXPECT_NEAR(double(t["spacing"][2]), 72.863, 1e-3);
+  EXPECT_NEAR(double(t["origin"][2]), 29.885, 1e-3);
+  EXPECT_EQ(t["stencil"], true);
+  const json w = info_json(dir / "tw.tsp", " --field W");
+  EXPECT_EQ(w["dims"], json({48, 48, 104}));
+  EXPECT_DOUBLE_EQ(double(w["origin"][2]), 0);
+  const auto h = run_tspplay("info " + q(dir / "tw.tsp"));
+  ASSERT_EQ(h.exit_code, 0) << h.err;
+  EXPECT_NE(h.out.find("ci_test_file.nc, dataset /T, levels resampled from 14 uneven levels "
+                       "(geopotential) to 78 at 72.9 m"),
+            std::string::npos)
+      << h.out;
+  // A chosen count or spacing.
+  r = run_tspplay("build " + q(katrina()) + " --field T --vertical-levels 40 -o " + q(dir / "n.tsp"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(info_json(dir / "n.tsp", "")["dims"], json({48, 48, 40}));
+  r = run_tspplay("build " + q(katrina()) + " --field T --vertical-levels 100m -o " +
+                  q(dir / "m.tsp"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json m = info_json(dir / "m.tsp", "");
+  EXPECT_EQ(m["dims"], json({48, 48, 57}));  // round(5610.5 / 100) + 1
+  EXPECT_DOUBLE_EQ(double(m["spacing"][2]), 100);
 }
 
 // --field A,B: one tree each in one file. info lists the fields and describes any one of them
@@ -287,6 +326,17 @@ TEST(BuildInfoCli, BadInputGivesClearErrorsAndNoOutput) {
       {"build " + q(katrina()) + " --field T --range a:1" + out, 2, "not a number"},
       {"build " + q(katrina()) + " --field T -o " + q(dir / "no" / "x.tsp"), 1, "does not exist"},
       {"build " + q(katrina()) + " --field T", 2, "--output is required"},
+      {"build " + q(katrina()) + " --field T --vertical-levels 1" + out, 2,
+       "--vertical-levels '1': expected finest, native, a level count N (2 to 4096) or a spacing "
+       "in metres such as 50m"},
+      {"build " + q(katrina()) + " --field T --vertical-levels fine" + out, 2,
+       "--vertical-levels 'fine': expected finest"},
+      {"build " + q(katrina()) + " --field T --vertical-levels=-5m" + out, 2,
+       "--vertical-levels '-5m': expected finest"},
+      {"build " + q(katrina()) + " --field T --vertical-levels 0.5m" + out, 2,
+       "--vertical-levels 0.5m would make 11222 levels over 5610.5 m; at most 4096"},
+      {"build " + q(katrina()) + " --field T --vertical-levels 9000m" + out, 2,
+       "--vertical-levels 9000m: the spacing is larger than the levels' whole range, 5610.5 m"},
   };
   for (const Case& c : cases) {
     auto r = run_tspplay(c.args);

@@ -153,12 +153,16 @@ TEST(Player, PlaysSeveralWrfFieldsOnTheirOwnGrids) {
   EXPECT_LT(hi, double(w["tf_domain"][1]));
   EXPECT_LT(hi - lo, 0.8 * (double(w["tf_domain"][1]) - double(w["tf_domain"][0])));
   EXPECT_EQ(e["tf_domain"], nlohmann::json({-1.0, 2.0}));
-  // tf-range step (the panel's "fit to step"): W's values at step 3, read from the NetCDF file.
+  // tf-range step (the panel's "fit to step"): W's values at step 3, read from the NetCDF file
+  // (at their heights: those inside the columns).
   tsp::SourceOptions so;
   so.field = "W";
   auto src = tsp::open_source(wrf.string(), so);
-  std::vector<float> v(std::size_t(src->dims().count()));
-  src->read_step(3, v);
+  std::vector<float> all(std::size_t(src->dims().count())), v;
+  std::vector<std::uint8_t> inside(all.size());
+  src->read_step_inside(3, all, inside);
+  for (std::size_t i = 0; i < all.size(); ++i)
+    if (inside[i]) v.push_back(all[i]);
   const auto [vlo, vhi] = std::minmax_element(v.begin(), v.end());
   const nlohmann::json st = read_json(dir / "s.json");
   const double tol = 1e-5 * (*vhi - *vlo);

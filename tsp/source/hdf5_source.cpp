@@ -14,8 +14,10 @@
 #include "tsp/hdf5/hdf5_handle.h"
 #include "tsp/hdf5/hdf5_values.h"
 #include "tsp/source/grid_geometry.h"
+#include "tsp/source/level_resample.h"
 #include "tsp/source/natural_order.h"
 #include "tsp/source/vtkhdf_source.h"
+#include "tsp/source/wrf_heights.h"
 
 namespace tsp::io {
 namespace {
@@ -309,40 +311,43 @@ double mean_geopotential(hid_t file, hsize_t level, const std::vector<hsize_t>& 
 
 // WRF output (NetCDF-4) has no coordinate variables for its grid: the horizontal spacing is the
 // global attributes DX and DY (metres), and the levels' heights follow the geopotential
-// (PH + PHB)/g on the staggered levels. The vertical spacing is the mean layer thickness of the
+// (PH + PHB)/g on the staggered levels. By default the levels are then resampled at those
+// heights (wrf_heights.h, level_resample.h); as stored (--vertical-levels native) the vertical
+// spacing is the mean layer thickness of the
 // first step's horizontal means, (top − bottom)/(levels − 1); the levels are not evenly spaced
 // (thinner near the ground), so this is their average. Origin: x, y 0 at the first mass point
 // (−½ DX or DY for a field staggered along x or y), z the lowest level's mean height (half a
-// layer up for mass-point variables). Leaves g alone when DX/DY are absent.
-// Never throws (what it cannot read is ignored).
-void wrf_geometry(hid_t file, Dims dims, GridGeometry& g) {
+// layer up for mass-point variables). Leaves g alone when DX/DY are absent. True when DX and DY
+// gave the horizontal spacing (the file is WRF's). Never throws (what it cannot read is ignored).
+bool wrf_geometry(hid_t file, Dims dims, GridGeometry& g) {
   constexpr double kGravity = 9.81;
   const auto dx = numeric_attribute(file, "DX", "");
   const auto dy = numeric_attribute(file, "DY", "");
   if (!dx || !dy || dx->size() != 1 || dy->size() != 1 || !((*dx)[0] > 0) || !((*dy)[0] > 0) ||
       !std::isfinite((*dx)[0]) || !std::isfinite((*dy)[0]))
-    return;
+    return false;
   g.spacing[0] = (*dx)[0];
   g.spacing[1] = (*dy)[0];
-  if (H5Lexists(file, "PH", H5P_DEFAULT) <= 0 || H5Lexists(file, "PHB", H5P_DEFAULT) <= 0) return;
+  if (H5Lexists(file, "PH", H5P_DEFAULT) <= 0 || H5Lexists(file, "PHB", H5P_DEFAULT) <= 0) return true;
   Handle ph(H5Dopen2(file, "PH", H5P_DEFAULT));
-  if (!ph) return;
+  if (!ph) return true;
   const std::vector<hsize_t> shape = h5::dataset_shape(ph.get());
-  if (shape.size() != 4 || shape[0] < 1 || shape[1] < 2 || shape[2] < 1 || shape[3] < 1) return;
+  if (shape.size() != 4 || shape[0] < 1 || shape[1] < 2 || shape[2] < 1 || shape[3] < 1) return true;
   // The horizontal plane is the grid's (or one wider, staggered): nothing larger is read.
-  if (shape[2] > hsize_t(dims.y) + 1 || shape[3] > hsize_t(dims.x) + 1) return;
+  if (shape[2] > hsize_t(dims.y) + 1 || shape[3] > hsize_t(dims.x) + 1) return true;
   // PH's plane is the mass points'; a field one wider (U on west_east_stag, V on
   // south_north_stag) lies on the cell faces, half a cell before the first mass point.
   if (hsize_t(dims.x) == shape[3] + 1) g.origin[0] = -0.5 * g.spacing[0];
   if (hsize_t(dims.y) == shape[2] + 1) g.origin[1] = -0.5 * g.spacing[1];
   const hsize_t levels = shape[1];  // staggered: one more than the mass-point levels
-  if (hsize_t(dims.z) != levels && hsize_t(dims.z) != levels - 1) return;
+  if (hsize_t(dims.z) != levels && hsize_t(dims.z) != levels - 1) return true;
   const double bottom = mean_geopotential(file, 0, shape) / kGravity;
   const double top = mean_geopotential(file, levels - 1, shape) / kGravity;
   const double dz = (top - bottom) / double(levels - 1);
-  if (!std::isfinite(dz) || !(dz > 0)) return;
+  if (!std::isfinite(dz) || !(dz > 0)) return true;
   g.spacing[2] = dz;
   g.origin[2] = bottom + (hsize_t(dims.z) == levels ? 0.0 : 0.5 * dz);
+  return true;
 }
 
 // The extent along dimension z_dim of a chunked dataset's chunks; 0 when it is not chunked or
@@ -416,7 +421,8 @@ class Hdf5Source final : public VolumeSource {
 };
 
 std::unique_ptr<VolumeSource> open_dataset(const std::string& path, Handle file,
-                                           const std::string& ds_path) {
+                                           const std::string& ds_path,
+                                           const SourceOptions& options) {
   const std::string where = path + ", dataset " + ds_path;
   Handle ds(H5Dopen2(file.get(), ds_path.c_str(), H5P_DEFAULT));
   if (!ds) throw FormatError(where + ": dataset cannot be opened");
@@ -443,12 +449,17 @@ std::unique_ptr<VolumeSource> open_dataset(const std::string& path, Handle file,
     steps.push_back({ds_path, false, 0});
   }
   GridGeometry geometry = dimension_scales(ds.get(), shape.size() == 4 ? 1 : 0, dims);
+  bool wrf = false;
   if (geometry.spacing == std::array<double, 3>{1, 1, 1}) {
     try {
-      wrf_geometry(file.get(), dims, geometry);
+      wrf = wrf_geometry(file.get(), dims, geometry);
     } catch (const Error&) {  // a non-numeric DX: not WRF's, ignored
     }
   }
+  // WRF's levels at their heights (the geopotential per step), unless asked for as stored.
+  std::optional<LevelHeightsFn> heights;
+  if (wrf && shape.size() == 4 && options.vertical.mode != VerticalLevels::Mode::native)
+    heights = wrf_level_heights(file.get(), dims, int(steps.size()), where);
   std::vector<double> times;
   TimeUnits units;
   if (shape.size() == 4) times = step_times(file.get(), ds.get(), shape[0], units);
@@ -458,6 +469,9 @@ std::unique_ptr<VolumeSource> open_dataset(const std::string& path, Handle file,
   source->times_ = std::move(times);
   source->time_units_ = std::move(units);
   source->chunk_planes_ = chunk_depth(ds.get(), shape.size() == 4 ? 1 : 0);
+  if (heights)
+    return resample_levels(std::move(source), std::move(*heights), options.vertical,
+                           "geopotential");
   return source;
 }
 
@@ -556,7 +570,7 @@ std::unique_ptr<VolumeSource> open_hdf5_source(const std::string& path,
   if (!obj) throw FormatError(path + ": field '" + field + "' cannot be opened");
   H5I_type_t kind = H5Iget_type(obj.get());
   obj.reset();
-  if (kind == H5I_DATASET) return open_dataset(path, std::move(file), obj_path);
+  if (kind == H5I_DATASET) return open_dataset(path, std::move(file), obj_path, options);
   if (kind == H5I_GROUP) return open_group(path, std::move(file), obj_path);
   throw FormatError(path + ": field '" + field +
                     "' is neither a dataset nor a group (a named datatype?)");

@@ -74,6 +74,21 @@ class VolumeSource {
 /// Element types of raw input files.
 enum class RawType { u8, u16, f32 };
 
+/// The uniform vertical grid an input with uneven levels (WRF's, at their geopotential heights)
+/// is resampled to (tsp/source/level_resample.h; `--vertical-levels`).
+struct VerticalLevels {
+  enum class Mode {
+    finest,   ///< the finest layer's spacing, capped at kFinestLevelsCap levels (default)
+    native,   ///< no resampling: the levels as stored, at their mean spacing
+    count,    ///< `levels` levels over the heights' range
+    spacing,  ///< `spacing` metres apart
+  };
+  Mode mode = Mode::finest;
+  int levels = 0;       ///< Mode::count
+  double spacing = 0;   ///< Mode::spacing, metres
+  bool operator==(const VerticalLevels&) const = default;
+};
+
 /// How to open an input; fields not relevant to the input's kind are ignored.
 struct SourceOptions {
   std::string field;                    ///< dataset / variable / array name; empty: the only one
@@ -83,6 +98,7 @@ struct SourceOptions {
   bool allow_external = false;  ///< HDF5: read external links, external storage and virtual
                                 ///< datasets (h5::check_external; `--allow-external`)
   std::string plot3d_grid;  ///< PLOT3D: the .q solutions' grid (.xyz; empty: the only one beside)
+  VerticalLevels vertical;  ///< WRF: levels resampled at their heights (`--vertical-levels`)
 };
 
 }  // namespace tsp

@@ -59,10 +59,12 @@ TEST(GridGeometry, Hdf5DimensionScalesThatStepUniformly) {
 }
 
 // A small file shaped like WRF output (tests/data/make_fixtures.py, make_wrf_like): DX, DY,
-// geopotential levels 300 m apart from 100 m, Times 3 hours apart.
+// geopotential levels 300 m apart from 100 m, Times 3 hours apart. As stored (--vertical-levels
+// native) the mass levels lie at the mean heights, 250, 550 and 850 m.
 TEST(GridGeometry, WrfLikeFileGivesSpacingOriginAndTimes) {
   SourceOptions o;
   o.field = "T";
+  o.vertical.mode = VerticalLevels::Mode::native;
   auto s = open_source((tsptest::test_data_dir() / "h5" / "wrf_like.nc").string(), o);
   EXPECT_EQ(s->dims(), (Dims{5, 4, 3}));
   EXPECT_DOUBLE_EQ(s->spacing()[0], 2000);
@@ -70,6 +72,15 @@ TEST(GridGeometry, WrfLikeFileGivesSpacingOriginAndTimes) {
   EXPECT_NEAR(s->spacing()[2], 300, 1e-9);
   EXPECT_NEAR(s->origin()[2], 250, 1e-9);
   EXPECT_EQ(s->times(), (std::vector<double>{0, 10800}));
+  // At their heights (the default): PH's wobble of up to ±2 m²/s² moves each column by up to
+  // ±2/9.81 m, so the grid spans 250 − 2/9.81 to 850 + 2/9.81 m in 3 planes (the 300 m layers).
+  o.vertical = {};
+  auto r = open_source((tsptest::test_data_dir() / "h5" / "wrf_like.nc").string(), o);
+  EXPECT_EQ(r->dims(), (Dims{5, 4, 3}));
+  EXPECT_NEAR(r->origin()[2], 250 - 2 / 9.81, 1e-9);
+  EXPECT_NEAR(r->spacing()[2], (600 + 4 / 9.81) / 2, 1e-9);
+  EXPECT_TRUE(r->has_stencil());
+  EXPECT_EQ(r->times(), (std::vector<double>{0, 10800}));
 }
 
 // WRF's Times (one "YYYY-MM-DD_HH:MM:SS" per step, 3-hourly from 2005-08-28_12:00:00) as seconds

@@ -207,13 +207,21 @@ fs::path wrf_file() {
   return tsptest::shared_data_dir() / "wrf-katrina" / "ci_test_file.nc";
 }
 
+// A WRF field with its levels as stored (--vertical-levels native): the h5dump values below.
+std::unique_ptr<VolumeSource> open_native(const std::string& path, const std::string& field) {
+  SourceOptions o;
+  o.field = field;
+  o.vertical.mode = VerticalLevels::Mode::native;
+  return open_source(path, o);
+}
+
 float at(const std::vector<float>& v, int x, int y, int z) {
   return v[std::size_t((z * 48 + y) * 48 + x)];
 }
 
 TEST(Hdf5Source, WrfTemperatureMatchesH5dump) {
   if (!fs::exists(wrf_file())) GTEST_SKIP() << "shared data absent: " << wrf_file();
-  auto s = open(wrf_file().string(), "T");
+  auto s = open_native(wrf_file().string(), "T");
   EXPECT_EQ(s->dims(), (Dims{48, 48, 14}));
   ASSERT_EQ(s->steps(), 4);
   // Reference values printed by `h5dump -d /T -s "t,z,y,x" -c "1,1,1,1" ci_test_file.nc`
@@ -232,7 +240,7 @@ TEST(Hdf5Source, WrfTemperatureMatchesH5dump) {
 
 TEST(Hdf5Source, WrfCloudWaterMatchesH5dump) {
   if (!fs::exists(wrf_file())) GTEST_SKIP() << "shared data absent: " << wrf_file();
-  auto s = open(wrf_file().string(), "/QCLOUD");
+  auto s = open_native(wrf_file().string(), "/QCLOUD");
   EXPECT_EQ(s->dims(), (Dims{48, 48, 14}));
   ASSERT_EQ(s->steps(), 4);
   // From `h5dump -d /QCLOUD -s "t,z,y,x" -c "1,1,1,1" ci_test_file.nc`.
@@ -250,7 +258,7 @@ TEST(Hdf5Source, WrfCloudWaterMatchesH5dump) {
 }
 
 // WRF has no coordinate variables: the grid's spacing comes from the global DX and DY (10 km
-// here, `h5dump -a DX`) and the mean layer thickness of the geopotential (PH + PHB)/g at the first
+// here, `h5dump -a DX`) and, with the levels as stored, the mean layer thickness of the geopotential (PH + PHB)/g at the first
 // step — computed here over the whole arrays as an independent check.
 TEST(Hdf5Source, WrfSpacingFromDxDyAndTheGeopotential) {
   if (!fs::exists(wrf_file())) GTEST_SKIP() << "shared data absent: " << wrf_file();
@@ -275,7 +283,7 @@ TEST(Hdf5Source, WrfSpacingFromDxDyAndTheGeopotential) {
   // Mass points (T: 14 levels), staggered vertically (W: 15) and horizontally (U: 49 wide in x,
   // V in y: half a cell, 5 km, before the first mass point).
   for (const char* field : {"T", "W", "U", "V"}) {
-    auto s = open(wrf_file().string(), field);
+    auto s = open_native(wrf_file().string(), field);
     EXPECT_DOUBLE_EQ(s->origin()[0], s->dims().x == 49 ? -5000.0 : 0.0) << field;
     EXPECT_DOUBLE_EQ(s->origin()[1], s->dims().y == 49 ? -5000.0 : 0.0) << field;
     EXPECT_DOUBLE_EQ(s->spacing()[0], 10000.0);

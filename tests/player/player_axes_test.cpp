@@ -1,0 +1,88 @@
+// The view's axis scale (issue 47 item 8): a flat domain opens stretched in height and says so
+// ("z × 10" in stats and over the picture); the axis-scale field applies a typed value on Enter
+// and Escape cancels the edit only.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "support/paths.h"
+#include "support/player_run.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace tsptest::player;
+using tsptest::q;
+using tsptest::run_tspplay;
+
+// The axis scale and its name in the stats of `play FILE ARGS` after the first frame.
+nlohmann::json opened(const fs::path& tsp, const std::string& args, const fs::path& dir) {
+  const fs::path stats = dir / "s.json";
+  fs::remove(stats);
+  const fs::path script = write_script("stats " + stats.string() + "\nquit\n");
+  const auto r = run_tspplay("play " + q(tsp) + " --size " + kSize + " --script " + q(script) + args);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  return read_json(stats);
+}
+
+// 24 × 24 × 8 samples 1000 × 1000 × 100 m apart: 23 km wide, 700 m tall. A third of 32.9 is 11:
+// the view opens at z × 10 (the round number nearest). --scale or sample proportions keep theirs.
+TEST(Player, FlatDomainOpensWithANamedVerticalExaggeration) {
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
+  const fs::path dir = tsptest::temp_dir(), h5 = dir / "flat.h5", tsp = dir / "flat.tsp";
+  ASSERT_EQ(run_tspplay("generate shock -o " + q(h5) + " --dims 24,24,8 --steps 2").exit_code, 0);
+  ASSERT_EQ(run_tspplay("build " + q(h5) + " --spacing 1000,1000,100 -o " + q(tsp)).exit_code, 0);
+  nlohmann::json j = opened(tsp, "", dir);
+  EXPECT_EQ(j["axis_scale"], nlohmann::json({1.0, 1.0, 10.0}));
+  EXPECT_EQ(j["exaggeration"], "z × 10");
+  j = opened(tsp, " --scale 1,1,2", dir);
+  EXPECT_EQ(j["axis_scale"], nlohmann::json({1.0, 1.0, 2.0}));
+  EXPECT_EQ(j["exaggeration"], "z × 2");
+  j = opened(tsp, " --proportions samples", dir);
+  EXPECT_EQ(j["axis_scale"], nlohmann::json({1.0, 1.0, 1.0}));
+  EXPECT_EQ(j["exaggeration"], "");
+  // A cube-ish domain opens as it is.
+  j = opened(make_tsp(), "", dir);
+  EXPECT_EQ(j["axis_scale"], nlohmann::json({1.0, 1.0, 1.0}));
+  EXPECT_EQ(j["exaggeration"], "");
+}
+
+// Real X events (xdotool): Ctrl+click the z field, type 7, Escape: nothing applied (before, the
+// view took each keystroke and Escape reverted it). Again with Enter: z × 7 applied, once.
+TEST(Player, AxisScaleFieldAppliesOnEnterAndEscapeCancelsTheEdit) {
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
+  ASSERT_EQ(std::system("command -v xdotool > /dev/null"), 0)
+      << "xdotool missing (scripts/install-deps.sh installs it)";
+  const fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
+  const fs::path out = dir / "axes.out", stats = dir / "axes.json";
+  const fs::path script = write_script("wait-seconds 16\nstats " + stats.string() + "\nquit\n");
+  const std::string ctrl_click =
+      "xdotool mousemove --window \"$win\" $cx $cy; sleep 0.5\n"
+      "xdotool keydown ctrl; sleep 0.5; xdotool click 1; sleep 0.5; xdotool keyup ctrl; sleep 0.5\n"
+      "xdotool type --window \"$win\" 7; sleep 0.8\n";
+  const std::string cmd =
+      "(" + q(tsptest::tspplay_bin()) + " play " + q(tsp) + " --size 800x800 --trace --script " +
+      q(script) + " > " + q(out) + " 2>&1 &\n" +
+      "for i in $(seq 100); do grep -q 'axis scale field' " + q(out) + " && break; sleep 0.1; done\n"
+      "sleep 1.5; read x y w h <<< $(grep 'axis scale field' " + q(out) +
+      " | tail -1 | cut -d' ' -f5-8)\n"
+      "win=$(xdotool search --sync --name " + q("tspplay - " + tsp.string()) + " | head -1)\n"
+      "cx=$((x + w / 2)); cy=$((y + h / 2))\n" + ctrl_click +
+      "xdotool key --window \"$win\" Escape; sleep 1\n" + ctrl_click +
+      "xdotool key --window \"$win\" Return; sleep 1\n"
+      "wait)\n";
+  ASSERT_EQ(run_bash(dir / "axes.sh", cmd), 0);
+  const std::string log = read_text(out);
+  int applied = 0;
+  for (std::size_t p = log.find("trace: axis scale "); p != std::string::npos;
+       p = log.find("trace: axis scale ", p + 1))
+    applied += log.compare(p, 24, "trace: axis scale field ") != 0;
+  EXPECT_EQ(applied, 1) << log;
+  EXPECT_NE(log.find("trace: axis scale 1,1,7\n"), std::string::npos) << log;
+  EXPECT_EQ(read_json(stats)["axis_scale"], nlohmann::json({1.0, 1.0, 7.0})) << log;
+}
+
+}  // namespace
