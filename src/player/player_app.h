@@ -280,7 +280,8 @@ class PlayerApp {
   Session capture_session() const;
   /// Saves the session to path (File > Save session..., save-session). Errors go to status.
   void save_session_as(const std::string& path);
-  /// Where the session was restored from, its cache entry and any file ignored, for stats.
+  /// Where the session was restored from, its cache entry, any file ignored and the panels'
+  /// open sections as the windows hold them, for stats.
   nlohmann::json session_json() const;
 
  private:

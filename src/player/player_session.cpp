@@ -221,7 +221,8 @@ nlohmann::json PlayerApp::session_json() const {
   return {{"restored", !session_from_.empty()},
           {"from", session_from_},
           {"file", session_file_},
-          {"ignored", session_note_}};
+          {"ignored", session_note_},
+          {"open_sections", open_sections()}};  // as the windows hold them now
 }
 
 }  // namespace tspplayer

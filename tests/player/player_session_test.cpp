@@ -41,9 +41,9 @@ struct Played {
 };
 
 Played play(const fs::path& tsp, const std::string& extra, const std::string& actions,
-            const fs::path& stats) {
+            const fs::path& stats, const std::string& size = kSize) {
   Played p;
-  p.run = run_tspplay("play " + q(tsp) + " --size " + kSize + extra + " --script " +
+  p.run = run_tspplay("play " + q(tsp) + " --size " + size + extra + " --script " +
                       q(write_script(actions + "stats " + stats.string() + "\nquit\n")));
   if (p.run.exit_code == 0 && fs::exists(stats)) p.stats = read_json(stats);
   return p;
@@ -145,6 +145,42 @@ TEST(Player, SharedSessionOpensWithDashDashSession) {
     EXPECT_NE(r.err.find(bad.string()), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(dir / "x.png"));
   }
+}
+
+// The panel layout: a section closed with a real click (xdotool) on the docked side panel's first
+// header is closed again in the next window on the same input.
+TEST(Player, OpenSectionsAreRestored) {
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
+  ASSERT_EQ(std::system("command -v xdotool > /dev/null"), 0)
+      << "xdotool missing (scripts/install-deps.sh installs it)";
+  const fs::path tsp = make_tsp(), dir = tsptest::temp_dir(), out = dir / "click.out";
+  const std::string size = "760x400";  // docked: the side panel at x 390..760
+  const fs::path script =
+      write_script("wait-seconds 5\nstats " + (dir / "a.json").string() + "\nquit\n");
+  const std::string cmd =
+      "(" + q(tsptest::tspplay_bin()) + " play " + q(tsp) + " --size " + size +
+      " --frame-delay-ms 200 " +
+      "--script " + q(script) + " > " + q(out) + " 2>&1 &\n" +
+      "w=$(xdotool search --sync --name " + q("tspplay - " + tsp.string()) + " | head -1)\n"
+      "sleep 1.5\n"
+      "xdotool mousemove --window \"$w\" 450 38\n"
+      "sleep 0.5\n"
+      "xdotool mousedown 1\n"
+      "sleep 0.5\n"
+      "xdotool mouseup 1\n"
+      "wait)\n";
+  ASSERT_EQ(run_bash(dir / "click.sh", cmd), 0) << tsptest::read_file(out);
+  const nlohmann::json a = read_json(dir / "a.json")["session"]["open_sections"];
+  ASSERT_TRUE(a.contains("##side")) << a << tsptest::read_file(out);
+  EXPECT_EQ(a["##side"].size(), 1u) << a;
+  EXPECT_EQ(a["##side"][0][1], 0) << a;  // a section open by default, closed
+  const Played b = play(tsp, "", "wait-frames 3\n", dir / "b.json", size);
+  ASSERT_EQ(b.run.exit_code, 0) << b.run.err;
+  EXPECT_EQ(b.stats["session"]["open_sections"], a);
+  // With --no-session every section is as it starts.
+  const Played c = play(tsp, " --no-session", "wait-frames 3\n", dir / "c.json", size);
+  ASSERT_EQ(c.run.exit_code, 0) << c.run.err;
+  EXPECT_EQ(c.stats["session"]["open_sections"], nlohmann::json::object());
 }
 
 // Real X key events (xdotool) at about three frames a second: Ctrl+O opens File > Open with its
