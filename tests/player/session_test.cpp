@@ -3,6 +3,8 @@
 // FormatError naming the file; the cache entry is keyed by the input as named and the field.
 #include "player/session.h"
 
+#include "player/script.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -131,6 +133,28 @@ TEST(PlayerSession, ForeignOrBadFilesAreFormatErrorsNamingTheFile) {
                 [&] { tspplayer::read_session((bad.parent_path() / "none.json").string()); })
                 .find("none.json"),
             std::string::npos);
+}
+
+// The script's session and axis-scale actions (save-session PATH, scale SX,SY,SZ).
+TEST(PlayerSession, ScriptSavesSessionsAndScalesAxes) {
+  using Kind = tspplayer::ScriptAction::Kind;
+  const auto a = tspplayer::parse_script("save-session /tmp/s.json\nscale 1,1,2.5\n", "s.txt");
+  ASSERT_EQ(a.size(), 2u);
+  EXPECT_EQ(a[0].kind, Kind::save_session);
+  EXPECT_EQ(a[0].text, "/tmp/s.json");
+  EXPECT_EQ(a[1].kind, Kind::scale);
+  EXPECT_EQ(a[1].value, 1);
+  EXPECT_EQ(a[1].value2, 1);
+  EXPECT_EQ(a[1].value3, 2.5);
+  auto error = [](const std::string& text) {
+    return tsptest::error_of<tsp::FormatError>([&] { tspplayer::parse_script(text, "s.txt"); });
+  };
+  EXPECT_EQ(error("scale 1,2\n"), "s.txt:1: '1,2': expected SX,SY,SZ");
+  EXPECT_EQ(error("scale 1,2,3,4\n"), "s.txt:1: '1,2,3,4': expected SX,SY,SZ");
+  EXPECT_EQ(error("scale 1,0,3\n"), "s.txt:1: scale: expected three factors in (0, 1000]");
+  EXPECT_EQ(error("scale 1,x,3\n"), "s.txt:1: 'x' is not a number (expected 'scale SX,SY,SZ')");
+  EXPECT_EQ(error("save-session\n"),
+            "s.txt:1: 'save-session' takes 1 argument(s): expected 'save-session PATH', found 0");
 }
 
 }  // namespace
