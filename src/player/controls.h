@@ -28,6 +28,7 @@ inline constexpr Control kControls[] = {
     {"TF editor: double-click / right-click", "add a point / remove a point"},
     {"Ctrl+O", "File > Open (its path field takes the keys)"},
     {"Ctrl+A (in a text field)", "select all of its text"},
+    {"Ctrl+Q", "quit (as File > Quit)"},
 };
 
 }  // namespace tspplayer

@@ -267,7 +267,8 @@ class PlayerApp {
   double field_switch_ms = -1;
 
   /// A key press with modifiers from GLFW's callback: true when it is a shortcut it took —
-  /// Ctrl+A (the text field with the focus selects all its text) or Ctrl+O (File > Open).
+  /// Ctrl+A (the text field with the focus selects all its text), Ctrl+O (File > Open) or
+  /// Ctrl+Q (quit).
   /// Never throws.
   bool shortcut(int key, int mods);
   /// Ctrl+O asked for File > Open's dialog (the menu opens it and clears this).
@@ -460,8 +461,10 @@ class PlayerApp {
   void apply_session(const Session& s, bool command_line);
   /// Writes the session to the input's cache entry (quit, File > Open). Errors to status.
   void save_session_entry();
-  /// Opens the sections a restored session had open, in the windows that exist now.
+  /// Opens the sections a restored session had open, in the windows that exist now; with
+  /// --trace, says when the sections open change ("trace: open sections {...}").
   void apply_pending_ui();
+  std::string traced_sections_ = "{}";
   // Shortcuts (player_input.cpp): GLFW's key callback sees every press, however short; Dear
   // ImGui 1.86 reads the keys' state once a frame and misses a Ctrl+A pressed and released
   // between two frames (xdotool, or any tap during a slow frame).

@@ -61,12 +61,17 @@ bool PlayerApp::shortcut(int key, int mods) {
     open_requested = true;
     return true;
   }
+  if (key == GLFW_KEY_Q) {  // as File > Quit
+    glfwSetWindowShouldClose(static_cast<GLFWwindow*>(ctx->native_window()), 1);
+    return true;
+  }
   return false;
 }
 
 bool PlayerApp::replay_select_all() {
   ImGuiIO& io = ImGui::GetIO();
   const bool missed = select_all_presses_ > 0 && !io.KeysDown[GLFW_KEY_A];
+  if (select_all_presses_ > 0) trace("select all (Ctrl+A)");
   select_all_presses_ = 0;
   if (!missed) return false;  // (still held: Dear ImGui sees it itself)
   io.KeysDown[GLFW_KEY_A] = true;

@@ -91,7 +91,7 @@ void menu_bar(PlayerApp& app) {
     if (ImGui::MenuItem("Save PNG", "S")) app.request_save();
     if (ImGui::MenuItem("Save session...")) s.want_session = true;
     ImGui::Separator();
-    if (ImGui::MenuItem("Quit"))
+    if (ImGui::MenuItem("Quit", "Ctrl+Q"))
       glfwSetWindowShouldClose(static_cast<GLFWwindow*>(app.ctx->native_window()), 1);
     ImGui::EndMenu();
   }
@@ -139,6 +139,7 @@ void open_dialog(PlayerApp& app) {
     copy(s.open_path, sizeof s.open_path, s.listing.dir.string() + "/");
     ImGui::OpenPopup(kOpenPopup);
     s.focus_path = true;
+    app.trace("open dialog");
   }
   ImGui::SetNextWindowSize(ImVec2(560, 0), ImGuiCond_Appearing);
   if (!ImGui::BeginPopupModal(kOpenPopup, nullptr)) return;
@@ -181,7 +182,9 @@ void open_dialog(PlayerApp& app) {
     ImGui::SetKeyboardFocusHere();
     s.focus_path = false;
   }
-  if (ImGui::InputText("path", s.open_path, sizeof s.open_path)) {
+  const bool changed = ImGui::InputText("path", s.open_path, sizeof s.open_path);
+  if (ImGui::IsItemActivated()) app.trace("open path field active");
+  if (changed) {
     app.trace(std::string("open path ") + s.open_path);
     std::error_code ec;
     const fs::path typed = fs::weakly_canonical(fs::path(s.open_path), ec);

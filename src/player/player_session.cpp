@@ -148,6 +148,11 @@ void PlayerApp::apply_session(const Session& s, bool command_line) {
 }
 
 void PlayerApp::apply_pending_ui() {
+  if (options_.trace) {  // (toggled in the last frame, or restored)
+    const std::string now = open_sections().dump();
+    if (now != traced_sections_) trace("open sections " + now);
+    traced_sections_ = now;
+  }
   if (pending_ui_open_.empty()) return;
   for (auto it = pending_ui_open_.begin(); it != pending_ui_open_.end();) {
     ImGuiWindow* w = ImGui::FindWindowByName(it.key().c_str());

@@ -121,6 +121,25 @@ TEST(Player, BadOrForeignSessionFileIsIgnoredWithAMessage) {
   EXPECT_TRUE(c.stats["session"]["restored"].get<bool>()) << c.stats["session"];
 }
 
+// File > Open (the script's open) keeps the session of the input played so far and restores the
+// opened input's own.
+TEST(Player, OpenKeepsTheSessionAndRestoresTheOpenedInputs) {
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
+  const fs::path a = make_tsp(), b = make_tsp(), dir = tsptest::temp_dir();
+  const std::string cache = " --cache-dir " + q(dir / "cache");
+  const Played one = play(a, cache, "view 75 -30\nopen " + b.string() + "\n", dir / "1.json");
+  ASSERT_EQ(one.run.exit_code, 0) << one.run.err;
+  EXPECT_FALSE(one.stats["session"]["restored"].get<bool>());  // b has none yet
+  EXPECT_EQ(one.stats["camera"]["azimuth_deg"], 30.0);         // b's start view
+  const Played two = play(b, cache, "view 10 10\nopen " + a.string() + "\n", dir / "2.json");
+  ASSERT_EQ(two.run.exit_code, 0) << two.run.err;
+  EXPECT_TRUE(two.stats["session"]["restored"].get<bool>()) << two.stats["session"];
+  EXPECT_EQ(two.stats["camera"]["azimuth_deg"], 75.0);  // kept when the first window opened b
+  EXPECT_EQ(two.stats["camera"]["elevation_deg"], -30.0);
+  const Played three = play(b, cache, "", dir / "3.json");
+  EXPECT_EQ(three.stats["camera"]["azimuth_deg"], 10.0);  // kept when the second opened a
+}
+
 TEST(Player, SharedSessionOpensWithDashDashSession) {
   TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
   const fs::path tsp = make_tsp(), dir = tsptest::temp_dir(), shared = dir / "shared.json";
@@ -147,68 +166,77 @@ TEST(Player, SharedSessionOpensWithDashDashSession) {
   }
 }
 
+// A bash function: waits (up to 60 s) until the player's log holds a line matching a pattern.
+std::string until_log(const fs::path& log) {
+  return "until_log() { for i in $(seq 600); do grep -q -- \"$1\" " + q(log) +
+         " && return 0; sleep 0.1; done; echo \"never saw $1\"; return 1; }\n";
+}
+
 // The panel layout: a section closed with a real click (xdotool) on the docked side panel's first
-// header is closed again in the next window on the same input.
+// header is closed again in the next window on the same input. The steps wait on the player's
+// --trace lines, not on the clock.
 TEST(Player, OpenSectionsAreRestored) {
   TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
   ASSERT_EQ(std::system("command -v xdotool > /dev/null"), 0)
       << "xdotool missing (scripts/install-deps.sh installs it)";
   const fs::path tsp = make_tsp(), dir = tsptest::temp_dir(), out = dir / "click.out";
   const std::string size = "760x400";  // docked: the side panel at x 390..760
-  const fs::path script =
-      write_script("wait-seconds 5\nstats " + (dir / "a.json").string() + "\nquit\n");
+  const std::string cache = " --cache-dir " + q(dir / "cache");
+  const fs::path backstop = write_script("wait-seconds 120\nquit\n");  // (if Ctrl+Q is lost)
   const std::string cmd =
-      "(" + q(tsptest::tspplay_bin()) + " play " + q(tsp) + " --size " + size +
-      " --frame-delay-ms 200 " +
-      "--script " + q(script) + " > " + q(out) + " 2>&1 &\n" +
+      until_log(out) + "(" + q(tsptest::tspplay_bin()) + " play " + q(tsp) + " --size " + size +
+      cache + " --trace --frame-delay-ms 200 --script " + q(backstop) + " > " + q(out) +
+      " 2>&1 &\n" +
       "w=$(xdotool search --sync --name " + q("tspplay - " + tsp.string()) + " | head -1)\n"
-      "sleep 1.5\n"
-      "xdotool mousemove --window \"$w\" 450 38\n"
-      "sleep 0.5\n"
-      "xdotool mousedown 1\n"
-      "sleep 0.5\n"
-      "xdotool mouseup 1\n"
+      "until_log 'trace: tf canvas'\n"  // the panels are drawn
+      "xdotool mousemove --window \"$w\" 450 38 click 1\n"
+      "until_log 'trace: open sections {\"##side\"'\n"
+      "xdotool key --window \"$w\" ctrl+q\n"
       "wait)\n";
   ASSERT_EQ(run_bash(dir / "click.sh", cmd), 0) << tsptest::read_file(out);
-  const nlohmann::json a = read_json(dir / "a.json")["session"]["open_sections"];
+  const Played b = play(tsp, cache, "wait-frames 3\n", dir / "b.json", size);
+  ASSERT_EQ(b.run.exit_code, 0) << b.run.err;
+  const nlohmann::json a = read_json(b.stats["session"]["from"].get<std::string>())["panels"]["open"];
   ASSERT_TRUE(a.contains("##side")) << a << tsptest::read_file(out);
   EXPECT_EQ(a["##side"].size(), 1u) << a;
   EXPECT_EQ(a["##side"][0][1], 0) << a;  // a section open by default, closed
-  const Played b = play(tsp, "", "wait-frames 3\n", dir / "b.json", size);
-  ASSERT_EQ(b.run.exit_code, 0) << b.run.err;
   EXPECT_EQ(b.stats["session"]["open_sections"], a);
   // With --no-session every section is as it starts.
-  const Played c = play(tsp, " --no-session", "wait-frames 3\n", dir / "c.json", size);
+  const Played c = play(tsp, cache + " --no-session", "wait-frames 3\n", dir / "c.json", size);
   ASSERT_EQ(c.run.exit_code, 0) << c.run.err;
   EXPECT_EQ(c.stats["session"]["open_sections"], nlohmann::json::object());
 }
 
 // Real X key events (xdotool) at about three frames a second: Ctrl+O opens File > Open with its
 // path field taking the keys, and a Ctrl+A tapped between two frames selects the whole path, so
-// the next key replaces it (Dear ImGui 1.86 alone misses a press shorter than a frame).
+// the next key replaces it (Dear ImGui 1.86 alone misses a press shorter than a frame). Each step
+// waits on the player's --trace lines; Ctrl+Q ends it.
 TEST(Player, CtrlASelectsTheOpenDialogsPath) {
   TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
   ASSERT_EQ(std::system("command -v xdotool > /dev/null"), 0)
       << "xdotool missing (scripts/install-deps.sh installs it)";
   const fs::path tsp = make_tsp(), dir = tsptest::temp_dir(), out = dir / "keys.out";
-  const fs::path script = write_script("wait-seconds 7\nquit\n");
+  const fs::path backstop = write_script("wait-seconds 120\nquit\n");  // (if Ctrl+Q is lost)
   const std::string cmd =
-      "(" + q(tsptest::tspplay_bin()) + " play " + q(tsp) + " --size 480x360 --trace " +
-      "--frame-delay-ms 300 --script " + q(script) + " > " + q(out) + " 2>&1 &\n" +
+      until_log(out) + "(" + q(tsptest::tspplay_bin()) + " play " + q(tsp) +
+      " --size 480x360 --trace --frame-delay-ms 300 --script " + q(backstop) + " > " + q(out) +
+      " 2>&1 &\n" +
       "w=$(xdotool search --sync --name " + q("tspplay - " + tsp.string()) + " | head -1)\n"
-      "sleep 1\n"
+      "until_log 'trace: tf canvas'\n"
       "xdotool key --window \"$w\" ctrl+o\n"
-      "sleep 1\n"
+      "until_log 'trace: open path field active'\n"
       "xdotool type --window \"$w\" abc\n"
-      "sleep 1\n"
+      "until_log 'abc$'\n"
       "xdotool key --window \"$w\" ctrl+a\n"
-      "sleep 1\n"
+      "until_log 'trace: select all'\n"
       "xdotool type --window \"$w\" x\n"
+      "until_log 'trace: open path x$'\n"
+      "xdotool key --window \"$w\" ctrl+q\n"
       "wait)\n";
-  ASSERT_EQ(run_bash(dir / "keys.sh", cmd), 0);
+  ASSERT_EQ(run_bash(dir / "keys.sh", cmd), 0) << tsptest::read_file(out);
   const std::string log = tsptest::read_file(out);
-  // Typed into the field (after the folder it opened in), then replaced whole: without the
-  // Ctrl+A the x went after "abc".
+  EXPECT_NE(log.find("trace: open dialog"), std::string::npos) << log;
+  // Typed into the field, then replaced whole: without the Ctrl+A the x went after "abc".
   const std::size_t typed = log.find("abc\n");
   ASSERT_NE(typed, std::string::npos) << log;
   EXPECT_NE(log.find("trace: open path x\n", typed), std::string::npos) << log;
