@@ -71,7 +71,6 @@ void run(PlayArgs a) {
   a.options.probe_surface = a.probe_surface == "on";
   if (!a.scale.empty())
     a.options.scale = parse_triple(a.scale, "--scale", "SX,SY,SZ, factors on the voxel spacing");
-  a.options.scale_given = !a.scale.empty();
   tspgl::PlayBuildHooks hooks;
   hooks.say = [](const std::string& line) {
     std::printf("%s\n", line.c_str());
@@ -92,7 +91,8 @@ void run(PlayArgs a) {
     print_build_summary(out, r.front());
   };
   // The played file, its TF and script are never replaced by a screenshot, stats or recording.
-  const tsp::InputGuard inputs({a.options.tsp_path, a.options.tf, a.options.script});
+  const tsp::InputGuard inputs(
+      {a.options.tsp_path, a.options.tf, a.options.script, a.options.session});
   if (!a.options.screenshot.empty()) tsp::check_output_path(a.options.screenshot);
   const bool tsp = tspgl::is_tsp_file(a.options.tsp_path);
   // --surface boundary on a mesh input: its own boundary.
@@ -135,6 +135,13 @@ const CommandRegistrar reg(35, [](CLI::App& app) {
   c->add_option("--screenshot", a->options.screenshot,
                 "Save the first complete frame (volume only) as PNG and exit");
   c->add_option("--script", a->options.script, "Run a script of player actions (docs/player.md)");
+  c->add_option("--session", a->options.session,
+                "Start from a session saved with File > Save session... or the script's "
+                "save-session (TF, view, probes, surface, axis scale, speed, panels; options "
+                "named here win). Default: the input's own last session, kept per input and "
+                "field in the cache folder's sessions/ when the window quits");
+  c->add_flag("--no-session", a->options.no_session,
+              "Start with the defaults: neither restore nor keep the input's session");
   c->add_option("--frame-delay-ms", a->options.frame_delay_ms,
                 "Sleep this long every frame: a slow machine, for tests (default 0)");
   c->add_flag("--trace", a->options.trace,
@@ -198,7 +205,7 @@ const CommandRegistrar reg(35, [](CLI::App& app) {
   c->footer(keys);
   a->settings.add_to(c);
   set_groups(c, {{"Input/output", {"--field", "--cache-dir", "--tf", "--tf-range", "--step",
-                                   "--screenshot", "--script"}},
+                                   "--screenshot", "--script", "--session", "--no-session"}},
                  {"Input to build (not a .tsp; as for build)",
                   {"--raw-dims", "--raw-type", "--big-endian", "--allow-external", "--resolution",
                    "--voxel-size", "--cell-data", "--voxelizer", "--antialias", "--jitter", "--hex"}},
@@ -209,7 +216,11 @@ const CommandRegistrar reg(35, [](CLI::App& app) {
                  {"Surface", {"--surface-mesh", "--surface-field", "--surface-tf"}},
                  {"Memory", {"--ram-budget", "--texture-budget"}},
                  {"Diagnostics", {"--trace", "--frame-delay-ms"}}});
-  c->callback([a] {
+  c->callback([a, c] {
+    // What the command line names wins over a restored session.
+    for (const char* o : {"--field", "--tf", "--tf-range", "--step", "--speed", "--scale", "--probe",
+                          "--probe-op", "--probe-surface", "--surface"})
+      if (c->count(o) > 0) a->options.given.push_back(o);
     a->options.settings = a->settings.apply();
     a->options.keep_quality = a->playback == "quality";
     a->options.lod = a->lod == "on";

@@ -26,6 +26,9 @@ inline constexpr Control kControls[] = {
     {"F1 or ?", "show / hide this list"},
     {"TF editor: drag a handle", "move a point (value, opacity)"},
     {"TF editor: double-click / right-click", "add a point / remove a point"},
+    {"Ctrl+O", "File > Open (its path field takes the keys)"},
+    {"Ctrl+A (in a text field)", "select all of its text"},
+    {"Ctrl+Q", "quit (as File > Quit)"},
 };
 
 }  // namespace tspplayer

@@ -156,7 +156,10 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
       throw tsp::UsageError("--scale: expected three factors in (0, " +
                             std::to_string(int(tspgl::kMaxScale)) + "], found " + std::to_string(k));
   // A flat domain (WRF's 480 km × 6 km) opens stretched in height, named on screen ("z × 30").
-  if (!options.scale_given && options.physical_proportions)
+  // (--scale given: in options.given, which a restored session does not override either.)
+  const bool scale_given =
+      std::find(options.given.begin(), options.given.end(), "--scale") != options.given.end();
+  if (!scale_given && options.physical_proportions)
     options_.scale = tsp::vertical_exaggeration(file->frame());
   place_camera(state.camera);
   for (const std::string& text : options.probes) state.probes.push_back(tsp::parse_probe(text));
@@ -183,10 +186,12 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
   GLFWwindow* window = static_cast<GLFWwindow*>(ctx->native_window());
   glfwSetWindowUserPointer(window, this);
   // Every callback counts an event: an idle window draws again only after one (run()).
-  glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int) {
+  glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int mods) {
     auto* app = static_cast<PlayerApp*>(glfwGetWindowUserPointer(w));
     ++app->events_;
-    if (action == GLFW_PRESS || action == GLFW_REPEAT) app->key_queue_.push_back(key);
+    if (action != GLFW_PRESS && action != GLFW_REPEAT) return;
+    if (app->shortcut(key, mods)) return;  // Ctrl+A, Ctrl+O
+    app->key_queue_.push_back(key);
   });
   // The cursor as motion events report it, in order (glfwGetCursorPos asks X for the pointer
   // now, after every queued event): so a press knows where it happened.
@@ -226,6 +231,7 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
   update_tol_max();
   start_s_ = last_frame_s_ = clock_.seconds();
   initial_camera = state.camera;
+  restore_session(true);  // the input's last session, or --session FILE (throws)
 }
 
 PlayerApp::~PlayerApp() {
@@ -481,6 +487,7 @@ void PlayerApp::frame() {
 
   ImGui_ImplOpenGL3_NewFrame();
   ImGui_ImplGlfw_NewFrame();
+  const bool replayed = replay_select_all();  // a Ctrl+A shorter than the frame
   ImGui::NewFrame();
   // The volume's rectangle: beside the docked panels, or the whole window (again below, after
   // keys and script actions that may show or hide the panels).
@@ -543,8 +550,10 @@ void PlayerApp::frame() {
     draw_annotations(cam);
     if (state.panels) draw_probe_overlay(cam);
   }
+  apply_pending_ui();  // a restored session's open sections
   draw_ui();
   ImGui::Render();
+  if (replayed) end_select_all_replay();
   ctx->gl().BindFramebuffer(GL_FRAMEBUFFER, 0);
   ctx->gl().Viewport(0, 0, ctx->width(), ctx->height());
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
@@ -589,6 +598,7 @@ void PlayerApp::run() {
     frame();
     ++frames;
   }
+  save_session_entry();  // quit or closed: the next window on this input starts here
   const tsp::BrickCacheStats b = renderer->brick_cache().stats();
   std::printf("played %d frames; bricks: %lld hits, %lld misses, %lld prefetched\n", frames,
               static_cast<long long>(b.hits), static_cast<long long>(b.misses),

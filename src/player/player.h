@@ -73,7 +73,13 @@ struct PlayerOptions {
   std::string surface_mesh;
   std::string surface_field;  ///< --surface-field: the field it shows ("": the file's)
   std::string surface_tf;     ///< --surface-tf: its colours ("": cool-to-warm over its values)
-  bool scale_given = false;   ///< --scale was given: no automatic vertical exaggeration
+  /// --session FILE: a session (docs/player.md#sessions) to start from instead of the input's
+  /// own; a bad one is an error. "": the input's session in the cache folder, if any.
+  std::string session;
+  bool no_session = false;  ///< --no-session: neither restore nor keep the input's session
+  /// The options named on play's command line (--tf, --step, ...): a session does not override
+  /// them.
+  std::vector<std::string> given;
 };
 
 /// Opens the window and runs until it is closed, the script quits or the screenshot is saved.

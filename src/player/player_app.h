@@ -25,6 +25,7 @@
 #include "player/player.h"
 #include "player/player_state.h"
 #include "player/script.h"
+#include "player/session.h"
 #include "render/frame_driver.h"
 #include "render/mesh_surface.h"
 #include "render/volume_renderer.h"
@@ -267,6 +268,25 @@ class PlayerApp {
   /// Milliseconds from the last field switch to its first complete frame (−1: none yet).
   double field_switch_ms = -1;
 
+  /// A key press with modifiers from GLFW's callback: true when it is a shortcut it took —
+  /// Ctrl+A (the text field with the focus selects all its text), Ctrl+O (File > Open) or
+  /// Ctrl+Q (quit).
+  /// Never throws.
+  bool shortcut(int key, int mods);
+  /// Ctrl+O asked for File > Open's dialog (the menu opens it and clears this).
+  bool open_requested = false;
+  /// --trace: prints "trace: WHAT" (dialogs report what their fields hold). Never throws.
+  void trace(const std::string& what) const;
+
+  // ---- sessions (player_session.cpp; issue 47 item 4) ----
+  /// What the window shows as a session (TF, camera, step, speed, probes, surface, scale, panels).
+  Session capture_session() const;
+  /// Saves the session to path (File > Save session..., save-session). Errors go to status.
+  void save_session_as(const std::string& path);
+  /// Where the session was restored from, its cache entry, any file ignored and the panels'
+  /// open sections as the windows hold them, for stats.
+  nlohmann::json session_json() const;
+
  private:
   void frame();
   /// True while something is to be drawn that is not on screen yet (playing, a script, the LOD
@@ -427,6 +447,32 @@ class PlayerApp {
   double last_change_s_ = 0;
   int frames_since_change_ = 0;
   double overhead_ms_ = 0;
+  // Sessions (player_session.cpp): the input's entry in the cache folder ("": none, or
+  // --no-session), where the shown session came from ("": defaults), why an entry was ignored,
+  // and the sections to open once their windows exist.
+  std::string session_file_, session_from_, session_note_;
+  std::string session_input_;  ///< the input the entry is for, as named (absolute)
+  nlohmann::json pending_ui_open_ = nlohmann::json::object();
+  /// Restores the input's session (at the start: --session FILE, which throws, else the cache
+  /// entry; a bad entry is reported and ignored) and says so in status.
+  void restore_session(bool at_start);
+  /// Throws tsp::FormatError naming origin when s cannot apply to this file (a field it lacks,
+  /// a bad probe or TF).
+  void check_session(const Session& s, const std::string& origin) const;
+  /// Applies a checked session; with command_line, what play's command line named wins.
+  void apply_session(const Session& s, bool command_line);
+  /// Writes the session to the input's cache entry (quit, File > Open). Errors to status.
+  void save_session_entry();
+  /// Opens the sections a restored session had open, in the windows that exist now; with
+  /// --trace, says when the sections open change ("trace: open sections {...}").
+  void apply_pending_ui();
+  std::string traced_sections_ = "{}";
+  // Shortcuts (player_input.cpp): GLFW's key callback sees every press, however short; Dear
+  // ImGui 1.86 reads the keys' state once a frame and misses a Ctrl+A pressed and released
+  // between two frames (xdotool, or any tap during a slow frame).
+  int select_all_presses_ = 0;   ///< Ctrl+A presses since the last frame
+  bool replay_select_all();      // before NewFrame: shows Dear ImGui a missed Ctrl+A as held
+  void end_select_all_replay();  // after Render: the keys as they are
 };
 
 }  // namespace tspplayer

@@ -123,6 +123,7 @@ tsp::TransferFunction PlayerApp::start_tf(const tsp::TspFile& f) const {
 
 void PlayerApp::open_file(const std::string& path) {
   std::unique_ptr<tsp::TspFile> next = tsp::TspFile::open(path);  // throws: nothing changed
+  save_session_entry();  // the session of the input played so far
   if (recorder_) stop_recording();  // a movie has one size and one dataset
   prefetcher.reset();
   if (renderer) compositor_ = renderer->compositor();
@@ -168,6 +169,7 @@ void PlayerApp::open_file(const std::string& path) {
   status = "playing " + path;
   std::printf("opened %s (%d steps)\n", path.c_str(), steps());
   std::fflush(stdout);
+  restore_session(false);  // this input's last session, if any
 }
 
 void PlayerApp::switch_field(const std::string& name) {
@@ -314,6 +316,14 @@ void PlayerApp::write_stats(const std::string& path) const {
   j["docked"] = layout.docked;
   j["file"] = options_.tsp_path;
   j["open_folder"] = open_folder();  // where File > Open starts
+  j["session"] = session_json();  // restored (from where), its cache entry, a file ignored
+  j["camera"] = {{"azimuth_deg", state.camera.azimuth_deg},
+                 {"elevation_deg", state.camera.elevation_deg},
+                 {"zoom", state.camera.zoom},
+                 {"pan", state.camera.pan},
+                 {"perspective", state.camera.projection == tsp::Projection::perspective}};
+  j["scale"] = options_.scale;  // the axis stretch
+  j["panels"] = state.panels;
   j["surface_mesh"] = surface_mesh_;  // the mesh whose boundary is drawn ("": none)
   j["status"] = status;
   j["field"] = file->fields()[std::size_t(file->field_index())];

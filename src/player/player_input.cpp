@@ -51,6 +51,48 @@ void PlayerApp::handle_input() {
   }
 }
 
+bool PlayerApp::shortcut(int key, int mods) {
+  if (!(mods & GLFW_MOD_CONTROL)) return false;
+  if (key == GLFW_KEY_A) {
+    ++select_all_presses_;
+    return true;
+  }
+  if (key == GLFW_KEY_O) {
+    open_requested = true;
+    return true;
+  }
+  if (key == GLFW_KEY_Q) {  // as File > Quit
+    glfwSetWindowShouldClose(static_cast<GLFWwindow*>(ctx->native_window()), 1);
+    return true;
+  }
+  return false;
+}
+
+bool PlayerApp::replay_select_all() {
+  ImGuiIO& io = ImGui::GetIO();
+  const bool missed = select_all_presses_ > 0 && !io.KeysDown[GLFW_KEY_A];
+  if (select_all_presses_ > 0) trace("select all (Ctrl+A)");
+  select_all_presses_ = 0;
+  if (!missed) return false;  // (still held: Dear ImGui sees it itself)
+  io.KeysDown[GLFW_KEY_A] = true;
+  io.KeyCtrl = true;
+  return true;
+}
+
+void PlayerApp::end_select_all_replay() {
+  // No key event arrives between NewFrame and here (GLFW reports them in poll_events): the real
+  // state is "A up", and Ctrl as its keys are.
+  ImGuiIO& io = ImGui::GetIO();
+  io.KeysDown[GLFW_KEY_A] = false;
+  io.KeyCtrl = io.KeysDown[GLFW_KEY_LEFT_CONTROL] || io.KeysDown[GLFW_KEY_RIGHT_CONTROL];
+}
+
+void PlayerApp::trace(const std::string& what) const {
+  if (!options_.trace) return;
+  std::printf("trace: %s\n", what.c_str());
+  std::fflush(stdout);
+}
+
 void PlayerApp::trace_tf_canvas(float x, float y, float w, float h) {
   if (!options_.trace) return;
   const std::array<float, 4> r{x, y, w, h};
@@ -277,6 +319,12 @@ void PlayerApp::apply(const ScriptAction& a) {
       break;
     case Kind::quit:
       quit_ = true;
+      break;
+    case Kind::save_session:
+      save_session_as(a.text);
+      break;
+    case Kind::scale:
+      set_scale({a.value, a.value2, a.value3});
       break;
   }
 }

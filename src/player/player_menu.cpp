@@ -27,6 +27,7 @@ constexpr const char* kOpenPopup = "Open";
 constexpr const char* kTfPopup = "Save transfer function as";
 constexpr const char* kRecordPopup = "Record movie";
 constexpr const char* kProgressPopup = "Opening";
+constexpr const char* kSessionPopup = "Save session";
 
 // The open dialog's folder listing: folders first, then files, names sorted; hidden entries left
 // out. Read again only when the folder changes.
@@ -58,10 +59,13 @@ struct MenuState {
   bool all_files = false;  // the open dialog lists every file, not only the kinds play reads
   char open_path[kPathChars] = "";
   char field[128] = "";
+  bool focus_path = false;  // the dialog just opened: its path field takes the keys
   char build_options[kPathChars] = "";  // File > Open: --raw-dims 64,64,64 --raw-type f32, …
   char tf_path[kPathChars] = "";
   char movie_path[kPathChars] = "tspplay_movie.mp4";
   Listing listing;
+  bool want_session = false;
+  char session_path[kPathChars] = "tspplay_session.json";
 };
 
 MenuState& state() {
@@ -77,7 +81,7 @@ void menu_bar(PlayerApp& app) {
   MenuState& s = state();
   if (!ImGui::BeginMainMenuBar()) return;
   if (ImGui::BeginMenu("File")) {
-    if (ImGui::MenuItem("Open...")) s.want_open = true;
+    if (ImGui::MenuItem("Open...", "Ctrl+O")) s.want_open = true;
     if (ImGui::MenuItem("Save transfer function as...")) s.want_tf = true;
     if (!app.recording()) {
       if (ImGui::MenuItem("Record movie...")) s.want_record = true;
@@ -85,8 +89,9 @@ void menu_bar(PlayerApp& app) {
       app.stop_recording();
     }
     if (ImGui::MenuItem("Save PNG", "S")) app.request_save();
+    if (ImGui::MenuItem("Save session...")) s.want_session = true;
     ImGui::Separator();
-    if (ImGui::MenuItem("Quit"))
+    if (ImGui::MenuItem("Quit", "Ctrl+Q"))
       glfwSetWindowShouldClose(static_cast<GLFWwindow*>(app.ctx->native_window()), 1);
     ImGui::EndMenu();
   }
@@ -133,6 +138,8 @@ void open_dialog(PlayerApp& app) {
     s.listing.read(fs::absolute(start, ec));
     copy(s.open_path, sizeof s.open_path, s.listing.dir.string() + "/");
     ImGui::OpenPopup(kOpenPopup);
+    s.focus_path = true;
+    app.trace("open dialog");
   }
   ImGui::SetNextWindowSize(ImVec2(560, 0), ImGuiCond_Appearing);
   if (!ImGui::BeginPopupModal(kOpenPopup, nullptr)) return;
@@ -169,8 +176,16 @@ void open_dialog(PlayerApp& app) {
                    "All files\0"))
     s.all_files = shown == 1;
   ImGui::SetNextItemWidth(-60);
-  // A folder typed (or pasted) into the path is shown in the list above.
-  if (ImGui::InputText("path", s.open_path, sizeof s.open_path)) {
+  // A folder typed (or pasted) into the path is shown in the list above. The field has the keys
+  // when the dialog opens (type or paste a path at once; Ctrl+A selects it all).
+  if (s.focus_path) {
+    ImGui::SetKeyboardFocusHere();
+    s.focus_path = false;
+  }
+  const bool changed = ImGui::InputText("path", s.open_path, sizeof s.open_path);
+  if (ImGui::IsItemActivated()) app.trace("open path field active");
+  if (changed) {
+    app.trace(std::string("open path ") + s.open_path);
     std::error_code ec;
     const fs::path typed = fs::weakly_canonical(fs::path(s.open_path), ec);
     if (!ec && fs::is_directory(typed, ec) && typed != fs::weakly_canonical(s.listing.dir, ec))
@@ -239,6 +254,10 @@ void progress_dialog(PlayerApp& app) {
 
 void menu_and_dialogs(PlayerApp& app) {
   MenuState& s = state();
+  if (app.open_requested) {  // Ctrl+O
+    app.open_requested = false;
+    s.want_open = true;
+  }
   menu_bar(app);
   open_dialog(app);
   if (s.want_tf) copy(s.tf_path, sizeof s.tf_path, app.tf_path);
@@ -249,6 +268,10 @@ void menu_and_dialogs(PlayerApp& app) {
                   "The volume as shown, with its annotations, in real time (.mp4 or .gif); "
                   "File > Stop recording writes it:"))
     app.start_recording(s.movie_path);
+  if (path_dialog(kSessionPopup, s.want_session, s.session_path, sizeof s.session_path,
+                  "The transfer function, view, probes, surface, axis scale, speed and panels, "
+                  "for tspplay play --session FILE:"))
+    app.save_session_as(s.session_path);
   progress_dialog(app);
 }
 

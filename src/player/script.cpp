@@ -5,6 +5,7 @@
 #include <sstream>
 #include <utility>
 
+#include "jobs/render_job.h"
 #include "render/settings_table.h"
 #include "tsp/clip/probe.h"
 #include "tsp/core/error.h"
@@ -200,6 +201,26 @@ ScriptAction parse_words(const LineParser& p) {
     p.expect_args(1, "field NAME");
     a.kind = Kind::field;
     a.text = p.words[1];
+  } else if (cmd == "save-session") {
+    p.expect_args(1, "save-session PATH");
+    a.kind = Kind::save_session;
+    a.text = p.words[1];
+  } else if (cmd == "scale") {
+    p.expect_args(1, "scale SX,SY,SZ");
+    a.kind = Kind::scale;
+    double v[3];
+    std::istringstream in(p.words[1]);
+    std::string part;
+    int n = 0;
+    while (std::getline(in, part, ',')) {
+      if (n == 3) p.fail("'" + p.words[1] + "': expected SX,SY,SZ");
+      LineParser one{p.origin, p.line, {"scale", part}};
+      v[n++] = one.number(1, "scale SX,SY,SZ");
+    }
+    if (n != 3) p.fail("'" + p.words[1] + "': expected SX,SY,SZ");
+    a.value = v[0];
+    a.value2 = v[1];
+    a.value3 = v[2];
   } else if (cmd == "record") {
     p.expect_args(1, "record PATH.mp4|PATH.gif|stop");
     a.kind = p.words[1] == "stop" ? Kind::record_stop : Kind::record;
@@ -216,7 +237,7 @@ ScriptAction parse_words(const LineParser& p) {
            settings +
            "quality, stats, lod, target-fps, lod-filter, show-cut, panels, every-step, log-opacity, open, "
            "field, probe, probe-op, probe-surface, probe-clear, probe-move, record, "
-           "reset-camera, playback or quit");
+           "reset-camera, playback, save-session, scale or quit");
   }
   return a;
 }
@@ -305,6 +326,11 @@ void validate(const ScriptAction& a) {
       break;
     case Kind::lod_filter:
       tsp::parse_lod_filter(a.text, "lod-filter");  // (throws UsageError naming it)
+      break;
+    case Kind::scale:
+      for (double k : {a.value, a.value2, a.value3})
+        if (!(k > 0) || !(k <= tspgl::kMaxScale))
+          fail("scale: expected three factors in (0, " + std::to_string(int(tspgl::kMaxScale)) + "]");
       break;
     case Kind::probe_move:
       if (!std::isfinite(a.value) || !std::isfinite(a.value2) || !std::isfinite(a.value3))

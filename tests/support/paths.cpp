@@ -62,7 +62,13 @@ fs::path temp_dir() {
 }
 
 RunResult run_tspplay(const std::string& args) {
-  return run_command("'" + tspplay_bin().string() + "' " + args);
+  // Each window a test opens starts from an empty cache folder of its own: no session (nor
+  // tuning) one `play` keeps is restored by the next, within a test or across tests. A test
+  // that means two windows to share one names --cache-dir, which wins.
+  std::string env;
+  if (args.rfind("play ", 0) == 0)
+    env = "TSPPLAY_CACHE_DIR='" + (temp_dir() / "play-cache").string() + "' ";
+  return run_command(env + "'" + tspplay_bin().string() + "' " + args);
 }
 
 RunResult run_command(const std::string& command) {

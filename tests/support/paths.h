@@ -36,6 +36,7 @@ std::filesystem::path mpiexec_bin();
 /// Runs a shell command line through /bin/sh (stdin from /dev/null) and captures its output.
 RunResult run_command(const std::string& command);
 /// Runs `tspplay ARGS` through /bin/sh (args are passed as-is: quote them) and captures its output.
+/// `play` runs get an empty cache folder of their own (TSPPLAY_CACHE_DIR; --cache-dir wins).
 RunResult run_tspplay(const std::string& args);
 /// True under CI (the environment's CI is "true" or "1"): there a missing display, MPI or tool a
 /// test needs fails the test instead of skipping it (TSPTEST_REQUIRE).

@@ -15,6 +15,25 @@ namespace tsptest::player {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// Each test's players get a cache folder of their own (TSPPLAY_CACHE_DIR, inherited by every
+// tspplay the test starts): a session, tuning or calibration one test leaves is never restored by
+// another test on the same small .tsp (tests that name --cache-dir use theirs).
+class FreshCacheFolder : public ::testing::EmptyTestEventListener {
+  void OnTestStart(const ::testing::TestInfo&) override {
+    const fs::path cache = tsptest::temp_dir() / "tspplay-cache";
+    ::setenv("TSPPLAY_CACHE_DIR", cache.c_str(), 1);
+  }
+};
+
+[[maybe_unused]] const bool kFreshCacheFolders = [] {
+  ::testing::UnitTest::GetInstance()->listeners().Append(new FreshCacheFolder);
+  return true;
+}();
+
+}  // namespace
+
 bool window_possible() {
   try {
     auto ctx = tspgl::create_window_context(16, 16, "probe", false);

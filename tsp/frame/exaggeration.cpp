@@ -10,7 +10,12 @@ std::array<double, 3> vertical_exaggeration(const Aabb& frame) {
   if (is_empty(frame)) return {1, 1, 1};
   const double width = std::max(frame.hi[0] - frame.lo[0], frame.hi[1] - frame.lo[1]);
   const double height = frame.hi[2] - frame.lo[2];
-  if (!(height > 0) || !std::isfinite(width) || !(height < kFlatAspect * width)) return {1, 1, 1};
+  // Flat: low against the larger horizontal edge, and lower than the smaller one too (a bar,
+  // long in x and as thin in y as in z, is not a flat domain).
+  const double narrow = std::min(frame.hi[0] - frame.lo[0], frame.hi[1] - frame.lo[1]);
+  if (!(height > 0) || !std::isfinite(width) || !(height < kFlatAspect * width) ||
+      !(height < narrow))
+    return {1, 1, 1};
   const double want = width / height / 3;
   // The round number nearest `want` on a log scale.
   double best = 1;

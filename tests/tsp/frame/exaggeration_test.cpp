@@ -26,6 +26,7 @@ TEST(Exaggeration, OtherBoxesAreLeftAlone) {
   EXPECT_EQ(vertical_exaggeration(box(10, 10, 10)), one);
   EXPECT_EQ(vertical_exaggeration(box(1, 1, 100)), one);  // tall
   EXPECT_EQ(vertical_exaggeration(box(100, 100, 0)), one);  // one plane: nothing to stretch
+  EXPECT_EQ(vertical_exaggeration(box(63, 6, 6)), one);    // a bar: as thin in y as in z
   EXPECT_EQ(vertical_exaggeration(empty_aabb()), one);
 }
 
