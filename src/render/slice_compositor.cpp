@@ -304,7 +304,7 @@ void SliceCompositor::begin_frame(const tsp::Camera& camera, const RenderSetting
   cpu_samples_ = 0;
   const tsp::CameraParams& view = camera.params();
   output_ = {settings.viewport_origin[0], settings.viewport_origin[1], view.width, view.height};
-  target_.bind(view.width, view.height, settings.render_scale);
+  target_.bind(view.width, view.height, settings.render_scale, keep);
   gl_.Disable(GL_SCISSOR_TEST);
   if (!keep) clear(gl_, settings);
   const auto dir = camera.direction(), eye = camera.eye(), ray = camera.ray_direction();
@@ -332,7 +332,7 @@ void SliceCompositor::begin_frame(const tsp::Camera& camera, const RenderSetting
     gl_.BindFramebuffer(GL_DRAW_FRAMEBUFFER, target_.framebuffer());
     gl_.BlitFramebuffer(0, 0, target_.width(), target_.height(), 0, 0, target_.width(),
                         target_.height(), GL_COLOR_BUFFER_BIT, GL_NEAREST);
-    target_.bind(view.width, view.height, settings.render_scale);
+    target_.bind(view.width, view.height, settings.render_scale, keep);
     gl_.ActiveTexture(GL_TEXTURE0 + kSurfaceDepthUnit);
     gl_.BindTexture(GL_TEXTURE_2D, surface_splats_->depth_texture());
     surface_drawn_ = true;
