@@ -18,6 +18,13 @@
 
 namespace tspplayer {
 
+namespace {
+// The rung drawn whole under the bands after a change has a mean ΔE over the tuning's probe
+// steps of at most this share of the target: the probes saw one view, and at others a rung
+// measured up to 1.4 × its probe ΔE (docs/results.md).
+constexpr double kRefineBaseMargin = 0.5;
+}  // namespace
+
 bool refine_by_cut() {
   static const bool cut = std::getenv("TSPPLAY_REFINE_BY_CUT") != nullptr;
   return cut;
@@ -28,7 +35,7 @@ const tspgl::TunedRung* PlayerApp::base_rung() const {
   const tspgl::TunedRung* best = nullptr;
   for (std::size_t i = 1; i < tuned_.size(); ++i) {
     const tspgl::TunedRung& r = tuned_[i];
-    if (r.mean_de <= tspgl::kPlaybackQualityMargin * state.quality && r.ms < tuned_[0].ms &&
+    if (r.mean_de <= kRefineBaseMargin * state.quality && r.ms < tuned_[0].ms &&
         (!best || r.ms < best->ms))
       best = &r;
   }
