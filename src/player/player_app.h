@@ -457,6 +457,7 @@ class PlayerApp {
   tspgl::TileRefinement bands_;        ///< the bands left of the full-quality picture
   tspgl::PartialFrame part_;           ///< this frame's bands
   std::unique_ptr<tspgl::FrameDriver> full_driver_;  ///< full-resolution frames (no cut)
+  const void* refine_renderer_ = nullptr;  ///< the renderer full_driver_ draws
   bool changed_ = false;       ///< this frame's view, step, TF or probes changed (or playing)
   bool paused_now_ = false;    ///< this frame paused playback and nothing else changed
   bool refine_on_ = false;     ///< a refinement is under way or done since the last change

@@ -46,7 +46,14 @@ bool PlayerApp::refine_draw(double now_s, tspgl::FrameRequest& request, tspgl::D
   (void)now_s;
   const bool applies = !refine_by_cut() && state.lod_on && state.lod_filter.kind == tsp::LodFilter::error &&
                        !state.playing && !(mesh_surface && request.settings.surface);
-  if (!applies || changed_) {
+  // Another renderer (a field switch, File > Open, a cache change) is a change too: its
+  // picture is not the one the bands were drawn over.
+  const bool new_renderer = renderer.get() != refine_renderer_;
+  if (new_renderer) {
+    full_driver_.reset();
+    refine_renderer_ = renderer.get();
+  }
+  if (!applies || changed_ || new_renderer) {
     refine_on_ = false;
     bands_.stop();
     return false;
