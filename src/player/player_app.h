@@ -463,6 +463,7 @@ class PlayerApp {
   bool refine_on_ = false;     ///< a refinement is under way or done since the last change
   bool base_pending_ = false;  ///< the next refining frame draws base_rung() whole first
   bool whole_ = false;         ///< no picture within the target to draw bands over: all at once
+  bool uploading_ = false;     ///< frames upload the full picture's textures before the bands
   std::string base_;           ///< what the bands are drawn over
   int refine_frames_ = 0;      ///< frames since the refinement started
   std::string stage_ = "interacting";

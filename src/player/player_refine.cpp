@@ -81,17 +81,17 @@ bool PlayerApp::refine_draw(double now_s, tspgl::FrameRequest& request, tspgl::D
     }
     refine_on_ = true;
     refine_frames_ = 0;
+    uploading_ = !whole_;
     bands_.start(view.width, view.height);
   }
   ++refine_frames_;
   if (!full_driver_) full_driver_ = std::make_unique<tspgl::FrameDriver>(*renderer);
   tspgl::FrameDriver& fd = *full_driver_;
-  // Every texture the picture needs: a band is never drawn flat (the upload budget's blocks).
-  request.settings.upload_budget = 0;
   stage_ = "refining";
   if (base_pending_) {  // the fastest rung within the target, whole, under the bands
     const tspgl::TunedRung& r = *base_rung();
     request.settings = tspgl::rung_settings(request.settings, r.rung);
+    request.settings.upload_budget = 0;  // drawn whole: never with flat blocks
     tspgl::LodSpec spec;
     if (r.rung.lod_level > 0) {
       spec.mode = tspgl::LodMode::fixed;
@@ -111,6 +111,20 @@ bool PlayerApp::refine_draw(double now_s, tspgl::FrameRequest& request, tspgl::D
     within_ = true;
     return true;
   }
+  // First the textures the full picture needs, within the upload budget a frame, drawing
+  // nothing (the picture stays): a band is never drawn flat in a brick's mean colour, and no
+  // frame stalls on a whole step's uploads.
+  if (uploading_) {
+    part_.rects.clear();
+    part_.first = part_.completes = false;
+    request.part = &part_;
+    drawn = fd.draw(request);
+    request.part = nullptr;
+    uploading_ = !drawn.report.complete();
+    within_ = true;
+    return true;
+  }
+  request.settings.upload_budget = 0;  // (all resident now)
   const bool first = bands_.bands_drawn() == 0;
   const double budget_ms = std::max(1.0, 1000.0 / std::max(1.f, state.target_fps) - overhead_ms_);
   part_.rects = bands_.next(whole_ ? 1e300 : budget_ms);
@@ -122,6 +136,7 @@ bool PlayerApp::refine_draw(double now_s, tspgl::FrameRequest& request, tspgl::D
   bands_.drawn(drawn.report.ms);
   if (drawn.report.partial_stale) {  // drawn with other settings than the bands before: again
     bands_.start(view.width, view.height);
+    uploading_ = true;
     base_ = "a picture drawn with other settings";
     within_ = no_target;
     return true;
@@ -140,6 +155,11 @@ std::string PlayerApp::lod_line() const {
     const tspgl::Rung* r = rung_drawn();
     std::snprintf(line, sizeof line, "playing %s (last frame %.0f ms)",
                   r ? (std::string("rung '") + r->name + "'").c_str() : "with the LOD cut at the step's time", ms);
+  } else if (stage_ == "refining" && uploading_) {
+    std::snprintf(line, sizeof line,
+                  "refining: uploading the full picture's textures, %lld left, over %s (last "
+                  "frame %.0f ms)",
+                  static_cast<long long>(last.deferred_textures), base_.c_str(), ms);
   } else if (stage_ == "refining") {
     std::snprintf(line, sizeof line,
                   "refining at full resolution: %d of %d bands drawn over %s (last frame %.0f ms)",
@@ -172,6 +192,7 @@ nlohmann::json PlayerApp::refine_json() const {
           {"bands", bands_.bands()},
           {"bands_drawn", bands_.bands_drawn()},
           {"frames", refine_frames_},
+          {"uploading", uploading_},
           {"line", lod_line()}};
 }
 
