@@ -423,17 +423,7 @@ void PlayerApp::render_volume() {
   if (!refined) {
     d.set_lod(spec);
     drawn = d.draw(request);
-    const bool no_target = state.quality <= 0;
-    if (!state.lod_on) {
-      stage_ = "off";
-      within_ = true;
-    } else if (state.playing) {
-      stage_ = "playing";
-      within_ = no_target || (rung && rung_.within_quality);
-    } else {
-      stage_ = "interacting";
-      within_ = no_target || state.lod_filter.kind != tsp::LodFilter::error;
-    }
+    cut_drawn(rung);
   }
   last = drawn.report;
   if (rung) measured_rung(last.ms);

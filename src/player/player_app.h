@@ -449,6 +449,9 @@ class PlayerApp {
   // Draws this frame by the progressive refinement when it applies (paused after playing, or
   // settled after a change): true when it drew (drawn filled).
   bool refine_draw(double now_s, tspgl::FrameRequest& request, tspgl::DrawnFrame& drawn);
+  // A frame drawn by the cut (or at full resolution with LOD off): its stage and whether it is
+  // within the target (rung: drawn with the playing rung).
+  void cut_drawn(bool rung);
   // The fastest tuned rung within the quality target for this view size (null: none cheaper
   // than full quality, or not tuned).
   const tspgl::TunedRung* base_rung() const;

@@ -146,6 +146,20 @@ bool PlayerApp::refine_draw(double now_s, tspgl::FrameRequest& request, tspgl::D
   return true;
 }
 
+void PlayerApp::cut_drawn(bool rung) {
+  const bool no_target = state.quality <= 0;
+  if (!state.lod_on) {
+    stage_ = "off";
+    within_ = true;
+  } else if (state.playing) {
+    stage_ = "playing";
+    within_ = no_target || (rung && rung_.within_quality);
+  } else {
+    stage_ = "interacting";
+    within_ = no_target || state.lod_filter.kind != tsp::LodFilter::error;
+  }
+}
+
 std::string PlayerApp::lod_line() const {
   char line[320];
   const double ms = last.ms;
