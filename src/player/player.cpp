@@ -419,7 +419,7 @@ void PlayerApp::render_volume() {
   const bool rung = playing_rung();  // playing at a quality target: the tuned rung's frame
   if (const tspgl::Rung* r = rung_drawn()) fs = tspgl::rung_settings(fs, *r);
   tspgl::FrameDriver& d = driver();
-  d.set_lod(lod_spec(now));
+  const tspgl::LodSpec spec = lod_spec(now);
   tspgl::FrameRequest request;
   request.step = state.step;
   request.camera = &cam;
@@ -428,13 +428,24 @@ void PlayerApp::render_volume() {
   request.tf = &tf;
   if (mesh_surface && fs.surface)  // (a step's mesh is read only while it is shown)
     renderer->compositor()->set_surface(mesh_surface->frame(state.step, fs.surface_px));
-  const tspgl::DrawnFrame drawn = d.draw(request);
+  was_within_ = within_;
+  tspgl::DrawnFrame drawn;
+  // Paused after playing, or settled after a change: full-resolution bands over a picture
+  // within the target (player_refine.cpp); otherwise the cut the LOD spec asks for.
+  const bool refined = refine_draw(now, request, drawn);
+  if (!refined) {
+    d.set_lod(spec);
+    drawn = d.draw(request);
+    cut_drawn(rung);
+  }
   last = drawn.report;
   if (rung) measured_rung(last.ms);
   if (last.redrawn_percent > 0) picture_fragments_ = last.fragments;
   lod_drawn(drawn.lod, now);
-  request_prefetch(cam, drawn.settings, d.current_stops());
-  update_ready(cam, drawn.settings, d.current_stops());
+  if (!refined && stage_ == "interacting" && full_quality()) within_ = true;  // (the cut refined)
+  const tsp::LodStops stops = refined ? tsp::LodStops{} : d.current_stops();
+  request_prefetch(cam, drawn.settings, stops);
+  update_ready(cam, drawn.settings, stops);
 }
 
 tspgl::FrameDriver& PlayerApp::driver() {
@@ -511,6 +522,7 @@ void PlayerApp::frame() {
   }
   apply_probes();
   render_volume();
+  capture_frame();
   if (state.step != last_shown_step_) {  // playback's real rate: distinct steps drawn
     last_shown_step_ = state.step;
     shown_at_s_.push_back(now);

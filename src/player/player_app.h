@@ -28,6 +28,7 @@
 #include "player/session.h"
 #include "render/frame_driver.h"
 #include "render/mesh_surface.h"
+#include "render/tile_refinement.h"
 #include "render/volume_renderer.h"
 #include "tsp/clip/probe.h"
 #include "tsp/core/stopwatch.h"
@@ -94,6 +95,10 @@ struct FrameSample {
 /// How the preset combo names the map a --tf / `tf` argument gives: "auto" for none, NAME for
 /// preset:NAME, else the file's name. Never throws but bad_alloc.
 std::string tf_label_of(const std::string& tf_arg);
+
+/// True when TSPPLAY_REFINE_BY_CUT is set: the LOD cut refines as before issue 47 (a pause
+/// is a change; coarse cuts while refining), for measuring against (docs/results.md).
+bool refine_by_cut();
 
 /// The window player.
 class PlayerApp {
@@ -473,6 +478,50 @@ class PlayerApp {
   int select_all_presses_ = 0;   ///< Ctrl+A presses since the last frame
   bool replay_select_all();      // before NewFrame: shows Dear ImGui a missed Ctrl+A as held
   void end_select_all_replay();  // after Render: the keys as they are
+
+  // ---- no popping (player_refine.cpp; docs/player.md "Level of detail") ----
+ public:
+  /// What the last frame drew, for the LOD status line, `stats` and `capture`: "playing",
+  /// "interacting" (the LOD cut), "refining" (full-quality bands over a picture within the
+  /// target), "full" or "off" (LOD off: full resolution every frame).
+  const std::string& picture_stage() const { return stage_; }
+  /// True when the picture on screen is within the quality target of the full-quality picture
+  /// (what the recorder writes; a frame that is not repeats the last one that was).
+  bool picture_within_target() const { return within_; }
+  /// The LOD status line: what the last frame drew and its time.
+  std::string lod_line() const;
+  /// What the refinement did, as JSON (for stats and capture).
+  nlohmann::json refine_json() const;
+
+ private:
+  // Draws this frame by the progressive refinement when it applies (paused after playing, or
+  // settled after a change): true when it drew (drawn filled).
+  bool refine_draw(double now_s, tspgl::FrameRequest& request, tspgl::DrawnFrame& drawn);
+  // A frame drawn by the cut (or at full resolution with LOD off): its stage and whether it is
+  // within the target (rung: drawn with the playing rung).
+  void cut_drawn(bool rung);
+  // The fastest tuned rung within the quality target for this view size (null: none cheaper
+  // than full quality, or not tuned).
+  const tspgl::TunedRung* base_rung() const;
+  // Writes this frame to the capture folder (script `capture`).
+  void capture_frame();
+  tspgl::TileRefinement bands_;        ///< the bands left of the full-quality picture
+  tspgl::PartialFrame part_;           ///< this frame's bands
+  std::unique_ptr<tspgl::FrameDriver> full_driver_;  ///< full-resolution frames (no cut)
+  const void* refine_renderer_ = nullptr;  ///< the renderer full_driver_ draws
+  bool changed_ = false;       ///< this frame's view, step, TF or probes changed (or playing)
+  bool paused_now_ = false;    ///< this frame paused playback and nothing else changed
+  bool refine_on_ = false;     ///< a refinement is under way or done since the last change
+  bool base_pending_ = false;  ///< the next refining frame draws base_rung() whole first
+  bool whole_ = false;         ///< no picture within the target to draw bands over: all at once
+  bool uploading_ = false;     ///< frames upload the full picture's textures before the bands
+  std::string base_;           ///< what the bands are drawn over
+  int refine_frames_ = 0;      ///< frames since the refinement started
+  std::string stage_ = "interacting";
+  bool within_ = false, was_within_ = false;  ///< this frame's and the last frame's picture
+  double target_ms_ = 0;       ///< the frame-time target of the last interacting frame
+  std::string capture_dir_;    ///< script capture: the folder ("": off)
+  int capture_count_ = 0;
 };
 
 }  // namespace tspplayer

@@ -282,9 +282,14 @@ std::string PlayerApp::export_name() const {
 }
 
 void PlayerApp::record_frame(double now_s) {
-  tsp::Image img = export_view();
   try {
-    recorder_->frame(img, now_s);
+    // Only pictures within the quality target go into the movie: while one is not (the LOD cut
+    // during interaction), the last one that was is held.
+    if (!within_) {
+      recorder_->hold(now_s);
+      return;
+    }
+    recorder_->frame(export_view(), now_s);
   } catch (const tsp::UsageError&) {  // the view changed size: keep the movie so far
     stop_recording();
     status += " (stopped: the view changed size)";
@@ -387,7 +392,8 @@ void PlayerApp::write_stats(const std::string& path) const {
               {"full_quality_after_s", full_quality_after_s},
               // Full quality: no node left whose level differs from full resolution in the
               // picture (error 0: transparent, uniform or hidden), at full render size.
-              {"full_quality", full_quality()}};
+              {"full_quality", full_quality()},
+              {"picture", refine_json()}};
   j["classes"] = {{"not_rendered", last.class_percent[0]},
                   {"untextured", last.class_percent[1]},
                   {"reused_texture", last.class_percent[2]},

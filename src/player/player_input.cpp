@@ -6,6 +6,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <cmath>
 #include <cstdio>
 
@@ -309,6 +310,14 @@ void PlayerApp::apply(const ScriptAction& a) {
       break;
     case Kind::playback:
       state.keep_quality = a.flag;
+      break;
+    case Kind::capture:  // every frame from the next on, as drawn (player_refine.cpp)
+      capture_dir_ = a.text == "off" ? "" : a.text;
+      capture_count_ = 0;
+      if (!capture_dir_.empty()) {
+        std::filesystem::create_directories(capture_dir_);
+        std::filesystem::remove(std::filesystem::path(capture_dir_) / "frames.jsonl");
+      }
       break;
     case Kind::reset_camera:
       state.camera = initial_camera;

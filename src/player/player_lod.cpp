@@ -40,7 +40,13 @@ void PlayerApp::set_lod(bool on) {
 tspgl::LodSpec PlayerApp::lod_spec(double now_s) {
   // Any change of what is shown counts as interaction.
   const Seen now{state.camera, state.step, tf.version(), probe_version, state.playing};
-  const bool changed = state.playing || !(now == seen_);
+  // A pause alone changes nothing shown: the last playing frame stays and is refined
+  // (player_refine.cpp), not replaced by a coarse cut.
+  Seen playing_then = now;
+  playing_then.playing = true;
+  paused_now_ = seen_.playing && !state.playing && playing_then == seen_ && !refine_by_cut();
+  const bool changed = state.playing || (!(now == seen_) && !paused_now_);
+  changed_ = changed;
   // Playing with the view and the TF still, a frame per step is enough: the frame time may
   // follow the playback speed (5 steps/s: 200 ms) rather than the interactive target.
   const bool steady_playback =
@@ -90,6 +96,7 @@ tspgl::LodSpec PlayerApp::lod_spec(double now_s) {
     const double frame_ms = std::max(1000.0 / std::max(1.f, state.target_fps),
                                      steady_playback ? 1000.0 / std::max(state.speed, 1e-3) : 0.0);
     o.target_ms = std::max(kMinRenderMs, frame_ms - overhead_ms_);
+    target_ms_ = o.target_ms;
   }
   o.texture_budget = std::int64_t(state.texture_budget_mb * (1 << 20));
   o.fallback = state.splat_fallback ? tsp::LodFallback::splats : tsp::LodFallback::scale;
@@ -110,7 +117,11 @@ void PlayerApp::lod_drawn(const std::optional<tsp::LodFrameStats>& stats, double
 bool PlayerApp::full_quality() const {
   // A selection filter's cut is the picture asked for: nothing is left to refine once drawn.
   if (state.lod_on && state.lod_filter.kind != tsp::LodFilter::error) return true;
-  return !state.lod_on || (refining && lod_stats.max_error == 0 && lod_stats.render_scale == 1);
+  if (!state.lod_on) return true;
+  // Refined in bands (player_refine.cpp): full once the last band is drawn.
+  if (refine_on_) return stage_ == "full";
+  // (With the mesh's surface the cut itself refines.)
+  return refining && lod_stats.max_error == 0 && lod_stats.render_scale == 1;
 }
 
 void PlayerApp::measured_lod(double render_ms, double frame_ms) {

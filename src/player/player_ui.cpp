@@ -431,18 +431,9 @@ void stats_section(PlayerApp& app) {
                      *std::max_element(ms.begin(), ms.end()) * 1.1f,
                      ImVec2(ImGui::GetContentRegionAvail().x, kHudPlotHeight));
   const tspgl::FrameReport& r = app.last;
-  if (app.state.lod_on) {
-    std::string levels;
-    for (std::size_t k = 0; k < app.lod_stats.nodes_per_level.size(); ++k)
-      levels += (k ? " " : "") + std::to_string(app.lod_stats.nodes_per_level[k]);
-    if (app.lod_stats.splats > 0)
-      ImGui::TextWrapped("LOD holding the target with %d splats (minimum %.0f px)",
-                         app.lod_stats.splats, app.lod_stats.splat_px);
-    else
-      ImGui::TextWrapped("LOD %s: cut %d nodes [by level %s], scale %.2f",
-                         app.refining ? "refining to full" : "holding the target",
-                         app.lod_stats.cut_size, levels.c_str(), app.lod_stats.render_scale);
-  }
+  // What the last frame drew and its time (player_refine.cpp): never "holding the target"
+  // for a frame that missed it.
+  ImGui::TextWrapped("%s", app.lod_line().c_str());
   ImGui::Text("render %.1f ms: traversal %.1f, slicing %.1f,\n  upload %.1f, draw %.1f", r.ms,
               r.traversal_ms, r.slicing_ms, r.upload_ms, r.draw_ms);
   const double pixels = std::max(1.0, double(app.layout.view.w) * app.layout.view.h);

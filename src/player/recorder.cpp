@@ -22,8 +22,17 @@ void Recorder::pad_to(const tsp::Image& image, std::int64_t total) {
 }
 
 void Recorder::frame(const tsp::Image& image, double now_s) {
+  const std::int64_t before = movie_.frames();
   pad_to(image, frames_due(start_s_, now_s, fps_));
+  shown_ += movie_.frames() - before;
   last_ = image;
+}
+
+void Recorder::hold(double now_s) {
+  if (!last_) return;
+  const std::int64_t before = movie_.frames();
+  pad_to(*last_, frames_due(start_s_, now_s, fps_));
+  held_ += movie_.frames() - before;
 }
 
 std::string Recorder::finish(double now_s) {

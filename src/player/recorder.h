@@ -28,6 +28,14 @@ class Recorder {
   /// ahead; at most kMaxRepeatSeconds of copies after a stall). Throws tsp::UsageError when
   /// the frame's size differs, tsp::IoError when ffmpeg failed.
   void frame(const tsp::Image& image, double now_s);
+  /// Holds the last frame written (a shown frame not fit for the movie) up to now_s: the
+  /// movie keeps the wall-clock time; nothing before the first frame. Throws like frame().
+  void hold(double now_s);
+  /// Movie frames written from the frame shown (frame()), and movie frames repeating an earlier
+  /// one because the frame shown was not fit for the movie (hold()).
+  std::int64_t frames_shown() const { return shown_; }
+  /// See frames_shown().
+  std::int64_t frames_held() const { return held_; }
   /// Pads the last frame up to now_s and ends the movie (waits for ffmpeg); returns the line
   /// that says what was written. Throws tsp::IoError when ffmpeg failed (no file is left).
   std::string finish(double now_s);
@@ -44,6 +52,7 @@ class Recorder {
   int fps_;
   double start_s_;
   std::optional<tsp::Image> last_;
+  std::int64_t shown_ = 0, held_ = 0;
   // Appends image until the movie holds `total` frames (at most kMaxRepeatSeconds of copies).
   void pad_to(const tsp::Image& image, std::int64_t total);
 };

@@ -227,6 +227,10 @@ ScriptAction parse_words(const LineParser& p) {
     a.text = p.words[1];
     if (a.kind == Kind::record && !p.words[1].ends_with(".mp4") && !p.words[1].ends_with(".gif"))
       p.fail("'" + p.words[1] + "': expected a .mp4 or .gif file name, or stop");
+  } else if (cmd == "capture") {
+    p.expect_args(1, "capture DIR|off");
+    a.kind = Kind::capture;
+    a.text = p.words[1];
   } else {
     std::string settings;
     for (const tspgl::SettingSpec& spec : tspgl::settings_table())
@@ -237,7 +241,7 @@ ScriptAction parse_words(const LineParser& p) {
            settings +
            "quality, stats, lod, target-fps, lod-filter, show-cut, panels, every-step, log-opacity, open, "
            "field, probe, probe-op, probe-surface, probe-clear, probe-move, record, "
-           "reset-camera, playback, save-session, scale or quit");
+           "reset-camera, playback, capture, save-session, scale or quit");
   }
   return a;
 }

@@ -57,6 +57,8 @@ struct ScriptAction {
     record_stop,    ///< stop recording and write the movie (waits for the encoder)
     reset_camera,   ///< the camera back to where it started (key R)
     playback,       ///< while playing with a quality target, keep quality (`flag`) or the rate
+    capture,        ///< save every frame as drawn to folder `text` (frame_NNNN.png and a line in
+                    ///< frames.jsonl each), not waiting for full quality; "off" stops
     quit,           ///< close the player
     save_session,   ///< save the session (TF, view, probes, ...) to `text` (docs/player.md#sessions)
     scale           ///< stretch the axes by `value`, `value2`, `value3` (as --scale)

@@ -101,7 +101,7 @@ DrawnFrame FrameDriver::draw(const FrameRequest& r) {
       break;
     }
   }
-  out.report = renderer_->render(r.step, *r.camera, out.settings, *r.metric, stops);
+  out.report = renderer_->render(r.step, *r.camera, out.settings, *r.metric, stops, r.part);
   if (controller_) controller_->measured(out.report.ms - out.report.upload_ms);
   return out;
 }

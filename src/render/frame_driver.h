@@ -43,6 +43,8 @@ struct FrameRequest {
   RenderSettings settings;                 ///< what it is drawn with
   tsp::FrameMetric* metric = nullptr;      ///< TSP renderer: the node errors (must be set)
   const tsp::TransferFunction* tf = nullptr;  ///< adaptive LOD: the TF the errors weigh
+  /// TSP renderer: draw only these rectangles of the picture (progressive refinement).
+  const PartialFrame* part = nullptr;
 };
 
 /// What a frame drew: the renderer's report and, with an LOD cut, what the cut did.

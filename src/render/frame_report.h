@@ -49,6 +49,9 @@ struct FrameReport {
   std::int64_t samples = 0;
   bool dense = false;  ///< ray cast as one whole-volume texture (DenseVolume), not the brick grid
   std::int64_t deferred_textures = 0;  ///< textures left for later frames (upload_budget)
+  /// A partial frame (PartialFrame) drawn with other inputs than the earlier parts of its
+  /// picture: those parts must be drawn again.
+  bool partial_stale = false;
   /// True when every texture the frame needs was drawn (nothing deferred).
   bool complete() const { return deferred_textures == 0; }
 };

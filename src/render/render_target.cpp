@@ -12,10 +12,17 @@ RenderTarget::~RenderTarget() {
   if (colour_) gl_.DeleteRenderbuffers(1, &colour_);
 }
 
-void RenderTarget::bind(int width, int height, double scale) {
+void RenderTarget::bind(int width, int height, double scale, bool keep) {
   const int w = std::max(1, int(std::lround(width * scale)));
   const int h = std::max(1, int(std::lround(height * scale)));
   if (!fbo_ || width_ != w || height_ != h) {
+    // Keeping the picture: the old buffers are read into the new ones, then deleted.
+    GLuint old_fbo = 0, old_colour = 0;
+    if (keep && fbo_) {
+      old_fbo = fbo_;
+      old_colour = colour_;
+      fbo_ = colour_ = 0;
+    }
     if (!fbo_) gl_.GenFramebuffers(1, &fbo_);
     if (!colour_) gl_.GenRenderbuffers(1, &colour_);
     gl_.BindRenderbuffer(GL_RENDERBUFFER, colour_);
@@ -25,6 +32,13 @@ void RenderTarget::bind(int width, int height, double scale) {
     gl_.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour_);
     if (gl_.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
       throw tsp::GlError("the 16-bit render target (RGBA16 framebuffer) is not supported");
+    if (old_fbo) {
+      gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, old_fbo);
+      gl_.BindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo_);
+      gl_.BlitFramebuffer(0, 0, width_, height_, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_LINEAR);
+      gl_.DeleteFramebuffers(1, &old_fbo);
+      gl_.DeleteRenderbuffers(1, &old_colour);
+    }
     width_ = w;
     height_ = h;
   }

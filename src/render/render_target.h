@@ -20,9 +20,10 @@ class RenderTarget {
   RenderTarget& operator=(const RenderTarget&) = delete;
 
   /// (Re)allocates it at width × height times scale (in (0, 1]; at least 1 pixel) when needed,
-  /// binds it and sets the viewport. Throws tsp::GlError when RGBA16 framebuffers are not
-  /// supported.
-  void bind(int width, int height, double scale = 1);
+  /// binds it and sets the viewport. With keep, a reallocation copies the old picture into the
+  /// new size (magnified with linear filtering, as resolve() showed it). Throws tsp::GlError
+  /// when RGBA16 framebuffers are not supported.
+  void bind(int width, int height, double scale = 1, bool keep = false);
   /// Copies it into the rectangle of the context's canvas whose lower-left corner is (x, y) and
   /// whose size is w × h (magnified with linear filtering when it differs) and binds the canvas.
   void resolve(int x, int y, int w, int h);

@@ -201,7 +201,7 @@ void SliceCompositor::begin_frame(const tsp::Camera& camera, const RenderSetting
   const tsp::CameraParams& params = camera.params();
   output_ = {settings.viewport_origin[0], settings.viewport_origin[1], params.width,
              params.height};
-  target_.bind(params.width, params.height, settings.render_scale);
+  target_.bind(params.width, params.height, settings.render_scale, keep);
   gl_.Disable(GL_SCISSOR_TEST);
   if (!keep) clear(gl_, settings);
   const FrameView view = frame_view(camera);
@@ -247,7 +247,7 @@ void SliceCompositor::draw_surface_under(const tsp::Camera& camera, const Render
     gl_.BindFramebuffer(GL_DRAW_FRAMEBUFFER, target_.framebuffer());
     gl_.BlitFramebuffer(0, 0, target_.width(), target_.height(), 0, 0, target_.width(),
                         target_.height(), GL_COLOR_BUFFER_BIT, GL_NEAREST);
-    target_.bind(view.width, view.height, settings.render_scale);
+    target_.bind(view.width, view.height, settings.render_scale, keep);
     gl_.ActiveTexture(GL_TEXTURE0 + kSurfaceDepthUnit);
     gl_.BindTexture(GL_TEXTURE_2D, surface_splats_->depth_texture());
     surface_drawn_ = true;

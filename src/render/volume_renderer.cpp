@@ -322,8 +322,10 @@ void VolumeRenderer::fill_pages(const tsp::FramePlan& plan, tsp::FrameMetric& me
 
 VolumeRenderer::Frame VolumeRenderer::plan(int step, const tsp::Camera& camera,
                                            const RenderSettings& requested,
-                                           tsp::FrameMetric& metric, tsp::LodStops stops) {
+                                           tsp::FrameMetric& metric, tsp::LodStops stops,
+                                           const PartialFrame* part) {
   Frame f;
+  f.part = part;
   // Probes clip per sample in the one-pass ray caster: frames with probes are ray cast.
   f.settings = requested;
   if (!clip_sides_.empty()) f.settings.compositing = Compositing::rays;
@@ -380,6 +382,12 @@ void VolumeRenderer::decide_reuse(Frame& f, const tsp::Camera& camera, tsp::Fram
   f.reuse = f.settings.reuse_image && !(f.settings.surface && compositor_->has_surface()) &&
             f.settings.render_scale == 1 && previous_ &&
             previous_->key == f.key;
+  if (f.part) {  // a partial frame: its rectangles, over the picture kept
+    f.reuse = true;
+    f.rects = f.part->rects;
+    previous_.reset();
+    return;
+  }
   if (f.reuse) {
     BrickIdentities before = previous_->ids;
     if (f.settings.shade) {
@@ -481,7 +489,22 @@ void VolumeRenderer::draw(Frame& f, const tsp::Camera& camera, FrameReport& r) {
     for (const DrawItem& it : items_) r.boxes += it.as_box;
   for (const tsp::TextureKey& k : f.plan.release_after) textures_.erase(k);
   r.fragments = compositor_->end_frame();
-  previous_ = Previous{f.key, std::move(f.ids)};
+  if (!f.part) {
+    previous_ = Previous{f.key, std::move(f.ids)};
+    partial_.reset();
+    return;
+  }
+  // A partial frame: the picture is whole (and reusable) once its parts since the first were
+  // all drawn with the same inputs.
+  if (f.part->first || !partial_) {
+    partial_same_ = f.part->first;
+    partial_ = Previous{f.key, f.ids};
+  } else if (!(partial_->key == f.key && partial_->ids == f.ids)) {
+    partial_same_ = false;
+    partial_ = Previous{f.key, f.ids};
+  }
+  r.partial_stale = !partial_same_;
+  if (f.part->completes && partial_same_) previous_ = partial_;
 }
 
 void VolumeRenderer::report(const tsp::FramePlan& plan, FrameReport& r) const {
@@ -509,12 +532,14 @@ void VolumeRenderer::report(const tsp::FramePlan& plan, FrameReport& r) const {
 
 FrameReport VolumeRenderer::render(int step, const tsp::Camera& camera,
                                    const RenderSettings& requested, tsp::FrameMetric& metric,
-                                   tsp::LodStops stops) {
+                                   tsp::LodStops stops, const PartialFrame* part) {
   const tsp::Stopwatch frame;
   FrameReport r;
   r.step = step;
   tsp::Stopwatch phase;
-  Frame f = plan(step, camera, requested, metric, stops);
+  RenderSettings asked = requested;
+  if (part) asked.render_scale = 1;  // the parts are drawn at full size
+  Frame f = plan(step, camera, asked, metric, stops, part);
   r.traversal_ms = phase.lap_ms();
   compositor_->begin_frame(camera, f.settings, f.reuse);
   if (compositor_->cpu_frame()) {  // the CPU caster reads the textures' texels in RAM

@@ -26,6 +26,15 @@
 
 namespace tspgl {
 
+/// Part of a picture drawn by one frame (the player's progressive refinement, docs/player.md
+/// "No popping"): only rects are drawn; the rest of the picture keeps the last frame's pixels
+/// (magnified to full size when the last frame was drawn smaller).
+struct PartialFrame {
+  std::vector<PixelRect> rects;  ///< render-target pixels, origin bottom left
+  bool first = false;            ///< the first part of a picture
+  bool completes = false;        ///< the part that completes it (partial-image reuse resumes)
+};
+
 /// Renders steps of one brick store (a .tsp file or an in-memory store) into the current
 /// framebuffer of a GL context. Use from the context's thread; brick_cache() alone may be used
 /// from a prefetch thread as well.
@@ -65,8 +74,12 @@ class VolumeRenderer {
   /// transparency (a live metric evaluates only what step's traversal can visit, spec §4).
   /// With stops (an LOD cut, tsp/lod), the descent ends at the marked nodes, which draw their
   /// level bricks. Throws tsp::Error on brick read failures, tsp::GlError on GL failures.
+  /// With part, only part's rectangles are drawn (at full size, whatever settings'
+  /// render_scale was before); the report's partial_stale says when earlier parts of the picture
+  /// were drawn differently.
   FrameReport render(int step, const tsp::Camera& camera, const RenderSettings& settings,
-                     tsp::FrameMetric& metric, tsp::LodStops stops = {});
+                     tsp::FrameMetric& metric, tsp::LodStops stops = {},
+                     const PartialFrame* part = nullptr);
   /// The textures step's frame would upload under metric: those of textured nodes not
   /// resident, in the traversal's order (repeats possible).
   std::vector<tsp::TextureKey> textures_to_upload(int step, const tsp::Camera& camera,
@@ -130,6 +143,10 @@ class VolumeRenderer {
     BrickIdentities ids;
   };
   std::optional<Previous> previous_;
+  // The picture partial frames are building: what its parts were drawn with, and whether
+  // every part since the first was drawn with the same.
+  std::optional<Previous> partial_;
+  bool partial_same_ = false;
   std::uint64_t tf_serial_ = 0;  // set_transfer_function calls
   std::vector<std::uint64_t> histogram_;  // the store's value histogram (the level TF's prior)
   tsp::ClipRegion clip_;
@@ -156,12 +173,13 @@ class VolumeRenderer {
     ReuseKey key;                  // what it is drawn with (partial-image reuse)
     BrickIdentities ids;           // what each brick shows
     bool reuse = false;            // only rects are drawn again
+    const PartialFrame* part = nullptr;  // a partial frame: its rects only
     std::vector<PixelRect> rects;  // the screen rectangles that changed
   };
   // Traversal and frame plan (the cache decides), the leaves' shading under level bricks and
   // the reuse decision.
   Frame plan(int step, const tsp::Camera& camera, const RenderSettings& requested,
-             tsp::FrameMetric& metric, tsp::LodStops stops);
+             tsp::FrameMetric& metric, tsp::LodStops stops, const PartialFrame* part = nullptr);
   // Ray casting level bricks: every leaf page's full-resolution shading under full, the
   // traversal without the LOD cut (leaf_shading_, level_pages_); clears level_pages_ otherwise.
   void shade_leaves(const tsp::TraversalQuery& full, const Frame& f, tsp::FrameMetric& metric);

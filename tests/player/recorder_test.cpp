@@ -49,4 +49,23 @@ TEST(Recorder, TheMovieLastsAsLongAsTheRecording) {
   EXPECT_THROW(other.frame(solid(4, 4, 1), 0.0), tsp::UsageError);
 }
 
+// A frame not fit for the movie (beyond the quality target) is not written: the last one that
+// was is held for the wall-clock time instead; nothing is held before the first.
+TEST(Recorder, HoldRepeatsTheLastFrameWritten) {
+  TSPTEST_REQUIRE(std::system("command -v ffmpeg > /dev/null") == 0, "no ffmpeg");
+  constexpr int kFps = 25;
+  Recorder r(tsptest::temp_dir() / "h.gif", 8, 6, kFps, 0.0);
+  r.hold(0.0);
+  EXPECT_EQ(r.frames_held(), 0);
+  EXPECT_EQ(r.seconds(), 0.0);
+  r.frame(solid(8, 6, 10), 0.0);
+  EXPECT_EQ(r.frames_shown(), 1);
+  r.hold(1.0);  // a second of frames beyond the target: the first frame held
+  EXPECT_EQ(r.frames_held(), frames_due(0, 1.0, kFps) - 1);
+  EXPECT_EQ(r.frames_shown(), 1);
+  r.frame(solid(8, 6, 20), 1.5);
+  EXPECT_EQ(r.frames_shown() + r.frames_held(), frames_due(0, 1.5, kFps));
+  r.finish(1.5);
+}
+
 }  // namespace
