@@ -278,6 +278,9 @@ void PlayerApp::apply(const ScriptAction& a) {
     case Kind::quit:
       quit_ = true;
       break;
+    case Kind::expand:
+      expand_sections = a.flag ? 1 : -1;
+      break;
   }
 }
 

@@ -57,7 +57,8 @@ struct ScriptAction {
     record_stop,    ///< stop recording and write the movie (waits for the encoder)
     reset_camera,   ///< the camera back to where it started (key R)
     playback,       ///< while playing with a quality target, keep quality (`flag`) or the rate
-    quit            ///< close the player
+    quit,           ///< close the player
+    expand          ///< every section of the panels open (`flag`), or as they start
   };
   Kind kind = Kind::quit;
   int number = 0;
