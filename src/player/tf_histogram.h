@@ -21,8 +21,8 @@ inline constexpr int kHistogramBricks = 64;
 
 /// Counts of `counts.size()` equal bins over `over`.
 struct EditorHistogram {
-  tsp::ValueRange over;
-  std::vector<double> counts;
+  tsp::ValueRange over;        ///< the bins' span (the TF's domain)
+  std::vector<double> counts;  ///< one count per bin (stored counts split by overlap: fractional)
   int step = -1;  ///< the step counted (−1: the file's stored histogram of every step)
 };
 
