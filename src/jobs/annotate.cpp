@@ -1,4 +1,5 @@
 #include "jobs/annotate.h"
+#include "tsp/report/ticks.h"
 
 #include <algorithm>
 #include <array>
@@ -89,12 +90,6 @@ bool project(const tsp::Camera& cam, int w, int h, double x, double y, double z,
   return std::isfinite(px) && std::isfinite(py);
 }
 
-std::string number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", v);
-  return buf;
-}
-
 }  // namespace
 
 void draw_text(tsp::Image& img, int x, int y, const std::string& text, const unsigned char rgb[3],
@@ -158,11 +153,14 @@ void annotate_frame(tsp::Image& img, const tsp::Camera& camera, tsp::Dims d,
     for (int x = 0; x < kLegendWidth; ++x) put(img, lx + x, ly + r, rgb);
   }
   if (!field.empty()) draw_text(img, lx, ly - kFieldTitleGap, field, kText);
-  for (int k = 0; k < kTicks; ++k) {
-    const int y = ly + (lh - 1) * k / (kTicks - 1);
+  // Round values (0.2 0.4 …, tsp/report/ticks.h) at their places along the bar.
+  const std::vector<double> ticks = tsp::nice_ticks(dom.lo, dom.hi, kTicks + 1);
+  const double tick_step = ticks.size() > 1 ? ticks[1] - ticks[0] : 1.0;
+  for (double v : ticks) {
+    const double u = dom.hi > dom.lo ? (dom.hi - v) / (dom.hi - dom.lo) : 0.0;
+    const int y = ly + int(std::lround((lh - 1) * u));
     line(img, lx + kLegendWidth, y, lx + kLegendWidth + 4, y, kText);
-    const double v = dom.hi - (dom.hi - dom.lo) * k / (kTicks - 1);
-    draw_text(img, lx + kLegendWidth + 7, y - 3, number(v), kText);
+    draw_text(img, lx + kLegendWidth + 7, y - 3, tsp::tick_text(v, tick_step), kText);
   }
   // Step and time, top left.
   std::string label = "step " + std::to_string(step);

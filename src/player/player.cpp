@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cfloat>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -28,51 +29,6 @@
 #include "tsp/report/image.h"
 
 namespace tspplayer {
-
-namespace {
-
-constexpr float kKnotEpsilon = 1e-4f;  // slope change that marks a TF knot
-constexpr int kMaxEditorPoints = 24;
-
-// The TF's knots: the first and last entries and every entry where the table's slope changes, so
-// that rebuilding from them reproduces a piecewise-linear TF (presets, our JSON). A TF with more
-// knots than kMaxEditorPoints gets kEditorPoints evenly spaced samples instead.
-std::vector<tsp::TfPoint> editor_points(const tsp::TransferFunction& tf) {
-  const int n = tf.size();
-  std::vector<tsp::TfPoint> pts;
-  auto slope_changes = [&tf](int j) {
-    const tsp::Rgba a = tf.entry(j - 1), b = tf.entry(j), c = tf.entry(j + 1);
-    const float d[4] = {(c.r - b.r) - (b.r - a.r), (c.g - b.g) - (b.g - a.g),
-                        (c.b - b.b) - (b.b - a.b), (c.a - b.a) - (b.a - a.a)};
-    for (float v : d)
-      if (std::fabs(v) > kKnotEpsilon) return true;
-    return false;
-  };
-  // A knot between two entry centres bends the table at both: each run of bending entries is
-  // one knot, placed mid-run (a 5-point file shows 5 handles, not 8).
-  for (int j = 0; j < n; ++j) {
-    if (j == 0 || j == n - 1) {
-      pts.push_back({tf.entry_value(j), tf.entry(j)});
-      continue;
-    }
-    if (!slope_changes(j)) continue;
-    int last = j;
-    while (last + 1 < n - 1 && slope_changes(last + 1)) ++last;
-    const double x = 0.5 * (tf.entry_value(j) + tf.entry_value(last));
-    pts.push_back({x, tf.lookup(x)});
-    j = last;
-  }
-  if (int(pts.size()) <= kMaxEditorPoints) return pts;
-  pts.clear();
-  const tsp::ValueRange d = tf.domain();
-  for (int i = 0; i < kEditorPoints; ++i) {
-    const double x = d.lo + (d.hi - d.lo) * i / (kEditorPoints - 1);
-    pts.push_back({x, tf.lookup(x)});
-  }
-  return pts;
-}
-
-}  // namespace
 
 tspgl::RenderSettings default_player_settings() {
   tspgl::RenderSettings s;
@@ -189,9 +145,12 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
   glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int mods) {
     auto* app = static_cast<PlayerApp*>(glfwGetWindowUserPointer(w));
     ++app->events_;
-    if (action != GLFW_PRESS && action != GLFW_REPEAT) return;
-    if (app->shortcut(key, mods)) return;  // Ctrl+A, Ctrl+O
-    app->key_queue_.push_back(key);
+    // Ctrl+A, Ctrl+O and Ctrl+Q are shortcuts, not the player's keys; Dear ImGui sees every
+    // key through the input queue (a Ctrl+A shorter than a frame still selects).
+    if ((action == GLFW_PRESS || action == GLFW_REPEAT) && !app->shortcut(key, mods))
+      app->key_queue_.push_back(key);
+    if (action != GLFW_REPEAT)  // (a held key repeats in Dear ImGui by itself)
+      app->input_queue_.push({InputEvent::Kind::key, 0, 0, key, action == GLFW_PRESS});
   });
   // The cursor as motion events report it, in order (glfwGetCursorPos asks X for the pointer
   // now, after every queued event): so a press knows where it happened.
@@ -199,21 +158,33 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
     auto* app = static_cast<PlayerApp*>(glfwGetWindowUserPointer(w));
     ++app->events_;
     app->cursor_ = {float(x), float(y)};
+    app->input_queue_.push({InputEvent::Kind::cursor, float(x), float(y)});
   });
   glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int button, int action, int) {
     auto* app = static_cast<PlayerApp*>(glfwGetWindowUserPointer(w));
     ++app->events_;
+    app->input_queue_.push({InputEvent::Kind::button, 0, 0, button, action == GLFW_PRESS});
     if (button != GLFW_MOUSE_BUTTON_LEFT || action != GLFW_PRESS) return;
     app->left_press_ = app->cursor_;
   });
-  glfwSetScrollCallback(window, [](GLFWwindow* w, double, double) {
-    ++static_cast<PlayerApp*>(glfwGetWindowUserPointer(w))->events_;
+  glfwSetScrollCallback(window, [](GLFWwindow* w, double dx, double dy) {
+    auto* app = static_cast<PlayerApp*>(glfwGetWindowUserPointer(w));
+    ++app->events_;
+    app->input_queue_.push({InputEvent::Kind::scroll, float(dx), float(dy)});
   });
-  glfwSetCharCallback(window, [](GLFWwindow* w, unsigned) {
-    ++static_cast<PlayerApp*>(glfwGetWindowUserPointer(w))->events_;
+  glfwSetCharCallback(window, [](GLFWwindow* w, unsigned c) {
+    auto* app = static_cast<PlayerApp*>(glfwGetWindowUserPointer(w));
+    ++app->events_;
+    app->input_queue_.push({InputEvent::Kind::text, 0, 0, int(c)});
   });
-  glfwSetWindowFocusCallback(window, [](GLFWwindow* w, int) {
+  glfwSetCursorEnterCallback(window, [](GLFWwindow* w, int entered) {
+    auto* app = static_cast<PlayerApp*>(glfwGetWindowUserPointer(w));
+    ++app->events_;
+    if (!entered) app->input_queue_.push({InputEvent::Kind::cursor, -FLT_MAX, -FLT_MAX});
+  });
+  glfwSetWindowFocusCallback(window, [](GLFWwindow* w, int focused) {
     ++static_cast<PlayerApp*>(glfwGetWindowUserPointer(w))->events_;
+    ImGui::GetIO().AddFocusEvent(focused != 0);
   });
   glfwSetFramebufferSizeCallback(window, [](GLFWwindow* w, int, int) {
     ++static_cast<PlayerApp*>(glfwGetWindowUserPointer(w))->events_;
@@ -222,13 +193,16 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
     ++static_cast<PlayerApp*>(glfwGetWindowUserPointer(w))->events_;
   });
   glfwSwapInterval(1);  // vsync where the display has it (a virtual one has none)
-  ImGui_ImplGlfw_InitForOpenGL(window, true);
+  // Dear ImGui's back end installs no callbacks: ours queue every event (input_queue_), and
+  // each frame hands ImGui what it can tell apart (frame()), so nothing is lost in a slow frame.
+  ImGui_ImplGlfw_InitForOpenGL(window, false);
   if (const char* missing = tsp_imgui_gl_load(ctx->proc_address_function()))
     throw tsp::GlError(std::string("the GL entry point ") + missing +
                        " needed by the UI is missing");
   ImGui_ImplOpenGL3_Init("#version 330 core");
   imgui_ = true;
   update_tol_max();
+  tol_readout_due = state.settings.tol.spatial > 0 || state.settings.tol.temporal > 0;
   start_s_ = last_frame_s_ = clock_.seconds();
   initial_camera = state.camera;
   restore_session(true);  // the input's last session, or --session FILE (throws)
@@ -316,7 +290,10 @@ void PlayerApp::set_tf(const tsp::TransferFunction& next, bool resample_points) 
       lazy_->set_transfer_function(tf);
     }
   }
-  if (resample_points) tf_points = editor_points(tf);
+  if (resample_points) {  // the editor's handles over the TF as it now is
+    tf_handles = place_handles(tf);
+    tf_points = tf_handles.placed;
+  }
   if (renderer) renderer->set_transfer_function(tf);
 }
 
@@ -328,10 +305,8 @@ std::string tf_label_of(const std::string& tf_arg) {
 
 void PlayerApp::apply_tf_points() {
   tf_label = "edited";
-  std::vector<tsp::TfPoint> sorted = tf_points;
-  std::stable_sort(sorted.begin(), sorted.end(),
-                   [](const tsp::TfPoint& a, const tsp::TfPoint& b) { return a.x < b.x; });
-  set_tf(tsp::TransferFunction::from_points(tf.domain(), sorted, tf.size()), false);
+  // The TF warped in place by the handles' moves (the detailed curve keeps its shape).
+  set_tf(warp_handles(tf_handles, tf_points), false);
 }
 
 // During playback: the bricks the frames of the next kPrefetchSeconds would upload, in playing
@@ -481,6 +456,23 @@ void PlayerApp::save_pending_shot() {
   pending_shot_.clear();
 }
 
+// The back end polled the pointer (the position now, after every queued event); the queue's
+// state replaces it with where the events it took left it, and its buttons, keys and text.
+void PlayerApp::feed_imgui(const InputFrame& in) {
+  ImGuiIO& io = ImGui::GetIO();
+  io.MousePos = ImVec2(in.x, in.y);
+  for (int b = 0; b < InputFrame::kButtons; ++b) io.MouseDown[b] = in.buttons[std::size_t(b)];
+  for (int k = 0; k < InputFrame::kKeys; ++k) io.KeysDown[k] = in.keys[std::size_t(k)];
+  auto held = [&in](int a, int b) { return in.keys[std::size_t(a)] || in.keys[std::size_t(b)]; };
+  io.KeyCtrl = held(GLFW_KEY_LEFT_CONTROL, GLFW_KEY_RIGHT_CONTROL);
+  io.KeyShift = held(GLFW_KEY_LEFT_SHIFT, GLFW_KEY_RIGHT_SHIFT);
+  io.KeyAlt = held(GLFW_KEY_LEFT_ALT, GLFW_KEY_RIGHT_ALT);
+  io.KeySuper = held(GLFW_KEY_LEFT_SUPER, GLFW_KEY_RIGHT_SUPER);
+  io.MouseWheelH += in.wheel_x;
+  io.MouseWheel += in.wheel_y;
+  for (unsigned c : in.text) io.AddInputCharacter(c);
+}
+
 void PlayerApp::frame() {
   ctx->poll_events();
   // An input event: Dear ImGui needs a few frames to settle (hover, popups, animations).
@@ -498,7 +490,7 @@ void PlayerApp::frame() {
 
   ImGui_ImplOpenGL3_NewFrame();
   ImGui_ImplGlfw_NewFrame();
-  const bool replayed = replay_select_all();  // a Ctrl+A shorter than the frame
+  feed_imgui(input_queue_.take());
   ImGui::NewFrame();
   // The volume's rectangle: beside the docked panels, or the whole window (again below, after
   // keys and script actions that may show or hide the panels).
@@ -530,6 +522,7 @@ void PlayerApp::frame() {
   while (!shown_at_s_.empty() && shown_at_s_.front() < now - kShownWindowSeconds)
     shown_at_s_.pop_front();
   advance_tuning();
+  if (tol_readout_due && imgui_) measure_tolerance();
   if (frame_delay_ms_ > 0)
     std::this_thread::sleep_for(std::chrono::duration<double, std::milli>(frame_delay_ms_));
 
@@ -565,7 +558,6 @@ void PlayerApp::frame() {
   apply_pending_ui();  // a restored session's open sections
   draw_ui();
   ImGui::Render();
-  if (replayed) end_select_all_replay();
   ctx->gl().BindFramebuffer(GL_FRAMEBUFFER, 0);
   ctx->gl().Viewport(0, 0, ctx->width(), ctx->height());
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
@@ -586,7 +578,7 @@ bool PlayerApp::busy() const {
   // Playing draws a frame when a step is due, not in between: a frame faster than the step
   // period would draw the same step again, and a coarse playing rung is not refined meanwhile.
   const bool step_due = state.playing && until_next_step() <= 0;
-  return quit_ || step_due || settle_frames_ > 0 || script_running || !pending_shot_.empty() ||
+  return quit_ || step_due || settle_frames_ > 0 || input_queue_.pending() || script_running || !pending_shot_.empty() ||
          save_requested_ || tuner_ || open_job_ || recorder_ || !last.complete() ||
          (!state.playing && state.lod_on && !full_quality()) || switch_started_s_ >= 0;
 }

@@ -19,6 +19,7 @@
 #include <nlohmann/json.hpp>
 #include "jobs/movie.h"
 #include "player/field_shelf.h"
+#include "player/input_queue.h"
 #include "player/layout.h"
 #include "player/open_job.h"
 #include "player/recorder.h"
@@ -26,6 +27,7 @@
 #include "player/player_state.h"
 #include "player/script.h"
 #include "player/session.h"
+#include "player/tf_handles.h"
 #include "render/frame_driver.h"
 #include "render/mesh_surface.h"
 #include "render/tile_refinement.h"
@@ -45,8 +47,6 @@ namespace tspplayer {
 
 /// Seconds of frame times kept for the HUD plot.
 inline constexpr double kFrameHistorySeconds = 5.0;
-/// Control points the TF editor samples from a TF without few clear knots.
-inline constexpr int kEditorPoints = 9;
 /// Playback prefetches the bricks of the steps it will show in the next kPrefetchSeconds (at
 /// least kMinPrefetchSteps, at most kMaxPrefetchSteps): more steps ahead at a higher speed.
 inline constexpr double kPrefetchSeconds = 0.25;
@@ -129,6 +129,7 @@ class PlayerApp {
       prefetcher;  ///< reads into renderer's brick cache; made after it
   tsp::TransferFunction tf;
   std::vector<tsp::TfPoint> tf_points;  ///< the editor's control points
+  TfHandles tf_handles;  ///< where tf_points were placed and the TF then (edits warp it)
   /// The map in use as the preset combo names it: a preset's name, a TF file's name, or
   /// "edited" once its points were edited.
   std::string tf_label = "auto";
@@ -141,6 +142,22 @@ class PlayerApp {
   std::vector<float> ready;
   std::string status;  ///< last message shown in the UI (saved files, errors)
   bool show_help = false;               ///< the controls overlay (F1 or ?)
+  /// 1: open every section of the panels at the next frame; -1: back to how they start; 0: as
+  /// the user left them (script `expand on|off`).
+  int expand_sections = 0;
+  /// What the tolerances buy, measured when they change: the shown step and view drawn
+  /// off-screen at them and at 0 (at most 320 × 200).
+  struct ToleranceReadout {
+    tsp::Tolerances at{-1, -1};  ///< the tolerances measured (spatial −1: none yet)
+    double ms = 0, exact_ms = 0;  ///< a frame at them, and at 0
+    double mean_de = 0;           ///< mean ΔE of the picture at them against the one at 0
+  } tol_readout;
+  bool tol_readout_due = false;  ///< set_tolerances asks for a new readout
+  /// The TF editor's histogram as last drawn: the step it counted (−1: the file's stored
+  /// histogram) and its non-empty bins (`stats`: tf_histogram).
+  int editor_histogram_step = -1, editor_histogram_bins = 0;
+  /// Measures tol_readout (frame(), after the volume); errors go to status.
+  void measure_tolerance();
   tsp::CameraParams initial_camera;     ///< what R resets the camera to
   std::optional<std::array<double, 3>> focus;  ///< LOD centre of attention (double-click)
 
@@ -359,6 +376,9 @@ class PlayerApp {
   /// callback during glfwPollEvents on this thread): every tap counts however slow a frame is,
   /// which Dear ImGui 1.86's per-frame key state cannot promise.
   std::vector<int> key_queue_;
+  /// Every input event for Dear ImGui, handed to it a frame's worth at a time (input_queue.h).
+  InputQueue input_queue_;
+  void feed_imgui(const InputFrame& in);  // this frame's share of the queue, into ImGuiIO
   std::uint64_t events_ = 0;       ///< window events so far (every GLFW callback counts one)
   std::uint64_t events_seen_ = 0;  ///< events_ at the last frame
   int settle_frames_ = 0;          ///< frames still drawn after the last event
@@ -472,12 +492,6 @@ class PlayerApp {
   /// --trace, says when the sections open change ("trace: open sections {...}").
   void apply_pending_ui();
   std::string traced_sections_ = "{}";
-  // Shortcuts (player_input.cpp): GLFW's key callback sees every press, however short; Dear
-  // ImGui 1.86 reads the keys' state once a frame and misses a Ctrl+A pressed and released
-  // between two frames (xdotool, or any tap during a slow frame).
-  int select_all_presses_ = 0;   ///< Ctrl+A presses since the last frame
-  bool replay_select_all();      // before NewFrame: shows Dear ImGui a missed Ctrl+A as held
-  void end_select_all_replay();  // after Render: the keys as they are
 
   // ---- no popping (player_refine.cpp; docs/player.md "Level of detail") ----
  public:

@@ -14,6 +14,7 @@
 #include "jobs/annotate.h"
 #include "jobs/play_input.h"
 #include "player/player_app.h"
+#include "player/ui_items.h"
 #include "render/settings_table.h"
 #include "tsp/core/json_text.h"
 #include "tsp/core/memory_use.h"
@@ -365,6 +366,18 @@ void PlayerApp::write_stats(const std::string& path) const {
   j["tf_points"] = points;
   j["tf_domain"] = {tf.domain().lo, tf.domain().hi};
   j["tf"] = tf_label;  // the map in use, as the preset combo names it
+  // Issue 47 items 5 and 7: every entry's opacity (the editor warps the curve in place), the
+  // panels' labelled items of the last frame (the clipped-label check), what the tolerances buy.
+  nlohmann::json opacity = nlohmann::json::array();
+  for (const tsp::Rgba& e : tf.entries()) opacity.push_back(e.a);
+  j["tf_opacity"] = opacity;
+  j["ui_items"] = ui_items_json();
+  j["tf_histogram"] = {{"step", editor_histogram_step}, {"nonempty_bins", editor_histogram_bins}};
+  j["tolerance_readout"] = {{"spatial", tol_readout.at.spatial},
+                            {"temporal", tol_readout.at.temporal},
+                            {"ms", tol_readout.ms},
+                            {"exact_ms", tol_readout.exact_ms},
+                            {"mean_de", tol_readout.mean_de}};
   j["quality"] = quality_note;
   j["frames_drawn"] = frames_drawn_;
   j["playback"] = playback_json();

@@ -54,8 +54,8 @@ void PlayerApp::handle_input() {
 
 bool PlayerApp::shortcut(int key, int mods) {
   if (!(mods & GLFW_MOD_CONTROL)) return false;
-  if (key == GLFW_KEY_A) {
-    ++select_all_presses_;
+  if (key == GLFW_KEY_A) {  // (Dear ImGui selects, from the input queue)
+    trace("select all (Ctrl+A)");
     return true;
   }
   if (key == GLFW_KEY_O) {
@@ -67,25 +67,6 @@ bool PlayerApp::shortcut(int key, int mods) {
     return true;
   }
   return false;
-}
-
-bool PlayerApp::replay_select_all() {
-  ImGuiIO& io = ImGui::GetIO();
-  const bool missed = select_all_presses_ > 0 && !io.KeysDown[GLFW_KEY_A];
-  if (select_all_presses_ > 0) trace("select all (Ctrl+A)");
-  select_all_presses_ = 0;
-  if (!missed) return false;  // (still held: Dear ImGui sees it itself)
-  io.KeysDown[GLFW_KEY_A] = true;
-  io.KeyCtrl = true;
-  return true;
-}
-
-void PlayerApp::end_select_all_replay() {
-  // No key event arrives between NewFrame and here (GLFW reports them in poll_events): the real
-  // state is "A up", and Ctrl as its keys are.
-  ImGuiIO& io = ImGui::GetIO();
-  io.KeysDown[GLFW_KEY_A] = false;
-  io.KeyCtrl = io.KeysDown[GLFW_KEY_LEFT_CONTROL] || io.KeysDown[GLFW_KEY_RIGHT_CONTROL];
 }
 
 void PlayerApp::trace(const std::string& what) const {
@@ -334,6 +315,9 @@ void PlayerApp::apply(const ScriptAction& a) {
       break;
     case Kind::scale:
       set_scale({a.value, a.value2, a.value3});
+      break;
+    case Kind::expand:
+      expand_sections = a.flag ? 1 : -1;
       break;
   }
 }

@@ -3,6 +3,7 @@
 // nothing changed for kIdleDelaySeconds it refines every node, kIdleSplitsPerFrame a frame, at
 // full render size, so the picture returns to full quality within a few frames.
 #include "player/player_app.h"
+#include "tsp/report/ticks.h"
 
 #include <imgui.h>
 
@@ -183,13 +184,15 @@ void draw_legend(ImDrawList* dl, const WindowRect& v, const tsp::TransferFunctio
   }
   const ImU32 text = IM_COL32(235, 235, 235, 255);
   dl->AddRect(ImVec2(x0 - 1, y0 - 1), ImVec2(x0 + kLegendWidthPx + 1, y0 + h + 1), text);
-  for (int k = 0; k < kLegendTicks; ++k) {
-    const float y = y0 + (h - 1) * float(k) / float(kLegendTicks - 1);
-    const double value = dom.hi - (dom.hi - dom.lo) * k / (kLegendTicks - 1);
-    char tick[32];
-    std::snprintf(tick, sizeof tick, "%.4g", value);
+  // Round values (0.2 0.4 …, tsp/report/ticks.h) at their places along the bar, as the
+  // export's legend (jobs/annotate.cpp).
+  const std::vector<double> ticks = tsp::nice_ticks(dom.lo, dom.hi, kLegendTicks + 1);
+  const double step = ticks.size() > 1 ? ticks[1] - ticks[0] : 1.0;
+  for (double value : ticks) {
+    const double u = dom.hi > dom.lo ? (dom.hi - value) / (dom.hi - dom.lo) : 0.0;
+    const float y = y0 + (h - 1) * float(u);
     dl->AddLine(ImVec2(x0 + kLegendWidthPx, y), ImVec2(x0 + kLegendWidthPx + 4, y), text);
-    dl->AddText(ImVec2(x0 + kLegendWidthPx + 6, y - 7), text, tick);
+    dl->AddText(ImVec2(x0 + kLegendWidthPx + 6, y - 7), text, tsp::tick_text(value, step).c_str());
   }
   if (!field.empty()) dl->AddText(ImVec2(x0 - 4, y0 - 20), text, field.c_str());
 }

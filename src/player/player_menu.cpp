@@ -197,8 +197,8 @@ void open_dialog(PlayerApp& app) {
   ImGui::InputTextWithHint("build options", "--raw-dims 64,64,64 --raw-type f32 | --resolution 128 | --xyz grid.xyz",
                            s.build_options, sizeof s.build_options);
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("As on play's command line: a raw series' grid and type, a mesh's\n"
-                      "resolution or voxel size, a PLOT3D solution's grid (tspplay play --help)");
+    tooltip("As on play's command line: a raw series' grid and type, a mesh's resolution or "
+            "voxel size, a PLOT3D solution's grid (tspplay play --help)");
   if (ImGui::Button("Open") || open_now) {
     app.open_input(s.open_path, s.field, s.build_options);
     ImGui::CloseCurrentPopup();

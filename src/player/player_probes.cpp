@@ -11,6 +11,7 @@
 
 #include "player/player_app.h"
 #include "player/player_ui.h"
+#include "player/ui_items.h"
 #include "tsp/core/error.h"
 
 namespace tspplayer {
@@ -244,14 +245,17 @@ void probes_section(PlayerApp& app) {
     app.state.probe_op = tsp::ProbeOp(op);
     app.probes_changed();
   }
+  note_item("combine");
   ImGui::SameLine();
   if (ImGui::Checkbox("surface", &app.state.probe_surface)) app.probes_changed();
+  note_item("surface");
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("draw the probe's surface opaque, coloured by the data through the TF");
+    tooltip("draw the probe's surface opaque, coloured by the data through the TF");
   for (int k = 0; k < 3; ++k) {
     if (k) ImGui::SameLine();
-    if (ImGui::Button((std::string("+ ") + kKindNames[k]).c_str()))
-      app.add_probe(app.default_probe(tsp::Probe::Kind(k)));
+    const std::string add = std::string("+ ") + kKindNames[k];
+    if (ImGui::Button(add.c_str())) app.add_probe(app.default_probe(tsp::Probe::Kind(k)));
+    note_item(add.c_str(), true);
   }
   int remove = -1;
   for (std::size_t i = 0; i < app.state.probes.size(); ++i) {

@@ -19,15 +19,16 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Which tree nodes and collapsing headers of each top-level window are open: Dear ImGui keeps
-// them in the window's state storage by ID (the label's hash), 0 or 1. Windows with none toggled
-// hold nothing.
+// Which tree nodes and collapsing headers of each window are open: Dear ImGui keeps them in the
+// window's state storage by ID (the label's hash), 0 or 1. Child windows count (the side panel's
+// sections scroll in "##side/##sections_…", above its fixed status area); popups and tooltips
+// do not. Windows with none toggled hold nothing.
 nlohmann::json open_sections() {
   nlohmann::json out = nlohmann::json::object();
   const ImGuiContext* g = ImGui::GetCurrentContext();
   if (!g) return out;
   for (const ImGuiWindow* w : g->Windows) {
-    if (w->Flags & (ImGuiWindowFlags_ChildWindow | ImGuiWindowFlags_Popup | ImGuiWindowFlags_Tooltip))
+    if (w->Flags & (ImGuiWindowFlags_Popup | ImGuiWindowFlags_Tooltip))
       continue;
     nlohmann::json ids = nlohmann::json::array();
     for (const ImGuiStorage::ImGuiStoragePair& p : w->StateStorage.Data)

@@ -48,6 +48,7 @@ void PlayerApp::set_tolerances(tsp::Tolerances t) {
   state.settings.tol = {std::max(0.0, t.spatial), std::max(0.0, t.temporal)};
   renderer->drop_unreachable(frame_metric(), state.settings.tol, state.settings.skip_transparent,
                              state.settings.span_step);
+  tol_readout_due = true;  // what they buy, measured after the next frame's volume
 }
 
 void PlayerApp::set_setting(const std::string& name, const std::string& text) {

@@ -9,6 +9,8 @@
 
 #include "player/player_app.h"
 #include "player/player_ui.h"
+#include "player/tf_histogram.h"
+#include "player/ui_items.h"
 #include "tsp/core/error.h"
 #include "tsp/metric/tf_io.h"
 
@@ -18,14 +20,63 @@ namespace {
 
 constexpr float kHistogramHeight = 80.f;
 constexpr float kHandleRadius = 5.f;
+// Pixels per histogram bar, and most bars.
+constexpr float kBinPixels = 3.f;
+constexpr int kMaxBins = 128;
+
+// The colour range as text, LO:HI: typed and Enter stretches the map over it (the script's
+// `tf-range LO:HI`); it shows the domain in use whenever it is not being edited.
+void domain_row(PlayerApp& app, const tsp::ValueRange& d) {
+  static char text[96] = "";
+  static bool editing = false;
+  if (!editing) {  // (float noise at an end that is zero shows as 0, not -1.6e-26)
+    const double tiny = 1e-9 * std::max(std::fabs(d.lo), std::fabs(d.hi));
+    std::snprintf(text, sizeof text, "%.6g:%.6g", std::fabs(d.lo) < tiny ? 0.0 : d.lo,
+                  std::fabs(d.hi) < tiny ? 0.0 : d.hi);
+  }
+  const std::string label = fit_label("range LO:HI");
+  const bool entered = ImGui::InputText(label.c_str(), text, sizeof text,
+                                        ImGuiInputTextFlags_EnterReturnsTrue |
+                                            ImGuiInputTextFlags_AutoSelectAll);
+  note_item(label.c_str());
+  editing = ImGui::IsItemActive();
+  if (ImGui::IsItemHovered())
+    tooltip("The colour range the map is stretched over: type LO:HI and press Enter "
+            "(tf-range LO:HI)");
+  if (!entered) return;
+  editing = false;
+  ScriptAction a;
+  a.kind = ScriptAction::Kind::tf_range;
+  a.text = text;
+  app.command(a);  // a bad range: the status area says why
+}
+
+// The histogram under the curve, counted again only when the domain, the file or the bins
+// change (a step's count reads bricks; the step it counted stays until then).
+const EditorHistogram& histogram_for(PlayerApp& app, const tsp::ValueRange& d, float width) {
+  static EditorHistogram cached;
+  static const void* cached_file = nullptr;
+  const int bins = std::clamp(int(width / kBinPixels), 8, kMaxBins);
+  if (cached_file != app.file.get() || cached.over.lo != d.lo || cached.over.hi != d.hi ||
+      int(cached.counts.size()) != bins) {
+    try {
+      cached = editor_histogram(*app.file, app.state.step, d, bins);
+    } catch (const tsp::Error& e) {
+      cached = {d, std::vector<double>(std::size_t(bins), 0.0), -1};
+      app.status = std::string("histogram: ") + e.what();
+    }
+    cached_file = app.file.get();
+    app.editor_histogram_step = cached.step;
+    app.editor_histogram_bins = int(std::count_if(cached.counts.begin(), cached.counts.end(),
+                                                  [](double c) { return c > 0; }));
+  }
+  return cached;
+}
 
 }  // namespace
 
 void tf_section(PlayerApp& app) {
   // Histogram (log counts) with the opacity curve drawn over it.
-  const auto& hist = app.file->metadata().histogram;
-  std::vector<float> logh;
-  for (std::uint64_t c : hist) logh.push_back(std::log1p(float(c)));
   const ImVec2 origin = ImGui::GetCursorScreenPos();
   const float width = ImGui::GetContentRegionAvail().x;
   ImDrawList* dl = ImGui::GetWindowDrawList();
@@ -36,23 +87,24 @@ void tf_section(PlayerApp& app) {
     return origin.y + kHistogramHeight * float(1 - opacity_to_axis(a, log_axis));
   };
   // Bars drawn by hand, not ImGui::PlotHistogram: that is an item whose hover (its tooltip)
-  // would take the clicks meant for the handles below; and each bin sits at its values on the
-  // TF domain's scale (the histogram covers the quantization range), so bars and curve line up.
+  // would take the clicks meant for the handles below. The bins span the TF's domain, so bars
+  // and curve line up; enough of them to show the data (tf_histogram.h), log counts.
   {
-    const tsp::ValueRange q = app.file->tree().value_range();
+    const EditorHistogram& hist = histogram_for(app, d, width);
+    std::vector<float> logh;
     float top = 0;
-    for (float v : logh) top = std::max(top, v);
-    const double dspan = d.hi > d.lo ? d.hi - d.lo : 1.0;
-    const double bin = (q.hi - q.lo) / double(logh.size());
+    for (double c : hist.counts) {
+      logh.push_back(std::log1p(float(c)));
+      top = std::max(top, logh.back());
+    }
     dl->AddRectFilled(origin, ImVec2(origin.x + width, origin.y + kHistogramHeight),
                       ImGui::GetColorU32(ImGuiCol_FrameBg));
+    const float bw = width / float(std::max<std::size_t>(1, logh.size()));
     for (std::size_t i = 0; i < logh.size() && top > 0; ++i) {
-      const double v0 = q.lo + bin * double(i), v1 = v0 + bin;
-      const float x0 = std::max(origin.x, origin.x + width * float((v0 - d.lo) / dspan));
-      const float x1 = std::min(origin.x + width, origin.x + width * float((v1 - d.lo) / dspan));
-      if (x1 <= x0) continue;
+      if (logh[i] <= 0) continue;
+      const float x0 = origin.x + bw * float(i);
       dl->AddRectFilled(ImVec2(x0, origin.y + kHistogramHeight * (1 - logh[i] / top)),
-                        ImVec2(std::max(x1, x0 + 1), origin.y + kHistogramHeight),
+                        ImVec2(std::max(x0 + bw, x0 + 1), origin.y + kHistogramHeight),
                         ImGui::GetColorU32(ImGuiCol_PlotHistogram));
     }
     if (log_axis)  // decade lines of the log opacity axis (1e-3, 1e-2, 1e-1)
@@ -109,15 +161,16 @@ void tf_section(PlayerApp& app) {
 
   if (ImGui::IsItemActive() && dragging >= 0 && dragging < int(app.tf_points.size()) &&
       (ImGui::GetIO().MouseDelta.x != 0 || ImGui::GetIO().MouseDelta.y != 0)) {
-    app.tf_points[std::size_t(dragging)].x = mouse_x;
+    // Between its neighbours: the handles keep their order, the curve between them warps.
+    app.tf_points[std::size_t(dragging)].x = clamp_handle_x(app.tf_points, dragging, mouse_x);
     app.tf_points[std::size_t(dragging)].c.a = mouse_a;
     edited = true;
   }
   if (ImGui::IsItemDeactivated()) dragging = -1;
   if (ImGui::IsItemHovered() && ImGui::IsMouseDoubleClicked(0) && hovered < 0) {
-    tsp::Rgba c = app.tf.lookup(mouse_x);
+    tsp::Rgba c = sample_tf(app.tf, mouse_x);
     c.a = mouse_a;
-    app.tf_points.push_back({mouse_x, c});
+    add_handle(app.tf_handles, app.tf_points, app.tf, mouse_x, c);
     edited = true;
   }
   if (ImGui::IsItemHovered() && ImGui::IsMouseClicked(1) && hovered >= 0 &&
@@ -131,19 +184,25 @@ void tf_section(PlayerApp& app) {
     dl->AddCircle(h, kHandleRadius,
                   int(i) == hovered ? IM_COL32(255, 255, 0, 255) : IM_COL32_WHITE);
   }
-  ImGui::Text("domain %.4g .. %.4g", d.lo, d.hi);
-  ImGui::SameLine();
+  domain_row(app, d);
   ImGui::Checkbox("log opacity", &app.state.log_opacity);
-  ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
-  ImGui::TextWrapped("drag a point; double-click adds, right-click removes");
-  ImGui::PopStyleColor();
-  for (std::size_t i = 0; i < app.tf_points.size(); ++i) {
+  note_item("log opacity");
+  ImGui::SameLine();
+  ImGui::TextDisabled("(?)");
+  if (ImGui::IsItemHovered())
+    tooltip("Drag a point: the curve between its neighbours follows, keeping its detail. "
+            "Double-click empty space to add a point, right-click a point to remove it.");
+  if (app.expand_sections != 0) ImGui::SetNextItemOpen(app.expand_sections > 0, ImGuiCond_Always);
+  char points_title[48];
+  std::snprintf(points_title, sizeof points_title, "points (%zu)###points", app.tf_points.size());
+  const bool list = ImGui::TreeNode(points_title);
+  for (std::size_t i = 0; list && i < app.tf_points.size(); ++i) {
     tsp::TfPoint& p = app.tf_points[i];
     ImGui::PushID(int(i));
     float x = float(p.x);
     ImGui::SetNextItemWidth(100);
     if (ImGui::DragFloat("##x", &x, float(d.hi - d.lo) / 500.f, float(d.lo), float(d.hi), "%.4g")) {
-      p.x = std::clamp(double(x), d.lo, d.hi);
+      p.x = clamp_handle_x(app.tf_points, int(i), std::clamp(double(x), d.lo, d.hi));
       edited = true;
     }
     ImGui::SameLine();
@@ -165,20 +224,27 @@ void tf_section(PlayerApp& app) {
     if (app.tf_points.size() > 2 && ImGui::SmallButton("x")) remove = int(i);
     ImGui::PopID();
   }
-  if (remove >= 0) {
-    app.tf_points.erase(app.tf_points.begin() + remove);
-    edited = true;
+  if (list) {
+    if (ImGui::Button("add point")) {
+      const double mid = (d.lo + d.hi) / 2;
+      add_handle(app.tf_handles, app.tf_points, app.tf, mid, sample_tf(app.tf, mid));
+      edited = true;
+    }
+    note_item("add point", true);
+    ImGui::TreePop();
   }
-  if (ImGui::Button("add point")) {
-    app.tf_points.push_back({(d.lo + d.hi) / 2, app.tf.lookup((d.lo + d.hi) / 2)});
-    edited = true;
+  if (remove >= 0) {  // straight between its neighbours
+    if (edited) app.apply_tf_points();
+    app.set_tf(remove_handle(app.tf_handles, app.tf_points, app.tf, remove), false);
+    app.tf_label = "edited";
+    edited = false;
   }
   if (edited) app.apply_tf_points();  // lazy metric: only touched nodes recompute next frame
 
   // The combo names the map in use and applies a preset when one is chosen (over the map's
   // present domain).
-  ImGui::SetNextItemWidth(120);
-  if (ImGui::BeginCombo("##preset", app.tf_label.c_str())) {
+  const std::string preset = fit_label("colour map");
+  if (ImGui::BeginCombo(preset.c_str(), app.tf_label.c_str())) {
     for (const std::string& name : tsp::preset_names())
       if (ImGui::Selectable(name.c_str(), name == app.tf_label)) {
         const tsp::ValueHistogram histogram = tsp::histogram_of(*app.file);
@@ -187,40 +253,47 @@ void tf_section(PlayerApp& app) {
       }
     ImGui::EndCombo();
   }
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("the colour map in use; choose a preset to apply it");
-  ImGui::SameLine();
-  if (ImGui::Button("fit to data")) {  // the map as it is, stretched over the data's range
+  note_item(preset.c_str());
+  if (ImGui::IsItemHovered()) tooltip("the colour map in use; choose a preset to apply it");
+  // The colour range: four fits, two a row, each button half the row.
+  const ImVec2 half((ImGui::GetContentRegionAvail().x - ImGui::GetStyle().ItemSpacing.x) / 2, 0);
+  if (ImGui::Button("fit to data", half)) {  // the map as it is, stretched over the data's range
     app.set_tf(tsp::rescaled(app.tf, d), true);
     app.status = "transfer function stretched over the data range";
   }
+  note_item("fit to data", true);
+  if (ImGui::IsItemHovered()) tooltip("Stretch the map over the data's whole range");
   ImGui::SameLine();
-  if (ImGui::Button("fit to bulk")) {  // over the 1st to 99th percentile of the samples
+  if (ImGui::Button("fit to bulk", half)) {  // over the 1st to 99th percentile of the samples
     ScriptAction fit;
     fit.kind = ScriptAction::Kind::tf_range;
     fit.text = "histogram";
     app.command(fit);
   }
+  note_item("fit to bulk", true);
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("Stretch the map over where the data is: the 1st to 99th percentile of\n"
-                      "every sample (tf-range histogram)");
-  if (ImGui::Button("fit to step")) {  // over the range of the step shown
+    tooltip("Stretch the map over where the data is: the 1st to 99th percentile of every "
+            "sample (tf-range histogram)");
+  if (ImGui::Button("fit to step", half)) {  // over the range of the step shown
     ScriptAction fit;
     fit.kind = ScriptAction::Kind::tf_range;
     fit.text = "step";
     app.command(fit);
   }
+  note_item("fit to step", true);
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("Stretch the map over the range of the step shown (tf-range step)");
+    tooltip("Stretch the map over the range of the step shown (tf-range step)");
   ImGui::SameLine();
-  if (ImGui::Button("fit to view")) {  // over what the view shows of the step
+  if (ImGui::Button("fit to view", half)) {  // over what the view shows of the step
     ScriptAction fit;
     fit.kind = ScriptAction::Kind::tf_range;
     fit.text = "visible";
     app.command(fit);
   }
+  note_item("fit to view", true);
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("Stretch the map over the values of the bricks in view and inside the\n"
-                      "clip probes, at the step shown (tf-range visible)");
+    tooltip("Stretch the map over the values of the bricks in view and inside the clip probes, "
+            "at the step shown (tf-range visible)");
 
   static char path[512] = "";
   if (path[0] == 0) std::snprintf(path, sizeof path, "%s", app.tf_path.c_str());
@@ -228,7 +301,9 @@ void tf_section(PlayerApp& app) {
   ImGui::InputText("##path", path, sizeof path);
   app.tf_path = path;
   try {
-    if (ImGui::Button("load")) {
+    const bool load = ImGui::Button("load");
+    note_item("load", true);
+    if (load) {
       const tsp::ValueHistogram histogram = tsp::histogram_of(*app.file);
       app.set_tf(tsp::transfer_function_from_arg(app.tf_path, d, app.tf.size(), {}, &histogram),
                  true);
@@ -241,6 +316,7 @@ void tf_section(PlayerApp& app) {
   }
   ImGui::SameLine();
   if (ImGui::Button("save as")) app.save_tf_as(app.tf_path);
+  note_item("save as", true);
 }
 
 }  // namespace tspplayer

@@ -2,6 +2,7 @@
 // small window, or hidden), the settings, statistics and timeline sections, the controls
 // overlay. Drawn after the volume each frame (docs/player.md).
 #include <imgui.h>
+#include <imgui_internal.h>  // FindRenderedTextEnd: a label's shown part
 
 #include <algorithm>
 #include <cmath>
@@ -13,6 +14,7 @@
 #include "player/controls.h"
 #include "player/player_app.h"
 #include "player/player_ui.h"
+#include "player/ui_items.h"
 #include "render/settings_table.h"
 #include "tsp/core/error.h"
 
@@ -37,21 +39,16 @@ std::string playback_text(const PlayerApp& app) {
 }
 
 constexpr float kHudPlotHeight = 60.f;
-constexpr float kLabelWidth = 130.f;  // room for a settings label, pixels
+// Lines of the side panel's status area; widest tooltip, pixels.
+constexpr int kStatusLines = 3;
+constexpr float kTooltipWidth = 420.f;
 constexpr float kReadyStripHeight = 5.f;  // the timeline's readiness marks, pixels
 constexpr double kBytesPerMiB = 1 << 20;
 // Playback showing fewer steps a second than this share of the speed says it plays slower.
 constexpr double kSlowPlaybackShare = 0.9;
-constexpr const char* kMetricNames[] = {"scalar", "reference", "approximate", "perceptual"};
 // In tspgl::Compositing order.
 constexpr const char* kClassNames[] = {"not rendered", "untextured", "reused texture",
                                        "new texture", "clipped"};
-// What a tolerance measures, per metric (tsp::Metric order; docs/metrics.md).
-constexpr const char* kToleranceUnits[] = {
-    "units: coefficient of variation of the values (sigma/mean)",
-    "units: colour deviation over colour magnitude (eq. 7), every voxel",
-    "units: colour deviation over colour magnitude (eq. 7), estimated",
-    "units: L*u*v* deviation / 100 over colour magnitude"};
 // The docked panels: no title, fixed where the layout puts them, under any popup.
 constexpr ImGuiWindowFlags kDockedFlags =
     ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoMove |
@@ -105,39 +102,50 @@ void timeline_section(PlayerApp& app) {
   const int last = app.steps() - 1;
   // As wide as its wider label, so that the controls beside it do not move when it flips.
   const float play_width =
-      ImGui::CalcTextSize("Pause").x + 2 * ImGui::GetStyle().FramePadding.x;
-  if (ImGui::Button(app.state.playing ? "Pause" : "Play", ImVec2(play_width, 0)))
+      std::max(ImGui::CalcTextSize("Pause").x, ImGui::CalcTextSize("Play").x) +
+      2 * ImGui::GetStyle().FramePadding.x;
+  const char* play = app.state.playing ? "Pause" : "Play";
+  if (ImGui::Button(play, ImVec2(play_width, 0)))
     app.command(command_of(app.state.playing ? Kind::pause : Kind::play));
-  ImGui::SameLine();
-  if (ImGui::Button("|<")) app.command(step_command(0));
-  ImGui::SameLine();
-  if (ImGui::Button("<")) app.command(step_command(std::max(0, app.state.step - 1)));
-  ImGui::SameLine();
-  if (ImGui::Button(">")) app.command(step_command(std::min(last, app.state.step + 1)));
-  ImGui::SameLine();
-  if (ImGui::Button(">|")) app.command(step_command(last));
+  note_item(play, true);
+  for (const char* b : {"|<", "<", ">", ">|"}) {
+    ImGui::SameLine();
+    if (ImGui::Button(b)) {
+      const int to = b[1] == '<' ? 0 : b[1] == '|' ? last
+                     : b[0] == '<' ? std::max(0, app.state.step - 1)
+                                   : std::min(last, app.state.step + 1);
+      app.command(step_command(to));
+    }
+    note_item(b, true);
+  }
   ImGui::SameLine();
   if (bool loop = app.state.loop; ImGui::Checkbox("loop", &loop)) app.command(command_of(Kind::loop, loop));
+  note_item("loop");
   ImGui::SameLine();
   if (bool skip = !app.state.every_step; ImGui::Checkbox("skip steps", &skip))
     app.command(command_of(Kind::every_step, !skip));
+  note_item("skip steps");
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("real time: skip steps to keep the speed when frames are slower than it\n"
-                      "(off: every step in order, playing slower if need be)");
+    tooltip("real time: skip steps to keep the speed when frames are slower than it (off: every "
+            "step in order, playing slower if need be)");
   ImGui::SameLine();
   float speed = float(app.state.speed);
-  ImGui::SetNextItemWidth(140);
+  // 140 pixels, less in a narrow window (the slider and its label stay inside the timeline).
+  const float room = ImGui::GetContentRegionAvail().x - ImGui::CalcTextSize("steps/s").x -
+                     ImGui::GetStyle().ItemInnerSpacing.x;
+  ImGui::SetNextItemWidth(std::clamp(room, 60.f, 140.f));
   if (ImGui::SliderFloat("steps/s", &speed, float(kMinSpeed), float(kMaxSpeed), "%.2f",
                          ImGuiSliderFlags_Logarithmic)) {
     ScriptAction a = command_of(Kind::speed);
     a.value = std::clamp(double(speed), kMinSpeed, kMaxSpeed);
     app.command(a);
   }
-  if (app.state.playing) {  // the rate the window reaches: distinct steps drawn per second
+  note_item("steps/s");
+  if (app.state.playing) {  // the rate the window reaches, at the row's end (nothing after it)
     ImGui::SameLine();
     ImGui::TextUnformatted(shown_rate_text(app).c_str());
-    // The rung and why, on a line of its own that wraps (beside the slider it ran off the panel).
-    ImGui::TextWrapped("%s", playback_text(app).c_str());
+    note_item(shown_rate_text(app).c_str());
+    // (The rung and why: in the side panel's status area, which never moves the controls.)
   }
   int step = app.state.step;
   ImGui::SetNextItemWidth(-1);
@@ -182,225 +190,125 @@ void timeline_section(PlayerApp& app) {
   ImGui::Dummy(ImVec2(0, kReadyStripHeight));
   if (ImGui::IsItemHovered() || ImGui::IsMouseHoveringRect(ImVec2(lo.x, hi.y),
                                                            ImVec2(hi.x, hi.y + kReadyStripHeight)))
-    ImGui::SetTooltip("green: the step's bricks are in memory (no file read to show it)");
+    tooltip("green: the step's bricks are in memory (no file read to show it)");
 }
 
-// Units longer than this go in the widget's tooltip, not its label (the panel is narrow).
-constexpr std::size_t kMaxUnitInLabel = 6;
-
-// One widget for a row of the render settings table: a log slider over its panel range (Ctrl +
-// click types any value the table accepts), a checkbox or a combo; a change is a `setting`
-// command, as a script line makes.
-void setting_widget(PlayerApp& app, const tspgl::SettingSpec& spec) {
-  const std::string name(spec.name), now = tspgl::get_setting(app.state.settings, spec);
-  std::string label = name;
-  for (char& c : label)
-    if (c == '-') c = ' ';
-  std::string next;
-  switch (spec.kind) {
-    case tspgl::SettingKind::number: {
-      if (!spec.unit.empty() && spec.unit.size() <= kMaxUnitInLabel)
-        label += " (" + std::string(spec.unit) + ")";
-      float v = float(std::strtod(now.c_str(), nullptr));
-      const bool off_at_zero = spec.lo == 0;
-      if (ImGui::SliderFloat(label.c_str(), &v, float(spec.ui_lo), float(spec.ui_hi),
-                             off_at_zero && v == 0 ? "off" : "%.3g",
-                             ImGuiSliderFlags_Logarithmic)) {
-        char buf[32];
-        std::snprintf(buf, sizeof buf, "%.9g",
-                      std::clamp(double(v), spec.lo, std::min(spec.hi, 1e300)));
-        next = buf;
-      }
-      break;
-    }
-    case tspgl::SettingKind::toggle: {
-      bool on = now == "on";
-      if (ImGui::Checkbox(label.c_str(), &on)) next = on ? "on" : "off";
-      break;
-    }
-    case tspgl::SettingKind::choice: {
-      int k = 0;
-      std::string items;  // ImGui's zero-separated list
-      for (std::size_t i = 0; i < spec.choices.size(); ++i) {
-        if (spec.choices[i] == now) k = int(i);
-        items += std::string(spec.choices[i]) + '\0';
-      }
-      if (ImGui::Combo(label.c_str(), &k, items.c_str())) next = std::string(spec.choices[std::size_t(k)]);
-      break;
-    }
+std::string fit_label(const char* label, float min_item_w) {
+  const char* end = ImGui::FindRenderedTextEnd(label);
+  const float text_w = ImGui::CalcTextSize(label, end).x;
+  const float avail = ImGui::GetContentRegionAvail().x;
+  const float spacing = ImGui::GetStyle().ItemInnerSpacing.x;
+  if (end == label || avail - text_w - spacing >= min_item_w) {
+    ImGui::SetNextItemWidth(end == label ? avail : avail - text_w - spacing);
+    return label;
   }
-  if (ImGui::IsItemHovered())  // the table's help, as render --help says it
-    ImGui::SetTooltip("%s%s%s", std::string(spec.help).c_str(), spec.unit.empty() ? "" : "; in ",
-                      std::string(spec.unit).c_str());
-  if (next.empty()) return;
-  ScriptAction a = command_of(ScriptAction::Kind::setting);
-  a.text = name;
-  a.text2 = next;
-  app.command(a);
+  // The label on its own line, the item under it as wide as the row.
+  ImGui::TextUnformatted(label, end);
+  note_item(std::string(label, end).c_str());
+  ImGui::SetNextItemWidth(avail);
+  return "##" + std::string(label);
 }
 
-// The widgets of every row of group g but the tolerances (their sliders span the metric's range).
-void setting_widgets(PlayerApp& app, tspgl::SettingGroup g) {
-  for (const tspgl::SettingSpec& spec : tspgl::settings_table())
-    if (spec.group == g && spec.name != "spatial-tol" && spec.name != "temporal-tol")
-      setting_widget(app, spec);
+void tooltip(const char* text) {
+  ImGui::BeginTooltip();
+  // Wrapped well inside the window (Dear ImGui keeps the tooltip itself on screen).
+  const float w = std::min(kTooltipWidth, ImGui::GetIO().DisplaySize.x * 0.45f);
+  ImGui::PushTextWrapPos(ImGui::GetCursorPos().x + w);
+  ImGui::TextUnformatted(text);
+  ImGui::PopTextWrapPos();
+  ImGui::EndTooltip();
 }
 
-void settings_section(PlayerApp& app) {
-  // Widgets end kLabelWidth short of the window's edge: their labels are never clipped.
-  ImGui::PushItemWidth(-kLabelWidth);
-  // A file with several fields: which one is shown (each keeps its TF and its caches).
-  if (const auto& fields = app.file->fields(); fields.size() > 1) {
-    const int current = app.file->field_index();
-    if (ImGui::BeginCombo("field", fields[std::size_t(current)].c_str())) {
-      for (std::size_t k = 0; k < fields.size(); ++k)
-        if (ImGui::Selectable(fields[k].c_str(), int(k) == current)) {
-          ScriptAction a = command_of(ScriptAction::Kind::field);
-          a.text = fields[k];
-          app.command(a);
-        }
-      ImGui::EndCombo();
-    }
-  }
-  ImGui::Checkbox("outline, axes, step", &app.state.annotations);
-  int m = int(app.state.metric);
-  if (ImGui::Combo("metric", &m, kMetricNames, IM_ARRAYSIZE(kMetricNames)))
-    app.command([m] {
-      ScriptAction a = command_of(ScriptAction::Kind::metric);
-      a.text = tsp::to_string(tsp::Metric(m));
-      return a;
-    }());
-  if (app.state.metric == tsp::Metric::reference)
-    ImGui::TextWrapped(
-        "reference: every voxel is read; computed in full on each TF change "
-        "(the window waits)");
-  else
-    ImGui::TextWrapped("live: only the nodes a frame visits are recomputed after a TF edit");
-
-  float s = float(app.state.settings.tol.spatial), t = float(app.state.settings.tol.temporal);
-  bool changed =
-      ImGui::SliderFloat("spatial tol", &s, 0.f, app.tol_max, "%.4g", ImGuiSliderFlags_Logarithmic);
-  bool done = ImGui::IsItemDeactivatedAfterEdit();
-  changed |= ImGui::SliderFloat("temporal tol", &t, 0.f, app.tol_max, "%.4g",
-                                ImGuiSliderFlags_Logarithmic);
-  done |= ImGui::IsItemDeactivatedAfterEdit();
-  ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
-  ImGui::TextWrapped("%s; 0 = exact", kToleranceUnits[int(app.state.metric)]);
-  ImGui::PopStyleColor();
-  // Frames follow the slider at once; unreachable textures are dropped when it is released.
-  if (changed) app.state.settings.tol = {double(s), double(t)};
-  if (done) app.set_tolerances(app.state.settings.tol);
-
-  setting_widgets(app, tspgl::SettingGroup::quality);
-  setting_widgets(app, tspgl::SettingGroup::compositing);
-  if (ImGui::TreeNode("diagnostics")) {
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("the paper's rules, our optimisations off");
-    setting_widgets(app, tspgl::SettingGroup::diagnostics);
-    ImGui::TreePop();
-  }
-  // While playing, the quality target picks the rung of the tuned ladder (the knobs above made
-  // cheaper: spacing, render scale, LOD level) that fits the speed within the target.
-  float quality = app.state.quality;
-  ImGui::SliderFloat("playing quality (mean dE)", &quality, 0.f, 10.f, quality > 0 ? "%.2f" : "off");
-  if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("while playing: mean dE against the full-quality picture (paused: always "
-                      "full quality); off: the LOD cut holds the frame rate");
-  if (ImGui::IsItemDeactivatedAfterEdit()) {
-    ScriptAction a = command_of(ScriptAction::Kind::quality);
-    a.value = quality;
-    app.command(a);
-  }
-  if (const tspgl::PlaybackTuner* t = app.tuning()) {  // runs a slice of each frame
-    const int total = std::max(1, t->pictures_total());
-    char text[64];
-    std::snprintf(text, sizeof text, "tuning playback %d / %d", t->pictures_done(), total);
-    ImGui::ProgressBar(float(t->pictures_done()) / float(total), ImVec2(-1, 0), text);
-  }
-  if (app.state.quality > 0) {
-    ImGui::TextUnformatted("while playing, keep:");
-    ImGui::SameLine();
-    if (ImGui::RadioButton("quality", app.state.keep_quality))
-      app.command(command_of(ScriptAction::Kind::playback, true));
-    ImGui::SameLine();
-    if (ImGui::RadioButton("rate", !app.state.keep_quality))
-      app.command(command_of(ScriptAction::Kind::playback, false));
-  }
-  // Level of detail: the cut holds the frame rate while anything changes, full quality when idle.
-  bool lod = app.state.lod_on;
-  if (ImGui::Checkbox("level of detail", &lod))
-    app.command(command_of(ScriptAction::Kind::lod, lod));
-  ImGui::SameLine();
-  if (bool cut = app.state.show_cut; ImGui::Checkbox("show cut (L)", &cut))
-    app.command(command_of(ScriptAction::Kind::show_cut, cut));
-  if (float fps = app.state.target_fps; ImGui::SliderFloat("target fps", &fps, 5.f, 120.f, "%.0f")) {
-    ScriptAction a = command_of(ScriptAction::Kind::target_fps);
-    a.value = std::clamp(double(fps), 1.0, kMaxTargetFps);
-    app.command(a);
-  }
-  ImGui::Checkbox("splats when the coarsest cut is too slow", &app.state.splat_fallback);
-  // How the cut is chosen: by error against the target, or by LaMar's selection filters.
-  {
-    static const char* const kFilters[] = {"error (target fps)", "distance from the eye",
-                                           "field of view"};
-    int kind = int(app.state.lod_filter.kind);
-    float k = float(app.state.lod_filter.scale);
-    ImGui::SetNextItemWidth(170);
-    const bool picked = ImGui::Combo("cut by", &kind, kFilters, 3);
-    bool scaled = false;
-    if (kind != 0) {
-      ImGui::SameLine();
-      ImGui::SetNextItemWidth(90);
-      scaled = ImGui::SliderFloat("K", &k, 0.25f, 8.f, "%.2f", ImGuiSliderFlags_Logarithmic);
-    }
-    if (picked || scaled) {
-      ScriptAction a = command_of(ScriptAction::Kind::lod_filter);
-      const char* const names[] = {"error", "distance", "fov"};
-      char text[64];
-      std::snprintf(text, sizeof text, "%s:%g", names[kind], double(k));
-      a.text = kind == 0 ? "error" : text;
-      app.command(a);
-    }
-    if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("LaMar's filters: a tile is drawn whole when the eye is more than K\n"
-                        "diagonals away (distance) or when it subtends less than half the\n"
-                        "field of view over K (fov; outside the view: not refined)");
-  }
-
-  if (ImGui::TreeNode("caches and uploads")) {
-    bool cache = app.state.cache_on;
-    if (ImGui::Checkbox("texture cache", &cache))
-      app.command(command_of(ScriptAction::Kind::cache, cache));
-    ImGui::SameLine();
-    if (bool on = app.state.prefetch_on; ImGui::Checkbox("prefetch", &on))
-      app.command(command_of(ScriptAction::Kind::prefetch, on));
-    setting_widgets(app, tspgl::SettingGroup::memory);
-    static double budget = -1;
-    if (budget < 0) budget = app.state.texture_budget_mb;
-    ImGui::SetNextItemWidth(120);
-    ImGui::InputDouble("budget MiB", &budget, 16, 128, "%.0f");
-    if (ImGui::IsItemDeactivatedAfterEdit()) app.set_cache(app.state.cache_on, budget);
-    ImGui::TreePop();
-  }
-
-  // Physical proportions from the file's voxel spacing, stretched per axis (e.g. height).
-  axis_scale_field(app);
+void view_section(PlayerApp& app) {
+  ImGui::Checkbox("outline, axes, step, legend", &app.state.annotations);
+  note_item("outline, axes, step, legend");
   int proj = app.state.camera.projection == tsp::Projection::perspective;
   ImGui::RadioButton("orthographic", &proj, 0);
+  note_item("orthographic");
   ImGui::SameLine();
-  ImGui::RadioButton("perspective", &proj, 1);
+  ImGui::RadioButton("perspective (P)", &proj, 1);
+  note_item("perspective (P)");
   app.state.camera.projection = proj ? tsp::Projection::perspective : tsp::Projection::orthographic;
-  if (ImGui::Button("save PNG (S)")) app.request_save();
+  // Physical proportions from the file's voxel spacing, stretched per axis (e.g. height).
+  axis_scale_field(app);  // (Enter applies a typed value, Escape cancels it)
+  note_item("axis scale");
+  const float half = (ImGui::GetContentRegionAvail().x - ImGui::GetStyle().ItemSpacing.x) / 2;
+  if (ImGui::Button("save PNG (S)", ImVec2(half, 0))) app.request_save();
+  note_item("save PNG (S)", true);
   ImGui::SameLine();
-  if (ImGui::Button("reset view (R)")) {
+  if (ImGui::Button("reset view (R)", ImVec2(half, 0))) {
     const int w = app.state.camera.width, h = app.state.camera.height;
     app.state.camera = app.initial_camera;
     app.state.camera.width = w;
     app.state.camera.height = h;
   }
-  if (!app.status.empty()) ImGui::TextWrapped("%s", app.status.c_str());
-  ImGui::PopItemWidth();
+  note_item("reset view (R)", true);
 }
 
+namespace {
+
+// The status area at the bottom of the side panel, a fixed kStatusLines high: the playback
+// tuning's progress or the rung playing, then the last message (saved files, fits, errors),
+// wrapped and cut at the area's end (in full in its tooltip). Controls above never move when a
+// message comes or goes.
+void status_area(PlayerApp& app, float height) {
+  ImGui::BeginChild("##status", ImVec2(0, height), true,
+                    ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse);
+  if (const tspgl::PlaybackTuner* t = app.tuning()) {  // runs a slice of each frame
+    const int total = std::max(1, t->pictures_total());
+    char text[64];
+    std::snprintf(text, sizeof text, "tuning playback %d / %d", t->pictures_done(), total);
+    ImGui::ProgressBar(float(t->pictures_done()) / float(total), ImVec2(-1, 0), text);
+  } else {
+    const std::string rung = app.state.playing ? playback_text(app) : "";
+    ImGui::TextUnformatted(rung.empty() ? " " : rung.c_str());
+    if (!rung.empty() && ImGui::IsItemHovered()) tooltip(rung.c_str());
+  }
+  ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.f, 0.85f, 0.5f, 1.f));
+  ImGui::TextWrapped("%s", app.status.c_str());
+  ImGui::PopStyleColor();
+  ImGui::EndChild();
+  if (!app.status.empty() && ImGui::IsItemHovered()) tooltip(app.status.c_str());
+}
+
+// A section's header: open as it starts (default_open), or all open / back to the start after
+// the script's `expand on|off`.
+bool section(PlayerApp& app, const char* title, bool default_open) {
+  if (app.expand_sections != 0)
+    ImGui::SetNextItemOpen(app.expand_sections > 0 || default_open, ImGuiCond_Always);
+  return ImGui::CollapsingHeader(title, default_open ? ImGuiTreeNodeFlags_DefaultOpen : 0);
+}
+
+// The field shown, for a file with several (each keeps its TF and its caches).
+void field_row(PlayerApp& app) {
+  const auto& fields = app.file->fields();
+  if (fields.size() <= 1) return;
+  const int current = app.file->field_index();
+  const std::string label = fit_label("field");
+  if (ImGui::BeginCombo(label.c_str(), fields[std::size_t(current)].c_str())) {
+    for (std::size_t k = 0; k < fields.size(); ++k)
+      if (ImGui::Selectable(fields[k].c_str(), int(k) == current)) {
+        ScriptAction a = command_of(ScriptAction::Kind::field);
+        a.text = fields[k];
+        app.command(a);
+      }
+    ImGui::EndCombo();
+  }
+  note_item(label.c_str());
+}
+
+// The side panel's sections, common first: the transfer function and its colour range, the
+// clip probes, the view; the expert knobs and the statistics collapsed.
+void side_sections(PlayerApp& app) {
+  field_row(app);
+  if (section(app, "Transfer function", true)) tf_section(app);
+  if (section(app, "Clip", !app.state.probes.empty())) probes_section(app);
+  if (section(app, "View", true)) view_section(app);
+  if (section(app, "Rendering (expert)", false)) settings_section(app);
+  if (section(app, "Statistics", false)) stats_section(app);
+}
+
+}  // namespace
 void stats_section(PlayerApp& app) {
   // A temporal tolerance that merged steps says which steps' bricks the picture shows.
   const tspgl::FrameReport& lf = app.last;
@@ -462,19 +370,19 @@ void stats_section(PlayerApp& app) {
 }
 
 void PlayerApp::draw_ui() {
+  begin_ui_items();
   if (state.panels) {
     if (layout.docked) {
       // One side panel of collapsible sections beside the volume, the timeline under it.
       place(layout.side);
       ImGui::Begin("##side", nullptr, kDockedFlags);
-      if (ImGui::CollapsingHeader("Settings", ImGuiTreeNodeFlags_DefaultOpen))
-        settings_section(*this);
-      if (ImGui::CollapsingHeader("Transfer function", ImGuiTreeNodeFlags_DefaultOpen))
-        tf_section(*this);
-      if (ImGui::CollapsingHeader("Probes", state.probes.empty() ? 0 : ImGuiTreeNodeFlags_DefaultOpen))
-        probes_section(*this);
-      if (ImGui::CollapsingHeader("Statistics", ImGuiTreeNodeFlags_DefaultOpen))
-        stats_section(*this);
+      // The sections scroll above a status area of fixed height at the bottom.
+      const float status_h = float(kStatusLines) * ImGui::GetTextLineHeightWithSpacing() +
+                             2 * ImGui::GetStyle().WindowPadding.y;
+      ImGui::BeginChild("##sections", ImVec2(0, -(status_h + ImGui::GetStyle().ItemSpacing.y)));
+      side_sections(*this);
+      ImGui::EndChild();
+      status_area(*this, status_h);
       ImGui::End();
       place(layout.timeline);
       ImGui::Begin("##timeline", nullptr, kDockedFlags);
@@ -494,7 +402,10 @@ void PlayerApp::draw_ui() {
       ImGui::SetNextWindowSize(ImVec2(340, 260), ImGuiCond_FirstUseEver);
       ImGui::SetNextWindowCollapsed(true, ImGuiCond_FirstUseEver);
       ImGui::Begin("Settings");
-      settings_section(*this);
+      view_section(*this);
+      if (section(*this, "Rendering (expert)", false)) settings_section(*this);
+      status_area(*this, float(kStatusLines) * ImGui::GetTextLineHeightWithSpacing() +
+                             2 * ImGui::GetStyle().WindowPadding.y);
       ImGui::End();
       ImGui::SetNextWindowPos(ImVec2(std::max(10.f, w - 390), top), ImGuiCond_FirstUseEver);
       ImGui::SetNextWindowSize(ImVec2(380, 330), ImGuiCond_FirstUseEver);
@@ -516,6 +427,7 @@ void PlayerApp::draw_ui() {
       ImGui::End();
     }
   }
+  expand_sections = 0;  // (applied once)
   help(*this);
   // Last, after every window that may appear this frame: Dear ImGui 1.86 aborts ("ImGui::Begin:
   // Assertion `blocking_modal != NULL'") when a window appears after a modal begun for the first

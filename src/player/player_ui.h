@@ -1,13 +1,17 @@
 // The player's Dear ImGui sections, drawn into whatever window the layout gives them (the docked
 // side panel or floating windows). Internal to src/player.
 #pragma once
+#include <string>
 
 namespace tspplayer {
 
 class PlayerApp;
 
-/// Metric, tolerances (with their units), quality knobs, LOD, caches, view (player_ui.cpp).
+/// The expert knobs: metric, tolerances (with what they buy), quality knobs, LOD, caches
+/// (player_settings_ui.cpp).
 void settings_section(PlayerApp& app);
+/// What the view shows: annotations, projection, axis scale, save PNG, reset (player_ui.cpp).
+void view_section(PlayerApp& app);
 /// Frame times, the renderer's split, fragments, classes, caches (player_ui.cpp).
 void stats_section(PlayerApp& app);
 /// Play controls, the step scrubber and the steps' readiness marks (player_ui.cpp).
@@ -18,5 +22,12 @@ void tf_section(PlayerApp& app);
 void probes_section(PlayerApp& app);
 /// The main menu bar and the dialogs it opens: File > Open, save TF as, record (player_menu.cpp).
 void menu_and_dialogs(PlayerApp& app);
+/// The label to give the next item so that label and item fit the window: label itself with the
+/// item as wide as the rest of the row allows, or, when that leaves the item less than
+/// min_item_w pixels, the label on a line of its own above an item the row's width ("##"
+/// label). The item is recorded for the clipped-label check after it is drawn (note_item).
+std::string fit_label(const char* label, float min_item_w = 110.f);
+/// A tooltip for the last item, wrapped to stay inside the window. Never throws.
+void tooltip(const char* text);
 
 }  // namespace tspplayer

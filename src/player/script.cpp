@@ -64,7 +64,8 @@ constexpr std::pair<const char*, Kind> kSwitches[] = {
     {"loop", Kind::loop},           {"cache", Kind::cache}, {"prefetch", Kind::prefetch},
     {"lod", Kind::lod},     {"show-cut", Kind::show_cut},
     {"panels", Kind::panels},       {"every-step", Kind::every_step},
-    {"log-opacity", Kind::log_opacity}, {"probe-surface", Kind::probe_surface}};
+    {"log-opacity", Kind::log_opacity}, {"probe-surface", Kind::probe_surface},
+    {"expand", Kind::expand}};
 
 ScriptAction parse_words(const LineParser& p) {
   ScriptAction a;
@@ -241,7 +242,7 @@ ScriptAction parse_words(const LineParser& p) {
            settings +
            "quality, stats, lod, target-fps, lod-filter, show-cut, panels, every-step, log-opacity, open, "
            "field, probe, probe-op, probe-surface, probe-clear, probe-move, record, "
-           "reset-camera, playback, capture, save-session, scale or quit");
+           "reset-camera, playback, capture, save-session, scale, expand or quit");
   }
   return a;
 }

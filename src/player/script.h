@@ -61,7 +61,8 @@ struct ScriptAction {
                     ///< frames.jsonl each), not waiting for full quality; "off" stops
     quit,           ///< close the player
     save_session,   ///< save the session (TF, view, probes, ...) to `text` (docs/player.md#sessions)
-    scale           ///< stretch the axes by `value`, `value2`, `value3` (as --scale)
+    scale,          ///< stretch the axes by `value`, `value2`, `value3` (as --scale)
+    expand          ///< every section of the panels open (`flag`), or as they start
   };
   Kind kind = Kind::quit;
   int number = 0;

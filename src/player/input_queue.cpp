@@ -1,0 +1,57 @@
+#include "player/input_queue.h"
+
+namespace tspplayer {
+
+const InputFrame& InputQueue::take() {
+  state_.wheel_x = state_.wheel_y = 0;
+  state_.text.clear();
+  bool moved = false, button_changed = false, key_changed = false, typed = false, scrolled = false;
+  std::array<bool, InputFrame::kButtons> changed_button{};
+  std::array<bool, InputFrame::kKeys> changed_key{};
+  while (!events_.empty()) {
+    const InputEvent& e = events_.front();
+    switch (e.kind) {
+      case InputEvent::Kind::cursor:
+        if (button_changed) return state_;
+        state_.x = e.x;
+        state_.y = e.y;
+        moved = true;
+        break;
+      case InputEvent::Kind::button: {
+        if (e.code < 0 || e.code >= InputFrame::kButtons) break;
+        const std::size_t b = std::size_t(e.code);
+        if (changed_button[b] || scrolled || (!e.down && moved)) return state_;
+        if (state_.buttons[b] != e.down) {
+          state_.buttons[b] = e.down;
+          changed_button[b] = button_changed = true;
+        }
+        break;
+      }
+      case InputEvent::Kind::key: {
+        if (e.code < 0 || e.code >= InputFrame::kKeys) break;
+        const std::size_t k = std::size_t(e.code);
+        if (changed_key[k] || typed) return state_;
+        if (state_.keys[k] != e.down) {
+          state_.keys[k] = e.down;
+          changed_key[k] = key_changed = true;
+        }
+        break;
+      }
+      case InputEvent::Kind::text:
+        if (key_changed) return state_;
+        typed = true;
+        state_.text.push_back(unsigned(e.code));
+        break;
+      case InputEvent::Kind::scroll:
+        if (button_changed) return state_;
+        state_.wheel_x += e.x;
+        state_.wheel_y += e.y;
+        scrolled = true;
+        break;
+    }
+    events_.pop_front();
+  }
+  return state_;
+}
+
+}  // namespace tspplayer

@@ -1,0 +1,43 @@
+#include "player/ui_items.h"
+
+#include <imgui.h>
+#include <imgui_internal.h>
+
+namespace tspplayer {
+
+namespace {
+std::vector<UiItem>& items() {
+  static std::vector<UiItem> v;
+  return v;
+}
+}  // namespace
+
+void begin_ui_items() { items().clear(); }
+
+void note_item(const char* label, bool framed) {
+  const char* end = ImGui::FindRenderedTextEnd(label);
+  if (end == label) return;  // no visible label
+  const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
+  UiItem it;
+  it.label.assign(label, end);
+  it.x = lo.x;
+  it.y = lo.y;
+  it.w = hi.x - lo.x;
+  it.h = hi.y - lo.y;
+  it.text_w = ImGui::CalcTextSize(label, end).x;
+  it.inner_w = framed ? it.w - 2 * ImGui::GetStyle().FramePadding.x : it.w;
+  it.clip_right = ImGui::GetCurrentWindow()->InnerClipRect.Max.x;
+  items().push_back(std::move(it));
+}
+
+const std::vector<UiItem>& ui_items() { return items(); }
+
+nlohmann::json ui_items_json() {
+  nlohmann::json a = nlohmann::json::array();
+  for (const UiItem& it : items())
+    a.push_back({{"label", it.label}, {"x", it.x}, {"y", it.y}, {"w", it.w}, {"h", it.h},
+                 {"text_w", it.text_w}, {"inner_w", it.inner_w}, {"clip_right", it.clip_right}});
+  return a;
+}
+
+}  // namespace tspplayer

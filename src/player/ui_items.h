@@ -1,0 +1,32 @@
+// The panels' labelled items as the last frame laid them out (their rectangles, their labels'
+// widths and the right edge their window shows), for the clipped-label check: `stats` writes
+// them as ui_items, and a test asserts no label is wider than its item nor an item wider than
+// its window at 1280×800 and 1920×1080 (docs/player.md "Layout").
+#pragma once
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace tspplayer {
+
+/// One labelled item of the last frame, in window pixels (top-left origin).
+struct UiItem {
+  std::string label;       ///< the text shown (before any "##")
+  float x = 0, y = 0, w = 0, h = 0;  ///< the item's rectangle
+  float text_w = 0;        ///< the label's width
+  float inner_w = 0;       ///< room for the label inside the item (a button's frame less padding)
+  float clip_right = 0;    ///< the right edge of what its window shows
+};
+
+/// Forgets the last frame's items (called when the panels are drawn again). Never throws.
+void begin_ui_items();
+/// Records the item Dear ImGui laid out last under its label; framed: the label is drawn inside
+/// the item (a button), so it must fit within the frame's padding. Never throws but bad_alloc.
+void note_item(const char* label, bool framed = false);
+/// The last frame's items.
+const std::vector<UiItem>& ui_items();
+/// ui_items() as JSON: [{label, x, y, w, h, text_w, inner_w, clip_right}].
+nlohmann::json ui_items_json();
+
+}  // namespace tspplayer
