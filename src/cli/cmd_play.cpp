@@ -10,6 +10,7 @@
 #include "cli/build_runner.h"
 #include "cli/commands.h"
 #include "cli/input_options.h"
+#include "cli/session_options.h"
 #include "cli/settings_options.h"
 #include "jobs/play_input.h"
 #include "player/controls.h"
@@ -119,18 +120,13 @@ const CommandRegistrar reg(35, [](CLI::App& app) {
                 "The .tsp file, or any input build reads (built into the cache folder first, "
                 "reused while unchanged)")
       ->required();
-  c->add_option("--field", a->field,
-                "A .tsp with several fields: the one shown first; any other input: the field to "
-                "build, or A,B,C: several, one tree each, the first shown (as for build --field)");
+  add_session_option(c, "--field", a->field, "");
   add_input_options(c, a->in);
   c->add_option("--cache-dir", a->cache_dir,
                 "Raw input: the cache folder (default $TSPPLAY_CACHE_DIR, $XDG_CACHE_HOME/tspplay "
                 "or ~/.cache/tspplay; builds go to its builds/)");
-  c->add_option("--tf", a->options.tf,
-                "Transfer function: a JSON file or preset:NAME (default preset:auto, built from "
-                "the data's histogram)");
-  c->add_option("--tf-range", a->options.tf_range,
-                "Where the TF sits over the data: auto, data, file, histogram (1st-99th percentile), step (the range of --step), visible (what the starting view shows of it) or LO:HI (as for render)");
+  add_session_option(c, "--tf", a->options.tf, "preset:auto");
+  add_session_option(c, "--tf-range", a->options.tf_range, "auto");
   c->add_option("--step", a->options.step, "Step shown first (default 0)");
   c->add_option("--screenshot", a->options.screenshot,
                 "Save the first complete frame (volume only) as PNG and exit");
@@ -147,56 +143,33 @@ const CommandRegistrar reg(35, [](CLI::App& app) {
   c->add_flag("--trace", a->options.trace,
               "Print one line per applied change (step, transfer function, tolerances, metric, "
               "play/pause, LOD) and per saved screenshot");
-  c->add_option("--size", a->size, "Window size WxH (default 960x720)");
-  c->add_option("--proportions", a->proportions,
-                "physical (default: the file's voxel spacing shapes the view) or samples");
-  c->add_option("--scale", a->scale, "SX,SY,SZ: stretch each axis (e.g. 1,1,20 for height)");
-  c->add_option("--probe", a->options.probes,
-                "Clip probe, repeatable (as render --probe; the Probes panel edits them)");
-  c->add_option("--surface-mesh", a->options.surface_mesh,
-                "The mesh series whose boundary --surface boundary draws (default: the input, "
-                "when it is a mesh)");
-  c->add_option("--surface-field", a->options.surface_field,
-                "The field the surface shows (default: the file's)");
-  c->add_option("--surface-tf", a->options.surface_tf,
-                "Colours of the surface: a TF file or preset:NAME (default preset:cool-to-warm)");
-  c->add_option("--probe-op", a->options.probe_op, "intersect (default), union or subtract")
+  add_session_option(c, "--size", a->size, "960x720");
+  add_session_option(c, "--proportions", a->proportions, "physical");
+  add_session_option(c, "--scale", a->scale, "");
+  add_session_option(c, "--probe", a->options.probes, "");
+  add_session_option(c, "--surface-mesh", a->options.surface_mesh, "the input, when it is a mesh");
+  add_session_option(c, "--surface-field", a->options.surface_field, "the file's field");
+  add_session_option(c, "--surface-tf", a->options.surface_tf, "preset:cool-to-warm");
+  add_session_option(c, "--probe-op", a->options.probe_op, "intersect")
       ->check(CLI::IsMember({"intersect", "union", "subtract"}));
-  c->add_option("--probe-surface", a->probe_surface,
-                "on (default, so a probe placed in the window shows what it cuts; render's "
-                "default is off, pure clipping): the probe's surface shows the data; off: pure "
-                "clipping")
+  add_session_option(c, "--probe-surface", a->probe_surface, "on, so a probe placed in the window shows what it cuts")
       ->check(CLI::IsMember({"on", "off"}));
-  c->add_option("--ram-budget", a->options.ram_budget_mb,
-                "Bricks held in RAM, MiB (default 1024): a file larger than RAM streams through it");
-  c->add_option("--texture-budget", a->options.texture_budget_mb,
-                "Textures resident, MiB (default 512)");
-  c->add_option("--lod", a->lod, "Level of detail: on (hold --target-fps while interacting, full "
-                                 "quality when idle) or off (default on, for interaction; render's is off, for "
-                                 "reproducible frames)")
-      ->check(CLI::IsMember({"on", "off"}));
-  c->add_option("--lod-fallback", a->lod_fallback,
-                "When even the coarsest cut misses --target-fps: scale (a smaller render target, "
-                "default) or splats (each node of a coarse cut one splat of its mean colour)")
+  add_session_option(c, "--ram-budget", a->options.ram_budget_mb, "1024");
+  add_session_option(c, "--texture-budget", a->options.texture_budget_mb, "512");
+  add_session_option(c, "--lod", a->lod, "on: interacting holds --target-fps, idle refines to full quality");
+  add_session_option(c, "--lod-fallback", a->lod_fallback, "scale")
       ->check(CLI::IsMember({"scale", "splats"}));
-  c->add_option("--lod-filter", a->options.lod_filter,
-                "How the cut is chosen: error (holds --target-fps, default) or LaMar's selection "
-                "filters distance[:K] and fov[:K] (as for render; the panel's 'cut by')");
+  add_session_option(c, "--lod-filter", a->options.lod_filter, "error");
   c->add_option("--speed", a->options.speed,
                 "Playback speed, steps per second, 0.25 to 60 (default: the series in about 4 s, "
                 "at most 24, a movie's rate). Steps are shown in order, slower if frames are "
                 "slow, unless the script or panel picks skip steps");
-  c->add_option("--quality", a->options.quality,
-                "While playing: mean dE target against the full-quality picture (default 1; "
-                "0: off, the LOD cut holds the rate). Each frame draws the cheapest-needed rung "
-                "of a ladder (spacing, render scale, LOD level) tuned in the window when "
-                "playing starts; paused frames are full quality");
+  add_session_option(c, "--quality", a->options.quality, "1");
   c->add_option("--playback", a->playback,
                 "With --quality, what gives while playing when no rung both fits the speed and "
                 "keeps the target: quality (steps show later; default) or rate (a coarser rung)")
       ->check(CLI::IsMember({"quality", "rate"}));
-  c->add_option("--target-fps", a->options.target_fps,
-                "Frames per second the LOD cut holds while interacting (default 30)");
+  add_session_option(c, "--target-fps", a->options.target_fps, "30");
   std::string keys = "\nControls (also F1 or ? in the player):\n";
   for (const tspplayer::Control& k : tspplayer::kControls)
     keys += "  " + std::string(k.input) +
@@ -204,18 +177,14 @@ const CommandRegistrar reg(35, [](CLI::App& app) {
             k.action + "\n";
   c->footer(keys);
   a->settings.add_to(c);
-  set_groups(c, {{"Input/output", {"--field", "--cache-dir", "--tf", "--tf-range", "--step",
-                                   "--screenshot", "--script", "--session", "--no-session"}},
+  // (The session options are in their table's groups: session_options.h.)
+  set_groups(c, {{"Input/output", {"--cache-dir", "--step", "--screenshot", "--script", "--session",
+                                   "--no-session"}},
                  {"Input to build (not a .tsp; as for build)",
                   {"--raw-dims", "--raw-type", "--big-endian", "--allow-external", "--resolution",
                    "--voxel-size", "--cell-data", "--voxelizer", "--antialias", "--jitter", "--hex",
                    "--vertical-levels"}},
-                 {"Camera", {"--size", "--proportions", "--scale"}},
-                 {"Playback", {"--speed", "--quality", "--playback"}},
-                 {"LOD", {"--lod", "--lod-filter", "--lod-fallback", "--target-fps"}},
-                 {"Probes", {"--probe", "--probe-op", "--probe-surface"}},
-                 {"Surface", {"--surface-mesh", "--surface-field", "--surface-tf"}},
-                 {"Memory", {"--ram-budget", "--texture-budget"}},
+                 {"Playback", {"--speed", "--playback"}},
                  {"Diagnostics", {"--trace", "--frame-delay-ms"}}});
   c->callback([a, c] {
     // What the command line names wins over a restored session.
@@ -224,7 +193,11 @@ const CommandRegistrar reg(35, [](CLI::App& app) {
       if (c->count(o) > 0) a->options.given.push_back(o);
     a->options.settings = a->settings.apply();
     a->options.keep_quality = a->playback == "quality";
-    a->options.lod = a->lod == "on";
+    const std::string lod = lod_word(a->lod);
+    if (lod != "auto" && lod != "off")
+      throw tsp::UsageError("--lod " + a->lod + ": play holds a frame rate, so its cut is auto (on) "
+                            "or off; a fixed level K or splat:PX is render's");
+    a->options.lod = lod == "auto";
     a->options.splat_fallback = a->lod_fallback == "splats";
     run(*a);
   });

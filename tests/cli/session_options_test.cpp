@@ -44,7 +44,7 @@ std::string help_line(const std::string& help, std::string_view name) {
 }
 
 TEST(SessionOptions, EveryCommandShowsEachRowsOneHelp) {
-  for (const char* command : {"render", "bench"}) {
+  for (const char* command : {"render", "bench", "play"}) {
     const auto r = tsptest::run_tspplay(std::string(command) + " --help");
     ASSERT_EQ(r.exit_code, 0) << command << ": " << r.err;
     int shared = 0;
