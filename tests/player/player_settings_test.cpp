@@ -45,4 +45,27 @@ TEST(PlayerSettings, TheSamplingKnobJustSetWinsAndTheStatusSaysWhatWentOff) {
       << jc["status"];
 }
 
+// File > Open of another input while the mesh's boundary is drawn: the old mesh is not drawn
+// over the new file (it once was, and refining bands over it failed an assertion or crashed);
+// the surface control reads the opened input's boundary when it is a mesh, else says what it
+// needs and goes off.
+TEST(PlayerSettings, OpeningAnotherInputTakesTheOldMeshsSurfaceAway) {
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
+  const fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
+  const std::string mesh = (tsptest::test_data_dir() / "vtu" / "binary_%d.vtu").string();
+  const std::string a = (dir / "a.json").string(), b = (dir / "b.json").string();
+  const auto r = run_tspplay(
+      "play " + q(mesh) + " --field f --resolution 32 --surface boundary --size " + kSize +
+      " --script " +
+      q(write_script("wait-frames 2\nstats " + a + "\nopen " + tsp.string() +
+                     "\nwait-frames 4\nstats " + b + "\nquit\n")));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json ja = read_json(a), jb = read_json(b);
+  EXPECT_EQ(ja["surface"], "boundary") << ja["status"];
+  EXPECT_EQ(jb["surface"], "off");
+  EXPECT_EQ(jb["surface_mesh"], "");
+  EXPECT_NE(jb["status"].get<std::string>().find("needs the mesh"), std::string::npos)
+      << jb["status"];
+}
+
 }  // namespace
