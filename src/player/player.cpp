@@ -456,23 +456,6 @@ void PlayerApp::save_pending_shot() {
   pending_shot_.clear();
 }
 
-// The back end polled the pointer (the position now, after every queued event); the queue's
-// state replaces it with where the events it took left it, and its buttons, keys and text.
-void PlayerApp::feed_imgui(const InputFrame& in) {
-  ImGuiIO& io = ImGui::GetIO();
-  io.MousePos = ImVec2(in.x, in.y);
-  for (int b = 0; b < InputFrame::kButtons; ++b) io.MouseDown[b] = in.buttons[std::size_t(b)];
-  for (int k = 0; k < InputFrame::kKeys; ++k) io.KeysDown[k] = in.keys[std::size_t(k)];
-  auto held = [&in](int a, int b) { return in.keys[std::size_t(a)] || in.keys[std::size_t(b)]; };
-  io.KeyCtrl = held(GLFW_KEY_LEFT_CONTROL, GLFW_KEY_RIGHT_CONTROL);
-  io.KeyShift = held(GLFW_KEY_LEFT_SHIFT, GLFW_KEY_RIGHT_SHIFT);
-  io.KeyAlt = held(GLFW_KEY_LEFT_ALT, GLFW_KEY_RIGHT_ALT);
-  io.KeySuper = held(GLFW_KEY_LEFT_SUPER, GLFW_KEY_RIGHT_SUPER);
-  io.MouseWheelH += in.wheel_x;
-  io.MouseWheel += in.wheel_y;
-  for (unsigned c : in.text) io.AddInputCharacter(c);
-}
-
 void PlayerApp::frame() {
   ctx->poll_events();
   // An input event: Dear ImGui needs a few frames to settle (hover, popups, animations).

@@ -362,4 +362,21 @@ void PlayerApp::trace_changes() {
   t = {state.step, tf.version(), state.settings.tol, state.metric, state.playing, state.lod_on, state.panels, false};
 }
 
+// The back end polled the pointer (the position now, after every queued event); the queue's
+// state replaces it with where the events it took left it, and its buttons, keys and text.
+void PlayerApp::feed_imgui(const InputFrame& in) {
+  ImGuiIO& io = ImGui::GetIO();
+  io.MousePos = ImVec2(in.x, in.y);
+  for (int b = 0; b < InputFrame::kButtons; ++b) io.MouseDown[b] = in.buttons[std::size_t(b)];
+  for (int k = 0; k < InputFrame::kKeys; ++k) io.KeysDown[k] = in.keys[std::size_t(k)];
+  auto held = [&in](int a, int b) { return in.keys[std::size_t(a)] || in.keys[std::size_t(b)]; };
+  io.KeyCtrl = held(GLFW_KEY_LEFT_CONTROL, GLFW_KEY_RIGHT_CONTROL);
+  io.KeyShift = held(GLFW_KEY_LEFT_SHIFT, GLFW_KEY_RIGHT_SHIFT);
+  io.KeyAlt = held(GLFW_KEY_LEFT_ALT, GLFW_KEY_RIGHT_ALT);
+  io.KeySuper = held(GLFW_KEY_LEFT_SUPER, GLFW_KEY_RIGHT_SUPER);
+  io.MouseWheelH += in.wheel_x;
+  io.MouseWheel += in.wheel_y;
+  for (unsigned c : in.text) io.AddInputCharacter(c);
+}
+
 }  // namespace tspplayer
