@@ -419,7 +419,7 @@ void into_folder(const tsp::OutputFolder& folder, const Write& write) {
 
 // Draws every frame of the job (all passes; a split render's part draws its own block and
 // replays the others' cuts) into result, and the last pass's PNGs into the folder.
-void draw_frames(GlContext& ctx, const RenderJobOptions& o, const JobInput& in,
+void draw_frames(GlContext& ctx, const RenderJobOptions& o, const JobInput& in, int lod_level,
                  const tsp::OutputFolder* folder, const RenderProgress& progress,
                  RenderJobResult& result) {
   const tsp::TspFile& file = *in.file;
@@ -430,7 +430,6 @@ void draw_frames(GlContext& ctx, const RenderJobOptions& o, const JobInput& in,
           ? tsp::transfer_function_from_arg(o.probe_tf, in.tf_domain, tsp::kDefaultTfEntries,
                                             o.tf_range, &in.histogram)
           : tf;
-  const int lod_level = std::min(o.lod_level, tree.octree().max_lod_level());  // --lod K
   FrameSource source(ctx, o, *in.file, tf, probe_tf, lod_level, result);
   const int per_pass = (in.last - o.first_step) / o.step_stride + 1;
   // A split render's part draws frames [block.first, block.second) of every pass.
@@ -532,9 +531,10 @@ RenderJobResult run_render_job(const RenderJobOptions& requested, const RenderPr
       options.quality != 0 ? with_quality(*ctx, options, *in.file, tf, result, calibration_progress)
                            : options;
   if (options.check_only) return result;  // the calibration is cached for the parts
-  draw_frames(*ctx, o, in, folder ? &*folder : nullptr, progress, result);
+  // --lod K, clamped to the file's levels (what frames.json records too).
+  const int lod_level = std::min(o.lod_level, in.file->tree().octree().max_lod_level());
+  draw_frames(*ctx, o, in, lod_level, folder ? &*folder : nullptr, progress, result);
   if (folder) {
-    const int lod_level = std::min(o.lod_level, in.file->tree().octree().max_lod_level());
     const json j = frames_json(o, result, *in.file, lod_level);
     into_folder(*folder, [&] {
       tsp::write_file_atomically((fs::path(folder->tmp()) / "frames.json").string(),

@@ -28,7 +28,6 @@ void PlayerApp::measure_tolerance() {
     tspgl::ImageProbe probe(*ctx, *file, tf, view, {state.step});
     tspgl::RenderSettings s = state.settings;
     s.upload_budget = 0;  // whole pictures
-    if (s.preintegrated) s.sampling_tol = 0;
     tspgl::RenderSettings exact = s;
     exact.tol = {0, 0};
     const auto [at, ms] = probe.render_step(s, 0, frame_metric(), 0);

@@ -186,9 +186,10 @@ void SliceCompositor::begin_frame(const tsp::Camera& camera, const RenderSetting
   // each segment's two ends), adaptive sampling and refinement have their own variants of it,
   // made on first use, as resolve_sampling reads the knobs.
   const bool plain = !clipping_;
-  adaptive_ = settings.sampling_tol > 0 && plain;
+  const SamplingMode mode = resolve_sampling(settings);
+  adaptive_ = plain && mode == SamplingMode::adaptive;
   RayVariant v = clip_variant_;
-  if (plain) switch (resolve_sampling(settings)) {
+  if (plain) switch (mode) {
       case SamplingMode::adaptive: v = RayVariant::adaptive; break;
       case SamplingMode::preintegrated: v = RayVariant::preintegrated; break;
       case SamplingMode::refined: v = RayVariant::refined; break;
