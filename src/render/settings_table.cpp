@@ -36,10 +36,11 @@ const std::vector<std::string_view> kFlatWords{"slices", "exact"};
 const std::vector<std::string_view> kSurfaceWords{"off", "boundary"};
 const std::vector<std::string_view> kBackendWords{"auto", "gl", "cpu"};
 
-std::vector<SettingSpec> make_table() {
-  using K = SettingKind;
-  using G = SettingGroup;
-  std::vector<SettingSpec> t;
+using K = SettingKind;
+using G = SettingGroup;
+
+// The quality rows: tolerances, spacing and the sampling modes.
+void add_quality(std::vector<SettingSpec>& t) {
   t.push_back({.name = "spatial-tol", .kind = K::number, .group = G::quality,
                .unit = "metric error", .lo = 0, .hi = kInf, .choices = {}, .ui_lo = 0, .ui_hi = 1,
                .help = "Spatial error tolerance: a node whose spatial error is at most this is "
@@ -88,6 +89,10 @@ std::vector<SettingSpec> make_table() {
                  s.span_step = v == 0 ? tsp::SpanStep::first
                                : v == 1 ? tsp::SpanStep::middle : tsp::SpanStep::mean;
                }});
+}
+
+// The compositing rows: how textured bricks are drawn, who draws them, lighting, the surface.
+void add_compositing(std::vector<SettingSpec>& t) {
   t.push_back({.name = "compositing", .kind = K::choice, .group = G::compositing, .unit = {}, .lo = 0, .hi = 0,
                .choices = kCompositingWords,
                .help = "Textured boxes as slices (view-aligned polygons), boxes (each brick ray "
@@ -140,6 +145,10 @@ std::vector<SettingSpec> make_table() {
                        "is coarser and faster",
                .get = [](const RenderSettings& s) { return number_text(s.surface_px); },
                .set = [](RenderSettings& s, double v) { s.surface_px = v; }});
+}
+
+// The memory and diagnostics rows.
+void add_memory_and_diagnostics(std::vector<SettingSpec>& t) {
   t.push_back({.name = "upload-budget", .kind = K::number, .group = G::memory, .unit = "MiB",
                .lo = 0, .hi = double(kMaxBudgetBytes) / kBytesPerMib, .choices = {}, .ui_lo = 0, .ui_hi = 256,
                .help = "Texture MiB one frame may upload (0: no limit); bricks over it are drawn "
@@ -173,6 +182,13 @@ std::vector<SettingSpec> make_table() {
                        "what zero tolerance skips is never drawn (off: the paper's rule)",
                .get = [](const RenderSettings& s) { return on_off(s.skip_transparent); },
                .set = [](RenderSettings& s, double v) { s.skip_transparent = v != 0; }});
+}
+
+std::vector<SettingSpec> make_table() {
+  std::vector<SettingSpec> t;
+  add_quality(t);
+  add_compositing(t);
+  add_memory_and_diagnostics(t);
   return t;
 }
 
