@@ -22,6 +22,26 @@ namespace {
 constexpr std::int64_t kUnlimited = std::int64_t(1) << 50;
 const ViewOrder kView = ViewOrder::orthographic({0.4, -0.7, 0.6});
 
+// Step t's frame traversed under errors and planned with info's classes, seen along kView
+// (stops: a LOD cut or splat stops, given to both).
+FramePlan traverse_and_plan(const TspTree& tree, int t, const NodeErrors& errors,
+                            const NodeInfoFn& info, const Tolerances& tol, TextureCache& cache,
+                            const std::vector<LodStop>& stops = {}) {
+  return plan_frame({.tree = tree,
+                     .step = t,
+                     .emitted = traverse({.tree = tree,
+                                          .step = t,
+                                          .tol = tol,
+                                          .errors = errors,
+                                          .view = kView,
+                                          .stops = stops}),
+                     .info = info,
+                     .tol = tol,
+                     .view = kView,
+                     .stops = stops},
+                    cache);
+}
+
 TEST(FramePlan, ClassNamesAreTheFramesJsonNames) {
   EXPECT_STREQ(to_string(DrawClass::not_rendered), "not_rendered");
   EXPECT_STREQ(to_string(DrawClass::untextured), "untextured");
@@ -278,15 +298,7 @@ TEST(FramePlan, ReachableTexturesAreTheUnionOfEveryStepsTextures) {
     TextureCache cache(kUnlimited, CachePolicy::on);
     TextureKeySet drawn;
     for (int t = 0; t < tree.time().steps(); ++t) {
-      const FramePlan plan = plan_frame(
-          {.tree = tree,
-           .step = t,
-           .emitted =
-               traverse({.tree = tree, .step = t, .tol = tol, .errors = m.errors, .view = kView}),
-           .info = node_info(m),
-           .tol = tol,
-           .view = kView},
-          cache);
+      const FramePlan plan = traverse_and_plan(tree, t, m.errors, node_info(m), tol, cache);
       for (const PlannedTexture& pt : plan.textures) drawn.insert(pt.key);
     }
     EXPECT_EQ(reachable_textures(tree, m, tol, false), drawn);
@@ -313,36 +325,8 @@ TEST(FramePlan, SplatStopsAreDrawnFlatWithoutTextures) {
   int textured_nodes = 0;
   for (int t = 0; t < tree.time().steps(); ++t) {
     TextureCache cache(kUnlimited, CachePolicy::on), cache_cut(kUnlimited, CachePolicy::on);
-    const FramePlan splats = plan_frame({.tree = tree,
-                                         .step = t,
-                                         .emitted = traverse({.tree = tree,
-                                                              .step = t,
-                                                              .tol = tol,
-                                                              .errors = m.errors,
-                                                              .view = kView,
-                                                              .stops = stops}),
-                                         .info = node_info(m),
-                                         .tol = tol,
-                                         .view = kView,
-                                         .upload_budget = 0,
-                                         .span_step = SpanStep::middle,
-                                         .stops = stops},
-                                        cache);
-    const FramePlan textured = plan_frame({.tree = tree,
-                                           .step = t,
-                                           .emitted = traverse({.tree = tree,
-                                                                .step = t,
-                                                                .tol = tol,
-                                                                .errors = m.errors,
-                                                                .view = kView,
-                                                                .stops = cut}),
-                                           .info = node_info(m),
-                                           .tol = tol,
-                                           .view = kView,
-                                           .upload_budget = 0,
-                                           .span_step = SpanStep::middle,
-                                           .stops = cut},
-                                          cache_cut);
+    const FramePlan splats = traverse_and_plan(tree, t, m.errors, node_info(m), tol, cache, stops);
+    const FramePlan textured = traverse_and_plan(tree, t, m.errors, node_info(m), tol, cache_cut, cut);
     ASSERT_EQ(splats.nodes.size(), textured.nodes.size());
     EXPECT_TRUE(splats.textures.empty());
     textured_nodes += int(textured.textures.size());
@@ -365,15 +349,19 @@ TEST(FramePlan, UploadBudgetDefersTexturesWithoutEnteringTheCache) {
   HandCase hc;
   const Tolerances tol{0.1, 0.1};
   TextureCache cache(kUnlimited, CachePolicy::on);
+  // Step 0's hand-built frame planned under an upload budget of `bytes`.
+  auto planned = [&](std::int64_t bytes, TextureCache& in) {
+    return plan_frame({.tree = hc.tree,
+                       .step = 0,
+                       .emitted = hc.frame(0),
+                       .info = hc.fn(),
+                       .tol = tol,
+                       .view = kView,
+                       .upload_budget = bytes},
+                      in);
+  };
   // Budget below one texture (1024 bytes): one upload per frame.
-  const FramePlan p0 = plan_frame({.tree = hc.tree,
-                                   .step = 0,
-                                   .emitted = hc.frame(0),
-                                   .info = hc.fn(),
-                                   .tol = tol,
-                                   .view = kView,
-                                   .upload_budget = 1},
-                                  cache);
+  const FramePlan p0 = planned(1, cache);
   ASSERT_EQ(p0.textures.size(), 2u);
   EXPECT_TRUE(p0.textures[0].upload);
   EXPECT_FALSE(p0.textures[0].deferred);
@@ -388,40 +376,15 @@ TEST(FramePlan, UploadBudgetDefersTexturesWithoutEnteringTheCache) {
   EXPECT_EQ(p0.nodes[3].cls, DrawClass::new_texture);
   EXPECT_TRUE(p0.evict_before.empty());
   // The same frame again: the first texture is resident, the second is uploaded now.
-  const FramePlan again = plan_frame({.tree = hc.tree,
-                                      .step = 0,
-                                      .emitted = hc.frame(0),
-                                      .info = hc.fn(),
-                                      .tol = tol,
-                                      .view = kView,
-                                      .upload_budget = 1},
-                                     cache);
+  const FramePlan again = planned(1, cache);
   EXPECT_FALSE(again.textures[0].upload);
   EXPECT_TRUE(again.textures[1].upload);
   EXPECT_EQ(again.deferred, 0);
   EXPECT_EQ(again.textures_resident, 2);
   // A budget that holds both defers nothing; no budget (0) neither.
   TextureCache roomy(kUnlimited, CachePolicy::on), unlimited(kUnlimited, CachePolicy::on);
-  EXPECT_EQ(plan_frame({.tree = hc.tree,
-                        .step = 0,
-                        .emitted = hc.frame(0),
-                        .info = hc.fn(),
-                        .tol = tol,
-                        .view = kView,
-                        .upload_budget = 2048},
-                       roomy)
-                .deferred,
-            0);
-  EXPECT_EQ(plan_frame({.tree = hc.tree,
-                        .step = 0,
-                        .emitted = hc.frame(0),
-                        .info = hc.fn(),
-                        .tol = tol,
-                        .view = kView,
-                        .upload_budget = 0},
-                       unlimited)
-                .deferred,
-            0);
+  EXPECT_EQ(planned(2048, roomy).deferred, 0);
+  EXPECT_EQ(planned(0, unlimited).deferred, 0);
 }
 
 // A whole-tree metric and the live LazyErrors serve frames the same classes and colours.
@@ -438,28 +401,9 @@ TEST(FramePlan, WholeTreeAndLiveMetricsPlanTheSameFrames) {
   const Tolerances tol{0.05, 0.05};
   for (int t = 0; t < 5; ++t) {
     TextureCache a(kUnlimited, CachePolicy::off), b(kUnlimited, CachePolicy::off);
-    const FramePlan pa = plan_frame({.tree = tree,
-                                     .step = t,
-                                     .emitted = traverse({.tree = tree,
-                                                          .step = t,
-                                                          .tol = tol,
-                                                          .errors = whole.errors_for_step(t),
-                                                          .view = kView}),
-                                     .info = node_info(whole),
-                                     .tol = tol,
-                                     .view = kView},
-                                    a);
-    const FramePlan pb = plan_frame({.tree = tree,
-                                     .step = t,
-                                     .emitted = traverse({.tree = tree,
-                                                          .step = t,
-                                                          .tol = tol,
-                                                          .errors = live.errors_for_step(t),
-                                                          .view = kView}),
-                                     .info = node_info(live),
-                                     .tol = tol,
-                                     .view = kView},
-                                    b);
+    const FramePlan pa =
+        traverse_and_plan(tree, t, whole.errors_for_step(t), node_info(whole), tol, a);
+    const FramePlan pb = traverse_and_plan(tree, t, live.errors_for_step(t), node_info(live), tol, b);
     ASSERT_EQ(pa.nodes.size(), pb.nodes.size());
     EXPECT_EQ(pa.class_voxels, pb.class_voxels);
     for (const PlannedNode& n : pb.nodes) {

@@ -93,10 +93,16 @@ TEST(LodController, HoldsTheTargetOnASimulatedRenderer) {
   }
 }
 
+// The 129³ volume of 16³ bricks most tests drive, seen through a ramp of opacity 0.05.
+struct Cube {
+  Dims d{129, 129, 129};
+  TspTree tree = make_tree(d, 16);
+  TransferFunction tf = ramp_tf(0.05f);
+};
+
 TEST(LodController, WithoutATargetRefinesUntilNoErrorIsLeft) {
-  const Dims d{129, 129, 129};
-  const TspTree tree = make_tree(d, 16);
-  const TransferFunction tf = ramp_tf(0.05f);
+  const Cube cube;
+  const auto& [d, tree, tf] = cube;
   LodOptions opt;
   opt.min_error = 0;
   LodController c(tree, opt);
@@ -159,9 +165,8 @@ TEST(LodController, LikelySplitsAreChildrenOfTheWorstCutNodes) {
 }
 
 TEST(LodController, RespectsTheTextureBudget) {
-  const Dims d{129, 129, 129};
-  const TspTree tree = make_tree(d, 16);
-  const TransferFunction tf = ramp_tf(0.05f);
+  const Cube cube;
+  const auto& [d, tree, tf] = cube;
   LodOptions opt;
   opt.min_error = 0;
   const std::int64_t brick = 16 * 16 * 16 * 2;
@@ -175,9 +180,8 @@ TEST(LodController, RespectsTheTextureBudget) {
 }
 
 TEST(LodController, ShrinksTheRenderTargetWhenEvenTheRootIsTooSlow) {
-  const Dims d{129, 129, 129};
-  const TspTree tree = make_tree(d, 16);
-  const TransferFunction tf = ramp_tf(0.05f);
+  const Cube cube;
+  const auto& [d, tree, tf] = cube;
   LodOptions opt;
   opt.target_ms = 10;
   LodController c(tree, opt);
@@ -200,9 +204,8 @@ TEST(LodController, ShrinksTheRenderTargetWhenEvenTheRootIsTooSlow) {
 }
 
 TEST(LodController, FallsBackToSplatsWhenEvenTheRootIsTooSlow) {
-  const Dims d{129, 129, 129};
-  const TspTree tree = make_tree(d, 16);
-  const TransferFunction tf = ramp_tf(0.05f);
+  const Cube cube;
+  const auto& [d, tree, tf] = cube;
   LodOptions opt;
   opt.target_ms = 10;
   opt.fallback = LodFallback::splats;
