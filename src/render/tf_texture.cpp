@@ -35,6 +35,15 @@ void upload_rows(const GlApi& gl, const std::vector<float>& rgba, int k, int row
   check_gl(gl, what);
 }
 
+// The 1-D table of k entries, nearest and clamped, into the bound GL_TEXTURE_1D.
+void upload_table(const GlApi& gl, const std::vector<float>& rgba, int k, const char* what) {
+  gl.TexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  gl.TexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  gl.TexParameteri(GL_TEXTURE_1D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  gl.TexImage1D(GL_TEXTURE_1D, 0, GL_RGBA32F, GLsizei(k), 0, GL_RGBA, GL_FLOAT, rgba.data());
+  check_gl(gl, what);
+}
+
 }  // namespace
 
 TfTexture::TfTexture(const GlApi& gl) : gl_(gl) {
@@ -78,12 +87,7 @@ void TfTexture::bind(int unit, double spacing) {
   rgba.clear();
   rgba.reserve(std::size_t(tf_.size()) * 4);
   append_corrected(rgba, tf_.entries(), spacing);
-  gl_.TexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  gl_.TexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  gl_.TexParameteri(GL_TEXTURE_1D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  gl_.TexImage1D(GL_TEXTURE_1D, 0, GL_RGBA32F, GLsizei(tf_.size()), 0, GL_RGBA, GL_FLOAT,
-                 rgba.data());
-  check_gl(gl_, "uploading the transfer function");
+  upload_table(gl_, rgba, tf_.size(), "uploading the transfer function");
   spacing_ = spacing;
 }
 
@@ -139,12 +143,7 @@ void TfTexture::bind_opaque(int unit) {
   std::vector<float> rgba;
   rgba.reserve(std::size_t(tf_.size()) * 4);
   for (const tsp::Rgba& e : tf_.entries()) rgba.insert(rgba.end(), {e.r, e.g, e.b, 1.f});
-  gl_.TexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  gl_.TexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  gl_.TexParameteri(GL_TEXTURE_1D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  gl_.TexImage1D(GL_TEXTURE_1D, 0, GL_RGBA32F, GLsizei(tf_.size()), 0, GL_RGBA, GL_FLOAT,
-                 rgba.data());
-  check_gl(gl_, "uploading the surface transfer function");
+  upload_table(gl_, rgba, tf_.size(), "uploading the surface transfer function");
   opaque_current_ = true;
 }
 

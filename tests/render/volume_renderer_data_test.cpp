@@ -22,15 +22,12 @@
 #include "tsp/core/error.h"
 #include "tsp/metric/compute_errors.h"
 #include "tsp/metric/lazy_errors.h"
-#include "tsp/metric/preintegration.h"
 #include "tsp/metric/tf_io.h"
 #include "tsp/report/image.h"
-#include "tsp/frame/refine.h"
 #include "tsp/report/image_diff.h"
 #include "tsp/source/open_source.h"
 #include "tsp/source/procedural/generate.h"
 #include "tsp/store/tsp_file.h"
-#include "tsp/tree/traversal.h"
 
 namespace tspgl {
 namespace {
@@ -40,7 +37,6 @@ namespace fs = std::filesystem;
 using Scene = tsptest::RenderScene;
 using tsptest::build_tsp;
 using tsptest::expect_close;
-using tsptest::flat_tf;
 using tsptest::keep_failure;
 
 // Partial-image reuse is exact: playing a series with a temporal tolerance (long spans, so most

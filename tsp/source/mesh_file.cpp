@@ -11,6 +11,11 @@
 
 namespace tsp::io {
 
+XmlMeshFile::XmlMeshFile(const std::string& path, const char* type) : doc_(path, type, false) {
+  if (!doc_.dataset().child("Piece"))
+    throw FormatError(path + ": <" + type + "> has no <Piece>");
+}
+
 bool is_mesh_file_name(const std::string& file) {
   return has_suffix(file, ".vtu") || has_suffix(file, ".vts");
 }

@@ -34,6 +34,18 @@ class MeshFile {
   virtual Mesh read(const MeshField& f) const = 0;
 };
 
+/// A MeshFile parsed from one VTK XML document (.vtu, .vts): the document, its path.
+class XmlMeshFile : public MeshFile {
+ public:
+  const std::string& path() const final { return doc_.path(); }
+
+ protected:
+  /// Reads and parses path as a VTK XML `type` with at least one Piece. Throws IoError
+  /// (missing/unreadable) or FormatError (not XML, another type, no Piece).
+  XmlMeshFile(const std::string& path, const char* type);
+  VtkDocument doc_;
+};
+
 /// True when file's name is a mesh file this module reads (.vtu, .vts). Never throws.
 bool is_mesh_file_name(const std::string& file);
 

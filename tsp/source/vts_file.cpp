@@ -54,8 +54,7 @@ void append_structured_hexahedra(Mesh& mesh, const std::int64_t n[3], std::int64
       }
 }
 
-VtsFile::VtsFile(const std::string& path) : doc_(path, "StructuredGrid", false) {
-  if (!doc_.dataset().child("Piece")) throw FormatError(path + ": <StructuredGrid> has no <Piece>");
+VtsFile::VtsFile(const std::string& path) : XmlMeshFile(path, "StructuredGrid") {
   int index = 0;
   for (pugi::xml_node piece : doc_.dataset().children("Piece")) {
     std::int64_t n[3];

@@ -14,18 +14,14 @@ namespace tsp::io {
 void append_structured_hexahedra(Mesh& mesh, const std::int64_t n[3], std::int64_t base);
 
 /// A parsed .vts file (every piece's cells, each piece over its own Extent).
-class VtsFile final : public MeshFile {
+class VtsFile final : public XmlMeshFile {
  public:
   /// Reads and parses path. Throws IoError (missing/unreadable) or FormatError (not XML, not
   /// StructuredGrid, no Piece, a bad Extent, a 2-D or 1-D extent, which has no volume).
   explicit VtsFile(const std::string& path);
-  const std::string& path() const override { return doc_.path(); }
   MeshField resolve(const FieldSpec& spec) const override;
   Aabb bounds() const override;
   Mesh read(const MeshField& f) const override;
-
- private:
-  VtkDocument doc_;
 };
 
 }  // namespace tsp::io

@@ -19,9 +19,7 @@ pugi::xml_node required(const pugi::xml_node& section, const char* name, const s
 
 }  // namespace
 
-VtuFile::VtuFile(const std::string& path) : doc_(path, "UnstructuredGrid", false) {
-  if (!doc_.dataset().child("Piece")) throw FormatError(path + ": <UnstructuredGrid> has no <Piece>");
-}
+VtuFile::VtuFile(const std::string& path) : XmlMeshFile(path, "UnstructuredGrid") {}
 
 MeshField VtuFile::resolve(const FieldSpec& spec) const {
   return detail::resolve_field(doc_.dataset().child("Piece"), spec, path());

@@ -8,18 +8,14 @@
 namespace tsp::io {
 
 /// A parsed .vtu file (all pieces concatenated into one mesh).
-class VtuFile final : public MeshFile {
+class VtuFile final : public XmlMeshFile {
  public:
   /// Reads and parses path. Throws IoError (missing/unreadable) or FormatError (not XML, not
   /// UnstructuredGrid, no Piece, bad NumberOfPoints/NumberOfCells, unsupported encoding).
   explicit VtuFile(const std::string& path);
-  const std::string& path() const override { return doc_.path(); }
   MeshField resolve(const FieldSpec& spec) const override;
   Aabb bounds() const override;
   Mesh read(const MeshField& f) const override;
-
- private:
-  VtkDocument doc_;
 };
 
 }  // namespace tsp::io

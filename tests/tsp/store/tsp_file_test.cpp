@@ -50,6 +50,17 @@ void edit_file(const std::string& path, F f) {
   H5Fclose(file);
 }
 
+// Overwrites the file's root attribute `name` (which must exist) with v, stored as `type`.
+template <class T>
+void set_attribute(const std::string& path, const char* name, hid_t type, const T& v) {
+  edit_file(path, [&](hid_t f) {
+    hid_t a = H5Aopen(f, name, H5P_DEFAULT);
+    ASSERT_GE(a, 0) << name;
+    H5Awrite(a, type, &v);
+    H5Aclose(a);
+  });
+}
+
 void expect_format_error(const std::string& path, const std::string& needle) {
   try {
     TspFile::open(path);
@@ -243,23 +254,13 @@ TEST(TspFile, ReadBrickIsThreadSafe) {
 
 TEST(TspFile, RejectsOtherVersions) {
   auto path = built_file();
-  edit_file(path, [](hid_t f) {
-    hid_t a = H5Aopen(f, "version", H5P_DEFAULT);
-    int v = kTspFormatVersion + 1;
-    H5Awrite(a, H5T_NATIVE_INT, &v);
-    H5Aclose(a);
-  });
+  set_attribute(path, "version", H5T_NATIVE_INT, int{kTspFormatVersion + 1});
   expect_format_error(path, "version " + std::to_string(kTspFormatVersion + 1));
 }
 
 TEST(TspFile, AVersionOneFileSaysToRebuild) {
   auto path = built_file();
-  edit_file(path, [](hid_t f) {
-    hid_t a = H5Aopen(f, "version", H5P_DEFAULT);
-    int v = 1;
-    H5Awrite(a, H5T_NATIVE_INT, &v);
-    H5Aclose(a);
-  });
+  set_attribute(path, "version", H5T_NATIVE_INT, int{1});
   expect_format_error(path, "format version 1, this tspplay reads versions 2 and 3 only; rebuild");
 }
 
@@ -355,12 +356,7 @@ TEST(TspFile, RejectsWrongTreeContents) {
 
 TEST(TspFile, RejectsBadBrickSizeAttribute) {
   auto path = built_file();
-  edit_file(path, [](hid_t f) {
-    hid_t a = H5Aopen(f, "brick_size", H5P_DEFAULT);
-    int v = 12;
-    H5Awrite(a, H5T_NATIVE_INT, &v);
-    H5Aclose(a);
-  });
+  set_attribute(path, "brick_size", H5T_NATIVE_INT, int{12});
   expect_format_error(path, "brick size 12");
 }
 
@@ -456,12 +452,7 @@ TEST(TspFile, ImpossibleStatisticsAndCountsAreRefused) {
     expect_format_error(path, d.needle);
   }
   auto path = built_file();
-  edit_file(path, [](hid_t f) {
-    hid_t a = H5Aopen(f, "nonfinite_count", H5P_DEFAULT);
-    const std::int64_t v = -4;
-    H5Awrite(a, H5T_NATIVE_INT64, &v);
-    H5Aclose(a);
-  });
+  set_attribute(path, "nonfinite_count", H5T_NATIVE_INT64, std::int64_t{-4});
   expect_format_error(path, "nonfinite_count");
 }
 
