@@ -10,6 +10,7 @@
 #include <string>
 
 #include "support/paths.h"
+#include "support/player_run.h"
 #include "tsp/report/image.h"
 #include "tsp/report/image_diff.h"
 #include "tsp/store/tsp_file.h"
@@ -21,10 +22,8 @@ namespace {
 
 using tsptest::q;
 
-nlohmann::json frames(const fs::path& dir) {
-  std::ifstream in(dir / "frames.json");
-  return nlohmann::json::parse(in);
-}
+// The frames.json a render wrote into dir.
+nlohmann::json frames(const fs::path& dir) { return tsptest::player::read_json(dir / "frames.json"); }
 
 TEST(LodFilterCli, DistanceAroundAPlacedEyeAndFovCutsAreReported) {
   const fs::path dir = tsptest::temp_dir();

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "support/paths.h"
+#include "support/player_run.h"
 #include "tsp/core/color.h"
 #include "tsp/report/image.h"
 
@@ -24,10 +25,8 @@ namespace {
 
 using tsptest::q;
 
-nlohmann::json frames(const fs::path& dir) {
-  std::ifstream in(dir / "frames.json");
-  return nlohmann::json::parse(in);
-}
+// The frames.json a render wrote into dir.
+nlohmann::json frames(const fs::path& dir) { return tsptest::player::read_json(dir / "frames.json"); }
 
 // Pixels of img within ΔE 2 of the 8-bit colour (r, g, b).
 int pixels_near(const tsp::Image& img, double r, double g, double b) {

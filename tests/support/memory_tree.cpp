@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 
 #include "tsp/core/error.h"
 
@@ -20,6 +21,12 @@ MemorySeries MemorySeries::generate(tsp::Dims dims, int steps,
       for (int y = 0; y < dims.y; ++y)
         for (int x = 0; x < dims.x; ++x) s.values.push_back(f(t, x, y, z));
   return s;
+}
+
+MemorySeries MemorySeries::uniform(tsp::Dims dims, int steps, unsigned seed, float lo, float hi) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(lo, hi);
+  return generate(dims, steps, [&](int, int, int, int) { return u(rng); });
 }
 
 namespace {

@@ -20,6 +20,8 @@ struct MemorySeries {
   /// A series filled by f(t, x, y, z).
   static MemorySeries generate(tsp::Dims dims, int steps,
                                const std::function<float(int, int, int, int)>& f);
+  /// Samples drawn uniformly from [lo, hi) in generate's order by a std::mt19937 seeded so.
+  static MemorySeries uniform(tsp::Dims dims, int steps, unsigned seed, float lo, float hi);
   /// Sample at step t, voxel (x, y, z).
   float at(int t, int x, int y, int z) const {
     return values[std::size_t(t) * dims.count() + x +

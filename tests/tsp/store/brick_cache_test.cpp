@@ -26,10 +26,7 @@ constexpr int kBricks = 8;
 constexpr std::int64_t kEntry = 8 * 8 * 8 * 2;
 
 MemoryBrickStore make_store() {
-  std::mt19937 rng(17);
-  std::uniform_real_distribution<float> u(-4, 9);
-  return MemoryBrickStore(
-      MemorySeries::generate(kDims, kSteps, [&](int, int, int, int) { return u(rng); }), 8);
+  return MemoryBrickStore(MemorySeries::uniform(kDims, kSteps, 17, -4, 9), 8);
 }
 
 std::vector<std::uint16_t> direct(const BrickStore& store, int brick, int step) {

@@ -11,20 +11,17 @@
 namespace tsp {
 namespace {
 
+constexpr std::int64_t kBudget = std::int64_t(1) << 20;
+constexpr int kSteps = 5;
+// 29 × 15 × 8 samples with 8-sample bricks: 4 × 2 × 1 = 8 bricks of 8³ samples.
+constexpr Dims kDims{29, 15, 8};
+constexpr int kBricks = 8;
+
 using tsptest::MemoryBrickStore;
 using tsptest::MemorySeries;
 
-// 29 × 15 × 8 samples with 8-sample bricks: 4 × 2 × 1 = 8 bricks of 8³ samples.
-constexpr Dims kDims{29, 15, 8};
-constexpr int kSteps = 5;
-constexpr int kBricks = 8;
-constexpr std::int64_t kBudget = std::int64_t(1) << 20;
-
 MemoryBrickStore make_store() {
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<float> u(0, 1);
-  return MemoryBrickStore(
-      MemorySeries::generate(kDims, kSteps, [&](int, int, int, int) { return u(rng); }), 8);
+  return MemoryBrickStore(MemorySeries::uniform(kDims, kSteps, 5, 0, 1), 8);
 }
 
 std::vector<BrickKey> all_bricks(int step) {
