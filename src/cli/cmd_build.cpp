@@ -13,6 +13,7 @@
 #include "tsp/build/build.h"
 #include "tsp/core/error.h"
 #include "tsp/source/open_mesh_source.h"
+#include "tsp/voxelize/open_fields.h"
 #include "tsp/voxelize/open_input.h"
 #include "tsp/store/tsp_file.h"
 
@@ -79,11 +80,8 @@ void run_build(const BuildArgs& a) {
     p = c + 1;
   }
   if (!fields.empty()) {
-    auto open_field = [&](const std::string& field) {
-      tsp::SourceOptions fo = so;
-      fo.field = field;
-      return tsp::open_input(a.input, fo, vo);
-    };
+    // An HDF5 file is opened once for all of them, and every name checked first.
+    const tsp::FieldOpener open_field = tsp::open_input_fields(a.input, so, vo, fields);
     // The first field, opened now, sets the default brick size; the build then takes it.
     std::unique_ptr<tsp::VolumeSource> first = open_field(fields[0]);
     if (bo.brick_size == 0) bo.brick_size = tsp::default_brick_size(first->dims());

@@ -15,6 +15,7 @@
 #include "tsp/hdf5/hdf5_handle.h"
 #include "tsp/hdf5/hdf5_lock.h"
 #include "tsp/source/open_mesh_source.h"
+#include "tsp/voxelize/open_fields.h"
 #include "tsp/voxelize/open_input.h"
 
 namespace tspgl {
@@ -148,13 +149,10 @@ std::string prepare_play_input(const std::string& input, const PlayInputOptions&
                                const std::string& cache_dir, const PlayBuildHooks& hooks) {
   if (is_tsp_file(input)) return input;  // (a field then picks one of its fields)
   if (o.adaptive) return prepare_adaptive(input, o, cache_dir, hooks);
-  const auto open_field = [&](const std::string& field) {
-    tsp::SourceOptions so = o.source;
-    so.field = field;
-    return tsp::open_input(input, so, o.voxelize);
-  };
-  // --field A,B,C: several fields, one tree each (the first shown), as `build` does.
+  // --field A,B,C: several fields, one tree each (the first shown), as `build` does (an HDF5
+  // file opened once for all of them).
   const std::vector<std::string> fields = field_list(o.field);
+  const tsp::FieldOpener open_field = tsp::open_input_fields(input, o.source, o.voxelize, fields);
   const std::string first_field = fields.empty() ? o.field : fields[0];
   // Keyed by every file the source reads (series members, blocks, grid and solutions). A mesh
   // series is listed through its mesh source, without reading or voxelizing a step, so that a

@@ -485,7 +485,7 @@ std::vector<BuildReport> build_tsp_fields(const FieldSourceFn& open_field,
                                           const BuildOptions& options) {
   check_options(out_path, options);
   if (fields.empty()) throw UsageError("--field: no field named");
-  // Checked before any input is opened: each field opens and walks the input once.
+  // Checked before any field is read (a limit on the file's list, not on opening the input).
   if (fields.size() > std::size_t(kMaxBuildFields))
     throw UsageError("--field: " + std::to_string(fields.size()) + " fields named; one .tsp file "
                      "holds at most " + std::to_string(kMaxBuildFields) +

@@ -62,9 +62,9 @@ struct BuildReport {
   ValueRange value_range;            ///< quantization range written to the file
 };
 
-/// Most fields build_tsp_fields puts in one file (each opens and walks the input once: 1000
-/// names took minutes).
-inline constexpr int kMaxBuildFields = 64;
+/// Most fields build_tsp_fields puts in one file (open_input_fields opens an HDF5 input once
+/// for all of them; each field is then built like a file of its own).
+inline constexpr int kMaxBuildFields = 4096;
 
 /// Opens the source of one named field of the input (build_tsp_fields).
 using FieldSourceFn = std::function<std::unique_ptr<VolumeSource>(const std::string& field)>;

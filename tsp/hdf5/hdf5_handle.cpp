@@ -1,5 +1,6 @@
 #include "tsp/hdf5/hdf5_handle.h"
 
+#include <atomic>
 #include <filesystem>
 
 #include "tsp/core/error.h"
@@ -22,6 +23,12 @@ void Handle::reset() {
   id_ = H5I_INVALID_HID;
 }
 
+namespace {
+std::atomic<std::int64_t> g_files_opened{0};
+}  // namespace
+
+std::int64_t files_opened() { return g_files_opened.load(); }
+
 void silence_errors() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
 
 Handle open_file_readonly(const std::string& path, External external) {
@@ -33,6 +40,7 @@ Handle open_file_readonly(const std::string& path, External external) {
   hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   if (f < 0) throw FormatError(path + ": HDF5 file cannot be opened (truncated or corrupt?)");
   Handle file(f);
+  ++g_files_opened;
   check_external(file.get(), path, external);
   return file;
 }

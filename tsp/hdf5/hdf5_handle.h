@@ -4,6 +4,7 @@
 #pragma once
 #include <hdf5.h>
 
+#include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
@@ -52,6 +53,10 @@ std::vector<std::string> datasets_in(hid_t loc, const std::string& group);
 /// (check_external with external); throws IoError (missing, not a regular file, unreadable),
 /// FormatError (not HDF5) or UsageError (refused external links or storage).
 Handle open_file_readonly(const std::string& path, External external = External::refuse);
+
+/// Number of files open_file_readonly has opened in this process (each open also walks the
+/// file for external links and storage: tests count them). Never throws.
+std::int64_t files_opened();
 
 /// True when `name` (an absolute or relative path like "/a/b") exists below loc, all links resolved.
 bool exists(hid_t loc, const std::string& name);

@@ -534,14 +534,24 @@ bool is_netcdf_classic(const std::string& path) {
 
 }  // namespace
 
-std::unique_ptr<VolumeSource> open_hdf5_source(const std::string& path,
-                                               const SourceOptions& options) {
+h5::Handle open_hdf5_file(const std::string& path, const SourceOptions& options) {
   if (is_netcdf_classic(path))
     throw FormatError(path +
                       ": NetCDF classic (version 3) file, expected NetCDF-4/HDF5; convert "
                       "it with `nccopy -k nc4 in.nc out.nc`");
-  Handle file = h5::open_file_readonly(
+  return h5::open_file_readonly(
       path, options.allow_external ? h5::External::allow : h5::External::refuse);
+}
+
+std::string hdf5_candidates_text(hid_t file) { return candidates_text(list_candidates(file)); }
+
+std::unique_ptr<VolumeSource> open_hdf5_source(const std::string& path,
+                                               const SourceOptions& options) {
+  return open_hdf5_source(path, open_hdf5_file(path, options), options);
+}
+
+std::unique_ptr<VolumeSource> open_hdf5_source(const std::string& path, Handle file,
+                                               const SourceOptions& options) {
   if (is_vtkhdf(file.get())) return open_vtkhdf_source(path, std::move(file), options);
 
   std::string field = options.field;

@@ -3,6 +3,7 @@
 #include <memory>
 #include <string>
 
+#include "tsp/hdf5/hdf5_handle.h"
 #include "tsp/source/volume_source.h"
 
 namespace tsp::io {
@@ -15,5 +16,16 @@ namespace tsp::io {
 /// file, the field and what was expected versus found.
 std::unique_ptr<VolumeSource> open_hdf5_source(const std::string& path,
                                                const SourceOptions& options);
+
+/// The file open_hdf5_source reads, opened read-only and checked (a NetCDF classic file refused
+/// with how to convert it; external links and storage per options.allow_external). Throws
+/// IoError, FormatError, UsageError.
+h5::Handle open_hdf5_file(const std::string& path, const SourceOptions& options);
+/// open_hdf5_source on a file open_hdf5_file opened (a field of several sharing one open).
+std::unique_ptr<VolumeSource> open_hdf5_source(const std::string& path, h5::Handle file,
+                                               const SourceOptions& options);
+/// The file's 3-D and 4-D datasets as "/path (shape)", comma-separated, for messages (walks the
+/// file). Never throws.
+std::string hdf5_candidates_text(hid_t file);
 
 }  // namespace tsp::io

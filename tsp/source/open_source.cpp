@@ -31,6 +31,14 @@ bool has_hdf5_signature(const std::string& path) {
 
 }  // namespace
 
+bool is_hdf5_input(const std::string& input) {
+  std::error_code ec;
+  if (input.empty() || input.find('\0') != std::string::npos ||
+      !std::filesystem::is_regular_file(input, ec))
+    return false;
+  return has_hdf5_extension(input) || has_hdf5_signature(input);
+}
+
 std::unique_ptr<VolumeSource> open_source(const std::string& input, const SourceOptions& options) {
   if (input.empty()) throw UsageError("no input given");
   if (input.find('\0') != std::string::npos)

@@ -12,4 +12,8 @@ namespace tsp {
 /// .vti (VTK image data), or a printf pattern / glob of raw files. Throws IoError/FormatError/UsageError.
 std::unique_ptr<VolumeSource> open_source(const std::string& input, const SourceOptions& options);
 
+/// True when open_source reads input as an HDF5 / NetCDF-4 / VTKHDF file: an existing regular
+/// file with an HDF5 extension or signature. Never throws.
+bool is_hdf5_input(const std::string& input);
+
 }  // namespace tsp

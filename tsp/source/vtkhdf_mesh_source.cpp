@@ -316,11 +316,19 @@ bool is_vtkhdf_unstructured(const std::string& path, h5::External external) {
     require_regular_file(path, "input");  // before H5Fis_hdf5 opens it: a FIFO would block
     if (H5Fis_hdf5(path.c_str()) <= 0) return false;
     Handle f = h5::open_file_readonly(path, external);
-    if (!h5::exists(f.get(), kRoot)) return false;
-    Handle root(H5Gopen2(f.get(), kRoot, H5P_DEFAULT));
-    auto type = string_attribute(root.get(), "Type", path);
+    return is_vtkhdf_unstructured(f.get());
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+bool is_vtkhdf_unstructured(hid_t file) {
+  try {
+    if (!h5::exists(file, kRoot)) return false;
+    Handle root(H5Gopen2(file, kRoot, H5P_DEFAULT));
+    auto type = string_attribute(root.get(), "Type", "VTKHDF");
     if (type) return *type == "UnstructuredGrid";
-    return h5::exists(f.get(), "/VTKHDF/Connectivity");
+    return h5::exists(file, "/VTKHDF/Connectivity");
   } catch (const std::exception&) {
     return false;
   }

@@ -14,6 +14,8 @@ namespace tsp::io {
 /// or for version 1 files without one, a Connectivity dataset), opened with external (refused
 /// external links or storage: false). Never throws.
 bool is_vtkhdf_unstructured(const std::string& path, h5::External external = h5::External::refuse);
+/// The same test on a file already open. Never throws.
+bool is_vtkhdf_unstructured(hid_t file);
 
 /// Opens the VTKHDF UnstructuredGrid files, one step per file in order (one file: its Steps
 /// group's NSteps steps, or one step). field selects a PointData array, else a CellData array;
