@@ -25,6 +25,7 @@
 #include "player/recorder.h"
 #include "player/player.h"
 #include "player/player_state.h"
+#include "player/command.h"
 #include "player/script.h"
 #include "player/session.h"
 #include "player/tf_handles.h"
@@ -220,9 +221,12 @@ class PlayerApp {
   std::array<float, 2> left_press() const { return left_press_; }
   /// Goes to step t (clamped), pausing playback.
   void go_to(int t);
-  /// Validates and carries out one command (what keys and panels emit, as script lines do);
+  /// Validates and carries out one command now (as script lines, keys and panels make them);
   /// errors go to status and stderr.
-  void command(const ScriptAction& a);
+  void command(const Command& c);
+  /// Queues a command for the frame loop to carry out after the panels are drawn (what panel
+  /// widgets send: they read the state and never write it). Never throws but bad_alloc.
+  void push(Command c) { pending_commands_.push_back(std::move(c)); }
   /// Number of steps of the file.
   int steps() const;
   /// The TF the player starts a file or field with: --tf placed as --tf-range says over f's data.
@@ -321,7 +325,6 @@ class PlayerApp {
   void advance_playback(double dt);
   void handle_input();
   void run_script();
-  void apply(const ScriptAction& a);
   void draw_ui();  // player_ui.cpp
   void render_volume();
   void save_pending_shot();
@@ -402,7 +405,7 @@ class PlayerApp {
   tsp::MetricResult reference_;
   tsp::WholeTreeMetric reference_nodes_{reference_};  ///< reference_ as a FrameMetric
   std::uint64_t reference_version_ = ~std::uint64_t(0);
-  std::vector<ScriptAction> script_;
+  std::vector<ScriptLine> script_;
   std::size_t script_pos_ = 0;
   int wait_frames_ = 0;
   double wait_until_s_ = 0;  ///< wait-seconds: the script resumes at this clock_ reading
@@ -536,6 +539,16 @@ class PlayerApp {
   double target_ms_ = 0;       ///< the frame-time target of the last interacting frame
   std::string capture_dir_;    ///< script capture: the folder ("": off)
   int capture_count_ = 0;
+
+  // ---- commands (player_commands.cpp) ----
+  friend struct CommandApplier;  ///< carries out each command (apply())
+  std::vector<Command> pending_commands_;  ///< pushed by the panels this frame
+  /// Carries out the pushed commands in order (errors to status). Never throws but bad_alloc.
+  void apply_commands();
 };
+
+/// Carries out one command on app (line: its script line for messages, 0: a key or a panel).
+/// Throws tsp::Error (a tsp::UsageError naming the script line) when it cannot.
+void apply(PlayerApp& app, const Command& c, int line = 0);
 
 }  // namespace tspplayer

@@ -45,10 +45,7 @@ void domain_row(PlayerApp& app, const tsp::ValueRange& d) {
             "(tf-range LO:HI)");
   if (!entered) return;
   editing = false;
-  ScriptAction a;
-  a.kind = ScriptAction::Kind::tf_range;
-  a.text = text;
-  app.command(a);  // a bad range: the status area says why
+  app.push(cmd::StretchTf{text});  // a bad range: the status area says why
 }
 
 // The histogram under the curve, counted again only when the domain, the file or the bins
@@ -185,7 +182,8 @@ void tf_section(PlayerApp& app) {
                   int(i) == hovered ? IM_COL32(255, 255, 0, 255) : IM_COL32_WHITE);
   }
   domain_row(app, d);
-  ImGui::Checkbox("log opacity", &app.state.log_opacity);
+  if (bool on = app.state.log_opacity; ImGui::Checkbox("log opacity", &on))
+    app.push(cmd::LogOpacity{on});
   note_item("log opacity");
   ImGui::SameLine();
   ImGui::TextDisabled("(?)");
@@ -265,30 +263,21 @@ void tf_section(PlayerApp& app) {
   if (ImGui::IsItemHovered()) tooltip("Stretch the map over the data's whole range");
   ImGui::SameLine();
   if (ImGui::Button("fit to bulk", half)) {  // over the 1st to 99th percentile of the samples
-    ScriptAction fit;
-    fit.kind = ScriptAction::Kind::tf_range;
-    fit.text = "histogram";
-    app.command(fit);
+    app.push(cmd::StretchTf{"histogram"});
   }
   note_item("fit to bulk", true);
   if (ImGui::IsItemHovered())
     tooltip("Stretch the map over where the data is: the 1st to 99th percentile of every "
             "sample (tf-range histogram)");
   if (ImGui::Button("fit to step", half)) {  // over the range of the step shown
-    ScriptAction fit;
-    fit.kind = ScriptAction::Kind::tf_range;
-    fit.text = "step";
-    app.command(fit);
+    app.push(cmd::StretchTf{"step"});
   }
   note_item("fit to step", true);
   if (ImGui::IsItemHovered())
     tooltip("Stretch the map over the range of the step shown (tf-range step)");
   ImGui::SameLine();
   if (ImGui::Button("fit to view", half)) {  // over what the view shows of the step
-    ScriptAction fit;
-    fit.kind = ScriptAction::Kind::tf_range;
-    fit.text = "visible";
-    app.command(fit);
+    app.push(cmd::StretchTf{"visible"});
   }
   note_item("fit to view", true);
   if (ImGui::IsItemHovered())
