@@ -21,6 +21,8 @@
 #include "player/field_shelf.h"
 #include "player/input_queue.h"
 #include "player/layout.h"
+#include "player/lod_loop.h"
+#include "player/playback_clock.h"
 #include "player/open_job.h"
 #include "player/recorder.h"
 #include "player/player.h"
@@ -59,13 +61,6 @@ inline constexpr int kPrefetchSplits = 4;
 /// Largest --frame-delay-ms (a test's slow machine).
 inline constexpr double kMaxFrameDelayMs = 2000;
 
-/// Seconds without a change (view, step, TF, playback) after which the LOD cut refines to full
-/// quality.
-inline constexpr double kIdleDelaySeconds = 0.25;
-/// Frames without a change before the cut refines (with kIdleDelaySeconds).
-inline constexpr int kIdleFrames = 2;
-/// Splits per frame while refining when idle (a whole 64³ series is full in a frame or two).
-inline constexpr int kIdleSplitsPerFrame = 64;
 /// Steps whose readiness (bricks in RAM or textures) is re-checked per frame, for the timeline.
 inline constexpr int kReadyStepsPerFrame = 4;
 /// Milliseconds of each frame the playback tuning may use (the window keeps ≥ 10 frames/s on
@@ -165,7 +160,6 @@ class PlayerApp {
   // ---- statistics for the HUD ----
   tspgl::FrameReport last;
   tsp::LodFrameStats lod_stats;         ///< the last frame's cut
-  bool refining = false;                ///< idle: the cut refines to full quality
   /// Seconds from the last change to the first full-quality frame (−1: not there yet).
   double full_quality_after_s = -1;
   std::deque<FrameSample> history;
@@ -414,7 +408,7 @@ class PlayerApp {
   bool save_requested_ = false;
   bool quit_ = false;
   bool imgui_ = false;
-  double play_accum_ = 0;
+  PlaybackClock playback_clock_;  ///< playback's fraction of a step (playback_clock.h)
   bool speed_chosen_ = false;  ///< --speed or a speed command: kept; else default_speed per file
   int prefetched_for_ = -1;  ///< step whose successors were last requested
   int prefetched_cut_ = -1;  ///< cut size whose likely splits were last requested
@@ -463,18 +457,9 @@ class PlayerApp {
   std::shared_ptr<tspgl::SliceCompositor> compositor_;
   double switch_started_s_ = -1;  ///< when the last switch began (−1: reported)
   int ready_next_ = 0;  ///< the next step update_ready checks
-  // What changed last (interaction), and the frame's time outside rendering, for the LOD target.
-  struct Seen {
-    tsp::CameraParams camera;
-    int step = -1;
-    std::uint64_t tf_version = ~std::uint64_t(0);
-    std::uint64_t probe_version = ~std::uint64_t(0);
-    bool playing = false;
-    bool operator==(const Seen&) const = default;
-  } seen_;
-  double last_change_s_ = 0;
-  int frames_since_change_ = 0;
-  double overhead_ms_ = 0;
+  /// What changed last (interaction), and the frame's time outside rendering, for the LOD
+  /// target (lod_loop.h).
+  LodLoop lod_loop_;
   // Sessions (player_session.cpp): the input's entry in the cache folder ("": none, or
   // --no-session), where the shown session came from ("": defaults), why an entry was ignored,
   // and the sections to open once their windows exist.
@@ -526,8 +511,6 @@ class PlayerApp {
   tspgl::PartialFrame part_;           ///< this frame's bands
   std::unique_ptr<tspgl::FrameDriver> full_driver_;  ///< full-resolution frames (no cut)
   const void* refine_renderer_ = nullptr;  ///< the renderer full_driver_ draws
-  bool changed_ = false;       ///< this frame's view, step, TF or probes changed (or playing)
-  bool paused_now_ = false;    ///< this frame paused playback and nothing else changed
   bool refine_on_ = false;     ///< a refinement is under way or done since the last change
   bool base_pending_ = false;  ///< the next refining frame draws base_rung() whole first
   bool whole_ = false;         ///< no picture within the target to draw bands over: all at once
@@ -536,7 +519,6 @@ class PlayerApp {
   int refine_frames_ = 0;      ///< frames since the refinement started
   std::string stage_ = "interacting";
   bool within_ = false, was_within_ = false;  ///< this frame's and the last frame's picture
-  double target_ms_ = 0;       ///< the frame-time target of the last interacting frame
   std::string capture_dir_;    ///< script capture: the folder ("": off)
   int capture_count_ = 0;
 

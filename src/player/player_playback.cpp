@@ -21,13 +21,6 @@ namespace tspplayer {
 namespace {
 // The ratio of window to probe time is kept within these bounds (one odd frame cannot swing it).
 constexpr double kMinTimeRatio = 0.25, kMaxTimeRatio = 8;
-// A stalled frame does not skip many steps at once: a frame counts at most this long, or one and
-// a half step periods at slow speeds (the window sleeps until a step is due, a period apart).
-constexpr double kMaxFrameDt = 1.0, kMaxFramePeriods = 1.5;
-// A frame shows the next step, not the one the clock has reached, while the clock is at most this
-// many steps ahead: one slow frame among fast ones is caught up by the next frames instead of
-// skipping a step; frames slower than the steps skip steps to keep time.
-constexpr double kMaxStepBacklog = 2;
 }  // namespace
 
 double default_speed(int steps) {
@@ -36,30 +29,18 @@ double default_speed(int steps) {
 
 void PlayerApp::advance_playback(double dt) {
   if (!state.playing) {
-    play_accum_ = 0;
+    playback_clock_.reset();
     return;
   }
-  play_accum_ += std::min(dt, std::max(kMaxFrameDt, kMaxFramePeriods / state.speed)) * state.speed;
-  // Every step: at most one step a frame, however slow the frames (no step is skipped).
-  if (state.every_step) play_accum_ = std::min(play_accum_, 1.0);
-  int advance = 0;
-  if (play_accum_ >= 1) {
-    advance = 1;
-    play_accum_ -= 1;
-  }
-  if (play_accum_ > kMaxStepBacklog) {
-    const int skip = int(play_accum_ - kMaxStepBacklog);
-    advance += skip;
-    play_accum_ -= skip;
-  }
-  for (; advance > 0; --advance) {
+  for (int advance = playback_clock_.advance(dt, state.speed, state.every_step); advance > 0;
+       --advance) {
     if (state.step + 1 < steps()) {
       ++state.step;
     } else if (state.loop) {
       state.step = 0;
     } else {
       state.playing = false;
-      play_accum_ = 0;
+      playback_clock_.reset();
       break;
     }
   }
@@ -67,8 +48,7 @@ void PlayerApp::advance_playback(double dt) {
 
 double PlayerApp::until_next_step() const {
   if (!state.playing) return kIdleWaitSeconds;
-  const double pending = play_accum_ + (clock_.seconds() - last_frame_s_) * state.speed;
-  return pending >= 1 ? 0.0 : (1 - pending) / std::max(state.speed, 1e-3);
+  return playback_clock_.until_next(clock_.seconds() - last_frame_s_, state.speed);
 }
 
 double PlayerApp::steps_shown_per_s() const {
@@ -198,8 +178,9 @@ void PlayerApp::advance_tuning() {
 void PlayerApp::choose_rung(double now_s) {
   if (!playing_rung()) return;
   const double period_ms = 1000.0 / std::max(state.speed, 1e-3);
-  const tspgl::RungChoice next = tspgl::choose_rung(tuned_, period_ms, time_ratio_, overhead_ms_,
-                                                    state.quality, state.keep_quality);
+  const tspgl::RungChoice next =
+      tspgl::choose_rung(tuned_, period_ms, time_ratio_, lod_loop_.overhead_ms(),
+                         state.quality, state.keep_quality);
   // A new target, speed or rule applies at once; otherwise a cheaper rung at once (the rate or
   // the quality is being missed) and a costlier one with headroom, not straight after a change.
   const RungFor asked{state.quality, state.speed, state.keep_quality};
@@ -213,7 +194,7 @@ void PlayerApp::choose_rung(double now_s) {
   }
   // The same rung: its prediction with the current ratio.
   const tspgl::TunedRung& t = tuned_[std::size_t(rung_.index)];
-  rung_.predicted_ms = t.ms * time_ratio_ + overhead_ms_;
+  rung_.predicted_ms = t.ms * time_ratio_ + lod_loop_.overhead_ms();
   rung_.fits_rate = rung_.predicted_ms <= period_ms;
   rung_.within_quality = t.mean_de <= tspgl::kPlaybackQualityMargin * state.quality;
 }
