@@ -255,12 +255,10 @@ void tf_section(PlayerApp& app) {
   if (ImGui::IsItemHovered()) tooltip("the colour map in use; choose a preset to apply it");
   // The colour range: four fits, two a row, each button half the row.
   const ImVec2 half((ImGui::GetContentRegionAvail().x - ImGui::GetStyle().ItemSpacing.x) / 2, 0);
-  if (ImGui::Button("fit to data", half)) {  // the map as it is, stretched over the data's range
-    app.set_tf(tsp::rescaled(app.tf, d), true);
-    app.status = "transfer function stretched over the data range";
-  }
+  if (ImGui::Button("fit to data", half))  // the map as it is, stretched over the data's range
+    app.push(cmd::StretchTf{"data"});
   note_item("fit to data", true);
-  if (ImGui::IsItemHovered()) tooltip("Stretch the map over the data's whole range");
+  if (ImGui::IsItemHovered()) tooltip("Stretch the map over the data's whole range (tf-range data)");
   ImGui::SameLine();
   if (ImGui::Button("fit to bulk", half)) {  // over the 1st to 99th percentile of the samples
     app.push(cmd::StretchTf{"histogram"});
