@@ -23,6 +23,7 @@
 #include "player/layout.h"
 #include "player/lod_loop.h"
 #include "player/playback_clock.h"
+#include "player/rung_picker.h"
 #include "player/open_job.h"
 #include "player/recorder.h"
 #include "player/player.h"
@@ -66,13 +67,6 @@ inline constexpr int kReadyStepsPerFrame = 4;
 /// Milliseconds of each frame the playback tuning may use (the window keeps ≥ 10 frames/s on
 /// top of its own frame time).
 inline constexpr double kCalibrationSliceMs = 15;
-/// Smoothing, per frame, of the ratio of the window's render time to the probe's for a rung.
-inline constexpr double kTimeRatioSmoothing = 0.2;
-/// A rung costlier than the one playing is taken only when predicted within this share of the
-/// step period, and kRungHoldSeconds after the last change (no flapping between two rungs).
-inline constexpr double kRungHeadroom = 0.85;
-/// See kRungHeadroom.
-inline constexpr double kRungHoldSeconds = 1;
 /// Seconds over which the steps shown per second are counted.
 inline constexpr double kShownWindowSeconds = 2;
 /// Frames drawn after the last input event (Dear ImGui's hover and popups settle).
@@ -193,11 +187,13 @@ class PlayerApp {
   /// The playback tuning in progress, if any (for its progress bar).
   const tspgl::PlaybackTuner* tuning() const { return tuner_.get(); }
   /// The rung playing draws (meaningful while playing_rung()).
-  const tspgl::RungChoice& rung_choice() const { return rung_; }
+  const tspgl::RungChoice& rung_choice() const { return rungs_.choice(); }
   /// The tuned ladder (empty before the first tuning ends).
-  const std::vector<tspgl::TunedRung>& tuned_rungs() const { return tuned_; }
+  const std::vector<tspgl::TunedRung>& tuned_rungs() const { return rungs_.ladder(); }
   /// True when frames are drawn with a tuned rung: playing with a quality target, tuned.
-  bool playing_rung() const { return state.playing && state.quality > 0 && !tuned_.empty(); }
+  bool playing_rung() const {
+    return state.playing && state.quality > 0 && !rungs_.ladder().empty();
+  }
   /// The rung a playing frame draws with a quality target: the chosen one, or before the first
   /// tuning ends tspgl::kProvisionalRung; null when not playing or without a target.
   const tspgl::Rung* rung_drawn() const;
@@ -433,18 +429,7 @@ class PlayerApp {
   bool tuning_from_cache_ = false;   ///< the last tuning was read from disk
   std::unique_ptr<tspgl::PlaybackTuner> tuner_;  ///< probing the ladder, while it runs
   TuneKey tuning_for_, tuned_for_;              ///< what the running / last tuning is for
-  std::vector<tspgl::TunedRung> tuned_;         ///< the last complete tuning's rungs
-  tspgl::RungChoice rung_;                      ///< the rung playing draws
-  std::vector<std::int64_t> rung_frames_;       ///< frames drawn per rung while playing
-  double time_ratio_ = 1;        ///< window render time / probe time, smoothed
-  double rung_changed_s_ = -1e9; ///< when the rung last changed
-  /// What the rung was chosen for: a change of any re-chooses at once.
-  struct RungFor {
-    double quality = 0, speed = 0;
-    bool keep_quality = true;
-    bool operator==(const RungFor&) const = default;
-  };
-  RungFor rung_for_;
+  RungPicker rungs_;  ///< the last complete tuning's ladder and the rung playing draws
   double tuning_started_s_ = 0;
   double tuning_s_ = -1;                ///< how long the last tuning took (−1: none)
   std::deque<double> shown_at_s_;       ///< when each newly shown step was drawn (last 2 s)

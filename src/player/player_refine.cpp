@@ -31,11 +31,12 @@ bool refine_by_cut() {
 }
 
 const tspgl::TunedRung* PlayerApp::base_rung() const {
-  if (state.quality <= 0 || tuned_.empty() || !(tuned_for_ == tune_key())) return nullptr;
+  const std::vector<tspgl::TunedRung>& tuned = rungs_.ladder();
+  if (state.quality <= 0 || tuned.empty() || !(tuned_for_ == tune_key())) return nullptr;
   const tspgl::TunedRung* best = nullptr;
-  for (std::size_t i = 1; i < tuned_.size(); ++i) {
-    const tspgl::TunedRung& r = tuned_[i];
-    if (r.mean_de <= kRefineBaseMargin * state.quality && r.ms < tuned_[0].ms &&
+  for (std::size_t i = 1; i < tuned.size(); ++i) {
+    const tspgl::TunedRung& r = tuned[i];
+    if (r.mean_de <= kRefineBaseMargin * state.quality && r.ms < tuned[0].ms &&
         (!best || r.ms < best->ms))
       best = &r;
   }
@@ -154,7 +155,7 @@ void PlayerApp::cut_drawn(bool rung) {
     within_ = true;
   } else if (state.playing) {
     stage_ = "playing";
-    within_ = no_target || (rung && rung_.within_quality);
+    within_ = no_target || (rung && rungs_.choice().within_quality);
   } else {
     stage_ = "interacting";
     within_ = no_target || state.lod_filter.kind != tsp::LodFilter::error;
