@@ -7,7 +7,8 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string path = tspfuzz::write_input("input.script", data, size);
   tspfuzz::expect_clean([&] {
-    for (const tspplayer::ScriptAction& a : tspplayer::load_script(path)) tspplayer::validate(a);
+    for (const tspplayer::ScriptLine& a : tspplayer::load_script(path))
+      tspplayer::validate(a.command);
   });
   return 0;
 }

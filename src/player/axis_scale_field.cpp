@@ -38,12 +38,12 @@ void axis_scale_field(PlayerApp& app) {
       typed[std::size_t(a)] = v;
     } else if (changed && !escape) {  // dragged (Escape's revert of a typed value: nothing)
       next[std::size_t(a)] = std::clamp(v, kMinScale, kMaxScale);
-      app.set_scale(next);
+      app.push(cmd::SetScale{next});
     }
     if (ImGui::IsItemDeactivated()) {
       if (typed[std::size_t(a)] && !escape) {
         next[std::size_t(a)] = std::clamp(*typed[std::size_t(a)], kMinScale, kMaxScale);
-        app.set_scale(next);
+        app.push(cmd::SetScale{next});
       }
       typed[std::size_t(a)].reset();
     }

@@ -88,11 +88,8 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
   state.lod_filter = tsp::parse_lod_filter(options.lod_filter, "--lod-filter");
   if (!options.script.empty()) script_ = load_script(options.script);
   if (!options.screenshot.empty()) {
-    ScriptAction shot;
-    shot.kind = ScriptAction::Kind::screenshot;
-    shot.text = options.screenshot;
-    script_.push_back(shot);
-    script_.push_back(ScriptAction{});  // quit
+    script_.push_back({cmd::Screenshot{options.screenshot, false}, 0});
+    script_.push_back({cmd::Quit{}, 0});
   }
   const tsp::TfRangeChoice range = tsp::parse_tf_range(options.tf_range);
   const tsp::ValueHistogram histogram = tsp::histogram_of(*file);
@@ -124,10 +121,7 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
   (void)tsp::ClipRegion(state.probes, state.probe_op, file->metadata().origin, file->metadata().spacing);
   if (!state.probes.empty()) probe_selected = 0;
   if (range.mode == tsp::TfRangeChoice::Mode::visible) {  // now that view and probes are known
-    ScriptAction fit;
-    fit.kind = ScriptAction::Kind::tf_range;
-    fit.text = "visible";
-    apply(fit);
+    apply(*this, cmd::StretchTf{"visible"});
   }
 
   ctx = tspgl::create_window_context(options.width, options.height, "tspplay - " + (options.input_path.empty() ? options.tsp_path : options.input_path),
@@ -540,6 +534,7 @@ void PlayerApp::frame() {
   }
   apply_pending_ui();  // a restored session's open sections
   draw_ui();
+  apply_commands();  // what the panels sent
   ImGui::Render();
   ctx->gl().BindFramebuffer(GL_FRAMEBUFFER, 0);
   ctx->gl().Viewport(0, 0, ctx->width(), ctx->height());

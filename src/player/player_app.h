@@ -21,10 +21,14 @@
 #include "player/field_shelf.h"
 #include "player/input_queue.h"
 #include "player/layout.h"
+#include "player/lod_loop.h"
+#include "player/playback_clock.h"
+#include "player/rung_picker.h"
 #include "player/open_job.h"
 #include "player/recorder.h"
 #include "player/player.h"
 #include "player/player_state.h"
+#include "player/command.h"
 #include "player/script.h"
 #include "player/session.h"
 #include "player/tf_handles.h"
@@ -58,25 +62,11 @@ inline constexpr int kPrefetchSplits = 4;
 /// Largest --frame-delay-ms (a test's slow machine).
 inline constexpr double kMaxFrameDelayMs = 2000;
 
-/// Seconds without a change (view, step, TF, playback) after which the LOD cut refines to full
-/// quality.
-inline constexpr double kIdleDelaySeconds = 0.25;
-/// Frames without a change before the cut refines (with kIdleDelaySeconds).
-inline constexpr int kIdleFrames = 2;
-/// Splits per frame while refining when idle (a whole 64³ series is full in a frame or two).
-inline constexpr int kIdleSplitsPerFrame = 64;
 /// Steps whose readiness (bricks in RAM or textures) is re-checked per frame, for the timeline.
 inline constexpr int kReadyStepsPerFrame = 4;
 /// Milliseconds of each frame the playback tuning may use (the window keeps ≥ 10 frames/s on
 /// top of its own frame time).
 inline constexpr double kCalibrationSliceMs = 15;
-/// Smoothing, per frame, of the ratio of the window's render time to the probe's for a rung.
-inline constexpr double kTimeRatioSmoothing = 0.2;
-/// A rung costlier than the one playing is taken only when predicted within this share of the
-/// step period, and kRungHoldSeconds after the last change (no flapping between two rungs).
-inline constexpr double kRungHeadroom = 0.85;
-/// See kRungHeadroom.
-inline constexpr double kRungHoldSeconds = 1;
 /// Seconds over which the steps shown per second are counted.
 inline constexpr double kShownWindowSeconds = 2;
 /// Frames drawn after the last input event (Dear ImGui's hover and popups settle).
@@ -164,7 +154,6 @@ class PlayerApp {
   // ---- statistics for the HUD ----
   tspgl::FrameReport last;
   tsp::LodFrameStats lod_stats;         ///< the last frame's cut
-  bool refining = false;                ///< idle: the cut refines to full quality
   /// Seconds from the last change to the first full-quality frame (−1: not there yet).
   double full_quality_after_s = -1;
   std::deque<FrameSample> history;
@@ -198,11 +187,13 @@ class PlayerApp {
   /// The playback tuning in progress, if any (for its progress bar).
   const tspgl::PlaybackTuner* tuning() const { return tuner_.get(); }
   /// The rung playing draws (meaningful while playing_rung()).
-  const tspgl::RungChoice& rung_choice() const { return rung_; }
+  const tspgl::RungChoice& rung_choice() const { return rungs_.choice(); }
   /// The tuned ladder (empty before the first tuning ends).
-  const std::vector<tspgl::TunedRung>& tuned_rungs() const { return tuned_; }
+  const std::vector<tspgl::TunedRung>& tuned_rungs() const { return rungs_.ladder(); }
   /// True when frames are drawn with a tuned rung: playing with a quality target, tuned.
-  bool playing_rung() const { return state.playing && state.quality > 0 && !tuned_.empty(); }
+  bool playing_rung() const {
+    return state.playing && state.quality > 0 && !rungs_.ladder().empty();
+  }
   /// The rung a playing frame draws with a quality target: the chosen one, or before the first
   /// tuning ends tspgl::kProvisionalRung; null when not playing or without a target.
   const tspgl::Rung* rung_drawn() const;
@@ -220,9 +211,12 @@ class PlayerApp {
   std::array<float, 2> left_press() const { return left_press_; }
   /// Goes to step t (clamped), pausing playback.
   void go_to(int t);
-  /// Validates and carries out one command (what keys and panels emit, as script lines do);
+  /// Validates and carries out one command now (as script lines, keys and panels make them);
   /// errors go to status and stderr.
-  void command(const ScriptAction& a);
+  void command(const Command& c);
+  /// Queues a command for the frame loop to carry out after the panels are drawn (what panel
+  /// widgets send: they read the state and never write it). Never throws but bad_alloc.
+  void push(Command c) { pending_commands_.push_back(std::move(c)); }
   /// Number of steps of the file.
   int steps() const;
   /// The TF the player starts a file or field with: --tf placed as --tf-range says over f's data.
@@ -321,7 +315,6 @@ class PlayerApp {
   void advance_playback(double dt);
   void handle_input();
   void run_script();
-  void apply(const ScriptAction& a);
   void draw_ui();  // player_ui.cpp
   void render_volume();
   void save_pending_shot();
@@ -402,7 +395,7 @@ class PlayerApp {
   tsp::MetricResult reference_;
   tsp::WholeTreeMetric reference_nodes_{reference_};  ///< reference_ as a FrameMetric
   std::uint64_t reference_version_ = ~std::uint64_t(0);
-  std::vector<ScriptAction> script_;
+  std::vector<ScriptLine> script_;
   std::size_t script_pos_ = 0;
   int wait_frames_ = 0;
   double wait_until_s_ = 0;  ///< wait-seconds: the script resumes at this clock_ reading
@@ -411,7 +404,7 @@ class PlayerApp {
   bool save_requested_ = false;
   bool quit_ = false;
   bool imgui_ = false;
-  double play_accum_ = 0;
+  PlaybackClock playback_clock_;  ///< playback's fraction of a step (playback_clock.h)
   bool speed_chosen_ = false;  ///< --speed or a speed command: kept; else default_speed per file
   int prefetched_for_ = -1;  ///< step whose successors were last requested
   int prefetched_cut_ = -1;  ///< cut size whose likely splits were last requested
@@ -436,18 +429,7 @@ class PlayerApp {
   bool tuning_from_cache_ = false;   ///< the last tuning was read from disk
   std::unique_ptr<tspgl::PlaybackTuner> tuner_;  ///< probing the ladder, while it runs
   TuneKey tuning_for_, tuned_for_;              ///< what the running / last tuning is for
-  std::vector<tspgl::TunedRung> tuned_;         ///< the last complete tuning's rungs
-  tspgl::RungChoice rung_;                      ///< the rung playing draws
-  std::vector<std::int64_t> rung_frames_;       ///< frames drawn per rung while playing
-  double time_ratio_ = 1;        ///< window render time / probe time, smoothed
-  double rung_changed_s_ = -1e9; ///< when the rung last changed
-  /// What the rung was chosen for: a change of any re-chooses at once.
-  struct RungFor {
-    double quality = 0, speed = 0;
-    bool keep_quality = true;
-    bool operator==(const RungFor&) const = default;
-  };
-  RungFor rung_for_;
+  RungPicker rungs_;  ///< the last complete tuning's ladder and the rung playing draws
   double tuning_started_s_ = 0;
   double tuning_s_ = -1;                ///< how long the last tuning took (−1: none)
   std::deque<double> shown_at_s_;       ///< when each newly shown step was drawn (last 2 s)
@@ -460,18 +442,9 @@ class PlayerApp {
   std::shared_ptr<tspgl::SliceCompositor> compositor_;
   double switch_started_s_ = -1;  ///< when the last switch began (−1: reported)
   int ready_next_ = 0;  ///< the next step update_ready checks
-  // What changed last (interaction), and the frame's time outside rendering, for the LOD target.
-  struct Seen {
-    tsp::CameraParams camera;
-    int step = -1;
-    std::uint64_t tf_version = ~std::uint64_t(0);
-    std::uint64_t probe_version = ~std::uint64_t(0);
-    bool playing = false;
-    bool operator==(const Seen&) const = default;
-  } seen_;
-  double last_change_s_ = 0;
-  int frames_since_change_ = 0;
-  double overhead_ms_ = 0;
+  /// What changed last (interaction), and the frame's time outside rendering, for the LOD
+  /// target (lod_loop.h).
+  LodLoop lod_loop_;
   // Sessions (player_session.cpp): the input's entry in the cache folder ("": none, or
   // --no-session), where the shown session came from ("": defaults), why an entry was ignored,
   // and the sections to open once their windows exist.
@@ -523,8 +496,6 @@ class PlayerApp {
   tspgl::PartialFrame part_;           ///< this frame's bands
   std::unique_ptr<tspgl::FrameDriver> full_driver_;  ///< full-resolution frames (no cut)
   const void* refine_renderer_ = nullptr;  ///< the renderer full_driver_ draws
-  bool changed_ = false;       ///< this frame's view, step, TF or probes changed (or playing)
-  bool paused_now_ = false;    ///< this frame paused playback and nothing else changed
   bool refine_on_ = false;     ///< a refinement is under way or done since the last change
   bool base_pending_ = false;  ///< the next refining frame draws base_rung() whole first
   bool whole_ = false;         ///< no picture within the target to draw bands over: all at once
@@ -533,9 +504,18 @@ class PlayerApp {
   int refine_frames_ = 0;      ///< frames since the refinement started
   std::string stage_ = "interacting";
   bool within_ = false, was_within_ = false;  ///< this frame's and the last frame's picture
-  double target_ms_ = 0;       ///< the frame-time target of the last interacting frame
   std::string capture_dir_;    ///< script capture: the folder ("": off)
   int capture_count_ = 0;
+
+  // ---- commands (player_commands.cpp) ----
+  friend struct CommandApplier;  ///< carries out each command (apply())
+  std::vector<Command> pending_commands_;  ///< pushed by the panels this frame
+  /// Carries out the pushed commands in order (errors to status). Never throws but bad_alloc.
+  void apply_commands();
 };
+
+/// Carries out one command on app (line: its script line for messages, 0: a key or a panel).
+/// Throws tsp::Error (a tsp::UsageError naming the script line) when it cannot.
+void apply(PlayerApp& app, const Command& c, int line = 0);
 
 }  // namespace tspplayer

@@ -398,7 +398,7 @@ void PlayerApp::write_stats(const std::string& path) const {
                  {"cache_file", tuning_cache_file_}};
   j["lod"] = {{"on", state.lod_on},
               {"target_fps", state.target_fps},
-              {"refining", refining},
+              {"refining", lod_loop_.refining()},
               {"cut_size", lod_stats.cut_size},
               {"nodes_per_level", lod_stats.nodes_per_level},
               {"render_scale", lod_stats.render_scale},

@@ -6,14 +6,11 @@
 #include <imgui.h>
 
 #include <algorithm>
-#include <filesystem>
 #include <cmath>
 #include <cstdio>
 
-#include "jobs/visible_range.h"
 #include "player/player_app.h"
 #include "tsp/core/error.h"
-#include "tsp/metric/tf_io.h"
 
 namespace tspplayer {
 
@@ -84,242 +81,12 @@ void PlayerApp::trace_tf_canvas(float x, float y, float w, float h) {
   std::fflush(stdout);
 }
 
-void PlayerApp::command(const ScriptAction& a) {
-  try {
-    validate(a);
-    apply(a);
-  } catch (const tsp::Error& e) {
-    status = e.what();
-    std::fprintf(stderr, "tspplay: %s\n", e.what());
-  }
-}
-
 void PlayerApp::apply_key(int key) {
-  using Kind = ScriptAction::Kind;
-  const int last = steps() - 1;
-  switch (key) {
-    case GLFW_KEY_SPACE:
-      command(command_of(state.playing ? Kind::pause : Kind::play));
-      break;
-    case GLFW_KEY_LEFT:
-      command(step_command(std::max(0, state.step - 1)));
-      break;
-    case GLFW_KEY_RIGHT:
-      command(step_command(std::min(last, state.step + 1)));
-      break;
-    case GLFW_KEY_HOME:
-      command(step_command(0));
-      break;
-    case GLFW_KEY_END:
-      command(step_command(last));
-      break;
-    case GLFW_KEY_S:  // a view-only action: saves a file, changes nothing shown
-      request_save();
-      break;
-    case GLFW_KEY_L:
-      command(command_of(Kind::show_cut, !state.show_cut));
-      break;
-    case GLFW_KEY_R:
-      command(command_of(Kind::reset_camera));
-      break;
-    case GLFW_KEY_F1:
-    case GLFW_KEY_SLASH:  // '?' on most layouts: the help overlay (no player state)
-      show_help = !show_help;
-      break;
-    case GLFW_KEY_TAB:
-      command(command_of(Kind::panels, !state.panels));
-      break;
-    case GLFW_KEY_P:
-      command(command_of(Kind::projection, state.camera.projection == tsp::Projection::orthographic));
-      break;
-    default:
-      break;
+  if (key == GLFW_KEY_F1 || key == GLFW_KEY_SLASH) {  // '?' on most layouts: the help overlay
+    show_help = !show_help;  // (no player state)
+    return;
   }
-}
-
-void PlayerApp::apply(const ScriptAction& a) {
-  using Kind = ScriptAction::Kind;
-  switch (a.kind) {
-    case Kind::step:
-      if (a.number >= steps())
-        throw tsp::UsageError(options_.script + ":" + std::to_string(a.line) + ": step " +
-                              std::to_string(a.number) + ": the file has steps 0.." +
-                              std::to_string(steps() - 1));
-      go_to(a.number);
-      break;
-    case Kind::play:
-      state.playing = true;
-      advance_tuning();  // tuned at once if it must be: a script's next action waits for it
-      break;
-    case Kind::pause:
-      state.playing = false;
-      break;
-    case Kind::speed:
-      state.speed = a.value;
-      speed_chosen_ = true;  // kept when another file opens
-      break;
-    case Kind::loop:
-      state.loop = a.flag;
-      break;
-    case Kind::tf: {
-      const tsp::ValueHistogram histogram = tsp::histogram_of(*file);
-      set_tf(tsp::transfer_function_from_arg(a.text, file->tree().value_range(), tf.size(), {},
-                                             &histogram),
-             true);
-      tf_label = tf_label_of(a.text);
-      break;
-    }
-    case Kind::tf_range: {  // the map as it is, stretched over the chosen range
-      const tsp::TfRangeChoice c = tsp::parse_tf_range(a.text);
-      const tsp::ValueRange to =
-          c.mode == tsp::TfRangeChoice::Mode::explicit_range ? c.range
-          : c.mode == tsp::TfRangeChoice::Mode::visible
-              ? tspgl::visible_value_range(
-                    file->tree(), state.step,
-                    tsp::Camera(file->tree().octree().dims(), state.camera),
-                    tsp::ClipRegion(state.probes, state.probe_op, file->metadata().origin,
-                                    file->metadata().spacing))
-              : tsp::tf_domain_of(c, *file, state.step);
-      set_tf(tsp::rescaled(tf, to), true);
-      status = "transfer function stretched over " + a.text + " [" + std::to_string(to.lo) +
-               ", " + std::to_string(to.hi) + "]";
-      break;
-    }
-    case Kind::tolerance:
-      set_tolerances({a.value, a.value2});
-      break;
-    case Kind::metric:
-      set_metric(tsp::parse_metric(a.text));
-      break;
-    case Kind::cache:
-      set_cache(a.flag, state.texture_budget_mb);
-      break;
-    case Kind::prefetch:
-      state.prefetch_on = a.flag;
-      break;
-    case Kind::view:
-      state.camera.azimuth_deg = a.value;
-      state.camera.elevation_deg = a.value2;
-      break;
-    case Kind::zoom:
-      state.camera.zoom = a.value;
-      break;
-    case Kind::projection:
-      state.camera.projection = a.flag ? tsp::Projection::perspective : tsp::Projection::orthographic;
-      break;
-    case Kind::screenshot:
-    case Kind::screenshot_ui:
-      pending_shot_ = a.text;
-      pending_with_ui_ = a.kind == Kind::screenshot_ui;
-      break;
-    case Kind::wait_frames:
-      wait_frames_ = a.number;
-      break;
-    case Kind::wait_seconds:
-      wait_until_s_ = clock_.seconds() + a.value;
-      break;
-    case Kind::setting:
-      set_setting(a.text, a.text2);
-      break;
-    case Kind::quality:
-      apply_quality(a.value);
-      break;
-    case Kind::stats:
-      write_stats(a.text);
-      break;
-    case Kind::lod:
-      set_lod(a.flag);
-      break;
-    case Kind::lod_filter:
-      state.lod_filter = tsp::parse_lod_filter(a.text, "lod-filter");
-      break;
-    case Kind::target_fps:
-      state.target_fps = float(a.value);
-      break;
-    case Kind::show_cut:
-      state.show_cut = a.flag;
-      break;
-    case Kind::panels:
-      state.panels = a.flag;
-      break;
-    case Kind::every_step:
-      state.every_step = a.flag;
-      break;
-    case Kind::log_opacity:
-      state.log_opacity = a.flag;
-      break;
-    case Kind::open:
-      open_input(a.text, a.text2, a.text3);
-      break;
-    case Kind::field:
-      try {
-        switch_field(a.text);
-      } catch (const tsp::UsageError& e) {  // a script line says where
-        if (a.line <= 0) throw;
-        throw tsp::UsageError(options_.script + ":" + std::to_string(a.line) + ": " + e.what());
-      }
-      break;
-    case Kind::probe:
-      add_probe(tsp::parse_probe(a.text));
-      break;
-    case Kind::probe_op:
-      state.probe_op = tsp::parse_probe_op(a.text);
-      probes_changed();
-      break;
-    case Kind::probe_surface:
-      state.probe_surface = a.flag;
-      probes_changed();
-      break;
-    case Kind::probe_clear:
-      state.probes.clear();
-      probe_selected = -1;
-      probes_changed();
-      break;
-    case Kind::probe_move:
-      if (a.number < 1 || a.number > int(state.probes.size()))
-        throw tsp::UsageError(options_.script + ":" + std::to_string(a.line) + ": probe " +
-                              std::to_string(a.number) + ": there are " +
-                              std::to_string(state.probes.size()) + " probes");
-      tsp::move_probe(state.probes[std::size_t(a.number - 1)], {a.value, a.value2, a.value3});
-      probes_changed();
-      break;
-    case Kind::record:
-      start_recording(a.text);
-      break;
-    case Kind::record_stop:
-      stop_recording();
-      break;
-    case Kind::playback:
-      state.keep_quality = a.flag;
-      break;
-    case Kind::capture:  // every frame from the next on, as drawn (player_refine.cpp)
-      capture_dir_ = a.text == "off" ? "" : a.text;
-      capture_count_ = 0;
-      if (!capture_dir_.empty()) {
-        std::filesystem::create_directories(capture_dir_);
-        std::filesystem::remove(std::filesystem::path(capture_dir_) / "frames.jsonl");
-      }
-      break;
-    case Kind::reset_camera:
-      state.camera = initial_camera;
-      if (options_.trace) {
-        std::printf("trace: camera reset\n");
-        std::fflush(stdout);
-      }
-      break;
-    case Kind::quit:
-      quit_ = true;
-      break;
-    case Kind::save_session:
-      save_session_as(a.text);
-      break;
-    case Kind::scale:
-      set_scale({a.value, a.value2, a.value3});
-      break;
-    case Kind::expand:
-      expand_sections = a.flag ? 1 : -1;
-      break;
-  }
+  if (std::optional<Command> c = key_command(key, state, steps())) command(*c);
 }
 
 // Runs actions until one needs frames to pass: a screenshot (saved after this frame's render),
@@ -333,10 +100,10 @@ void PlayerApp::run_script() {
   }
   if (clock_.seconds() < wait_until_s_) return;
   while (script_pos_ < script_.size() && !quit_) {
-    const ScriptAction& a = script_[script_pos_++];
-    apply(a);
+    const ScriptLine& a = script_[script_pos_++];
+    apply(*this, a.command, a.line);
     if (options_.trace) trace_changes();  // each action's effect on its own line
-    if (waits_for_frames(a)) break;
+    if (waits_for_frames(a.command)) break;
     if (open_job_ || tuner_) break;  // the next actions wait for the build or the tuning
   }
 }

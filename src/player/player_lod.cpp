@@ -18,10 +18,6 @@
 namespace tspplayer {
 
 namespace {
-// Smoothing of the frame's time outside rendering (UI, swap), per frame.
-constexpr double kOverheadSmoothing = 0.2;
-// The render share of the frame may not drop below this many milliseconds.
-constexpr double kMinRenderMs = 2;
 // The live colour legend: its height as a share of the view's (at least kMinLegendPx), its bar's
 // width, its distance from the view's right edge (room for the tick labels), and its ticks.
 constexpr float kLegendHeightShare = 0.4f, kMinLegendPx = 60, kLegendWidthPx = 14,
@@ -39,69 +35,10 @@ void PlayerApp::set_lod(bool on) {
 }
 
 tspgl::LodSpec PlayerApp::lod_spec(double now_s) {
-  // Any change of what is shown counts as interaction.
-  const Seen now{state.camera, state.step, tf.version(), probe_version, state.playing};
-  // A pause alone changes nothing shown: the last playing frame stays and is refined
-  // (player_refine.cpp), not replaced by a coarse cut.
-  Seen playing_then = now;
-  playing_then.playing = true;
-  paused_now_ = seen_.playing && !state.playing && playing_then == seen_ && !refine_by_cut();
-  const bool changed = state.playing || (!(now == seen_) && !paused_now_);
-  changed_ = changed;
-  // Playing with the view and the TF still, a frame per step is enough: the frame time may
-  // follow the playback speed (5 steps/s: 200 ms) rather than the interactive target.
-  const bool steady_playback =
-      state.playing && now.camera == seen_.camera && now.tf_version == seen_.tf_version &&
-      now.probe_version == seen_.probe_version;
-  if (changed) {
-    last_change_s_ = now_s;
-    frames_since_change_ = 0;
-  } else {
-    ++frames_since_change_;
-  }
-  seen_ = now;
-  if (!state.lod_on) {
-    refining = false;
-    return {};
-  }
-  // LaMar's selection filters: the cut follows the camera by their rule, whatever the target.
-  if (state.lod_filter.kind != tsp::LodFilter::error) {
-    refining = false;
-    tspgl::LodSpec spec;
-    spec.mode = tspgl::LodMode::filter;
-    spec.filter = state.lod_filter;
-    return spec;
-  }
-  // Playing at a quality target: the tuned rung's LOD level everywhere (or full resolution),
-  // never a time-only cut (before the first tuning ends, the provisional rung).
-  if (state.playing && state.quality > 0) {
-    refining = false;
-    tspgl::LodSpec spec;
-    if (const tspgl::Rung* r = rung_drawn(); r && r->lod_level > 0) {
-      spec.mode = tspgl::LodMode::fixed;
-      spec.level = r->lod_level;
-    }
-    return spec;
-  }
-  // Idle: nothing changed for a while, and for more than one frame (a slow frame alone is not).
-  refining = now_s - last_change_s_ >= kIdleDelaySeconds && frames_since_change_ >= kIdleFrames;
-  tspgl::LodSpec spec;
-  spec.mode = tspgl::LodMode::adaptive;
-  tsp::LodOptions& o = spec.options;
-  o.focus = focus;
-  if (refining) {  // full quality: every node with any error, many per frame, no time limit
-    o.target_ms = 0;
-    o.min_error = 0;
-    o.split_limit = kIdleSplitsPerFrame;
-  } else {
-    const double frame_ms = std::max(1000.0 / std::max(1.f, state.target_fps),
-                                     steady_playback ? 1000.0 / std::max(state.speed, 1e-3) : 0.0);
-    o.target_ms = std::max(kMinRenderMs, frame_ms - overhead_ms_);
-    target_ms_ = o.target_ms;
-  }
-  o.texture_budget = std::int64_t(state.texture_budget_mb * (1 << 20));
-  o.fallback = state.splat_fallback ? tsp::LodFallback::splats : tsp::LodFallback::scale;
-  return spec;
+  // (Playing at a quality target: the tuned rung's level, or the provisional rung's.)
+  const tspgl::Rung* r = state.playing && state.quality > 0 ? rung_drawn() : nullptr;
+  return lod_loop_.next(
+      state, {tf.version(), probe_version, focus, r ? r->lod_level : 0, !refine_by_cut()}, now_s);
 }
 
 void PlayerApp::lod_drawn(const std::optional<tsp::LodFrameStats>& stats, double now_s) {
@@ -109,7 +46,7 @@ void PlayerApp::lod_drawn(const std::optional<tsp::LodFrameStats>& stats, double
   if (!state.lod_on) return;
   // When the picture got back to full quality after the last change.
   if (full_quality()) {
-    if (full_quality_after_s < 0) full_quality_after_s = now_s - last_change_s_;
+    if (full_quality_after_s < 0) full_quality_after_s = now_s - lod_loop_.last_change_s();
   } else {
     full_quality_after_s = -1;
   }
@@ -122,12 +59,11 @@ bool PlayerApp::full_quality() const {
   // Refined in bands (player_refine.cpp): full once the last band is drawn.
   if (refine_on_) return stage_ == "full";
   // (With the mesh's surface the cut itself refines.)
-  return refining && lod_stats.max_error == 0 && lod_stats.render_scale == 1;
+  return lod_loop_.refining() && lod_stats.max_error == 0 && lod_stats.render_scale == 1;
 }
 
 void PlayerApp::measured_lod(double render_ms, double frame_ms) {
-  // (The driver gave the controller the render time when it drew the frame.)
-  overhead_ms_ += kOverheadSmoothing * (std::max(0.0, frame_ms - render_ms) - overhead_ms_);
+  lod_loop_.measured(render_ms, frame_ms);
 }
 
 void PlayerApp::set_focus_at(double x, double y) {
@@ -144,7 +80,7 @@ void PlayerApp::set_focus_at(double x, double y) {
   const double s = std::abs(denom) > 1e-12 ? glm::dot(centre - p0, v) / denom : 0.5;
   const glm::dvec3 f = p0 + (p1 - p0) * std::clamp(s, 0.0, 1.0);
   focus = std::array<double, 3>{f.x, f.y, f.z};
-  last_change_s_ = clock_.seconds();
+  lod_loop_.touch(clock_.seconds());
 }
 
 namespace {

@@ -86,9 +86,9 @@ void menu_bar(PlayerApp& app) {
     if (!app.recording()) {
       if (ImGui::MenuItem("Record movie...")) s.want_record = true;
     } else if (ImGui::MenuItem("Stop recording")) {
-      app.stop_recording();
+      app.push(cmd::StopRecording{});
     }
-    if (ImGui::MenuItem("Save PNG", "S")) app.request_save();
+    if (ImGui::MenuItem("Save PNG", "S")) app.push(cmd::SavePicture{});
     if (ImGui::MenuItem("Save session...")) s.want_session = true;
     ImGui::Separator();
     if (ImGui::MenuItem("Quit", "Ctrl+Q"))
@@ -96,19 +96,16 @@ void menu_bar(PlayerApp& app) {
     ImGui::EndMenu();
   }
   if (ImGui::BeginMenu("View")) {
-    ImGui::MenuItem("Panels", "Tab", &app.state.panels);
-    ImGui::MenuItem("Outline, axes, step", nullptr, &app.state.annotations);
+    if (ImGui::MenuItem("Panels", "Tab", app.state.panels))
+      app.push(cmd::ShowPanels{!app.state.panels});
+    if (ImGui::MenuItem("Outline, axes, step", nullptr, app.state.annotations))
+      app.push(cmd::ShowAnnotations{!app.state.annotations});
     if (ImGui::MenuItem("LOD cut", "L", app.state.show_cut))
-      app.command(command_of(ScriptAction::Kind::show_cut, !app.state.show_cut));
+      app.push(cmd::ShowCut{!app.state.show_cut});
     bool persp = app.state.camera.projection == tsp::Projection::perspective;
     if (ImGui::MenuItem("Perspective", "P", &persp))
-      app.state.camera.projection = persp ? tsp::Projection::perspective : tsp::Projection::orthographic;
-    if (ImGui::MenuItem("Reset camera", "R")) {
-      const int w = app.state.camera.width, h = app.state.camera.height;
-      app.state.camera = app.initial_camera;
-      app.state.camera.width = w;
-      app.state.camera.height = h;
-    }
+      app.push(cmd::SetProjection{persp});
+    if (ImGui::MenuItem("Reset camera", "R")) app.push(cmd::ResetCamera{});
     ImGui::MenuItem("Controls", "F1", &app.show_help);
     ImGui::EndMenu();
   }
@@ -200,7 +197,7 @@ void open_dialog(PlayerApp& app) {
     tooltip("As on play's command line: a raw series' grid and type, a mesh's resolution or "
             "voxel size, a PLOT3D solution's grid (tspplay play --help)");
   if (ImGui::Button("Open") || open_now) {
-    app.open_input(s.open_path, s.field, s.build_options);
+    app.push(cmd::OpenInput{s.open_path, s.field, s.build_options});
     ImGui::CloseCurrentPopup();
   }
   ImGui::SameLine();
@@ -267,11 +264,11 @@ void menu_and_dialogs(PlayerApp& app) {
   if (path_dialog(kRecordPopup, s.want_record, s.movie_path, sizeof s.movie_path,
                   "The volume as shown, with its annotations, in real time (.mp4 or .gif); "
                   "File > Stop recording writes it:"))
-    app.start_recording(s.movie_path);
+    app.push(cmd::StartRecording{s.movie_path});
   if (path_dialog(kSessionPopup, s.want_session, s.session_path, sizeof s.session_path,
                   "The transfer function, view, probes, surface, axis scale, speed and panels, "
                   "for tspplay play --session FILE:"))
-    app.save_session_as(s.session_path);
+    app.push(cmd::SaveSession{s.session_path});
   progress_dialog(app);
 }
 

@@ -19,15 +19,6 @@
 namespace tspplayer {
 
 namespace {
-// The ratio of window to probe time is kept within these bounds (one odd frame cannot swing it).
-constexpr double kMinTimeRatio = 0.25, kMaxTimeRatio = 8;
-// A stalled frame does not skip many steps at once: a frame counts at most this long, or one and
-// a half step periods at slow speeds (the window sleeps until a step is due, a period apart).
-constexpr double kMaxFrameDt = 1.0, kMaxFramePeriods = 1.5;
-// A frame shows the next step, not the one the clock has reached, while the clock is at most this
-// many steps ahead: one slow frame among fast ones is caught up by the next frames instead of
-// skipping a step; frames slower than the steps skip steps to keep time.
-constexpr double kMaxStepBacklog = 2;
 }  // namespace
 
 double default_speed(int steps) {
@@ -36,30 +27,18 @@ double default_speed(int steps) {
 
 void PlayerApp::advance_playback(double dt) {
   if (!state.playing) {
-    play_accum_ = 0;
+    playback_clock_.reset();
     return;
   }
-  play_accum_ += std::min(dt, std::max(kMaxFrameDt, kMaxFramePeriods / state.speed)) * state.speed;
-  // Every step: at most one step a frame, however slow the frames (no step is skipped).
-  if (state.every_step) play_accum_ = std::min(play_accum_, 1.0);
-  int advance = 0;
-  if (play_accum_ >= 1) {
-    advance = 1;
-    play_accum_ -= 1;
-  }
-  if (play_accum_ > kMaxStepBacklog) {
-    const int skip = int(play_accum_ - kMaxStepBacklog);
-    advance += skip;
-    play_accum_ -= skip;
-  }
-  for (; advance > 0; --advance) {
+  for (int advance = playback_clock_.advance(dt, state.speed, state.every_step); advance > 0;
+       --advance) {
     if (state.step + 1 < steps()) {
       ++state.step;
     } else if (state.loop) {
       state.step = 0;
     } else {
       state.playing = false;
-      play_accum_ = 0;
+      playback_clock_.reset();
       break;
     }
   }
@@ -67,8 +46,7 @@ void PlayerApp::advance_playback(double dt) {
 
 double PlayerApp::until_next_step() const {
   if (!state.playing) return kIdleWaitSeconds;
-  const double pending = play_accum_ + (clock_.seconds() - last_frame_s_) * state.speed;
-  return pending >= 1 ? 0.0 : (1 - pending) / std::max(state.speed, 1e-3);
+  return playback_clock_.until_next(clock_.seconds() - last_frame_s_, state.speed);
 }
 
 double PlayerApp::steps_shown_per_s() const {
@@ -114,13 +92,13 @@ PlayerApp::TuneKey PlayerApp::tune_key() const {
 
 const tspgl::Rung* PlayerApp::rung_drawn() const {
   if (!state.playing || state.quality <= 0) return nullptr;
-  if (tuned_.empty()) return &tspgl::playback_rungs()[tspgl::kProvisionalRung];
-  return &tuned_[std::size_t(rung_.index)].rung;
+  if (rungs_.ladder().empty()) return &tspgl::playback_rungs()[tspgl::kProvisionalRung];
+  return &rungs_.ladder()[std::size_t(rungs_.choice().index)].rung;
 }
 
 void PlayerApp::apply_quality(double de) {
   state.quality = float(de);
-  if (de > 0 && !tuner_ && !(tuned_for_ == tune_key() && !tuned_.empty())) start_tuning();
+  if (de > 0 && !tuner_ && !(tuned_for_ == tune_key() && !rungs_.ladder().empty())) start_tuning();
   advance_tuning();  // (a slice now: a script's next action waits for the rest)
 }
 
@@ -137,13 +115,10 @@ void PlayerApp::start_tuning() {
   tuning_cache_key_ = tuning_disk_key(view);
   tuning_cache_file_ = tspgl::tuning_cache_path(tuning_cache_key_, options_.cache_dir);
   if (auto cached = tspgl::read_tuning(tuning_cache_file_, tuning_cache_key_)) {
-    tuned_ = std::move(*cached);
+    rungs_.set_ladder(std::move(*cached));
     tuned_for_ = key;
     tuning_s_ = 0;
     tuning_from_cache_ = true;
-    rung_frames_.assign(tuned_.size(), 0);
-    rung_ = {};
-    rung_for_ = {};
     return;
   }
   try {
@@ -166,7 +141,7 @@ void PlayerApp::advance_tuning() {
   const TuneKey key = tune_key();
   if (tuner_ && !(tuning_for_ == key)) start_tuning();  // out of date: again, for what is shown
   // Tuned when playing (a still window never pays for it) or when the target is set.
-  if (!tuner_ && state.playing && (tuned_.empty() || !(tuned_for_ == key))) start_tuning();
+  if (!tuner_ && state.playing && (rungs_.ladder().empty() || !(tuned_for_ == key))) start_tuning();
   if (!tuner_) return;
   try {
     if (!tuner_->advance(kCalibrationSliceMs)) {
@@ -178,53 +153,27 @@ void PlayerApp::advance_tuning() {
     status = std::string("playback tuning: ") + e.what();
     return;
   }
-  tuned_ = tuner_->tuned();
+  rungs_.set_ladder(tuner_->tuned());
   tuned_for_ = tuning_for_;
   tuner_.reset();
   tuning_s_ = clock_.seconds() - tuning_started_s_;
   tuning_from_cache_ = false;
   if (!tuning_cache_file_.empty()) {
     try {
-      tspgl::write_tuning(tuning_cache_file_, tuning_cache_key_, tuned_);
+      tspgl::write_tuning(tuning_cache_file_, tuning_cache_key_, rungs_.ladder());
     } catch (const tsp::Error& e) {  // playing goes on; the next run tunes again
       status = std::string("playback tuning not kept: ") + e.what();
     }
   }
-  rung_frames_.assign(tuned_.size(), 0);
-  rung_ = {};
-  rung_for_ = {};
 }
 
 void PlayerApp::choose_rung(double now_s) {
   if (!playing_rung()) return;
-  const double period_ms = 1000.0 / std::max(state.speed, 1e-3);
-  const tspgl::RungChoice next = tspgl::choose_rung(tuned_, period_ms, time_ratio_, overhead_ms_,
-                                                    state.quality, state.keep_quality);
-  // A new target, speed or rule applies at once; otherwise a cheaper rung at once (the rate or
-  // the quality is being missed) and a costlier one with headroom, not straight after a change.
-  const RungFor asked{state.quality, state.speed, state.keep_quality};
-  const bool costlier = tuned_[std::size_t(next.index)].ms > tuned_[std::size_t(rung_.index)].ms;
-  if (!(asked == rung_for_) || !costlier ||
-      (next.predicted_ms <= kRungHeadroom * period_ms && now_s - rung_changed_s_ >= kRungHoldSeconds)) {
-    if (next.index != rung_.index) rung_changed_s_ = now_s;
-    rung_ = next;
-    rung_for_ = asked;
-    return;
-  }
-  // The same rung: its prediction with the current ratio.
-  const tspgl::TunedRung& t = tuned_[std::size_t(rung_.index)];
-  rung_.predicted_ms = t.ms * time_ratio_ + overhead_ms_;
-  rung_.fits_rate = rung_.predicted_ms <= period_ms;
-  rung_.within_quality = t.mean_de <= tspgl::kPlaybackQualityMargin * state.quality;
+  rungs_.choose(state.quality, state.speed, state.keep_quality, lod_loop_.overhead_ms(), now_s);
 }
 
 void PlayerApp::measured_rung(double render_ms) {
-  if (!playing_rung() || rung_.index >= int(tuned_.size())) return;
-  ++rung_frames_[std::size_t(rung_.index)];
-  const double probe_ms = tuned_[std::size_t(rung_.index)].ms;
-  if (probe_ms <= 0 || render_ms <= 0) return;
-  const double ratio = std::clamp(render_ms / probe_ms, kMinTimeRatio, kMaxTimeRatio);
-  time_ratio_ += kTimeRatioSmoothing * (ratio - time_ratio_);
+  if (playing_rung()) rungs_.measured(render_ms);
 }
 
 nlohmann::json PlayerApp::playback_json() const {
@@ -233,10 +182,11 @@ nlohmann::json PlayerApp::playback_json() const {
                       {"keep", state.keep_quality ? "quality" : "rate"},
                       {"playing", state.playing},
                       {"steps_shown_per_s", steps_shown_per_s()},
-                      {"tuned", !tuned_.empty()},
-                      {"time_ratio", time_ratio_}};
+                      {"tuned", !rungs_.ladder().empty()},
+                      {"time_ratio", rungs_.time_ratio()}};
   if (playing_rung()) {
-    const tspgl::TunedRung& t = tuned_[std::size_t(rung_.index)];
+    const tspgl::RungChoice& rung = rungs_.choice();
+    const tspgl::TunedRung& t = rungs_.ladder()[std::size_t(rung.index)];
     const tspgl::RenderSettings s = tspgl::rung_settings(state.settings, t.rung);
     j["rung"] = {{"name", t.rung.name},
                  {"spacing", s.spacing},
@@ -244,18 +194,19 @@ nlohmann::json PlayerApp::playback_json() const {
                  {"lod_level", t.rung.lod_level},
                  {"predicted_de", t.mean_de},
                  {"predicted_max_step_de", t.max_step_de},
-                 {"predicted_ms", rung_.predicted_ms},
+                 {"predicted_ms", rung.predicted_ms},
                  {"period_ms", 1000.0 / std::max(state.speed, 1e-3)},
-                 {"fits_rate", rung_.fits_rate},
-                 {"within_quality", rung_.within_quality}};
+                 {"fits_rate", rung.fits_rate},
+                 {"within_quality", rung.within_quality}};
   }
   nlohmann::json ladder = nlohmann::json::array();
-  for (std::size_t i = 0; i < tuned_.size(); ++i)
-    ladder.push_back({{"name", tuned_[i].rung.name},
-                      {"mean_de", tuned_[i].mean_de},
-                      {"max_step_de", tuned_[i].max_step_de},
-                      {"probe_ms", tuned_[i].ms},
-                      {"frames", i < rung_frames_.size() ? rung_frames_[i] : 0}});
+  const std::vector<tspgl::TunedRung>& tuned = rungs_.ladder();
+  for (std::size_t i = 0; i < tuned.size(); ++i)
+    ladder.push_back({{"name", tuned[i].rung.name},
+                      {"mean_de", tuned[i].mean_de},
+                      {"max_step_de", tuned[i].max_step_de},
+                      {"probe_ms", tuned[i].ms},
+                      {"frames", rungs_.frames(i)}});
   j["ladder"] = ladder;
   return j;
 }

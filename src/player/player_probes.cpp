@@ -241,25 +241,24 @@ void PlayerApp::draw_probe_overlay(const tsp::Camera& cam) {
 void probes_section(PlayerApp& app) {
   int op = int(app.state.probe_op);
   ImGui::SetNextItemWidth(120);
-  if (ImGui::Combo("combine", &op, kOpNames, IM_ARRAYSIZE(kOpNames))) {
-    app.state.probe_op = tsp::ProbeOp(op);
-    app.probes_changed();
-  }
+  if (ImGui::Combo("combine", &op, kOpNames, IM_ARRAYSIZE(kOpNames)))
+    app.push(cmd::SetProbeOp{tsp::ProbeOp(op)});
   note_item("combine");
   ImGui::SameLine();
-  if (ImGui::Checkbox("surface", &app.state.probe_surface)) app.probes_changed();
+  if (bool on = app.state.probe_surface; ImGui::Checkbox("surface", &on))
+    app.push(cmd::ProbeSurface{on});
   note_item("surface");
   if (ImGui::IsItemHovered())
     tooltip("draw the probe's surface opaque, coloured by the data through the TF");
   for (int k = 0; k < 3; ++k) {
     if (k) ImGui::SameLine();
     const std::string add = std::string("+ ") + kKindNames[k];
-    if (ImGui::Button(add.c_str())) app.add_probe(app.default_probe(tsp::Probe::Kind(k)));
+    if (ImGui::Button(add.c_str())) app.push(cmd::AddProbe{app.default_probe(tsp::Probe::Kind(k))});
     note_item(add.c_str(), true);
   }
   int remove = -1;
   for (std::size_t i = 0; i < app.state.probes.size(); ++i) {
-    tsp::Probe& p = app.state.probes[i];
+    tsp::Probe p = app.state.probes[i];  // (edits go back as a command)
     ImGui::PushID(int(i));
     char title[32];
     std::snprintf(title, sizeof title, "%zu: %s", i + 1, kKindNames[int(p.kind)]);
@@ -301,17 +300,10 @@ void probes_section(PlayerApp& app) {
       }
     }
     if (ImGui::SmallButton("remove")) remove = int(i);
-    if (edited) {
-      app.probe_selected = int(i);
-      app.probes_changed();
-    }
+    if (edited) app.push(cmd::EditProbe{int(i), p});
     ImGui::PopID();
   }
-  if (remove >= 0) {
-    app.state.probes.erase(app.state.probes.begin() + remove);
-    app.probe_selected = app.state.probes.empty() ? -1 : 0;
-    app.probes_changed();
-  }
+  if (remove >= 0) app.push(cmd::RemoveProbe{remove});
   if (!app.state.probes.empty()) {
     ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
     ImGui::TextWrapped("selected probe: ctrl+drag moves it, ctrl+wheel resizes (a plane: moves it "

@@ -31,11 +31,12 @@ bool refine_by_cut() {
 }
 
 const tspgl::TunedRung* PlayerApp::base_rung() const {
-  if (state.quality <= 0 || tuned_.empty() || !(tuned_for_ == tune_key())) return nullptr;
+  const std::vector<tspgl::TunedRung>& tuned = rungs_.ladder();
+  if (state.quality <= 0 || tuned.empty() || !(tuned_for_ == tune_key())) return nullptr;
   const tspgl::TunedRung* best = nullptr;
-  for (std::size_t i = 1; i < tuned_.size(); ++i) {
-    const tspgl::TunedRung& r = tuned_[i];
-    if (r.mean_de <= kRefineBaseMargin * state.quality && r.ms < tuned_[0].ms &&
+  for (std::size_t i = 1; i < tuned.size(); ++i) {
+    const tspgl::TunedRung& r = tuned[i];
+    if (r.mean_de <= kRefineBaseMargin * state.quality && r.ms < tuned[0].ms &&
         (!best || r.ms < best->ms))
       best = &r;
   }
@@ -53,7 +54,7 @@ bool PlayerApp::refine_draw(double now_s, tspgl::FrameRequest& request, tspgl::D
     full_driver_.reset();
     refine_renderer_ = renderer.get();
   }
-  if (!applies || changed_ || new_renderer) {
+  if (!applies || lod_loop_.changed() || new_renderer) {
     refine_on_ = false;
     bands_.stop();
     return false;
@@ -65,10 +66,10 @@ bool PlayerApp::refine_draw(double now_s, tspgl::FrameRequest& request, tspgl::D
     // bands are drawn over it. Otherwise (or once settled after a change) over the fastest
     // tuned rung within the target, or with none the whole picture at once.
     whole_ = false;
-    if (paused_now_ && (was_within_ || no_target)) {
+    if (lod_loop_.paused_now() && (was_within_ || no_target)) {
       base_ = "the last playing frame";
       base_pending_ = false;
-    } else if (paused_now_ || refining) {
+    } else if (lod_loop_.paused_now() || lod_loop_.refining()) {
       const tspgl::TunedRung* r = base_rung();
       base_pending_ = r != nullptr;
       whole_ = !r && !no_target;
@@ -126,7 +127,8 @@ bool PlayerApp::refine_draw(double now_s, tspgl::FrameRequest& request, tspgl::D
   }
   request.settings.upload_budget = 0;  // (all resident now)
   const bool first = bands_.bands_drawn() == 0;
-  const double budget_ms = std::max(1.0, 1000.0 / std::max(1.f, state.target_fps) - overhead_ms_);
+  const double budget_ms =
+      std::max(1.0, 1000.0 / std::max(1.f, state.target_fps) - lod_loop_.overhead_ms());
   part_.rects = bands_.next(whole_ ? 1e300 : budget_ms);
   part_.first = first;
   part_.completes = !bands_.active();
@@ -153,7 +155,7 @@ void PlayerApp::cut_drawn(bool rung) {
     within_ = true;
   } else if (state.playing) {
     stage_ = "playing";
-    within_ = no_target || (rung && rung_.within_quality);
+    within_ = no_target || (rung && rungs_.choice().within_quality);
   } else {
     stage_ = "interacting";
     within_ = no_target || state.lod_filter.kind != tsp::LodFilter::error;
@@ -184,8 +186,8 @@ std::string PlayerApp::lod_line() const {
   } else if (lod_stats.splats > 0) {
     std::snprintf(line, sizeof line,
                   "LOD aiming at %.0f ms with %d splats (minimum %.0f px); last frame %.0f ms%s",
-                  target_ms_, lod_stats.splats, lod_stats.splat_px, ms,
-                  ms > 1.5 * target_ms_ ? ": missing the target" : "");
+                  lod_loop_.target_ms(), lod_stats.splats, lod_stats.splat_px, ms,
+                  ms > 1.5 * lod_loop_.target_ms() ? ": missing the target" : "");
   } else {
     std::string levels;
     for (std::size_t k = 0; k < lod_stats.nodes_per_level.size(); ++k)
@@ -193,8 +195,11 @@ std::string PlayerApp::lod_line() const {
     std::snprintf(line, sizeof line,
                   "LOD aiming at %.0f ms: cut %d nodes [by level %s], scale %.2f; last frame "
                   "%.0f ms%s",
-                  target_ms_, lod_stats.cut_size, levels.c_str(), lod_stats.render_scale, ms,
-                  target_ms_ > 0 && ms > 1.5 * target_ms_ ? ": missing the target" : "");
+                  lod_loop_.target_ms(), lod_stats.cut_size, levels.c_str(), lod_stats.render_scale,
+                  ms,
+                  lod_loop_.target_ms() > 0 && ms > 1.5 * lod_loop_.target_ms()
+                      ? ": missing the target"
+                      : "");
   }
   return line;
 }

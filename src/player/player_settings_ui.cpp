@@ -86,10 +86,7 @@ void setting_widget(PlayerApp& app, const tspgl::SettingSpec& spec) {
     tooltip(help.c_str());
   }
   if (next.empty()) return;
-  ScriptAction a = command_of(ScriptAction::Kind::setting);
-  a.text = name;
-  a.text2 = next;
-  app.command(a);
+  app.push(cmd::SetSetting{name, next});
 }
 
 // The widgets of every row of group g but the tolerances (their sliders span the metric's range).
@@ -118,8 +115,7 @@ void tolerance_rows(PlayerApp& app) {
   if (ImGui::IsItemHovered()) tooltip(help);
   done |= ImGui::IsItemDeactivatedAfterEdit();
   // Frames follow the slider at once; unreachable textures are dropped when it is released.
-  if (changed) app.state.settings.tol = {double(s), double(t)};
-  if (done) app.set_tolerances(app.state.settings.tol);
+  if (changed || done) app.push(cmd::SetTolerance{double(s), double(t), done});
   ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
   ImGui::TextUnformatted(kToleranceUnits[int(app.state.metric)]);
   if (ImGui::IsItemHovered()) tooltip(help);
@@ -144,21 +140,20 @@ void lod_rows(PlayerApp& app) {
   // Level of detail: the cut holds the frame rate while anything changes, full quality when idle.
   bool lod = app.state.lod_on;
   if (ImGui::Checkbox("level of detail", &lod))
-    app.command(command_of(ScriptAction::Kind::lod, lod));
+    app.push(cmd::SetLod{lod});
   note_item("level of detail");
   ImGui::SameLine();
   if (bool cut = app.state.show_cut; ImGui::Checkbox("show cut (L)", &cut))
-    app.command(command_of(ScriptAction::Kind::show_cut, cut));
+    app.push(cmd::ShowCut{cut});
   note_item("show cut (L)");
   const std::string fps_label = fit_label("target fps");
   if (float fps = app.state.target_fps;
       ImGui::SliderFloat(fps_label.c_str(), &fps, 5.f, 120.f, "%.0f")) {
-    ScriptAction a = command_of(ScriptAction::Kind::target_fps);
-    a.value = std::clamp(double(fps), 1.0, kMaxTargetFps);
-    app.command(a);
+    app.push(cmd::SetTargetFps{std::clamp(double(fps), 1.0, kMaxTargetFps)});
   }
   note_item(fps_label.c_str());
-  ImGui::Checkbox("splats when the coarsest cut is slow", &app.state.splat_fallback);
+  if (bool on = app.state.splat_fallback; ImGui::Checkbox("splats when the coarsest cut is slow", &on))
+    app.push(cmd::SplatFallback{on});
   note_item("splats when the coarsest cut is slow");
   // How the cut is chosen: by error against the target, or by LaMar's selection filters.
   static const char* const kFilters[] = {"error (target fps)", "distance from the eye",
@@ -179,12 +174,10 @@ void lod_rows(PlayerApp& app) {
     note_item(kl.c_str());
   }
   if (picked || scaled) {
-    ScriptAction a = command_of(ScriptAction::Kind::lod_filter);
     const char* const names[] = {"error", "distance", "fov"};
     char text[64];
     std::snprintf(text, sizeof text, "%s:%g", names[kind], double(k));
-    a.text = kind == 0 ? "error" : text;
-    app.command(a);
+    app.push(cmd::SetLodFilter{kind == 0 ? "error" : text});
   }
 }
 
@@ -194,11 +187,7 @@ void settings_section(PlayerApp& app) {
   const std::string metric_label = fit_label("metric");
   int m = int(app.state.metric);
   if (ImGui::Combo(metric_label.c_str(), &m, kMetricNames, IM_ARRAYSIZE(kMetricNames)))
-    app.command([m] {
-      ScriptAction a = command_of(ScriptAction::Kind::metric);
-      a.text = tsp::to_string(tsp::Metric(m));
-      return a;
-    }());
+    app.push(cmd::SetMetric{tsp::Metric(m)});
   note_item(metric_label.c_str());
   if (ImGui::IsItemHovered())
     tooltip(app.state.metric == tsp::Metric::reference
@@ -224,19 +213,17 @@ void settings_section(PlayerApp& app) {
     tooltip("while playing: mean dE against the full-quality picture (paused: always full "
             "quality); off: the LOD cut holds the frame rate");
   if (ImGui::IsItemDeactivatedAfterEdit()) {
-    ScriptAction a = command_of(ScriptAction::Kind::quality);
-    a.value = quality;
-    app.command(a);
+    app.push(cmd::SetQuality{quality});
   }
   ImGui::BeginDisabled(app.state.quality <= 0);
   ImGui::TextUnformatted("while playing, keep:");
   ImGui::SameLine();
   if (ImGui::RadioButton("quality", app.state.keep_quality))
-    app.command(command_of(ScriptAction::Kind::playback, true));
+    app.push(cmd::KeepQuality{true});
   note_item("quality");
   ImGui::SameLine();
   if (ImGui::RadioButton("rate", !app.state.keep_quality))
-    app.command(command_of(ScriptAction::Kind::playback, false));
+    app.push(cmd::KeepQuality{false});
   note_item("rate");
   ImGui::EndDisabled();
   lod_rows(app);
@@ -244,11 +231,11 @@ void settings_section(PlayerApp& app) {
   if (ImGui::TreeNode("caches and uploads")) {
     bool cache = app.state.cache_on;
     if (ImGui::Checkbox("texture cache", &cache))
-      app.command(command_of(ScriptAction::Kind::cache, cache));
+      app.push(cmd::SetCache{cache});
     note_item("texture cache");
     ImGui::SameLine();
     if (bool on = app.state.prefetch_on; ImGui::Checkbox("prefetch", &on))
-      app.command(command_of(ScriptAction::Kind::prefetch, on));
+      app.push(cmd::SetPrefetch{on});
     note_item("prefetch");
     setting_widgets(app, tspgl::SettingGroup::memory);
     static double budget = -1;
@@ -256,7 +243,7 @@ void settings_section(PlayerApp& app) {
     const std::string b_label = fit_label("budget MiB");
     ImGui::InputDouble(b_label.c_str(), &budget, 16, 128, "%.0f");
     note_item(b_label.c_str());
-    if (ImGui::IsItemDeactivatedAfterEdit()) app.set_cache(app.state.cache_on, budget);
+    if (ImGui::IsItemDeactivatedAfterEdit()) app.push(cmd::SetCache{app.state.cache_on, budget});
     ImGui::TreePop();
   }
 }

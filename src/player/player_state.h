@@ -1,5 +1,5 @@
 // What the player shows and how: the state player commands change (script lines, keys and panel
-// widgets all make ScriptActions, checked by validate() and carried out by PlayerApp::apply).
+// widgets all make Commands, command.h, checked by validate() and carried out by apply()).
 // A value type: no GL, no files.
 #pragma once
 #include <vector>

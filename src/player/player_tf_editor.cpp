@@ -45,10 +45,7 @@ void domain_row(PlayerApp& app, const tsp::ValueRange& d) {
             "(tf-range LO:HI)");
   if (!entered) return;
   editing = false;
-  ScriptAction a;
-  a.kind = ScriptAction::Kind::tf_range;
-  a.text = text;
-  app.command(a);  // a bad range: the status area says why
+  app.push(cmd::StretchTf{text});  // a bad range: the status area says why
 }
 
 // The histogram under the curve, counted again only when the domain, the file or the bins
@@ -185,7 +182,8 @@ void tf_section(PlayerApp& app) {
                   int(i) == hovered ? IM_COL32(255, 255, 0, 255) : IM_COL32_WHITE);
   }
   domain_row(app, d);
-  ImGui::Checkbox("log opacity", &app.state.log_opacity);
+  if (bool on = app.state.log_opacity; ImGui::Checkbox("log opacity", &on))
+    app.push(cmd::LogOpacity{on});
   note_item("log opacity");
   ImGui::SameLine();
   ImGui::TextDisabled("(?)");
@@ -257,38 +255,27 @@ void tf_section(PlayerApp& app) {
   if (ImGui::IsItemHovered()) tooltip("the colour map in use; choose a preset to apply it");
   // The colour range: four fits, two a row, each button half the row.
   const ImVec2 half((ImGui::GetContentRegionAvail().x - ImGui::GetStyle().ItemSpacing.x) / 2, 0);
-  if (ImGui::Button("fit to data", half)) {  // the map as it is, stretched over the data's range
-    app.set_tf(tsp::rescaled(app.tf, d), true);
-    app.status = "transfer function stretched over the data range";
-  }
+  if (ImGui::Button("fit to data", half))  // the map as it is, stretched over the data's range
+    app.push(cmd::StretchTf{"data"});
   note_item("fit to data", true);
-  if (ImGui::IsItemHovered()) tooltip("Stretch the map over the data's whole range");
+  if (ImGui::IsItemHovered()) tooltip("Stretch the map over the data's whole range (tf-range data)");
   ImGui::SameLine();
   if (ImGui::Button("fit to bulk", half)) {  // over the 1st to 99th percentile of the samples
-    ScriptAction fit;
-    fit.kind = ScriptAction::Kind::tf_range;
-    fit.text = "histogram";
-    app.command(fit);
+    app.push(cmd::StretchTf{"histogram"});
   }
   note_item("fit to bulk", true);
   if (ImGui::IsItemHovered())
     tooltip("Stretch the map over where the data is: the 1st to 99th percentile of every "
             "sample (tf-range histogram)");
   if (ImGui::Button("fit to step", half)) {  // over the range of the step shown
-    ScriptAction fit;
-    fit.kind = ScriptAction::Kind::tf_range;
-    fit.text = "step";
-    app.command(fit);
+    app.push(cmd::StretchTf{"step"});
   }
   note_item("fit to step", true);
   if (ImGui::IsItemHovered())
     tooltip("Stretch the map over the range of the step shown (tf-range step)");
   ImGui::SameLine();
   if (ImGui::Button("fit to view", half)) {  // over what the view shows of the step
-    ScriptAction fit;
-    fit.kind = ScriptAction::Kind::tf_range;
-    fit.text = "visible";
-    app.command(fit);
+    app.push(cmd::StretchTf{"visible"});
   }
   note_item("fit to view", true);
   if (ImGui::IsItemHovered())

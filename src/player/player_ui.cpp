@@ -98,7 +98,6 @@ std::string shown_rate_text(const PlayerApp& app) {
 }  // namespace
 
 void timeline_section(PlayerApp& app) {
-  using Kind = ScriptAction::Kind;
   const int last = app.steps() - 1;
   // As wide as its wider label, so that the controls beside it do not move when it flips.
   const float play_width =
@@ -106,7 +105,7 @@ void timeline_section(PlayerApp& app) {
       2 * ImGui::GetStyle().FramePadding.x;
   const char* play = app.state.playing ? "Pause" : "Play";
   if (ImGui::Button(play, ImVec2(play_width, 0)))
-    app.command(command_of(app.state.playing ? Kind::pause : Kind::play));
+    app.push(app.state.playing ? Command(cmd::Pause{}) : Command(cmd::Play{}));
   note_item(play, true);
   for (const char* b : {"|<", "<", ">", ">|"}) {
     ImGui::SameLine();
@@ -114,16 +113,16 @@ void timeline_section(PlayerApp& app) {
       const int to = b[1] == '<' ? 0 : b[1] == '|' ? last
                      : b[0] == '<' ? std::max(0, app.state.step - 1)
                                    : std::min(last, app.state.step + 1);
-      app.command(step_command(to));
+      app.push(cmd::GoToStep{to});
     }
     note_item(b, true);
   }
   ImGui::SameLine();
-  if (bool loop = app.state.loop; ImGui::Checkbox("loop", &loop)) app.command(command_of(Kind::loop, loop));
+  if (bool loop = app.state.loop; ImGui::Checkbox("loop", &loop)) app.push(cmd::SetLoop{loop});
   note_item("loop");
   ImGui::SameLine();
   if (bool skip = !app.state.every_step; ImGui::Checkbox("skip steps", &skip))
-    app.command(command_of(Kind::every_step, !skip));
+    app.push(cmd::EveryStep{!skip});
   note_item("skip steps");
   if (ImGui::IsItemHovered())
     tooltip("real time: skip steps to keep the speed when frames are slower than it (off: every "
@@ -136,9 +135,7 @@ void timeline_section(PlayerApp& app) {
   ImGui::SetNextItemWidth(std::clamp(room, 60.f, 140.f));
   if (ImGui::SliderFloat("steps/s", &speed, float(kMinSpeed), float(kMaxSpeed), "%.2f",
                          ImGuiSliderFlags_Logarithmic)) {
-    ScriptAction a = command_of(Kind::speed);
-    a.value = std::clamp(double(speed), kMinSpeed, kMaxSpeed);
-    app.command(a);
+    app.push(cmd::SetSpeed{std::clamp(double(speed), kMinSpeed, kMaxSpeed)});
   }
   note_item("steps/s");
   if (app.state.playing) {  // the rate the window reaches, at the row's end (nothing after it)
@@ -162,13 +159,13 @@ void timeline_section(PlayerApp& app) {
                   tsp::format_time(times[std::size_t(app.state.step)], app.file->metadata().time_units)
                       .c_str());
   if (ImGui::SliderInt("##step", &step, 0, last, label))
-    app.command(step_command(std::clamp(step, 0, last)));
+    app.push(cmd::GoToStep{std::clamp(step, 0, last)});
   if (ImGui::IsItemActivated()) {
     resume_after_scrub = was_playing;
-    app.command(command_of(Kind::pause));
+    app.push(cmd::Pause{});
   }
   if (ImGui::IsItemDeactivated() && resume_after_scrub) {
-    app.command(command_of(Kind::play));
+    app.push(cmd::Play{});
     resume_after_scrub = false;
   }
   // Under the scrubber, each step's readiness: green when its frame reads nothing from the file
@@ -220,7 +217,8 @@ void tooltip(const char* text) {
 }
 
 void view_section(PlayerApp& app) {
-  ImGui::Checkbox("outline, axes, step, legend", &app.state.annotations);
+  if (bool on = app.state.annotations; ImGui::Checkbox("outline, axes, step, legend", &on))
+    app.push(cmd::ShowAnnotations{on});
   note_item("outline, axes, step, legend");
   int proj = app.state.camera.projection == tsp::Projection::perspective;
   ImGui::RadioButton("orthographic", &proj, 0);
@@ -228,20 +226,16 @@ void view_section(PlayerApp& app) {
   ImGui::SameLine();
   ImGui::RadioButton("perspective (P)", &proj, 1);
   note_item("perspective (P)");
-  app.state.camera.projection = proj ? tsp::Projection::perspective : tsp::Projection::orthographic;
+  if (proj != int(app.state.camera.projection == tsp::Projection::perspective))
+    app.push(cmd::SetProjection{proj == 1});
   // Physical proportions from the file's voxel spacing, stretched per axis (e.g. height).
   axis_scale_field(app);  // (Enter applies a typed value, Escape cancels it)
   note_item("axis scale");
   const float half = (ImGui::GetContentRegionAvail().x - ImGui::GetStyle().ItemSpacing.x) / 2;
-  if (ImGui::Button("save PNG (S)", ImVec2(half, 0))) app.request_save();
+  if (ImGui::Button("save PNG (S)", ImVec2(half, 0))) app.push(cmd::SavePicture{});
   note_item("save PNG (S)", true);
   ImGui::SameLine();
-  if (ImGui::Button("reset view (R)", ImVec2(half, 0))) {
-    const int w = app.state.camera.width, h = app.state.camera.height;
-    app.state.camera = app.initial_camera;
-    app.state.camera.width = w;
-    app.state.camera.height = h;
-  }
+  if (ImGui::Button("reset view (R)", ImVec2(half, 0))) app.push(cmd::ResetCamera{});
   note_item("reset view (R)", true);
 }
 
@@ -288,9 +282,7 @@ void field_row(PlayerApp& app) {
   if (ImGui::BeginCombo(label.c_str(), fields[std::size_t(current)].c_str())) {
     for (std::size_t k = 0; k < fields.size(); ++k)
       if (ImGui::Selectable(fields[k].c_str(), int(k) == current)) {
-        ScriptAction a = command_of(ScriptAction::Kind::field);
-        a.text = fields[k];
-        app.command(a);
+        app.push(cmd::ShowField{fields[k]});
       }
     ImGui::EndCombo();
   }

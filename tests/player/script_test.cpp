@@ -13,11 +13,19 @@
 
 namespace {
 
+using tspplayer::Command;
 using tspplayer::parse_script;
-using Kind = tspplayer::ScriptAction::Kind;
+namespace cmd = tspplayer::cmd;
 
 std::string error_of(const std::string& text) {
   return tsptest::error_of<tsp::FormatError>([&] { parse_script(text, "s.txt"); });
+}
+
+// The commands of a script, in order.
+std::vector<Command> commands_of(const std::string& text) {
+  std::vector<Command> out;
+  for (const tspplayer::ScriptLine& l : parse_script(text, "s.txt")) out.push_back(l.command);
+  return out;
 }
 
 TEST(PlayerScript, ParsesEveryAction) {
@@ -29,113 +37,54 @@ TEST(PlayerScript, ParsesEveryAction) {
       "projection persp\nscreenshot a.png\nscreenshot-ui b.png\nwait-frames 4\n   quit   \n",
       "s.txt");
   ASSERT_EQ(a.size(), 18u);
-  EXPECT_EQ(a[0].kind, Kind::step);
-  EXPECT_EQ(a[0].number, 3);
+  const std::vector<Command> expected = {
+      cmd::GoToStep{3}, cmd::Play{}, cmd::Pause{}, cmd::SetSpeed{2.5}, cmd::SetLoop{false},
+      cmd::LoadTf{"preset:filled"}, cmd::SetTolerance{0.1, 0.02},
+      cmd::SetMetric{tsp::Metric::perceptual}, cmd::SetCache{true}, cmd::SetPrefetch{false},
+      cmd::SetSetting{"upload-budget", "16"}, cmd::SetView{30, -20}, cmd::SetZoom{1.5},
+      cmd::SetProjection{true}, cmd::Screenshot{"a.png", false}, cmd::Screenshot{"b.png", true},
+      cmd::WaitFrames{4}, cmd::Quit{}};
+  for (std::size_t i = 0; i < a.size(); ++i) EXPECT_TRUE(a[i].command == expected[i]) << i;
   EXPECT_EQ(a[0].line, 3);
-  EXPECT_EQ(a[1].kind, Kind::play);
-  EXPECT_EQ(a[2].kind, Kind::pause);
-  EXPECT_EQ(a[3].kind, Kind::speed);
-  EXPECT_DOUBLE_EQ(a[3].value, 2.5);
-  EXPECT_EQ(a[4].kind, Kind::loop);
-  EXPECT_FALSE(a[4].flag);
-  EXPECT_EQ(a[5].kind, Kind::tf);
-  EXPECT_EQ(a[5].text, "preset:filled");
-  EXPECT_EQ(a[6].kind, Kind::tolerance);
-  EXPECT_DOUBLE_EQ(a[6].value, 0.1);
-  EXPECT_DOUBLE_EQ(a[6].value2, 0.02);
-  EXPECT_EQ(a[7].text, "perceptual");
-  EXPECT_TRUE(a[8].flag);
-  EXPECT_EQ(a[9].kind, Kind::prefetch);
-  EXPECT_FALSE(a[9].flag);
-  EXPECT_EQ(a[10].kind, Kind::setting);
-  EXPECT_EQ(a[10].text, "upload-budget");
-  EXPECT_EQ(a[10].text2, "16");
-  EXPECT_EQ(a[11].kind, Kind::view);
-  EXPECT_DOUBLE_EQ(a[11].value2, -20);
-  EXPECT_DOUBLE_EQ(a[12].value, 1.5);
-  EXPECT_TRUE(a[13].flag);
-  EXPECT_EQ(a[14].kind, Kind::screenshot);
-  EXPECT_EQ(a[15].kind, Kind::screenshot_ui);
-  EXPECT_EQ(a[15].text, "b.png");
-  EXPECT_EQ(a[16].number, 4);
-  EXPECT_EQ(a[17].kind, Kind::quit);
   EXPECT_EQ(a[17].line, 20);
   EXPECT_TRUE(parse_script("", "empty").empty());
-  const auto k = parse_script(
-      "compositing boxes\nspacing 2.5\npreintegrated on\nquality 1.5\nstats s.json\n", "k.txt");
-  ASSERT_EQ(k.size(), 5u);
-  EXPECT_EQ(k[0].kind, Kind::setting);
-  EXPECT_EQ(k[0].text, "compositing");
-  EXPECT_EQ(k[0].text2, "boxes");
-  EXPECT_EQ(k[1].kind, Kind::setting);
-  EXPECT_EQ(k[1].text, "spacing");
-  EXPECT_EQ(k[1].text2, "2.5");
-  EXPECT_EQ(k[2].kind, Kind::setting);
-  EXPECT_EQ(k[2].text, "preintegrated");
-  EXPECT_EQ(k[2].text2, "on");
-  EXPECT_EQ(k[3].kind, Kind::quality);
-  EXPECT_DOUBLE_EQ(k[3].value, 1.5);
-  EXPECT_EQ(k[4].kind, Kind::stats);
-  EXPECT_EQ(k[4].text, "s.json");
-  const auto st = parse_script("sampling-tol 0.05\n", "st.txt");
-  ASSERT_EQ(st.size(), 1u);
-  EXPECT_EQ(st[0].kind, Kind::setting);
-  EXPECT_EQ(st[0].text, "sampling-tol");
-  EXPECT_EQ(st[0].text2, "0.05");
+  EXPECT_EQ(commands_of("compositing boxes\nspacing 2.5\npreintegrated on\nquality 1.5\n"
+                        "stats s.json\nsampling-tol 0.05\n"),
+            (std::vector<Command>{cmd::SetSetting{"compositing", "boxes"},
+                                  cmd::SetSetting{"spacing", "2.5"},
+                                  cmd::SetSetting{"preintegrated", "on"}, cmd::SetQuality{1.5},
+                                  cmd::WriteStats{"s.json"},
+                                  cmd::SetSetting{"sampling-tol", "0.05"}}));
   // Every row of the settings table is an action, validated by the table when parsed.
-  const auto d = parse_script("span-step mean\nflat slices\nreuse off\ndense off\n"
-                              "skip-transparent off\n", "d.txt");
+  const auto d = commands_of("span-step mean\nflat slices\nreuse off\ndense off\n"
+                             "skip-transparent off\n");
   ASSERT_EQ(d.size(), 5u);
-  for (const tspplayer::ScriptAction& x : d) EXPECT_EQ(x.kind, Kind::setting);
-  EXPECT_EQ(d[4].text, "skip-transparent");
-  const auto l = parse_script("lod off\ntarget-fps 25\nshow-cut on\nwait-seconds 0.5\n", "l.txt");
-  ASSERT_EQ(l.size(), 4u);
-  EXPECT_EQ(l[0].kind, Kind::lod);
-  EXPECT_FALSE(l[0].flag);
-  EXPECT_EQ(l[1].kind, Kind::target_fps);
-  EXPECT_DOUBLE_EQ(l[1].value, 25);
-  EXPECT_EQ(l[2].kind, Kind::show_cut);
-  EXPECT_TRUE(l[2].flag);
-  EXPECT_EQ(l[3].kind, Kind::wait_seconds);
-  EXPECT_DOUBLE_EQ(l[3].value, 0.5);
-  const auto f = parse_script("panels off\nevery-step on\nlog-opacity on\nopen a.tsp\n"
-                              "open raw.h5 U:mag\nrecord m.mp4\nrecord stop\n"
-                              "open u_%04d.raw --raw-dims 8,6,4 --raw-type u8\n"
-                              "open m.q Pressure --xyz g.xyz\n",
-                              "f.txt");
-  ASSERT_EQ(f.size(), 9u);
-  EXPECT_EQ(f[0].kind, Kind::panels);
-  EXPECT_FALSE(f[0].flag);
-  EXPECT_EQ(f[1].kind, Kind::every_step);
-  EXPECT_TRUE(f[1].flag);
-  EXPECT_EQ(f[2].kind, Kind::log_opacity);
-  EXPECT_EQ(f[3].kind, Kind::open);
-  EXPECT_EQ(f[3].text, "a.tsp");
-  EXPECT_EQ(f[3].text2, "");
-  EXPECT_EQ(f[4].text2, "U:mag");
-  EXPECT_EQ(f[5].kind, Kind::record);
-  EXPECT_EQ(f[5].text, "m.mp4");
-  EXPECT_EQ(f[6].kind, Kind::record_stop);
-  EXPECT_EQ(f[7].text, "u_%04d.raw");
-  EXPECT_EQ(f[7].text2, "");
-  EXPECT_EQ(f[7].text3, "--raw-dims 8,6,4 --raw-type u8");
-  EXPECT_EQ(f[8].text2, "Pressure");
-  EXPECT_EQ(f[8].text3, "--xyz g.xyz");
-  const auto g = parse_script("probe sphere:1,2,3,4\nprobe-op union\nprobe-surface off\n"
-                              "probe-move 1 0.5 0 -2\nprobe-clear\nfield p\n",
-                              "g.txt");
-  ASSERT_EQ(g.size(), 6u);
-  EXPECT_EQ(g[0].kind, Kind::probe);
-  EXPECT_EQ(g[0].text, "sphere:1,2,3,4");
-  EXPECT_EQ(g[1].kind, Kind::probe_op);
-  EXPECT_EQ(g[2].kind, Kind::probe_surface);
-  EXPECT_FALSE(g[2].flag);
-  EXPECT_EQ(g[3].kind, Kind::probe_move);
-  EXPECT_EQ(g[3].number, 1);
-  EXPECT_DOUBLE_EQ(g[3].value3, -2);
-  EXPECT_EQ(g[4].kind, Kind::probe_clear);
-  EXPECT_EQ(g[5].kind, Kind::field);
-  EXPECT_EQ(g[5].text, "p");
+  for (const Command& x : d) EXPECT_TRUE(std::holds_alternative<cmd::SetSetting>(x));
+  EXPECT_EQ(std::get<cmd::SetSetting>(d[4]).name, "skip-transparent");
+  EXPECT_EQ(commands_of("lod off\ntarget-fps 25\nshow-cut on\nwait-seconds 0.5\nlod-filter fov:2\n"),
+            (std::vector<Command>{cmd::SetLod{false}, cmd::SetTargetFps{25}, cmd::ShowCut{true},
+                                  cmd::WaitSeconds{0.5}, cmd::SetLodFilter{"fov:2"}}));
+  EXPECT_EQ(commands_of("panels off\nevery-step on\nlog-opacity on\nopen a.tsp\n"
+                        "open raw.h5 U:mag\nrecord m.mp4\nrecord stop\n"
+                        "open u_%04d.raw --raw-dims 8,6,4 --raw-type u8\n"
+                        "open m.q Pressure --xyz g.xyz\n"),
+            (std::vector<Command>{
+                cmd::ShowPanels{false}, cmd::EveryStep{true}, cmd::LogOpacity{true},
+                cmd::OpenInput{"a.tsp", "", ""}, cmd::OpenInput{"raw.h5", "U:mag", ""},
+                cmd::StartRecording{"m.mp4"}, cmd::StopRecording{},
+                cmd::OpenInput{"u_%04d.raw", "", "--raw-dims 8,6,4 --raw-type u8"},
+                cmd::OpenInput{"m.q", "Pressure", "--xyz g.xyz"}}));
+  EXPECT_EQ(commands_of("probe sphere:1,2,3,4\nprobe-op union\nprobe-surface off\n"
+                        "probe-move 1 0.5 0 -2\nprobe-clear\nfield p\n"),
+            (std::vector<Command>{cmd::AddProbe{tsp::parse_probe("sphere:1,2,3,4")},
+                                  cmd::SetProbeOp{tsp::ProbeOp::unite}, cmd::ProbeSurface{false},
+                                  cmd::MoveProbe{1, {0.5, 0, -2}}, cmd::ClearProbes{},
+                                  cmd::ShowField{"p"}}));
+  EXPECT_EQ(commands_of("reset-camera\nplayback rate\ncapture out\ncapture off\nexpand on\n"
+                        "tf-range visible\n"),
+            (std::vector<Command>{cmd::ResetCamera{}, cmd::KeepQuality{false}, cmd::Capture{"out"},
+                                  cmd::Capture{""}, cmd::ExpandSections{true},
+                                  cmd::StretchTf{"visible"}}));
 }
 
 TEST(PlayerScript, ErrorsNameTheLineAndWhatWasExpected) {
@@ -173,9 +122,8 @@ TEST(PlayerScript, ErrorsNameTheLineAndWhatWasExpected) {
   EXPECT_NE(error_of("tf-range file").find("data, histogram, step, visible or LO:HI"), std::string::npos);
   EXPECT_NE(error_of("tf-range 3:1").find("expected auto, data, file, histogram, step, visible or"),
             std::string::npos) << error_of("tf-range 3:1");
-  EXPECT_EQ(parse_script("tf-range histogram\ntf-range -1:2\n", "r.txt")[1].text, "-1:2");
-  EXPECT_EQ(parse_script("tf-range step\n", "r.txt")[0].text, "step");
-  EXPECT_EQ(parse_script("tf-range visible\n", "r.txt")[0].text, "visible");
+  EXPECT_EQ(commands_of("tf-range histogram\ntf-range -1:2\n")[1], Command(cmd::StretchTf{"-1:2"}));
+  EXPECT_EQ(commands_of("tf-range step\n")[0], Command(cmd::StretchTf{"step"}));
   EXPECT_NE(error_of("open a.raw U V").find("expected 'open PATH [FIELD] [--OPTION"),
             std::string::npos);
   EXPECT_NE(error_of("panels maybe").find("expected on or off"), std::string::npos);
@@ -190,7 +138,7 @@ TEST(PlayerScript, LoadsAFileAndNamesAMissingOne) {
   std::ofstream(dir / "s.txt") << "step 2\nquit\n";
   const auto a = tspplayer::load_script((dir / "s.txt").string());
   ASSERT_EQ(a.size(), 2u);
-  EXPECT_EQ(a[0].number, 2);
+  EXPECT_EQ(a[0].command, Command(cmd::GoToStep{2}));
   try {
     tspplayer::load_script((dir / "none.txt").string());
     FAIL() << "no error";
@@ -205,27 +153,15 @@ namespace {
 
 // Keys and panels make commands too; one validate() checks them, with the script's messages.
 TEST(PlayerScript, CommandsFromKeysAndPanelsAreValidatedByTheSameRules) {
-  using tspplayer::command_of;
-  using tspplayer::ScriptAction;
   using tspplayer::validate;
-  ScriptAction speed = command_of(ScriptAction::Kind::speed);
-  speed.value = 100;
-  EXPECT_THROW(validate(speed), tsp::UsageError);
-  speed.value = 5;
-  EXPECT_NO_THROW(validate(speed));
-  ScriptAction spacing = command_of(ScriptAction::Kind::setting);
-  spacing.text = "spacing";
-  spacing.text2 = "0";
+  EXPECT_THROW(validate(cmd::SetSpeed{100}), tsp::UsageError);
+  EXPECT_NO_THROW(validate(cmd::SetSpeed{5}));
   const std::string from_panel =
-      tsptest::error_of<tsp::UsageError>([&] { validate(spacing); });
+      tsptest::error_of<tsp::UsageError>([&] { validate(cmd::SetSetting{"spacing", "0"}); });
   const std::string from_script = tsptest::error_of<tsp::FormatError>(
       [] { tspplayer::parse_script("spacing 0\n", "s.txt"); });
   EXPECT_NE(from_panel, "");
   EXPECT_EQ(from_script, "s.txt:1: " + from_panel);
-  EXPECT_EQ(tspplayer::step_command(7).number, 7);
-  EXPECT_TRUE(command_of(ScriptAction::Kind::loop, true).flag);
-  EXPECT_EQ(tspplayer::parse_script("reset-camera\n", "r.txt")[0].kind,
-            ScriptAction::Kind::reset_camera);
 }
 
 // Issue 48: a wait of 0 frames or seconds lets the script go on in the same frame (a million
@@ -238,7 +174,8 @@ TEST(PlayerScript, WaitsOfZeroCostNoFrame) {
       "w.txt");
   ASSERT_EQ(a.size(), 8u);
   const bool expected[8] = {false, false, true, true, true, true, false, false};
-  for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ(waits_for_frames(a[i]), expected[i]) << i;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    EXPECT_EQ(waits_for_frames(a[i].command), expected[i]) << i;
 }
 
 }  // namespace

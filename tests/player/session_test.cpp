@@ -137,15 +137,10 @@ TEST(PlayerSession, ForeignOrBadFilesAreFormatErrorsNamingTheFile) {
 
 // The script's session and axis-scale actions (save-session PATH, scale SX,SY,SZ).
 TEST(PlayerSession, ScriptSavesSessionsAndScalesAxes) {
-  using Kind = tspplayer::ScriptAction::Kind;
   const auto a = tspplayer::parse_script("save-session /tmp/s.json\nscale 1,1,2.5\n", "s.txt");
   ASSERT_EQ(a.size(), 2u);
-  EXPECT_EQ(a[0].kind, Kind::save_session);
-  EXPECT_EQ(a[0].text, "/tmp/s.json");
-  EXPECT_EQ(a[1].kind, Kind::scale);
-  EXPECT_EQ(a[1].value, 1);
-  EXPECT_EQ(a[1].value2, 1);
-  EXPECT_EQ(a[1].value3, 2.5);
+  EXPECT_EQ(a[0].command, tspplayer::Command(tspplayer::cmd::SaveSession{"/tmp/s.json"}));
+  EXPECT_EQ(a[1].command, tspplayer::Command(tspplayer::cmd::SetScale{{1, 1, 2.5}}));
   auto error = [](const std::string& text) {
     return tsptest::error_of<tsp::FormatError>([&] { tspplayer::parse_script(text, "s.txt"); });
   };

@@ -1,0 +1,198 @@
+// Carrying out the player's commands (command.h): one function per command, reached through
+// apply() — what script lines, keys and panel widgets all send (docs/player.md).
+#include <cstdio>
+#include <filesystem>
+
+#include "jobs/visible_range.h"
+#include "player/player_app.h"
+#include "tsp/core/error.h"
+#include "tsp/metric/tf_io.h"
+
+namespace tspplayer {
+
+// What each command does to the player (a friend of PlayerApp).
+struct CommandApplier {
+  PlayerApp& app;
+  int line;  // the script line (0: a key or a panel)
+
+  // "SCRIPT:LINE: " for a script line's errors, else "".
+  std::string where() const {
+    return line > 0 ? app.options_.script + ":" + std::to_string(line) + ": " : "";
+  }
+  PlayerState& state() const { return app.state; }
+
+  void operator()(const cmd::GoToStep& c) const {
+    if (c.step >= app.steps())
+      throw tsp::UsageError(where() + "step " + std::to_string(c.step) +
+                            ": the file has steps 0.." + std::to_string(app.steps() - 1));
+    app.go_to(c.step);
+  }
+  void operator()(const cmd::Play&) const {
+    state().playing = true;
+    app.advance_tuning();  // tuned at once if it must be: a script's next action waits for it
+  }
+  void operator()(const cmd::Pause&) const { state().playing = false; }
+  void operator()(const cmd::SetSpeed& c) const {
+    state().speed = c.steps_per_s;
+    app.speed_chosen_ = true;  // kept when another file opens
+  }
+  void operator()(const cmd::SetLoop& c) const { state().loop = c.on; }
+  void operator()(const cmd::LoadTf& c) const {
+    const tsp::ValueHistogram histogram = tsp::histogram_of(*app.file);
+    app.set_tf(tsp::transfer_function_from_arg(c.arg, app.file->tree().value_range(),
+                                                app.tf.size(), {}, &histogram),
+               true);
+    app.tf_label = tf_label_of(c.arg);
+  }
+  void operator()(const cmd::StretchTf& c) const {  // the map as it is, over the chosen range
+    const tsp::TfRangeChoice r = tsp::parse_tf_range(c.range);
+    const tsp::TspFile& f = *app.file;
+    const tsp::ValueRange to =
+        r.mode == tsp::TfRangeChoice::Mode::explicit_range ? r.range
+        : r.mode == tsp::TfRangeChoice::Mode::visible
+            ? tspgl::visible_value_range(
+                  f.tree(), state().step, tsp::Camera(f.tree().octree().dims(), state().camera),
+                  tsp::ClipRegion(state().probes, state().probe_op, f.metadata().origin,
+                                  f.metadata().spacing))
+            : tsp::tf_domain_of(r, f, state().step);
+    app.set_tf(tsp::rescaled(app.tf, to), true);
+    app.status = "transfer function stretched over " + c.range + " [" + std::to_string(to.lo) +
+                 ", " + std::to_string(to.hi) + "]";
+  }
+  void operator()(const cmd::SetTolerance& c) const {
+    if (c.settled)
+      app.set_tolerances({c.spatial, c.temporal});
+    else  // a slider still dragging: frames follow; set_tolerances once it settles
+      state().settings.tol = {c.spatial, c.temporal};
+  }
+  void operator()(const cmd::SetSetting& c) const { app.set_setting(c.name, c.value); }
+  void operator()(const cmd::SetMetric& c) const { app.set_metric(c.metric); }
+  void operator()(const cmd::SetCache& c) const {
+    app.set_cache(c.on, c.budget_mb >= 0 ? c.budget_mb : state().texture_budget_mb);
+  }
+  void operator()(const cmd::SetPrefetch& c) const { state().prefetch_on = c.on; }
+  void operator()(const cmd::SetView& c) const {
+    state().camera.azimuth_deg = c.azimuth_deg;
+    state().camera.elevation_deg = c.elevation_deg;
+  }
+  void operator()(const cmd::SetZoom& c) const { state().camera.zoom = c.zoom; }
+  void operator()(const cmd::SetProjection& c) const {
+    state().camera.projection =
+        c.perspective ? tsp::Projection::perspective : tsp::Projection::orthographic;
+  }
+  void operator()(const cmd::Screenshot& c) const {
+    app.pending_shot_ = c.path;
+    app.pending_with_ui_ = c.with_ui;
+  }
+  void operator()(const cmd::WaitFrames& c) const { app.wait_frames_ = c.frames; }
+  void operator()(const cmd::WaitSeconds& c) const {
+    app.wait_until_s_ = app.clock_.seconds() + c.seconds;
+  }
+  void operator()(const cmd::SetQuality& c) const { app.apply_quality(c.mean_de); }
+  void operator()(const cmd::WriteStats& c) const { app.write_stats(c.path); }
+  void operator()(const cmd::SetLod& c) const { app.set_lod(c.on); }
+  void operator()(const cmd::SetTargetFps& c) const { state().target_fps = float(c.fps); }
+  void operator()(const cmd::SetLodFilter& c) const {
+    state().lod_filter = tsp::parse_lod_filter(c.filter, "lod-filter");
+  }
+  void operator()(const cmd::ShowCut& c) const { state().show_cut = c.on; }
+  void operator()(const cmd::ShowPanels& c) const { state().panels = c.on; }
+  void operator()(const cmd::EveryStep& c) const { state().every_step = c.on; }
+  void operator()(const cmd::LogOpacity& c) const { state().log_opacity = c.on; }
+  void operator()(const cmd::OpenInput& c) const {
+    app.open_input(c.path, c.field, c.build_options);
+  }
+  void operator()(const cmd::ShowField& c) const {
+    try {
+      app.switch_field(c.name);
+    } catch (const tsp::UsageError& e) {  // a script line says where
+      if (line <= 0) throw;
+      throw tsp::UsageError(where() + e.what());
+    }
+  }
+  void operator()(const cmd::AddProbe& c) const { app.add_probe(c.probe); }
+  void operator()(const cmd::SetProbeOp& c) const {
+    state().probe_op = c.op;
+    app.probes_changed();
+  }
+  void operator()(const cmd::ProbeSurface& c) const {
+    state().probe_surface = c.on;
+    app.probes_changed();
+  }
+  void operator()(const cmd::ClearProbes&) const {
+    state().probes.clear();
+    app.probe_selected = -1;
+    app.probes_changed();
+  }
+  void operator()(const cmd::MoveProbe& c) const {
+    if (c.number < 1 || c.number > int(state().probes.size()))
+      throw tsp::UsageError(where() + "probe " + std::to_string(c.number) + ": there are " +
+                            std::to_string(state().probes.size()) + " probes");
+    tsp::move_probe(state().probes[std::size_t(c.number - 1)], c.by);
+    app.probes_changed();
+  }
+  void operator()(const cmd::StartRecording& c) const { app.start_recording(c.path); }
+  void operator()(const cmd::StopRecording&) const { app.stop_recording(); }
+  void operator()(const cmd::ResetCamera&) const {  // the view, in the window's size
+    const int w = state().camera.width, h = state().camera.height;
+    state().camera = app.initial_camera;
+    state().camera.width = w;
+    state().camera.height = h;
+    app.trace("camera reset");
+  }
+  void operator()(const cmd::KeepQuality& c) const { state().keep_quality = c.on; }
+  void operator()(const cmd::Capture& c) const {  // every frame from the next on, as drawn
+    app.capture_dir_ = c.dir;
+    app.capture_count_ = 0;
+    if (!c.dir.empty()) {
+      std::filesystem::create_directories(c.dir);
+      std::filesystem::remove(std::filesystem::path(c.dir) / "frames.jsonl");
+    }
+  }
+  void operator()(const cmd::Quit&) const { app.quit_ = true; }
+  void operator()(const cmd::SaveSession& c) const { app.save_session_as(c.path); }
+  void operator()(const cmd::SetScale& c) const { app.set_scale(c.factors); }
+  void operator()(const cmd::ExpandSections& c) const { app.expand_sections = c.on ? 1 : -1; }
+  void operator()(const cmd::SavePicture&) const { app.request_save(); }
+  void operator()(const cmd::ShowAnnotations& c) const { state().annotations = c.on; }
+  void operator()(const cmd::SplatFallback& c) const { state().splat_fallback = c.on; }
+  void operator()(const cmd::EditProbe& c) const {
+    if (c.index < 0 || c.index >= int(state().probes.size()))
+      throw tsp::UsageError("probe " + std::to_string(c.index + 1) + ": there are " +
+                            std::to_string(state().probes.size()) + " probes");
+    state().probes[std::size_t(c.index)] = c.probe;
+    app.probe_selected = c.index;
+    app.probes_changed();
+  }
+  void operator()(const cmd::RemoveProbe& c) const {
+    if (c.index < 0 || c.index >= int(state().probes.size())) return;  // (already gone)
+    state().probes.erase(state().probes.begin() + c.index);
+    app.probe_selected = state().probes.empty() ? -1 : 0;
+    app.probes_changed();
+  }
+};
+
+void apply(PlayerApp& app, const Command& c, int line) {
+  std::visit(CommandApplier{app, line}, c);
+}
+
+void PlayerApp::command(const Command& c) {
+  try {
+    validate(c);
+    apply(*this, c);
+  } catch (const tsp::Error& e) {
+    status = e.what();
+    std::fprintf(stderr, "tspplay: %s\n", e.what());
+  }
+}
+
+void PlayerApp::apply_commands() {
+  // (A command may push more: taken in turns until none is left.)
+  while (!pending_commands_.empty()) {
+    std::vector<Command> now;
+    now.swap(pending_commands_);
+    for (const Command& c : now) command(c);
+  }
+}
+
+}  // namespace tspplayer
