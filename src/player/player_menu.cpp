@@ -14,6 +14,7 @@
 #include "jobs/play_input.h"
 #include "player/player_app.h"
 #include "player/player_ui.h"
+#include "player/ui_items.h"
 
 namespace tspplayer {
 
@@ -158,8 +159,10 @@ void open_dialog(PlayerApp& app) {
   }
   ImGui::SetNextWindowSize(ImVec2(560, 0), ImGuiCond_Appearing);
   if (!ImGui::BeginPopupModal(kOpenPopup, nullptr)) return;
-  ImGui::TextWrapped("A .tsp file, or any input build reads (HDF5, NetCDF, VTK, raw patterns): "
-                     "it is built into the cache folder first.");
+  const char* intro = "A .tsp file, or any input build reads (HDF5, NetCDF, VTK, raw patterns): "
+                      "it is built into the cache folder first.";
+  ImGui::TextWrapped("%s", intro);
+  note_wrapped(intro);
   ImGui::TextDisabled("%s", s.listing.dir.string().c_str());
   bool open_now = false;
   ImGui::BeginChild("##files", ImVec2(0, kBrowserHeight), true);
@@ -212,6 +215,7 @@ void open_dialog(PlayerApp& app) {
     s.focus_path = false;
   }
   const bool changed = ImGui::InputText("path", s.open_path, sizeof s.open_path);
+  note_item("path");
   if (ImGui::IsItemActivated()) app.trace("open path field active");
   bool enter = entered();  // Enter in a field opens the path (a folder's list is shown already)
   if (changed) {
@@ -223,10 +227,13 @@ void open_dialog(PlayerApp& app) {
   }
   ImGui::SetNextItemWidth(200);
   ImGui::InputText("field (inputs with several)", s.field, sizeof s.field);
+  note_item("field (inputs with several)");
   enter = entered() || enter;
-  ImGui::SetNextItemWidth(-60);
+  // The field as wide as the row leaves beside its whole label.
+  ImGui::SetNextItemWidth(-(ImGui::CalcTextSize("build options").x + ImGui::GetStyle().ItemInnerSpacing.x + 1));
   ImGui::InputTextWithHint("build options", "--raw-dims 64,64,64 --raw-type f32 | --resolution 128 | --xyz grid.xyz",
                            s.build_options, sizeof s.build_options);
+  note_item("build options");
   enter = entered() || enter;
   if (ImGui::IsItemHovered())
     tooltip("As on play's command line: a raw series' grid and type, a mesh's resolution or "
@@ -254,7 +261,8 @@ bool path_dialog(const char* title, bool& want, char* path, std::size_t size, co
   }
   ImGui::SetNextWindowSize(ImVec2(480, 0), ImGuiCond_Appearing);
   if (!ImGui::BeginPopupModal(title, nullptr)) return false;
-  ImGui::TextUnformatted(what);
+  ImGui::TextWrapped("%s", what);  // (wrapped: the record dialog's used to run off its right edge)
+  note_wrapped(what);
   ImGui::SetNextItemWidth(-1);
   ImGui::InputText("##path", path, size);
   const bool enter = entered();
