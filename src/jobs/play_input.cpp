@@ -63,6 +63,9 @@ std::string play_cache_path(const std::string& input, const PlayInputOptions& o,
   std::error_code ec;
   const fs::path abs = fs::absolute(input, ec);
   std::string key = abs.string() + "|" + o.field + o.key;
+  // Without --field, builds record the field the reader picked since issue 47's walk (those
+  // made before recorded none: an untitled legend): a key of their own, so they are built again.
+  if (o.field.empty()) key += "|picked field named";
   std::vector<std::string> read = files;
   read.push_back(input);  // (a pattern names no one file: then its path alone)
   for (const std::string& f : read) {

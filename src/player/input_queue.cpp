@@ -2,10 +2,17 @@
 
 namespace tspplayer {
 
+namespace {
+// GLFW's Shift, Control, Alt and Super keys, left and right (GLFW_KEY_LEFT_SHIFT … RIGHT_SUPER).
+constexpr int kFirstModifier = 340, kLastModifier = 347;
+bool is_modifier(int key) { return key >= kFirstModifier && key <= kLastModifier; }
+}  // namespace
+
 const InputFrame& InputQueue::take() {
   state_.wheel_x = state_.wheel_y = 0;
   state_.text.clear();
   bool moved = false, button_changed = false, key_changed = false, typed = false, scrolled = false;
+  bool plain_key_changed = false;  // a key other than a modifier changed in this frame
   std::array<bool, InputFrame::kButtons> changed_button{};
   std::array<bool, InputFrame::kKeys> changed_key{};
   while (!events_.empty()) {
@@ -30,10 +37,16 @@ const InputFrame& InputQueue::take() {
       case InputEvent::Kind::key: {
         if (e.code < 0 || e.code >= InputFrame::kKeys) break;
         const std::size_t k = std::size_t(e.code);
-        if (changed_key[k] || typed) return state_;
+        // A modifier's change waits for the next frame once another key or a button changed in
+        // this one: Dear ImGui reads the modifiers per frame, so a Ctrl+A whose Ctrl is released
+        // in the frame that sees A pressed reached it as a plain A (a quick tap at normal frame
+        // rates: Ctrl down in one frame, A down and Ctrl up in the next).
+        if (changed_key[k] || typed || (is_modifier(e.code) && (plain_key_changed || button_changed)))
+          return state_;
         if (state_.keys[k] != e.down) {
           state_.keys[k] = e.down;
           changed_key[k] = key_changed = true;
+          plain_key_changed = plain_key_changed || !is_modifier(e.code);
         }
         break;
       }

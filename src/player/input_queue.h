@@ -43,7 +43,9 @@ class InputQueue {
   /// event Dear ImGui could not tell apart from an earlier one of the same frame: a second
   /// change of a button or key; a release after the cursor moved (the move must be drawn held);
   /// a move after a button changed (the press happened where it was); keys and text after each
-  /// other; a scroll after a button changed. The rest waits for the next frames. Never throws.
+  /// other; a scroll after a button changed; a modifier (Shift, Ctrl, Alt, Super) after another
+  /// key or a button changed (that press keeps its modifiers). The rest waits for the next
+  /// frames. Never throws.
   const InputFrame& take();
   /// True while events wait for later frames (the window keeps drawing until they are taken).
   bool pending() const { return !events_.empty(); }

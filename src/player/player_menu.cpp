@@ -14,6 +14,7 @@
 #include "jobs/play_input.h"
 #include "player/player_app.h"
 #include "player/player_ui.h"
+#include "player/ui_items.h"
 
 namespace tspplayer {
 
@@ -65,6 +66,8 @@ struct MenuState {
   char movie_path[kPathChars] = "tspplay_movie.mp4";
   Listing listing;
   bool want_session = false;
+  std::string traced_list;    // the last "open list X Y ROW" traced
+  bool clicked_into = false;  // this click sequence changed the folder (its next clicks are not for the new list)
   char session_path[kPathChars] = "tspplay_session.json";
 };
 
@@ -75,6 +78,18 @@ MenuState& state() {
 
 void copy(char* to, std::size_t size, const std::string& from) {
   std::snprintf(to, size, "%s", from.c_str());
+}
+
+bool key_pressed(ImGuiKey key) { return ImGui::IsKeyPressed(ImGui::GetKeyIndex(key), false); }
+
+// Escape pressed while this dialog (not a combo over it) has the keys: it closes, as Cancel.
+bool escape_closes() {
+  return key_pressed(ImGuiKey_Escape) && ImGui::IsWindowFocused(ImGuiFocusedFlags_RootAndChildWindows);
+}
+
+// The text field just drawn was left with Enter (Dear ImGui ends the edit on Enter).
+bool entered() {
+  return ImGui::IsItemDeactivated() && (key_pressed(ImGuiKey_Enter) || key_pressed(ImGuiKey_KeyPadEnter));
 }
 
 void menu_bar(PlayerApp& app) {
@@ -136,19 +151,36 @@ void open_dialog(PlayerApp& app) {
     copy(s.open_path, sizeof s.open_path, s.listing.dir.string() + "/");
     ImGui::OpenPopup(kOpenPopup);
     s.focus_path = true;
+    s.traced_list.clear();
     app.trace("open dialog");
   }
   ImGui::SetNextWindowSize(ImVec2(560, 0), ImGuiCond_Appearing);
   if (!ImGui::BeginPopupModal(kOpenPopup, nullptr)) return;
-  ImGui::TextWrapped("A .tsp file, or any input build reads (HDF5, NetCDF, VTK, raw patterns): "
-                     "it is built into the cache folder first.");
+  const char* intro = "A .tsp file, or any input build reads (HDF5, NetCDF, VTK, raw patterns): "
+                      "it is built into the cache folder first.";
+  ImGui::TextWrapped("%s", intro);
+  note_wrapped(intro);
   ImGui::TextDisabled("%s", s.listing.dir.string().c_str());
   bool open_now = false;
   ImGui::BeginChild("##files", ImVec2(0, kBrowserHeight), true);
-  if (ImGui::Selectable("../")) {
-    s.listing.read(s.listing.dir.parent_path());
-    copy(s.open_path, sizeof s.open_path, s.listing.dir.string() + "/");
+  {  // where the list's rows are, for tests that click them (--trace; once per change)
+    char where[96];
+    std::snprintf(where, sizeof where, "open list %.0f %.0f %.0f", ImGui::GetCursorScreenPos().x,
+                  ImGui::GetCursorScreenPos().y, ImGui::GetTextLineHeightWithSpacing());
+    if (s.traced_list != where) app.trace(s.traced_list = where);
   }
+  // A double-click's second click lands on the folder it entered with the first: not a click on
+  // that folder's entry under the mouse (which went down two levels, or opened a file there).
+  const ImGuiIO& io = ImGui::GetIO();
+  if (io.MouseClicked[0] && io.MouseClickedCount[0] == 1) s.clicked_into = false;
+  const bool later_click = s.clicked_into && io.MouseClickedLastCount[0] >= 2;
+  auto go = [&s, &app](const fs::path& dir) {
+    s.listing.read(dir);
+    copy(s.open_path, sizeof s.open_path, s.listing.dir.string() + "/");
+    s.clicked_into = true;
+    app.trace("open folder " + s.listing.dir.string());
+  };
+  if (ImGui::Selectable("../") && !later_click) go(s.listing.dir.parent_path());
   if (!s.listing.error.empty()) ImGui::TextColored(ImVec4(1, 0.5f, 0.4f, 1), "%s", s.listing.error.c_str());
   const auto entries = s.listing.entries;  // (a click may re-read the listing)
   for (const auto& [name, is_dir] : entries) {
@@ -156,9 +188,9 @@ void open_dialog(PlayerApp& app) {
     const fs::path full = s.listing.dir / name;
     if (ImGui::Selectable((name + (is_dir ? "/" : "")).c_str(), full.string() == s.open_path,
                           ImGuiSelectableFlags_AllowDoubleClick)) {
-      if (is_dir) {
-        s.listing.read(full);
-        copy(s.open_path, sizeof s.open_path, s.listing.dir.string() + "/");
+      if (later_click) {
+      } else if (is_dir) {
+        go(full);
       } else {
         copy(s.open_path, sizeof s.open_path, full.string());
         open_now = ImGui::IsMouseDoubleClicked(0);
@@ -180,7 +212,9 @@ void open_dialog(PlayerApp& app) {
     s.focus_path = false;
   }
   const bool changed = ImGui::InputText("path", s.open_path, sizeof s.open_path);
+  note_item("path");
   if (ImGui::IsItemActivated()) app.trace("open path field active");
+  bool enter = entered();  // Enter in a field opens the path (a folder's list is shown already)
   if (changed) {
     app.trace(std::string("open path ") + s.open_path);
     std::error_code ec;
@@ -190,18 +224,29 @@ void open_dialog(PlayerApp& app) {
   }
   ImGui::SetNextItemWidth(200);
   ImGui::InputText("field (inputs with several)", s.field, sizeof s.field);
-  ImGui::SetNextItemWidth(-60);
+  note_item("field (inputs with several)");
+  enter = entered() || enter;
+  // The field as wide as the row leaves beside its whole label.
+  ImGui::SetNextItemWidth(-(ImGui::CalcTextSize("build options").x + ImGui::GetStyle().ItemInnerSpacing.x + 1));
   ImGui::InputTextWithHint("build options", "--raw-dims 64,64,64 --raw-type f32 | --resolution 128 | --xyz grid.xyz",
                            s.build_options, sizeof s.build_options);
+  note_item("build options");
+  enter = entered() || enter;
   if (ImGui::IsItemHovered())
     tooltip("As on play's command line: a raw series' grid and type, a mesh's resolution or "
             "voxel size, a PLOT3D solution's grid (tspplay play --help)");
-  if (ImGui::Button("Open") || open_now) {
+  std::error_code ec;
+  if (enter && fs::is_directory(fs::path(s.open_path), ec)) enter = false;  // its list is shown
+  if (ImGui::Button("Open") || open_now || enter) {
+    app.trace(std::string("open dialog opens ") + s.open_path);
     app.push(cmd::OpenInput{s.open_path, s.field, s.build_options});
     ImGui::CloseCurrentPopup();
   }
   ImGui::SameLine();
-  if (ImGui::Button("Cancel")) ImGui::CloseCurrentPopup();
+  if (ImGui::Button("Cancel") || escape_closes()) {
+    app.trace("open dialog closed");
+    ImGui::CloseCurrentPopup();
+  }
   ImGui::EndPopup();
 }
 
@@ -213,16 +258,18 @@ bool path_dialog(const char* title, bool& want, char* path, std::size_t size, co
   }
   ImGui::SetNextWindowSize(ImVec2(480, 0), ImGuiCond_Appearing);
   if (!ImGui::BeginPopupModal(title, nullptr)) return false;
-  ImGui::TextUnformatted(what);
+  ImGui::TextWrapped("%s", what);  // (wrapped: the record dialog's used to run off its right edge)
+  note_wrapped(what);
   ImGui::SetNextItemWidth(-1);
   ImGui::InputText("##path", path, size);
+  const bool enter = entered();
   bool ok = false;
-  if (ImGui::Button("OK")) {
+  if (ImGui::Button("OK") || enter) {
     ok = true;
     ImGui::CloseCurrentPopup();
   }
   ImGui::SameLine();
-  if (ImGui::Button("Cancel")) ImGui::CloseCurrentPopup();
+  if (ImGui::Button("Cancel") || escape_closes()) ImGui::CloseCurrentPopup();
   ImGui::EndPopup();
   return ok;
 }

@@ -142,7 +142,9 @@ void lod_rows(PlayerApp& app) {
   if (ImGui::Checkbox("level of detail", &lod))
     app.push(cmd::SetLod{lod});
   note_item("level of detail");
-  ImGui::SameLine();
+  // In the row's second half, as the button pairs: a label ending 8 pixels before the next
+  // checkbox read as running into it.
+  ImGui::SameLine(ImGui::GetCursorStartPos().x + (ImGui::GetContentRegionMax().x - ImGui::GetCursorStartPos().x) / 2);
   if (bool cut = app.state.show_cut; ImGui::Checkbox("show cut (L)", &cut))
     app.push(cmd::ShowCut{cut});
   note_item("show cut (L)");

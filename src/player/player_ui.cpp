@@ -40,7 +40,7 @@ std::string playback_text(const PlayerApp& app) {
 
 constexpr float kHudPlotHeight = 60.f;
 // Lines of the side panel's status area; widest tooltip, pixels.
-constexpr int kStatusLines = 3;
+constexpr int kStatusLines = 5;
 constexpr float kTooltipWidth = 420.f;
 constexpr float kReadyStripHeight = 5.f;  // the timeline's readiness marks, pixels
 constexpr double kBytesPerMiB = 1 << 20;
@@ -206,6 +206,20 @@ std::string fit_label(const char* label, float min_item_w) {
   return "##" + std::string(label);
 }
 
+std::string fit_lines(const std::string& text, float width, float height) {
+  auto fits = [&](const std::string& t) {
+    return ImGui::CalcTextSize(t.c_str(), nullptr, false, width).y <= height;
+  };
+  if (text.empty() || fits(text)) return text;
+  std::size_t lo = 0, hi = text.size();  // the longest prefix that fits with "..." after it
+  while (lo < hi) {
+    const std::size_t mid = (lo + hi + 1) / 2;
+    if (fits(text.substr(0, mid) + "...")) lo = mid;
+    else hi = mid - 1;
+  }
+  return text.substr(0, lo) + "...";
+}
+
 void tooltip(const char* text) {
   ImGui::BeginTooltip();
   // Wrapped well inside the window (Dear ImGui keeps the tooltip itself on screen).
@@ -242,9 +256,10 @@ void view_section(PlayerApp& app) {
 namespace {
 
 // The status area at the bottom of the side panel, a fixed kStatusLines high: the playback
-// tuning's progress or the rung playing, then the last message (saved files, fits, errors),
-// wrapped and cut at the area's end (in full in its tooltip). Controls above never move when a
-// message comes or goes.
+// tuning's progress or the rung playing (wrapped: two lines at most), then the last message
+// (saved files, fits, errors), wrapped into the lines left and cut short with "..." when longer
+// (in full in its tooltip): nothing is cut off at the area's edges, and controls above never
+// move when a message comes or goes.
 void status_area(PlayerApp& app, float height) {
   ImGui::BeginChild("##status", ImVec2(0, height), true,
                     ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse);
@@ -253,13 +268,22 @@ void status_area(PlayerApp& app, float height) {
     char text[64];
     std::snprintf(text, sizeof text, "tuning playback %d / %d", t->pictures_done(), total);
     ImGui::ProgressBar(float(t->pictures_done()) / float(total), ImVec2(-1, 0), text);
+    note_item(text, true);
   } else {
     const std::string rung = app.state.playing ? playback_text(app) : "";
-    ImGui::TextUnformatted(rung.empty() ? " " : rung.c_str());
-    if (!rung.empty() && ImGui::IsItemHovered()) tooltip(rung.c_str());
+    if (rung.empty()) {
+      ImGui::TextUnformatted(" ");
+    } else {
+      ImGui::TextWrapped("%s", rung.c_str());
+      note_wrapped(rung.c_str());
+      if (ImGui::IsItemHovered()) tooltip(rung.c_str());
+    }
   }
+  const std::string shown = fit_lines(app.status, ImGui::GetContentRegionAvail().x,
+                                      ImGui::GetContentRegionAvail().y);
   ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.f, 0.85f, 0.5f, 1.f));
-  ImGui::TextWrapped("%s", app.status.c_str());
+  ImGui::TextWrapped("%s", shown.c_str());
+  note_wrapped(shown.c_str());
   ImGui::PopStyleColor();
   ImGui::EndChild();
   if (!app.status.empty() && ImGui::IsItemHovered()) tooltip(app.status.c_str());

@@ -29,5 +29,8 @@ void menu_and_dialogs(PlayerApp& app);
 std::string fit_label(const char* label, float min_item_w = 110.f);
 /// A tooltip for the last item, wrapped to stay inside the window. Never throws.
 void tooltip(const char* text);
+/// text as it fits in width × height pixels wrapped (Dear ImGui's TextWrapped), cut short with
+/// "..." when it does not. Never throws but bad_alloc.
+std::string fit_lines(const std::string& text, float width, float height);
 
 }  // namespace tspplayer

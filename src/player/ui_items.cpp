@@ -3,6 +3,8 @@
 #include <imgui.h>
 #include <imgui_internal.h>
 
+#include <algorithm>
+
 namespace tspplayer {
 
 namespace {
@@ -26,8 +28,18 @@ void note_item(const char* label, bool framed) {
   it.h = hi.y - lo.y;
   it.text_w = ImGui::CalcTextSize(label, end).x;
   it.inner_w = framed ? it.w - 2 * ImGui::GetStyle().FramePadding.x : it.w;
-  it.clip_right = ImGui::GetCurrentWindow()->InnerClipRect.Max.x;
+  const ImGuiWindow* win = ImGui::GetCurrentWindow();
+  it.clip_right = win->InnerClipRect.Max.x;
+  it.clip_bottom = win->InnerClipRect.Max.y;
+  it.scrolls = !(win->Flags & ImGuiWindowFlags_NoScrollbar);
   items().push_back(std::move(it));
+}
+
+void note_wrapped(const char* text) {
+  const std::size_t before = items().size();
+  note_item(text);
+  if (items().size() == before) return;  // nothing visible
+  items().back().text_w = std::min(items().back().text_w, items().back().w);  // (wrapped)
 }
 
 const std::vector<UiItem>& ui_items() { return items(); }
@@ -36,7 +48,8 @@ nlohmann::json ui_items_json() {
   nlohmann::json a = nlohmann::json::array();
   for (const UiItem& it : items())
     a.push_back({{"label", it.label}, {"x", it.x}, {"y", it.y}, {"w", it.w}, {"h", it.h},
-                 {"text_w", it.text_w}, {"inner_w", it.inner_w}, {"clip_right", it.clip_right}});
+                 {"text_w", it.text_w}, {"inner_w", it.inner_w}, {"clip_right", it.clip_right},
+                 {"clip_bottom", it.clip_bottom}, {"scrolls", it.scrolls}});
   return a;
 }
 

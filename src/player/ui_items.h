@@ -17,6 +17,8 @@ struct UiItem {
   float text_w = 0;        ///< the label's width
   float inner_w = 0;       ///< room for the label inside the item (a button's frame less padding)
   float clip_right = 0;    ///< the right edge of what its window shows
+  float clip_bottom = 0;   ///< the bottom edge of what its window shows
+  bool scrolls = true;     ///< its window scrolls (false: an item below clip_bottom is cut off)
 };
 
 /// Forgets the last frame's items (called when the panels are drawn again). Never throws.
@@ -24,9 +26,12 @@ void begin_ui_items();
 /// Records the item Dear ImGui laid out last under its label; framed: the label is drawn inside
 /// the item (a button), so it must fit within the frame's padding. Never throws but bad_alloc.
 void note_item(const char* label, bool framed = false);
+/// Records wrapped text Dear ImGui laid out last (TextWrapped): its width fits by wrapping, its
+/// height must fit its window. Never throws but bad_alloc.
+void note_wrapped(const char* text);
 /// The last frame's items.
 const std::vector<UiItem>& ui_items();
-/// ui_items() as JSON: [{label, x, y, w, h, text_w, inner_w, clip_right}].
+/// ui_items() as JSON: [{label, x, y, w, h, text_w, inner_w, clip_right, clip_bottom, scrolls}].
 nlohmann::json ui_items_json();
 
 }  // namespace tspplayer

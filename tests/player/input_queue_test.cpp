@@ -93,3 +93,35 @@ TEST(PlayerInputQueue, TextKeysAndScrollKeepTheirOrder) {
 }
 
 }  // namespace
+
+namespace {
+
+using namespace tspplayer;
+constexpr int kCtrl = 341, kA = 65;  // GLFW_KEY_LEFT_CONTROL, GLFW_KEY_A
+
+// A quick Ctrl+A as X delivers it (xdotool key ctrl+a: Ctrl down, A down, Ctrl up, A up, ~12 ms
+// apart) to a window that took Ctrl down in one frame: the frame that sees A pressed still sees
+// Ctrl held, so Dear ImGui reads Ctrl+A, not a plain A (issue 47's walk: select all was lost).
+TEST(PlayerInputQueue, AKeyPressedWithCtrlKeepsCtrlInItsFrame) {
+  InputQueue q;
+  q.push({InputEvent::Kind::key, 0, 0, kCtrl, true});
+  InputFrame f = q.take();
+  EXPECT_TRUE(f.keys[kCtrl]);
+  q.push({InputEvent::Kind::key, 0, 0, kA, true});
+  q.push({InputEvent::Kind::key, 0, 0, kCtrl, false});
+  q.push({InputEvent::Kind::key, 0, 0, kA, false});
+  f = q.take();
+  EXPECT_TRUE(f.keys[kA]);
+  EXPECT_TRUE(f.keys[kCtrl]) << "A pressed while Ctrl was down";
+  f = q.take();
+  EXPECT_FALSE(f.keys[kCtrl]);
+  EXPECT_FALSE(f.keys[kA]);
+  EXPECT_FALSE(q.pending());
+  // Pressed together in one frame (Ctrl first), they still share it.
+  q.push({InputEvent::Kind::key, 0, 0, kCtrl, true});
+  q.push({InputEvent::Kind::key, 0, 0, kA, true});
+  f = q.take();
+  EXPECT_TRUE(f.keys[kCtrl] && f.keys[kA]);
+}
+
+}  // namespace

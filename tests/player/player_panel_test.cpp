@@ -43,6 +43,10 @@ void expect_nothing_clipped(const nlohmann::json& stats, const std::string& wher
     EXPECT_LE(it["text_w"].get<double>(), it["inner_w"].get<double>() + 0.5) << where << ": " << label;
     EXPECT_LE(it["x"].get<double>() + it["w"].get<double>(), it["clip_right"].get<double>() + 0.5)
         << where << ": " << label;
+    // In a window that does not scroll (the status area), nothing runs past its bottom either.
+    if (!it["scrolls"].get<bool>())
+      EXPECT_LE(it["y"].get<double>() + it["h"].get<double>(), it["clip_bottom"].get<double>() + 0.5)
+          << where << ": " << label;
   }
 }
 
@@ -52,16 +56,40 @@ TEST(Player, PanelFitsAt1280x800And1920x1080WithTheTransferFunctionFirst) {
   for (const char* size : {"1280x800", "1920x1080"}) {
     const std::string s(size);
     const fs::path a = dir / (s + "_a.json"), b = dir / (s + "_b.json"), c = dir / (s + "_c.json");
-    // As it starts; after a message in the status area; every section open.
+    const fs::path d = dir / (s + "_d.json");
+    // A message longer than the status area holds (an error naming a long path).
+    const fs::path missing = dir / (std::string(120, 'm') + ".h5");
+    // As it starts; after a message in the status area; every section open; playing (the rung
+    // in the status area) with the long message under it.
     const fs::path script = script_in(
         dir, s + ".txt",
         "wait-frames 3\nstats " + a.string() + "\ntf-range 0.2:0.8\nwait-frames 3\nstats " +
-            b.string() + "\nexpand on\nwait-frames 3\nstats " + c.string() + "\nquit\n");
+            b.string() + "\nexpand on\nwait-frames 3\nstats " + c.string() + "\nopen " +
+            missing.string() + "\nwait-frames 1\nplay\nwait-frames 3\nstats " + d.string() +
+            "\nquit\n");
     const auto r = run_tspplay("play " + q(tsp) + " --size " + s + " --script " + q(script));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const nlohmann::json ja = read_json(a), jb = read_json(b), jc = read_json(c);
     expect_nothing_clipped(ja, s + " as it starts");
     expect_nothing_clipped(jc, s + " every section open");
+    // Playing with a long message: the rung and the message share the status area, the
+    // message cut short with "..." (in full in stats and the tooltip), nothing cut off.
+    const nlohmann::json jd = read_json(d);
+    expect_nothing_clipped(jd, s + " playing, a long message");
+    const std::string full = jd["status"];
+    ASSERT_NE(full.find(missing.string()), std::string::npos) << full;
+    bool rung = false, cut_short = false;
+    for (const auto& it : jd["ui_items"]) {
+      if (it["scrolls"].get<bool>()) continue;
+      const std::string label = it["label"];
+      rung = rung || label.find("dE") != std::string::npos || label.find("tuning") != std::string::npos;
+      if (label.size() > 3 && label.compare(label.size() - 3, 3, "...") == 0) {
+        cut_short = true;
+        EXPECT_EQ(full.rfind(label.substr(0, label.size() - 3), 0), 0u) << label;
+      }
+    }
+    EXPECT_TRUE(rung) << jd["ui_items"];
+    EXPECT_TRUE(cut_short) << jd["ui_items"];
     const auto start = items_by_label(ja), message = items_by_label(jb), open = items_by_label(jc);
     const int height = ja["window"][1].get<int>();
     // The transfer function's colour range is above the fold; the expert knobs are collapsed.

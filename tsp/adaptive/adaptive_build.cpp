@@ -404,7 +404,7 @@ AdaptiveReport build_adaptive_tsp(MeshSource& source, const std::string& out_pat
   TspMetadata meta;
   meta.source = source.describe() + ", adaptive octree over " + to_string(grid.dims) + " (E = " +
                 std::to_string(rep.threshold) + ")";
-  meta.field = options.build.field_name;
+  meta.field = options.build.field_name.empty() ? source.field() : options.build.field_name;
   meta.data_range = br.data_range;
   meta.nonfinite_count = br.nonfinite_count;
   meta.histogram = pass.histogram;

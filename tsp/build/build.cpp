@@ -442,7 +442,7 @@ BuildReport build_field(VolumeSource& source, const TempOutput* out,
     if (stencil.leaves) tree.set_inside_fractions(inside_fractions(o, pass.inside_voxels));
     for (int i = 0; i < tree.size(); ++i) tree.stats(i) = acc[i].finish(report.value_range.width());
     meta.source = source.describe();
-    meta.field = options.field_name;
+    meta.field = options.field_name.empty() ? source.field() : options.field_name;  // (picked: its own name)
     meta.data_range = report.data_range;
     meta.nonfinite_count = report.nonfinite_count;
     meta.histogram = pass.histogram;

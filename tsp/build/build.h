@@ -37,7 +37,7 @@ struct BuildOptions {
   int brick_size = kDefaultBrickSize;  ///< B, a power of two
   std::optional<ValueRange> range;     ///< quantization range; default: the data's finite range
   int threads = 0;                     ///< worker threads; 0 = hardware concurrency
-  std::string field_name;              ///< recorded in the file
+  std::string field_name;              ///< recorded in the file (empty: the one the source picked)
   ProgressFn progress;                 ///< may be empty
   /// The grid's physical position and voxel spacing, instead of what the source says (positive,
   /// finite spacing; finite origin — checked by build_tsp_file).

@@ -381,6 +381,8 @@ class Hdf5Source final : public VolumeSource {
   Dims dims() const override { return dims_; }
   int steps() const override { return int(steps_.size()); }
   std::string describe() const override { return path_ + ", " + field_text_; }
+  std::string field() const override { return field_; }
+  std::string field_;  // the dataset's (or the steps' group's) path without its leading '/'
   std::array<double, 3> origin() const override { return geometry_.origin; }
   std::array<double, 3> spacing() const override { return geometry_.spacing; }
   std::vector<double> times() const override { return times_; }
@@ -466,6 +468,7 @@ std::unique_ptr<VolumeSource> open_dataset(const std::string& path, Handle file,
   auto source = std::make_unique<Hdf5Source>(path, std::move(file), "dataset " + ds_path, dims,
                                              std::move(steps));
   source->geometry_ = geometry;
+  source->field_ = ds_path.substr(std::min(ds_path.size(), ds_path.find_first_not_of('/')));
   source->times_ = std::move(times);
   source->time_units_ = std::move(units);
   source->chunk_planes_ = chunk_depth(ds.get(), shape.size() == 4 ? 1 : 0);
@@ -519,6 +522,7 @@ std::unique_ptr<VolumeSource> open_group(const std::string& path, Handle file,
   }
   auto source = std::make_unique<Hdf5Source>(path, std::move(file), text, dims, std::move(steps));
   source->geometry_ = geometry;
+  source->field_ = group_path.substr(std::min(group_path.size(), group_path.find_first_not_of('/')));
   source->chunk_planes_ = depth;
   return source;
 }

@@ -74,6 +74,7 @@ class LevelResampledSource final : public VolumeSource {
   }
   int steps() const override { return inner_->steps(); }
   std::string describe() const override { return inner_->describe() + ", " + note_; }
+  std::string field() const override { return inner_->field(); }
   std::vector<std::string> files() const override { return inner_->files(); }
   std::vector<double> times() const override { return inner_->times(); }
   TimeUnits time_units() const override { return inner_->time_units(); }

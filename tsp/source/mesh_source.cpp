@@ -119,6 +119,17 @@ void check_mesh(const Mesh& m, const std::string& where) {
   }
 }
 
+std::string FieldSpec::text() const {
+  switch (pick) {
+    case ComponentPick::magnitude: return name + ":mag";
+    case ComponentPick::x: return name + ":x";
+    case ComponentPick::y: return name + ":y";
+    case ComponentPick::z: return name + ":z";
+    case ComponentPick::scalar: break;
+  }
+  return name;
+}
+
 FieldSpec FieldSpec::parse(const std::string& spec) {
   FieldSpec f;
   const auto colon = spec.rfind(':');

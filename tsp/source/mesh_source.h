@@ -71,6 +71,8 @@ struct FieldSpec {
   /// range, a scalar request on a vector array).
   static std::vector<float> reduce(const std::vector<float>& tuples, int components,
                                    const FieldSpec& spec, const std::string& where);
+  /// The request as parse() reads it: "NAME", "NAME:mag", "NAME:x" … Never throws.
+  std::string text() const;
 };
 
 /// A time series of unstructured grids carrying one field.
@@ -91,6 +93,9 @@ class MeshSource {
   /// Bounding box of step t's points (a reader may decode only the points). Throws like
   /// read_step.
   virtual Aabb bounds(int t) { return read_step(t).bounds(); }
+  /// The field it reads (the one picked when none was named), as VolumeSource::field(). Never
+  /// throws.
+  virtual std::string field() const { return {}; }
 };
 
 }  // namespace tsp

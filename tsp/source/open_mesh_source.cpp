@@ -58,6 +58,7 @@ class MeshFileSeriesSource final : public MeshSource {
       for (const io::StepFile& s : steps_) t.push_back(s.time);
     return t;
   }
+  std::string field() const override { return field_.spec.text(); }
   std::string describe() const override {
     return input_ + ", " + (field_.cells ? "CellData " : "PointData ") + field_.spec.name +
            (steps_.size() > 1 ? " (" + std::to_string(steps_.size()) + " steps)" : "");

@@ -329,6 +329,7 @@ class Plot3dSource final : public MeshSource {
     if (increasing && t.size() > 1) times_ = t;
   }
   int steps() const override { return int(qs_.size()); }
+  std::string field() const override { return spec_.text(); }
   std::string describe() const override {
     return input_ + " on " + grid_ + ", " + spec_.name +
            (qs_.size() > 1 ? " (" + std::to_string(qs_.size()) + " .q steps)" : "");

@@ -69,6 +69,10 @@ class VolumeSource {
   /// Physical distance between neighbouring voxels per axis; (1, 1, 1) when the input does not
   /// say. Never throws.
   virtual std::array<double, 3> spacing() const { return {1, 1, 1}; }
+  /// The field it reads, as `--field` would name it — the one it picked when none was named (a
+  /// file's only dataset, a mesh's active scalars) — so builds record it for legends and file
+  /// names; empty when the input names none (a raw series). Never throws.
+  virtual std::string field() const { return {}; }
 };
 
 /// Element types of raw input files.

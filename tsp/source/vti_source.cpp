@@ -35,6 +35,7 @@ class VtiSeriesSource final : public VolumeSource {
     if (std::find(all.begin(), all.end(), input_) == all.end()) all.push_back(input_);
     return all;
   }
+  std::string field() const override { return field_.name; }
   std::string describe() const override {
     return input_ + ", " + (field_.cells ? "CellData " : "PointData ") + field_.name +
            (files_.size() > 1 ? " (" + std::to_string(files_.size()) + " .vti steps)" : "");

@@ -162,6 +162,7 @@ class VtkhdfMeshSource final : public MeshSource {
   int steps() const override { return steps_; }
   std::vector<std::string> files() const override { return files_; }
   std::vector<double> times() const override { return times_; }
+  std::string field() const override { return field_.text(); }
   std::string describe() const override {
     return input_ + ", " + (cells_ ? "CellData " : "PointData ") + field_.name +
            (steps_ > 1 ? " (" + std::to_string(steps_) + " VTKHDF steps)" : "");

@@ -90,6 +90,7 @@ class VtkHdfSource final : public VolumeSource {
   GridGeometry geometry_;
   int steps() const override { return transient_ ? int(time_index_.size()) : 1; }
   std::string describe() const override { return path_ + ", VTKHDF ImageData " + array_path_; }
+  std::string field() const override { return array_path_.substr(array_path_.rfind('/') + 1); }
   std::vector<std::string> files() const override { return {path_}; }
 
   void read_step(int t, std::span<float> out) override { read_slab(t, 0, dims_.z, out); }

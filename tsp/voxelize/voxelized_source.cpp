@@ -31,6 +31,7 @@ class VoxelizedSource final : public VolumeSource {
     return source_->describe() + ", voxelized to " + to_string(grid_.dims);
   }
   std::vector<std::string> files() const override { return source_->files(); }
+  std::string field() const override { return source_->field(); }
   bool has_stencil() const override { return true; }
   std::vector<double> times() const override { return source_->times(); }
   std::array<double, 3> origin() const override { return grid_.origin; }

@@ -1,0 +1,91 @@
+// File > Open as a scientist uses it, under real X events (xdotool) at the window's normal frame
+// rate (issue 47's fresh-eye walk; frames of 80 ms, as llvmpipe draws a large window): a quick Ctrl+A selects the path, Escape closes the dialog,
+// Enter in the path field opens the file, and a double-click on a folder enters that folder, not
+// the one under the mouse in it. Each step waits on the player's --trace lines, not on the clock.
+// (Helpers: support/player_run.h.)
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include "support/paths.h"
+#include "support/player_run.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using tsptest::q;
+using namespace tsptest::player;
+
+// Bash helpers over the player's output: until_log TEXT waits for a line with TEXT, until_n TEXT
+// N for N of them (a minute at most each).
+std::string waits(const fs::path& log) {
+  return "until_log() { for i in $(seq 600); do grep -q -- \"$1\" " + q(log) +
+         " && return 0; sleep 0.1; done; echo \"never saw $1\"; return 1; }\n"
+         "until_n() { for i in $(seq 600); do [ \"$(grep -c -- \"$1\" " + q(log) +
+         ")\" -ge \"$2\" ] && return 0; sleep 0.1; done; echo \"never saw $1 $2 times\"; return 1; }\n";
+}
+
+TEST(Player, OpenDialogTakesCtrlAEscapeEnterAndDoubleClicksAsExpected) {
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
+  ASSERT_EQ(std::system("command -v xdotool > /dev/null"), 0)
+      << "xdotool missing (scripts/install-deps.sh installs it)";
+  const fs::path dir = tsptest::temp_dir(), out = dir / "keys.out", tsp = dir / "s.tsp";
+  fs::copy_file(make_tsp(), tsp);
+  fs::create_directories(dir / "a" / "b" / "c");
+  const fs::path other = dir / "a" / "o.tsp";
+  fs::copy_file(tsp, other);
+  const fs::path backstop = write_script("wait-seconds 120\nquit\n");  // (if Ctrl+Q is lost)
+  const std::string cmd =
+      waits(out) + "(" + q(tsptest::tspplay_bin()) + " play " + q(tsp) + " --size 640x480 --cache-dir " +
+      q(dir / "cache") + " --trace --frame-delay-ms 80 --script " + q(backstop) + " > " + q(out) + " 2>&1 &\n" +
+      "w=$(xdotool search --sync --name " + q("tspplay - " + tsp.string()) + " | head -1)\n"
+      "until_log 'trace: tf canvas'\n"
+      "xdotool key --window \"$w\" ctrl+o\n"
+      "until_log 'trace: open path field active'\n"
+      "xdotool type --window \"$w\" abc\n"
+      "until_log 'abc$'\n"
+      // Idle, the window wakes on Ctrl's press and draws a frame with Ctrl alone; A's press and
+      // Ctrl's release (xdotool releases in the order it pressed, 20 ms apart) come during it,
+      // so the next frame's queue holds both.
+      "sleep 1\n"
+      "xdotool key --delay 40 --window \"$w\" ctrl+a\n"
+      "until_log 'trace: select all'\n"
+      "xdotool type --window \"$w\" x\n"
+      "until_log 'trace: open path x$'\n"
+      "xdotool key --window \"$w\" Escape\n"
+      "until_log 'trace: open dialog closed'\n"
+      "xdotool key --window \"$w\" ctrl+o\n"
+      "until_n 'trace: open path field active' 2\n"
+      // The field opens with its folder selected: End, then the file's name in it.
+      "xdotool key --window \"$w\" End\n"
+      "xdotool type --window \"$w\" a/o.tsp\n"
+      "until_log " + q("trace: open path " + other.string() + "$") + "\n"
+      "xdotool key --window \"$w\" Return\n"
+      "until_log " + q("opened " + other.string()) + "\n"
+      // Opened again, the dialog lists a/ (where the last file came from): ../ b/ o.tsp. A
+      // double-click on b/ enters b/, whose second row (c/) is then under the mouse.
+      "xdotool key --window \"$w\" ctrl+o\n"
+      "until_n 'trace: open path field active' 3\n"
+      "read x y h <<< \"$(grep 'trace: open list' " + q(out) + " | tail -1 | cut -d' ' -f4-)\"\n"
+      "xdotool mousemove --window \"$w\" $((x + 30)) $((y + h + h / 2)) click --repeat 2 --delay 80 1\n"
+      "until_log " + q("trace: open folder " + (dir / "a" / "b").string() + "$") + "\n"
+      "xdotool key --window \"$w\" Escape\n"
+      "until_n 'trace: open dialog closed' 2\n"
+      "xdotool key --window \"$w\" ctrl+q\n"
+      // xdotool sends to the focused window through XTEST; once Ctrl+Q has closed it, Q's
+      // release fails and Q stays down on the display, repeating into the next test's window.
+      "wait; rc=$?; xdotool keyup ctrl q; exit $rc)\n";
+  ASSERT_EQ(run_bash(dir / "keys.sh", cmd), 0) << tsptest::read_file(out);
+  const std::string log = tsptest::read_file(out);
+  // Ctrl+A replaced "abc" whole: without it (a plain A) the x went after "abc".
+  EXPECT_NE(log.find("trace: open path x\n"), std::string::npos) << log;
+  EXPECT_EQ(log.find("abcx"), std::string::npos) << log;
+  // Enter opened the typed file (a .tsp: at once).
+  EXPECT_NE(log.find("trace: open dialog opens " + other.string() + "\n"), std::string::npos) << log;
+  // The double-click went one level down, not two.
+  EXPECT_EQ(log.find("open folder " + (dir / "a" / "b" / "c").string()), std::string::npos) << log;
+}
+
+}  // namespace
