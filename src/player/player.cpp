@@ -132,64 +132,11 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
   ImGui::CreateContext();
   ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini in the user's directory
   ImGui::StyleColorsDark();
-  // Our key callback first: ImGui's back end keeps it and calls it before its own.
-  GLFWwindow* window = static_cast<GLFWwindow*>(ctx->native_window());
-  glfwSetWindowUserPointer(window, this);
-  // Every callback counts an event: an idle window draws again only after one (run()).
-  glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int mods) {
-    auto* app = static_cast<PlayerApp*>(glfwGetWindowUserPointer(w));
-    ++app->events_;
-    // Ctrl+A, Ctrl+O and Ctrl+Q are shortcuts, not the player's keys; Dear ImGui sees every
-    // key through the input queue (a Ctrl+A shorter than a frame still selects).
-    if ((action == GLFW_PRESS || action == GLFW_REPEAT) && !app->shortcut(key, mods))
-      app->key_queue_.push_back(key);
-    if (action != GLFW_REPEAT)  // (a held key repeats in Dear ImGui by itself)
-      app->input_queue_.push({InputEvent::Kind::key, 0, 0, key, action == GLFW_PRESS});
-  });
-  // The cursor as motion events report it, in order (glfwGetCursorPos asks X for the pointer
-  // now, after every queued event): so a press knows where it happened.
-  glfwSetCursorPosCallback(window, [](GLFWwindow* w, double x, double y) {
-    auto* app = static_cast<PlayerApp*>(glfwGetWindowUserPointer(w));
-    ++app->events_;
-    app->cursor_ = {float(x), float(y)};
-    app->input_queue_.push({InputEvent::Kind::cursor, float(x), float(y)});
-  });
-  glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int button, int action, int) {
-    auto* app = static_cast<PlayerApp*>(glfwGetWindowUserPointer(w));
-    ++app->events_;
-    app->input_queue_.push({InputEvent::Kind::button, 0, 0, button, action == GLFW_PRESS});
-    if (button != GLFW_MOUSE_BUTTON_LEFT || action != GLFW_PRESS) return;
-    app->left_press_ = app->cursor_;
-  });
-  glfwSetScrollCallback(window, [](GLFWwindow* w, double dx, double dy) {
-    auto* app = static_cast<PlayerApp*>(glfwGetWindowUserPointer(w));
-    ++app->events_;
-    app->input_queue_.push({InputEvent::Kind::scroll, float(dx), float(dy)});
-  });
-  glfwSetCharCallback(window, [](GLFWwindow* w, unsigned c) {
-    auto* app = static_cast<PlayerApp*>(glfwGetWindowUserPointer(w));
-    ++app->events_;
-    app->input_queue_.push({InputEvent::Kind::text, 0, 0, int(c)});
-  });
-  glfwSetCursorEnterCallback(window, [](GLFWwindow* w, int entered) {
-    auto* app = static_cast<PlayerApp*>(glfwGetWindowUserPointer(w));
-    ++app->events_;
-    if (!entered) app->input_queue_.push({InputEvent::Kind::cursor, -FLT_MAX, -FLT_MAX});
-  });
-  glfwSetWindowFocusCallback(window, [](GLFWwindow* w, int focused) {
-    ++static_cast<PlayerApp*>(glfwGetWindowUserPointer(w))->events_;
-    ImGui::GetIO().AddFocusEvent(focused != 0);
-  });
-  glfwSetFramebufferSizeCallback(window, [](GLFWwindow* w, int, int) {
-    ++static_cast<PlayerApp*>(glfwGetWindowUserPointer(w))->events_;
-  });
-  glfwSetWindowRefreshCallback(window, [](GLFWwindow* w) {  // uncovered: draw it again
-    ++static_cast<PlayerApp*>(glfwGetWindowUserPointer(w))->events_;
-  });
+  install_callbacks();
   glfwSwapInterval(1);  // vsync where the display has it (a virtual one has none)
   // Dear ImGui's back end installs no callbacks: ours queue every event (input_queue_), and
   // each frame hands ImGui what it can tell apart (frame()), so nothing is lost in a slow frame.
-  ImGui_ImplGlfw_InitForOpenGL(window, false);
+  ImGui_ImplGlfw_InitForOpenGL(static_cast<GLFWwindow*>(ctx->native_window()), false);
   if (const char* missing = tsp_imgui_gl_load(ctx->proc_address_function()))
     throw tsp::GlError(std::string("the GL entry point ") + missing +
                        " needed by the UI is missing");

@@ -371,6 +371,7 @@ class PlayerApp {
   std::vector<int> key_queue_;
   /// Every input event for Dear ImGui, handed to it a frame's worth at a time (input_queue.h).
   InputQueue input_queue_;
+  void install_callbacks();  // the window's GLFW callbacks, queueing every event
   void feed_imgui(const InputFrame& in);  // this frame's share of the queue, into ImGuiIO
   std::uint64_t events_ = 0;       ///< window events so far (every GLFW callback counts one)
   std::uint64_t events_seen_ = 0;  ///< events_ at the last frame

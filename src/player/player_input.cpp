@@ -6,6 +6,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <cstdio>
 
@@ -19,6 +20,64 @@ constexpr double kOrbitDegPerPixel = 0.4;
 constexpr double kZoomPerWheelStep = 1.1;
 constexpr double kMaxElevation = 89;
 }  // namespace
+
+// The window's callbacks: each counts an event and queues it (input_queue_: Dear ImGui's share,
+// handed over by frame()); keys also go to the player's own queue unless a shortcut takes them.
+void PlayerApp::install_callbacks() {
+  GLFWwindow* window = static_cast<GLFWwindow*>(ctx->native_window());
+  glfwSetWindowUserPointer(window, this);
+  // Every callback counts an event: an idle window draws again only after one (run()).
+  glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int mods) {
+    auto* app = static_cast<PlayerApp*>(glfwGetWindowUserPointer(w));
+    ++app->events_;
+    // Ctrl+A, Ctrl+O and Ctrl+Q are shortcuts, not the player's keys; Dear ImGui sees every
+    // key through the input queue (a Ctrl+A shorter than a frame still selects).
+    if ((action == GLFW_PRESS || action == GLFW_REPEAT) && !app->shortcut(key, mods))
+      app->key_queue_.push_back(key);
+    if (action != GLFW_REPEAT)  // (a held key repeats in Dear ImGui by itself)
+      app->input_queue_.push({InputEvent::Kind::key, 0, 0, key, action == GLFW_PRESS});
+  });
+  // The cursor as motion events report it, in order (glfwGetCursorPos asks X for the pointer
+  // now, after every queued event): so a press knows where it happened.
+  glfwSetCursorPosCallback(window, [](GLFWwindow* w, double x, double y) {
+    auto* app = static_cast<PlayerApp*>(glfwGetWindowUserPointer(w));
+    ++app->events_;
+    app->cursor_ = {float(x), float(y)};
+    app->input_queue_.push({InputEvent::Kind::cursor, float(x), float(y)});
+  });
+  glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int button, int action, int) {
+    auto* app = static_cast<PlayerApp*>(glfwGetWindowUserPointer(w));
+    ++app->events_;
+    app->input_queue_.push({InputEvent::Kind::button, 0, 0, button, action == GLFW_PRESS});
+    if (button != GLFW_MOUSE_BUTTON_LEFT || action != GLFW_PRESS) return;
+    app->left_press_ = app->cursor_;
+  });
+  glfwSetScrollCallback(window, [](GLFWwindow* w, double dx, double dy) {
+    auto* app = static_cast<PlayerApp*>(glfwGetWindowUserPointer(w));
+    ++app->events_;
+    app->input_queue_.push({InputEvent::Kind::scroll, float(dx), float(dy)});
+  });
+  glfwSetCharCallback(window, [](GLFWwindow* w, unsigned c) {
+    auto* app = static_cast<PlayerApp*>(glfwGetWindowUserPointer(w));
+    ++app->events_;
+    app->input_queue_.push({InputEvent::Kind::text, 0, 0, int(c)});
+  });
+  glfwSetCursorEnterCallback(window, [](GLFWwindow* w, int entered) {
+    auto* app = static_cast<PlayerApp*>(glfwGetWindowUserPointer(w));
+    ++app->events_;
+    if (!entered) app->input_queue_.push({InputEvent::Kind::cursor, -FLT_MAX, -FLT_MAX});
+  });
+  glfwSetWindowFocusCallback(window, [](GLFWwindow* w, int focused) {
+    ++static_cast<PlayerApp*>(glfwGetWindowUserPointer(w))->events_;
+    ImGui::GetIO().AddFocusEvent(focused != 0);
+  });
+  glfwSetFramebufferSizeCallback(window, [](GLFWwindow* w, int, int) {
+    ++static_cast<PlayerApp*>(glfwGetWindowUserPointer(w))->events_;
+  });
+  glfwSetWindowRefreshCallback(window, [](GLFWwindow* w) {  // uncovered: draw it again
+    ++static_cast<PlayerApp*>(glfwGetWindowUserPointer(w))->events_;
+  });
+}
 
 void PlayerApp::handle_input() {
   const ImGuiIO& io = ImGui::GetIO();

@@ -35,14 +35,15 @@ void domain_row(PlayerApp& app, const tsp::ValueRange& d) {
                   std::fabs(d.hi) < tiny ? 0.0 : d.hi);
   }
   const std::string label = fit_label("range LO:HI");
-  const bool entered = ImGui::InputText(label.c_str(), text, sizeof text,
-                                        ImGuiInputTextFlags_EnterReturnsTrue |
-                                            ImGuiInputTextFlags_AutoSelectAll);
+  const bool entered =
+      ImGui::InputText(label.c_str(), text, sizeof text,
+                       ImGuiInputTextFlags_EnterReturnsTrue | ImGuiInputTextFlags_AutoSelectAll);
   note_item(label.c_str());
   editing = ImGui::IsItemActive();
   if (ImGui::IsItemHovered())
-    tooltip("The colour range the map is stretched over: type LO:HI and press Enter "
-            "(tf-range LO:HI)");
+    tooltip(
+        "The colour range the map is stretched over: type LO:HI and press Enter "
+        "(tf-range LO:HI)");
   if (!entered) return;
   editing = false;
   app.push(cmd::StretchTf{text});  // a bad range: the status area says why
@@ -64,51 +65,67 @@ const EditorHistogram& histogram_for(PlayerApp& app, const tsp::ValueRange& d, f
     }
     cached_file = app.file.get();
     app.editor_histogram_step = cached.step;
-    app.editor_histogram_bins = int(std::count_if(cached.counts.begin(), cached.counts.end(),
-                                                  [](double c) { return c > 0; }));
+    app.editor_histogram_bins = int(
+        std::count_if(cached.counts.begin(), cached.counts.end(), [](double c) { return c > 0; }));
   }
   return cached;
 }
 
-}  // namespace
-
-void tf_section(PlayerApp& app) {
-  // Histogram (log counts) with the opacity curve drawn over it.
-  const ImVec2 origin = ImGui::GetCursorScreenPos();
-  const float width = ImGui::GetContentRegionAvail().x;
-  ImDrawList* dl = ImGui::GetWindowDrawList();
-  const tsp::ValueRange d = app.tf.domain();
-  const bool log_axis = app.state.log_opacity;
-  // Opacity a at its height on the canvas (0 at the bottom).
-  auto y_of = [&](double a) {
+// The canvas the histogram, the curve and the handles share: its place on screen, the TF's
+// domain across it and the opacity axis up it.
+struct Canvas {
+  ImVec2 origin;
+  float width;
+  tsp::ValueRange d;
+  bool log_axis;
+  ImDrawList* dl;
+  /// Opacity a at its height on the canvas (0 at the bottom).
+  float y_of(double a) const {
     return origin.y + kHistogramHeight * float(1 - opacity_to_axis(a, log_axis));
-  };
-  // Bars drawn by hand, not ImGui::PlotHistogram: that is an item whose hover (its tooltip)
-  // would take the clicks meant for the handles below. The bins span the TF's domain, so bars
-  // and curve line up; enough of them to show the data (tf_histogram.h), log counts.
-  {
-    const EditorHistogram& hist = histogram_for(app, d, width);
-    std::vector<float> logh;
-    float top = 0;
-    for (double c : hist.counts) {
-      logh.push_back(std::log1p(float(c)));
-      top = std::max(top, logh.back());
-    }
-    dl->AddRectFilled(origin, ImVec2(origin.x + width, origin.y + kHistogramHeight),
-                      ImGui::GetColorU32(ImGuiCol_FrameBg));
-    const float bw = width / float(std::max<std::size_t>(1, logh.size()));
-    for (std::size_t i = 0; i < logh.size() && top > 0; ++i) {
-      if (logh[i] <= 0) continue;
-      const float x0 = origin.x + bw * float(i);
-      dl->AddRectFilled(ImVec2(x0, origin.y + kHistogramHeight * (1 - logh[i] / top)),
-                        ImVec2(std::max(x0 + bw, x0 + 1), origin.y + kHistogramHeight),
-                        ImGui::GetColorU32(ImGuiCol_PlotHistogram));
-    }
-    if (log_axis)  // decade lines of the log opacity axis (1e-3, 1e-2, 1e-1)
-      for (double a = 1e-3; a < 1; a *= 10)
-        dl->AddLine(ImVec2(origin.x, y_of(a)), ImVec2(origin.x + width, y_of(a)),
-                    IM_COL32(255, 255, 255, 40));
   }
+};
+
+// The histogram under the curve. Bars drawn by hand, not ImGui::PlotHistogram: that is an item
+// whose hover (its tooltip) would take the clicks meant for the handles. The bins span the TF's
+// domain, so bars and curve line up; enough of them to show the data (tf_histogram.h), log
+// counts.
+void draw_histogram(PlayerApp& app, const Canvas& cv) {
+  const ImVec2 origin = cv.origin;
+  const float width = cv.width;
+  ImDrawList* dl = cv.dl;
+  const tsp::ValueRange d = cv.d;
+  const bool log_axis = cv.log_axis;
+  auto y_of = [&](double a) { return cv.y_of(a); };
+  const EditorHistogram& hist = histogram_for(app, d, width);
+  std::vector<float> logh;
+  float top = 0;
+  for (double c : hist.counts) {
+    logh.push_back(std::log1p(float(c)));
+    top = std::max(top, logh.back());
+  }
+  dl->AddRectFilled(origin, ImVec2(origin.x + width, origin.y + kHistogramHeight),
+                    ImGui::GetColorU32(ImGuiCol_FrameBg));
+  const float bw = width / float(std::max<std::size_t>(1, logh.size()));
+  for (std::size_t i = 0; i < logh.size() && top > 0; ++i) {
+    if (logh[i] <= 0) continue;
+    const float x0 = origin.x + bw * float(i);
+    dl->AddRectFilled(ImVec2(x0, origin.y + kHistogramHeight * (1 - logh[i] / top)),
+                      ImVec2(std::max(x0 + bw, x0 + 1), origin.y + kHistogramHeight),
+                      ImGui::GetColorU32(ImGuiCol_PlotHistogram));
+  }
+  if (log_axis)  // decade lines of the log opacity axis (1e-3, 1e-2, 1e-1)
+    for (double a = 1e-3; a < 1; a *= 10)
+      dl->AddLine(ImVec2(origin.x, y_of(a)), ImVec2(origin.x + width, y_of(a)),
+                  IM_COL32(255, 255, 255, 40));
+}
+
+// The TF's opacity curve, each segment in its entry's colour, entries at their values.
+void draw_curve(const PlayerApp& app, const Canvas& cv) {
+  const ImVec2 origin = cv.origin;
+  const float width = cv.width;
+  ImDrawList* dl = cv.dl;
+  const tsp::ValueRange d = cv.d;
+  auto y_of = [&](double a) { return cv.y_of(a); };
   const int n = app.tf.size();
   for (int j = 1; j < n; ++j) {
     const tsp::Rgba a = app.tf.entry(j - 1), b = app.tf.entry(j);
@@ -118,10 +135,19 @@ void tf_section(PlayerApp& app) {
     dl->AddLine(ImVec2(x0, y_of(a.a)), ImVec2(x1, y_of(b.a)),
                 ImGui::ColorConvertFloat4ToU32(ImVec4(b.r, b.g, b.b, 1)), 2.f);
   }
+}
+
+// The handles on the curve: drag to move a point (value, opacity), double-click empty space to
+// add one, right-click a point to remove it (remove: its index). True when a point moved or
+// was added.
+bool edit_handles(PlayerApp& app, const Canvas& cv, int& remove) {
+  const ImVec2 origin = cv.origin;
+  const float width = cv.width;
+  ImDrawList* dl = cv.dl;
+  const tsp::ValueRange d = cv.d;
+  const bool log_axis = cv.log_axis;
+  auto y_of = [&](double a) { return cv.y_of(a); };
   bool edited = false;
-  int remove = -1;
-  // Handles on the curve: drag to move a point (value, opacity), double-click empty space to
-  // add one, right-click a point to remove it.
   ImGui::SetCursorScreenPos(origin);
   ImGui::InvisibleButton("##canvas", ImVec2(width, kHistogramHeight));
   app.trace_tf_canvas(origin.x, origin.y, width, kHistogramHeight);
@@ -181,15 +207,13 @@ void tf_section(PlayerApp& app) {
     dl->AddCircle(h, kHandleRadius,
                   int(i) == hovered ? IM_COL32(255, 255, 0, 255) : IM_COL32_WHITE);
   }
-  domain_row(app, d);
-  if (bool on = app.state.log_opacity; ImGui::Checkbox("log opacity", &on))
-    app.push(cmd::LogOpacity{on});
-  note_item("log opacity");
-  ImGui::SameLine();
-  ImGui::TextDisabled("(?)");
-  if (ImGui::IsItemHovered())
-    tooltip("Drag a point: the curve between its neighbours follows, keeping its detail. "
-            "Double-click empty space to add a point, right-click a point to remove it.");
+  return edited;
+}
+
+// The points as a list (value, colour, opacity; x removes one), under a tree node. True when
+// one was edited or added; remove: the index of one to remove.
+bool point_list(PlayerApp& app, const tsp::ValueRange& d, bool log_axis, int& remove) {
+  bool edited = false;
   if (app.expand_sections != 0) ImGui::SetNextItemOpen(app.expand_sections > 0, ImGuiCond_Always);
   char points_title[48];
   std::snprintf(points_title, sizeof points_title, "points (%zu)###points", app.tf_points.size());
@@ -231,16 +255,12 @@ void tf_section(PlayerApp& app) {
     note_item("add point", true);
     ImGui::TreePop();
   }
-  if (remove >= 0) {  // straight between its neighbours
-    if (edited) app.apply_tf_points();
-    app.set_tf(remove_handle(app.tf_handles, app.tf_points, app.tf, remove), false);
-    app.tf_label = "edited";
-    edited = false;
-  }
-  if (edited) app.apply_tf_points();  // lazy metric: only touched nodes recompute next frame
+  return edited;
+}
 
-  // The combo names the map in use and applies a preset when one is chosen (over the map's
-  // present domain).
+// The colour map combo (names the map in use, applies a chosen preset over the present domain)
+// and the four fits of the colour range, two a row.
+void colour_map_rows(PlayerApp& app, const tsp::ValueRange& d) {
   const std::string preset = fit_label("colour map");
   if (ImGui::BeginCombo(preset.c_str(), app.tf_label.c_str())) {
     for (const std::string& name : tsp::preset_names())
@@ -258,15 +278,17 @@ void tf_section(PlayerApp& app) {
   if (ImGui::Button("fit to data", half))  // the map as it is, stretched over the data's range
     app.push(cmd::StretchTf{"data"});
   note_item("fit to data", true);
-  if (ImGui::IsItemHovered()) tooltip("Stretch the map over the data's whole range (tf-range data)");
+  if (ImGui::IsItemHovered())
+    tooltip("Stretch the map over the data's whole range (tf-range data)");
   ImGui::SameLine();
   if (ImGui::Button("fit to bulk", half)) {  // over the 1st to 99th percentile of the samples
     app.push(cmd::StretchTf{"histogram"});
   }
   note_item("fit to bulk", true);
   if (ImGui::IsItemHovered())
-    tooltip("Stretch the map over where the data is: the 1st to 99th percentile of every "
-            "sample (tf-range histogram)");
+    tooltip(
+        "Stretch the map over where the data is: the 1st to 99th percentile of every "
+        "sample (tf-range histogram)");
   if (ImGui::Button("fit to step", half)) {  // over the range of the step shown
     app.push(cmd::StretchTf{"step"});
   }
@@ -279,9 +301,13 @@ void tf_section(PlayerApp& app) {
   }
   note_item("fit to view", true);
   if (ImGui::IsItemHovered())
-    tooltip("Stretch the map over the values of the bricks in view and inside the clip probes, "
-            "at the step shown (tf-range visible)");
+    tooltip(
+        "Stretch the map over the values of the bricks in view and inside the clip probes, "
+        "at the step shown (tf-range visible)");
+}
 
+// The TF file row: a path, load and save as.
+void tf_file_row(PlayerApp& app, const tsp::ValueRange& d) {
   static char path[512] = "";
   if (path[0] == 0) std::snprintf(path, sizeof path, "%s", app.tf_path.c_str());
   ImGui::SetNextItemWidth(-1);
@@ -304,6 +330,39 @@ void tf_section(PlayerApp& app) {
   ImGui::SameLine();
   if (ImGui::Button("save as")) app.save_tf_as(app.tf_path);
   note_item("save as", true);
+}
+
+}  // namespace
+
+void tf_section(PlayerApp& app) {
+  // Histogram (log counts) with the opacity curve and its handles drawn over it.
+  const Canvas cv{ImGui::GetCursorScreenPos(), ImGui::GetContentRegionAvail().x, app.tf.domain(),
+                  app.state.log_opacity, ImGui::GetWindowDrawList()};
+  const tsp::ValueRange d = cv.d;
+  draw_histogram(app, cv);
+  draw_curve(app, cv);
+  int remove = -1;
+  bool edited = edit_handles(app, cv, remove);
+  domain_row(app, d);
+  if (bool on = app.state.log_opacity; ImGui::Checkbox("log opacity", &on))
+    app.push(cmd::LogOpacity{on});
+  note_item("log opacity");
+  ImGui::SameLine();
+  ImGui::TextDisabled("(?)");
+  if (ImGui::IsItemHovered())
+    tooltip(
+        "Drag a point: the curve between its neighbours follows, keeping its detail. "
+        "Double-click empty space to add a point, right-click a point to remove it.");
+  edited = point_list(app, d, cv.log_axis, remove) || edited;
+  if (remove >= 0) {  // straight between its neighbours
+    if (edited) app.apply_tf_points();
+    app.set_tf(remove_handle(app.tf_handles, app.tf_points, app.tf, remove), false);
+    app.tf_label = "edited";
+    edited = false;
+  }
+  if (edited) app.apply_tf_points();  // lazy metric: only touched nodes recompute next frame
+  colour_map_rows(app, d);
+  tf_file_row(app, d);
 }
 
 }  // namespace tspplayer

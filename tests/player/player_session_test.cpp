@@ -166,12 +166,6 @@ TEST(Player, SharedSessionOpensWithDashDashSession) {
   }
 }
 
-// A bash function: waits (up to 60 s) until the player's log holds a line matching a pattern.
-std::string until_log(const fs::path& log) {
-  return "until_log() { for i in $(seq 600); do grep -q -- \"$1\" " + q(log) +
-         " && return 0; sleep 0.1; done; echo \"never saw $1\"; return 1; }\n";
-}
-
 // The panel layout: a section closed with a real click (xdotool) on the docked side panel's first
 // header is closed again in the next window on the same input. The steps wait on the player's
 // --trace lines, not on the clock.
@@ -184,7 +178,7 @@ TEST(Player, OpenSectionsAreRestored) {
   const std::string cache = " --cache-dir " + q(dir / "cache");
   const fs::path backstop = write_script("wait-seconds 120\nquit\n");  // (if Ctrl+Q is lost)
   const std::string cmd =
-      until_log(out) + "(" + q(tsptest::tspplay_bin()) + " play " + q(tsp) + " --size " + size +
+      log_waits(out) + "(" + q(tsptest::tspplay_bin()) + " play " + q(tsp) + " --size " + size +
       cache + " --trace --frame-delay-ms 200 --script " + q(backstop) + " > " + q(out) +
       " 2>&1 &\n" +
       "w=$(xdotool search --sync --name " + q("tspplay - " + tsp.string()) + " | head -1)\n"
@@ -222,7 +216,7 @@ TEST(Player, CtrlASelectsTheOpenDialogsPath) {
   const fs::path tsp = make_tsp(), dir = tsptest::temp_dir(), out = dir / "keys.out";
   const fs::path backstop = write_script("wait-seconds 120\nquit\n");  // (if Ctrl+Q is lost)
   const std::string cmd =
-      until_log(out) + "(" + q(tsptest::tspplay_bin()) + " play " + q(tsp) +
+      log_waits(out) + "(" + q(tsptest::tspplay_bin()) + " play " + q(tsp) +
       " --size 480x360 --trace --frame-delay-ms 300 --script " + q(backstop) + " > " + q(out) +
       " 2>&1 &\n" +
       "w=$(xdotool search --sync --name " + q("tspplay - " + tsp.string()) + " | head -1)\n"

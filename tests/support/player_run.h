@@ -41,4 +41,11 @@ nlohmann::json read_json(const std::filesystem::path& p);
 std::string orbit_then_idle_script(const std::filesystem::path& dir,
                                    const std::filesystem::path& shot);
 
+/// Bash functions over a player's output file `log`, for scripts that drive a window with
+/// xdotool and wait on --trace lines, not on the clock: `until_log TEXT` waits for a line with
+/// TEXT, `until_n TEXT N` for N of them (a minute at most each; when one never comes it says so,
+/// ends the player started last with & and exits 1); `seen_within TEXT TENTHS` waits TENTHS
+/// tenths of a second at most and returns 1 (no exit) when TEXT never came.
+std::string log_waits(const std::filesystem::path& log);
+
 }  // namespace tsptest::player
