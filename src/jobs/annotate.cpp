@@ -62,6 +62,7 @@ constexpr int kLegendMargin = 10, kTicks = 5;
 // Two bars (volume and surface): each this share of the frame's height (percent), this far
 // apart (below the title gap), at least this many pixels per tick.
 constexpr int kTwoBarsShare = 30, kBarGap = 6, kTickSpacing = 24;
+constexpr int kCaptionPad = 4;  // the caption's box reaches this far beyond its text, pixels
 constexpr unsigned char kText[3] = {235, 235, 235};
 constexpr unsigned char kAxis[3][3] = {{230, 60, 60}, {60, 200, 60}, {80, 120, 255}};
 
@@ -189,6 +190,11 @@ void annotate_frame(tsp::Image& img, const tsp::Camera& camera, tsp::Dims d,
   // Step and time, top left.
   std::string label = "step " + std::to_string(step);
   if (time) label += "  t = " + *time;
+  // On an opaque box, so that an outline under it (a stretched axis, a zoom) never crosses it.
+  const int text_w = int(std::max(label.size(), stretch.size())) * kAdvance * 2;
+  const int box_bottom = (stretch.empty() ? 8 : 26) + kGlyphH * 2 + kCaptionPad;
+  for (int y = 8 - kCaptionPad; y < box_bottom; ++y)
+    for (int x = 8 - kCaptionPad; x < 8 + text_w + kCaptionPad; ++x) put(img, x, y, kCaptionBox);
   draw_text(img, 8, 8, label, kText, 2);
   if (!stretch.empty()) draw_text(img, 8, 26, stretch, kAxis[2], 2);
 }

@@ -13,6 +13,7 @@
 #include <string>
 #include <glm/glm.hpp>
 
+#include "jobs/annotate.h"
 #include "tsp/frame/exaggeration.h"
 
 namespace tspplayer {
@@ -196,12 +197,19 @@ void PlayerApp::draw_annotations(const tsp::Camera& cam) {
   else
     std::snprintf(label, sizeof label, "step %d   t = %s", state.step,
                   tsp::format_time(times[std::size_t(state.step)], file->metadata().time_units).c_str());
-  dl->AddText(ImVec2(float(v.x) + float(v.w) * 0.5f - 40, float(v.y) + 8),
-              IM_COL32(235, 235, 235, 255), label);
-  // A stretched axis is named under it ("z × 30"): heights are not to scale.
-  if (const std::string k = tsp::exaggeration_text(options_.scale); !k.empty())
-    dl->AddText(ImVec2(float(v.x) + float(v.w) * 0.5f - 40, float(v.y) + 8 + ImGui::GetFontSize()),
-                IM_COL32(80, 120, 255, 255), k.c_str());
+  // A stretched axis is named under it ("z × 30"): heights are not to scale. Both on an opaque
+  // box (as the export's caption, jobs/annotate.cpp), so that the outline never crosses them.
+  const std::string k = tsp::exaggeration_text(options_.scale);
+  const ImVec2 at(float(v.x) + float(v.w) * 0.5f - 40, float(v.y) + 8);
+  const ImVec2 size1 = ImGui::CalcTextSize(label), size2 = ImGui::CalcTextSize(k.c_str());
+  const float line = ImGui::GetFontSize();
+  const float pad = 3;
+  dl->AddRectFilled(ImVec2(at.x - pad, at.y - pad),
+                    ImVec2(at.x + std::max(size1.x, k.empty() ? 0.f : size2.x) + pad,
+                           at.y + (k.empty() ? line : 2 * line) + pad),
+                    IM_COL32(tspgl::kCaptionBox[0], tspgl::kCaptionBox[1], tspgl::kCaptionBox[2], 255));
+  dl->AddText(at, IM_COL32(235, 235, 235, 255), label);
+  if (!k.empty()) dl->AddText(ImVec2(at.x, at.y + line), IM_COL32(80, 120, 255, 255), k.c_str());
   draw_legends(dl, v, tf, field(),
                mesh_surface && state.settings.surface ? &*mesh_surface : nullptr);
   dl->PopClipRect();

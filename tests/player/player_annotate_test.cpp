@@ -1,6 +1,7 @@
 // The annotations over the volume after issue 47's fresh-eye walk: the mesh surface's colours
 // get their own legend bar ("surface: FIELD") in the window, in S's PNGs, movies and render
-// --annotate. (Helpers: support/player_run.h.)
+// --annotate; the caption sits on an opaque box that a stretched outline never crosses.
+// (Helpers: support/player_run.h.)
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -88,6 +89,43 @@ TEST(Player, TheSurfaceHasItsOwnLegendBarInTheWindowAndInExports) {
       EXPECT_LT(count_near(img, 48, 62, lo), 4);
     }
   }
+}
+
+// Pixels of img within [x0, x1) × [y0, y1) exactly rgb.
+int count_exact(const tsp::Image& img, int x0, int y0, int x1, int y1,
+                const unsigned char rgb[3]) {
+  int n = 0;
+  for (int y = std::max(0, y0); y < std::min(img.height, y1); ++y)
+    for (int x = std::max(0, x0); x < std::min(img.width, x1); ++x) {
+      const std::uint8_t* p = img.at(x, y);
+      n += p[0] == rgb[0] && p[1] == rgb[1] && p[2] == rgb[2];
+    }
+  return n;
+}
+
+// After a z stretch (×30: the tall outline reaches the top of the frame) the
+// caption ("step 0", "z x 30") sits on its opaque box: no outline pixel in its rectangle, in
+// render --annotate's frame (top left, scale-2 font) and in the window (top centre).
+TEST(Player, TheCaptionSitsOnAnOpaqueBoxTheStretchedOutlineNeverCrosses) {
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
+  const fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
+  const unsigned char outline[3] = {200, 200, 200}, box[3] = {24, 24, 40};
+  auto r = run_tspplay("render " + q(tsp) + " --steps 0 --annotate --scale 1,1,30 --size " +
+                       kSize + " -o " + q(dir / "r"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const tsp::Image img = tsp::read_png((dir / "r" / "step_0000.png").string());
+  // The caption's box: 4 pixels around "step 0" (6 glyphs × 12) and "z x 30" under it.
+  EXPECT_EQ(count_exact(img, 4, 4, 84, 44, outline), 0);
+  EXPECT_GT(count_exact(img, 4, 4, 84, 44, box), 1000);
+  const fs::path shot = dir / "w.png";
+  auto p = run_tspplay("play " + q(tsp) + " --size " + kSize + " --scale 1,1,30 --script " +
+                       q(write_script("panels off\nzoom 1.5\nwait-frames 2\nscreenshot-ui " +
+                                      shot.string() + "\nquit\n")));
+  ASSERT_EQ(p.exit_code, 0) << p.err;
+  const tsp::Image win = tsp::read_png(shot.string());
+  // The window's caption starts at the view's centre less 40 pixels, 8 down (64 − 40 = 24).
+  EXPECT_EQ(count_exact(win, 22, 6, 60, 30, outline), 0);
+  EXPECT_GT(count_exact(win, 22, 6, 60, 30, box), 200);
 }
 
 }  // namespace
