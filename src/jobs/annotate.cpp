@@ -127,7 +127,10 @@ void legend_bar(tsp::Image& img, const tsp::TransferFunction& tf, int lx, int ly
         static_cast<unsigned char>(std::clamp(c.b, 0.f, 1.f) * 255 + 0.5f)};
     for (int x = 0; x < kLegendWidth; ++x) put(img, lx + x, ly + r, rgb);
   }
-  if (!title.empty()) draw_text(img, lx, ly - kFieldTitleGap, title, kText);
+  // (Moved left as far as a long title, "surface: alpha.water", needs to end inside the frame.)
+  if (!title.empty())
+    draw_text(img, std::min(lx, img.width - 2 - int(title.size()) * kAdvance), ly - kFieldTitleGap,
+              title, kText);
   const std::vector<double> values = tsp::nice_ticks(dom.lo, dom.hi, ticks + 1);
   const double tick_step = values.size() > 1 ? values[1] - values[0] : 1.0;
   for (double v : values) {

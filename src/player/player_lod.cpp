@@ -109,9 +109,10 @@ ImDrawList* view_draw_list(const WindowRect& v) {
 }
 
 // One colour bar of the legend at the view's right edge, as render --annotate draws it: tf's
-// colours (opaque) at (x0, y0), h tall, low at the bottom, `ticks` value ticks, the title above.
+// colours (opaque) at (x0, y0), h tall, low at the bottom, `ticks` value ticks, the title above
+// (ending left of `right`, the view's right edge).
 void draw_legend(ImDrawList* dl, float x0, float y0, float h, const tsp::TransferFunction& tf,
-                 const std::string& title, int ticks) {
+                 const std::string& title, int ticks, float right) {
   const tsp::ValueRange dom = tf.domain();
   for (int r = 0; r < int(h); ++r) {
     const double value = dom.hi - (dom.hi - dom.lo) * r / std::max(1.0, double(h) - 1);
@@ -132,17 +133,21 @@ void draw_legend(ImDrawList* dl, float x0, float y0, float h, const tsp::Transfe
     dl->AddLine(ImVec2(x0 + kLegendWidthPx, y), ImVec2(x0 + kLegendWidthPx + 4, y), text);
     dl->AddText(ImVec2(x0 + kLegendWidthPx + 6, y - 7), text, tsp::tick_text(value, step).c_str());
   }
-  if (!title.empty()) dl->AddText(ImVec2(x0 - 4, y0 - kLegendTitlePx), text, title.c_str());
+  // (Moved left as far as a long title, "surface: alpha.water", needs to end inside the view.)
+  if (!title.empty())
+    dl->AddText(ImVec2(std::min(x0 - 4, right - 4 - ImGui::CalcTextSize(title.c_str()).x),
+                       y0 - kLegendTitlePx),
+                text, title.c_str());
 }
 
 // The legend: the volume's bar, and with a surface its map in a second bar below it ("surface:
 // FIELD"), in the same column (as jobs/annotate.cpp).
 void draw_legends(ImDrawList* dl, const WindowRect& v, const tsp::TransferFunction& tf,
                   const std::string& field, const tspgl::MeshSurface* surface) {
-  const float x0 = float(v.x + v.w) - kLegendRightPx;
+  const float right = float(v.x + v.w), x0 = right - kLegendRightPx;
   if (!surface) {
     const float h = std::max(kMinLegendPx, float(v.h) * kLegendHeightShare);
-    draw_legend(dl, x0, float(v.y) + (float(v.h) - h) * 0.5f, h, tf, field, kLegendTicks);
+    draw_legend(dl, x0, float(v.y) + (float(v.h) - h) * 0.5f, h, tf, field, kLegendTicks, right);
     return;
   }
   // (both within the view: a short view gets shorter bars)
@@ -151,9 +156,9 @@ void draw_legends(ImDrawList* dl, const WindowRect& v, const tsp::TransferFuncti
   const float y0 = float(v.y) + std::max(kLegendTitlePx, (float(v.h) - 2 * h - kLegendTitlePx -
                                                           kLegendGapPx) * 0.5f);
   const int ticks = std::clamp(int(h / kLegendTickPx), 1, kLegendTicks);
-  draw_legend(dl, x0, y0, h, tf, field, ticks);
+  draw_legend(dl, x0, y0, h, tf, field, ticks, right);
   draw_legend(dl, x0, y0 + h + kLegendTitlePx + kLegendGapPx, h, surface->tf(),
-              "surface: " + surface->field(), ticks);
+              "surface: " + surface->field(), ticks, right);
 }
 
 }  // namespace
