@@ -59,6 +59,10 @@ constexpr Glyph kFont[] = {
 constexpr int kGlyphW = 5, kGlyphH = 7, kAdvance = 6;
 constexpr int kLegendWidth = 16, kLegendHeightShare = 2;  // 1/2 of the frame's height, at most
 constexpr int kLegendMargin = 10, kTicks = 5;
+// Two bars (volume and surface): each this share of the frame's height (percent), this far
+// apart (below the title gap), at least this many pixels per tick.
+constexpr int kTwoBarsShare = 30, kBarGap = 6, kTickSpacing = 24;
+constexpr int kCaptionPad = 4;  // the caption's box reaches this far beyond its text, pixels
 constexpr unsigned char kText[3] = {235, 235, 235};
 constexpr unsigned char kAxis[3][3] = {{230, 60, 60}, {60, 200, 60}, {80, 120, 255}};
 
@@ -107,9 +111,42 @@ void draw_text(tsp::Image& img, int x, int y, const std::string& text, const uns
   }
 }
 
+namespace {
+
+// One colour bar at (lx, ly), lh tall: tf's colours (opaque) over its domain, low at the bottom,
+// `ticks` round values (0.2 0.4 …, tsp/report/ticks.h) at their places, title above.
+void legend_bar(tsp::Image& img, const tsp::TransferFunction& tf, int lx, int ly, int lh,
+                const std::string& title, int ticks) {
+  const tsp::ValueRange dom = tf.domain();
+  for (int r = 0; r < lh; ++r) {
+    const double v = dom.hi - (dom.hi - dom.lo) * r / std::max(1, lh - 1);
+    const tsp::Rgba c = tf.lookup(v);
+    const unsigned char rgb[3] = {
+        static_cast<unsigned char>(std::clamp(c.r, 0.f, 1.f) * 255 + 0.5f),
+        static_cast<unsigned char>(std::clamp(c.g, 0.f, 1.f) * 255 + 0.5f),
+        static_cast<unsigned char>(std::clamp(c.b, 0.f, 1.f) * 255 + 0.5f)};
+    for (int x = 0; x < kLegendWidth; ++x) put(img, lx + x, ly + r, rgb);
+  }
+  // (Moved left as far as a long title, "surface: alpha.water", needs to end inside the frame.)
+  if (!title.empty())
+    draw_text(img, std::min(lx, img.width - 2 - int(title.size()) * kAdvance), ly - kFieldTitleGap,
+              title, kText);
+  const std::vector<double> values = tsp::nice_ticks(dom.lo, dom.hi, ticks + 1);
+  const double tick_step = values.size() > 1 ? values[1] - values[0] : 1.0;
+  for (double v : values) {
+    const double u = dom.hi > dom.lo ? (dom.hi - v) / (dom.hi - dom.lo) : 0.0;
+    const int y = ly + int(std::lround((lh - 1) * u));
+    line(img, lx + kLegendWidth, y, lx + kLegendWidth + 4, y, kText);
+    draw_text(img, lx + kLegendWidth + 7, y - 3, tsp::tick_text(v, tick_step), kText);
+  }
+}
+
+}  // namespace
+
 void annotate_frame(tsp::Image& img, const tsp::Camera& camera, tsp::Dims d,
                     const tsp::TransferFunction& tf, int step, const std::optional<std::string>& time,
-                    const std::string& field, const std::string& stretch) {
+                    const std::string& field, const std::string& stretch,
+                    const SurfaceLegend& surface) {
   const int w = img.width, h = img.height;
   // Outline: the 12 edges of the volume's box [0, D − 1].
   const double hi[3] = {double(std::max(d.x - 1, 1)), double(std::max(d.y - 1, 1)),
@@ -139,32 +176,28 @@ void annotate_frame(tsp::Image& img, const tsp::Camera& camera, tsp::Dims d,
       draw_text(img, int(ex) + 2, int(ey) - 3, names[a], kAxis[a]);
     }
   }
-  // Colour legend on the right: the TF's colours (opaque), low at the bottom, with ticks.
-  const int lh = std::max(20, h / kLegendHeightShare), lx = w - kLegendMargin - kLegendWidth - 48,
-            ly = (h - lh) / 2;
-  const tsp::ValueRange dom = tf.domain();
-  for (int r = 0; r < lh; ++r) {
-    const double v = dom.hi - (dom.hi - dom.lo) * r / std::max(1, lh - 1);
-    const tsp::Rgba c = tf.lookup(v);
-    const unsigned char rgb[3] = {
-        static_cast<unsigned char>(std::clamp(c.r, 0.f, 1.f) * 255 + 0.5f),
-        static_cast<unsigned char>(std::clamp(c.g, 0.f, 1.f) * 255 + 0.5f),
-        static_cast<unsigned char>(std::clamp(c.b, 0.f, 1.f) * 255 + 0.5f)};
-    for (int x = 0; x < kLegendWidth; ++x) put(img, lx + x, ly + r, rgb);
-  }
-  if (!field.empty()) draw_text(img, lx, ly - kFieldTitleGap, field, kText);
-  // Round values (0.2 0.4 …, tsp/report/ticks.h) at their places along the bar.
-  const std::vector<double> ticks = tsp::nice_ticks(dom.lo, dom.hi, kTicks + 1);
-  const double tick_step = ticks.size() > 1 ? ticks[1] - ticks[0] : 1.0;
-  for (double v : ticks) {
-    const double u = dom.hi > dom.lo ? (dom.hi - v) / (dom.hi - dom.lo) : 0.0;
-    const int y = ly + int(std::lround((lh - 1) * u));
-    line(img, lx + kLegendWidth, y, lx + kLegendWidth + 4, y, kText);
-    draw_text(img, lx + kLegendWidth + 7, y - 3, tsp::tick_text(v, tick_step), kText);
+  // Colour legend on the right: the TF's colours (opaque), low at the bottom, with ticks; with a
+  // surface, its map in a second bar below, in the same column.
+  const int lx = w - kLegendMargin - kLegendWidth - 48;
+  if (!surface.tf) {
+    const int lh = std::max(20, h / kLegendHeightShare);
+    legend_bar(img, tf, lx, (h - lh) / 2, lh, field, kTicks);
+  } else {
+    const int lh = std::max(16, h * kTwoBarsShare / 100);
+    const int top = std::max(kFieldTitleGap, (h - 2 * lh - kFieldTitleGap - kBarGap) / 2);
+    const int ticks = std::clamp(lh / kTickSpacing, 1, kTicks);
+    legend_bar(img, tf, lx, top, lh, field, ticks);
+    legend_bar(img, *surface.tf, lx, top + lh + kFieldTitleGap + kBarGap, lh,
+               "surface: " + surface.field, ticks);
   }
   // Step and time, top left.
   std::string label = "step " + std::to_string(step);
   if (time) label += "  t = " + *time;
+  // On an opaque box, so that an outline under it (a stretched axis, a zoom) never crosses it.
+  const int text_w = int(std::max(label.size(), stretch.size())) * kAdvance * 2;
+  const int box_bottom = (stretch.empty() ? 8 : 26) + kGlyphH * 2 + kCaptionPad;
+  for (int y = 8 - kCaptionPad; y < box_bottom; ++y)
+    for (int x = 8 - kCaptionPad; x < 8 + text_w + kCaptionPad; ++x) put(img, x, y, kCaptionBox);
   draw_text(img, 8, 8, label, kText, 2);
   if (!stretch.empty()) draw_text(img, 8, 26, stretch, kAxis[2], 2);
 }

@@ -324,6 +324,12 @@ class FrameSource {
     driver_ = std::make_unique<FrameDriver>(*renderer_, lod_spec(o, lod_level));
   }
 
+  /// The mesh surface's legend bar (none without --surface boundary).
+  SurfaceLegend surface_legend() const {
+    return mesh_surface_ ? SurfaceLegend{&mesh_surface_->tf(), mesh_surface_->field()}
+                         : SurfaceLegend{};
+  }
+
   /// The node errors the frames read (empty for the baseline).
   tsp::FrameMetric* metric() { return &*nodes_; }
 
@@ -483,7 +489,8 @@ void draw_frames(GlContext& ctx, const RenderJobOptions& o, const JobInput& in, 
           annotate_frame(pixels, camera, tree.octree().dims(), tf, t,
                          rec.time ? std::optional<std::string>(rec.time_text) : std::nullopt,
                          file.fields()[std::size_t(file.field_index())],
-                         o.physical_proportions ? tsp::exaggeration_text(o.scale, true) : "");
+                         o.physical_proportions ? tsp::exaggeration_text(o.scale, true) : "",
+                         source.surface_legend());
         if (o.on_frame) o.on_frame(rec, pixels);
         if (png)
           into_folder(*folder, [&] { tsp::write_png(step_png(folder->tmp(), t), pixels); });

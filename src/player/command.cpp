@@ -89,6 +89,11 @@ struct Checker {
   void operator()(const cmd::GoToStep& c) const {
     if (c.step < 0) fail("step must be 0 or more");
   }
+  void operator()(const cmd::ShowDialog& c) const {
+    for (const char* w : {"open", "save-tf", "record", "save-session", "close"})
+      if (c.which == w) return;
+    fail("dialog '" + c.which + "': expected open, save-tf, record, save-session or close");
+  }
   template <class Other>
   void operator()(const Other&) const {}
 };

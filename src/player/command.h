@@ -161,6 +161,10 @@ struct EditProbe {
 };
 /// The probes panel's "remove": probe `index` (0-based) goes.
 struct RemoveProbe { int index = 0; bool operator==(const RemoveProbe&) const = default; };
+/// `dialog open|save-tf|record|save-session|close`: open a File menu dialog as its menu item
+/// does (File > Open, Save transfer function as, Record movie, Save session), or close the one
+/// open (as Cancel).
+struct ShowDialog { std::string which; bool operator==(const ShowDialog&) const = default; };
 }  // namespace cmd
 
 /// One player command (see namespace cmd).
@@ -176,7 +180,7 @@ using Command =
                  cmd::StartRecording, cmd::StopRecording, cmd::ResetCamera, cmd::KeepQuality,
                  cmd::Capture, cmd::Quit, cmd::SaveSession, cmd::SetScale,
                  cmd::ExpandSections, cmd::SavePicture, cmd::ShowAnnotations,
-                 cmd::SplatFallback, cmd::EditProbe, cmd::RemoveProbe>;
+                 cmd::SplatFallback, cmd::EditProbe, cmd::RemoveProbe, cmd::ShowDialog>;
 
 /// True when a script stops after c until frames pass: a screenshot, `wait-frames N` with N > 0
 /// or `wait-seconds S` with S > 0 (a wait of 0 is free: it used to cost a frame, and a script of

@@ -5,6 +5,7 @@
 
 #include "jobs/visible_range.h"
 #include "player/player_app.h"
+#include "player/player_ui.h"
 #include "tsp/core/error.h"
 #include "tsp/metric/tf_io.h"
 
@@ -164,6 +165,7 @@ struct CommandApplier {
     app.probe_selected = c.index;
     app.probes_changed();
   }
+  void operator()(const cmd::ShowDialog& c) const { show_dialog(c.which); }
   void operator()(const cmd::RemoveProbe& c) const {
     if (c.index < 0 || c.index >= int(state().probes.size())) return;  // (already gone)
     state().probes.erase(state().probes.begin() + c.index);

@@ -268,7 +268,10 @@ tsp::Image PlayerApp::export_view() {
                                         : std::optional<std::string>(tsp::format_time(
                                               times[std::size_t(state.step)],
                                               file->metadata().time_units)),
-                          field(), tsp::exaggeration_text(options_.scale, true));
+                          field(), tsp::exaggeration_text(options_.scale, true),
+                          mesh_surface && state.settings.surface
+                              ? tspgl::SurfaceLegend{&mesh_surface->tf(), mesh_surface->field()}
+                              : tspgl::SurfaceLegend{});
   }
   return img;
 }

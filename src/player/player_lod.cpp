@@ -13,6 +13,7 @@
 #include <string>
 #include <glm/glm.hpp>
 
+#include "jobs/annotate.h"
 #include "tsp/frame/exaggeration.h"
 
 namespace tspplayer {
@@ -23,6 +24,9 @@ namespace {
 constexpr float kLegendHeightShare = 0.4f, kMinLegendPx = 60, kLegendWidthPx = 14,
                 kLegendRightPx = 80;
 constexpr int kLegendTicks = 5;
+// With the surface's bar: each bar's share of the view's height, the title's height above a
+// bar, the gap between the bars, and the least pixels per tick.
+constexpr float kTwoLegendsShare = 0.3f, kLegendTitlePx = 20, kLegendGapPx = 6, kLegendTickPx = 24;
 // Colours of the cut overlay by LOD level (level 0 first), RGBA.
 constexpr ImU32 kLevelColours[] = {IM_COL32(80, 220, 80, 200), IM_COL32(240, 220, 60, 200),
                                    IM_COL32(250, 140, 40, 200), IM_COL32(240, 60, 60, 200),
@@ -104,12 +108,11 @@ ImDrawList* view_draw_list(const WindowRect& v) {
   return dl;
 }
 
-// The colour legend at the view's right edge, as render --annotate draws it: the TF's colours
-// (opaque), low at the bottom, kLegendTicks value ticks, the field's name above.
-void draw_legend(ImDrawList* dl, const WindowRect& v, const tsp::TransferFunction& tf,
-                 const std::string& field) {
-  const float h = std::max(kMinLegendPx, float(v.h) * kLegendHeightShare);
-  const float x0 = float(v.x + v.w) - kLegendRightPx, y0 = float(v.y) + (float(v.h) - h) * 0.5f;
+// One colour bar of the legend at the view's right edge, as render --annotate draws it: tf's
+// colours (opaque) at (x0, y0), h tall, low at the bottom, `ticks` value ticks, the title above
+// (ending left of `right`, the view's right edge).
+void draw_legend(ImDrawList* dl, float x0, float y0, float h, const tsp::TransferFunction& tf,
+                 const std::string& title, int ticks, float right) {
   const tsp::ValueRange dom = tf.domain();
   for (int r = 0; r < int(h); ++r) {
     const double value = dom.hi - (dom.hi - dom.lo) * r / std::max(1.0, double(h) - 1);
@@ -122,15 +125,40 @@ void draw_legend(ImDrawList* dl, const WindowRect& v, const tsp::TransferFunctio
   dl->AddRect(ImVec2(x0 - 1, y0 - 1), ImVec2(x0 + kLegendWidthPx + 1, y0 + h + 1), text);
   // Round values (0.2 0.4 …, tsp/report/ticks.h) at their places along the bar, as the
   // export's legend (jobs/annotate.cpp).
-  const std::vector<double> ticks = tsp::nice_ticks(dom.lo, dom.hi, kLegendTicks + 1);
-  const double step = ticks.size() > 1 ? ticks[1] - ticks[0] : 1.0;
-  for (double value : ticks) {
+  const std::vector<double> values = tsp::nice_ticks(dom.lo, dom.hi, ticks + 1);
+  const double step = values.size() > 1 ? values[1] - values[0] : 1.0;
+  for (double value : values) {
     const double u = dom.hi > dom.lo ? (dom.hi - value) / (dom.hi - dom.lo) : 0.0;
     const float y = y0 + (h - 1) * float(u);
     dl->AddLine(ImVec2(x0 + kLegendWidthPx, y), ImVec2(x0 + kLegendWidthPx + 4, y), text);
     dl->AddText(ImVec2(x0 + kLegendWidthPx + 6, y - 7), text, tsp::tick_text(value, step).c_str());
   }
-  if (!field.empty()) dl->AddText(ImVec2(x0 - 4, y0 - 20), text, field.c_str());
+  // (Moved left as far as a long title, "surface: alpha.water", needs to end inside the view.)
+  if (!title.empty())
+    dl->AddText(ImVec2(std::min(x0 - 4, right - 4 - ImGui::CalcTextSize(title.c_str()).x),
+                       y0 - kLegendTitlePx),
+                text, title.c_str());
+}
+
+// The legend: the volume's bar, and with a surface its map in a second bar below it ("surface:
+// FIELD"), in the same column (as jobs/annotate.cpp).
+void draw_legends(ImDrawList* dl, const WindowRect& v, const tsp::TransferFunction& tf,
+                  const std::string& field, const tspgl::MeshSurface* surface) {
+  const float right = float(v.x + v.w), x0 = right - kLegendRightPx;
+  if (!surface) {
+    const float h = std::max(kMinLegendPx, float(v.h) * kLegendHeightShare);
+    draw_legend(dl, x0, float(v.y) + (float(v.h) - h) * 0.5f, h, tf, field, kLegendTicks, right);
+    return;
+  }
+  // (both within the view: a short view gets shorter bars)
+  const float h = std::min(std::max(kMinLegendPx * 0.5f, float(v.h) * kTwoLegendsShare),
+                           (float(v.h) - 2 * kLegendTitlePx - kLegendGapPx - 8) * 0.5f);
+  const float y0 = float(v.y) + std::max(kLegendTitlePx, (float(v.h) - 2 * h - kLegendTitlePx -
+                                                          kLegendGapPx) * 0.5f);
+  const int ticks = std::clamp(int(h / kLegendTickPx), 1, kLegendTicks);
+  draw_legend(dl, x0, y0, h, tf, field, ticks, right);
+  draw_legend(dl, x0, y0 + h + kLegendTitlePx + kLegendGapPx, h, surface->tf(),
+              "surface: " + surface->field(), ticks, right);
 }
 
 }  // namespace
@@ -174,13 +202,21 @@ void PlayerApp::draw_annotations(const tsp::Camera& cam) {
   else
     std::snprintf(label, sizeof label, "step %d   t = %s", state.step,
                   tsp::format_time(times[std::size_t(state.step)], file->metadata().time_units).c_str());
-  dl->AddText(ImVec2(float(v.x) + float(v.w) * 0.5f - 40, float(v.y) + 8),
-              IM_COL32(235, 235, 235, 255), label);
-  // A stretched axis is named under it ("z × 30"): heights are not to scale.
-  if (const std::string k = tsp::exaggeration_text(options_.scale); !k.empty())
-    dl->AddText(ImVec2(float(v.x) + float(v.w) * 0.5f - 40, float(v.y) + 8 + ImGui::GetFontSize()),
-                IM_COL32(80, 120, 255, 255), k.c_str());
-  draw_legend(dl, v, tf, field());
+  // A stretched axis is named under it ("z × 30"): heights are not to scale. Both on an opaque
+  // box (as the export's caption, jobs/annotate.cpp), so that the outline never crosses them.
+  const std::string k = tsp::exaggeration_text(options_.scale);
+  const ImVec2 at(float(v.x) + float(v.w) * 0.5f - 40, float(v.y) + 8);
+  const ImVec2 size1 = ImGui::CalcTextSize(label), size2 = ImGui::CalcTextSize(k.c_str());
+  const float line = ImGui::GetFontSize();
+  const float pad = 3;
+  dl->AddRectFilled(ImVec2(at.x - pad, at.y - pad),
+                    ImVec2(at.x + std::max(size1.x, k.empty() ? 0.f : size2.x) + pad,
+                           at.y + (k.empty() ? line : 2 * line) + pad),
+                    IM_COL32(tspgl::kCaptionBox[0], tspgl::kCaptionBox[1], tspgl::kCaptionBox[2], 255));
+  dl->AddText(at, IM_COL32(235, 235, 235, 255), label);
+  if (!k.empty()) dl->AddText(ImVec2(at.x, at.y + line), IM_COL32(80, 120, 255, 255), k.c_str());
+  draw_legends(dl, v, tf, field(),
+               mesh_surface && state.settings.surface ? &*mesh_surface : nullptr);
   dl->PopClipRect();
 }
 

@@ -4,6 +4,7 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 #include <imgui.h>
+#include <imgui_internal.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -69,6 +70,7 @@ struct MenuState {
   std::string traced_list;    // the last "open list X Y ROW" traced
   bool clicked_into = false;  // this click sequence changed the folder (its next clicks are not for the new list)
   char session_path[kPathChars] = "tspplay_session.json";
+  bool want_close = false;  // script `dialog close`: the dialog open closes, as Cancel
 };
 
 MenuState& state() {
@@ -85,6 +87,13 @@ bool key_pressed(ImGuiKey key) { return ImGui::IsKeyPressed(ImGui::GetKeyIndex(k
 // Escape pressed while this dialog (not a combo over it) has the keys: it closes, as Cancel.
 bool escape_closes() {
   return key_pressed(ImGuiKey_Escape) && ImGui::IsWindowFocused(ImGuiFocusedFlags_RootAndChildWindows);
+}
+
+// Script `dialog close` asked the dialog open to close (once).
+bool take_close() {
+  const bool close = state().want_close;
+  state().want_close = false;
+  return close;
 }
 
 // The text field just drawn was left with Enter (Dear ImGui ends the edit on Enter).
@@ -198,12 +207,16 @@ void open_dialog(PlayerApp& app) {
     }
   }
   ImGui::EndChild();
+  // (The extensions in its tooltip: in the combo they ran past its right edge, issue 47.)
   int shown = s.all_files ? 1 : 0;
-  ImGui::SetNextItemWidth(320);
-  if (ImGui::Combo("##kinds", &shown,
-                   "Inputs play reads (.tsp .h5 .nc .vti .vtu .vts .vtm .pvd .series .q .raw)\0"
-                   "All files\0"))
-    s.all_files = shown == 1;
+  const char* kinds[] = {"Inputs play reads", "All files"};
+  const float arrow = ImGui::GetFrameHeight();
+  ImGui::SetNextItemWidth(ImGui::CalcTextSize(kinds[0]).x + 2 * ImGui::GetStyle().FramePadding.x +
+                          arrow + 8);
+  if (ImGui::Combo("##kinds", &shown, kinds, 2)) s.all_files = shown == 1;
+  note_item(kinds[shown], true, arrow);
+  if (ImGui::IsItemHovered())
+    tooltip(".tsp .h5 .nc .vti .vtu .vts .vtm .pvd .series .q .raw, and the folders that hold them");
   ImGui::SetNextItemWidth(-60);
   // A folder typed (or pasted) into the path is shown in the list above. The field has the keys
   // when the dialog opens (type or paste a path at once; Ctrl+A selects it all).
@@ -237,13 +250,17 @@ void open_dialog(PlayerApp& app) {
             "voxel size, a PLOT3D solution's grid (tspplay play --help)");
   std::error_code ec;
   if (enter && fs::is_directory(fs::path(s.open_path), ec)) enter = false;  // its list is shown
-  if (ImGui::Button("Open") || open_now || enter) {
+  const bool open_clicked = ImGui::Button("Open");
+  note_item("Open", true);
+  if (open_clicked || open_now || enter) {
     app.trace(std::string("open dialog opens ") + s.open_path);
     app.push(cmd::OpenInput{s.open_path, s.field, s.build_options});
     ImGui::CloseCurrentPopup();
   }
   ImGui::SameLine();
-  if (ImGui::Button("Cancel") || escape_closes()) {
+  const bool cancel = ImGui::Button("Cancel");
+  note_item("Cancel", true);
+  if (cancel || escape_closes() || take_close()) {
     app.trace("open dialog closed");
     ImGui::CloseCurrentPopup();
   }
@@ -264,12 +281,16 @@ bool path_dialog(const char* title, bool& want, char* path, std::size_t size, co
   ImGui::InputText("##path", path, size);
   const bool enter = entered();
   bool ok = false;
-  if (ImGui::Button("OK") || enter) {
+  const bool ok_clicked = ImGui::Button("OK");
+  note_item("OK", true);
+  if (ok_clicked || enter) {
     ok = true;
     ImGui::CloseCurrentPopup();
   }
   ImGui::SameLine();
-  if (ImGui::Button("Cancel") || escape_closes()) ImGui::CloseCurrentPopup();
+  const bool cancel = ImGui::Button("Cancel");
+  note_item("Cancel", true);
+  if (cancel || escape_closes() || take_close()) ImGui::CloseCurrentPopup();
   ImGui::EndPopup();
   return ok;
 }
@@ -296,6 +317,15 @@ void progress_dialog(PlayerApp& app) {
 
 }  // namespace
 
+void show_dialog(const std::string& which) {
+  MenuState& s = state();
+  s.want_open = s.want_open || which == "open";
+  s.want_tf = s.want_tf || which == "save-tf";
+  s.want_record = s.want_record || which == "record";
+  s.want_session = s.want_session || which == "save-session";
+  s.want_close = which == "close";
+}
+
 void menu_and_dialogs(PlayerApp& app) {
   MenuState& s = state();
   if (app.open_requested) {  // Ctrl+O
@@ -317,6 +347,7 @@ void menu_and_dialogs(PlayerApp& app) {
                   "for tspplay play --session FILE:"))
     app.push(cmd::SaveSession{s.session_path});
   progress_dialog(app);
+  s.want_close = false;  // (no dialog was open to take it)
 }
 
 }  // namespace tspplayer

@@ -22,6 +22,9 @@ void tf_section(PlayerApp& app);
 void probes_section(PlayerApp& app);
 /// The main menu bar and the dialogs it opens: File > Open, save TF as, record (player_menu.cpp).
 void menu_and_dialogs(PlayerApp& app);
+/// Opens a File menu dialog at the next frame with the panels shown, as its menu item does:
+/// which is open, save-tf, record or save-session; close closes the one open (script `dialog`).
+void show_dialog(const std::string& which);
 /// The label to give the next item so that label and item fit the window: label itself with the
 /// item as wide as the rest of the row allows, or, when that leaves the item less than
 /// min_item_w pixels, the label on a line of its own above an item the row's width ("##"

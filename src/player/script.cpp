@@ -157,7 +157,7 @@ Command scale_command(const LineParser& p) {
          settings +
          "quality, stats, lod, target-fps, lod-filter, show-cut, panels, every-step, log-opacity, open, "
          "field, probe, probe-op, probe-surface, probe-clear, probe-move, record, "
-         "reset-camera, playback, capture, save-session, scale, expand or quit");
+         "reset-camera, playback, capture, save-session, scale, expand, dialog or quit");
 }
 
 // The actions of two or more arguments, and those checked as they are parsed.
@@ -213,6 +213,10 @@ Command other_command(const LineParser& p) {
                           {p.number(2, usage), p.number(3, usage), p.number(4, usage)}};
   }
   if (cmd == "scale") return scale_command(p);
+  if (cmd == "dialog") {
+    p.expect_args(1, "dialog open|save-tf|record|save-session|close");
+    return cmd::ShowDialog{p.words[1]};  // (the word checked by validate())
+  }
   if (cmd == "record") {
     p.expect_args(1, "record PATH.mp4|PATH.gif|stop");
     if (p.words[1] == "stop") return cmd::StopRecording{};

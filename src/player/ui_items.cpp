@@ -16,7 +16,7 @@ std::vector<UiItem>& items() {
 
 void begin_ui_items() { items().clear(); }
 
-void note_item(const char* label, bool framed) {
+void note_item(const char* label, bool framed, float reserved) {
   const char* end = ImGui::FindRenderedTextEnd(label);
   if (end == label) return;  // no visible label
   const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
@@ -27,7 +27,7 @@ void note_item(const char* label, bool framed) {
   it.w = hi.x - lo.x;
   it.h = hi.y - lo.y;
   it.text_w = ImGui::CalcTextSize(label, end).x;
-  it.inner_w = framed ? it.w - 2 * ImGui::GetStyle().FramePadding.x : it.w;
+  it.inner_w = (framed ? it.w - 2 * ImGui::GetStyle().FramePadding.x : it.w) - reserved;
   const ImGuiWindow* win = ImGui::GetCurrentWindow();
   it.clip_right = win->InnerClipRect.Max.x;
   it.clip_bottom = win->InnerClipRect.Max.y;

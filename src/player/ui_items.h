@@ -24,8 +24,9 @@ struct UiItem {
 /// Forgets the last frame's items (called when the panels are drawn again). Never throws.
 void begin_ui_items();
 /// Records the item Dear ImGui laid out last under its label; framed: the label is drawn inside
-/// the item (a button), so it must fit within the frame's padding. Never throws but bad_alloc.
-void note_item(const char* label, bool framed = false);
+/// the item (a button), so it must fit within the frame's padding; reserved: pixels of the item
+/// its label cannot use (a combo's arrow). Never throws but bad_alloc.
+void note_item(const char* label, bool framed = false, float reserved = 0);
 /// Records wrapped text Dear ImGui laid out last (TextWrapped): its width fits by wrapping, its
 /// height must fit its window. Never throws but bad_alloc.
 void note_wrapped(const char* text);

@@ -22,7 +22,8 @@ MeshSurface::MeshSurface(const std::string& input, const std::string& field,
                          const tsp::TspFile& file, const std::string& tf_arg, int first_step)
     : source_(tsp::open_mesh_source(input, field.empty() ? file.metadata().field : field)),
       origin_(file.metadata().origin),
-      spacing_(file.metadata().spacing) {
+      spacing_(file.metadata().spacing),
+      field_(field.empty() ? file.metadata().field : field) {
   check_matches(input, file, first_step);
   // The first step's values; where that step holds one value (a crash test's velocity before
   // the impact), the first later step that holds more, so that the map spans what changes.

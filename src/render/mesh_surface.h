@@ -31,6 +31,10 @@ class MeshSurface {
   /// What the compositor draws for step t with a minimum splat size of min_px (the tree of
   /// step t and the colours; valid until the next call). Throws like tree().
   SurfaceFrame frame(int t, double min_px) { return {&tree(t), &tf_, min_px}; }
+  /// The surface's colours (what its legend bar shows).
+  const tsp::TransferFunction& tf() const { return tf_; }
+  /// The field the surface shows (its legend's title: "surface: FIELD").
+  const std::string& field() const { return field_; }
 
  private:
   /// Refuses (tsp::UsageError naming both files) a mesh whose steps differ from file's, or whose
@@ -42,6 +46,7 @@ class MeshSurface {
   int step_ = -1;
   tsp::SplatTree tree_;
   tsp::TransferFunction tf_;
+  std::string field_;
 };
 
 }  // namespace tspgl

@@ -73,7 +73,7 @@ TEST(PlayerCommand, EveryActionsBadLineNamesTheLine) {
       "wait-frames", "wait-seconds", "quality", "stats", "lod", "target-fps", "lod-filter",
       "show-cut", "panels", "every-step", "log-opacity", "open", "field", "probe", "probe-op",
       "probe-surface", "probe-clear", "probe-move", "record", "reset-camera", "playback",
-      "capture", "quit", "save-session", "scale", "expand", "spacing", "compositing"};
+      "capture", "quit", "save-session", "scale", "expand", "spacing", "compositing", "dialog"};
   for (const char* name : actions) {
     const std::string text = std::string("play\n# two\n") + name + " a b c d e f\n";
     const std::string e = tsptest::error_of<tsp::FormatError>(
@@ -82,6 +82,11 @@ TEST(PlayerCommand, EveryActionsBadLineNamesTheLine) {
     EXPECT_NE(e.find(name), std::string::npos) << name << ": " << e;
   }
   // Values out of range: the same line and what is accepted.
+  EXPECT_EQ(tsptest::error_of<tsp::FormatError>(
+                [] { tspplayer::parse_script("dialog print\n", "bad.txt"); }),
+            "bad.txt:1: dialog 'print': expected open, save-tf, record, save-session or close");
+  EXPECT_TRUE(tspplayer::parse_script("dialog record\n", "ok.txt")[0].command ==
+              Command(cmd::ShowDialog{"record"}));
   EXPECT_EQ(tsptest::error_of<tsp::FormatError>(
                 [] { tspplayer::parse_script("\nview 0 95\n", "bad.txt"); }),
             "bad.txt:2: elevation must be in (-90, 90) degrees");

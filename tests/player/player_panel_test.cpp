@@ -50,6 +50,50 @@ void expect_nothing_clipped(const nlohmann::json& stats, const std::string& wher
   }
 }
 
+// Each File menu dialog, opened by the script's `dialog` (as its menu item opens it), at size:
+// nothing in it (nor in the panels under it) is clipped, its fields and buttons lie within the
+// window, and `dialog close` closes it (its items gone from the next stats).
+void expect_dialogs_fit(const fs::path& tsp, const fs::path& dir, const std::string& size) {
+  // Each dialog and a label only it has.
+  const std::pair<const char*, const char*> dialogs[] = {
+      {"open", "build options"},
+      {"save-tf", "Our transfer-function JSON (docs/transfer-functions.md):"},
+      {"record", "The volume as shown, with its annotations, in real time (.mp4 or .gif); "
+                 "File > Stop recording writes it:"},
+      {"save-session", "The transfer function, view, probes, surface, axis scale, speed and "
+                       "panels, for tspplay play --session FILE:"}};
+  std::string text = "wait-frames 2\n";
+  for (const auto& [which, label] : dialogs)
+    text += std::string("dialog ") + which + "\nwait-frames 3\nstats " +
+            (dir / (size + "_dialog_" + which + ".json")).string() + "\ndialog close\nwait-frames 3\n";
+  text += "stats " + (dir / (size + "_dialog_closed.json")).string() + "\nquit\n";
+  const auto r = run_tspplay("play " + q(tsp) + " --size " + size + " --script " +
+                             q(script_in(dir, size + "_dialogs.txt", text)));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json closed = read_json(dir / (size + "_dialog_closed.json"));
+  const auto after = items_by_label(closed);
+  const double w = closed["window"][0].get<double>(), h = closed["window"][1].get<double>();
+  for (const auto& [which, label] : dialogs) {
+    const std::string where = size + " dialog " + which;
+    const nlohmann::json j = read_json(dir / (size + "_dialog_" + which + ".json"));
+    expect_nothing_clipped(j, where);
+    const auto items = items_by_label(j);
+    ASSERT_TRUE(items.count(label)) << where << ": " << j["ui_items"];
+    EXPECT_FALSE(after.count(label)) << where << " stayed open after dialog close";
+    const char* button = std::string(which) == "open" ? "Open" : "OK";
+    for (const char* name : {label, button, "Cancel"}) {
+      ASSERT_TRUE(items.count(name)) << where << ": " << name;
+      const nlohmann::json& it = items.at(name);
+      EXPECT_GE(it["x"].get<double>(), 0) << where << ": " << name;
+      EXPECT_LE(it["x"].get<double>() + it["w"].get<double>(), w) << where << ": " << name;
+      EXPECT_LE(it["y"].get<double>() + it["h"].get<double>(), h) << where << ": " << name;
+    }
+  }
+  // The open dialog's kinds combo shows its choice whole (its extensions list ran off it).
+  const auto open = items_by_label(read_json(dir / (size + "_dialog_open.json")));
+  EXPECT_TRUE(open.count("Inputs play reads")) << size;
+}
+
 TEST(Player, PanelFitsAt1280x800And1920x1080WithTheTransferFunctionFirst) {
   TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
   const fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
@@ -109,6 +153,7 @@ TEST(Player, PanelFitsAt1280x800And1920x1080WithTheTransferFunctionFirst) {
     // Play is as wide as Pause (the controls beside it do not move when it flips): room to
     // spare around its own label.
     EXPECT_GE(start.at("Play")["inner_w"].get<double>(), start.at("Play")["text_w"].get<double>() + 6);
+    expect_dialogs_fit(tsp, dir, s);
   }
 }
 
