@@ -11,6 +11,7 @@ bool is_modifier(int key) { return key >= kFirstModifier && key <= kLastModifier
 const InputFrame& InputQueue::take() {
   state_.wheel_x = state_.wheel_y = 0;
   state_.text.clear();
+  state_.pressed.clear();
   bool moved = false, button_changed = false, key_changed = false, typed = false, scrolled = false;
   bool plain_key_changed = false;  // a key other than a modifier changed in this frame
   std::array<bool, InputFrame::kButtons> changed_button{};
@@ -41,13 +42,14 @@ const InputFrame& InputQueue::take() {
         // this one: Dear ImGui reads the modifiers per frame, so a Ctrl+A whose Ctrl is released
         // in the frame that sees A pressed reached it as a plain A (a quick tap at normal frame
         // rates: Ctrl down in one frame, A down and Ctrl up in the next).
-        if (changed_key[k] || typed || (is_modifier(e.code) && (plain_key_changed || button_changed)))
+        if (changed_key[k] || typed || button_changed || (is_modifier(e.code) && plain_key_changed))
           return state_;
         if (state_.keys[k] != e.down) {
           state_.keys[k] = e.down;
           changed_key[k] = key_changed = true;
           plain_key_changed = plain_key_changed || !is_modifier(e.code);
         }
+        if (e.down && e.to_player) state_.pressed.push_back(e.code);
         break;
       }
       case InputEvent::Kind::text:

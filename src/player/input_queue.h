@@ -19,6 +19,7 @@ struct InputEvent {
   float x = 0, y = 0;  ///< cursor: the position; scroll: the offsets
   int code = 0;        ///< button: 0..4; key: GLFW key code; text: the Unicode code point
   bool down = false;   ///< button, key: pressed (true) or released
+  bool to_player = false;  ///< key: a press or a repeat the player's own keys may take
 };
 
 /// The input state a frame shows Dear ImGui, after the events it took.
@@ -32,6 +33,7 @@ struct InputFrame {
   std::array<bool, kKeys> keys{};          ///< keys held
   float wheel_x = 0, wheel_y = 0;          ///< scrolled this frame
   std::vector<unsigned> text;              ///< characters typed this frame, in order
+  std::vector<int> pressed;                ///< keys pressed or repeated for the player, in order
 };
 
 /// The queue: push() from GLFW's callbacks, take() once per frame.
@@ -43,9 +45,10 @@ class InputQueue {
   /// event Dear ImGui could not tell apart from an earlier one of the same frame: a second
   /// change of a button or key; a release after the cursor moved (the move must be drawn held);
   /// a move after a button changed (the press happened where it was); keys and text after each
-  /// other; a scroll after a button changed; a modifier (Shift, Ctrl, Alt, Super) after another
-  /// key or a button changed (that press keeps its modifiers). The rest waits for the next
-  /// frames. Never throws.
+  /// other; a scroll after a button changed; a key after a button changed (a click that gives a
+  /// text field the focus is seen before the keys typed into it); a modifier (Shift, Ctrl, Alt,
+  /// Super) after another key changed (that press keeps its modifiers). The rest waits for the
+  /// next frames. A repeat changes no state; it is only listed in `pressed`. Never throws.
   const InputFrame& take();
   /// True while events wait for later frames (the window keeps drawing until they are taken).
   bool pending() const { return !events_.empty(); }

@@ -368,7 +368,6 @@ class PlayerApp {
   /// Key presses and repeats GLFW reported since the last frame, in order (filled by the key
   /// callback during glfwPollEvents on this thread): every tap counts however slow a frame is,
   /// which Dear ImGui 1.86's per-frame key state cannot promise.
-  std::vector<int> key_queue_;
   /// Every input event for Dear ImGui, handed to it a frame's worth at a time (input_queue.h).
   InputQueue input_queue_;
   void install_callbacks();  // the window's GLFW callbacks, queueing every event

@@ -283,12 +283,7 @@ std::string PlayerApp::export_name() const {
   if (stem.empty()) stem = "tspplay";
   char step[32];
   std::snprintf(step, sizeof step, "_step_%04d", state.step);
-  const std::string base = stem + "_" + field() + step;
-  std::string name = base + ".png";
-  std::error_code ec;
-  for (int k = 2; std::filesystem::exists(std::filesystem::symlink_status(name, ec)); ++k)
-    name = base + "-" + std::to_string(k) + ".png";
-  return name;
+  return tsp::unused_path(stem + "_" + field() + step + ".png");
 }
 
 void PlayerApp::record_frame(double now_s) {

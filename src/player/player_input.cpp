@@ -22,7 +22,9 @@ constexpr double kMaxElevation = 89;
 }  // namespace
 
 // The window's callbacks: each counts an event and queues it (input_queue_: Dear ImGui's share,
-// handed over by frame()); keys also go to the player's own queue unless a shortcut takes them.
+// handed over by frame()); a key's press or repeat is marked for the player's own keys unless a
+// shortcut takes it, so the player sees it in the frame Dear ImGui does (a key typed into a text
+// field is never also a player key, however slow the frames).
 void PlayerApp::install_callbacks() {
   GLFWwindow* window = static_cast<GLFWwindow*>(ctx->native_window());
   glfwSetWindowUserPointer(window, this);
@@ -32,10 +34,10 @@ void PlayerApp::install_callbacks() {
     ++app->events_;
     // Ctrl+A, Ctrl+O and Ctrl+Q are shortcuts, not the player's keys; Dear ImGui sees every
     // key through the input queue (a Ctrl+A shorter than a frame still selects).
-    if ((action == GLFW_PRESS || action == GLFW_REPEAT) && !app->shortcut(key, mods))
-      app->key_queue_.push_back(key);
-    if (action != GLFW_REPEAT)  // (a held key repeats in Dear ImGui by itself)
-      app->input_queue_.push({InputEvent::Kind::key, 0, 0, key, action == GLFW_PRESS});
+    const bool down = action == GLFW_PRESS || action == GLFW_REPEAT;
+    const bool to_player = down && !app->shortcut(key, mods);
+    // (A repeat changes no key's state: a held key repeats in Dear ImGui by itself.)
+    app->input_queue_.push({InputEvent::Kind::key, 0, 0, key, down, to_player});
   });
   // The cursor as motion events report it, in order (glfwGetCursorPos asks X for the pointer
   // now, after every queued event): so a press knows where it happened.
@@ -98,11 +100,9 @@ void PlayerApp::handle_input() {
     if (io.MouseDoubleClicked[0])
       set_focus_at(io.MousePos.x - layout.view.x, io.MousePos.y - layout.view.y);
   }
-  // Every press since the last frame, in order (a text field with the focus takes them all).
-  std::vector<int> keys;
-  keys.swap(key_queue_);
+  // The presses this frame handed Dear ImGui, in order (a text field with the focus takes them).
   if (io.WantCaptureKeyboard) return;
-  for (int key : keys) {
+  for (int key : input_queue_.state().pressed) {
     apply_key(key);
     if (options_.trace) trace_changes();
   }

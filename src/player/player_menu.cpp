@@ -14,6 +14,7 @@
 
 #include "jobs/play_input.h"
 #include "player/player_app.h"
+#include "tsp/core/temp_output.h"
 #include "player/player_ui.h"
 #include "player/ui_items.h"
 
@@ -338,6 +339,9 @@ void menu_and_dialogs(PlayerApp& app) {
   if (path_dialog(kTfPopup, s.want_tf, s.tf_path, sizeof s.tf_path,
                   "Our transfer-function JSON (docs/transfer-functions.md):"))
     app.save_tf_as(s.tf_path);
+  // A new recording never replaces an earlier movie unless its name is typed: the dialog offers
+  // the first free name (tspplay_movie-2.mp4, …), as S does for pictures.
+  if (s.want_record) copy(s.movie_path, sizeof s.movie_path, tsp::unused_path(s.movie_path));
   if (path_dialog(kRecordPopup, s.want_record, s.movie_path, sizeof s.movie_path,
                   "The volume as shown, with its annotations, in real time (.mp4 or .gif); "
                   "File > Stop recording writes it:"))

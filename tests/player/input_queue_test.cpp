@@ -124,4 +124,33 @@ TEST(PlayerInputQueue, AKeyPressedWithCtrlKeepsCtrlInItsFrame) {
   EXPECT_TRUE(f.keys[kCtrl] && f.keys[kA]);
 }
 
+// The player's own keys come from the queue, in the frame Dear ImGui sees them: a key typed
+// just after the click that focuses a text field waits for the frame after the click (so the
+// field has the focus and takes it, issue 47's walk: an S typed into the colour range while
+// tuning saved a PNG); a repeat is listed without changing any key; a shortcut is not listed.
+TEST(PlayerInputQueue, PlayerKeysArriveInTheFrameImGuiSeesThem) {
+  constexpr int kS = 83, kSpace = 32;  // GLFW_KEY_S, GLFW_KEY_SPACE
+  InputQueue q;
+  q.push({InputEvent::Kind::button, 0, 0, 0, true});
+  q.push({InputEvent::Kind::button, 0, 0, 0, false});
+  q.push({InputEvent::Kind::key, 0, 0, kS, true, true});
+  InputFrame f = q.take();
+  EXPECT_TRUE(f.buttons[0]);
+  EXPECT_TRUE(f.pressed.empty()) << "a key pressed with the click's frame waits";
+  f = q.take();  // the release
+  EXPECT_FALSE(f.buttons[0]);
+  EXPECT_TRUE(f.pressed.empty());
+  f = q.take();
+  EXPECT_EQ(f.pressed, std::vector<int>{kS});
+  EXPECT_TRUE(f.keys[kS]);
+  q.push({InputEvent::Kind::key, 0, 0, kS, true, true});  // a repeat of the held S
+  q.push({InputEvent::Kind::key, 0, 0, kA, true, false});  // a shortcut's key: not the player's
+  f = q.take();
+  EXPECT_EQ(f.pressed, std::vector<int>{kS});
+  EXPECT_TRUE(f.keys[kS] && f.keys[kA]);
+  q.push({InputEvent::Kind::key, 0, 0, kSpace, true, true});
+  f = q.take();
+  EXPECT_EQ(f.pressed, std::vector<int>{kSpace}) << "each frame lists its own presses";
+}
+
 }  // namespace

@@ -206,4 +206,14 @@ void write_file_atomically(const std::string& path, const std::string& text, Out
   out.commit();
 }
 
+std::string unused_path(const std::string& path) {
+  const fs::path p(path);
+  std::error_code ec;
+  std::string name = path;
+  for (int k = 2; fs::exists(fs::symlink_status(name, ec)); ++k)  // (a dangling link exists too)
+    name = (p.parent_path() / (p.stem().string() + "-" + std::to_string(k) + p.extension().string()))
+               .string();
+  return name;
+}
+
 }  // namespace tsp

@@ -81,6 +81,11 @@ class TempOutput {
 /// temporary. Never throws.
 std::string output_directory(const std::string& out_path);
 
+/// path when nothing is there (not even a dangling link), else the first of STEM-2.EXT,
+/// STEM-3.EXT, … beside it that is free: a name a new output can take without replacing an
+/// earlier one. Never throws.
+std::string unused_path(const std::string& path);
+
 /// Removes the stale temporaries of out_path (`.NAME.tmp-*` beside it whose writer is gone) and
 /// returns how many. Never throws.
 int remove_stale_temporaries(const std::string& out_path);

@@ -186,4 +186,16 @@ TEST(OutputFolder, StaleTemporaryFoldersAreSweptLiveOnesKept) {
   EXPECT_TRUE(fs::is_directory(live.tmp()));
 }
 
+// A new output's free name: the name itself while nothing is there, then STEM-2.EXT, STEM-3.EXT
+// (a dangling link counts as taken: the player's S and Record never replace an earlier file).
+TEST(UnusedPath, TakesTheNameOrTheFirstFreeNumberedOne) {
+  const fs::path dir = tsptest::temp_dir();
+  const std::string movie = (dir / "tspplay_movie.mp4").string();
+  EXPECT_EQ(tsp::unused_path(movie), movie);
+  std::ofstream(movie) << "x";
+  EXPECT_EQ(tsp::unused_path(movie), (dir / "tspplay_movie-2.mp4").string());
+  fs::create_symlink(dir / "gone", dir / "tspplay_movie-2.mp4");
+  EXPECT_EQ(tsp::unused_path(movie), (dir / "tspplay_movie-3.mp4").string());
+}
+
 }  // namespace
