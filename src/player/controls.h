@@ -19,7 +19,7 @@ inline constexpr Control kControls[] = {
     {"wheel", "zoom"},
     {"R", "reset the camera (view, zoom, pan, projection)"},
     {"P", "orthographic / perspective"},
-    {"S", "save the current frame as tspplay_step_NNNN.png"},
+    {"S", "save the current frame as INPUT_FIELD_step_NNNN.png (-2, -3, ... when taken)"},
     {"L", "show / hide the LOD cut (node boxes coloured by level)"},
     {"double-click", "set the LOD centre of attention"},
     {"Tab", "show / hide the panels (hidden: the volume fills the window)"},

@@ -9,10 +9,17 @@ bool is_modifier(int key) { return key >= kFirstModifier && key <= kLastModifier
 }  // namespace
 
 const InputFrame& InputQueue::take() {
+  bool button_changed = false;
+  take_frame(button_changed);
+  look_ahead(button_changed);
+  return state_;
+}
+
+void InputQueue::take_frame(bool& button_changed) {
   state_.wheel_x = state_.wheel_y = 0;
   state_.text.clear();
   state_.pressed.clear();
-  bool moved = false, button_changed = false, key_changed = false, typed = false, scrolled = false;
+  bool moved = false, key_changed = false, typed = false, scrolled = false;
   bool plain_key_changed = false;  // a key other than a modifier changed in this frame
   std::array<bool, InputFrame::kButtons> changed_button{};
   std::array<bool, InputFrame::kKeys> changed_key{};
@@ -20,7 +27,7 @@ const InputFrame& InputQueue::take() {
     const InputEvent& e = events_.front();
     switch (e.kind) {
       case InputEvent::Kind::cursor:
-        if (button_changed) return state_;
+        if (button_changed) return;
         state_.x = e.x;
         state_.y = e.y;
         moved = true;
@@ -28,7 +35,7 @@ const InputFrame& InputQueue::take() {
       case InputEvent::Kind::button: {
         if (e.code < 0 || e.code >= InputFrame::kButtons) break;
         const std::size_t b = std::size_t(e.code);
-        if (changed_button[b] || scrolled || (!e.down && moved)) return state_;
+        if (changed_button[b] || scrolled || (!e.down && moved)) return;
         if (state_.buttons[b] != e.down) {
           state_.buttons[b] = e.down;
           changed_button[b] = button_changed = true;
@@ -43,7 +50,7 @@ const InputFrame& InputQueue::take() {
         // in the frame that sees A pressed reached it as a plain A (a quick tap at normal frame
         // rates: Ctrl down in one frame, A down and Ctrl up in the next).
         if (changed_key[k] || typed || button_changed || (is_modifier(e.code) && plain_key_changed))
-          return state_;
+          return;
         if (state_.keys[k] != e.down) {
           state_.keys[k] = e.down;
           changed_key[k] = key_changed = true;
@@ -53,12 +60,12 @@ const InputFrame& InputQueue::take() {
         break;
       }
       case InputEvent::Kind::text:
-        if (key_changed) return state_;
+        if (key_changed) return;
         typed = true;
         state_.text.push_back(unsigned(e.code));
         break;
       case InputEvent::Kind::scroll:
-        if (button_changed) return state_;
+        if (button_changed) return;
         state_.wheel_x += e.x;
         state_.wheel_y += e.y;
         scrolled = true;
@@ -66,7 +73,21 @@ const InputFrame& InputQueue::take() {
     }
     events_.pop_front();
   }
-  return state_;
+  return;
+}
+
+void InputQueue::look_ahead(bool button_changed) {
+  // The player's keys need no frame of their own: those waiting behind this frame's share go
+  // now, up to the first button event (a click may give a text field the focus, and the keys
+  // after it are the field's); none after a button changed in this frame.
+  if (button_changed) return;
+  for (InputEvent& e : events_) {
+    if (e.kind == InputEvent::Kind::button) return;
+    if (e.kind == InputEvent::Kind::key && e.down && e.to_player) {
+      state_.pressed.push_back(e.code);
+      e.to_player = false;  // (listed once)
+    }
+  }
 }
 
 }  // namespace tspplayer

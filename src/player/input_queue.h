@@ -48,7 +48,9 @@ class InputQueue {
   /// other; a scroll after a button changed; a key after a button changed (a click that gives a
   /// text field the focus is seen before the keys typed into it); a modifier (Shift, Ctrl, Alt,
   /// Super) after another key changed (that press keeps its modifiers). The rest waits for the
-  /// next frames. A repeat changes no state; it is only listed in `pressed`. Never throws.
+  /// next frames. A repeat changes no state; it is only listed in `pressed`. `pressed` also lists
+  /// the player's presses waiting behind the frame's share, up to the first button event (none
+  /// when a button changed in this frame), each once. Never throws.
   const InputFrame& take();
   /// True while events wait for later frames (the window keeps drawing until they are taken).
   bool pending() const { return !events_.empty(); }
@@ -56,6 +58,8 @@ class InputQueue {
   const InputFrame& state() const { return state_; }
 
  private:
+  void take_frame(bool& button_changed);  // this frame's share of the events
+  void look_ahead(bool button_changed);   // the player's keys waiting behind it
   std::deque<InputEvent> events_;
   InputFrame state_;
 };

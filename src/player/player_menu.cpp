@@ -279,6 +279,8 @@ bool path_dialog(const char* title, bool& want, char* path, std::size_t size, co
   ImGui::TextWrapped("%s", what);  // (wrapped: the record dialog's used to run off its right edge)
   note_wrapped(what);
   ImGui::SetNextItemWidth(-1);
+  // The path field takes the keys as the dialog opens (as Open's does): type, or Enter for OK.
+  if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
   ImGui::InputText("##path", path, size);
   const bool enter = entered();
   bool ok = false;

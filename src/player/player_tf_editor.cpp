@@ -90,11 +90,7 @@ struct Canvas {
 // domain, so bars and curve line up; enough of them to show the data (tf_histogram.h), log
 // counts.
 void draw_histogram(PlayerApp& app, const Canvas& cv) {
-  const ImVec2 origin = cv.origin;
-  const float width = cv.width;
-  ImDrawList* dl = cv.dl;
-  const tsp::ValueRange d = cv.d;
-  const bool log_axis = cv.log_axis;
+  const auto& [origin, width, d, log_axis, dl] = cv;
   auto y_of = [&](double a) { return cv.y_of(a); };
   const EditorHistogram& hist = histogram_for(app, d, width);
   std::vector<float> logh;
@@ -121,10 +117,7 @@ void draw_histogram(PlayerApp& app, const Canvas& cv) {
 
 // The TF's opacity curve, each segment in its entry's colour, entries at their values.
 void draw_curve(const PlayerApp& app, const Canvas& cv) {
-  const ImVec2 origin = cv.origin;
-  const float width = cv.width;
-  ImDrawList* dl = cv.dl;
-  const tsp::ValueRange d = cv.d;
+  const auto& [origin, width, d, log_axis, dl] = cv;
   auto y_of = [&](double a) { return cv.y_of(a); };
   const int n = app.tf.size();
   for (int j = 1; j < n; ++j) {
@@ -141,11 +134,7 @@ void draw_curve(const PlayerApp& app, const Canvas& cv) {
 // add one, right-click a point to remove it (remove: its index). True when a point moved or
 // was added.
 bool edit_handles(PlayerApp& app, const Canvas& cv, int& remove) {
-  const ImVec2 origin = cv.origin;
-  const float width = cv.width;
-  ImDrawList* dl = cv.dl;
-  const tsp::ValueRange d = cv.d;
-  const bool log_axis = cv.log_axis;
+  const auto& [origin, width, d, log_axis, dl] = cv;
   auto y_of = [&](double a) { return cv.y_of(a); };
   bool edited = false;
   ImGui::SetCursorScreenPos(origin);
@@ -351,8 +340,10 @@ void tf_section(PlayerApp& app) {
   ImGui::TextDisabled("(?)");
   if (ImGui::IsItemHovered())
     tooltip(
-        "Drag a point: the curve between its neighbours follows, keeping its detail. "
-        "Double-click empty space to add a point, right-click a point to remove it.");
+        "log opacity: the curve's height is the opacity on a log scale (1e-3 to 1), so the "
+        "faint opacities most maps need can be placed. Drag a point: the curve between its "
+        "neighbours follows, keeping its detail. Double-click empty space to add a point, "
+        "right-click a point to remove it.");
   edited = point_list(app, d, cv.log_axis, remove) || edited;
   if (remove >= 0) {  // straight between its neighbours
     if (edited) app.apply_tf_points();

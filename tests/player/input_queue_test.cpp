@@ -153,4 +153,20 @@ TEST(PlayerInputQueue, PlayerKeysArriveInTheFrameImGuiSeesThem) {
   EXPECT_EQ(f.pressed, std::vector<int>{kSpace}) << "each frame lists its own presses";
 }
 
+// Quick taps of one key while frames are slow: Dear ImGui gets one change a frame, but the
+// player acts on every press in the first frame (five Rights in 40 ms are five steps at once).
+TEST(PlayerInputQueue, QuickTapsReachThePlayerInOneFrame) {
+  constexpr int kRight = 262;  // GLFW_KEY_RIGHT
+  InputQueue q;
+  for (int i = 0; i < 5; ++i) {
+    q.push({InputEvent::Kind::key, 0, 0, kRight, true, true});
+    q.push({InputEvent::Kind::key, 0, 0, kRight, false});
+  }
+  InputFrame f = q.take();
+  EXPECT_EQ(f.pressed, std::vector<int>(5, kRight));
+  int frames = 1;
+  for (; q.pending(); ++frames) EXPECT_TRUE(q.take().pressed.empty()) << "listed once";
+  EXPECT_EQ(frames, 10) << "Dear ImGui still sees each press and release in a frame of its own";
+}
+
 }  // namespace
