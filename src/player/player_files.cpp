@@ -36,7 +36,8 @@ void report(std::string& status, const std::string& what) {
 // A File > Open that failed: reported as above and, with --trace, as a trace line; the player
 // keeps the file it plays.
 void open_failed(std::string& status, bool trace, const std::string& input, const std::string& why) {
-  report(status, "open " + input + ": " + why);
+  // (A reader's message names its file first already: the path once, so the reason shows.)
+  report(status, why.rfind(input + ": ", 0) == 0 ? "open " + why : "open " + input + ": " + why);
   if (trace) {
     std::printf("trace: open %s failed: %s\n", input.c_str(), why.c_str());
     std::fflush(stdout);

@@ -291,6 +291,8 @@ TEST(Player, OpenNeverAbortsAndReportsEveryFailure) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (std::size_t i = 0; i < bad.size(); ++i) {
     EXPECT_NE(r.err.find("open " + bad[i] + ": "), std::string::npos) << bad[i] << "\n" << r.err;
+    EXPECT_EQ(r.err.find("open " + bad[i] + ": " + bad[i] + ":"), std::string::npos)
+        << "the path once: " << r.err;
     EXPECT_NE(r.out.find("trace: open " + bad[i] + " failed: "), std::string::npos) << r.out;
     EXPECT_EQ(read_json(dir / ("bad" + std::to_string(i) + ".json"))["file"], tsp.string());
   }
