@@ -185,8 +185,7 @@ TEST(Player, OpenSectionsAreRestored) {
       "until_log 'trace: tf canvas'\n"  // the panels are drawn
       "xdotool mousemove --window \"$w\" 450 38 click 1\n"
       "until_log 'trace: open sections {\"##side/##sections'\n"
-      "xdotool key --window \"$w\" ctrl+q\n"
-      "wait)\n";
+      "quit_player)\n";
   ASSERT_EQ(run_bash(dir / "click.sh", cmd), 0) << tsptest::read_file(out);
   const Played b = play(tsp, cache, "wait-frames 3\n", dir / "b.json", size);
   ASSERT_EQ(b.run.exit_code, 0) << b.run.err;
@@ -229,8 +228,7 @@ TEST(Player, CtrlASelectsTheOpenDialogsPath) {
       "until_log 'trace: select all'\n"
       "xdotool type --window \"$w\" x\n"
       "until_log 'trace: open path x$'\n"
-      "xdotool key --window \"$w\" ctrl+q\n"
-      "wait)\n";
+      "quit_player)\n";
   ASSERT_EQ(run_bash(dir / "keys.sh", cmd), 0) << tsptest::read_file(out);
   const std::string log = tsptest::read_file(out);
   EXPECT_NE(log.find("trace: open dialog"), std::string::npos) << log;

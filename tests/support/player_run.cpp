@@ -96,7 +96,12 @@ std::string log_waits(const fs::path& log) {
          "give_up() { echo \"$1\"; kill $! 2> /dev/null; exit 1; }\n"
          "until_log() { seen_within \"$1\" 600 || give_up \"never saw $1\"; }\n"
          "until_n() { for i in $(seq 600); do [ \"$(grep -c -- \"$1\" " + file +
-         ")\" -ge \"$2\" ] && return 0; sleep 0.1; done; give_up \"never saw $1 $2 times\"; }\n";
+         ")\" -ge \"$2\" ] && return 0; sleep 0.1; done; give_up \"never saw $1 $2 times\"; }\n"
+         // Ctrl+Q to window $w, then the player's exit status. xdotool sends through XTEST to
+         // the focused window; once Ctrl+Q has closed it, Q's release fails and Q would stay
+         // down on the display, repeating into the next test's window: released here.
+         "quit_player() { xdotool key --window \"$w\" ctrl+q; wait; local rc=$?; "
+         "xdotool keyup ctrl q; return $rc; }\n";
 }
 
 nlohmann::json read_json(const fs::path& p) {

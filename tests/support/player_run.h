@@ -45,7 +45,8 @@ std::string orbit_then_idle_script(const std::filesystem::path& dir,
 /// xdotool and wait on --trace lines, not on the clock: `until_log TEXT` waits for a line with
 /// TEXT, `until_n TEXT N` for N of them (a minute at most each; when one never comes it says so,
 /// ends the player started last with & and exits 1); `seen_within TEXT TENTHS` waits TENTHS
-/// tenths of a second at most and returns 1 (no exit) when TEXT never came.
+/// tenths of a second at most and returns 1 (no exit) when TEXT never came; `quit_player`
+/// sends Ctrl+Q to window $w and returns the player's exit status, releasing Ctrl and Q.
 std::string log_waits(const std::filesystem::path& log);
 
 }  // namespace tsptest::player
