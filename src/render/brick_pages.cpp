@@ -21,6 +21,7 @@ void BrickPages::reset(std::array<int, 3> grid, std::array<int, 3> cell) {
   const std::size_t n = std::size_t(grid[0]) * grid[1] * grid[2];
   texels_.assign(4 * n, 0.f);
   atlas_ = {};
+  runs_ = false;
 }
 
 void BrickPages::set_flat(int b, const tsp::Rgba& c) {

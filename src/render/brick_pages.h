@@ -52,11 +52,17 @@ class BrickPages {
   const std::vector<float>& texels() const { return texels_; }
   /// The atlas the textured bricks read (0: none).
   const BrickSlot& atlas() const { return atlas_; }
+  /// Marks (after reset) that every full-resolution page reads BrickTextures' dense region, so
+  /// neighbouring pages' texels sit side by side (the CPU caster walks runs of them as one).
+  void set_runs(bool on) { runs_ = on; }
+  /// True when set_runs(true) was called since the last reset.
+  bool runs() const { return runs_; }
 
  private:
   std::array<int, 3> grid_{}, cell_{};
   std::vector<float> texels_;
   BrickSlot atlas_;
+  bool runs_ = false;
 };
 
 }  // namespace tspgl

@@ -98,8 +98,7 @@ void BrickTextures::grow(int min_capacity) {
   atlas_ = create_scalar_texture(gl_, grid[0] * slot_[0], grid[1] * slot_[1], grid[2] * slot_[2],
                                  nullptr, channels_);
   check_gl(gl_, "allocating the brick atlas");
-  if (mirror_)
-    host_.allocate(grid[0] * slot_[0], grid[1] * slot_[1], grid[2] * slot_[2], channels_);
+  if (mirror_) allocate_host();
   slots_.clear();
   free_.clear();
   for (int s = capacity() - 1; s >= int(resident.size()); --s) free_.push_back(s);
@@ -149,13 +148,106 @@ void BrickTextures::set_host_mirror(bool on) {
     return;
   }
   if (!atlas_) return;  // allocated with the atlas
-  host_.allocate(grid_[0] * slot_[0], grid_[1] * slot_[1], grid_[2] * slot_[2], channels_);
+  allocate_host();
   // Residents in slot order: the same copy whatever the map's order.
   std::vector<std::pair<int, tsp::TextureKey>> resident;
   for (const auto& [key, slot] : slots_) resident.emplace_back(slot, key);
   std::sort(resident.begin(), resident.end(),
             [](const auto& a, const auto& b) { return a.first < b.first; });
   for (const auto& [slot, key] : resident) write(key, slot);
+}
+
+std::array<int, 3> BrickTextures::dense_size() const {
+  const tsp::Octree& octree = bricks_.store().tree().octree();
+  const auto g = octree.brick_grid();
+  return {g[0] * octree.brick_cells(0) + 1, g[1] * octree.brick_cells(1) + 1,
+          g[2] * octree.brick_cells(2) + 1};
+}
+
+// The slots' texels where the atlas has them, then (when it fits) the dense region after them.
+void BrickTextures::allocate_host() {
+  const std::array<int, 3> atlas{grid_[0] * slot_[0], grid_[1] * slot_[1], grid_[2] * slot_[2]};
+  const auto dense = dense_size();
+  const std::int64_t dense_bytes = std::int64_t(dense[0]) * dense[1] * dense[2] * 2 * channels_;
+  placed_.assign(std::size_t(bricks_.store().tree().octree().brick_count()), tsp::TextureKey{});
+  for (auto& k : placed_) k.level = -1;
+  if (dense_bytes > kMaxDenseHostBytes) {
+    dense_z_ = -1;
+    host_.allocate(atlas[0], atlas[1], atlas[2], channels_);
+    return;
+  }
+  dense_z_ = atlas[2];
+  host_.allocate(std::max(atlas[0], dense[0]), std::max(atlas[1], dense[1]), atlas[2] + dense[2],
+                 channels_);
+}
+
+bool BrickTextures::place_dense(const std::vector<tsp::TextureKey>& level0) {
+  if (!mirror_ || !atlas_ || dense_z_ < 0) return false;
+  const tsp::Octree& octree = bricks_.store().tree().octree();
+  const int count = octree.brick_count();
+  std::vector<tsp::TextureKey> want(placed_.size());
+  for (auto& k : want) k.level = -1;
+  for (const tsp::TextureKey& k : level0) {
+    if (k.level != 0 || k.brick < 0 || k.brick >= count || !contains(k)) return false;
+    if (octree.lattice(k.brick).factor != std::array<int, 3>{1, 1, 1}) return false;
+    tsp::TextureKey& w = want[std::size_t(k.brick)];
+    if (w.level == 0 && !(w == k)) return false;  // two keys of one brick: the slots alone
+    w = k;
+  }
+  const auto g = octree.brick_grid();
+  auto placed = [&](int b) { return want[std::size_t(b)].level == 0; };
+  // Brick b's samples (its key's slot) over the box `lo`..`hi` of the volume's samples.
+  auto copy = [&](int b, std::array<int, 3> lo, std::array<int, 3> hi) {
+    const tsp::BrickLattice l = octree.lattice(b);
+    const auto o = slot_origin(slots_.at(want[std::size_t(b)]));
+    std::array<int, 3> from{}, to{}, box{};
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = std::max(lo[a], l.origin[a]);
+      hi[a] = std::min(hi[a], l.origin[a] + l.samples[a]);
+      if (hi[a] <= lo[a]) return;
+      from[a] = o[a] + lo[a] - l.origin[a];
+      to[a] = lo[a];
+      box[a] = hi[a] - lo[a];
+    }
+    to[2] += dense_z_;
+    host_.copy_within(from, to, box);
+  };
+  auto whole = [&](int b) {
+    const tsp::BrickLattice l = octree.lattice(b);
+    return std::pair{l.origin, std::array<int, 3>{l.origin[0] + l.samples[0], l.origin[1] + l.samples[1],
+                                                  l.origin[2] + l.samples[2]}};
+  };
+  std::vector<int> changed;
+  for (int b = 0; b < count; ++b)
+    if (!(want[std::size_t(b)] == placed_[std::size_t(b)])) changed.push_back(b);
+  for (int b : changed)  // ascending: a higher brick's shared texels win among the changed
+    if (placed(b)) copy(b, whole(b).first, whole(b).second);
+  // Each changed brick's texels shared with a neighbour: the highest textured one's samples.
+  for (int b : changed) {
+    const std::array<int, 3> c{b % g[0], b / g[0] % g[1], b / (g[0] * g[1])};
+    const auto [lo, hi] = whole(b);
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const std::array<int, 3> n{c[0] + dx, c[1] + dy, c[2] + dz};
+          if ((dx | dy | dz) == 0 || n[0] < 0 || n[1] < 0 || n[2] < 0 || n[0] >= g[0] ||
+              n[1] >= g[1] || n[2] >= g[2])
+            continue;
+          const int nb = n[0] + g[0] * (n[1] + g[1] * n[2]);
+          if (placed(nb) && (nb > b || !placed(b))) copy(nb, lo, hi);
+        }
+  }
+  placed_ = std::move(want);
+  return true;
+}
+
+BrickSlot BrickTextures::dense_at(const tsp::TextureKey& key) const {
+  assert(key.brick >= 0 && std::size_t(key.brick) < placed_.size() &&
+         placed_[std::size_t(key.brick)] == key && "brick not placed in the dense region");
+  BrickSlot b = at(key);
+  // Sample p sits at texel p (+ the region's first slice along z); texel centres at +½.
+  b.offset = {0.5f, 0.5f, float(dense_z_) + 0.5f};
+  return b;
 }
 
 void BrickTextures::erase(const tsp::TextureKey& key) {

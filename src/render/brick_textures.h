@@ -81,6 +81,19 @@ class BrickTextures {
   void set_host_mirror(bool on);
   /// Slots the atlas holds now.
   int capacity() const { return grid_[0] * grid_[1] * grid_[2]; }
+  /// The CPU ray caster's dense layout (with the host mirror on): copies the frame's level-0
+  /// keys (resident, at most one per brick) from their slots to their bricks' own places in a
+  /// region of the RAM copy laid out as the volume, so neighbouring bricks' texels sit side by
+  /// side and a ray reads a run of them as one volume. A texel two bricks share holds the
+  /// higher-numbered textured brick's sample, whatever the frames before (only the bricks whose
+  /// key changed are copied again). False, changing nothing, without the mirror or when that
+  /// region would pass kMaxDenseHostBytes. Never throws but std::bad_alloc.
+  bool place_dense(const std::vector<tsp::TextureKey>& level0);
+  /// Where a key placed by the last place_dense reads its texels in RAM (BrickSlot::host; the
+  /// offset is not the GL atlas'). Asserts it is placed.
+  BrickSlot dense_at(const tsp::TextureKey& key) const;
+  /// Largest dense region place_dense makes, in bytes (beyond: the slots alone).
+  static constexpr std::int64_t kMaxDenseHostBytes = std::int64_t(1) << 30;
 
  private:
   const GlApi& gl_;
@@ -96,7 +109,12 @@ class BrickTextures {
   std::unordered_map<tsp::TextureKey, int, tsp::TextureKeyHash> slots_;
   std::unordered_map<tsp::TextureKey, tsp::CellVariations, tsp::TextureKeyHash>
       variations_;  ///< per resident key, under the caller's TF
+  /// Per leaf brick, the key place_dense put at its place (level −1: none).
+  std::vector<tsp::TextureKey> placed_;
+  int dense_z_ = 0;  ///< the dense region's first texel slice in host_ (after the slots')
   void grow(int min_capacity);
+  void allocate_host();
+  std::array<int, 3> dense_size() const;
   void write(const tsp::TextureKey& key, int slot);
   std::array<int, 3> slot_origin(int slot) const;
 };

@@ -166,6 +166,99 @@ HWY_INLINE V3 gradient_stencil(const Texels& t, const V3& u, const V3& k) {
   return {hn::Mul(gx, scale), hn::Mul(gy, scale), hn::Mul(gz, scale)};
 }
 
+// Per lane of a run's view (BrickView::run): its brick's box and bits (Sampler::runs), whether
+// that brick is textured (`self`: not so only on a low face of an untextured brick) and whether
+// its six taps lie in it or in its textured neighbours (`free`: the 32-texel stencil reads what
+// the taps would there, the neighbours' texels continuing the brick's in the dense region).
+struct RunLanes {
+  V lo[3], hi[3];
+  VI bits;
+  hn::Mask<D> self, free;
+};
+
+HWY_INLINE RunLanes run_lanes(const Sampler& smp, const BrickView& b, const V3& p) {
+  const D d;
+  const DI di;
+  const CastScene& s = smp.s;
+  const V one = hn::Set(d, 1.f);
+  RunLanes l;
+  VI cell[3];
+  for (int a = 0; a < 3; ++a) {
+    const V size = hn::Set(d, float(s.cell[std::size_t(a)]));
+    V c = hn::Floor(hn::Div(a == 0 ? p.x : a == 1 ? p.y : p.z, size));
+    c = hn::Min(hn::Max(c, hn::Zero(d)), hn::Set(d, float(s.grid[std::size_t(a)] - 1)));
+    cell[a] = hn::ConvertTo(di, c);
+    l.lo[a] = hn::Mul(c, size);
+    l.hi[a] = hn::Min(hn::Add(l.lo[a], size), hn::Set(d, b.hi[a]));
+  }
+  const VI index = hn::Add(cell[0], hn::Mul(hn::Set(di, s.grid[0]),
+                                            hn::Add(cell[1], hn::Mul(hn::Set(di, s.grid[1]), cell[2]))));
+  l.bits = hn::GatherIndex(di, smp.runs.data(), index);
+  l.self = hn::RebindMask(d, hn::TestBit(l.bits, hn::Set(di, kRunSelf)));
+  l.free = l.self;
+  for (int a = 0; a < 3; ++a) {
+    const V pa = a == 0 ? p.x : a == 1 ? p.y : p.z;
+    const auto lo_ok = hn::RebindMask(d, hn::TestBit(l.bits, hn::Set(di, run_bit(a, 0))));
+    const auto hi_ok = hn::RebindMask(d, hn::TestBit(l.bits, hn::Set(di, run_bit(a, 1))));
+    l.free = hn::And(l.free, hn::Or(hn::Ge(hn::Sub(pa, one), l.lo[a]), lo_ok));
+    l.free = hn::And(l.free, hn::Or(hn::Le(hn::Add(pa, one), l.hi[a]), hi_ok));
+  }
+  return l;
+}
+
+// tap() in a run's view, each lane in its own brick: clamped into it, or read on into a textured
+// neighbour beyond the face (shift 0 in the dense region).
+HWY_INLINE void run_tap(const Texels& t, const RunLanes& l, const V3& p, const V3& k, int axis,
+                        float sign, V& value, V& where) {
+  const D d;
+  const DI di;
+  V3 q = p;
+  axis_of(q, axis) = hn::Add(axis_of(q, axis), hn::Set(d, sign));
+  const V qa = axis_of(q, axis);
+  V3 c{hn::Min(hn::Max(q.x, l.lo[0]), l.hi[0]), hn::Min(hn::Max(q.y, l.lo[1]), l.hi[1]),
+       hn::Min(hn::Max(q.z, l.lo[2]), l.hi[2])};
+  const auto up = hn::Gt(qa, l.hi[axis]);
+  const auto down = hn::Lt(qa, l.lo[axis]);
+  const auto up_ok = hn::RebindMask(d, hn::TestBit(l.bits, hn::Set(di, run_bit(axis, 1))));
+  const auto down_ok = hn::RebindMask(d, hn::TestBit(l.bits, hn::Set(di, run_bit(axis, 0))));
+  const auto use = hn::Or(hn::And(up, up_ok), hn::And(down, down_ok));
+  V& ca = axis_of(c, axis);
+  ca = hn::IfThenElse(use, qa, ca);
+  where = ca;
+  value = trilinear(t, c, k);
+}
+
+// The gradient's central differences of a run's lanes: the stencil when every lit lane is free,
+// else the six taps lane by lane in its own brick.
+HWY_INLINE void run_gradient(const Sampler& smp, const BrickView& b, const RunLanes& l,
+                             const V3& p, const hn::Mask<D>& lit, V grad[3]) {
+  const D d;
+  const V3 k = broadcast(b.k);
+  if (hn::AllTrue(d, hn::Or(l.free, hn::Not(lit)))) {
+    // Lanes not free (unlit) read at the first free lane's place: valid texels, never used.
+    const intptr_t first = hn::FindFirstTrue(d, l.free);
+    alignas(64) float px[kMaxBatch], py[kMaxBatch], pz[kMaxBatch];
+    hn::Store(p.x, d, px);
+    hn::Store(p.y, d, py);
+    hn::Store(p.z, d, pz);
+    const std::size_t f = first < 0 ? 0 : std::size_t(first);
+    const V3 q{hn::IfThenElse(l.free, p.x, hn::Set(d, px[f])),
+               hn::IfThenElse(l.free, p.y, hn::Set(d, py[f])),
+               hn::IfThenElse(l.free, p.z, hn::Set(d, pz[f]))};
+    const V3 g = gradient_stencil(smp.tex, q, k);
+    grad[0] = g.x;
+    grad[1] = g.y;
+    grad[2] = g.z;
+    return;
+  }
+  for (int axis = 0; axis < 3; ++axis) {
+    V fv, fp, bv, bp;
+    run_tap(smp.tex, l, p, k, axis, 1.f, fv, fp);
+    run_tap(smp.tex, l, p, k, axis, -1.f, bv, bp);
+    grad[axis] = hn::Div(hn::Sub(fv, bv), hn::Max(hn::Sub(fp, bp), hn::Set(d, 1e-3f)));
+  }
+}
+
 // x^power by squaring (Sampler::specular_power for whole powers below 64).
 V power(V x, int n) {
   const D d;
@@ -175,34 +268,10 @@ V power(V x, int n) {
   return r;
 }
 
-// Sampler::shade lane by lane on colours (r, g, b, a) at positions p.
-void shade_lanes(const Sampler& smp, const BrickView& b, const V3& p, V& r, V& g, V& bl,
-                 const V& a) {
+// Blinn–Phong of colours (r, g, b, a) from their gradients (Sampler::shade after the gradient).
+void light_lanes(const Sampler& smp, V grad[3], V& r, V& g, V& bl, const V& a) {
   const D d;
   const CastScene& s = smp.s;
-  // A batch whose taps all lie inside the brick takes the 32-texel stencil; one with a lane
-  // near a face the six taps, clamped or read from the neighbour brick. (Mixing the two lane by
-  // lane costs both: half of the shock's lit batches have a lane within a texel of a face.)
-  const V one = hn::Set(d, 1.f);
-  auto free_axis = [&](const V& c, float lo, float hi) {
-    return hn::And(hn::Ge(hn::Sub(c, one), hn::Set(d, lo)), hn::Le(hn::Add(c, one), hn::Set(d, hi)));
-  };
-  const auto free = hn::And(hn::And(free_axis(p.x, b.lo.x, b.hi.x), free_axis(p.y, b.lo.y, b.hi.y)),
-                            free_axis(p.z, b.lo.z, b.hi.z));
-  V grad[3];
-  if (hn::AllTrue(d, free)) {
-    const V3 g = gradient_stencil(smp.tex, p, broadcast(b.k));
-    grad[0] = g.x;
-    grad[1] = g.y;
-    grad[2] = g.z;
-  } else {
-    for (int axis = 0; axis < 3; ++axis) {
-      V fv, fp, bv, bp;
-      tap(smp.tex, b, p, axis, 1.f, fv, fp);
-      tap(smp.tex, b, p, axis, -1.f, bv, bp);
-      grad[axis] = hn::Div(hn::Sub(fv, bv), hn::Max(hn::Sub(fp, bp), hn::Set(d, 1e-3f)));
-    }
-  }
   for (int axis = 0; axis < 3; ++axis) grad[axis] = hn::Mul(grad[axis], hn::Set(d, s.inv_voxel[axis]));
   const V len2 = hn::MulAdd(grad[0], grad[0], hn::MulAdd(grad[1], grad[1], hn::Mul(grad[2], grad[2])));
   const V len = hn::Sqrt(len2);
@@ -233,6 +302,83 @@ void shade_lanes(const Sampler& smp, const BrickView& b, const V3& p, V& r, V& g
   r = light(r);
   g = light(g);
   bl = light(bl);
+}
+
+// shade_lanes in a run's view; a lit lane on a low face of an untextured brick (its own brick
+// is the textured one below: Sampler::lane_view) is lit by Sampler::shade.
+void shade_run_lanes(const Sampler& smp, const BrickView& b, const V3& p, V& r, V& g, V& bl,
+                     const V& a) {
+  const D d;
+  const DI di;
+  const RunLanes l = run_lanes(smp, b, p);
+  const auto lit = hn::Gt(a, hn::Zero(d));
+  const auto slow = hn::AndNot(l.self, lit);
+  const bool any_slow = !hn::AllFalse(d, slow);
+  alignas(64) float cr[kMaxBatch], cg[kMaxBatch], cb[kMaxBatch], ca[kMaxBatch];
+  alignas(64) std::int32_t one_by_one[kMaxBatch];
+  // (The colours before lighting, for the slow lanes.)
+  hn::Store(r, d, cr);
+  hn::Store(g, d, cg);
+  hn::Store(bl, d, cb);
+  hn::Store(a, d, ca);
+  hn::Store(hn::VecFromMask(di, hn::RebindMask(di, slow)), di, one_by_one);
+  V grad[3];
+  run_gradient(smp, b, l, p, hn::And(lit, l.self), grad);
+  light_lanes(smp, grad, r, g, bl, a);
+  if (!any_slow) return;
+  alignas(64) float px[kMaxBatch], py[kMaxBatch], pz[kMaxBatch];
+  alignas(64) float lr[kMaxBatch], lg[kMaxBatch], lb[kMaxBatch];
+  hn::Store(p.x, d, px);
+  hn::Store(p.y, d, py);
+  hn::Store(p.z, d, pz);
+  hn::Store(r, d, lr);
+  hn::Store(g, d, lg);
+  hn::Store(bl, d, lb);
+  for (size_t i = 0; i < hn::Lanes(d); ++i) {
+    if (!one_by_one[i]) continue;
+    const glm::vec4 c =
+        smp.shade(glm::vec4(cr[i], cg[i], cb[i], ca[i]), glm::vec3(px[i], py[i], pz[i]), b);
+    lr[i] = c.r;
+    lg[i] = c.g;
+    lb[i] = c.b;
+  }
+  r = hn::Load(d, lr);
+  g = hn::Load(d, lg);
+  bl = hn::Load(d, lb);
+}
+
+// Sampler::shade lane by lane on colours (r, g, b, a) at positions p.
+void shade_lanes(const Sampler& smp, const BrickView& b, const V3& p, V& r, V& g, V& bl,
+                 const V& a) {
+  if (b.run) {
+    shade_run_lanes(smp, b, p, r, g, bl, a);
+    return;
+  }
+  const D d;
+  // A batch whose taps all lie inside the brick takes the 32-texel stencil; one with a lane
+  // near a face the six taps, clamped or read from the neighbour brick. (Mixing the two lane by
+  // lane costs both: half of the shock's lit batches have a lane within a texel of a face.)
+  const V one = hn::Set(d, 1.f);
+  auto free_axis = [&](const V& c, float lo, float hi) {
+    return hn::And(hn::Ge(hn::Sub(c, one), hn::Set(d, lo)), hn::Le(hn::Add(c, one), hn::Set(d, hi)));
+  };
+  const auto free = hn::And(hn::And(free_axis(p.x, b.lo.x, b.hi.x), free_axis(p.y, b.lo.y, b.hi.y)),
+                            free_axis(p.z, b.lo.z, b.hi.z));
+  V grad[3];
+  if (hn::AllTrue(d, free)) {
+    const V3 g = gradient_stencil(smp.tex, p, broadcast(b.k));
+    grad[0] = g.x;
+    grad[1] = g.y;
+    grad[2] = g.z;
+  } else {
+    for (int axis = 0; axis < 3; ++axis) {
+      V fv, fp, bv, bp;
+      tap(smp.tex, b, p, axis, 1.f, fv, fp);
+      tap(smp.tex, b, p, axis, -1.f, bv, bp);
+      grad[axis] = hn::Div(hn::Sub(fv, bv), hn::Max(hn::Sub(fp, bp), hn::Set(d, 1e-3f)));
+    }
+  }
+  light_lanes(smp, grad, r, g, bl, a);
 }
 
 // The n positions from `start` (a multiple of the lanes); unused lanes repeat the first

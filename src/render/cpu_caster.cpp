@@ -92,12 +92,8 @@ bool RayWalk::run_closes(ivec3 c, vec4 page, float t_out, vec3 t_max, ivec3 dir,
   next_c = c;
   if (!closing) {
     ivec3 cn = c;
-    if (t_max.x <= t_max.y && t_max.x <= t_max.z)
-      cn.x += dir.x;
-    else if (t_max.y <= t_max.z)
-      cn.y += dir.y;
-    else
-      cn.z += dir.z;
+    vec3 tm = t_max;
+    step(cn, tm, dir, vec3(0.f));
     closing = !inside(s_, cn);
     if (!closing) {
       next_page = page_at(s_, cn);
@@ -134,7 +130,7 @@ void RayWalk::level_brick(float t, float t_out, float& t_next, float dtm, vec3 s
 // A textured brick (volume_ray.frag's textured_brick): onto its level's planes, its texels' box,
 // then its samples — the run's segments (plain or refined) or a level brick's slabs.
 void RayWalk::textured_brick(ivec3 c, vec4 page, float t, float t_out, vec3 t_max, ivec3 dir,
-                             float& t_next, float& m_cur) {
+                             float& t_next, float& m_cur, bool run) {
   int code = int(page.w + 0.5f) - 1;
   const int tf_row = code / kLevelRowUnit;
   code &= kClipFlag - 1;
@@ -150,7 +146,13 @@ void RayWalk::textured_brick(ivec3 c, vec4 page, float t, float t_out, vec3 t_ma
   const vec3 phase = shift - b.k;
   b.lo = lo * scale + phase;
   b.hi = glm::min(lo + cell_, s_.box_hi) * scale + phase;
-  if (s_.shade) neighbours(c, page, code == 0, b);
+  if (run) {  // a run of full-resolution bricks in the dense region, ending in brick c
+    b.lo = vec3(0.f);
+    b.hi = s_.box_hi;
+    b.run = true;
+  } else if (s_.shade) {
+    neighbours(c, page, code == 0, b);
+  }
   if (m != m_cur) {  // onto this level's planes (k + ½)·m·spacing
     const float sp = s_.spacing * m;
     const float d = r_.depth_entry + t * r_.cos_theta;
@@ -203,9 +205,21 @@ vec4 RayWalk::run() {
       run_open_ = false;
       continue;
     }
-    const float t_out = std::min({t_max.x, t_max.y, t_max.z, len});
-    if (page.w > 0.5f) {
-      textured_brick(c, page, t, t_out, t_max, dir, t_next, m_cur);
+    float t_out = std::min({t_max.x, t_max.y, t_max.z, len});
+    if (page.w > 0.5f && s_.runs && level0_textured(page)) {
+      // The run of full-resolution bricks from c on, walked as one volume (the dense region).
+      while (t_out < len) {
+        ivec3 cn = c;
+        vec3 tm = t_max;
+        step(cn, tm, dir, t_delta);
+        if (!inside(s_, cn) || !level0_textured(page_at(s_, cn))) break;
+        c = cn;
+        t_max = tm;
+        t_out = std::min({t_max.x, t_max.y, t_max.z, len});
+      }
+      textured_brick(c, page_at(s_, c), t, t_out, t_max, dir, t_next, m_cur, true);
+    } else if (page.w > 0.5f) {
+      textured_brick(c, page, t, t_out, t_max, dir, t_next, m_cur, false);
     } else {  // flat: the exact exponential over the ray's depth through the brick
       const float a = 1.f - std::exp(page.w * (t_out - t) * r_.cos_theta);
       blend(vec4(vec3(page) * a, a));
@@ -214,16 +228,7 @@ vec4 RayWalk::run() {
     }
     if (acc_.a >= kOpaque || t_out >= len) break;
     t = t_out;
-    if (t_max.x <= t_max.y && t_max.x <= t_max.z) {
-      c.x += dir.x;
-      t_max.x += t_delta.x;
-    } else if (t_max.y <= t_max.z) {
-      c.y += dir.y;
-      t_max.y += t_delta.y;
-    } else {
-      c.z += dir.z;
-      t_max.z += t_delta.z;
-    }
+    step(c, t_max, dir, t_delta);
     if (!inside(s_, c)) break;
   }
   return acc_;
@@ -234,6 +239,30 @@ vec4 RayWalk::run() {
 namespace {
 
 using namespace detail;  // the walk's own file
+
+// Per brick: kRunSelf when it is a full-resolution page (in the dense region), and a run_bit
+// for each face neighbour that is one too.
+std::vector<std::int32_t> run_masks(const CastScene& s) {
+  const ivec3 g(s.grid[0], s.grid[1], s.grid[2]);
+  std::vector<std::int32_t> m(std::size_t(g.x) * std::size_t(g.y) * std::size_t(g.z), 0);
+  auto textured = [&](ivec3 c) { return inside(s, c) && level0_textured(page_at(s, c)); };
+  std::size_t i = 0;
+  for (int z = 0; z < g.z; ++z)
+    for (int y = 0; y < g.y; ++y)
+      for (int x = 0; x < g.x; ++x, ++i) {
+        const ivec3 c(x, y, z);
+        if (!textured(c)) continue;
+        std::int32_t bits = kRunSelf;
+        for (int a = 0; a < 3; ++a)
+          for (int side = 0; side < 2; ++side) {
+            ivec3 n = c;
+            n[a] += side == 0 ? -1 : 1;
+            if (textured(n)) bits |= run_bit(a, side);
+          }
+        m[i] = bits;
+      }
+  return m;
+}
 
 /// Pixels per side of the tiles the workers take (rays of a tile share bricks in cache).
 constexpr int kTile = 16;
@@ -279,7 +308,8 @@ CastStats cast_rays(const CastScene& scene, const CastRect& rect, int threads,
   const int x1 = std::min(rect.x1, scene.width), y1 = std::min(rect.y1, scene.height);
   if (x1 <= x0 || y1 <= y0) return {};
   const int tiles_x = (x1 - x0 + kTile - 1) / kTile, tiles_y = (y1 - y0 + kTile - 1) / kTile;
-  const Sampler sampler(scene);
+  Sampler sampler(scene);
+  if (scene.runs) sampler.runs = run_masks(scene);
   const bool batch = !scene.stencil && detail::batch_ready(sampler);
   std::atomic<std::int64_t> pixels{0}, samples{0};
   tsp::parallel_for(std::int64_t(tiles_x) * tiles_y, 1, threads,

@@ -44,6 +44,9 @@ struct CastScene {
   int width = 0, height = 0;       ///< the render target in pixels
   float spacing = 0.5f;            ///< sample spacing in voxels
   bool stencil = false;            ///< texels carry a stencil (second channel)
+  /// Every full-resolution page reads one dense region (BrickPages::runs): a ray walks each run
+  /// of such bricks as one volume.
+  bool runs = false;
   bool shade = false;              ///< Blinn–Phong headlight
   glm::vec4 phong{0};              ///< ambient, diffuse, specular, power
   glm::vec3 light_dir{0, 0, 1};    ///< unit, towards the viewer

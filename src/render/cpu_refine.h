@@ -54,7 +54,8 @@ inline void RayWalk::refined(float t, float t_out, ivec3 c, const BrickView& b, 
     const vec3 k_at = beyond ? vec3(next_page) - 0.5f : b.k;
     const vec3 b_lo = beyond ? vec3(next_c) * cell_ : lo;
     const vec3 tcs = texel(ts, vec3(1.f));
-    const vec3 q = glm::clamp(tcs, b_lo, glm::min(b_lo + cell_, s_.box_hi));
+    const vec3 q = beyond ? glm::clamp(tcs, b_lo, glm::min(b_lo + cell_, s_.box_hi))
+                          : glm::clamp(tcs, b.lo, b.hi);  // (b.lo is lo, or a run's box)
     const float v = smp_.tex.fetch(q, k_at);
     ++samples_;
     vec4 e = entry(lookup(rows[mode == 2 ? 1 : 0], k_entries, smp_.tf_coord(v)));

@@ -12,6 +12,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -150,13 +151,59 @@ struct BrickView {
   glm::vec3 lo{0}, hi{0};  ///< the brick's box in u (sample coordinates · scale)
   glm::vec3 k{0};          ///< its texels' integer shift in the texture
   std::array<glm::vec4, 3> beyond_lo{}, beyond_hi{};
+  /// A run of full-resolution bricks in the dense region (CastScene::runs): lo..hi bound the
+  /// volume, and each sample is lit as its own brick's (Sampler::lane_view).
+  bool run = false;
+  /// The textured neighbours' texels continue this brick's (shift 0, the dense region): the
+  /// gradient's stencil may read across those faces.
+  bool contiguous = false;
 };
+
+/// Bits of Sampler::runs: the brick is a full-resolution page of the dense region, and which of
+/// its six face neighbours (−x, +x, −y, +y, −z, +z) are too.
+inline constexpr std::int32_t kRunSelf = 1;
+/// The bit of Sampler::runs for the neighbour beyond face `side` (0: low, 1: high) of `axis`.
+inline constexpr std::int32_t run_bit(int axis, int side) { return 2 << (2 * axis + side); }
 
 /// The sampler of one cast: texels, tables and lighting.
 struct Sampler {
   Texels tex;
   const CastScene& s;
+  /// Per brick of the grid, with CastScene::runs: kRunSelf and run_bit()s (empty otherwise).
+  std::vector<std::int32_t> runs;
   explicit Sampler(const CastScene& scene) : tex(scene.volume), s(scene) {}
+
+  /// The view of the brick a run's sample at p lies in (on a face, a textured one), with its
+  /// textured neighbours contiguous: the view the brick-by-brick walk lit it with.
+  BrickView lane_view(const BrickView& run, glm::vec3 p) const {
+    const glm::ivec3 grid(s.grid[0], s.grid[1], s.grid[2]);
+    const glm::vec3 cell(float(s.cell[0]), float(s.cell[1]), float(s.cell[2]));
+    glm::ivec3 c = glm::clamp(glm::ivec3(glm::floor(p / cell)), glm::ivec3(0), grid - 1);
+    auto at = [&](glm::ivec3 q) {
+      return runs[std::size_t(q.x) + std::size_t(grid.x) * (std::size_t(q.y) + std::size_t(grid.y) * std::size_t(q.z))];
+    };
+    if (!(at(c) & kRunSelf))  // on a low face of an untextured brick: the textured one below
+      for (int m = 1; m < 8; ++m) {
+        glm::ivec3 q = c;
+        for (int a = 0; a < 3; ++a)
+          if ((m >> a) & 1) q[a] -= p[a] == float(c[a]) * cell[a] ? 1 : 1 << 20;
+        if (glm::all(glm::greaterThanEqual(q, glm::ivec3(0))) && (at(q) & kRunSelf)) {
+          c = q;
+          break;
+        }
+      }
+    BrickView v;
+    v.k = run.k;
+    v.lo = glm::vec3(c) * cell;
+    v.hi = glm::min(v.lo + cell, run.hi);
+    v.contiguous = true;
+    const std::int32_t bits = at(c);
+    for (int a = 0; a < 3; ++a) {
+      v.beyond_lo[std::size_t(a)] = glm::vec4(0.f, 0.f, 0.f, (bits & run_bit(a, 0)) ? 1.f : 0.f);
+      v.beyond_hi[std::size_t(a)] = glm::vec4(0.f, 0.f, 0.f, (bits & run_bit(a, 1)) ? 1.f : 0.f);
+    }
+    return v;
+  }
 
   float tf_coord(float v) const { return v * s.tf.scale + s.tf.offset; }
 
@@ -185,8 +232,13 @@ struct Sampler {
   /// c lit at texel position p (shade in sample_tf.glsl).
   glm::vec4 shade(glm::vec4 c, glm::vec3 p, const BrickView& b) const {
     if (!s.shade || c.a <= 0.f) return c;
+    if (b.run) return shade(c, p, lane_view(b, p));
     glm::vec3 g;
-    const glm::bvec3 free_axis = glm::greaterThanEqual(p - 1.f, b.lo) && glm::lessThanEqual(p + 1.f, b.hi);
+    glm::bvec3 free_axis = glm::greaterThanEqual(p - 1.f, b.lo) && glm::lessThanEqual(p + 1.f, b.hi);
+    if (b.contiguous)  // the stencil reads on into textured neighbours
+      for (int a = 0; a < 3; ++a)
+        free_axis[a] = (p[a] - 1.f >= b.lo[a] || b.beyond_lo[std::size_t(a)].w > 0.f) &&
+                       (p[a] + 1.f <= b.hi[a] || b.beyond_hi[std::size_t(a)].w > 0.f);
     if (glm::all(free_axis)) {
       g = tex.gradient(p, b.k);  // no tap clamped: the 32-texel stencil
     } else {

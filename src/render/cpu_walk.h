@@ -81,6 +81,20 @@ inline bool level0_textured(vec4 page) {
   return page.w > 0.5f && ((int(page.w + 0.5f) - 1) & (kClipFlag - 1)) == 0;
 }
 
+// The DDA's step to the next brick along the ray: across the nearest face.
+inline void step(ivec3& c, vec3& t_max, ivec3 dir, vec3 t_delta) {
+  if (t_max.x <= t_max.y && t_max.x <= t_max.z) {
+    c.x += dir.x;
+    t_max.x += t_delta.x;
+  } else if (t_max.y <= t_max.z) {
+    c.y += dir.y;
+    t_max.y += t_delta.y;
+  } else {
+    c.z += dir.z;
+    t_max.z += t_delta.z;
+  }
+}
+
 // One ray's walk over the brick grid (volume_ray.frag's main without clip code).
 class RayWalk {
  public:
@@ -123,7 +137,7 @@ class RayWalk {
   bool run_closes(ivec3 c, vec4 page, float t_out, vec3 t_max, ivec3 dir, vec4& next_page,
                   ivec3& next_c) const;
   void textured_brick(ivec3 c, vec4 page, float t, float t_out, vec3 t_max, ivec3 dir,
-                      float& t_next, float& m_cur);
+                      float& t_next, float& m_cur, bool run);
   void level_brick(float t, float t_out, float& t_next, float dtm, vec3 scale, vec3 phase,
                    const BrickView& b, int tf_row);
   void segments(float t, float t_out, float& t_next, vec3 scale, const BrickView& b,

@@ -2,6 +2,7 @@
 // ray caster (cpu_caster.h) reads. The layout is the GL texture's — x fastest, one or two 16-bit
 // channels per texel (code, stencil 0 or 65535) — so a BrickSlot's offset and scale address both.
 #pragma once
+#include <algorithm>
 #include <array>
 #include <cassert>
 #include <cstddef>
@@ -41,6 +42,22 @@ struct HostVolume {
         const std::uint16_t* from = src + (std::size_t(y) + std::size_t(h) * std::size_t(z)) * row;
         std::copy(from, from + row, texels.begin() + std::ptrdiff_t(at));
       }
+  }
+  /// Copies a box of `box` texels (all channels) from texel origin `from` to texel origin `to`;
+  /// the two boxes must not overlap. Never throws.
+  void copy_within(std::array<int, 3> from, std::array<int, 3> to, std::array<int, 3> box) {
+    assert(from[0] + box[0] <= size[0] && from[1] + box[1] <= size[1] && from[2] + box[2] <= size[2]);
+    assert(to[0] + box[0] <= size[0] && to[1] + box[1] <= size[1] && to[2] + box[2] <= size[2]);
+    const std::size_t row = std::size_t(box[0]) * std::size_t(channels);
+    auto at = [&](const std::array<int, 3>& o, int y, int z) {
+      return (std::size_t(o[0]) +
+              std::size_t(size[0]) * (std::size_t(o[1] + y) + std::size_t(size[1]) * std::size_t(o[2] + z))) *
+             std::size_t(channels);
+    };
+    for (int z = 0; z < box[2]; ++z)
+      for (int y = 0; y < box[1]; ++y)
+        std::copy_n(texels.begin() + std::ptrdiff_t(at(from, y, z)), row,
+                    texels.begin() + std::ptrdiff_t(at(to, y, z)));
   }
   /// True when allocated.
   bool empty() const { return texels.empty(); }

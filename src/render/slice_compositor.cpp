@@ -461,6 +461,7 @@ void SliceCompositor::set_pages(const BrickPages& pages, tsp::Dims dims, const t
   cast_.cell = c;
   cast_.pages = pages.texels().data();
   cast_.volume = atlas.host;
+  cast_.runs = pages.runs();
   assert((!cpu_ || !atlas.texture || atlas.host) && "a CPU frame's textures need their texels in RAM");
   cast_.box_lo = glm::vec3(float(box.lo[0]), float(box.lo[1]), float(box.lo[2]));
   cast_.box_hi = glm::vec3(float(box.hi[0]), float(box.hi[1]), float(box.hi[2]));

@@ -282,6 +282,16 @@ void VolumeRenderer::fill_pages(const tsp::FramePlan& plan, tsp::FrameMetric& me
   const auto g = octree.brick_grid();
   pages_.reset(g, {octree.brick_cells(0), octree.brick_cells(1), octree.brick_cells(2)});
   soup_.clear();
+  // The CPU caster reads the full-resolution bricks from one dense region, where it walks runs
+  // of neighbouring bricks as one volume (BrickTextures::place_dense).
+  bool dense_host = false;
+  if (compositor_->cpu_frame() && dense_host_) {
+    std::vector<tsp::TextureKey> level0;
+    for (const tsp::PlannedTexture& pt : plan.textures)
+      if (!pt.deferred && pt.key.level == 0) level0.push_back(pt.key);
+    dense_host = textures_.place_dense(level0);
+  }
+  pages_.set_runs(dense_host);
   for (const tsp::PlannedNode& n : plan.nodes) {
     if (n.cls == tsp::DrawClass::not_rendered) continue;
     const int tsp_id = tree_.id(n.node.octree_id, n.node.time_id);
@@ -298,7 +308,8 @@ void VolumeRenderer::fill_pages(const tsp::FramePlan& plan, tsp::FrameMetric& me
         const tsp::Rgba c = metric.mean_colour(tsp_id);
         octree.for_each_brick(o, [&](int b) { pages_.set_flat(b, c); });
       } else if (pt.key.level == 0) {
-        pages_.set_textured(pt.key.brick, textures_.at(pt.key), leaf_clipped(pt.key.brick));
+        pages_.set_textured(pt.key.brick, dense_host ? textures_.dense_at(pt.key) : textures_.at(pt.key),
+                            leaf_clipped(pt.key.brick));
       } else {
         // A level brick: the full-resolution traversal still decides, leaf page by leaf page,
         // what is skipped (transparent) or drawn flat (coherent); the rest samples the level.

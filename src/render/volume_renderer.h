@@ -59,6 +59,10 @@ class VolumeRenderer {
 
   /// Uses tf from the next frame on (1D lookup texture; never invalidates brick textures).
   void set_transfer_function(const tsp::TransferFunction& tf);
+  /// With off, the CPU caster reads every brick from its atlas slot and walks brick by brick
+  /// instead of runs of the dense region (BrickTextures::place_dense): the layouts' comparison
+  /// in tests and benchmarks. On by default.
+  void set_dense_host(bool on) { dense_host_ = on; }
   /// Clips the next frames to clip (tsp/clip; an empty region clips nothing): nodes it removes
   /// are neither drawn nor uploaded (class clipped), nodes across its surface are drawn
   /// textured and clipped per sample by the one-pass ray caster — frames with probes are ray
@@ -204,6 +208,7 @@ class VolumeRenderer {
   bool leaf_clipped(int brick) const;
   // True when plan textures every leaf brick at full resolution (fills dense_keys_).
   bool dense_frame(const tsp::FramePlan& plan);
+  bool dense_host_ = true;  // set_dense_host
   // Adaptive sampling: gives the compositor the step row of every step-grid cell from plan's
   // level-0 textures (tsp::step_rows) and returns the mean multiplier over the cells they reach.
   double set_step_map(const tsp::FramePlan& plan, const RenderSettings& settings);
