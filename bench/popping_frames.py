@@ -18,6 +18,6 @@ for line in open(os.path.join(d, "frames.jsonl")):
         refs[key] = os.path.join(out, "step_%04d.png" % j["step"])
     de = json.loads(subprocess.run([T, "diff", os.path.join(d, j["file"]), refs[key], "--json"],
                                    capture_output=True, text=True, check=True).stdout)
-    total += j["render_ms"]
+    total += j["frame_report"]["ms"]
     print("%s step %2d %-11s render %7.1f ms (sum %7.1f)  mean dE %6.3f  p99 %6.2f" % (
-        j["file"], j["step"], j["stage"], j["render_ms"], total, de["mean"], de["p99"]))
+        j["file"], j["step"], j["stage"], j["frame_report"]["ms"], total, de["mean"], de["p99"]))

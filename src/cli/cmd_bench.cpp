@@ -22,18 +22,16 @@
 namespace tspcli {
 namespace {
 
-struct BenchArgs {
-  std::string field;
-  std::string file, out, steps, size = "640x480", view = "30,20";
-  std::vector<std::string> tfs;
+struct BenchArgs : SessionArgs {  // the shared options' fields (session_options.h) and bench's
+  BenchArgs() : SessionArgs(session_defaults(SessionCommand::bench)), tfs{tf} {}
+  std::string file, out, steps;
+  std::vector<std::string> tfs;  // --tf, several (one search each); the table's default first
   std::string targets = "1,3";
   int passes = 2, timed_candidates = 3, rounds = 3;
   // Unless given, from the sweep (kQuickSweep or kFullSweep).
   std::string sweep = "quick", metrics, compositings, spacings, baseline_spacings;
   std::optional<int> search_steps, search_iterations;
   std::string render_scales = "1";
-  std::string gl = "auto";  ///< --gl
-  int gpu = -1;             ///< --gpu
   std::string compositing = "rays", preintegration = "off", lod_levels = "0", sampling_tols = "0",
               tolerance_rules = "equal,temporal";
   double spacing = tspgl::kDefaultSliceSpacing, reference_spacing = 0.25;
@@ -213,12 +211,12 @@ const CommandRegistrar reg(45, [](CLI::App& app) {
   auto* c = app.add_subcommand("bench", "Reproduce the paper's Tables 3, 4 and 5 with plots");
   auto a = std::make_shared<BenchArgs>();
   c->add_option("file", a->file, "The .tsp file")->required();
-  add_session_option(c, "--field", a->field, "");
-  add_session_option(c, "--tf", a->tfs, "preset:sparse");
+  // The session options, with bench's defaults: one table (session_options.h); --tf takes
+  // several here, one search each.
+  add_session_options(c, SessionCommand::bench, *a, {"--tf"});
+  add_session_option(c, SessionCommand::bench, "--tf", a->tfs);
   c->add_option("-o,--output", a->out, "Report directory (CSV, JSON, SVG)")->required();
   c->add_option("--steps", a->steps, "Steps A:B (inclusive), A: or A (default: all)");
-  add_session_option(c, "--size", a->size, "640x480");
-  add_session_option(c, "--view", a->view, "30,20");
   c->add_option("--sweep", a->sweep,
                 "How much the searches try unless their options are given: quick (default: "
                 "--metrics approximate --compositings rays --spacings 1,2,4 --baseline-spacings "
@@ -258,8 +256,6 @@ const CommandRegistrar reg(45, [](CLI::App& app) {
                  "1/S pixels, VTK's image sample distance; default 1)");
   c->add_option("--baseline-spacings", a->baseline_spacings,
                 "Baseline spacings the Table-4 search tries (default: the sweep's)");
-  add_session_option(c, "--gl", a->gl, "auto");
-  add_session_option(c, "--gpu", a->gpu, "");
   c->add_option("--timed-candidates", a->timed_candidates,
                 "Fastest probed configurations timed per target and renderer (default 3)");
   c->callback([a] { run(*a); });

@@ -18,28 +18,55 @@
 #include "tsp/build/build.h"
 #include "tsp/core/error.h"
 #include "tsp/core/temp_output.h"
+#include "tsp/lod/lod_controller.h"
 
 namespace tspcli {
 namespace {
 
 struct PlayArgs {
   tspplayer::PlayerOptions options;
-  std::string size = "960x720";
-  std::string lod = "on";
-  std::string lod_fallback = "scale";
-  std::string field, cache_dir;
-  std::string proportions = "physical", scale;
-  std::string probe_surface = "on";
+  SessionArgs session = session_defaults(SessionCommand::play);  // the shared options' values
+  std::string cache_dir;
   SettingsOptions settings{tspplayer::default_player_settings()};
   std::string playback = "quality";
   InputArgs in;  // how an input that is not a .tsp is read (as for build)
 };
 
+// The session options (s) into the player's: checked as render checks them.
+void apply_session(const SessionArgs& s, tspplayer::PlayerOptions& o) {
+  const auto x = s.size.find('x');
+  if (x == std::string::npos) throw tsp::UsageError("--size '" + s.size + "': expected WxH");
+  o.width = int(parse_integer(s.size.substr(0, x), "--size", 1, 8192, "WxH, 1..8192"));
+  o.height = int(parse_integer(s.size.substr(x + 1), "--size", 1, 8192, "WxH, 1..8192"));
+  o.tf = s.tf;
+  o.tf_range = s.tf_range;
+  if (s.proportions != "physical" && s.proportions != "samples")
+    throw tsp::UsageError("--proportions '" + s.proportions + "': expected physical or samples");
+  o.physical_proportions = s.proportions == "physical";
+  if (!s.scale.empty())
+    o.scale = parse_triple(s.scale, "--scale", "SX,SY,SZ, factors on the voxel spacing");
+  o.probes = s.probes;
+  o.probe_op = s.probe_op;
+  o.probe_surface = s.probe_surface == "on";
+  o.surface_mesh = s.surface_mesh;
+  o.surface_field = s.surface_field;
+  o.surface_tf = s.surface_tf;
+  const std::string lod = lod_word(s.lod);
+  if (lod != "auto" && lod != "off")
+    throw tsp::UsageError("--lod " + s.lod + ": play holds a frame rate, so its cut is auto (on) "
+                          "or off; a fixed level K or splat:PX is render's");
+  o.lod = lod == "auto";
+  o.splat_fallback =
+      tsp::parse_lod_fallback(s.lod_fallback, "--lod-fallback") == tsp::LodFallback::splats;
+  o.lod_filter = s.lod_filter;
+  o.target_fps = s.target_fps;
+  o.quality = s.quality;
+  o.ram_budget_mb = s.ram_budget_mb;
+  o.texture_budget_mb = s.texture_budget_mb;
+}
+
 void run(PlayArgs a) {
-  auto x = a.size.find('x');
-  if (x == std::string::npos) throw tsp::UsageError("--size '" + a.size + "': expected WxH");
-  a.options.width = int(parse_integer(a.size.substr(0, x), "--size", 1, 8192, "WxH, 1..8192"));
-  a.options.height = int(parse_integer(a.size.substr(x + 1), "--size", 1, 8192, "WxH, 1..8192"));
+  apply_session(a.session, a.options);
   a.options.cache_dir = a.cache_dir;
   a.options.input.source = source_options(a.in, "");
   a.options.input.voxelize = voxelize_options(a.in, 0);
@@ -66,12 +93,6 @@ void run(PlayArgs a) {
     o.adaptive = octree_error(in, o.octree);
     return o;
   };
-  if (a.proportions != "physical" && a.proportions != "samples")
-    throw tsp::UsageError("--proportions '" + a.proportions + "': expected physical or samples");
-  a.options.physical_proportions = a.proportions == "physical";
-  a.options.probe_surface = a.probe_surface == "on";
-  if (!a.scale.empty())
-    a.options.scale = parse_triple(a.scale, "--scale", "SX,SY,SZ, factors on the voxel spacing");
   tspgl::PlayBuildHooks hooks;
   hooks.say = [](const std::string& line) {
     std::printf("%s\n", line.c_str());
@@ -105,10 +126,11 @@ void run(PlayArgs a) {
   if (a.options.settings.surface && a.options.settings.compositing != tspgl::Compositing::rays)
     throw tsp::UsageError("--surface boundary is drawn with --compositing rays");
   tspgl::PlayInputOptions input = a.options.input;
-  input.field = a.field;
+  input.field = a.session.field;
   a.options.input_path = a.options.tsp_path;  // (File > Open starts in its folder)
   a.options.tsp_path = tspgl::prepare_play_input(a.options.tsp_path, input, a.cache_dir, hooks);
-  a.options.field = tsp ? a.field : "";  // a .tsp: the field shown first; an input: the one built
+  // A .tsp: the field shown first; an input: the one built.
+  a.options.field = tsp ? a.session.field : "";
   tspplayer::run_player(a.options);
 }
 
@@ -120,13 +142,12 @@ const CommandRegistrar reg(35, [](CLI::App& app) {
                 "The .tsp file, or any input build reads (built into the cache folder first, "
                 "reused while unchanged)")
       ->required();
-  add_session_option(c, "--field", a->field, "");
+  // The session options, with play's defaults: one table (session_options.h).
+  add_session_options(c, SessionCommand::play, a->session);
   add_input_options(c, a->in);
   c->add_option("--cache-dir", a->cache_dir,
                 "Raw input: the cache folder (default $TSPPLAY_CACHE_DIR, $XDG_CACHE_HOME/tspplay "
                 "or ~/.cache/tspplay; builds go to its builds/)");
-  add_session_option(c, "--tf", a->options.tf, "preset:auto");
-  add_session_option(c, "--tf-range", a->options.tf_range, "auto");
   c->add_option("--step", a->options.step, "Step shown first (default 0)");
   c->add_option("--screenshot", a->options.screenshot,
                 "Save the first complete frame (volume only) as PNG and exit");
@@ -143,33 +164,14 @@ const CommandRegistrar reg(35, [](CLI::App& app) {
   c->add_flag("--trace", a->options.trace,
               "Print one line per applied change (step, transfer function, tolerances, metric, "
               "play/pause, LOD) and per saved screenshot");
-  add_session_option(c, "--size", a->size, "960x720");
-  add_session_option(c, "--proportions", a->proportions, "physical");
-  add_session_option(c, "--scale", a->scale, "");
-  add_session_option(c, "--probe", a->options.probes, "");
-  add_session_option(c, "--surface-mesh", a->options.surface_mesh, "the input, when it is a mesh");
-  add_session_option(c, "--surface-field", a->options.surface_field, "the file's field");
-  add_session_option(c, "--surface-tf", a->options.surface_tf, "preset:cool-to-warm");
-  add_session_option(c, "--probe-op", a->options.probe_op, "intersect")
-      ->check(CLI::IsMember({"intersect", "union", "subtract"}));
-  add_session_option(c, "--probe-surface", a->probe_surface, "on, so a probe placed in the window shows what it cuts")
-      ->check(CLI::IsMember({"on", "off"}));
-  add_session_option(c, "--ram-budget", a->options.ram_budget_mb, "1024");
-  add_session_option(c, "--texture-budget", a->options.texture_budget_mb, "512");
-  add_session_option(c, "--lod", a->lod, "on: interacting holds --target-fps, idle refines to full quality");
-  add_session_option(c, "--lod-fallback", a->lod_fallback, "scale")
-      ->check(CLI::IsMember({"scale", "splats"}));
-  add_session_option(c, "--lod-filter", a->options.lod_filter, "error");
   c->add_option("--speed", a->options.speed,
                 "Playback speed, steps per second, 0.25 to 60 (default: the series in about 4 s, "
                 "at most 24, a movie's rate). Steps are shown in order, slower if frames are "
                 "slow, unless the script or panel picks skip steps");
-  add_session_option(c, "--quality", a->options.quality, "1");
   c->add_option("--playback", a->playback,
                 "With --quality, what gives while playing when no rung both fits the speed and "
                 "keeps the target: quality (steps show later; default) or rate (a coarser rung)")
       ->check(CLI::IsMember({"quality", "rate"}));
-  add_session_option(c, "--target-fps", a->options.target_fps, "30");
   std::string keys = "\nControls (also F1 or ? in the player):\n";
   for (const tspplayer::Control& k : tspplayer::kControls)
     keys += "  " + std::string(k.input) +
@@ -193,12 +195,6 @@ const CommandRegistrar reg(35, [](CLI::App& app) {
       if (c->count(o) > 0) a->options.given.push_back(o);
     a->options.settings = a->settings.apply();
     a->options.keep_quality = a->playback == "quality";
-    const std::string lod = lod_word(a->lod);
-    if (lod != "auto" && lod != "off")
-      throw tsp::UsageError("--lod " + a->lod + ": play holds a frame rate, so its cut is auto (on) "
-                            "or off; a fixed level K or splat:PX is render's");
-    a->options.lod = lod == "auto";
-    a->options.splat_fallback = a->lod_fallback == "splats";
     run(*a);
   });
 });

@@ -117,10 +117,9 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
   auto* c = app.add_subcommand("render", "Render steps headless (EGL or OSMesa: --gl) to PNGs and frames.json");
   auto a = std::make_shared<RenderCliArgs>();
   c->add_option("file", a->file, "The .tsp file")->required();
-  add_session_option(c, "--field", a->field, "");
-  add_session_option(c, "--tf", a->tf, "preset:auto");
+  // The session options, with render's defaults: one table (session_options.h).
+  add_session_options(c, SessionCommand::render, *a);
   c->add_option("-o,--output", a->out, "Directory for step_NNNN.png and frames.json")->required();
-  add_session_option(c, "--tf-range", a->tf_range, "auto");
   on_off_option(c, "--annotate", a->annotate,
               "Draw the outline box, an axes triad, a colour legend with ticks and the step (and "
               "time) into every frame (and so into --movie)");
@@ -134,57 +133,25 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
   c->add_option("--cache", a->cache, "Texture cache on|off (default on)")
       ->check(CLI::IsMember({"on", "off"}));
   on_off_option(c, "--baseline", a->baseline, "Render without the TSP tree (the non-TSP reference)");
-  add_session_option(c, "--size", a->size, "640x480");
-  add_session_option(c, "--view", a->view, "30,20");
   on_off_option(c, "--perspective", a->perspective, "Perspective projection (off: orthographic)");
-  add_session_option(c, "--proportions", a->proportions, "physical");
-  add_session_option(c, "--probe", a->probes, "");
-  add_session_option(c, "--probe-op", a->probe_op, "intersect")
-      ->check(CLI::IsMember({"intersect", "union", "subtract"}));
-  add_session_option(c, "--probe-surface", a->probe_surface, "off")
-      ->check(CLI::IsMember({"on", "off"}));
   c->add_option("--probe-motion", a->probe_motion,
                 "DX,DY,DZ: every probe moves this far each frame (physical units; a plane along "
                 "its normal), e.g. to sweep a slice through the data");
   c->add_option("--probe-tf", a->probe_tf,
                 "Colours of the clip surface: a TF file or preset:NAME (default: --tf's)");
-  add_session_option(c, "--surface-mesh", a->surface_mesh, "");
-  add_session_option(c, "--surface-field", a->surface_field, "the file's field");
-  add_session_option(c, "--surface-tf", a->surface_tf, "");
   c->add_option("--surface-target-ms", a->surface_target_ms,
                 "Hold the surface pass at this many ms: the minimum splat size adapts frame by "
                 "frame, from --surface-px (TetSplat's frame-rate knob; frames.json records it)");
-  add_session_option(c, "--scale", a->scale, "");
   c->add_option("--passes", a->passes, "Play the steps this many times (default 1)");
-  add_session_option(c, "--gl", a->gl, "auto");
-  add_session_option(c, "--gpu", a->gpu, "");
-  add_session_option(c, "--texture-budget", a->texture_budget_mb, "512");
-  add_session_option(c, "--ram-budget", a->ram_budget_mb, "1024");
-  add_session_option(c, "--quality", a->quality, "0")
-      ->check(CLI::Validator(
-          [](std::string& text) -> std::string {
-            // (0 is how the job reads "not asked", so a given 0 is refused here, not ignored.)
-            char* end = nullptr;
-            const double de = std::strtod(text.c_str(), &end);
-            if (end == text.c_str() || *end != 0 || !(de > 0 && de <= tspgl::kMaxQualityDe))
-              return "expected a mean dE in (0, " + std::to_string(int(tspgl::kMaxQualityDe)) +
-                     "], got " + text;
-            return "";
-          },
-          "DE"));
   c->add_option("--save-tf", a->save_tf,
                 "Also write the transfer function used (a preset resolved over the data's range) "
                 "as JSON, e.g. for bench/vtk_reference.py");
-  add_session_option(c, "--lod", a->lod, "off, or auto with --target-fps");
-  add_session_option(c, "--lod-fallback", a->lod_fallback, "scale");
-  add_session_option(c, "--target-fps", a->target_fps, "off");
   c->add_option("--target-ms", a->target_ms,
                 "The same target as a frame time in ms (kept for older scripts)")
       ->group("");  // hidden: one unit per concept in --help
   c->add_option("--orbit", a->orbit, "Advance the azimuth this many degrees every frame");
   c->add_option("--split-limit", a->split_limit,
                 "--lod auto: most node splits per frame (default 8)");
-  add_session_option(c, "--lod-filter", a->lod_filter, "error");
   c->add_option("--eye", a->eye,
                 "Place the eye at X,Y,Z in voxels (inside the volume or out), looking along "
                 "--view's direction; implies --perspective");
@@ -196,6 +163,18 @@ const CommandRegistrar reg(30, [](CLI::App& app) {
   c->add_flag("--mpi-check", a->mpi_check)->group("");  // tspplay-mpi render's protocol
   c->add_option("--mpi-part", a->mpi_part)->group("");
   c->add_option("--mpi-dir", a->mpi_dir)->group("");
+  // (0 is how the job reads "not asked", so a given 0 is refused here, not ignored.)
+  c->get_option("--quality")
+      ->check(CLI::Validator(
+          [](std::string& text) -> std::string {
+            char* end = nullptr;
+            const double de = std::strtod(text.c_str(), &end);
+            if (end == text.c_str() || *end != 0 || !(de > 0 && de <= tspgl::kMaxQualityDe))
+              return "expected a mean dE in (0, " + std::to_string(int(tspgl::kMaxQualityDe)) +
+                     "], got " + text;
+            return "";
+          },
+          "DE"));
   a->settings.add_to(c);
   // (The session options are in their table's groups: session_options.h.)
   set_groups(c, {{"Input/output",

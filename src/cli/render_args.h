@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/session_options.h"
 #include "jobs/movie.h"
 #include "jobs/render_job.h"
 #include "render/render_settings.h"
@@ -12,31 +13,22 @@
 namespace tspcli {
 
 /// `render`'s options besides the settings table, as the command line gives them (text, as
-/// typed; numbers where CLI11 parses them). The defaults are the command's.
-struct RenderArgs {
-  std::string field;
-  std::string file, tf = "preset:auto", out, steps, size = "640x480", view = "30,20", movie,
-              tf_range;
+/// typed; numbers where CLI11 parses them): the session options' shared fields (SessionArgs,
+/// session_options.h) and render's own. The defaults are the command's.
+struct RenderArgs : SessionArgs {
+  /// render's defaults: the table's (session_defaults) and its own below.
+  RenderArgs() : SessionArgs(session_defaults(SessionCommand::render)) {}
+  std::string file, out, steps, movie;
   int fps = tspgl::kMovieFps;
   std::string annotate = "off";
   std::string metric = "approximate", cache = "on";
   int passes = 1;
-  double texture_budget_mb = double(tspgl::kDefaultTextureBudget) / (1 << 20);
-  double ram_budget_mb = double(tspgl::kDefaultBrickBudget) / (1 << 20);
   std::string baseline = "off", perspective = "off";
-  double quality = 0;
   std::string calibration_dir, save_tf;
-  std::string lod;       ///< off|auto|K|splat:PX ("": off, or auto with --target-ms)
-  std::string lod_fallback = "scale";
-  double target_ms = 0, target_fps = 0, orbit = 0;
+  double target_ms = 0, orbit = 0;
   int split_limit = tsp::LodOptions{}.split_limit;
-  std::string focus, lod_filter = "error", eye;
-  std::string proportions = "physical", scale;
-  std::vector<std::string> probes;
-  std::string probe_op = "intersect", probe_surface = "off", probe_tf, probe_motion;
-  std::string surface_mesh, surface_field, surface_tf;
-  std::string gl = "auto";  ///< --gl: auto|egl|osmesa
-  int gpu = -1;             ///< --gpu: EGL device index
+  std::string focus, eye;
+  std::string probe_tf, probe_motion;
   double surface_target_ms = 0;
 };
 

@@ -27,23 +27,7 @@ using nlohmann::json;
 // A timed run: run_render_job without files, summarised over its last pass.
 Timing time_run(RenderJobOptions o) {
   o.out_dir.clear();
-  RenderJobResult r = run_render_job(o);
-  Timing t;
-  t.median_ms = median_frame_ms(r, o.passes);
-  t.first_pass_median_ms = median_frame_ms(r, 1);
-  t.metric_ms = r.metric_ms;
-  t.renderer = r.renderer;
-  for (const FrameRecord& f : r.frames) {
-    if (f.pass != o.passes) continue;
-    t.steps.push_back(f.report.step);
-    t.step_ms.push_back(f.report.ms);
-    for (std::size_t c = 0; c < 4; ++c) t.classes[c] += f.report.class_percent[c];
-    t.bytes_uploaded += double(f.report.bytes_uploaded);
-  }
-  const double n = double(std::max<std::size_t>(1, t.steps.size()));
-  for (double& c : t.classes) c /= n;
-  t.bytes_uploaded /= n;
-  return t;
+  return timing_of(run_render_job(o), o.passes);
 }
 
 // File-name-safe form of a TF argument ("preset:sparse" → "sparse", "a/b.json" → "b").

@@ -29,14 +29,6 @@ std::string fmt(double v) {
   return buf;
 }
 
-json timing_json(const Timing& t) {
-  json j = {{"median_ms", t.median_ms}, {"first_pass_median_ms", t.first_pass_median_ms},
-            {"metric_ms", t.metric_ms}, {"steps", t.steps},
-            {"step_ms", t.step_ms},     {"bytes_uploaded_per_frame", t.bytes_uploaded}};
-  tspgl::add_class_shares(j, t.classes);
-  return j;
-}
-
 BenchReport::BenchReport(json header) : report_(std::move(header)) {
   for (const char* k : {"table3", "table4", "table5", "searches", "plots"})
     report_[k] = json::array();
@@ -61,7 +53,7 @@ void BenchReport::add_baseline(const std::string& tf, const Timing& b) {
   report_["renderer"] = b.renderer;
   t3_ << csv(tf) << ",baseline,,," << fmt(b.median_ms) << ',' << fmt(b.first_pass_median_ms)
       << ",1,,0\n";
-  json rb = timing_json(b);
+  json rb = b;
   rb["tf"] = tf;
   rb["renderer"] = "baseline";
   report_["table3"].push_back(rb);
@@ -73,7 +65,7 @@ void BenchReport::add_zero_tolerance(const std::string& tf, const std::string& m
   t3_ << csv(tf) << ",tsp," << metric << ',' << cache << ',' << fmt(t.median_ms) << ','
       << fmt(t.first_pass_median_ms) << ',' << fmt(baseline_ms / t.median_ms) << ','
       << fmt(t.metric_ms) << ',' << fmt(mean_de) << '\n';
-  json r = timing_json(t);
+  json r = t;
   r["tf"] = tf;
   r["renderer"] = "tsp";
   r["metric"] = metric;
@@ -109,7 +101,7 @@ void BenchReport::add_best(const std::string& tf, const std::string& renderer,
   r["tolerance_rule"] = to_string(k.rule);
   r["mean_delta_e"] = best->probe.mean_de;
   r["probe_ms"] = best->probe.ms;
-  r["timing"] = timing_json(*t);
+  r["timing"] = *t;
   r["median_ms"] = t->median_ms;
   r["speedup_vs_best_baseline"] = best_baseline_ms / t->median_ms;
   r["speedup_vs_reference"] = reference_ms / t->median_ms;

@@ -8,22 +8,10 @@
 #include <vector>
 
 #include "jobs/knob_search.h"
+#include "jobs/timing.h"
 #include "jobs/tolerance_search.h"
 
 namespace tspgl {
-
-/// A timed render run summarised over its last pass.
-struct Timing {
-  double median_ms = 0, first_pass_median_ms = 0, metric_ms = 0;
-  std::vector<int> steps;
-  std::vector<double> step_ms;  ///< last pass, per step
-  std::array<double, 4> classes{};  ///< mean class shares (NR, UP, RT, NT), percent
-  double bytes_uploaded = 0;        ///< mean per frame, last pass
-  std::string renderer;             ///< the GL renderer string
-};
-
-/// The report.json record of a Timing. Never throws.
-nlohmann::json timing_json(const Timing& t);
 
 /// Rows of the three tables and the JSON report. Not thread-safe.
 class BenchReport {

@@ -357,13 +357,11 @@ void PlayerApp::write_stats(const std::string& path) const {
   j["frame_ms"] = ms;
   j["mean_frame_ms"] = mean;
   j["fps"] = mean > 0 ? 1000.0 / mean : 0.0;
-  j["render_ms"] = last.ms;
-  j["caster"] = last.backend;  // who cast the last frame's rays: gl or cpu ("backend": the setting)
-  if (!last.backend_note.empty()) j["caster_note"] = last.backend_note;
-  j["fragments"] = last.fragments;          // drawn by the last frame (0 when it reused the image)
+  // The last frame drawn, under frames.json's keys (to_json in render/frame_report.h): ms, caster
+  // (who cast its rays; "backend" is the setting), fragments (0 when it reused the image), the
+  // Table-5 classes, deferred_textures (left for later frames by the upload budget), …
+  j["frame_report"] = last;
   j["picture_fragments"] = picture_fragments_;  // of the frame that drew the picture shown
-  j["redrawn_percent"] = last.redrawn_percent;
-  j["deferred_textures"] = last.deferred_textures;  // left for later frames (upload budget)
   j.update(tspgl::settings_json(state.settings));  // every knob of the settings table, as render's
   j["tolerance"] = {state.settings.tol.spatial, state.settings.tol.temporal};
   nlohmann::json points = nlohmann::json::array();  // the editor's handles: value, opacity
@@ -395,28 +393,18 @@ void PlayerApp::write_stats(const std::string& path) const {
                  {"frames_while_tuning", frames_while_tuning_},
                  {"from_cache", tuning_from_cache_},  // read from disk: no probing this run
                  {"cache_file", tuning_cache_file_}};
-  j["lod"] = {{"on", state.lod_on},
-              {"target_fps", state.target_fps},
-              {"refining", lod_loop_.refining()},
-              {"cut_size", lod_stats.cut_size},
-              {"nodes_per_level", lod_stats.nodes_per_level},
-              {"render_scale", lod_stats.render_scale},
-              {"splats", lod_stats.splats},
-              {"splat_px", lod_stats.splat_px},
-              {"splat_fallback", state.splat_fallback},
-              {"filter", tsp::to_string(state.lod_filter.kind)},
-              {"filter_k", state.lod_filter.scale},
-              {"max_error", lod_stats.max_error},
-              {"full_quality_after_s", full_quality_after_s},
-              // Full quality: no node left whose level differs from full resolution in the
-              // picture (error 0: transparent, uniform or hidden), at full render size.
-              {"full_quality", full_quality()},
-              {"picture", refine_json()}};
-  j["classes"] = {{"not_rendered", last.class_percent[0]},
-                  {"untextured", last.class_percent[1]},
-                  {"reused_texture", last.class_percent[2]},
-                  {"new_texture", last.class_percent[3]},
-                  {"clipped", last.class_percent[4]}};
+  j["lod"] = lod_stats;  // the last frame's cut, under frames.json's "lod" keys (lod_controller.h)
+  j["lod"].update({{"on", state.lod_on},
+                   {"target_fps", state.target_fps},
+                   {"refining", lod_loop_.refining()},
+                   {"splat_fallback", state.splat_fallback},
+                   {"filter", tsp::to_string(state.lod_filter.kind)},
+                   {"filter_k", state.lod_filter.scale},
+                   {"full_quality_after_s", full_quality_after_s},
+                   // Full quality: no node left whose level differs from full resolution in
+                   // the picture (error 0: transparent, uniform or hidden), at full render size.
+                   {"full_quality", full_quality()},
+                   {"picture", refine_json()}});
   tsp::write_file_atomically(path, tsp::json_text(j, 2) + "\n");
 }
 

@@ -226,7 +226,7 @@ void PlayerApp::capture_frame() {
   j["file"] = name;
   j["step"] = state.step;
   j["playing"] = state.playing;
-  j["render_ms"] = last.ms;
+  j["frame_report"] = last;  // as frames.json writes a frame (render/frame_report.h)
   j["view"] = {state.camera.azimuth_deg, state.camera.elevation_deg, state.camera.zoom};
   j["recorded"] = recorder_ != nullptr && within_;
   std::ofstream out(fs::path(capture_dir_) / "frames.jsonl", std::ios::app);

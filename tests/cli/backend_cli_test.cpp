@@ -107,7 +107,7 @@ TEST_F(BackendCli, ThePlayerSwitchesCastersByScriptAndSaysWhoDrew) {
     std::ifstream in(*dir_ / (std::string(who) + ".json"));
     const json j = json::parse(in);
     EXPECT_EQ(j["backend"], who);
-    EXPECT_EQ(j["caster"], who);
+    EXPECT_EQ(j["frame_report"]["caster"], who);
   }
 }
 

@@ -255,7 +255,7 @@ TEST(Player, ProbesClipAsRenderDoesAndMoveFromTheScript) {
             kSameFrameDeltaE);
   const nlohmann::json j = read_json(dir / "a.json");
   EXPECT_EQ(j["probes"].size(), 2u);
-  EXPECT_GT(j["classes"]["clipped"].get<double>(), 10.0);
+  EXPECT_GT(j["frame_report"]["clipped"].get<double>(), 10.0);
   EXPECT_GT(tsp::diff_images(a, tsp::read_png((dir / "b.png").string())).mean,
             kDifferentFrameDeltaE);  // the plane moved down
   EXPECT_LT(tsp::diff_images(tsp::read_png((dir / "c.png").string()), render_step(tsp, 0, "preset:filled")).mean,
@@ -452,7 +452,7 @@ TEST(Player, StepsShownWhilePlayingHaveNoHolesUnderAnUploadBudget) {
   EXPECT_LT(tsp::diff_images(tsp::read_png((dir / "p.png").string()), render_step(tsp, shown)).mean,
             kSameFrameDeltaE);
   // The frame drawn just before (playing, every texture uploaded anew): nothing left for later.
-  EXPECT_EQ(read_json(dir / "p.json")["deferred_textures"].get<long long>(), 0);
+  EXPECT_EQ(read_json(dir / "p.json")["frame_report"]["deferred_textures"].get<long long>(), 0);
 }
 
 }  // namespace
