@@ -360,6 +360,7 @@ void PlayerApp::render_volume() {
   lod_drawn(drawn.lod, now);
   if (!refined && stage_ == "interacting" && full_quality()) within_ = true;  // (the cut refined)
   const tsp::LodStops stops = refined ? tsp::LodStops{} : d.current_stops();
+  keep_drawn_cut(stops);
   request_prefetch(cam, drawn.settings, stops);
   update_ready(cam, drawn.settings, stops);
 }

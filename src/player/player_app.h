@@ -359,6 +359,12 @@ class PlayerApp {
   /// The frame driver of the current renderer (made on first use after a renderer change).
   tspgl::FrameDriver& driver();
   void draw_cut_overlay(const tsp::Camera& cam);
+  /// With the cut shown (L): keeps the cut the frame drew (empty stops: every leaf).
+  void keep_drawn_cut(tsp::LodStops stops);
+  /// What the cut overlay shows, for its caption: "LOD cut: 8 nodes, full resolution (level 0)".
+  std::string cut_overlay_text() const;
+  std::vector<tsp::LodStop> drawn_stops_;  ///< the cut the last frame drew (empty: the leaves)
+  std::string traced_cut_;                  ///< the cut caption last traced
   void draw_annotations(const tsp::Camera& cam);
 
   PlayerOptions options_;
