@@ -98,7 +98,7 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
       tsp::kDefaultTfEntries, range, &histogram);
   if (std::string w = tsp::tf_range_warning(tf, file->metadata().data_range); !w.empty()) {
     std::fprintf(stderr, "tspplay: warning: %s\n", w.c_str());
-    status = w;
+    status = tsp::tf_range_warning(tf, file->metadata().data_range, "fit to data");  // (window)
   }
   lazy_ = std::make_unique<tsp::LazyErrors>(tree, state.metric, tf);
   set_tf(tf, true);
