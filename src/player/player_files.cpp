@@ -173,7 +173,9 @@ void PlayerApp::open_file(const std::string& path) {
   // The input as the user named it (an .h5 built into the cache), not the cache entry.
   const std::string shown = options_.input_path.empty() ? path : options_.input_path;
   glfwSetWindowTitle(static_cast<GLFWwindow*>(ctx->native_window()), ("tspplay - " + shown).c_str());
-  status = "playing " + path;
+  // (An event, named as the user named the input: "playing PATH" stayed on while paused and
+  // named the cache's build.)
+  status = "opened " + shown + " (" + std::to_string(steps()) + " steps)";
   std::printf("opened %s (%d steps)\n", path.c_str(), steps());
   std::fflush(stdout);
   if (surface_asked) set_setting("surface", "boundary");

@@ -49,4 +49,21 @@ TEST(PlayerWalk, ShowCutPausedOutlinesTheFullResolutionLeaves) {
   EXPECT_GT(green_pixels(tsp::read_png(on)), green_pixels(tsp::read_png(off)) + 100);
 }
 
+// File > Open's message is an event, named as the user named the input: "playing PATH" (the
+// cache's build) stayed in the status area while paused.
+TEST(PlayerWalk, OpenSaysOpenedNotPlayingAndPausingLeavesNoPlayingMessage) {
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
+  const fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
+  const std::string a = (dir / "a.json").string(), b = (dir / "b.json").string();
+  const auto r = run_tspplay("play " + q(tsp) + " --size " + kSize + " --no-session --quality 0" +
+                             " --script " +
+                             q(write_script("open " + tsp.string() + "\nwait-frames 1\nstats " +
+                                            a + "\nplay\nwait-frames 2\npause\nwait-frames 1\n"
+                                            "stats " + b + "\nquit\n")));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(read_json(a)["status"], "opened " + tsp.string() + " (4 steps)");
+  EXPECT_EQ(read_json(b)["status"].get<std::string>().find("playing"), std::string::npos)
+      << read_json(b)["status"];
+}
+
 }  // namespace
