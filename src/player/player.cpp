@@ -440,11 +440,17 @@ void PlayerApp::frame() {
   apply_probes();
   render_volume();
   capture_frame();
+  if (state.playing != rate_playing_) {  // playback's rate is measured from its start on
+    rate_playing_ = state.playing;
+    shown_at_s_.clear();
+    last_shown_step_ = -1;
+  }
   if (state.step != last_shown_step_) {  // playback's real rate: distinct steps drawn
     last_shown_step_ = state.step;
     shown_at_s_.push_back(now);
   }
-  while (!shown_at_s_.empty() && shown_at_s_.front() < now - kShownWindowSeconds)
+  // (The last two stay: a stall longer than the window reads as a slow rate, not none.)
+  while (shown_at_s_.size() > 2 && shown_at_s_.front() < now - kShownWindowSeconds)
     shown_at_s_.pop_front();
   advance_tuning();
   if (tol_readout_due && imgui_) measure_tolerance();

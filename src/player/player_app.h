@@ -180,8 +180,12 @@ class PlayerApp {
   /// Fragments of the picture on screen: the last frame that drew any (a frame that reused the
   /// whole image draws none).
   std::int64_t picture_fragments() const { return picture_fragments_; }
-  /// Distinct steps drawn per second over the last 2 s (playback's real rate).
+  /// Distinct steps drawn per second over the last 2 s (playback's real rate; 0 until
+  /// rate_measured()).
   double steps_shown_per_s() const;
+  /// True once playback showed a second step since it started: a rate was measured.
+  bool rate_measured() const;
+  bool rate_playing_ = false;  ///< playing at the last frame (the rate restarts with playback)
   /// Seconds until playback's next step is due (0: due now); kIdleWaitSeconds when paused.
   double until_next_step() const;
   /// The playback tuning in progress, if any (for its progress bar).

@@ -138,7 +138,8 @@ void timeline_section(PlayerApp& app) {
     app.push(cmd::SetSpeed{std::clamp(double(speed), kMinSpeed, kMaxSpeed)});
   }
   note_item("steps/s");
-  if (app.state.playing) {  // the rate the window reaches, at the row's end (nothing after it)
+  // The rate the window reaches, at the row's end (nothing after it), once one was measured.
+  if (app.rate_measured()) {
     ImGui::SameLine();
     ImGui::TextUnformatted(shown_rate_text(app).c_str());
     note_item(shown_rate_text(app).c_str());

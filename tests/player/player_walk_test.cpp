@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -64,6 +65,41 @@ TEST(PlayerWalk, OpenSaysOpenedNotPlayingAndPausingLeavesNoPlayingMessage) {
   EXPECT_EQ(read_json(a)["status"], "opened " + tsp.string() + " (4 steps)");
   EXPECT_EQ(read_json(b)["status"].get<std::string>().find("playing"), std::string::npos)
       << read_json(b)["status"];
+}
+
+// The labels the last frame drew (stats' ui_items) that contain text.
+std::vector<std::string> labels_with(const nlohmann::json& stats, const std::string& text) {
+  std::vector<std::string> found;
+  for (const nlohmann::json& it : stats["ui_items"])
+    if (it["label"].get<std::string>().find(text) != std::string::npos)
+      found.push_back(it["label"]);
+  return found;
+}
+
+// As playback starts the timeline shows no rate until one was measured (a second step shown
+// since it started): it read "playing at 0.0 steps/s of 24" (counted over the window's last
+// 2 s, paused frames included). At 2 steps/s and 100 ms frames the second step comes after
+// about five frames.
+TEST(PlayerWalk, TheSpeedShowsNoRateUntilOneWasMeasured) {
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
+  const fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
+  const std::string a = (dir / "a.json").string(), b = (dir / "b.json").string();
+  const auto r = run_tspplay(
+      "play " + q(tsp) + " --size 740x344 --no-session --quality 0 --speed 2 --frame-delay-ms 100" +
+      " --script " +
+      q(write_script("wait-frames 3\nplay\nwait-frames 1\nstats " + a +
+                     "\nwait-frames 12\nstats " + b + "\nquit\n")));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json ja = read_json(a), jb = read_json(b);
+  EXPECT_TRUE(labels_with(ja, "steps/s of").empty()) << labels_with(ja, "steps/s of")[0];
+  EXPECT_TRUE(labels_with(ja, "shown/s").empty());
+  EXPECT_EQ(ja["playback"]["steps_shown_per_s"], 0);
+  // Twelve frames (over 1.2 s) on, a second step was shown: a rate, and it is not zero.
+  std::vector<std::string> rate = labels_with(jb, "steps/s of"), shown = labels_with(jb, "shown/s");
+  rate.insert(rate.end(), shown.begin(), shown.end());
+  ASSERT_EQ(rate.size(), 1u) << jb["ui_items"];
+  EXPECT_EQ(rate[0].find(" 0.0 "), std::string::npos) << rate[0];
+  EXPECT_GT(jb["playback"]["steps_shown_per_s"].get<double>(), 0);
 }
 
 }  // namespace
