@@ -20,6 +20,7 @@
 #include "tsp/core/temp_output.h"
 #include "player/imgui_gl_load.h"
 #include "player/player_app.h"
+#include "player/player_style.h"
 #include "tsp/core/error.h"
 #include "tsp/core/interrupt.h"
 #include "tsp/core/stopwatch.h"
@@ -131,7 +132,7 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
   ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini in the user's directory
-  ImGui::StyleColorsDark();
+  apply_player_style(ImGui::GetStyle());  // (opaque popups)
   install_callbacks();
   glfwSwapInterval(1);  // vsync where the display has it (a virtual one has none)
   // Dear ImGui's back end installs no callbacks: ours queue every event (input_queue_), and
