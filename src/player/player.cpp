@@ -228,7 +228,8 @@ void PlayerApp::set_tf(const tsp::TransferFunction& next, bool resample_points) 
       if (lo >= 0)
         tf.set_entries(lo, next.entries().subspan(std::size_t(lo), std::size_t(hi - lo + 1)));
     } else {
-      tf = next;
+      tf.assign(next);  // (its version grows: a copy took next's, and fits after the first
+                        // went unseen by the LOD loop, the tuning, the metric and --trace)
       lazy_->set_transfer_function(tf);
     }
   }

@@ -145,7 +145,7 @@ void PlayerApp::open_file(const std::string& path) {
   // The TF the player started with, fitted to the new data (a map edited for other data
   // rarely suits this one).
   tsp::TransferFunction fresh = start_tf(*file);
-  tf = fresh;
+  tf.assign(fresh);  // (its version grows: what keys on it sees the change)
   lazy_ = std::make_unique<tsp::LazyErrors>(tree, state.metric, tf);
   reference_version_ = ~std::uint64_t(0);
   set_tf(tf, true);
@@ -205,7 +205,7 @@ void PlayerApp::switch_field(const std::string& name) {
   if (renderer) compositor_ = renderer->compositor();
   parked_.park(current, {std::move(file), std::move(renderer), tf});
   file = std::move(next.file);
-  tf = next.tf;
+  tf.assign(next.tf);  // (its version grows past both fields')
   lazy_ = std::make_unique<tsp::LazyErrors>(file->tree(), state.metric, tf);
   reference_version_ = ~std::uint64_t(0);
   tf_points.clear();

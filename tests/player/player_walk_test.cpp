@@ -102,4 +102,24 @@ TEST(PlayerWalk, TheSpeedShowsNoRateUntilOneWasMeasured) {
   EXPECT_GT(jb["playback"]["steps_shown_per_s"].get<double>(), 0);
 }
 
+// Every fit of the colour range is an edit the player sees (--trace "transfer function
+// edited", the LOD loop, the tuning and the metric key on the TF's version): a fit replaced the
+// TF by a copy that took the fitted table's version, so after the first, fits to step, view or
+// data went unseen (the walk: only "fit to bulk" was traced).
+TEST(PlayerWalk, EveryFitIsTracedAsAnEdit) {
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
+  const fs::path tsp = make_tsp();
+  std::string script = "wait-frames 1\n";
+  for (const char* fit : {"histogram", "step", "visible", "data"})
+    script += std::string("tf-range 0.1:0.2\nwait-frames 1\ntf-range ") + fit + "\nwait-frames 1\n";
+  const auto r = run_tspplay("play " + q(tsp) + " --size " + kSize + " --no-session --trace" +
+                             " --script " + q(write_script(script + "quit\n")));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  int edits = 0;
+  for (std::size_t at = r.out.find("trace: transfer function edited"); at != std::string::npos;
+       at = r.out.find("trace: transfer function edited", at + 1))
+    ++edits;
+  EXPECT_EQ(edits, 8) << r.out;
+}
+
 }  // namespace
