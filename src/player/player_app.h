@@ -234,6 +234,9 @@ class PlayerApp {
   const std::array<double, 3>& scale() const { return options_.scale; }
   /// True with --trace (stdout lines that tests read).
   bool tracing() const { return options_.trace; }
+  /// The dataset and field part of saved files' names (S's pictures, movies): NAME_FIELD, NAME
+  /// the input as the user named it without its known extensions (export_names.h).
+  std::string export_stem() const;
   /// Saves the current volume frame as PNG (path chosen from the step) and reports it in status.
   void request_save();
   /// True when the last frame is at full quality: LOD off, or the idle refinement left no node

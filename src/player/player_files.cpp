@@ -15,6 +15,7 @@
 #include "jobs/play_input.h"
 #include "player/player_app.h"
 #include "player/ui_items.h"
+#include "player/export_names.h"
 #include "render/settings_table.h"
 #include "tsp/core/json_text.h"
 #include "tsp/core/memory_use.h"
@@ -279,14 +280,17 @@ tsp::Image PlayerApp::export_view() {
   return img;
 }
 
+std::string PlayerApp::export_stem() const {
+  // (The input's known extensions stripped: export_names.h.)
+  const std::string given = options_.input_path.empty() ? options_.tsp_path : options_.input_path;
+  return dataset_name(given) + "_" + field();
+}
+
 std::string PlayerApp::export_name() const {
   // NAME_FIELD_step_NNNN.png in the working directory, never over an earlier one.
-  const std::string given = options_.input_path.empty() ? options_.tsp_path : options_.input_path;
-  std::string stem = std::filesystem::path(given).stem().string();
-  if (stem.empty()) stem = "tspplay";
   char step[32];
   std::snprintf(step, sizeof step, "_step_%04d", state.step);
-  return tsp::unused_path(stem + "_" + field() + step + ".png");
+  return tsp::unused_path(export_stem() + step + ".png");
 }
 
 void PlayerApp::record_frame(double now_s) {
