@@ -32,11 +32,19 @@ struct Checker {
   }
   void operator()(const cmd::StretchTf& c) const {
     using Mode = tsp::TfRangeChoice::Mode;
-    const tsp::TfRangeChoice r = tsp::parse_tf_range(c.range);  // throws UsageError
+    // (Named as the window's control, not as play's --tf-range: the panel's field and the
+    // script's tf-range both send this.)
+    const std::string expected =
+        "': expected LO:HI with LO < HI (finite), or data, histogram, step or visible";
+    tsp::TfRangeChoice r;
+    try {
+      r = tsp::parse_tf_range(c.range);
+    } catch (const tsp::UsageError&) {
+      fail("colour range '" + c.range + expected);
+    }
     if (r.mode != Mode::data && r.mode != Mode::histogram && r.mode != Mode::step &&
         r.mode != Mode::visible && r.mode != Mode::explicit_range)
-      fail("tf-range '" + c.range +
-           "': the map shown is stretched over data, histogram, step, visible or LO:HI");
+      fail("colour range '" + c.range + expected);
   }
   void operator()(const cmd::SetTolerance& c) const {
     if (!(c.spatial >= 0) || !(c.temporal >= 0) || !std::isfinite(c.spatial) ||

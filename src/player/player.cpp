@@ -20,6 +20,7 @@
 #include "tsp/core/temp_output.h"
 #include "player/imgui_gl_load.h"
 #include "player/player_app.h"
+#include "player/player_style.h"
 #include "tsp/core/error.h"
 #include "tsp/core/interrupt.h"
 #include "tsp/core/stopwatch.h"
@@ -98,7 +99,7 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
       tsp::kDefaultTfEntries, range, &histogram);
   if (std::string w = tsp::tf_range_warning(tf, file->metadata().data_range); !w.empty()) {
     std::fprintf(stderr, "tspplay: warning: %s\n", w.c_str());
-    status = w;
+    status = tsp::tf_range_warning(tf, file->metadata().data_range, "fit to data");  // (window)
   }
   lazy_ = std::make_unique<tsp::LazyErrors>(tree, state.metric, tf);
   set_tf(tf, true);
@@ -131,7 +132,7 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
   ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini in the user's directory
-  ImGui::StyleColorsDark();
+  apply_player_style(ImGui::GetStyle());  // (opaque popups)
   install_callbacks();
   glfwSwapInterval(1);  // vsync where the display has it (a virtual one has none)
   // Dear ImGui's back end installs no callbacks: ours queue every event (input_queue_), and
@@ -227,7 +228,8 @@ void PlayerApp::set_tf(const tsp::TransferFunction& next, bool resample_points) 
       if (lo >= 0)
         tf.set_entries(lo, next.entries().subspan(std::size_t(lo), std::size_t(hi - lo + 1)));
     } else {
-      tf = next;
+      tf.assign(next);  // (its version grows: a copy took next's, and fits after the first
+                        // went unseen by the LOD loop, the tuning, the metric and --trace)
       lazy_->set_transfer_function(tf);
     }
   }
@@ -360,6 +362,7 @@ void PlayerApp::render_volume() {
   lod_drawn(drawn.lod, now);
   if (!refined && stage_ == "interacting" && full_quality()) within_ = true;  // (the cut refined)
   const tsp::LodStops stops = refined ? tsp::LodStops{} : d.current_stops();
+  keep_drawn_cut(stops);
   request_prefetch(cam, drawn.settings, stops);
   update_ready(cam, drawn.settings, stops);
 }
@@ -439,11 +442,17 @@ void PlayerApp::frame() {
   apply_probes();
   render_volume();
   capture_frame();
+  if (state.playing != rate_playing_) {  // playback's rate is measured from its start on
+    rate_playing_ = state.playing;
+    shown_at_s_.clear();
+    last_shown_step_ = -1;
+  }
   if (state.step != last_shown_step_) {  // playback's real rate: distinct steps drawn
     last_shown_step_ = state.step;
     shown_at_s_.push_back(now);
   }
-  while (!shown_at_s_.empty() && shown_at_s_.front() < now - kShownWindowSeconds)
+  // (The last two stay: a stall longer than the window reads as a slow rate, not none.)
+  while (shown_at_s_.size() > 2 && shown_at_s_.front() < now - kShownWindowSeconds)
     shown_at_s_.pop_front();
   advance_tuning();
   if (tol_readout_due && imgui_) measure_tolerance();
@@ -488,6 +497,8 @@ void PlayerApp::frame() {
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
   if (shot_now && !pending_shot_.empty()) save_pending_shot();
   ctx->swap_buffers();
+  screen_step_before_ = screen_step_;
+  screen_step_ = state.step;
 
   measured_lod(last.ms - last.upload_ms, t_frame.ms());
   history.push_back({now - start_s_, t_frame.ms()});
@@ -517,8 +528,13 @@ void PlayerApp::run() {
     if (!busy()) {
       const std::uint64_t before = events_;
       const double to_script = wait_until_s_ - clock_.seconds();
-      ctx->wait_events(std::min({to_script > 0 ? to_script : kIdleWaitSeconds, kIdleWaitSeconds,
-                                  until_next_step()}));
+      ctx->poll_events();  // (what came while the last frame was drawn: no wait then)
+      if (events_ == before) {
+        waiting_ = true;  // (a key now comes as it is pressed: apply_key)
+        ctx->wait_events(std::min({to_script > 0 ? to_script : kIdleWaitSeconds,
+                                   kIdleWaitSeconds, until_next_step()}));
+        waiting_ = false;
+      }
       if (events_ == before && !busy()) {
         ++idle_waits_;
         continue;

@@ -180,8 +180,12 @@ class PlayerApp {
   /// Fragments of the picture on screen: the last frame that drew any (a frame that reused the
   /// whole image draws none).
   std::int64_t picture_fragments() const { return picture_fragments_; }
-  /// Distinct steps drawn per second over the last 2 s (playback's real rate).
+  /// Distinct steps drawn per second over the last 2 s (playback's real rate; 0 until
+  /// rate_measured()).
   double steps_shown_per_s() const;
+  /// True once playback showed a second step since it started: a rate was measured.
+  bool rate_measured() const;
+  bool rate_playing_ = false;  ///< playing at the last frame (the rate restarts with playback)
   /// Seconds until playback's next step is due (0: due now); kIdleWaitSeconds when paused.
   double until_next_step() const;
   /// The playback tuning in progress, if any (for its progress bar).
@@ -230,6 +234,9 @@ class PlayerApp {
   const std::array<double, 3>& scale() const { return options_.scale; }
   /// True with --trace (stdout lines that tests read).
   bool tracing() const { return options_.trace; }
+  /// The dataset and field part of saved files' names (S's pictures, movies): NAME_FIELD, NAME
+  /// the input as the user named it without its known extensions (export_names.h).
+  std::string export_stem() const;
   /// Saves the current volume frame as PNG (path chosen from the step) and reports it in status.
   void request_save();
   /// True when the last frame is at full quality: LOD off, or the idle refinement left no node
@@ -342,6 +349,10 @@ class PlayerApp {
   std::uint64_t applied_probe_tf_ = ~std::uint64_t(0);
   void trace_changes();  // --trace: prints what changed since the last frame
   void apply_key(int key);  // one key press (or repeat) from the queue
+  // The step on screen (swapped in by the last frame) and the one before it; the one on
+  // screen when Space last went down (−1: none); true while run() waits for events.
+  int screen_step_ = -1, screen_step_before_ = -1, space_step_ = -1;
+  bool waiting_ = false;
 
   void refresh_reference();
   /// The current metric as frames read it (the reference metric brought up to date first).
@@ -359,6 +370,12 @@ class PlayerApp {
   /// The frame driver of the current renderer (made on first use after a renderer change).
   tspgl::FrameDriver& driver();
   void draw_cut_overlay(const tsp::Camera& cam);
+  /// With the cut shown (L): keeps the cut the frame drew (empty stops: every leaf).
+  void keep_drawn_cut(tsp::LodStops stops);
+  /// What the cut overlay shows, for its caption: "LOD cut: 8 nodes, full resolution (level 0)".
+  std::string cut_overlay_text() const;
+  std::vector<tsp::LodStop> drawn_stops_;  ///< the cut the last frame drew (empty: the leaves)
+  std::string traced_cut_;                  ///< the cut caption last traced
   void draw_annotations(const tsp::Camera& cam);
 
   PlayerOptions options_;

@@ -15,6 +15,7 @@
 #include "jobs/play_input.h"
 #include "player/player_app.h"
 #include "player/ui_items.h"
+#include "player/export_names.h"
 #include "render/settings_table.h"
 #include "tsp/core/json_text.h"
 #include "tsp/core/memory_use.h"
@@ -145,7 +146,7 @@ void PlayerApp::open_file(const std::string& path) {
   // The TF the player started with, fitted to the new data (a map edited for other data
   // rarely suits this one).
   tsp::TransferFunction fresh = start_tf(*file);
-  tf = fresh;
+  tf.assign(fresh);  // (its version grows: what keys on it sees the change)
   lazy_ = std::make_unique<tsp::LazyErrors>(tree, state.metric, tf);
   reference_version_ = ~std::uint64_t(0);
   set_tf(tf, true);
@@ -173,7 +174,9 @@ void PlayerApp::open_file(const std::string& path) {
   // The input as the user named it (an .h5 built into the cache), not the cache entry.
   const std::string shown = options_.input_path.empty() ? path : options_.input_path;
   glfwSetWindowTitle(static_cast<GLFWwindow*>(ctx->native_window()), ("tspplay - " + shown).c_str());
-  status = "playing " + path;
+  // (An event, named as the user named the input: "playing PATH" stayed on while paused and
+  // named the cache's build.)
+  status = "opened " + shown + " (" + std::to_string(steps()) + " steps)";
   std::printf("opened %s (%d steps)\n", path.c_str(), steps());
   std::fflush(stdout);
   if (surface_asked) set_setting("surface", "boundary");
@@ -203,7 +206,7 @@ void PlayerApp::switch_field(const std::string& name) {
   if (renderer) compositor_ = renderer->compositor();
   parked_.park(current, {std::move(file), std::move(renderer), tf});
   file = std::move(next.file);
-  tf = next.tf;
+  tf.assign(next.tf);  // (its version grows past both fields')
   lazy_ = std::make_unique<tsp::LazyErrors>(file->tree(), state.metric, tf);
   reference_version_ = ~std::uint64_t(0);
   tf_points.clear();
@@ -277,14 +280,17 @@ tsp::Image PlayerApp::export_view() {
   return img;
 }
 
+std::string PlayerApp::export_stem() const {
+  // (The input's known extensions stripped: export_names.h.)
+  const std::string given = options_.input_path.empty() ? options_.tsp_path : options_.input_path;
+  return dataset_name(given) + "_" + field();
+}
+
 std::string PlayerApp::export_name() const {
   // NAME_FIELD_step_NNNN.png in the working directory, never over an earlier one.
-  const std::string given = options_.input_path.empty() ? options_.tsp_path : options_.input_path;
-  std::string stem = std::filesystem::path(given).stem().string();
-  if (stem.empty()) stem = "tspplay";
   char step[32];
   std::snprintf(step, sizeof step, "_step_%04d", state.step);
-  return tsp::unused_path(stem + "_" + field() + step + ".png");
+  return tsp::unused_path(export_stem() + step + ".png");
 }
 
 void PlayerApp::record_frame(double now_s) {

@@ -177,7 +177,8 @@ void PlayerApp::draw_annotations(const tsp::Camera& cam) {
   bool ok = true;
   for (int c = 0; c < 8; ++c) ok &= corner(vp, box, c, v, p[c]);
   if (ok) {
-    for (int c = 0; c < 8; ++c)
+    // (With the cut shown its boxes outline the volume in their levels' colours instead.)
+    for (int c = 0; c < 8 && !state.show_cut; ++c)
       for (int a = 0; a < 3; ++a)
         if (!(c & (1 << a))) dl->AddLine(p[c], p[c | (1 << a)], IM_COL32(200, 200, 200, 255));
     // Axes triad at the origin corner: x red, y green, z blue, labelled.
@@ -220,14 +221,42 @@ void PlayerApp::draw_annotations(const tsp::Camera& cam) {
   dl->PopClipRect();
 }
 
+void PlayerApp::keep_drawn_cut(tsp::LodStops stops) {
+  if (!state.show_cut) return;
+  drawn_stops_.assign(stops.begin(), stops.end());
+}
+
+std::string PlayerApp::cut_overlay_text() const {
+  const tsp::Octree& o = file->tree().octree();
+  std::vector<int> per_level(std::size_t(o.max_lod_level()) + 1, 0);
+  int n = 0;
+  for (int id = 0; id < o.size(); ++id)
+    if (drawn_stops_.empty() ? o.node(id).is_leaf()
+                             : drawn_stops_[std::size_t(id)] != tsp::LodStop::none) {
+      ++per_level[std::size_t(o.lod_level(id))];
+      ++n;
+    }
+  std::string text = "LOD cut: " + std::to_string(n) + (n == 1 ? " node" : " nodes");
+  if (drawn_stops_.empty()) return text + ", full resolution (level 0)";
+  text += ", by level";
+  for (std::size_t l = 0; l < per_level.size(); ++l)
+    if (per_level[l] > 0) text += " " + std::to_string(l) + ":" + std::to_string(per_level[l]);
+  return text;
+}
+
 void PlayerApp::draw_cut_overlay(const tsp::Camera& cam) {
-  const tsp::LodController* lod = driver_ ? driver_->controller() : nullptr;
-  if (!state.show_cut || !lod) return;
+  if (!state.show_cut) return;
+  // The cut the last frame drew: the adaptive cut while interacting, the playing rung's level,
+  // or, paused at full quality (refined in bands) or with LOD off, every leaf at level 0 (it
+  // once drew only the adaptive controller's cut, so paused or playing L showed nothing).
   const WindowRect& v = layout.view;
   ImDrawList* dl = view_draw_list(v);
   const glm::dmat4 vp = cam.view_projection();
   const tsp::Octree& o = file->tree().octree();
-  for (int id : lod->cut().nodes()) {
+  for (int id = 0; id < o.size(); ++id) {
+    if (drawn_stops_.empty() ? !o.node(id).is_leaf()
+                             : drawn_stops_[std::size_t(id)] == tsp::LodStop::none)
+      continue;
     const tsp::Aabb box = tsp::geometric_box(o.node(id).box, o.dims());
     ImVec2 p[8];
     bool ok = true;
@@ -238,6 +267,18 @@ void PlayerApp::draw_cut_overlay(const tsp::Camera& cam) {
     for (int c = 0; c < 8; ++c)
       for (int a = 0; a < 3; ++a)
         if (!(c & (1 << a))) dl->AddLine(p[c], p[c | (1 << a)], col);
+  }
+  // What the boxes are, at the view's bottom left (the caption is at the top).
+  const std::string text = cut_overlay_text();
+  const ImVec2 at(float(v.x) + 8, float(v.y + v.h) - ImGui::GetFontSize() - 8);
+  dl->AddRectFilled(ImVec2(at.x - 3, at.y - 3),
+                    ImVec2(at.x + ImGui::CalcTextSize(text.c_str()).x + 3,
+                           at.y + ImGui::GetFontSize() + 3),
+                    IM_COL32(0, 0, 0, 160));
+  dl->AddText(at, kLevelColours[0], text.c_str());
+  if (tracing() && text != traced_cut_) {
+    traced_cut_ = text;
+    trace(text);
   }
   dl->PopClipRect();
 }

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "jobs/play_input.h"
@@ -65,7 +66,7 @@ struct MenuState {
   bool focus_path = false;  // the dialog just opened: its path field takes the keys
   char build_options[kPathChars] = "";  // File > Open: --raw-dims 64,64,64 --raw-type f32, …
   char tf_path[kPathChars] = "";
-  char movie_path[kPathChars] = "tspplay_movie.mp4";
+  char movie_path[kPathChars] = "";  // (offered as the dialog opens: NAME_FIELD.mp4)
   Listing listing;
   bool want_session = false;
   std::string traced_list;    // the last "open list X Y ROW" traced
@@ -342,8 +343,13 @@ void menu_and_dialogs(PlayerApp& app) {
                   "Our transfer-function JSON (docs/transfer-functions.md):"))
     app.save_tf_as(s.tf_path);
   // A new recording never replaces an earlier movie unless its name is typed: the dialog offers
-  // the first free name (tspplay_movie-2.mp4, …), as S does for pictures.
-  if (s.want_record) copy(s.movie_path, sizeof s.movie_path, tsp::unused_path(s.movie_path));
+  // the first free name, NAME_FIELD.mp4 as S names its pictures (NAME_FIELD-2.mp4, …; .gif
+  // when the last was one).
+  if (s.want_record) {
+    const bool gif = std::string_view(s.movie_path).ends_with(".gif");
+    copy(s.movie_path, sizeof s.movie_path,
+         tsp::unused_path(app.export_stem() + (gif ? ".gif" : ".mp4")));
+  }
   if (path_dialog(kRecordPopup, s.want_record, s.movie_path, sizeof s.movie_path,
                   "The volume as shown, with its annotations, in real time (.mp4 or .gif); "
                   "File > Stop recording writes it:"))

@@ -50,8 +50,15 @@ double PlayerApp::until_next_step() const {
 }
 
 double PlayerApp::steps_shown_per_s() const {
-  const double span = std::min(kShownWindowSeconds, clock_.seconds() - start_s_);
-  return span > 0 ? double(shown_at_s_.size()) / span : 0.0;
+  // Steps after the first over the time since it was shown (0 before a second step was: it
+  // once read "playing at 0.0 steps/s" as playback started).
+  if (!rate_measured()) return 0.0;
+  const double span = clock_.seconds() - shown_at_s_.front();
+  return span > 0 ? double(shown_at_s_.size() - 1) / span : 0.0;
+}
+
+bool PlayerApp::rate_measured() const {
+  return state.playing && shown_at_s_.size() >= 2;
 }
 
 nlohmann::json PlayerApp::tuning_disk_key(const tsp::CameraParams& view) const {

@@ -310,7 +310,8 @@ void tf_file_row(PlayerApp& app, const tsp::ValueRange& d) {
       app.set_tf(tsp::transfer_function_from_arg(app.tf_path, d, app.tf.size(), {}, &histogram),
                  true);
       app.tf_label = tf_label_of(app.tf_path);
-      const std::string w = tsp::tf_range_warning(app.tf, app.file->metadata().data_range);
+      const std::string w = tsp::tf_range_warning(app.tf, app.file->metadata().data_range,
+                                                   "fit to data");
       app.status = w.empty() ? "loaded " + app.tf_path : "loaded " + app.tf_path + "; " + w;
     }
   } catch (const tsp::Error& e) {

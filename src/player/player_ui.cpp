@@ -14,6 +14,7 @@
 #include "player/controls.h"
 #include "player/player_app.h"
 #include "player/player_ui.h"
+#include "player/slider_text.h"
 #include "player/ui_items.h"
 #include "render/settings_table.h"
 #include "tsp/core/error.h"
@@ -95,6 +96,27 @@ std::string shown_rate_text(const PlayerApp& app) {
     std::snprintf(text, sizeof text, "%.1f shown/s", shown);
   return text;
 }
+// Hides the value text Dear ImGui centres on the next slider's frame (unless it is being typed
+// into: Ctrl+click), for value_beside_grab to draw it where the grab cannot cover it.
+bool hide_slider_text(const char* id) {
+  const bool typing = ImGui::TempInputIsActive(ImGui::GetID(id));
+  if (!typing) ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0, 0, 0, 0));
+  return !typing;
+}
+
+// The value text on the last slider's frame [x0, x1] beside its grab (slider_text.h).
+void value_beside_grab(float x0, float x1, GrabSpan grab, const char* text) {
+  const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
+  const ImVec2 size = ImGui::CalcTextSize(text);
+  const float x = text_beside_grab(x0, x1, grab, size.x);
+  const float y = lo.y + (hi.y - lo.y - size.y) * 0.5f;
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  const bool left = x < grab.lo;  // (clipped at the grab: never under it)
+  dl->PushClipRect(ImVec2(left ? x0 : grab.hi, lo.y), ImVec2(left ? grab.lo : x1, hi.y), true);
+  dl->AddText(ImVec2(x, y), ImGui::GetColorU32(ImGuiCol_Text), text);
+  dl->PopClipRect();
+}
+
 }  // namespace
 
 void timeline_section(PlayerApp& app) {
@@ -132,13 +154,32 @@ void timeline_section(PlayerApp& app) {
   // 140 pixels, less in a narrow window (the slider and its label stay inside the timeline).
   const float room = ImGui::GetContentRegionAvail().x - ImGui::CalcTextSize("steps/s").x -
                      ImGui::GetStyle().ItemInnerSpacing.x;
-  ImGui::SetNextItemWidth(std::clamp(room, 60.f, 140.f));
-  if (ImGui::SliderFloat("steps/s", &speed, float(kMinSpeed), float(kMaxSpeed), "%.2f",
-                         ImGuiSliderFlags_Logarithmic)) {
-    app.push(cmd::SetSpeed{std::clamp(double(speed), kMinSpeed, kMaxSpeed)});
+  const float speed_w = std::clamp(room, 60.f, 140.f);
+  ImGui::SetNextItemWidth(speed_w);
+  // (Its value beside the grab, where the grab cannot cover it.)
+  const bool speed_hidden = hide_slider_text("steps/s");
+  const bool speed_moved = ImGui::SliderFloat("steps/s", &speed, float(kMinSpeed),
+                                              float(kMaxSpeed), "%.2f", ImGuiSliderFlags_Logarithmic);
+  if (speed_hidden) {
+    ImGui::PopStyleColor();
+    const float x0 = ImGui::GetItemRectMin().x;
+    char value[32];
+    std::snprintf(value, sizeof value, "%.2f", speed);
+    value_beside_grab(x0, x0 + speed_w,
+                      slider_grab(x0, x0 + speed_w,
+                                  std::log(double(speed) / kMinSpeed) / std::log(kMaxSpeed / kMinSpeed),
+                                  ImGui::GetStyle().GrabMinSize),
+                      value);
+    // (The label, hidden with the value: drawn where ImGui puts it.)
+    const ImGuiStyle& st = ImGui::GetStyle();
+    ImGui::GetWindowDrawList()->AddText(
+        ImVec2(x0 + speed_w + st.ItemInnerSpacing.x, ImGui::GetItemRectMin().y + st.FramePadding.y),
+        ImGui::GetColorU32(ImGuiCol_Text), "steps/s");
   }
+  if (speed_moved) app.push(cmd::SetSpeed{std::clamp(double(speed), kMinSpeed, kMaxSpeed)});
   note_item("steps/s");
-  if (app.state.playing) {  // the rate the window reaches, at the row's end (nothing after it)
+  // The rate the window reaches, at the row's end (nothing after it), once one was measured.
+  if (app.rate_measured()) {
     ImGui::SameLine();
     ImGui::TextUnformatted(shown_rate_text(app).c_str());
     note_item(shown_rate_text(app).c_str());
@@ -158,8 +199,21 @@ void timeline_section(PlayerApp& app) {
     std::snprintf(label, sizeof label, "step %%d  t = %s",
                   tsp::format_time(times[std::size_t(app.state.step)], app.file->metadata().time_units)
                       .c_str());
-  if (ImGui::SliderInt("##step", &step, 0, last, label))
-    app.push(cmd::GoToStep{std::clamp(step, 0, last)});
+  // (Its text beside the grab, where the grab cannot cover it: with few steps the grab is wide.)
+  const bool step_hidden = hide_slider_text("##step");
+  const bool scrubbed = ImGui::SliderInt("##step", &step, 0, last, label);
+  if (step_hidden) {
+    ImGui::PopStyleColor();
+    const float x0 = ImGui::GetItemRectMin().x, x1 = ImGui::GetItemRectMax().x;
+    char text[128];
+    std::snprintf(text, sizeof text, label, step);
+    value_beside_grab(
+        x0, x1,
+        slider_grab(x0, x1, last > 0 ? double(step) / last : 0.0,
+                    int_slider_grab_width(x0, x1, 0, last, ImGui::GetStyle().GrabMinSize)),
+        text);
+  }
+  if (scrubbed) app.push(cmd::GoToStep{std::clamp(step, 0, last)});
   if (ImGui::IsItemActivated()) {
     resume_after_scrub = was_playing;
     app.push(cmd::Pause{});

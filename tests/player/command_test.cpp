@@ -15,6 +15,8 @@
 #include "support/paths.h"
 #include "support/reader_formula.h"
 #include "tsp/core/error.h"
+#include "tsp/metric/tf_io.h"
+#include "tsp/metric/transfer_function.h"
 
 namespace {
 
@@ -119,6 +121,27 @@ TEST(PlayerCommand, ValidateHoldsEveryCommandToTheScriptsRules) {
   EXPECT_TRUE(tspplayer::waits_for_frames(cmd::WaitFrames{1}));
   EXPECT_FALSE(tspplayer::waits_for_frames(cmd::WaitFrames{0}));
   EXPECT_FALSE(tspplayer::waits_for_frames(cmd::Play{}));
+}
+
+// The window's colour range (its field and the script's tf-range) names the control in its
+// errors, not play's --tf-range (issue 47 walk 5: typed into the field, "--tf-range '5:1':
+// expected auto, data, file, …" named an option the window has not and modes it refuses).
+TEST(PlayerCommand, ColourRangeErrorsNameTheControlNotTheOption) {
+  for (const char* bad : {"5:1", "abc", "file", "1:inf"}) {
+    const std::string e = tsptest::error_of<tsp::UsageError>(
+        [&] { tspplayer::validate(cmd::StretchTf{bad}); });
+    EXPECT_EQ(e, std::string("colour range '") + bad +
+                     "': expected LO:HI with LO < HI (finite), or data, histogram, step or visible");
+  }
+  EXPECT_EQ(tsptest::error_of<tsp::FormatError>(
+                [] { tspplayer::parse_script("tf-range 2:1\n", "r.txt"); }),
+            "r.txt:1: colour range '2:1': expected LO:HI with LO < HI (finite), or data, "
+            "histogram, step or visible");
+  // A loaded map that misses the data says what in the window stretches it.
+  const std::vector<tsp::TfPoint> points = {{5, {1, 1, 1, 1}}, {6, {1, 1, 1, 1}}};
+  const tsp::TransferFunction tf = tsp::TransferFunction::from_points({5, 6}, points, 16);
+  EXPECT_NE(tsp::tf_range_warning(tf, {0, 1}, "fit to data").find("nothing will show; fit to data"),
+            std::string::npos);
 }
 
 }  // namespace

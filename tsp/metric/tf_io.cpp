@@ -354,12 +354,12 @@ TransferFunction rescaled(const TransferFunction& tf, ValueRange to) {
   return TransferFunction::from_points(to, pts, tf.size());
 }
 
-std::string tf_range_warning(const TransferFunction& tf, ValueRange data) {
+std::string tf_range_warning(const TransferFunction& tf, ValueRange data, const std::string& fix) {
   const ValueRange d = tf.domain();
   if (d.hi >= data.lo && d.lo <= data.hi) return "";
   return "the transfer function covers [" + std::to_string(d.lo) + ", " + std::to_string(d.hi) +
          "] but the data lie in [" + std::to_string(data.lo) + ", " + std::to_string(data.hi) +
-         "]: nothing will show; --tf-range data stretches it over the data";
+         "]: nothing will show; " + fix + " stretches it over the data";
 }
 
 ValueRange histogram_range(std::span<const std::uint64_t> histogram, ValueRange value_range) {

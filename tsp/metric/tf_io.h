@@ -95,8 +95,10 @@ ValueRange tf_domain_of(const TfRangeChoice& c, const TspFile& file, int step);
 /// Throws UsageError on an invalid `to`.
 TransferFunction rescaled(const TransferFunction& tf, ValueRange to);
 
-/// A warning when tf's domain misses the data's range (no overlap), else empty. Never throws.
-std::string tf_range_warning(const TransferFunction& tf, ValueRange data);
+/// A warning when tf's domain misses the data's range (no overlap), else empty; it names `fix`
+/// as what stretches the map over the data (the window's "fit to data"). Never throws.
+std::string tf_range_warning(const TransferFunction& tf, ValueRange data,
+                             const std::string& fix = "--tf-range data");
 
 /// Resolves a --tf argument: "preset:NAME" gives that preset (histogram: the data's, for
 /// preset:auto), anything else is a file path; placed over the data (default_domain) as `range`

@@ -126,6 +126,15 @@ void TransferFunction::set_domain(ValueRange domain) {
   record(0, size() - 1);
 }
 
+void TransferFunction::assign(const TransferFunction& next) {
+  const std::uint64_t v = std::max(version_, next.version_);
+  *this = next;
+  version_ = v;
+  log_.clear();
+  log_floor_ = v;  // (older versions than the edit below: everything changed)
+  record(0, size() - 1);
+}
+
 void TransferFunction::record(int lo, int hi) {
   ++version_;
   log_.push_back({version_, lo, hi});

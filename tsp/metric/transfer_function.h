@@ -77,6 +77,11 @@ class TransferFunction {
   /// Throws UsageError on an empty or non-finite domain.
   void set_domain(ValueRange domain);
 
+  /// Takes next's domain and entries as one edit of this table that changes every entry:
+  /// version() grows past both tables' versions (a copy takes next's, which may be lower, so
+  /// whatever keys on the version — a player's LOD loop, tuning, metric, trace — missed it).
+  void assign(const TransferFunction& next);
+
   /// Edit counter: starts at 0 and grows by one with every edit.
   std::uint64_t version() const { return version_; }
   /// Entries changed by the edits after `since` (every entry when the log no longer reaches back).

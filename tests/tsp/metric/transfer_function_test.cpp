@@ -88,6 +88,31 @@ TEST(TransferFunction, ChangedSinceAVersionBeyondTheLogReportsEverything) {
   EXPECT_FALSE(tf.touched_since(tf.version() - 1, 1, 7));
 }
 
+// assign() takes another table as an edit: the version grows past both (a copy took the
+// other's, lower, version: the player's fits after the first went unseen, issue 47 walk 5).
+TEST(TransferFunction, AssignIsOneEditPastBothVersions) {
+  TransferFunction a({0, 1}, 8);
+  for (int k = 0; k < 5; ++k) a.set_entry(k, Rgba{1, 0, 0, 1});
+  ASSERT_EQ(a.version(), 5u);
+  const TransferFunction b({2, 3}, 4);  // version 0
+  a.assign(b);
+  EXPECT_EQ(a.version(), 6u);
+  EXPECT_EQ(a.size(), 4);
+  EXPECT_EQ(a.domain().lo, 2);
+  EXPECT_EQ(a.entry(0).a, 0);
+  // Everything changed since any earlier version; nothing since this one.
+  EXPECT_TRUE(a.changed_since(5).touches(0, 0));
+  EXPECT_TRUE(a.changed_since(5).touches(3, 3));
+  EXPECT_TRUE(a.changed_since(0).touches(3, 3));
+  EXPECT_TRUE(a.changed_since(6).none());
+  EXPECT_TRUE(a.touched_since(5, 3, 3));
+  // Against a table of a higher version, past that one.
+  TransferFunction c({0, 1}, 4);
+  for (int k = 0; k < 9; ++k) c.set_entry(0, Rgba{0, 0, 1, float(k) / 9});
+  a.assign(c);
+  EXPECT_EQ(a.version(), 10u);
+}
+
 TEST(TransferFunction, DiffEntriesComparesTables) {
   TransferFunction a({0, 1}, 8), b({0, 1}, 8);
   b.set_entry(2, {0, 0, 0, 0.1f});
