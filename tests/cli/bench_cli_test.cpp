@@ -7,7 +7,6 @@
 
 #include <cstdio>
 #include <cstdlib>
-
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -16,6 +15,7 @@
 #include <sstream>
 #include <utility>
 
+#include "support/json_file.h"
 #include "support/paths.h"
 
 namespace {
@@ -24,12 +24,9 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 using tsptest::run_tspplay;
 
+using tsptest::frames_json;
 using tsptest::q;
-
-json read_json(const fs::path& p) {
-  std::ifstream in(p);
-  return json::parse(in);
-}
+using tsptest::read_json;
 
 std::string first_line(const fs::path& p) {
   std::ifstream in(p);
@@ -195,7 +192,7 @@ double rerendered_mean_delta_e(const fs::path& tsp, const std::string& options,
   }
   if (gl) {
     *gl = false;
-    const json frames = read_json(out / "frames.json");  // the loop below outlives no temporary
+    const json frames = frames_json(out);  // the loop below outlives no temporary
     for (const json& f : frames["frames"]) *gl |= f["caster"] == "gl";
   }
   return sum / 2;

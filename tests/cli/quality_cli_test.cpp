@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "support/json_file.h"
 #include "support/paths.h"
 
 namespace {
@@ -61,17 +62,13 @@ TEST_F(QualityCli, HeldOutStepsStayWithinTheTarget) {
                        " --quality 2 --calibration-dir " + q(cache) + " -o " + q(out));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("quality mean dE <= 2: --compositing"), std::string::npos) << r.out;
-  const json frames = [&] {
-    std::ifstream in(out / "frames.json");
-    return json::parse(in);
-  }();
+  const json frames = tsptest::frames_json(out);
   ASSERT_TRUE(frames.contains("quality"));
   EXPECT_LE(frames["quality"]["calibrated_max_step_delta_e"].get<double>(), 0.75 * 2.0);
   // The calibration saw 6 steps spread over 0..11 (both ends); the others are held out.
   const std::string file = frames["quality"]["calibration_file"];
   ASSERT_TRUE(fs::exists(file));
-  std::ifstream in(file);
-  const json cal = json::parse(in);
+  const json cal = tsptest::read_json(file);
   std::set<int> seen;
   for (int t : cal["key"]["steps"]) seen.insert(t);
   ASSERT_EQ(seen.size(), 6u);
@@ -108,8 +105,7 @@ TEST_F(QualityCli, TheCacheIsReusedAndACorruptOneRecomputed) {
   ASSERT_EQ(c.exit_code, 0) << c.err;
   // Recomputed and rewritten (the pick may differ: candidates are ranked by measured time).
   EXPECT_NE(c.out.find("quality mean dE <= 3: --compositing"), std::string::npos) << c.out;
-  std::ifstream in(file);
-  EXPECT_NO_THROW(json::parse(in));
+  EXPECT_NO_THROW(tsptest::read_json(file));
 }
 
 TEST_F(QualityCli, ConflictsAndUnreachableTargetsAreClearErrors) {
@@ -145,8 +141,7 @@ TEST_F(QualityCli, ACacheEntryThatIsALinkIsReplacedNeverFollowed) {
   ASSERT_EQ(b.exit_code, 0) << b.err;
   EXPECT_TRUE(fs::is_fifo(fifo)) << "the link's target was replaced";
   EXPECT_FALSE(fs::is_symlink(file));
-  std::ifstream in(file);
-  EXPECT_NO_THROW(json::parse(in));
+  EXPECT_NO_THROW(tsptest::read_json(file));
 }
 
 TEST_F(QualityCli, AQualityOfZeroIsRefusedNotIgnored) {

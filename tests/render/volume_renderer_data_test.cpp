@@ -204,7 +204,7 @@ TEST(VolumeRenderer, DenseWholeVolumeRaysMatchTheBrickGrid) {
 }
 
 TEST(VolumeRenderer, ZeroToleranceMatchesBaselineOnRealData) {
-  const fs::path nc = tsptest::shared_data_dir() / "wrf-katrina" / "ci_test_file.nc";
+  const fs::path nc = katrina_file();
   if (!fs::exists(nc)) GTEST_SKIP() << nc << " not present";
   tsp::SourceOptions so;
   so.field = "QCLOUD";

@@ -112,7 +112,7 @@ TEST(Hdf5Source, TwoDFieldsOverTimeAreRefusedAndMarked) {
   EXPECT_EQ(slab->steps(), 1);
   EXPECT_EQ(slab->dims(), (Dims{5, 4, 3}));
   // The real WRF output's T2 (4 times of 48 x 48), which built as 48x48x4 voxels before.
-  const auto wrf = tsptest::shared_data_dir() / "wrf-katrina" / "ci_test_file.nc";
+  const auto wrf = katrina_file();
   if (!fs::exists(wrf)) GTEST_SKIP() << "shared data absent: " << wrf;
   const std::string w = error_of<FormatError>([&] { open_field(wrf.string(), "T2"); });
   EXPECT_NE(w.find("(Time 4 x south_north 48 x west_east 48)"), std::string::npos) << w;
@@ -185,9 +185,6 @@ TEST(Hdf5Source, HdfSignatureIsDetectedWhateverTheExtension) {
 }
 
 // The real WRF (NetCDF-4) file: 4 steps of 14 × 48 × 48, float32.
-fs::path wrf_file() {
-  return tsptest::shared_data_dir() / "wrf-katrina" / "ci_test_file.nc";
-}
 
 // A WRF field with its levels as stored (--vertical-levels native): the h5dump values below.
 std::unique_ptr<VolumeSource> open_native(const std::string& path, const std::string& field) {
@@ -202,8 +199,8 @@ float at(const std::vector<float>& v, int x, int y, int z) {
 }
 
 TEST(Hdf5Source, WrfTemperatureMatchesH5dump) {
-  if (!fs::exists(wrf_file())) GTEST_SKIP() << "shared data absent: " << wrf_file();
-  auto s = open_native(wrf_file().string(), "T");
+  if (!fs::exists(katrina_file())) GTEST_SKIP() << "shared data absent: " << katrina_file();
+  auto s = open_native(katrina_file().string(), "T");
   EXPECT_EQ(s->dims(), (Dims{48, 48, 14}));
   ASSERT_EQ(s->steps(), 4);
   // Reference values printed by `h5dump -d /T -s "t,z,y,x" -c "1,1,1,1" ci_test_file.nc`
@@ -221,8 +218,8 @@ TEST(Hdf5Source, WrfTemperatureMatchesH5dump) {
 }
 
 TEST(Hdf5Source, WrfCloudWaterMatchesH5dump) {
-  if (!fs::exists(wrf_file())) GTEST_SKIP() << "shared data absent: " << wrf_file();
-  auto s = open_native(wrf_file().string(), "/QCLOUD");
+  if (!fs::exists(katrina_file())) GTEST_SKIP() << "shared data absent: " << katrina_file();
+  auto s = open_native(katrina_file().string(), "/QCLOUD");
   EXPECT_EQ(s->dims(), (Dims{48, 48, 14}));
   ASSERT_EQ(s->steps(), 4);
   // From `h5dump -d /QCLOUD -s "t,z,y,x" -c "1,1,1,1" ci_test_file.nc`.
@@ -243,8 +240,8 @@ TEST(Hdf5Source, WrfCloudWaterMatchesH5dump) {
 // here, `h5dump -a DX`) and, with the levels as stored, the mean layer thickness of the geopotential (PH + PHB)/g at the first
 // step — computed here over the whole arrays as an independent check.
 TEST(Hdf5Source, WrfSpacingFromDxDyAndTheGeopotential) {
-  if (!fs::exists(wrf_file())) GTEST_SKIP() << "shared data absent: " << wrf_file();
-  hid_t f = H5Fopen(wrf_file().c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (!fs::exists(katrina_file())) GTEST_SKIP() << "shared data absent: " << katrina_file();
+  hid_t f = H5Fopen(katrina_file().c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   ASSERT_GE(f, 0);
   std::vector<float> ph(4 * 15 * 48 * 48), phb(ph.size());
   for (auto [name, v] : {std::pair{"PH", &ph}, std::pair{"PHB", &phb}}) {
@@ -265,7 +262,7 @@ TEST(Hdf5Source, WrfSpacingFromDxDyAndTheGeopotential) {
   // Mass points (T: 14 levels), staggered vertically (W: 15) and horizontally (U: 49 wide in x,
   // V in y: half a cell, 5 km, before the first mass point).
   for (const char* field : {"T", "W", "U", "V"}) {
-    auto s = open_native(wrf_file().string(), field);
+    auto s = open_native(katrina_file().string(), field);
     EXPECT_DOUBLE_EQ(s->origin()[0], s->dims().x == 49 ? -5000.0 : 0.0) << field;
     EXPECT_DOUBLE_EQ(s->origin()[1], s->dims().y == 49 ? -5000.0 : 0.0) << field;
     EXPECT_DOUBLE_EQ(s->spacing()[0], 10000.0);
@@ -277,8 +274,8 @@ TEST(Hdf5Source, WrfSpacingFromDxDyAndTheGeopotential) {
 }
 
 TEST(Hdf5Source, WrfWithoutFieldListsItsVariables) {
-  if (!fs::exists(wrf_file())) GTEST_SKIP() << "shared data absent: " << wrf_file();
-  std::string msg = error_of<FormatError>([] { open_field(wrf_file().string(), ""); });
+  if (!fs::exists(katrina_file())) GTEST_SKIP() << "shared data absent: " << katrina_file();
+  std::string msg = error_of<FormatError>([] { open_field(katrina_file().string(), ""); });
   EXPECT_NE(msg.find("/T (4x14x48x48)"), std::string::npos) << msg;
   EXPECT_NE(msg.find("/QCLOUD"), std::string::npos) << msg;
   EXPECT_NE(msg.find("--field"), std::string::npos) << msg;
