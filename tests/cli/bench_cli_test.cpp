@@ -22,11 +22,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
-using tsptest::run_tspplay;
-
-using tsptest::frames_json;
-using tsptest::q;
-using tsptest::read_json;
+using namespace tsptest;  // run_tspplay, q, temp_dir and the JSON readers
 
 std::string first_line(const fs::path& p) {
   std::ifstream in(p);

@@ -46,6 +46,12 @@ class QualityCli : public ::testing::Test {
               0);
   }
   static void TearDownTestSuite() { delete dir_; }
+  // `render` of steps 0..1 at --quality 3 calibrating into the folder cache, ending in "-o "
+  // (the output folder to append).
+  static std::string quality_command(const fs::path& cache) {
+    return "render " + q(*dir_ / "s.tsp") + " " + kView +
+           " --steps 0:1 --quality 3 --calibration-dir " + q(cache) + " -o ";
+  }
   static inline const std::string kView = "--tf preset:filled --size 160x120 --view 40,25";
   static inline fs::path* dir_ = nullptr;
 
@@ -88,8 +94,7 @@ TEST_F(QualityCli, HeldOutStepsStayWithinTheTarget) {
 
 TEST_F(QualityCli, TheCacheIsReusedAndACorruptOneRecomputed) {
   const fs::path cache = *dir_ / "cache2";
-  const std::string cmd = "render " + q(*dir_ / "s.tsp") + " " + kView +
-                          " --steps 0:1 --quality 3 --calibration-dir " + q(cache) + " -o ";
+  const std::string cmd = quality_command(cache);
   auto a = run_tspplay(cmd + q(*dir_ / "c1"));
   ASSERT_EQ(a.exit_code, 0) << a.err;
   ASSERT_EQ(std::distance(fs::directory_iterator(cache), fs::directory_iterator()), 1);
@@ -128,8 +133,7 @@ TEST_F(QualityCli, ACacheEntryThatIsALinkIsReplacedNeverFollowed) {
   // through the input gate it must not hang the reader, and the new entry must replace the link,
   // never write through it (here the FIFO; as well any file of the victim's).
   const fs::path cache = *dir_ / "cache3";
-  const std::string cmd = "render " + q(*dir_ / "s.tsp") + " " + kView +
-                          " --steps 0:1 --quality 3 --calibration-dir " + q(cache) + " -o ";
+  const std::string cmd = quality_command(cache);
   auto a = run_tspplay(cmd + q(*dir_ / "l1"));
   ASSERT_EQ(a.exit_code, 0) << a.err;
   const fs::path file = fs::directory_iterator(cache)->path();

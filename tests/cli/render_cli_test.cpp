@@ -20,10 +20,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
-using tsptest::run_tspplay;
-
-using tsptest::frames_json;
-using tsptest::q;
+using namespace tsptest;  // run_tspplay, q, temp_dir and the JSON readers
 
 fs::path make_tsp() {
   fs::path dir = tsptest::temp_dir();
