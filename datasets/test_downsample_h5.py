@@ -4,11 +4,8 @@
 Run: python3 datasets/test_downsample_h5.py
 """
 
-import contextlib
-import io
 import os
 import sys
-import tempfile
 import unittest
 
 import h5py
@@ -16,31 +13,20 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import downsample_h5  # noqa: E402
+from series_test_case import SeriesToolTest  # noqa: E402
 
 
-class DownsampleTest(unittest.TestCase):
+class DownsampleTest(SeriesToolTest):
     def setUp(self):
-        self.tmp = tempfile.TemporaryDirectory()
-        self.src = os.path.join(self.tmp.name, "in.h5")
-        self.out = os.path.join(self.tmp.name, "out.h5")
+        super().setUp()
         rng = np.random.default_rng(7)
-        self.data = rng.random((5, 4, 6, 8)).astype(np.float32)  # T, Z, Y, X
-        with h5py.File(self.src, "w") as f:
-            d = f.create_dataset("T", data=self.data)
-            d.attrs["dims"] = np.array([8, 6, 4], np.int64)
-            d.attrs["steps"] = np.int64(5)
-            d.attrs["times"] = np.array([0.0, 0.1, 0.2, 0.3, 0.4])
-            d.attrs["spacing"] = np.array([0.5, 0.25, 1.0])
-            d.attrs["source"] = "test"
-
-    def tearDown(self):
-        self.tmp.cleanup()
+        self.write_input(rng.random((5, 4, 6, 8)).astype(np.float32),  # T, Z, Y, X
+                         dims=np.array([8, 6, 4], np.int64), steps=np.int64(5),
+                         times=np.array([0.0, 0.1, 0.2, 0.3, 0.4]),
+                         spacing=np.array([0.5, 0.25, 1.0]), source="test")
 
     def run_main(self, *args):
-        err = io.StringIO()
-        with contextlib.redirect_stderr(err):
-            rc = downsample_h5.main([self.src, "--field", "T", "-o", self.out, *args])
-        return rc, err.getvalue()
+        return self.run_tool(downsample_h5.main, self.src, "--field", "T", "-o", self.out, *args)
 
     def test_block_means_stride_and_attributes(self):
         rc, err = self.run_main("--factor", "2", "--stride", "2")
@@ -66,11 +52,9 @@ class DownsampleTest(unittest.TestCase):
         self.assertFalse(os.path.exists(self.out))
 
     def test_missing_field(self):
-        err = io.StringIO()
-        with contextlib.redirect_stderr(err):
-            rc = downsample_h5.main([self.src, "--field", "U", "-o", self.out])
+        rc, err = self.run_tool(downsample_h5.main, self.src, "--field", "U", "-o", self.out)
         self.assertEqual(rc, 1)
-        self.assertIn("no dataset 'U'", err.getvalue())
+        self.assertIn("no dataset 'U'", err)
 
 
 if __name__ == "__main__":

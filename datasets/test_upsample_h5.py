@@ -4,11 +4,8 @@
 Run: python3 datasets/test_upsample_h5.py
 """
 
-import contextlib
-import io
 import os
 import sys
-import tempfile
 import unittest
 
 import h5py
@@ -16,26 +13,19 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import upsample_h5  # noqa: E402
+from series_test_case import SeriesToolTest  # noqa: E402
 
 
-class UpsampleTest(unittest.TestCase):
+class UpsampleTest(SeriesToolTest):
     def setUp(self):
-        self.tmp = tempfile.TemporaryDirectory()
-        self.src = os.path.join(self.tmp.name, "in.h5")
-        self.out = os.path.join(self.tmp.name, "out.h5")
+        super().setUp()
         z, y, x = np.meshgrid(np.arange(4), np.arange(5), np.arange(6), indexing="ij")
-        self.data = np.stack([(0.5 * x - 0.25 * y + z + t).astype(np.float32) for t in range(4)])
-        with h5py.File(self.src, "w") as f:
-            d = f.create_dataset("T", data=self.data)
-            d.attrs["times"] = np.array([0.0, 0.1, 0.2, 0.3])
-            d.attrs["spacing"] = np.array([1.0, 1.0, 1.0])
-
-    def tearDown(self):
-        self.tmp.cleanup()
+        self.write_input(np.stack([(0.5 * x - 0.25 * y + z + t).astype(np.float32)
+                                   for t in range(4)]),
+                         times=np.array([0.0, 0.1, 0.2, 0.3]), spacing=np.array([1.0, 1.0, 1.0]))
 
     def run_main(self, *args):
-        with contextlib.redirect_stderr(io.StringIO()):
-            return upsample_h5.main(list(args))
+        return self.run_tool(upsample_h5.main, *args)[0]
 
     def test_a_linear_field_stays_linear_and_attributes_follow(self):
         self.assertEqual(self.run_main(self.src, "--field", "T", "-o", self.out, "--size", "11",

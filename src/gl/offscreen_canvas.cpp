@@ -3,6 +3,7 @@
 #include <string>
 
 #include "gl/gl_error.h"
+#include "gl/gl_objects.h"
 #include "tsp/core/error.h"
 
 namespace tspgl {
@@ -20,10 +21,8 @@ OffscreenCanvas::OffscreenCanvas(GlContext& ctx, int width, int height)
   gl.GetIntegerv(GL_FRAMEBUFFER_BINDING, &previous);
   gl.GenFramebuffers(1, &fbo_);
   gl.GenRenderbuffers(1, &colour_);
-  gl.BindRenderbuffer(GL_RENDERBUFFER, colour_);
-  gl.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
   gl.BindFramebuffer(GL_FRAMEBUFFER, fbo_);
-  gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour_);
+  attach_renderbuffer(gl, GL_COLOR_ATTACHMENT0, colour_, GL_RGBA8, width, height);
   const bool complete = gl.CheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
   gl.BindFramebuffer(GL_FRAMEBUFFER, GLuint(previous));
   if (!complete) {

@@ -12,6 +12,7 @@
 #include "tsp/metric/compute_errors.h"
 #include "tsp/metric/tf_io.h"
 #include "tsp/store/tsp_file.h"
+#include "tsp/tree/stats_columns.h"
 
 namespace tsppy {
 namespace {
@@ -41,13 +42,10 @@ py::dict nodes_of(const tsp::TspFile& f) {
   const tsp::Octree& o = tree.octree();
   const std::size_t n = std::size_t(tree.size());
   std::vector<std::int32_t> octree_id(n), time_id(n), level(n), t0(n), t1(n), box(6 * n);
-  std::vector<double> mean(n), std_dev(n);
-  std::vector<float> lo(n), hi(n), es(n), et(n);
   for (int id = 0; id < tree.size(); ++id) {
     const std::size_t i = std::size_t(id);
     const int oid = tree.octree_of(id);
     const tsp::Span span = tree.time().span(tree.time_of(id));
-    const tsp::NodeStats& s = tree.stats(id);
     const tsp::Box& b = o.node(oid).box;
     octree_id[i] = oid;
     time_id[i] = tree.time_of(id);
@@ -58,13 +56,8 @@ py::dict nodes_of(const tsp::TspFile& f) {
       box[6 * i + std::size_t(a)] = b.lo[std::size_t(a)];
       box[6 * i + 3 + std::size_t(a)] = b.hi[std::size_t(a)];
     }
-    mean[i] = s.mean;
-    std_dev[i] = s.std;
-    lo[i] = s.min;
-    hi[i] = s.max;
-    es[i] = s.spatial_error;
-    et[i] = s.temporal_error;
   }
+  tsp::StatsColumns stats = tsp::stats_columns(tree);
   py::dict d;
   d["octree_id"] = column(std::move(octree_id));
   d["time_id"] = column(std::move(time_id));
@@ -72,12 +65,12 @@ py::dict nodes_of(const tsp::TspFile& f) {
   d["t0"] = column(std::move(t0));
   d["t1"] = column(std::move(t1));
   d["box"] = table(std::move(box), 6);
-  d["mean"] = column(std::move(mean));
-  d["std"] = column(std::move(std_dev));
-  d["min"] = column(std::move(lo));
-  d["max"] = column(std::move(hi));
-  d["spatial_error"] = column(std::move(es));
-  d["temporal_error"] = column(std::move(et));
+  d["mean"] = column(std::move(stats.mean));
+  d["std"] = column(std::move(stats.std));
+  d["min"] = column(std::move(stats.min));
+  d["max"] = column(std::move(stats.max));
+  d["spatial_error"] = column(std::move(stats.spatial_error));
+  d["temporal_error"] = column(std::move(stats.temporal_error));
   return d;
 }
 

@@ -1,11 +1,11 @@
 #include "render/settings_table.h"
 
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <limits>
 
 #include "tsp/core/error.h"
+#include "tsp/core/number_text.h"
 
 namespace tspgl {
 
@@ -14,16 +14,9 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kBytesPerMib = double(1 << 20);
 
+// v with every digit a double holds: text that reads back as the same number.
 std::string number_text(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
-
-std::string short_number(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
+  return tsp::number_text(v, "%.17g");
 }
 
 std::string on_off(bool b) { return b ? "on" : "off"; }
@@ -195,9 +188,9 @@ std::vector<SettingSpec> make_table() {
 std::string expected(const SettingSpec& spec) {
   std::string e;
   if (spec.kind == SettingKind::number) {
-    e = std::isinf(spec.hi) ? "a finite number >= " + short_number(spec.lo)
-                            : "a number in [" + short_number(spec.lo) + ", " +
-                                  short_number(spec.hi) + "]";
+    e = std::isinf(spec.hi)
+            ? "a finite number >= " + tsp::number_text(spec.lo)
+            : "a number in [" + tsp::number_text(spec.lo) + ", " + tsp::number_text(spec.hi) + "]";
     if (!spec.unit.empty()) e += " (" + std::string(spec.unit) + ")";
     return e;
   }

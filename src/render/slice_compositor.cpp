@@ -8,6 +8,7 @@
 #include <string>
 
 #include "gl/gl_error.h"
+#include "gl/gl_objects.h"
 #include "tsp/frame/refine.h"
 #include "tsp/frame/sample_steps.h"
 #include "tsp/metric/level_tf.h"
@@ -62,21 +63,8 @@ SliceCompositor::SliceCompositor(GlContext& ctx)
       tf_(ctx.gl()),
       surface_tf_(ctx.gl()),
       target_(ctx) {
-  const std::vector<float> cube = cube_triangles();
-  gl_.GenVertexArrays(1, &cube_vao_);
-  gl_.BindVertexArray(cube_vao_);
-  gl_.GenBuffers(1, &cube_vbo_);
-  gl_.BindBuffer(GL_ARRAY_BUFFER, cube_vbo_);
-  gl_.BufferData(GL_ARRAY_BUFFER, GLsizeiptr(cube.size() * sizeof(float)), cube.data(),
-                 GL_STATIC_DRAW);
-  gl_.EnableVertexAttribArray(0);
-  gl_.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
-  gl_.GenVertexArrays(1, &vao_);
-  gl_.BindVertexArray(vao_);
-  gl_.GenBuffers(1, &vbo_);
-  gl_.BindBuffer(GL_ARRAY_BUFFER, vbo_);
-  gl_.EnableVertexAttribArray(0);
-  gl_.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
+  make_vertex_array(gl_, cube_vao_, cube_vbo_, 3, cube_triangles());
+  make_vertex_array(gl_, vao_, vbo_, 3);
   for (const Program* p : {&textured_, &box_textured_}) set_units(*p);
   rays_ = &ray_programs_.get(RayVariant::segments);
   gl_.GenQueries(1, &fragments_query_);

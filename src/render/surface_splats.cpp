@@ -6,6 +6,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "gl/gl_error.h"
+#include "gl/gl_objects.h"
 #include "render/render_settings.h"
 #include "tsp/core/stopwatch.h"
 
@@ -55,18 +56,14 @@ void SurfaceSplats::resize(int width, int height) {
     gl_.GenRenderbuffers(1, &depth_rb_);
     gl_.GenTextures(1, &depth_tex_);
   }
-  gl_.BindRenderbuffer(GL_RENDERBUFFER, colour_);
-  gl_.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA16, width, height);
-  gl_.BindRenderbuffer(GL_RENDERBUFFER, depth_rb_);
-  gl_.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
   gl_.BindTexture(GL_TEXTURE_2D, depth_tex_);
   gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_R32F, width, height, 0, GL_RED, GL_FLOAT, nullptr);
   gl_.BindFramebuffer(GL_FRAMEBUFFER, fbo_);
-  gl_.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour_);
+  attach_renderbuffer(gl_, GL_COLOR_ATTACHMENT0, colour_, GL_RGBA16, width, height);
   gl_.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, depth_tex_, 0);
-  gl_.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_rb_);
+  attach_renderbuffer(gl_, GL_DEPTH_ATTACHMENT, depth_rb_, GL_DEPTH_COMPONENT24, width, height);
   if (gl_.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
     throw tsp::GlError("the surface target (RGBA16 + R32F + depth framebuffer) is not supported");
   width_ = width;

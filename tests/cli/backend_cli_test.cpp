@@ -9,6 +9,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "support/json_file.h"
 #include "support/paths.h"
 #include "tsp/report/image.h"
 #include "tsp/report/image_diff.h"
@@ -38,8 +39,7 @@ class BackendCli : public ::testing::Test {
     const auto r = run_tspplay("render " + quote(*dir_ / "s.tsp") +
                                " --steps 1:1 --size 160x120 " + options + " -o " + quote(out));
     EXPECT_EQ(r.exit_code, 0) << options << "\n" << r.err;
-    std::ifstream in(out / "frames.json");
-    return json::parse(in);
+    return tsptest::frames_json(out);
   }
   static const json& frame(const json& j) { return j.contains("frames") ? j["frames"][0] : j[0]; }
 };
@@ -104,8 +104,7 @@ TEST_F(BackendCli, ThePlayerSwitchesCastersByScriptAndSaysWhoDrew) {
                              quote(script));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (const char* who : {"gl", "cpu"}) {
-    std::ifstream in(*dir_ / (std::string(who) + ".json"));
-    const json j = json::parse(in);
+    const json j = tsptest::read_json(*dir_ / (std::string(who) + ".json"));
     EXPECT_EQ(j["backend"], who);
     EXPECT_EQ(j["frame_report"]["caster"], who);
   }

@@ -7,7 +7,6 @@
 
 #include <cstdio>
 #include <cstdlib>
-
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -16,20 +15,14 @@
 #include <sstream>
 #include <utility>
 
+#include "support/json_file.h"
 #include "support/paths.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
-using tsptest::run_tspplay;
-
-using tsptest::q;
-
-json read_json(const fs::path& p) {
-  std::ifstream in(p);
-  return json::parse(in);
-}
+using namespace tsptest;  // run_tspplay, q, temp_dir and the JSON readers
 
 std::string first_line(const fs::path& p) {
   std::ifstream in(p);
@@ -195,7 +188,7 @@ double rerendered_mean_delta_e(const fs::path& tsp, const std::string& options,
   }
   if (gl) {
     *gl = false;
-    const json frames = read_json(out / "frames.json");  // the loop below outlives no temporary
+    const json frames = frames_json(out);  // the loop below outlives no temporary
     for (const json& f : frames["frames"]) *gl |= f["caster"] == "gl";
   }
   return sum / 2;

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
+#include "support/json_file.h"
 #include "support/paths.h"
 #include "tsp/source/open_source.h"
 #include "tsp/source/volume_source.h"
@@ -19,11 +20,8 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 using tsptest::run_tspplay;
 
+using tsptest::katrina_file;
 using tsptest::q;
-
-fs::path katrina() {
-  return tsptest::shared_data_dir() / "wrf-katrina" / "ci_test_file.nc";
-}
 
 // Every step of the input, read through the library's reader (not through the .tsp file); WRF
 // files with their levels as stored (--vertical-levels native: no stencil, every sample counts).
@@ -140,16 +138,16 @@ TEST(BuildInfoCli, GeneratedSeriesMatchesBruteForce) {
 }
 
 TEST(BuildInfoCli, KatrinaTemperature) {
-  if (!fs::exists(katrina())) GTEST_SKIP() << "shared data absent: " << katrina();
+  if (!fs::exists(katrina_file())) GTEST_SKIP() << "shared data absent: " << katrina_file();
   const fs::path dir = tsptest::temp_dir();
-  auto r = run_tspplay("build " + q(katrina()) + " --field T --vertical-levels native -o " +
+  auto r = run_tspplay("build " + q(katrina_file()) + " --field T --vertical-levels native -o " +
                        q(dir / "t.tsp"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const json j = info_json(dir / "t.tsp");
   EXPECT_EQ(j["dims"], json({48, 48, 14}));
   EXPECT_EQ(j["field"], "T");
   // No --brick: the default for 48 × 48 × 14 (a quarter of 48 is 12, nearest power of two 16).
-  check_info(j, read_all(katrina().string(), "T"), 16);
+  check_info(j, read_all(katrina_file().string(), "T"), 16);
 
   auto h = run_tspplay("info " + q(dir / "t.tsp"));
   ASSERT_EQ(h.exit_code, 0) << h.err;
@@ -180,8 +178,7 @@ TEST(BuildInfoCli, CfTimeUnitsShowAsDates) {
       << h.out;
   r = run_tspplay("render " + q(dir / "t.tsp") + " --size 32x24 -o " + q(dir / "f"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  std::ifstream in(dir / "f" / "frames.json");
-  const json frames = json::parse(in)["frames"];
+  const json frames = tsptest::frames_json(dir / "f")["frames"];
   ASSERT_EQ(frames.size(), 3u);
   EXPECT_EQ(frames[1]["time"], 6);
   EXPECT_EQ(frames[1]["time_text"], "2000-01-01 06:00");
@@ -190,9 +187,9 @@ TEST(BuildInfoCli, CfTimeUnitsShowAsDates) {
 // WRF's T (mass points, 14 levels) and W (staggered, 15 levels) in one file, as stored: each
 // keeps its grid, W half a layer below T, and both render in one frame.
 TEST(BuildInfoCli, StaggeredWrfFieldsKeepTheirGrids) {
-  if (!fs::exists(katrina())) GTEST_SKIP() << "shared data absent: " << katrina();
+  if (!fs::exists(katrina_file())) GTEST_SKIP() << "shared data absent: " << katrina_file();
   const fs::path dir = tsptest::temp_dir();
-  auto r = run_tspplay("build " + q(katrina()) + " --field T,W --vertical-levels native -o " +
+  auto r = run_tspplay("build " + q(katrina_file()) + " --field T,W --vertical-levels native -o " +
                        q(dir / "tw.tsp"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const json t = info_json(dir / "tw.tsp", " --field T");
@@ -202,7 +199,7 @@ TEST(BuildInfoCli, StaggeredWrfFieldsKeepTheirGrids) {
   const double dz = double(w["spacing"][2]);
   EXPECT_DOUBLE_EQ(double(t["spacing"][2]), dz);
   EXPECT_NEAR(double(t["origin"][2]) - double(w["origin"][2]), 0.5 * dz, 1e-6 * dz);
-  check_info(w, read_all(katrina().string(), "W"), 16);
+  check_info(w, read_all(katrina_file().string(), "W"), 16);
   for (const char* f : {"T", "W"})
     EXPECT_EQ(run_tspplay("render " + q(dir / "tw.tsp") + " --field " + f + " --size 32x24 -o " +
                           q(dir / f)).exit_code, 0) << f;
@@ -213,9 +210,9 @@ TEST(BuildInfoCli, StaggeredWrfFieldsKeepTheirGrids) {
 // values), said by info's source line; the voxels beyond a column's levels are outside (the
 // stencil). W, on the staggered levels, gets its own grid from the ground up.
 TEST(BuildInfoCli, WrfLevelsAtTheirHeights) {
-  if (!fs::exists(katrina())) GTEST_SKIP() << "shared data absent: " << katrina();
+  if (!fs::exists(katrina_file())) GTEST_SKIP() << "shared data absent: " << katrina_file();
   const fs::path dir = tsptest::temp_dir();
-  auto r = run_tspplay("build " + q(katrina()) + " --field T,W -o " + q(dir / "tw.tsp"));
+  auto r = run_tspplay("build " + q(katrina_file()) + " --field T,W -o " + q(dir / "tw.tsp"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const json t = info_json(dir / "tw.tsp", " --field T");
   EXPECT_EQ(t["dims"], json({48, 48, 78}));
@@ -232,10 +229,11 @@ TEST(BuildInfoCli, WrfLevelsAtTheirHeights) {
             std::string::npos)
       << h.out;
   // A chosen count or spacing.
-  r = run_tspplay("build " + q(katrina()) + " --field T --vertical-levels 40 -o " + q(dir / "n.tsp"));
+  r = run_tspplay("build " + q(katrina_file()) + " --field T --vertical-levels 40 -o " +
+                  q(dir / "n.tsp"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(info_json(dir / "n.tsp", "")["dims"], json({48, 48, 40}));
-  r = run_tspplay("build " + q(katrina()) + " --field T --vertical-levels 100m -o " +
+  r = run_tspplay("build " + q(katrina_file()) + " --field T --vertical-levels 100m -o " +
                   q(dir / "m.tsp"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const json m = info_json(dir / "m.tsp", "");
@@ -277,9 +275,9 @@ TEST(BuildInfoCli, SeveralFieldsInOneFile) {
 }
 
 TEST(BuildInfoCli, RangeOptionSetsTheQuantizationRange) {
-  if (!fs::exists(katrina())) GTEST_SKIP() << "shared data absent: " << katrina();
+  if (!fs::exists(katrina_file())) GTEST_SKIP() << "shared data absent: " << katrina_file();
   const fs::path dir = tsptest::temp_dir();
-  auto r = run_tspplay("build " + q(katrina()) + " --field T --brick 16 --range=-5:40 -o " +
+  auto r = run_tspplay("build " + q(katrina_file()) + " --field T --brick 16 --range=-5:40 -o " +
                        q(dir / "t.tsp"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const json j = info_json(dir / "t.tsp", "");
@@ -309,7 +307,7 @@ TEST(BuildInfoCli, NonFiniteSamplesAreCountedAndWarned) {
 }
 
 TEST(BuildInfoCli, BadInputGivesClearErrorsAndNoOutput) {
-  if (!fs::exists(katrina())) GTEST_SKIP() << "shared data absent: " << katrina();
+  if (!fs::exists(katrina_file())) GTEST_SKIP() << "shared data absent: " << katrina_file();
   const fs::path dir = tsptest::temp_dir();
   const std::string out = " -o " + q(dir / "x.tsp");
   struct Case {
@@ -319,23 +317,24 @@ TEST(BuildInfoCli, BadInputGivesClearErrorsAndNoOutput) {
   };
   const std::vector<Case> cases = {
       {"build " + q(dir / "missing.h5") + out, 1, "missing.h5"},
-      {"build " + q(katrina()) + " --field NOPE" + out, 1, "NOPE"},
-      {"build " + q(katrina()) + " --field T --brick 12" + out, 2, "brick size 12"},
-      {"build " + q(katrina()) + " --field T --range 5" + out, 2, "expected LO:HI"},
-      {"build " + q(katrina()) + " --field T --range 5:1" + out, 2, "expected finite LO < HI"},
-      {"build " + q(katrina()) + " --field T --range a:1" + out, 2, "not a number"},
-      {"build " + q(katrina()) + " --field T -o " + q(dir / "no" / "x.tsp"), 1, "does not exist"},
-      {"build " + q(katrina()) + " --field T", 2, "--output is required"},
-      {"build " + q(katrina()) + " --field T --vertical-levels 1" + out, 2,
+      {"build " + q(katrina_file()) + " --field NOPE" + out, 1, "NOPE"},
+      {"build " + q(katrina_file()) + " --field T --brick 12" + out, 2, "brick size 12"},
+      {"build " + q(katrina_file()) + " --field T --range 5" + out, 2, "expected LO:HI"},
+      {"build " + q(katrina_file()) + " --field T --range 5:1" + out, 2, "expected finite LO < HI"},
+      {"build " + q(katrina_file()) + " --field T --range a:1" + out, 2, "not a number"},
+      {"build " + q(katrina_file()) + " --field T -o " + q(dir / "no" / "x.tsp"), 1,
+       "does not exist"},
+      {"build " + q(katrina_file()) + " --field T", 2, "--output is required"},
+      {"build " + q(katrina_file()) + " --field T --vertical-levels 1" + out, 2,
        "--vertical-levels '1': expected finest, native, a level count N (2 to 4096) or a spacing "
        "in metres such as 50m"},
-      {"build " + q(katrina()) + " --field T --vertical-levels fine" + out, 2,
+      {"build " + q(katrina_file()) + " --field T --vertical-levels fine" + out, 2,
        "--vertical-levels 'fine': expected finest"},
-      {"build " + q(katrina()) + " --field T --vertical-levels=-5m" + out, 2,
+      {"build " + q(katrina_file()) + " --field T --vertical-levels=-5m" + out, 2,
        "--vertical-levels '-5m': expected finest"},
-      {"build " + q(katrina()) + " --field T --vertical-levels 0.5m" + out, 2,
+      {"build " + q(katrina_file()) + " --field T --vertical-levels 0.5m" + out, 2,
        "--vertical-levels 0.5m would make 11222 levels over 5610.5 m; at most 4096"},
-      {"build " + q(katrina()) + " --field T --vertical-levels 9000m" + out, 2,
+      {"build " + q(katrina_file()) + " --field T --vertical-levels 9000m" + out, 2,
        "--vertical-levels 9000m: the spacing is larger than the levels' whole range, 5610.5 m"},
   };
   for (const Case& c : cases) {
@@ -347,13 +346,13 @@ TEST(BuildInfoCli, BadInputGivesClearErrorsAndNoOutput) {
 }
 
 TEST(BuildInfoCli, InfoRejectsFilesThatAreNotTsp) {
-  if (!fs::exists(katrina())) GTEST_SKIP() << "shared data absent: " << katrina();
+  if (!fs::exists(katrina_file())) GTEST_SKIP() << "shared data absent: " << katrina_file();
   const fs::path dir = tsptest::temp_dir();
   std::ofstream(dir / "text.tsp") << "hello\n";
   auto r = run_tspplay("info " + q(dir / "text.tsp"));
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("not an HDF5 file"), std::string::npos) << r.err;
-  r = run_tspplay("info " + q(katrina()));
+  r = run_tspplay("info " + q(katrina_file()));
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("not a tspplay .tsp file"), std::string::npos) << r.err;
   r = run_tspplay("info " + q(dir / "none.tsp") + " --json");

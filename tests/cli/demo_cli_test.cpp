@@ -6,6 +6,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "support/json_file.h"
 #include "support/paths.h"
 #include "tsp/source/open_source.h"
 #include "tsp/source/procedural/generate.h"
@@ -39,8 +40,7 @@ TEST(DemoCli, GeneratesBuildsReportsAndReuses) {
     ASSERT_EQ(a, b) << "step " << t;
   }
 
-  std::ifstream in(dir / "report.json");
-  json rep = json::parse(in);
+  json rep = tsptest::read_json(dir / "report.json");
   auto file = tsp::TspFile::open(tsp_path.string());
   EXPECT_EQ(rep["dataset"]["name"], "shock");
   EXPECT_EQ(rep["tree"]["tsp_nodes"], file->tree().size());

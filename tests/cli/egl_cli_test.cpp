@@ -9,17 +9,15 @@
 #include <string>
 
 #include "gl/headless.h"
+#include "support/json_file.h"
 #include "support/paths.h"
 
 namespace {
 
 namespace fs = std::filesystem;
+using tsptest::frames_json;
 using tsptest::quote;
 using tsptest::run_tspplay;
-
-nlohmann::json frames_json(const fs::path& dir) {
-  return nlohmann::json::parse(tsptest::read_file(dir / "frames.json"));
-}
 
 struct EglCli : ::testing::Test {
   fs::path dir = tsptest::temp_dir();

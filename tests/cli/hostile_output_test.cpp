@@ -20,6 +20,7 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
+#include "support/json_file.h"
 #include "support/paths.h"
 
 namespace {
@@ -213,7 +214,7 @@ TEST(HostileOutput, AFailedMovieOrRenderKeepsTheOldMovieAndFrames) {
   EXPECT_EQ(names, (std::vector<std::string>{"frames.json", "notes.txt", "step_0000.png",
                                              "step_0001.png"}));
   EXPECT_EQ(tsptest::read_file(out / "notes.txt"), "mine");
-  const auto j = nlohmann::json::parse(tsptest::read_file(out / "frames.json"));
+  const auto j = tsptest::frames_json(out);
   EXPECT_EQ(j["frames"].size(), 2u);
   EXPECT_TRUE(temporaries(dir).empty());
   // A movie inside a new output folder lands there beside the frames.

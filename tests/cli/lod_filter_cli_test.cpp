@@ -9,8 +9,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "support/json_file.h"
 #include "support/paths.h"
-#include "support/player_run.h"
 #include "tsp/report/image.h"
 #include "tsp/report/image_diff.h"
 #include "tsp/store/tsp_file.h"
@@ -21,9 +21,6 @@ using tsptest::run_tspplay;
 namespace {
 
 using tsptest::q;
-
-// The frames.json a render wrote into dir.
-nlohmann::json frames(const fs::path& dir) { return tsptest::player::read_json(dir / "frames.json"); }
 
 TEST(LodFilterCli, DistanceAroundAPlacedEyeAndFovCutsAreReported) {
   const fs::path dir = tsptest::temp_dir();
@@ -38,7 +35,7 @@ TEST(LodFilterCli, DistanceAroundAPlacedEyeAndFovCutsAreReported) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   r = run_tspplay(common + eye + "-o " + q(dir / "full"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const nlohmann::json d = frames(dir / "dist");
+  const nlohmann::json d = tsptest::frames_json(dir / "dist");
   EXPECT_EQ(d["lod"], "filter");
   EXPECT_EQ(d["lod_filter"], "distance");
   EXPECT_EQ(d["projection"], "perspective");
@@ -59,7 +56,7 @@ TEST(LodFilterCli, DistanceAroundAPlacedEyeAndFovCutsAreReported) {
   // fov: with the orbit camera and K = 1 a coarse cut (tiles under half the field of view).
   r = run_tspplay(common + "--perspective --lod-filter fov -o " + q(dir / "fov"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const nlohmann::json f = frames(dir / "fov");
+  const nlohmann::json f = tsptest::frames_json(dir / "fov");
   EXPECT_EQ(f["lod_filter"], "fov");
   EXPECT_LT(int(f["frames"][0]["lod"]["cut_size"]), leaves);
 

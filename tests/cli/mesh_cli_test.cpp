@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "support/json_file.h"
 #include "support/paths.h"
 #include "tsp/report/image.h"
 #include "tsp/store/tsp_file.h"
@@ -60,8 +61,7 @@ TEST(MeshCli, BuildStoresTheStencilAndRenderLeavesTheOutsideEmpty) {
                          c + " --steps 1 -o " + q(out));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const tsp::Image img = tsp::read_png((out / "step_0001.png").string());
-    EXPECT_EQ(nlohmann::json::parse(tsptest::read_file(out / "frames.json"))["frames"][0]["time"],
-              0.25);
+    EXPECT_EQ(tsptest::frames_json(out)["frames"][0]["time"], 0.25);
     EXPECT_EQ(lit_runs(img, img.height / 2), 6) << c;
   }
 }

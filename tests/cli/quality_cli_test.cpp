@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "support/json_file.h"
 #include "support/paths.h"
 
 namespace {
@@ -45,6 +46,12 @@ class QualityCli : public ::testing::Test {
               0);
   }
   static void TearDownTestSuite() { delete dir_; }
+  // `render` of steps 0..1 at --quality 3 calibrating into the folder cache, ending in "-o "
+  // (the output folder to append).
+  static std::string quality_command(const fs::path& cache) {
+    return "render " + q(*dir_ / "s.tsp") + " " + kView +
+           " --steps 0:1 --quality 3 --calibration-dir " + q(cache) + " -o ";
+  }
   static inline const std::string kView = "--tf preset:filled --size 160x120 --view 40,25";
   static inline fs::path* dir_ = nullptr;
 
@@ -61,17 +68,13 @@ TEST_F(QualityCli, HeldOutStepsStayWithinTheTarget) {
                        " --quality 2 --calibration-dir " + q(cache) + " -o " + q(out));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("quality mean dE <= 2: --compositing"), std::string::npos) << r.out;
-  const json frames = [&] {
-    std::ifstream in(out / "frames.json");
-    return json::parse(in);
-  }();
+  const json frames = tsptest::frames_json(out);
   ASSERT_TRUE(frames.contains("quality"));
   EXPECT_LE(frames["quality"]["calibrated_max_step_delta_e"].get<double>(), 0.75 * 2.0);
   // The calibration saw 6 steps spread over 0..11 (both ends); the others are held out.
   const std::string file = frames["quality"]["calibration_file"];
   ASSERT_TRUE(fs::exists(file));
-  std::ifstream in(file);
-  const json cal = json::parse(in);
+  const json cal = tsptest::read_json(file);
   std::set<int> seen;
   for (int t : cal["key"]["steps"]) seen.insert(t);
   ASSERT_EQ(seen.size(), 6u);
@@ -91,8 +94,7 @@ TEST_F(QualityCli, HeldOutStepsStayWithinTheTarget) {
 
 TEST_F(QualityCli, TheCacheIsReusedAndACorruptOneRecomputed) {
   const fs::path cache = *dir_ / "cache2";
-  const std::string cmd = "render " + q(*dir_ / "s.tsp") + " " + kView +
-                          " --steps 0:1 --quality 3 --calibration-dir " + q(cache) + " -o ";
+  const std::string cmd = quality_command(cache);
   auto a = run_tspplay(cmd + q(*dir_ / "c1"));
   ASSERT_EQ(a.exit_code, 0) << a.err;
   ASSERT_EQ(std::distance(fs::directory_iterator(cache), fs::directory_iterator()), 1);
@@ -108,8 +110,7 @@ TEST_F(QualityCli, TheCacheIsReusedAndACorruptOneRecomputed) {
   ASSERT_EQ(c.exit_code, 0) << c.err;
   // Recomputed and rewritten (the pick may differ: candidates are ranked by measured time).
   EXPECT_NE(c.out.find("quality mean dE <= 3: --compositing"), std::string::npos) << c.out;
-  std::ifstream in(file);
-  EXPECT_NO_THROW(json::parse(in));
+  EXPECT_NO_THROW(tsptest::read_json(file));
 }
 
 TEST_F(QualityCli, ConflictsAndUnreachableTargetsAreClearErrors) {
@@ -132,8 +133,7 @@ TEST_F(QualityCli, ACacheEntryThatIsALinkIsReplacedNeverFollowed) {
   // through the input gate it must not hang the reader, and the new entry must replace the link,
   // never write through it (here the FIFO; as well any file of the victim's).
   const fs::path cache = *dir_ / "cache3";
-  const std::string cmd = "render " + q(*dir_ / "s.tsp") + " " + kView +
-                          " --steps 0:1 --quality 3 --calibration-dir " + q(cache) + " -o ";
+  const std::string cmd = quality_command(cache);
   auto a = run_tspplay(cmd + q(*dir_ / "l1"));
   ASSERT_EQ(a.exit_code, 0) << a.err;
   const fs::path file = fs::directory_iterator(cache)->path();
@@ -145,8 +145,7 @@ TEST_F(QualityCli, ACacheEntryThatIsALinkIsReplacedNeverFollowed) {
   ASSERT_EQ(b.exit_code, 0) << b.err;
   EXPECT_TRUE(fs::is_fifo(fifo)) << "the link's target was replaced";
   EXPECT_FALSE(fs::is_symlink(file));
-  std::ifstream in(file);
-  EXPECT_NO_THROW(json::parse(in));
+  EXPECT_NO_THROW(tsptest::read_json(file));
 }
 
 TEST_F(QualityCli, AQualityOfZeroIsRefusedNotIgnored) {

@@ -2,13 +2,13 @@
 // tolerance against --baseline through `diff --json`, and bad input that writes nothing.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-
-#include <algorithm>
 #include <vector>
 
+#include "support/json_file.h"
 #include "support/paths.h"
 #include "tsp/metric/tf_io.h"
 #include "tsp/report/image.h"
@@ -20,9 +20,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
-using tsptest::run_tspplay;
-
-using tsptest::q;
+using namespace tsptest;  // run_tspplay, q, temp_dir and the JSON readers
 
 fs::path make_tsp() {
   fs::path dir = tsptest::temp_dir();
@@ -31,11 +29,6 @@ fs::path make_tsp() {
   auto b = run_tspplay("build " + q(dir / "s.h5") + " --field shock --brick 16 -o " + q(dir / "s.tsp"));
   EXPECT_EQ(b.exit_code, 0) << b.err;
   return dir / "s.tsp";
-}
-
-json read_json(const fs::path& p) {
-  std::ifstream in(p);
-  return json::parse(in);
 }
 
 TEST(RenderCli, WritesFramesAndReportWithEveryKey) {
@@ -49,7 +42,7 @@ TEST(RenderCli, WritesFramesAndReportWithEveryKey) {
     EXPECT_TRUE(fs::exists(out / name)) << name;
   }
   EXPECT_FALSE(fs::exists(out / "step_0000.png"));
-  json j = read_json(out / "frames.json");
+  json j = frames_json(out);
   ASSERT_EQ(j["frames"].size(), 6u);  // 3 steps × 2 passes, in order
   int i = 0;
   for (const json& f : j["frames"]) {
@@ -71,7 +64,7 @@ TEST(RenderCli, WritesFramesAndReportWithEveryKey) {
   auto paper = run_tspplay("render " + q(tsp) + " --tf preset:filled --steps 1 --size 96x64 "
                            "--skip-transparent off -o " + q(out.string() + "_paper"));
   ASSERT_EQ(paper.exit_code, 0) << paper.err;
-  EXPECT_EQ(read_json(fs::path(out.string() + "_paper") / "frames.json")["skip_transparent"], false);
+  EXPECT_EQ(frames_json(fs::path(out.string() + "_paper"))["skip_transparent"], false);
 }
 
 TEST(RenderCli, ZeroToleranceMatchesBaselineThroughDiff) {
@@ -84,7 +77,7 @@ TEST(RenderCli, ZeroToleranceMatchesBaselineThroughDiff) {
   json j = json::parse(d.out);
   EXPECT_LT(j["mean"].get<double>(), 0.5);
   EXPECT_LT(j["p99"].get<double>(), 3.0);
-  EXPECT_EQ(read_json(b / "frames.json")["mode"], "baseline");
+  EXPECT_EQ(frames_json(b)["mode"], "baseline");
 }
 
 // LOD from the CLI: --lod K records its cut in every frame, --orbit turns the camera by DEG a
@@ -94,7 +87,7 @@ TEST(RenderCli, LodOptionsRecordTheCutPerFrame) {
   auto fixed = run_tspplay("render " + q(tsp) + " --tf preset:filled --steps 1:2 --size 96x64 "
                            "--lod 1 --orbit 10 -o " + q(dir / "fixed"));
   ASSERT_EQ(fixed.exit_code, 0) << fixed.err;
-  json j = read_json(dir / "fixed" / "frames.json");
+  json j = frames_json(dir / "fixed");
   EXPECT_EQ(j["lod"], 1);
   EXPECT_EQ(j["orbit_deg"], 10.0);
   ASSERT_EQ(j["frames"].size(), 2u);
@@ -110,7 +103,7 @@ TEST(RenderCli, LodOptionsRecordTheCutPerFrame) {
   auto timed = run_tspplay("render " + q(tsp) + " --tf preset:filled --steps 0:3 --size 96x64 "
                            "--passes 3 --target-ms 30 -o " + q(dir / "timed"));
   ASSERT_EQ(timed.exit_code, 0) << timed.err;
-  j = read_json(dir / "timed" / "frames.json");
+  j = frames_json(dir / "timed");
   EXPECT_EQ(j["lod"], "auto");
   for (const char* k : {"target_ms", "cut_size", "nodes_per_level", "splits", "merges",
                         "texture_bytes", "predicted_ms", "render_scale"})
@@ -124,7 +117,7 @@ TEST(RenderCli, LodOptionsRecordTheCutPerFrame) {
     auto splat = run_tspplay("render " + q(tsp) + " --tf preset:filled --steps 0:1 --size 96x64 "
                              "--lod splat:" + px + " -o " + q(out));
     ASSERT_EQ(splat.exit_code, 0) << splat.err;
-    j = read_json(out / "frames.json");
+    j = frames_json(out);
     EXPECT_EQ(j["lod"], std::string("splat:") + px + ".0");
     for (const json& f : j["frames"]) {
       EXPECT_EQ(f["bytes_uploaded"], 0);
@@ -135,7 +128,7 @@ TEST(RenderCli, LodOptionsRecordTheCutPerFrame) {
   auto fallback = run_tspplay("render " + q(tsp) + " --tf preset:filled --steps 0:1 --size 96x64 "
                               "--target-ms 30 --lod-fallback splats -o " + q(dir / "fallback"));
   ASSERT_EQ(fallback.exit_code, 0) << fallback.err;
-  EXPECT_EQ(read_json(dir / "fallback" / "frames.json")["lod_fallback"], "splats");
+  EXPECT_EQ(frames_json(dir / "fallback")["lod_fallback"], "splats");
 }
 
 TEST(RenderCli, BadInputIsAClearErrorAndWritesNothing) {
@@ -186,7 +179,7 @@ TEST(RenderCli, StepStrideAndOutputFolderRules) {
   EXPECT_TRUE(fs::exists(out / "step_0000.png"));
   EXPECT_FALSE(fs::exists(out / "step_0001.png"));
   EXPECT_TRUE(fs::exists(out / "step_0002.png"));
-  EXPECT_EQ(read_json(out / "frames.json")["frames"].size(), 2u);
+  EXPECT_EQ(frames_json(out)["frames"].size(), 2u);
   // A bad range is quoted whole.
   r = run_tspplay("render " + q(tsp) + " --steps 0:40:x -o " + q(out));
   EXPECT_EQ(r.exit_code, 2);
@@ -426,8 +419,8 @@ TEST(RenderCli, FramesSayWhichStepsATemporalToleranceMerged) {
                         q(dir / "exact")).exit_code, 0);
   ASSERT_EQ(run_tspplay("render " + q(tsp) + " --tf preset:filled --temporal-tol 10 --size 48x32 "
                         "-o " + q(dir / "merged")).exit_code, 0);
-  const json exact = read_json(dir / "exact" / "frames.json"),
-             merged = read_json(dir / "merged" / "frames.json");  // named: they outlive the loops
+  const json exact = frames_json(dir / "exact"),
+             merged = frames_json(dir / "merged");  // named: they outlive the loops
   // Zero tolerance merges only where the data do not change in time; a large one merges more.
   int exact_width = 0, merged_width = 0;
   for (const auto& f : exact["frames"])
@@ -453,7 +446,7 @@ TEST(RenderCli, SpanStepChoosesWhatTexturesAMergedSpan) {
     ASSERT_EQ(run_tspplay("render " + q(tsp) + " --tf preset:filled --temporal-tol 10 --size 48x32 " +
                           (*rule ? std::string("--span-step ") + rule + " " : "") + "-o " +
                           q(dir / name)).exit_code, 0) << name;
-    const json j = read_json(dir / name / "frames.json");
+    const json j = frames_json(dir / name);
     EXPECT_EQ(j["span_step"], *rule ? rule : "middle");
     bool shows_a_span = false;
     for (const auto& f : j["frames"]) {
@@ -526,7 +519,7 @@ TEST(RenderCli, RamBudgetBoundsTheBricksHeldWhateverTheFileSize) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   auto big = run_tspplay("render " + q(tsp) + " --tf preset:filled --size 64x48 -o " + q(dir / "big"));
   ASSERT_EQ(big.exit_code, 0) << big.err;
-  const json frames = read_json(dir / "small" / "frames.json")["frames"];
+  const json frames = frames_json(dir / "small")["frames"];
   ASSERT_EQ(frames.size(), 16u);
   for (const auto& f : frames) {
     EXPECT_LE(f["ram_mib"].get<double>(), budget_mib + 1e-9) << f.dump();

@@ -7,10 +7,10 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 
-#include <nlohmann/json.hpp>
-
+#include "support/json_file.h"
 #include "support/paths.h"
 
 namespace {
@@ -49,7 +49,7 @@ class RenderDeterminism : public ::testing::Test {
     return name;
   }
   static json frame(const fs::path& out, int step) {
-    const json report = json::parse(tsptest::read_file(out / "frames.json"));
+    const json report = tsptest::frames_json(out);
     for (const json& f : report["frames"])
       if (f["step"] == step) return f;
     ADD_FAILURE() << "no frame of step " << step << " in " << out;

@@ -13,8 +13,8 @@
 #include <utility>
 #include <vector>
 
+#include "support/json_file.h"
 #include "support/paths.h"
-#include "support/player_run.h"
 #include "tsp/core/color.h"
 #include "tsp/report/image.h"
 
@@ -24,9 +24,6 @@ using tsptest::run_tspplay;
 namespace {
 
 using tsptest::q;
-
-// The frames.json a render wrote into dir.
-nlohmann::json frames(const fs::path& dir) { return tsptest::player::read_json(dir / "frames.json"); }
 
 // Pixels of img within ΔE 2 of the 8-bit colour (r, g, b).
 int pixels_near(const tsp::Image& img, double r, double g, double b) {
@@ -68,7 +65,7 @@ TEST_F(SurfaceCli, FacesTowardsTheCameraShowTheirCellsColourLitByLambert) {
     const double g = 0.8 * (7.0 * k / 35.0) + 0.2;
     EXPECT_GT(pixels_near(img, g, g, g), 200) << "cell " << k << ": grey " << g;
   }
-  const nlohmann::json j = frames(dir / "lit");
+  const nlohmann::json j = tsptest::frames_json(dir / "lit");
   EXPECT_EQ(j["surface"], "boundary");
   EXPECT_EQ(j["surface_field"], "c");
   EXPECT_GT(int(j["frames"][0]["surface_splats"]), 0);
@@ -92,21 +89,21 @@ TEST_F(SurfaceCli, AProbeCutsTheSurfaceAndLargerSplatsAreFewer) {
   EXPECT_GT(pixels_near(whole, hexahedron, hexahedron, hexahedron), 200);
   EXPECT_EQ(pixels_near(cut, hexahedron, hexahedron, hexahedron), 0);
   EXPECT_GT(pixels_near(cut, voxel, voxel, voxel), 200);
-  EXPECT_LT(int(frames(dir / "cut")["frames"][0]["surface_splats"]),
-            int(frames(dir / "whole")["frames"][0]["surface_splats"]));
+  EXPECT_LT(int(tsptest::frames_json(dir / "cut")["frames"][0]["surface_splats"]),
+            int(tsptest::frames_json(dir / "whole")["frames"][0]["surface_splats"]));
   // Coarser cuts: no more splats, and one splat for the whole surface once it is that small.
-  int previous = int(frames(dir / "whole")["frames"][0]["surface_splats"]);
+  int previous = int(tsptest::frames_json(dir / "whole")["frames"][0]["surface_splats"]);
   for (int px : {60, 200, 4096}) {
     const std::string out = "px" + std::to_string(px);
     ASSERT_EQ(run_tspplay(render(out, "--surface-px " + std::to_string(px))).exit_code, 0);
-    const int n = frames(dir / out)["frames"][0]["surface_splats"];
+    const int n = tsptest::frames_json(dir / out)["frames"][0]["surface_splats"];
     EXPECT_LE(n, previous) << px;
     if (px == 4096) {
       EXPECT_EQ(n, 1);
     }
     previous = n;
   }
-  EXPECT_LT(previous, int(frames(dir / "whole")["frames"][0]["surface_splats"]));
+  EXPECT_LT(previous, int(tsptest::frames_json(dir / "whole")["frames"][0]["surface_splats"]));
 }
 
 // --surface-target-ms: the minimum splat size follows the surface pass's time, at most a factor
@@ -118,7 +115,7 @@ TEST_F(SurfaceCli, ATargetTimeMovesTheMinimumSplatSize) {
     const std::string out = "target" + target;
     auto r = run_tspplay(render(out, "--passes 4 --surface-target-ms " + target));
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    const nlohmann::json j = frames(dir / out);
+    const nlohmann::json j = tsptest::frames_json(dir / out);
     EXPECT_EQ(double(j["surface_target_ms"]), std::stod(target));
     ASSERT_EQ(j["frames"].size(), want.size());
     for (std::size_t i = 0; i < want.size(); ++i)

@@ -6,6 +6,7 @@
 
 #include "gl/context.h"
 #include "gl/gl_error.h"
+#include "gl/gl_objects.h"
 #include "gl/shader.h"
 #include "support/paths.h"
 
@@ -33,14 +34,7 @@ std::string error_text(const std::function<void()>& f) {
 void draw_solid(const GlApi& gl, const std::vector<float>& corners, const float rgba[4]) {
   tspgl::Program p = tspgl::load_program(gl, "solid2d.vert", "solid.frag");
   GLuint vao = 0, vbo = 0;
-  gl.GenVertexArrays(1, &vao);
-  gl.BindVertexArray(vao);
-  gl.GenBuffers(1, &vbo);
-  gl.BindBuffer(GL_ARRAY_BUFFER, vbo);
-  gl.BufferData(GL_ARRAY_BUFFER, GLsizeiptr(corners.size() * sizeof(float)), corners.data(),
-                GL_STATIC_DRAW);
-  gl.EnableVertexAttribArray(0);
-  gl.VertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, nullptr);
+  tspgl::make_vertex_array(gl, vao, vbo, 2, corners);
   p.use();
   const GLint loc = p.uniform("u_color");
   ASSERT_GE(loc, 0);
@@ -49,6 +43,25 @@ void draw_solid(const GlApi& gl, const std::vector<float>& corners, const float 
   gl.DeleteBuffers(1, &vbo);
   gl.DeleteVertexArrays(1, &vao);
   tspgl::check_gl(gl, "draw_solid");
+}
+
+// A kW × kH context whose viewport is the whole image, cleared to (r, g, b, a).
+std::unique_ptr<tspgl::GlContext> cleared_context(float r, float g, float b, float a) {
+  auto ctx = tspgl::create_offscreen_context(kW, kH);
+  const GlApi& gl = ctx->gl();
+  gl.Viewport(0, 0, kW, kH);
+  gl.ClearColor(r, g, b, a);
+  gl.Clear(GL_COLOR_BUFFER_BIT);
+  return ctx;
+}
+
+// How many pixels of img are not exactly rgba.
+int pixels_other_than(const tsp::Image& img, const std::uint8_t (&rgba)[4]) {
+  int bad = 0;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x)
+      for (int c = 0; c < 4; ++c) bad += img.at(x, y)[c] != rgba[c];
+  return bad;
 }
 
 TEST(OsmesaContext, IsA33CoreContextOfTheRequestedSize) {
@@ -70,50 +83,28 @@ TEST(OsmesaContext, IsA33CoreContextOfTheRequestedSize) {
 }
 
 TEST(OsmesaContext, ClearColourReadsBackExactlyEverywhere) {
-  auto ctx = tspgl::create_offscreen_context(kW, kH);
-  const GlApi& gl = ctx->gl();
-  gl.Viewport(0, 0, kW, kH);
-  gl.ClearColor(kClear[0] / 255.0f, kClear[1] / 255.0f, kClear[2] / 255.0f, kClear[3] / 255.0f);
-  gl.Clear(GL_COLOR_BUFFER_BIT);
+  auto ctx = cleared_context(kClear[0] / 255.0f, kClear[1] / 255.0f, kClear[2] / 255.0f,
+                             kClear[3] / 255.0f);
   ctx->finish();
   const tsp::Image img = ctx->read_pixels();
   ASSERT_EQ(img.width, kW);
   ASSERT_EQ(img.height, kH);
-  int bad = 0;
-  for (int y = 0; y < kH; ++y)
-    for (int x = 0; x < kW; ++x)
-      for (int c = 0; c < 4; ++c) bad += img.at(x, y)[c] != kClear[c];
-  EXPECT_EQ(bad, 0);
+  EXPECT_EQ(pixels_other_than(img, kClear), 0);
 }
 
 TEST(OsmesaContext, FullScreenTriangleInAUniformColour) {
-  auto ctx = tspgl::create_offscreen_context(kW, kH);
-  const GlApi& gl = ctx->gl();
-  gl.Viewport(0, 0, kW, kH);
-  gl.ClearColor(0, 0, 0, 0);
-  gl.Clear(GL_COLOR_BUFFER_BIT);
+  auto ctx = cleared_context(0, 0, 0, 0);
   // One triangle whose interior contains the whole [-1, 1]² clip square.
   const float colour[4] = {1.0f, 128 / 255.0f, 0.0f, 1.0f};
-  draw_solid(gl, {-1, -1, 3, -1, -1, 3}, colour);
-  const tsp::Image img = ctx->read_pixels();
-  int bad = 0;
-  for (int y = 0; y < kH; ++y)
-    for (int x = 0; x < kW; ++x) {
-      const std::uint8_t* p = img.at(x, y);
-      bad += p[0] != 255 || p[1] != 128 || p[2] != 0 || p[3] != 255;
-    }
-  EXPECT_EQ(bad, 0);
+  draw_solid(ctx->gl(), {-1, -1, 3, -1, -1, 3}, colour);
+  EXPECT_EQ(pixels_other_than(ctx->read_pixels(), {255, 128, 0, 255}), 0);
 }
 
 TEST(OsmesaContext, ReadPixelsReturnsTheTopRowFirst) {
-  auto ctx = tspgl::create_offscreen_context(kW, kH);
-  const GlApi& gl = ctx->gl();
-  gl.Viewport(0, 0, kW, kH);
-  gl.ClearColor(0, 0, 1, 1);
-  gl.Clear(GL_COLOR_BUFFER_BIT);
+  auto ctx = cleared_context(0, 0, 1, 1);
   // A red quad over the upper half of clip space (y > 0) = the top kH/2 rows of the image.
   const float red[4] = {1, 0, 0, 1};
-  draw_solid(gl, {-1, 0, 1, 0, -1, 1, 1, 1}, red);
+  draw_solid(ctx->gl(), {-1, 0, 1, 0, -1, 1, 1, 1}, red);
   const tsp::Image img = ctx->read_pixels();
   for (int y = 0; y < kH; ++y) {
     const bool top = y < kH / 2;

@@ -9,6 +9,7 @@
 #include "render/baseline_renderer.h"
 #include "render/volume_renderer.h"
 #include "support/function_tsp.h"
+#include "support/render_scene.h"
 #include "tsp/build/build.h"
 #include "tsp/core/color.h"
 #include "tsp/frame/sample_steps.h"
@@ -26,34 +27,14 @@ tsp::TransferFunction tf_of(tsp::Rgba lo, tsp::Rgba hi) {
 
 // One 65³ volume (bricks of 16) and a renderer whose metric is computed under metric_tf — a
 // TF under which the nodes vary, so that they are drawn textured whatever the renderer's TF.
-struct AdaptiveScene {
-  std::unique_ptr<tsp::TspFile> file;
-  std::unique_ptr<GlContext> ctx = create_offscreen_context(160, 120);
-  std::unique_ptr<VolumeRenderer> renderer;
-  std::unique_ptr<BaselineRenderer> baseline;
-  tsp::MetricResult metric;
-  std::unique_ptr<tsp::WholeTreeMetric> nodes;
+struct AdaptiveScene : tsptest::RenderScene {
   AdaptiveScene(const std::string& name, const std::function<float(int, int, int, int)>& f,
-                const tsp::TransferFunction& tf, const tsp::TransferFunction& metric_tf) {
-    file = tsp::TspFile::open(tsptest::build_function_tsp(name, {65, 65, 65}, f));
-    renderer = std::make_unique<VolumeRenderer>(*ctx, *file, tsp::CachePolicy::on);
-    renderer->set_transfer_function(tf);
-    baseline = std::make_unique<BaselineRenderer>(*ctx, *file);
-    baseline->set_transfer_function(tf);
+                const tsp::TransferFunction& tf, const tsp::TransferFunction& metric_tf)
+      : RenderScene(tsptest::build_function_tsp(name, {65, 65, 65}, f), tf, tsp::CachePolicy::on) {
     metric = tsp::compute_errors(tsp::Metric::reference, file->tree(), metric_tf, file.get(), 0);
-    nodes = std::make_unique<tsp::WholeTreeMetric>(metric);
-  }
-  tsp::Camera camera(double az, double el) const {
-    tsp::CameraParams p;
-    p.azimuth_deg = az;
-    p.elevation_deg = el;
-    p.width = ctx->width();
-    p.height = ctx->height();
-    return tsp::Camera(file->tree().octree().dims(), p);
   }
   // The largest step multiplier (a uniform region takes it at any spacing).
   static double largest_multiplier() { return tsp::kStepMultipliers.back(); }
-  bool shade = true;  ///< frames lit (the default) or unlit (analytic expectations)
   tsp::Image frame(const tsp::Camera& cam, double spacing, double sampling_tol, bool dense,
                    FrameReport* report = nullptr, bool all_textured = true) {
     RenderSettings s;
@@ -62,7 +43,7 @@ struct AdaptiveScene {
     s.sampling_tol = sampling_tol;
     s.dense = dense;
     s.reuse_image = false;
-    const FrameReport r = renderer->render(0, cam, s, *nodes);
+    const FrameReport r = renderer->render(0, cam, s, nodes);
     if (all_textured) {
       EXPECT_GT(r.class_percent[std::size_t(tsp::DrawClass::new_texture)] +
                     r.class_percent[std::size_t(tsp::DrawClass::reused_texture)],
@@ -198,7 +179,7 @@ TEST(AdaptiveSampling, CellVariationsLeaveWithTheirTextures) {
   s.dense = false;
   s.reuse_image = false;
   for (double az : {0.0, 90.0, 200.0}) {
-    const FrameReport r = small.render(0, scene.camera(az, 20), s, *scene.nodes);
+    const FrameReport r = small.render(0, scene.camera(az, 20), s, scene.nodes);
     EXPECT_GT(r.step_multiplier, 1.0);
     EXPECT_LT(small.texture_count(), octree.brick_count());
     EXPECT_GT(small.textures().variations_count(), 0);

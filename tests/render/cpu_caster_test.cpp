@@ -53,7 +53,7 @@ struct CrossScene : tsptest::FunctionScene {
   tsp::Image frame(RenderSettings s, Backend b, const tsp::Camera& cam, const tsp::LodCut* cut = nullptr) {
     s.backend = b;
     s.reuse_image = false;
-    last = renderer->render(0, cam, s, *nodes, cut ? cut->stops() : tsp::LodStops{});
+    last = renderer->render(0, cam, s, nodes, cut ? cut->stops() : tsp::LodStops{});
     return ctx->read_pixels();
   }
   tsp::Image base_frame(RenderSettings s, Backend b) {
@@ -173,13 +173,13 @@ TEST(CpuCaster, TheSameFrameIsTheSameBytesWhereverItsBricksSit) {
   s.backend = Backend::cpu;
   s.reuse_image = false;
   s.tol = {0.3, 0};
-  other.render(0, sc.camera(true), s, *sc.nodes);
+  other.render(0, sc.camera(true), s, sc.nodes);
   const tsp::LodCut cut = tsp::LodCut::at_level(sc.file->tree().octree(), 1);
-  other.render(0, sc.camera(), s, *sc.nodes, cut.stops());
+  other.render(0, sc.camera(), s, sc.nodes, cut.stops());
   s.tol = {0, 0.1};
   for (bool dense : {false, true}) {
     s.dense = dense;
-    other.render(0, sc.camera(), s, *sc.nodes);
+    other.render(0, sc.camera(), s, sc.nodes);
     const tsp::Image a = sc.ctx->read_pixels();
     const tsp::Image b = sc.frame(s, Backend::cpu, sc.camera());
     EXPECT_EQ(a.rgba, b.rgba) << "dense " << dense;
@@ -195,9 +195,9 @@ TEST(CpuCaster, SwitchingCastersRedrawsTheWholePicture) {
   for (Backend first : {Backend::cpu, Backend::gl}) {
     const Backend second = first == Backend::cpu ? Backend::gl : Backend::cpu;
     s.backend = first;
-    sc.renderer->render(0, sc.camera(), s, *sc.nodes);
+    sc.renderer->render(0, sc.camera(), s, sc.nodes);
     s.backend = second;
-    const FrameReport r = sc.renderer->render(0, sc.camera(), s, *sc.nodes);
+    const FrameReport r = sc.renderer->render(0, sc.camera(), s, sc.nodes);
     EXPECT_EQ(r.redrawn_percent, 100) << to_string(second);
     EXPECT_EQ(r.backend, to_string(second));
     const tsp::Image switched = sc.ctx->read_pixels();

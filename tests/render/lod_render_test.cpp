@@ -8,6 +8,7 @@
 
 #include "render/volume_renderer.h"
 #include "support/function_tsp.h"
+#include "support/render_scene.h"
 #include "tsp/build/build.h"
 #include "tsp/core/color.h"
 #include "tsp/lod/lod_cut.h"
@@ -22,37 +23,19 @@ namespace {
 
 // A .tsp of f, its renderer and a metric that never finds a node coherent, so that every cut
 // node is drawn from its brick (a constant field would otherwise be drawn flat, exactly).
-struct LodScene {
-  std::unique_ptr<tsp::TspFile> file;
-  std::unique_ptr<GlContext> ctx;
-  std::unique_ptr<VolumeRenderer> renderer;
-  tsp::MetricResult metric;
-  std::unique_ptr<tsp::WholeTreeMetric> nodes;
-  LodScene(const std::string& name, tsp::Dims d, auto f, const tsp::TransferFunction& tf) {
-    file = tsp::TspFile::open(tsptest::build_function_tsp(name, d, f));
-    ctx = create_offscreen_context(160, 120);
-    renderer = std::make_unique<VolumeRenderer>(*ctx, *file, tsp::CachePolicy::on);
-    renderer->set_transfer_function(tf);
-    metric = tsp::compute_errors(tsp::Metric::scalar, file->tree(), tf, file.get(), 0);
+struct LodScene : tsptest::RenderScene {
+  LodScene(const std::string& name, tsp::Dims d, auto f, const tsp::TransferFunction& tf)
+      : RenderScene(tsptest::build_function_tsp(name, d, f), tf, tsp::CachePolicy::on, 160, 120,
+                    tsp::Metric::scalar) {
     for (float& e : metric.errors.spatial) e = 1e30f;
-    nodes = std::make_unique<tsp::WholeTreeMetric>(metric);
   }
   const tsp::Octree& octree() const { return file->tree().octree(); }
-  tsp::CameraParams view(double az, double el) const {
-    tsp::CameraParams p;
-    p.azimuth_deg = az;
-    p.elevation_deg = el;
-    p.width = ctx->width();
-    p.height = ctx->height();
-    return p;
-  }
-  // A splat cut's frame: every drawn node flat, nothing uploaded.
   tsp::Image splat_frame(double min_px, double az, double el, Compositing c) {
-    const tsp::Camera cam(octree().dims(), view(az, el));
+    const tsp::Camera cam = camera(az, el);
     const tsp::SplatCut cut = tsp::splat_cut(octree(), cam, min_px);
     RenderSettings s;
     s.compositing = c;
-    const FrameReport r = renderer->render(0, cam, s, *nodes, cut.stops);
+    const FrameReport r = renderer->render(0, cam, s, nodes, cut.stops);
     EXPECT_DOUBLE_EQ(r.class_percent[std::size_t(tsp::DrawClass::untextured)], 100.0);
     EXPECT_EQ(r.bytes_uploaded, 0);
     return ctx->read_pixels();
@@ -63,8 +46,7 @@ struct LodScene {
     s.compositing = c;
     s.level_tf = level_tf;
     s.shade = shade;
-    const FrameReport r =
-        renderer->render(0, tsp::Camera(octree().dims(), view(az, el)), s, *nodes, cut.stops());
+    const FrameReport r = renderer->render(0, camera(az, el), s, nodes, cut.stops());
     EXPECT_DOUBLE_EQ(r.class_percent[std::size_t(tsp::DrawClass::untextured)], 0.0);
     return ctx->read_pixels();
   }

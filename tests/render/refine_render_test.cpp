@@ -33,7 +33,7 @@ struct RefineScene : tsptest::FunctionScene {
     s.dense = dense;
     s.shade = shade;
     s.reuse_image = false;
-    renderer->render(0, camera(), s, *nodes);
+    renderer->render(0, camera(), s, nodes);
     return ctx->read_pixels();
   }
   // The converged picture: the baseline every 1/16 voxel, not refined.

@@ -34,10 +34,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-using Scene = tsptest::RenderScene;
-using tsptest::build_tsp;
-using tsptest::expect_close;
-using tsptest::keep_failure;
+using namespace tsptest;  // the render scene, build_tsp and the image checks
 
 // Partial-image reuse is exact: playing a series with a temporal tolerance (long spans, so most
 // bricks are drawn as in the previous frame) gives the same pixels as redrawing everything, for
@@ -53,7 +50,7 @@ TEST(VolumeRenderer, PartialImageReuseGivesTheSamePixelsAsRedrawing) {
   const std::string path = build_tsp(*src, "plume_reuse", {}, 8);
   auto file = tsp::TspFile::open(path);
   const auto tf = tsp::preset_transfer_function("filled", file->tree().value_range());
-  Scene with(path, tf, tsp::CachePolicy::on), without(path, tf, tsp::CachePolicy::on);
+  RenderScene with(path, tf, tsp::CachePolicy::on), without(path, tf, tsp::CachePolicy::on);
   for (bool shade : {false, true})
     for (Compositing comp : {Compositing::slices, Compositing::boxes, Compositing::rays}) {
       double redrawn = 0;
@@ -100,8 +97,8 @@ TEST(VolumeRenderer, CompositingMethodsAgreeOnRealCfd) {
   const std::string path = build_tsp(*src, "plume_methods", {}, 8);
   auto file = tsp::TspFile::open(path);
   for (const char* preset : {"sparse", "filled"}) {
-    Scene scene(path, tsp::preset_transfer_function(preset, file->tree().value_range()),
-                tsp::CachePolicy::on);
+    RenderScene scene(path, tsp::preset_transfer_function(preset, file->tree().value_range()),
+                      tsp::CachePolicy::on);
     for (bool perspective : {false, true}) {
       const tsp::Camera cam = scene.camera(35, 15, perspective);
       // (Refinement, on by default for rays, samples differently where the TF bends: off where
@@ -150,8 +147,8 @@ TEST(VolumeRenderer, ZeroToleranceMatchesBaselineOnGeneratedData) {
   const std::string path = build_tsp(*src, "shock");
   auto file = tsp::TspFile::open(path);
   for (const char* preset : {"sparse", "filled"}) {
-    Scene scene(path, tsp::preset_transfer_function(preset, file->tree().value_range()),
-                tsp::CachePolicy::on);
+    RenderScene scene(path, tsp::preset_transfer_function(preset, file->tree().value_range()),
+                      tsp::CachePolicy::on);
     for (int step : {0, 3, 5}) {
       for (auto [az, el, persp] : {std::tuple{30.0, 20.0, false}, std::tuple{-120.0, 55.0, false},
                                    std::tuple{70.0, -25.0, true}}) {
@@ -175,8 +172,8 @@ TEST(VolumeRenderer, DenseWholeVolumeRaysMatchTheBrickGrid) {
   });
   const std::string path = build_tsp(src, "dense");
   auto file = tsp::TspFile::open(path);
-  Scene scene(path, tsp::preset_transfer_function("filled", file->tree().value_range()),
-              tsp::CachePolicy::on);
+  RenderScene scene(path, tsp::preset_transfer_function("filled", file->tree().value_range()),
+                    tsp::CachePolicy::on);
   auto frame = [&](int step, bool dense, tsp::Tolerances tol, bool& used) {
     RenderSettings s;
     s.dense = dense;
@@ -200,22 +197,22 @@ TEST(VolumeRenderer, DenseWholeVolumeRaysMatchTheBrickGrid) {
   EXPECT_TRUE(used);
   expect_close("dense_merged", dense, frame(3, false, merged, grid_used), 0.1, 2.0);
   // Transparent bricks (the sparse TF): the grid walk, which leaps over them.
-  Scene sparse(path, tsp::preset_transfer_function("sparse", file->tree().value_range()),
-               tsp::CachePolicy::on);
+  RenderScene sparse(path, tsp::preset_transfer_function("sparse", file->tree().value_range()),
+                     tsp::CachePolicy::on);
   RenderSettings s;
   EXPECT_FALSE(sparse.renderer->render(0, sparse.camera(30, 20), s, sparse.nodes).dense);
 }
 
 TEST(VolumeRenderer, ZeroToleranceMatchesBaselineOnRealData) {
-  const fs::path nc = tsptest::shared_data_dir() / "wrf-katrina" / "ci_test_file.nc";
+  const fs::path nc = katrina_file();
   if (!fs::exists(nc)) GTEST_SKIP() << nc << " not present";
   tsp::SourceOptions so;
   so.field = "QCLOUD";
   auto src = tsp::open_source(nc.string(), so);
   const std::string path = build_tsp(*src, "katrina");
   auto file = tsp::TspFile::open(path);
-  Scene scene(path, tsp::preset_transfer_function("filled", file->tree().value_range()),
-              tsp::CachePolicy::on);
+  RenderScene scene(path, tsp::preset_transfer_function("filled", file->tree().value_range()),
+                    tsp::CachePolicy::on);
   for (int step = 0; step < 4; ++step) {
     const tsp::Camera cam = scene.camera(20, 35);
     expect_close("katrina_" + std::to_string(step), scene.tsp_frame(step, cam),
@@ -232,8 +229,8 @@ TEST(VolumeRenderer, ZeroToleranceMatchesBaselineOnRealCfd) {
   const std::string path = build_tsp(*src, "plume");
   auto file = tsp::TspFile::open(path);
   for (const char* preset : {"sparse", "filled"}) {
-    Scene scene(path, tsp::preset_transfer_function(preset, file->tree().value_range()),
-                tsp::CachePolicy::on);
+    RenderScene scene(path, tsp::preset_transfer_function(preset, file->tree().value_range()),
+                      tsp::CachePolicy::on);
     for (int step : {5, 25, 40}) {
       const tsp::Camera cam = scene.camera(35, 15);
       expect_close(std::string("plume_") + preset + "_" + std::to_string(step),
@@ -247,7 +244,7 @@ TEST(VolumeRenderer, CacheOnAndOffGiveTheSamePicture) {
   const std::string path = build_tsp(*src, "shock", {}, 8);
   auto file = tsp::TspFile::open(path);
   const auto tf = tsp::preset_transfer_function("filled", file->tree().value_range());
-  Scene on(path, tf, tsp::CachePolicy::on), off(path, tf, tsp::CachePolicy::off);
+  RenderScene on(path, tf, tsp::CachePolicy::on), off(path, tf, tsp::CachePolicy::off);
   const tsp::Camera cam = on.camera();
   // A temporal tolerance makes spans longer than one step, so textures are reused (RT).
   for (tsp::Tolerances tol : {tsp::Tolerances{0, 0}, tsp::Tolerances{0, 0.05}}) {
@@ -266,8 +263,8 @@ TEST(VolumeRenderer, ToleranceChangeDropsUnreachableTexturesAndKeepsThePicture) 
   auto src = tsp::make_generated_source("shock", {tsp::Dims{33, 30, 28}, 6});
   const std::string path = build_tsp(*src, "shock", {}, 8);
   auto file = tsp::TspFile::open(path);
-  Scene scene(path, tsp::preset_transfer_function("filled", file->tree().value_range()),
-              tsp::CachePolicy::on, 80, 60, tsp::Metric::approximate);
+  RenderScene scene(path, tsp::preset_transfer_function("filled", file->tree().value_range()),
+                    tsp::CachePolicy::on, 80, 60, tsp::Metric::approximate);
   // Unlit: lit, the faces beside transparent and flat bricks take one-sided differences where
   // the baseline's are central, p99 4 against the bound of 3 (docs/rendering.md, lighting).
   scene.shade = false;
@@ -291,8 +288,8 @@ TEST(VolumeRenderer, ClassSharesSumTo100AndMatchTheTraversal) {
   auto src = tsp::make_generated_source("shock", {tsp::Dims{33, 33, 33}, 8});
   const std::string path = build_tsp(*src, "shock", {}, 8);
   auto file = tsp::TspFile::open(path);
-  Scene scene(path, tsp::preset_transfer_function("sparse", file->tree().value_range()),
-              tsp::CachePolicy::on, 64, 48, tsp::Metric::approximate);
+  RenderScene scene(path, tsp::preset_transfer_function("sparse", file->tree().value_range()),
+                    tsp::CachePolicy::on, 64, 48, tsp::Metric::approximate);
   const tsp::Camera cam = scene.camera();
   const tsp::TspTree& tree = file->tree();
   for (tsp::Tolerances tol : {tsp::Tolerances{0, 0}, tsp::Tolerances{0.3, 0.2}}) {
@@ -329,8 +326,8 @@ TEST(VolumeRenderer, LazyErrorsRenderLikeTheWholeTreeMetricAcrossATfEdit) {
   const std::string path = build_tsp(*src, "shock", {}, 8);
   auto file = tsp::TspFile::open(path);
   const tsp::ValueRange range = file->tree().value_range();
-  Scene whole(path, tsp::preset_transfer_function("sparse", range), tsp::CachePolicy::on, 80, 60,
-              tsp::Metric::approximate);
+  RenderScene whole(path, tsp::preset_transfer_function("sparse", range), tsp::CachePolicy::on, 80,
+                    60, tsp::Metric::approximate);
   tsp::TransferFunction live_tf = whole.tf;
   auto live_ctx = create_offscreen_context(80, 60);
   VolumeRenderer live(*live_ctx, *whole.file, tsp::CachePolicy::on);
@@ -376,8 +373,8 @@ TEST(VolumeRenderer, BricksToUploadAreWhatTheFrameReadsAndUploads) {
   auto src = tsp::make_generated_source("shock", {tsp::Dims{33, 30, 28}, 6});
   const std::string path = build_tsp(*src, "shock", {}, 8);
   auto file = tsp::TspFile::open(path);
-  Scene scene(path, tsp::preset_transfer_function("filled", file->tree().value_range()),
-              tsp::CachePolicy::on, 64, 48, tsp::Metric::approximate);
+  RenderScene scene(path, tsp::preset_transfer_function("filled", file->tree().value_range()),
+                    tsp::CachePolicy::on, 64, 48, tsp::Metric::approximate);
   const tsp::Camera cam = scene.camera();
   for (auto [tol, span_step] : {std::pair{tsp::Tolerances{0, 0}, tsp::SpanStep::middle},
                                 std::pair{tsp::Tolerances{0.05, 0.05}, tsp::SpanStep::middle},
@@ -443,8 +440,8 @@ TEST(VolumeRenderer, UploadBudgetDefersTexturesUntilTheFrameCompletes) {
   const std::string path = build_tsp(*src, "shock", {}, 8);
   auto file = tsp::TspFile::open(path);
   const auto tf = tsp::preset_transfer_function("filled", file->tree().value_range());
-  Scene unlimited(path, tf, tsp::CachePolicy::on, 80, 60, tsp::Metric::approximate);
-  Scene limited(path, tf, tsp::CachePolicy::on, 80, 60, tsp::Metric::approximate);
+  RenderScene unlimited(path, tf, tsp::CachePolicy::on, 80, 60, tsp::Metric::approximate);
+  RenderScene limited(path, tf, tsp::CachePolicy::on, 80, 60, tsp::Metric::approximate);
   const tsp::Camera cam = unlimited.camera();
   RenderSettings s;
   const tsp::Image expected = unlimited.tsp_frame(2, cam);

@@ -37,11 +37,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-using Scene = tsptest::RenderScene;
-using tsptest::build_tsp;
-using tsptest::expect_close;
-using tsptest::flat_tf;
-using tsptest::keep_failure;
+using namespace tsptest;  // the render scene, build_tsp and the image checks
 
 TEST(VolumeRenderer, ConstantCubeMatchesFrontToBackCompositing) {
   // 33³ samples: geometry [0, 32]³. Looking along +y through the centre, the planes at
@@ -50,7 +46,7 @@ TEST(VolumeRenderer, ConstantCubeMatchesFrontToBackCompositing) {
                                                   [](int, int, int, int) { return 0.5f; });
   const std::string path = build_tsp(src, "cube", tsp::ValueRange{0, 1});
   const tsp::Rgba c{0.9f, 0.5f, 0.2f, 0.04f};
-  Scene scene(path, flat_tf(c), tsp::CachePolicy::on);
+  RenderScene scene(path, flat_tf(c), tsp::CachePolicy::on);
   const tsp::Camera cam = scene.camera(0, 0);
   const double opacity = 1 - std::pow(1 - double(c.a), 0.5 * 64);
   const std::uint8_t want[3] = {std::uint8_t(std::lround(255 * c.r * opacity)),
@@ -78,7 +74,7 @@ TEST(VolumeRenderer, FlatNodeDrawnOnceIsTheExactExponential) {
                                                   [](int, int, int, int) { return 0.5f; });
   const std::string path = build_tsp(src, "flat_cube", tsp::ValueRange{0, 1});
   const tsp::Rgba c{0.9f, 0.5f, 0.2f, 0.03f};
-  Scene scene(path, flat_tf(c), tsp::CachePolicy::on);
+  RenderScene scene(path, flat_tf(c), tsp::CachePolicy::on);
   const tsp::Camera cam = scene.camera(30, 20);
   const auto d = cam.direction();
   double len = 1e300;
@@ -121,7 +117,7 @@ TEST(VolumeRenderer, AnEyeInsideTheCubeSeesTheExponentialOfItsRayToTheFarFace) {
                                                   [](int, int, int, int) { return 0.5f; });
   const std::string path = build_tsp(src, "inside_cube", tsp::ValueRange{0, 1});
   const tsp::Rgba c{0.9f, 0.5f, 0.2f, 0.03f};
-  Scene scene(path, flat_tf(c), tsp::CachePolicy::on);
+  RenderScene scene(path, flat_tf(c), tsp::CachePolicy::on);
   tsp::CameraParams p;
   p.projection = tsp::Projection::perspective;
   p.azimuth_deg = 0;  // looks along +y
@@ -166,7 +162,7 @@ TEST(VolumeRenderer, TransparentChildrenOfACoherentNodeStaySkipped) {
   const std::string path = build_tsp(src, "half_empty", tsp::ValueRange{0, 1});
   std::vector<tsp::TfPoint> pts = {{0.0, {0.f, 0.f, 0.f, 0.f}}, {0.5, {0.f, 0.f, 0.f, 0.f}},
                                    {0.55, {0.9f, 0.5f, 0.2f, 0.05f}}, {1.0, {0.9f, 0.5f, 0.2f, 0.05f}}};
-  Scene scene(path, tsp::TransferFunction::from_points({0, 1}, pts), tsp::CachePolicy::on);
+  RenderScene scene(path, tsp::TransferFunction::from_points({0, 1}, pts), tsp::CachePolicy::on);
   const tsp::Camera cam = scene.camera(0, 0);
   auto frame = [&](bool skip) {
     RenderSettings s;
@@ -204,9 +200,11 @@ TEST(VolumeRenderer, StretchedVoxelsShowThePhysicalBoxSampledAlongTheRays) {
   auto narrow = tsptest::MemorySource::from_function({17, 33, 33}, 1, constant);
   auto cube = tsptest::MemorySource::from_function({33, 33, 33}, 1, constant);
   const tsp::Rgba c{0.9f, 0.5f, 0.2f, 0.04f};
-  Scene stretched(build_tsp(narrow, "narrow", tsp::ValueRange{0, 1}), flat_tf(c), tsp::CachePolicy::on);
-  Scene cubes(build_tsp(cube, "cubes", tsp::ValueRange{0, 1}), flat_tf(c), tsp::CachePolicy::on);
-  auto camera = [](const Scene& sc, double az, double el, std::array<double, 3> voxel) {
+  RenderScene stretched(build_tsp(narrow, "narrow", tsp::ValueRange{0, 1}), flat_tf(c),
+                        tsp::CachePolicy::on);
+  RenderScene cubes(build_tsp(cube, "cubes", tsp::ValueRange{0, 1}), flat_tf(c),
+                    tsp::CachePolicy::on);
+  auto camera = [](const RenderScene& sc, double az, double el, std::array<double, 3> voxel) {
     tsp::CameraParams p;
     p.azimuth_deg = az;
     p.elevation_deg = el;
@@ -215,7 +213,7 @@ TEST(VolumeRenderer, StretchedVoxelsShowThePhysicalBoxSampledAlongTheRays) {
     p.voxel_size = voxel;
     return tsp::Camera(sc.file->tree().octree().dims(), p);
   };
-  auto frame = [](Scene& sc, const tsp::Camera& cam, Compositing comp, bool baseline) {
+  auto frame = [](RenderScene& sc, const tsp::Camera& cam, Compositing comp, bool baseline) {
     RenderSettings s;
     s.compositing = comp;
     s.exact_flat = false;  // textured and flat nodes alike sample every spacing
@@ -322,7 +320,7 @@ TEST(VolumeRenderer, PreintegratedRampMatchesTheSegmentFormula) {
   const std::string path = build_tsp(src, "ramp", tsp::ValueRange{0, 1});
   tsp::TransferFunction tf({0, 1}, 8);
   for (int j = 0; j < 8; ++j) tf.set_entry(j, {j / 7.f, 1 - j / 7.f, 0.5f, 0.03f + 0.02f * j});
-  Scene scene(path, tf, tsp::CachePolicy::on);
+  RenderScene scene(path, tf, tsp::CachePolicy::on);
   const tsp::Camera cam = scene.camera(0, 0);  // along +y: y = 0 in front
   double r = 0, g = 0, b = 0, t = 1;
   // Segments [4j, 4j + 4] centred on the planes y = 4j + 2; the last two lie beyond u = 1,

@@ -1,26 +1,17 @@
 // A rendering scene built from a formula, shared by the render tests that compare pictures of
-// one step: a 65³ (or any) .tsp of f, an offscreen context, the TSP renderer over the reference
-// metric (zero tolerance draws every brick) and the non-TSP baseline, and an orbit camera.
+// one step: a 65³ (or any) .tsp of f in a RenderScene (an offscreen context, the TSP renderer
+// over the reference metric — zero tolerance draws every brick — and the non-TSP baseline), and
+// an orbit camera.
 #pragma once
 #include <functional>
-#include <memory>
 #include <string>
 
-#include "render/baseline_renderer.h"
-#include "render/volume_renderer.h"
-#include "tsp/metric/compute_errors.h"
-#include "tsp/store/tsp_file.h"
+#include "support/render_scene.h"
 
 namespace tsptest {
 
 /// The scene; use from one thread (its GL context's).
-struct FunctionScene {
-  std::unique_ptr<tsp::TspFile> file;
-  std::unique_ptr<tspgl::GlContext> ctx;
-  std::unique_ptr<tspgl::VolumeRenderer> renderer;
-  std::unique_ptr<tspgl::BaselineRenderer> baseline;
-  tsp::MetricResult metric;
-  std::unique_ptr<tsp::WholeTreeMetric> nodes;
+struct FunctionScene : RenderScene {
   /// Builds `name`.tsp of f over dims (bricks of 16) and both renderers through tf, on a
   /// width × height offscreen context. Throws what building, opening and GL throw.
   FunctionScene(const std::string& name, const std::function<float(int, int, int, int)>& f,

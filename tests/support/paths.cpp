@@ -19,6 +19,9 @@ bool under_ci() {
   return ci && (std::string(ci) == "true" || std::string(ci) == "1");
 }
 fs::path shared_data_dir() { return TSP_SHARED_DATA_DIR; }
+fs::path katrina_file() {
+  return shared_data_dir() / "wrf-katrina" / "ci_test_file.nc";
+}
 fs::path datasets_dir() { return TSP_DATASETS_DIR; }
 fs::path tspplay_bin() { return TSPPLAY_BIN; }
 fs::path tspplay_mpi_bin() { return TSPPLAY_MPI_BIN; }

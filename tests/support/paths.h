@@ -8,6 +8,8 @@ namespace tsptest {
 std::filesystem::path test_data_dir();
 /// The shared real data sets (../shared/data beside the checkout).
 std::filesystem::path shared_data_dir();
+/// The shared WRF test file (Hurricane Katrina): wrf-katrina/ci_test_file.nc in shared_data_dir().
+std::filesystem::path katrina_file();
 /// The repository's datasets/ folder.
 std::filesystem::path datasets_dir();
 /// The built tspplay executable, for CLI tests.

@@ -2,11 +2,13 @@
 #pragma once
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <memory>
 #include <span>
 #include <string>
 #include <vector>
 
+#include "support/paths.h"
 #include "tsp/core/types.h"
 #include "tsp/source/open_source.h"
 #include "tsp/source/volume_source.h"
@@ -39,11 +41,16 @@ inline void expect_formula(std::span<const float> out, tsp::Dims d, double t, fl
 }
 
 /// Opens path through open_source with only the field set.
-inline std::unique_ptr<tsp::VolumeSource> open_field(const std::string& path,
+inline std::unique_ptr<tsp::VolumeSource> open_field(const std::filesystem::path& path,
                                                      const std::string& field) {
   tsp::SourceOptions o;
   o.field = field;
-  return tsp::open_source(path, o);
+  return tsp::open_source(path.string(), o);
+}
+
+/// Path of the HDF5 reader fixture `name` (tests/data/h5).
+inline std::string h5_fixture(const std::string& name) {
+  return (test_data_dir() / "h5" / name).string();
 }
 
 /// Reads step t of s into a new vector.
@@ -51,6 +58,13 @@ inline std::vector<float> read_step(tsp::VolumeSource& s, int t) {
   std::vector<float> out(std::size_t(s.dims().count()));
   s.read_step(t, out);
   return out;
+}
+
+/// Expects s to hold grid d and one step per entry of ts, step i equal to formula at t = ts[i].
+inline void expect_steps(tsp::VolumeSource& s, tsp::Dims d, const std::vector<double>& ts) {
+  EXPECT_EQ(s.dims(), d);
+  ASSERT_EQ(s.steps(), int(ts.size()));
+  for (int t = 0; t < s.steps(); ++t) expect_formula(read_step(s, t), d, ts[std::size_t(t)]);
 }
 
 /// Message of the E the callable throws; fails the test when it throws nothing or another type.

@@ -2,19 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
+
+#include "tsp/core/number_text.h"
 
 namespace tsp {
 
 namespace {
 constexpr double kHuge = 1e300;
-
-// x as %g ("5e-324", "inf", "1e+06").
-std::string number_text(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", x);
-  return buf;
-}
 }  // namespace
 
 Aabb empty_aabb() { return Aabb{{kHuge, kHuge, kHuge}, {-kHuge, -kHuge, -kHuge}}; }

@@ -16,6 +16,23 @@ constexpr const char* kUnreadable =
 // Values per read batch: bounds the temporary double buffer (32 MiB) whatever the volume size.
 constexpr hsize_t kBatchValues = hsize_t(1) << 22;
 
+// An attribute open with its element type and dataspace.
+struct Attribute {
+  h5::Handle attr, type, space;
+};
+
+// Attribute name of obj opened with its type and dataspace; nullopt when obj has none of that
+// name. Throws FormatError naming it when any of the three cannot be opened.
+std::optional<Attribute> open_attribute(hid_t obj, const std::string& name,
+                                        const std::string& where) {
+  if (H5Aexists(obj, name.c_str()) <= 0) return std::nullopt;
+  h5::Handle attr(H5Aopen(obj, name.c_str(), H5P_DEFAULT));
+  h5::Handle type(attr ? H5Aget_type(attr.get()) : H5I_INVALID_HID);
+  h5::Handle space(attr ? H5Aget_space(attr.get()) : H5I_INVALID_HID);
+  if (!attr || !type || !space) throw FormatError(where + ": attribute " + name + " is unreadable");
+  return Attribute{std::move(attr), std::move(type), std::move(space)};
+}
+
 // Strips the padding HDF5 fixed-length strings may carry.
 std::string trim_padding(std::string s) {
   std::size_t nul = s.find('\0');
@@ -80,11 +97,9 @@ void require_numeric_dataset(hid_t dataset, const std::string& where) {
 
 std::optional<std::vector<double>> numeric_attribute(hid_t obj, const std::string& name,
                                                      const std::string& where) {
-  if (H5Aexists(obj, name.c_str()) <= 0) return std::nullopt;
-  h5::Handle attr(H5Aopen(obj, name.c_str(), H5P_DEFAULT));
-  h5::Handle type(attr ? H5Aget_type(attr.get()) : H5I_INVALID_HID);
-  h5::Handle space(attr ? H5Aget_space(attr.get()) : H5I_INVALID_HID);
-  if (!attr || !type || !space) throw FormatError(where + ": attribute " + name + " is unreadable");
+  std::optional<Attribute> a = open_attribute(obj, name, where);
+  if (!a) return std::nullopt;
+  const auto& [attr, type, space] = *a;
   if (!is_standard_numeric_type(type.get()))
     throw FormatError(where + ": attribute " + name + " is " + describe_h5_type(type.get()) +
                       ", expected a number");
@@ -98,11 +113,9 @@ std::optional<std::vector<double>> numeric_attribute(hid_t obj, const std::strin
 
 std::optional<std::string> string_attribute(hid_t obj, const std::string& name,
                                             const std::string& where) {
-  if (H5Aexists(obj, name.c_str()) <= 0) return std::nullopt;
-  h5::Handle attr(H5Aopen(obj, name.c_str(), H5P_DEFAULT));
-  h5::Handle type(attr ? H5Aget_type(attr.get()) : H5I_INVALID_HID);
-  h5::Handle space(attr ? H5Aget_space(attr.get()) : H5I_INVALID_HID);
-  if (!attr || !type || !space) throw FormatError(where + ": attribute " + name + " is unreadable");
+  std::optional<Attribute> a = open_attribute(obj, name, where);
+  if (!a) return std::nullopt;
+  const auto& [attr, type, space] = *a;
   if (H5Tget_class(type.get()) != H5T_STRING)
     throw FormatError(where + ": attribute " + name + " is " + describe_h5_type(type.get()) +
                       ", expected a string");

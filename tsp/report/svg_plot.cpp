@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
-#include <cstdio>
 #include <fstream>
 #include <limits>
 
 #include "tsp/core/error.h"
+#include "tsp/core/number_text.h"
 #include "tsp/core/temp_output.h"
 
 namespace tsp {
@@ -51,15 +51,11 @@ std::string escape(const std::string& s) {
 }
 
 std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.2f", v);
-  return buf;
+  return number_text(v, "%.2f");
 }
 
 std::string tick_label(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", std::abs(v) < 1e-12 ? 0.0 : v);
-  return buf;
+  return number_text(std::abs(v) < 1e-12 ? 0.0 : v);
 }
 
 // A "nice" tick step (1, 2 or 5 × 10^k) giving about kTargetTicks ticks over span.

@@ -2,7 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
+
+#include "tsp/core/number_text.h"
 
 namespace tsp {
 
@@ -26,9 +27,7 @@ std::vector<double> nice_ticks(double lo, double hi, int max_ticks) {
 }
 
 std::string tick_text(double v, double step) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", std::fabs(v) < 1e-12 * std::fabs(step) ? 0.0 : v);
-  return buf;
+  return number_text(std::fabs(v) < 1e-12 * std::fabs(step) ? 0.0 : v);
 }
 
 }  // namespace tsp

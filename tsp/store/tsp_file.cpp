@@ -14,6 +14,7 @@
 #include "tsp/hdf5/hdf5_values.h"
 #include "tsp/store/tsp_layout.h"
 #include "tsp/store/tsp_reader.h"
+#include "tsp/tree/stats_columns.h"
 
 namespace tsp {
 
@@ -271,12 +272,13 @@ bool read_geometry(TspFile::Impl* impl, const Reader& r) {
 // Every node's statistics, checked to be what the builder can write.
 void read_stats(TspTree& tree, const Reader& r, bool stencil) {
   const std::vector<hsize_t> n = {hsize_t(tree.size())};
-  auto mean = r.dataset<double>(layout::kStatsMean, n, H5T_NATIVE_DOUBLE, H5T_FLOAT);
-  auto sd = r.dataset<double>(layout::kStatsStd, n, H5T_NATIVE_DOUBLE, H5T_FLOAT);
-  auto mn = r.dataset<float>(layout::kStatsMin, n, H5T_NATIVE_FLOAT, H5T_FLOAT);
-  auto mx = r.dataset<float>(layout::kStatsMax, n, H5T_NATIVE_FLOAT, H5T_FLOAT);
-  auto es = r.dataset<float>(layout::kStatsSpatial, n, H5T_NATIVE_FLOAT, H5T_FLOAT);
-  auto et = r.dataset<float>(layout::kStatsTemporal, n, H5T_NATIVE_FLOAT, H5T_FLOAT);
+  const StatsColumns c{r.dataset<double>(layout::kStatsMean, n, H5T_NATIVE_DOUBLE, H5T_FLOAT),
+                       r.dataset<double>(layout::kStatsStd, n, H5T_NATIVE_DOUBLE, H5T_FLOAT),
+                       r.dataset<float>(layout::kStatsMin, n, H5T_NATIVE_FLOAT, H5T_FLOAT),
+                       r.dataset<float>(layout::kStatsMax, n, H5T_NATIVE_FLOAT, H5T_FLOAT),
+                       r.dataset<float>(layout::kStatsSpatial, n, H5T_NATIVE_FLOAT, H5T_FLOAT),
+                       r.dataset<float>(layout::kStatsTemporal, n, H5T_NATIVE_FLOAT, H5T_FLOAT)};
+  const auto& [mean, sd, mn, mx, es, et] = c;
   // Statistics the builder can write: finite, σ ≥ 0, min ≤ max, errors ≥ 0, the mean inside
   // [min, max] (up to rounding).
   for (int i = 0; i < tree.size(); ++i) {
@@ -296,15 +298,7 @@ void read_stats(TspTree& tree, const Reader& r, bool stencil) {
                  std::to_string(mn[i]) + ", max " + std::to_string(mx[i]) + ", e_s " +
                  std::to_string(es[i]) + ", e_t " + std::to_string(et[i]));
   }
-  for (int i = 0; i < tree.size(); ++i) {
-    NodeStats& s = tree.stats(i);
-    s.mean = mean[i];
-    s.std = sd[i];
-    s.min = mn[i];
-    s.max = mx[i];
-    s.spatial_error = es[i];
-    s.temporal_error = et[i];
-  }
+  set_stats(tree, c);
 }
 
 // The bricks' datasets (scalar codes, the stencil's flags) and the histogram.

@@ -9,6 +9,7 @@
 #include "tsp/hdf5/hdf5_handle.h"
 #include "tsp/hdf5/hdf5_lock.h"
 #include "tsp/store/tsp_layout.h"
+#include "tsp/tree/stats_columns.h"
 
 namespace tsp {
 
@@ -353,17 +354,7 @@ void write_times(hid_t f, const std::string& p, const TimeTree& time, const TspM
 // Statistics by TSP node id, and the histogram.
 void write_stats(hid_t f, const std::string& p, const TspTree& tree, const TspMetadata& meta) {
   const std::size_t n = std::size_t(tree.size());
-  std::vector<double> mean(n), sd(n);
-  std::vector<float> mn(n), mx(n), es(n), et(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const NodeStats& s = tree.stats(int(i));
-    mean[i] = s.mean;
-    sd[i] = s.std;
-    mn[i] = s.min;
-    mx[i] = s.max;
-    es[i] = s.spatial_error;
-    et[i] = s.temporal_error;
-  }
+  const auto [mean, sd, mn, mx, es, et] = stats_columns(tree);
   write_dataset(f, p, layout::kStatsMean, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, {n}, mean.data());
   write_dataset(f, p, layout::kStatsStd, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, {n}, sd.data());
   write_dataset(f, p, layout::kStatsMin, H5T_NATIVE_FLOAT, H5T_IEEE_F32LE, {n}, mn.data());

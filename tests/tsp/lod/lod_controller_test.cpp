@@ -48,7 +48,8 @@ struct SimulatedRenderer {
   std::vector<double> skew;
   std::mt19937 rng{7};
   double ms_per_cost = 0;
-  SimulatedRenderer(const Octree& o, double per_cost) : skew(std::size_t(o.size())), ms_per_cost(per_cost) {
+  SimulatedRenderer(const Octree& o, double per_cost)
+      : skew(std::size_t(o.size())), ms_per_cost(per_cost) {
     std::uniform_real_distribution<double> u(0.6, 1.4);
     for (double& s : skew) s = u(rng);
   }
@@ -98,34 +99,42 @@ struct Cube {
   Dims d{129, 129, 129};
   TspTree tree = make_tree(d, 16);
   TransferFunction tf = ramp_tf(0.05f);
+
+  /// One frame of c seen from azimuth 30° through tf.
+  LodFrameStats update(LodController& c) const { return c.update(camera(d, 30), 0, tf, 0.5); }
+
+  /// `frames` frames of c (update), each then measured as taking ms(its stats) milliseconds.
+  template <typename F>
+  void drive(LodController& c, int frames, F&& ms) const {
+    for (int k = 0; k < frames; ++k) c.measured(ms(update(c)));
+  }
 };
 
 TEST(LodController, WithoutATargetRefinesUntilNoErrorIsLeft) {
   const Cube cube;
-  const auto& [d, tree, tf] = cube;
+  const Octree& o = cube.tree.octree();
   LodOptions opt;
   opt.min_error = 0;
-  LodController c(tree, opt);
+  LodController c(cube.tree, opt);
   int frames = 0;
   LodFrameStats st;
   do {
-    st = c.update(camera(d, 30), 0, tf, 0.5);
+    st = cube.update(c);
     ++frames;
   } while (st.splits > 0 && frames < 1000);
-  EXPECT_EQ(c.cut().size(), tree.octree().brick_count());  // every node split: full resolution
-  EXPECT_EQ(st.nodes_per_level[0], tree.octree().brick_count());
+  EXPECT_EQ(c.cut().size(), o.brick_count());  // every node split: full resolution
+  EXPECT_EQ(st.nodes_per_level[0], o.brick_count());
   // split_limit per frame bounds how fast it gets there.
-  EXPECT_GE(frames, (tree.octree().size() - tree.octree().brick_count()) / opt.split_limit);
+  EXPECT_GE(frames, (o.size() - o.brick_count()) / opt.split_limit);
 }
 
 TEST(LodController, TransparentDataStaysCoarseForFree) {
-  const Dims d{129, 129, 129};
-  const TspTree tree = make_tree(d, 16);
+  Cube cube;
+  cube.tf = ramp_tf(0.f);  // α = 0 everywhere
   LodOptions opt;
   opt.min_error = 0;
-  LodController c(tree, opt);
-  const TransferFunction clear = ramp_tf(0.f);  // α = 0 everywhere
-  for (int k = 0; k < 20; ++k) c.update(camera(d, 30), 0, clear, 0.5);
+  LodController c(cube.tree, opt);
+  for (int k = 0; k < 20; ++k) cube.update(c);
   EXPECT_EQ(c.cut().size(), 1);
 }
 
@@ -148,15 +157,14 @@ TEST(LodController, NodesHiddenBehindOpaqueMatterStayCoarse) {
 }
 
 TEST(LodController, LikelySplitsAreChildrenOfTheWorstCutNodes) {
-  const Dims d{129, 129, 129};
-  const TspTree tree = make_tree(d, 16);
+  const Cube cube;
   LodOptions opt;
   opt.split_limit = 2;
-  LodController c(tree, opt);
-  for (int k = 0; k < 3; ++k) c.update(camera(d, 30), 0, ramp_tf(0.05f), 0.5);
+  LodController c(cube.tree, opt);
+  for (int k = 0; k < 3; ++k) cube.update(c);
   const std::vector<int> bricks = c.likely_split_bricks(3);
   ASSERT_FALSE(bricks.empty());
-  const Octree& o = tree.octree();
+  const Octree& o = cube.tree.octree();
   for (int b : bricks) {
     const int parent = o.node(o.stored_brick_node(b)).parent;
     EXPECT_TRUE(c.cut().contains(parent)) << "brick " << b;
@@ -166,14 +174,13 @@ TEST(LodController, LikelySplitsAreChildrenOfTheWorstCutNodes) {
 
 TEST(LodController, RespectsTheTextureBudget) {
   const Cube cube;
-  const auto& [d, tree, tf] = cube;
   LodOptions opt;
   opt.min_error = 0;
   const std::int64_t brick = 16 * 16 * 16 * 2;
   opt.texture_budget = 100 * brick;
-  LodController c(tree, opt);
+  LodController c(cube.tree, opt);
   LodFrameStats st;
-  for (int k = 0; k < 100; ++k) st = c.update(camera(d, 30), 0, tf, 0.5);
+  for (int k = 0; k < 100; ++k) st = cube.update(c);
   EXPECT_LE(st.texture_bytes, opt.texture_budget);
   EXPECT_GT(c.cut().size(), 50);  // it got as close as whole splits allow
   EXPECT_TRUE(c.cut().covers_once());
@@ -181,40 +188,34 @@ TEST(LodController, RespectsTheTextureBudget) {
 
 TEST(LodController, ShrinksTheRenderTargetWhenEvenTheRootIsTooSlow) {
   const Cube cube;
-  const auto& [d, tree, tf] = cube;
   LodOptions opt;
   opt.target_ms = 10;
-  LodController c(tree, opt);
+  LodController c(cube.tree, opt);
+  // The root alone takes 40 ms at full size.
+  const auto root_ms = [&](const LodFrameStats&) {
+    return 40 * c.render_scale() * c.render_scale();
+  };
   double ms = 0;
-  for (int k = 0; k < 30; ++k) {
-    c.update(camera(d, 30), 0, tf, 0.5);
-    ms = 40 * c.render_scale() * c.render_scale();  // the root alone takes 40 ms at full size
-    c.measured(ms);
-  }
+  cube.drive(c, 30, [&](const LodFrameStats& st) { return ms = root_ms(st); });
   EXPECT_EQ(c.cut().size(), 1);
   EXPECT_LT(c.render_scale(), 0.7);
   EXPECT_NEAR(ms, 10, 3);
   // Once there is time again, the scale returns to 1 before anything is split.
   c.set_target(200);
-  for (int k = 0; k < 30; ++k) {
-    c.update(camera(d, 30), 0, tf, 0.5);
-    c.measured(40 * c.render_scale() * c.render_scale());
-  }
+  cube.drive(c, 30, root_ms);
   EXPECT_EQ(c.render_scale(), 1.0);
 }
 
 TEST(LodController, FallsBackToSplatsWhenEvenTheRootIsTooSlow) {
   const Cube cube;
-  const auto& [d, tree, tf] = cube;
   LodOptions opt;
   opt.target_ms = 10;
   opt.fallback = LodFallback::splats;
-  LodController c(tree, opt);
+  LodController c(cube.tree, opt);
   // The textured root takes 40 ms; a splat frame 2 ms plus 0.5 ms per splat.
   std::vector<double> times;
   int most_splats = 0;
-  for (int k = 0; k < 40; ++k) {
-    const LodFrameStats st = c.update(camera(d, 30), 0, tf, 0.5);
+  cube.drive(c, 40, [&](const LodFrameStats& st) {
     EXPECT_EQ(st.render_scale, 1.0);  // splats instead of a smaller target
     EXPECT_EQ(c.cut().size(), 1);
     const double ms = c.splatting() ? 2 + 0.5 * st.splats : 40.0;
@@ -226,18 +227,16 @@ TEST(LodController, FallsBackToSplatsWhenEvenTheRootIsTooSlow) {
       }());
       most_splats = std::max(most_splats, st.splats);
     }
-    c.measured(ms);
     times.push_back(ms);
-  }
+    return ms;
+  });
   EXPECT_TRUE(c.splatting());
   EXPECT_GT(most_splats, 1);  // refined past the root's single splat while it fitted
   for (std::size_t k = 10; k < times.size(); ++k) EXPECT_LE(times[k], 10 * 1.1) << "frame " << k;
   // Once the coarsest textured cut fits again, the frames are textured and the cut refines.
   c.set_target(200);
-  for (int k = 0; k < 10; ++k) {
-    c.update(camera(d, 30), 0, tf, 0.5);
-    c.measured(c.splatting() ? 5 : 40.0 + 0.5 * c.cut().size());
-  }
+  cube.drive(c, 10,
+             [&](const LodFrameStats&) { return c.splatting() ? 5 : 40.0 + 0.5 * c.cut().size(); });
   EXPECT_FALSE(c.splatting());
   EXPECT_GT(c.cut().size(), 1);
   for (LodStop s : c.stops()) EXPECT_NE(s, LodStop::splat);

@@ -86,7 +86,7 @@ TEST(GridGeometry, WrfLikeFileGivesSpacingOriginAndTimes) {
 // WRF's Times (one "YYYY-MM-DD_HH:MM:SS" per step, 3-hourly from 2005-08-28_12:00:00) as seconds
 // since the first step.
 TEST(GridGeometry, WrfTimesAreSecondsSinceTheFirstStep) {
-  const auto wrf = tsptest::shared_data_dir() / "wrf-katrina" / "ci_test_file.nc";
+  const auto wrf = tsptest::katrina_file();
   if (!std::filesystem::exists(wrf)) GTEST_SKIP() << "shared data absent: " << wrf;
   SourceOptions o;
   o.field = "T";

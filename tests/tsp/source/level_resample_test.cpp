@@ -23,6 +23,7 @@ namespace tsp {
 namespace {
 
 using tsptest::error_of;
+using tsptest::katrina_file;
 
 // 3 × 2 columns of 4 levels at base + {0, 10, 30, 70} m, base = 10x + 5y (+ 3 m at step 1); the
 // field is 2h + 1 + 100t at each level's height h: linear in height, so resampling is exact.
@@ -143,14 +144,10 @@ TEST(LevelResample, ParsesTheChoice) {
 
 // ---- the real WRF file -------------------------------------------------------------------
 
-std::filesystem::path wrf_file() {
-  return tsptest::shared_data_dir() / "wrf-katrina" / "ci_test_file.nc";
-}
-
 // A whole dataset of the file as doubles.
 std::vector<double> read_all(const char* name, std::size_t count) {
   std::vector<double> v(count);
-  hid_t f = H5Fopen(wrf_file().c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  hid_t f = H5Fopen(katrina_file().c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   hid_t d = H5Dopen2(f, name, H5P_DEFAULT);
   EXPECT_GE(H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()), 0) << name;
   H5Dclose(d);
@@ -162,7 +159,8 @@ std::vector<double> read_all(const char* name, std::size_t count) {
 // step's own: its uniform grid and three columns at two steps, found here by a binary search
 // over each column's heights from PH, PHB and T read whole.
 TEST(LevelResample, WrfTemperatureAtItsGeopotentialHeights) {
-  if (!std::filesystem::exists(wrf_file())) GTEST_SKIP() << "shared data absent: " << wrf_file();
+  if (!std::filesystem::exists(katrina_file()))
+    GTEST_SKIP() << "shared data absent: " << katrina_file();
   constexpr int kPlane = 48 * 48;
   const std::vector<double> ph = read_all("PH", 4 * 15 * kPlane), phb = read_all("PHB", ph.size());
   const std::vector<double> temp = read_all("T", 4 * 14 * kPlane);
@@ -180,7 +178,7 @@ TEST(LevelResample, WrfTemperatureAtItsGeopotentialHeights) {
   const int planes = int(std::lround((top - bottom) / finest)) + 1;
   const double dz = (top - bottom) / (planes - 1);
 
-  auto s = tsptest::open_field(wrf_file().string(), "T");
+  auto s = tsptest::open_field(katrina_file().string(), "T");
   ASSERT_EQ(s->dims(), (Dims{48, 48, planes}));
   EXPECT_EQ(planes, 78);  // 14 levels, the thinnest ~73 m apart, over ~5.6 km
   EXPECT_NEAR(s->origin()[2], bottom, 1e-9 * bottom);
@@ -223,7 +221,8 @@ TEST(LevelResample, WrfTemperatureAtItsGeopotentialHeights) {
 // W on the staggered levels themselves; U, one wider in x, at the mean of the two mass
 // columns beside it; both at their own step's geopotential.
 TEST(LevelResample, WrfStaggeredFieldsAtTheirOwnHeights) {
-  if (!std::filesystem::exists(wrf_file())) GTEST_SKIP() << "shared data absent: " << wrf_file();
+  if (!std::filesystem::exists(katrina_file()))
+    GTEST_SKIP() << "shared data absent: " << katrina_file();
   constexpr int kPlane = 48 * 48;
   const std::vector<double> ph = read_all("PH", 4 * 15 * kPlane), phb = read_all("PHB", ph.size());
   const auto stag = [&](int t, int k, int x, int y) {
@@ -231,7 +230,7 @@ TEST(LevelResample, WrfStaggeredFieldsAtTheirOwnHeights) {
     return (ph[i] + phb[i]) / 9.81;
   };
   // W: plane 0 at the lowest staggered height of step 0 (the ground, 0 m over the sea).
-  auto w = tsptest::open_field(wrf_file().string(), "W");
+  auto w = tsptest::open_field(katrina_file().string(), "W");
   double ground = std::numeric_limits<double>::infinity();
   for (int y = 0; y < 48; ++y)
     for (int x = 0; x < 48; ++x) ground = std::min(ground, stag(0, 0, x, y));
@@ -239,7 +238,7 @@ TEST(LevelResample, WrfStaggeredFieldsAtTheirOwnHeights) {
   EXPECT_DOUBLE_EQ(w->origin()[2], ground);
   // U at step 2, column x = 20 (between mass columns 19 and 20), y = 10: where a plane meets
   // a stored level's height exactly the value is that level's; check the interpolation between.
-  auto u = tsptest::open_field(wrf_file().string(), "U");
+  auto u = tsptest::open_field(katrina_file().string(), "U");
   ASSERT_EQ(u->dims().x, 49);
   const std::vector<double> uv = read_all("U", 4 * 14 * 48 * 49);
   const int x = 20, y = 10, t = 2;
@@ -268,11 +267,12 @@ TEST(LevelResample, WrfStaggeredFieldsAtTheirOwnHeights) {
 
 // --vertical-levels native: the levels as stored (14), at their mean spacing.
 TEST(LevelResample, WrfNativeKeepsTheStoredLevels) {
-  if (!std::filesystem::exists(wrf_file())) GTEST_SKIP() << "shared data absent: " << wrf_file();
+  if (!std::filesystem::exists(katrina_file()))
+    GTEST_SKIP() << "shared data absent: " << katrina_file();
   SourceOptions o;
   o.field = "T";
   o.vertical.mode = VerticalLevels::Mode::native;
-  auto s = open_source(wrf_file().string(), o);
+  auto s = open_source(katrina_file().string(), o);
   EXPECT_EQ(s->dims(), (Dims{48, 48, 14}));
   EXPECT_FALSE(s->has_stencil());
   EXPECT_EQ(s->describe().find("resampled"), std::string::npos);

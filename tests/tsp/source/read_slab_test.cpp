@@ -37,10 +37,6 @@ void expect_slabs_match_steps(VolumeSource& s, const std::string& what) {
   }
 }
 
-std::string h5_fixture(const std::string& name) {
-  return (tsptest::test_data_dir() / "h5" / name).string();
-}
-
 TEST(ReadSlab, Hdf5DatasetsOfEveryLayoutAndType) {
   for (const auto& [file, field] : std::vector<std::pair<std::string, std::string>>{
            {"grid4d.h5", "f"},
@@ -50,7 +46,7 @@ TEST(ReadSlab, Hdf5DatasetsOfEveryLayoutAndType) {
            {"int16.h5", "u64"},
            {"vtkhdf_static.hdf", ""},
            {"vtkhdf_transient.hdf", ""}}) {
-    auto s = tsptest::open_field(h5_fixture(file), field);
+    auto s = tsptest::open_field(tsptest::h5_fixture(file), field);
     expect_slabs_match_steps(*s, file + " " + field);
   }
 }
@@ -68,7 +64,7 @@ TEST(ReadSlab, ChunkedDatasetsTellTheirChunkDepth) {
   auto s = tsptest::open_field((dir / "g.h5").string(), "shock");
   EXPECT_EQ(s->slab_alignment(), 12);
   expect_slabs_match_steps(*s, "gzip chunks");
-  EXPECT_EQ(tsptest::open_field(h5_fixture("grid4d.h5"), "f")->slab_alignment(), 0);
+  EXPECT_EQ(tsptest::open_field(tsptest::h5_fixture("grid4d.h5"), "f")->slab_alignment(), 0);
 }
 
 TEST(ReadSlab, RawFilesInBothByteOrdersAndAShortFileNamed) {

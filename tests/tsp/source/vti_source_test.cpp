@@ -15,15 +15,7 @@ namespace tsp {
 namespace {
 
 namespace fs = std::filesystem;
-using tsptest::error_of;
-using tsptest::expect_formula;
-
-std::unique_ptr<VolumeSource> open(const fs::path& path, const std::string& field) {
-  return tsptest::open_field(path.string(), field);
-}
-
-using tsptest::kFixtureCellDims;
-using tsptest::kFixtureDims;
+using namespace tsptest;  // the reader fixtures' formula, grids and helpers
 
 fs::path vti_dir() {
   return tsptest::test_data_dir() / "vti";
@@ -59,23 +51,21 @@ const char* const kVariants[] = {"ascii",         "binary",         "appended_ra
 // The fixtures list steps out of order; times 0, 0.25, 0.5 hold f at t = 0, 1, 2.
 void expect_series(VolumeSource& s, const std::string& field, Dims d, const std::string& tag) {
   SCOPED_TRACE(tag + " field " + field);
-  EXPECT_EQ(s.dims(), d);
-  ASSERT_EQ(s.steps(), 3);
-  for (int t = 0; t < 3; ++t) expect_formula(tsptest::read_step(s, t), d, t);
+  tsptest::expect_steps(s, d, {0, 1, 2});
 }
 
 TEST(VtiSource, PvdInEveryEncodingReadsExactValuesInTimeOrder) {
   for (const char* v : kVariants) {
     fs::path pvd = vti_dir() / (std::string(v) + ".pvd");
-    expect_series(*open(pvd, "f"), "f", kFixtureDims, v);
-    expect_series(*open(pvd, "g"), "g", kFixtureDims, v);      // Int16
-    expect_series(*open(pvd, "c"), "c", kFixtureCellDims, v);  // Float64 cell data
+    expect_series(*open_field(pvd, "f"), "f", kFixtureDims, v);
+    expect_series(*open_field(pvd, "g"), "g", kFixtureDims, v);      // Int16
+    expect_series(*open_field(pvd, "c"), "c", kFixtureCellDims, v);  // Float64 cell data
   }
 }
 
 TEST(VtiSource, VtiSeriesJsonInEveryEncoding) {
   for (const char* v : kVariants) {
-    auto s = open(vti_dir() / (std::string(v) + ".vti.series"), "f");
+    auto s = open_field(vti_dir() / (std::string(v) + ".vti.series"), "f");
     expect_series(*s, "f", kFixtureDims, v);
   }
 }
@@ -98,28 +88,28 @@ TEST(VtiSource, FixturesReallyCoverTheEncodings) {
 }
 
 TEST(VtiSource, SingleVtiIsOneStepAndDefaultsToActiveScalars) {
-  auto s = open(vti_dir() / "binary_2.vti", "");
+  auto s = open_field(vti_dir() / "binary_2.vti", "");
   EXPECT_EQ(s->dims(), kFixtureDims);
   ASSERT_EQ(s->steps(), 1);
   expect_formula(tsptest::read_step(*s, 0), kFixtureDims, 2);
 }
 
 TEST(VtiSource, VectorFieldIsRejected) {
-  std::string msg = error_of<FormatError>([] { open(vti_dir() / "ascii.pvd", "v"); });
+  std::string msg = error_of<FormatError>([] { open_field(vti_dir() / "ascii.pvd", "v"); });
   EXPECT_NE(msg.find("ascii_0.vti"), std::string::npos) << msg;
   EXPECT_NE(msg.find("field v has 3 components; a scalar field is expected"), std::string::npos)
       << msg;
 }
 
 TEST(VtiSource, MissingFieldListsArrays) {
-  std::string msg = error_of<FormatError>([] { open(vti_dir() / "ascii_0.vti", "nope"); });
+  std::string msg = error_of<FormatError>([] { open_field(vti_dir() / "ascii_0.vti", "nope"); });
   EXPECT_NE(msg.find("'nope'"), std::string::npos) << msg;
   EXPECT_NE(msg.find("PointData: f, g, v"), std::string::npos) << msg;
   EXPECT_NE(msg.find("CellData: c"), std::string::npos) << msg;
 }
 
 TEST(VtiSource, UnsupportedCompressorIsNamed) {
-  std::string msg = error_of<FormatError>([] { open(vti_dir() / "lz4.vti", "f"); });
+  std::string msg = error_of<FormatError>([] { open_field(vti_dir() / "lz4.vti", "f"); });
   EXPECT_NE(msg.find("lz4.vti"), std::string::npos) << msg;
   EXPECT_NE(msg.find("vtkLZ4DataCompressor"), std::string::npos) << msg;
 }
@@ -135,7 +125,7 @@ TEST(VtiSource, StepsWithDifferentGridsAreRejected) {
             (vti_dir() / "other_dims.vti").string() +
             "\"/>"
             "</Collection></VTKFile>");
-  std::string msg = error_of<FormatError>([&] { open(dir / "mixed.pvd", "f"); });
+  std::string msg = error_of<FormatError>([&] { open_field(dir / "mixed.pvd", "f"); });
   EXPECT_NE(msg.find("other_dims.vti"), std::string::npos) << msg;
   EXPECT_NE(msg.find("4x4x3"), std::string::npos) << msg;
   EXPECT_NE(msg.find("5x4x3"), std::string::npos) << msg;
@@ -146,7 +136,7 @@ TEST(VtiSource, MissingStepFileIsAnIoError) {
   write(dir / "gap.pvd",
         "<VTKFile type=\"Collection\"><Collection>"
         "<DataSet timestep=\"0\" file=\"absent_7.vti\"/></Collection></VTKFile>");
-  std::string msg = error_of<IoError>([&] { open(dir / "gap.pvd", "f"); });
+  std::string msg = error_of<IoError>([&] { open_field(dir / "gap.pvd", "f"); });
   EXPECT_NE(msg.find("absent_7.vti"), std::string::npos) << msg;
 }
 
@@ -160,7 +150,7 @@ TEST(VtiSource, SeveralPartsPerTimestepAreRejected) {
             "\"/>"
             "<DataSet timestep=\"0\" part=\"1\" file=\"" +
             b + "\"/></Collection></VTKFile>");
-  std::string msg = error_of<FormatError>([&] { open(dir / "parts.pvd", "f"); });
+  std::string msg = error_of<FormatError>([&] { open_field(dir / "parts.pvd", "f"); });
   EXPECT_NE(msg.find("several parts"), std::string::npos) << msg;
 }
 
@@ -173,7 +163,7 @@ TEST(VtiSource, TruncatedAppendedDataFailsWithoutCrashing) {
       write(p, bytes.substr(0, bytes.size() - cut));
       EXPECT_THROW(
           {
-            auto s = open(p, "c");  // c is the last array, so every cut reaches its data
+            auto s = open_field(p, "c");  // c is the last array, so every cut reaches its data
             tsptest::read_step(*s, 0);
           },
           FormatError)
@@ -185,7 +175,7 @@ TEST(VtiSource, TruncatedAppendedDataFailsWithoutCrashing) {
 TEST(VtiSource, CorruptBase64IsNamed) {
   // Replace one base64 character of the inline data with a character outside the alphabet.
   fs::path p = patched("binary_0.vti", "AAAAAAAAAAAAIA/", "AAAAAAAAAAA#IA/");
-  std::string msg = error_of<FormatError>([&] { tsptest::read_step(*open(p, "f"), 0); });
+  std::string msg = error_of<FormatError>([&] { tsptest::read_step(*open_field(p, "f"), 0); });
   EXPECT_NE(msg.find("base64"), std::string::npos) << msg;
   EXPECT_NE(msg.find("array f"), std::string::npos) << msg;
 }
@@ -197,7 +187,7 @@ TEST(VtiSource, CorruptZlibBlockIsNamed) {
   for (std::size_t i = data + 60; i < data + 70; ++i) bytes[i] = char(bytes[i] ^ 0x5a);
   fs::path p = tsptest::temp_dir() / "zlib.vti";
   write(p, bytes);
-  std::string msg = error_of<FormatError>([&] { tsptest::read_step(*open(p, "f"), 0); });
+  std::string msg = error_of<FormatError>([&] { tsptest::read_step(*open_field(p, "f"), 0); });
   EXPECT_NE(msg.find("zlib"), std::string::npos) << msg;
 }
 
@@ -205,13 +195,13 @@ TEST(VtiSource, PiecesNotCoveringWholeExtentAreRejected) {
   // Same-length edit keeps every appended offset valid but makes the grid one layer taller.
   fs::path p =
       patched("pieces_0.vti", "WholeExtent=\"0 4 0 3 0 2\"", "WholeExtent=\"0 4 0 3 0 3\"");
-  std::string msg = error_of<FormatError>([&] { tsptest::read_step(*open(p, "f"), 0); });
+  std::string msg = error_of<FormatError>([&] { tsptest::read_step(*open_field(p, "f"), 0); });
   EXPECT_NE(msg.find("do not cover WholeExtent"), std::string::npos) << msg;
 }
 
 TEST(VtiSource, UnknownElementTypeIsNamed) {
   fs::path p = patched("ascii_0.vti", "type=\"Float32\" Name=\"f\"", "type=\"Bogus32\" Name=\"f\"");
-  std::string msg = error_of<FormatError>([&] { tsptest::read_step(*open(p, "f"), 0); });
+  std::string msg = error_of<FormatError>([&] { tsptest::read_step(*open_field(p, "f"), 0); });
   EXPECT_NE(msg.find("Bogus32"), std::string::npos) << msg;
 }
 
@@ -219,36 +209,36 @@ TEST(VtiSource, WrongValueCountInAsciiIsNamed) {
   // Drop the first value of f (f is the first array, so the first match is its data).
   fs::path p =
       patched("ascii_0.vti", "RangeMax=\"234\">\n        0 1 2", "RangeMax=\"234\">\n        1 2");
-  std::string msg = error_of<FormatError>([&] { tsptest::read_step(*open(p, "f"), 0); });
+  std::string msg = error_of<FormatError>([&] { tsptest::read_step(*open_field(p, "f"), 0); });
   EXPECT_NE(msg.find("holds 59 values, expected 60"), std::string::npos) << msg;
 }
 
 TEST(VtiSource, MalformedXmlAndWrongDatasetTypeAreFormatErrors) {
   fs::path dir = tsptest::temp_dir();
   write(dir / "broken.vti", "<VTKFile type=\"ImageData\"><ImageData WholeExtent=\"0 1 0 1 0 1\">");
-  std::string msg = error_of<FormatError>([&] { open(dir / "broken.vti", "f"); });
+  std::string msg = error_of<FormatError>([&] { open_field(dir / "broken.vti", "f"); });
   EXPECT_NE(msg.find("not well-formed XML"), std::string::npos) << msg;
   write(dir / "grid.vti", "<VTKFile type=\"UnstructuredGrid\"><UnstructuredGrid/></VTKFile>");
-  msg = error_of<FormatError>([&] { open(dir / "grid.vti", "f"); });
+  msg = error_of<FormatError>([&] { open_field(dir / "grid.vti", "f"); });
   EXPECT_NE(msg.find("\"UnstructuredGrid\", expected \"ImageData\""), std::string::npos) << msg;
 }
 
 TEST(VtiSource, BadSeriesJsonIsAFormatError) {
   fs::path dir = tsptest::temp_dir();
   write(dir / "a.vti.series", "{\"file-series-version\": \"1.0\", \"files\": [");
-  EXPECT_THROW(open(dir / "a.vti.series", "f"), FormatError);
+  EXPECT_THROW(open_field(dir / "a.vti.series", "f"), FormatError);
   write(dir / "b.vti.series", "{\"file-series-version\": \"1.0\", \"files\": [{\"name\": 3}]}");
-  std::string msg = error_of<FormatError>([&] { open(dir / "b.vti.series", "f"); });
+  std::string msg = error_of<FormatError>([&] { open_field(dir / "b.vti.series", "f"); });
   EXPECT_NE(msg.find("files[0]"), std::string::npos) << msg;
   write(dir / "c.vti.series", "{\"file-series-version\": \"2.0\", \"files\": []}");
-  msg = error_of<FormatError>([&] { open(dir / "c.vti.series", "f"); });
+  msg = error_of<FormatError>([&] { open_field(dir / "c.vti.series", "f"); });
   EXPECT_NE(msg.find("2.0"), std::string::npos) << msg;
 }
 
 TEST(VtiSource, PatternOfVtiFilesIsASeriesInPatternOrder) {
-  auto s = open(vti_dir() / "zlib_appended_%d.vti", "f");
+  auto s = open_field(vti_dir() / "zlib_appended_%d.vti", "f");
   expect_series(*s, "f", kFixtureDims, "printf pattern");
-  auto g = open(vti_dir() / "appended_raw_?.vti", "c");
+  auto g = open_field(vti_dir() / "appended_raw_?.vti", "c");
   expect_series(*g, "c", kFixtureCellDims, "glob");
 }
 

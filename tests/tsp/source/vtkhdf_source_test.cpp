@@ -15,53 +15,37 @@ namespace tsp {
 namespace {
 
 namespace fs = std::filesystem;
-using tsptest::error_of;
-using tsptest::expect_formula;
-
-std::unique_ptr<VolumeSource> open(const std::string& path, const std::string& field) {
-  return tsptest::open_field(path, field);
-}
-
-using tsptest::kFixtureCellDims;
-using tsptest::kFixtureDims;
-
-std::string fixture(const std::string& name) {
-  return (tsptest::test_data_dir() / "h5" / name).string();
-}
+using namespace tsptest;  // the reader fixtures' formula, grids and helpers
 
 // The fixture's transient file replays stored volumes 0, 1, 1, 2 (Steps/*DataOffsets).
-constexpr int kStoredIndex[] = {0, 1, 1, 2};
+const std::vector<double> kStoredIndex = {0, 1, 1, 2};
 
 TEST(VtkHdfSource, TransientPointDataFollowsTheOffsetsTable) {
-  auto s = open(fixture("vtkhdf_transient.hdf"), "f");
-  EXPECT_EQ(s->dims(), kFixtureDims);
-  ASSERT_EQ(s->steps(), 4);
-  for (int t = 0; t < 4; ++t) expect_formula(tsptest::read_step(*s, t), kFixtureDims, kStoredIndex[t]);
+  auto s = open_field(h5_fixture("vtkhdf_transient.hdf"), "f");
+  expect_steps(*s, kFixtureDims, kStoredIndex);
   EXPECT_NE(s->describe().find("PointData/f"), std::string::npos) << s->describe();
 }
 
 TEST(VtkHdfSource, EmptyFieldUsesTheActiveScalars) {
-  auto s = open(fixture("vtkhdf_transient.hdf"), "");
-  ASSERT_EQ(s->steps(), 4);
-  expect_formula(tsptest::read_step(*s, 3), kFixtureDims, 2);
+  expect_steps(*open_field(h5_fixture("vtkhdf_transient.hdf"), ""), kFixtureDims, kStoredIndex);
 }
 
 TEST(VtkHdfSource, CellDataIsReadAsTheGridOfCells) {
-  auto s = open(fixture("vtkhdf_transient.hdf"), "c");
-  EXPECT_EQ(s->dims(), kFixtureCellDims);
-  ASSERT_EQ(s->steps(), 4);
-  for (int t = 0; t < 4; ++t) expect_formula(tsptest::read_step(*s, t), kFixtureCellDims, kStoredIndex[t]);
+  auto s = open_field(h5_fixture("vtkhdf_transient.hdf"), "c");
+  expect_steps(*s, kFixtureCellDims, kStoredIndex);
 }
 
 TEST(VtkHdfSource, VectorFieldIsRejected) {
-  std::string msg = error_of<FormatError>([] { open(fixture("vtkhdf_transient.hdf"), "v"); });
+  std::string msg =
+      error_of<FormatError>([] { open_field(h5_fixture("vtkhdf_transient.hdf"), "v"); });
   EXPECT_NE(msg.find("vtkhdf_transient.hdf"), std::string::npos) << msg;
   EXPECT_NE(msg.find("field v has 3 components; a scalar field is expected"), std::string::npos)
       << msg;
 }
 
 TEST(VtkHdfSource, MissingFieldListsArrays) {
-  std::string msg = error_of<FormatError>([] { open(fixture("vtkhdf_transient.hdf"), "zz"); });
+  std::string msg =
+      error_of<FormatError>([] { open_field(h5_fixture("vtkhdf_transient.hdf"), "zz"); });
   EXPECT_NE(msg.find("'zz'"), std::string::npos) << msg;
   EXPECT_NE(msg.find("PointData: f, v"), std::string::npos) << msg;
   EXPECT_NE(msg.find("CellData: c"), std::string::npos) << msg;
@@ -69,16 +53,14 @@ TEST(VtkHdfSource, MissingFieldListsArrays) {
 
 TEST(VtkHdfSource, StaticImageDataIsOneStep) {
   // This file's Type attribute is a variable-length string (h5py's default).
-  auto s = open(fixture("vtkhdf_static.hdf"), "");
-  EXPECT_EQ(s->dims(), kFixtureDims);
-  ASSERT_EQ(s->steps(), 1);
-  expect_formula(tsptest::read_step(*s, 0), kFixtureDims, 0);
+  auto s = open_field(h5_fixture("vtkhdf_static.hdf"), "");
+  expect_steps(*s, kFixtureDims, {0});
 }
 
 TEST(VtkHdfSource, UnstructuredGridIsRejectedByType) {
   fs::path can = tsptest::shared_data_dir() / "crushing-can" / "can_0.hdf";
   if (!fs::exists(can)) GTEST_SKIP() << "shared data absent: " << can;
-  std::string msg = error_of<FormatError>([&] { open(can.string(), "EQPS"); });
+  std::string msg = error_of<FormatError>([&] { open_field(can.string(), "EQPS"); });
   EXPECT_NE(msg.find("UnstructuredGrid"), std::string::npos) << msg;
   EXPECT_NE(msg.find("expected \"ImageData\""), std::string::npos) << msg;
 }
@@ -144,7 +126,7 @@ TEST(VtkHdfSource, NewerMajorVersionIsRejected) {
     w.group("/VTKHDF/PointData");
     w.floats("/VTKHDF/PointData/f", {3, 4, 5});
   }
-  std::string msg = error_of<FormatError>([&] { open(p.string(), "f"); });
+  std::string msg = error_of<FormatError>([&] { open_field(p.string(), "f"); });
   EXPECT_NE(msg.find("version 3.0"), std::string::npos) << msg;
 }
 
@@ -156,7 +138,7 @@ TEST(VtkHdfSource, ShapeDisagreeingWithWholeExtentIsRejected) {
     w.group("/VTKHDF/PointData");
     w.floats("/VTKHDF/PointData/f", {3, 5, 4});  // x and y swapped
   }
-  std::string msg = error_of<FormatError>([&] { open(p.string(), "f"); });
+  std::string msg = error_of<FormatError>([&] { open_field(p.string(), "f"); });
   EXPECT_NE(msg.find("/VTKHDF/PointData/f"), std::string::npos) << msg;
   EXPECT_NE(msg.find("shape 3x5x4, expected 3x4x5"), std::string::npos) << msg;
 }
@@ -171,7 +153,7 @@ TEST(VtkHdfSource, TransientArrayWithoutTimeAxisIsRejected) {
     hid_t steps = w.group("/VTKHDF/Steps");
     w.ints(steps, "NSteps", {2});
   }
-  std::string msg = error_of<FormatError>([&] { open(p.string(), "f"); });
+  std::string msg = error_of<FormatError>([&] { open_field(p.string(), "f"); });
   EXPECT_NE(msg.find("expected steps x 3x4x5"), std::string::npos) << msg;
 }
 
@@ -187,7 +169,7 @@ TEST(VtkHdfSource, OffsetBeyondStoredStepsIsRejected) {
     w.group("/VTKHDF/Steps/PointDataOffsets");
     w.longs("/VTKHDF/Steps/PointDataOffsets/f", {0, 1, 2});
   }
-  std::string msg = error_of<FormatError>([&] { open(p.string(), "f"); });
+  std::string msg = error_of<FormatError>([&] { open_field(p.string(), "f"); });
   EXPECT_NE(msg.find("step 2 reads time index 2"), std::string::npos) << msg;
 }
 
@@ -201,7 +183,7 @@ TEST(VtkHdfSource, WithoutOffsetsTableStepTReadsIndexT) {
     hid_t steps = w.group("/VTKHDF/Steps");
     w.ints(steps, "NSteps", {2});
   }
-  auto s = open(p.string(), "f");
+  auto s = open_field(p.string(), "f");
   ASSERT_EQ(s->steps(), 2);
   std::vector<float> v = tsptest::read_step(*s, 1);
   for (float x : v) ASSERT_EQ(x, 1.0f);
@@ -216,7 +198,7 @@ TEST(VtkHdfSource, MissingNStepsIsRejected) {
     w.floats("/VTKHDF/PointData/f", {2, 3, 4, 5});
     w.group("/VTKHDF/Steps");
   }
-  std::string msg = error_of<FormatError>([&] { open(p.string(), "f"); });
+  std::string msg = error_of<FormatError>([&] { open_field(p.string(), "f"); });
   EXPECT_NE(msg.find("NSteps"), std::string::npos) << msg;
 }
 
@@ -227,7 +209,7 @@ TEST(VtkHdfSource, MissingWholeExtentIsRejected) {
     w.ints(w.root.get(), "Version", {2, 0});
     w.text(w.root.get(), "Type", "ImageData");
   }
-  std::string msg = error_of<FormatError>([&] { open(p.string(), ""); });
+  std::string msg = error_of<FormatError>([&] { open_field(p.string(), ""); });
   EXPECT_NE(msg.find("WholeExtent"), std::string::npos) << msg;
 }
 
@@ -242,7 +224,7 @@ TEST(VtkHdfSource, FlatImageStoresTwoDimensionalArrays) {
     w.group("/VTKHDF/PointData");
     w.floats("/VTKHDF/PointData/f", {4, 5});
   }
-  auto s = open(p.string(), "f");
+  auto s = open_field(p.string(), "f");
   EXPECT_EQ(s->dims(), (Dims{5, 4, 1}));
   std::vector<float> v = tsptest::read_step(*s, 0);
   for (float x : v) ASSERT_EQ(x, 1.0f);
