@@ -497,8 +497,6 @@ void PlayerApp::frame() {
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
   if (shot_now && !pending_shot_.empty()) save_pending_shot();
   ctx->swap_buffers();
-  screen_step_before_ = screen_step_;
-  screen_step_ = state.step;
 
   measured_lod(last.ms - last.upload_ms, t_frame.ms());
   history.push_back({now - start_s_, t_frame.ms()});
@@ -528,13 +526,8 @@ void PlayerApp::run() {
     if (!busy()) {
       const std::uint64_t before = events_;
       const double to_script = wait_until_s_ - clock_.seconds();
-      ctx->poll_events();  // (what came while the last frame was drawn: no wait then)
-      if (events_ == before) {
-        waiting_ = true;  // (a key now comes as it is pressed: apply_key)
-        ctx->wait_events(std::min({to_script > 0 ? to_script : kIdleWaitSeconds,
-                                   kIdleWaitSeconds, until_next_step()}));
-        waiting_ = false;
-      }
+      ctx->wait_events(std::min({to_script > 0 ? to_script : kIdleWaitSeconds, kIdleWaitSeconds,
+                                  until_next_step()}));
       if (events_ == before && !busy()) {
         ++idle_waits_;
         continue;

@@ -349,10 +349,6 @@ class PlayerApp {
   std::uint64_t applied_probe_tf_ = ~std::uint64_t(0);
   void trace_changes();  // --trace: prints what changed since the last frame
   void apply_key(int key);  // one key press (or repeat) from the queue
-  // The step on screen (swapped in by the last frame) and the one before it; the one on
-  // screen when Space last went down (−1: none); true while run() waits for events.
-  int screen_step_ = -1, screen_step_before_ = -1, space_step_ = -1;
-  bool waiting_ = false;
 
   void refresh_reference();
   /// The current metric as frames read it (the reference metric brought up to date first).

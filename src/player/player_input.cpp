@@ -36,11 +36,6 @@ void PlayerApp::install_callbacks() {
     // key through the input queue (a Ctrl+A shorter than a frame still selects).
     const bool down = action == GLFW_PRESS || action == GLFW_REPEAT;
     const bool to_player = down && !app->shortcut(key, mods);
-    // The step on screen as Space went down: a press handled while waiting came as it was
-    // made; one handled as a frame starts came while the frame before was drawn, when the
-    // step before that was on screen (pausing stopped a step late).
-    if (to_player && key == GLFW_KEY_SPACE && action == GLFW_PRESS)
-      app->space_step_ = app->waiting_ ? app->screen_step_ : app->screen_step_before_;
     // (A repeat changes no key's state: a held key repeats in Dear ImGui by itself.)
     app->input_queue_.push({InputEvent::Kind::key, 0, 0, key, down, to_player});
   });
@@ -148,13 +143,6 @@ void PlayerApp::trace_tf_canvas(float x, float y, float w, float h) {
 void PlayerApp::apply_key(int key) {
   if (key == GLFW_KEY_F1 || key == GLFW_KEY_SLASH) {  // '?' on most layouts: the help overlay
     show_help = !show_help;  // (no player state)
-    return;
-  }
-  // Space pausing: playback stops on the step on screen when it went down, not the one the
-  // frame drawing as it went down moved on to.
-  if (key == GLFW_KEY_SPACE && state.playing && space_step_ >= 0 && space_step_ < steps() &&
-      space_step_ != state.step) {
-    command(cmd::GoToStep{space_step_});  // (pauses)
     return;
   }
   if (std::optional<Command> c = key_command(key, state, steps())) command(*c);

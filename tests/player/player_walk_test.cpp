@@ -2,7 +2,6 @@
 // that failed before its fix. (Helpers: support/player_run.h.)
 #include <gtest/gtest.h>
 
-#include <cstdlib>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -121,33 +120,6 @@ TEST(PlayerWalk, EveryFitIsTracedAsAnEdit) {
        at = r.out.find("trace: transfer function edited", at + 1))
     ++edits;
   EXPECT_EQ(edits, 8) << r.out;
-}
-
-// Space pauses on the step on screen when it went down (a real X key, xdotool): pressed while a
-// slow frame draws the next step (step 1 on screen, "trace: step 2" printed as the frame drawing
-// step 2 began), playback stops on step 1. It stopped on step 2, a step late.
-TEST(PlayerWalk, SpacePausesOnTheStepOnScreenWhenPressed) {
-  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
-  ASSERT_EQ(std::system("command -v xdotool > /dev/null"), 0)
-      << "xdotool missing (scripts/install-deps.sh installs it)";
-  const fs::path tsp = make_tsp(), dir = tsptest::temp_dir(), out = dir / "space.out";
-  const fs::path script = write_script("play\nwait-seconds 120\nquit\n");  // (if Ctrl+Q is lost)
-  const std::string cmd =
-      log_waits(out) + "(" + q(tsptest::tspplay_bin()) + " play " + q(tsp) + " --size " + kSize +
-      " --no-session --quality 0 --speed 24 --trace --frame-delay-ms 800 --script " + q(script) +
-      " > " + q(out) + " 2>&1 &\n" + "w=$(xdotool search --sync --name " +
-      q("tspplay - " + tsp.string()) + " | head -1)\n"
-      "until_log 'trace: step 2'\n"
-      "xdotool key --window \"$w\" space\n"
-      "until_log 'trace: paused'\n"
-      "quit_player)\n";
-  ASSERT_EQ(run_bash(dir / "space.sh", cmd), 0) << tsptest::read_file(out);
-  const std::string log = tsptest::read_file(out);
-  const std::size_t paused = log.find("trace: paused", log.find("trace: step 2"));
-  ASSERT_NE(paused, std::string::npos) << log;
-  // The step shown last, as the pause left it.
-  const std::size_t last = log.rfind("trace: step ");
-  EXPECT_EQ(log.substr(last, log.find('\n', last) - last), "trace: step 1") << log;
 }
 
 }  // namespace
