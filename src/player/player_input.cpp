@@ -85,13 +85,16 @@ void PlayerApp::handle_input() {
   const ImGuiIO& io = ImGui::GetIO();
   const bool gizmo = !io.WantCaptureMouse && state.camera.width > 0 && state.camera.height > 0 &&
                      probe_gizmo(tsp::Camera(file->tree().octree().dims(), state.camera));
+  // The frame a button goes down carries the cursor's way to the press (from the timeline, say,
+  // in one motion with the press): a drag moves the view from the press on, not by that jump.
+  const bool pressed_now = io.MouseClicked[0] || io.MouseClicked[1] || io.MouseClicked[2];
   if (!io.WantCaptureMouse && !gizmo) {
     const bool pan = io.MouseDown[1] || io.MouseDown[2] || (io.MouseDown[0] && io.KeyShift);
-    if (pan) {
+    if (pan && !pressed_now) {
       const double scale = 2.0 / (state.camera.zoom * std::max(1, std::min(state.camera.width, state.camera.height)));
       state.camera.pan[0] -= io.MouseDelta.x * scale;
       state.camera.pan[1] += io.MouseDelta.y * scale;
-    } else if (io.MouseDown[0]) {
+    } else if (io.MouseDown[0] && !pan && !pressed_now) {
       state.camera.azimuth_deg -= io.MouseDelta.x * kOrbitDegPerPixel;
       state.camera.elevation_deg = std::clamp(state.camera.elevation_deg + io.MouseDelta.y * kOrbitDegPerPixel,
                                         -kMaxElevation, kMaxElevation);

@@ -2,6 +2,7 @@
 // that failed before its fix. (Helpers: support/player_run.h.)
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -120,6 +121,35 @@ TEST(PlayerWalk, EveryFitIsTracedAsAnEdit) {
        at = r.out.find("trace: transfer function edited", at + 1))
     ++edits;
   EXPECT_EQ(edits, 8) << r.out;
+}
+
+// Issue 47's sixth walk: the cursor resting on the timeline, then one motion to the view with the
+// button pressed there, and a drag 80 px to the right. The frame of the press carried the motion
+// from the timeline as a drag, and the view flipped to nearly top-down. Now the view turns by
+// the drag alone: the azimuth by at most 80 px × 0.4°, the elevation not at all.
+TEST(PlayerWalk, AnOrbitStartsAtThePressNotWhereTheCursorCameFrom) {
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
+  ASSERT_EQ(std::system("command -v xdotool > /dev/null"), 0)
+      << "xdotool missing (scripts/install-deps.sh installs it)";
+  const fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
+  const fs::path out = dir / "orbit.out", stats = dir / "orbit.json";
+  const fs::path script =
+      write_script("panels off\nwait-seconds 20\nstats " + stats.string() + "\nquit\n");
+  const std::string cmd =
+      "(" + q(tsptest::tspplay_bin()) + " play " + q(tsp) + " --size 400x400 --no-session --script " +
+      q(script) + " > " + q(out) + " 2>&1 &\n" +
+      "win=$(timeout 20 xdotool search --sync --name " + q("tspplay - " + tsp.string()) +
+      " | head -1)\nsleep 2\n"
+      "xdotool mousemove --window \"$win\" 20 20; sleep 1\n"
+      "xdotool mousemove --window \"$win\" 200 300 mousedown 1 mousemove --window \"$win\" 240 300\n"
+      "sleep 0.6; xdotool mousemove --window \"$win\" 280 300; sleep 0.6; xdotool mouseup 1\n"
+      "wait)\n";
+  ASSERT_EQ(run_bash(dir / "orbit.sh", cmd), 0);
+  const nlohmann::json j = read_json(stats);
+  const double azimuth = j["camera"]["azimuth_deg"], elevation = j["camera"]["elevation_deg"];
+  EXPECT_NEAR(elevation, 20.0, 1.0) << read_text(out);  // the jump was 280 px up: +112°
+  EXPECT_LE(azimuth, 30.0 - 40 * 0.4 + 1) << read_text(out);  // the drag's second half at least
+  EXPECT_GE(azimuth, 30.0 - 80 * 0.4 - 1) << read_text(out);  // (the jump: 180 px more)
 }
 
 }  // namespace
