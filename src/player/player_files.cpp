@@ -176,7 +176,7 @@ void PlayerApp::open_file(const std::string& path) {
   glfwSetWindowTitle(static_cast<GLFWwindow*>(ctx->native_window()), ("tspplay - " + shown).c_str());
   // (An event, named as the user named the input: "playing PATH" stayed on while paused and
   // named the cache's build.)
-  status = "opened " + shown + " (" + std::to_string(steps()) + " steps)";
+  status = "opened " + shown + " (" + std::to_string(steps()) + (steps() == 1 ? " step)" : " steps)");
   std::printf("opened %s (%d steps)\n", path.c_str(), steps());
   std::fflush(stdout);
   if (surface_asked) set_setting("surface", "boundary");
