@@ -108,9 +108,13 @@ bool hide_slider_text(const char* id) {
 void value_beside_grab(float x0, float x1, GrabSpan grab, const char* text) {
   const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
   const ImVec2 size = ImGui::CalcTextSize(text);
-  const float x = text_beside_grab(x0, x1, grab, size.x);
   const float y = lo.y + (hi.y - lo.y - size.y) * 0.5f;
   ImDrawList* dl = ImGui::GetWindowDrawList();
+  if (!room_beside_grab(x0, x1, grab, size.x)) {  // (one value: over the grab, centred)
+    dl->AddText(ImVec2(0.5f * (x0 + x1 - size.x), y), ImGui::GetColorU32(ImGuiCol_Text), text);
+    return;
+  }
+  const float x = text_beside_grab(x0, x1, grab, size.x);
   const bool left = x < grab.lo;  // (clipped at the grab: never under it)
   dl->PushClipRect(ImVec2(left ? x0 : grab.hi, lo.y), ImVec2(left ? grab.lo : x1, hi.y), true);
   dl->AddText(ImVec2(x, y), ImGui::GetColorU32(ImGuiCol_Text), text);

@@ -32,4 +32,8 @@ float text_beside_grab(float x0, float x1, GrabSpan grab, float text_w) {
   return room >= text_w ? grab.hi + kTextGap + (room - text_w) * 0.5f : grab.hi + kTextGap;
 }
 
+bool room_beside_grab(float x0, float x1, GrabSpan grab, float text_w) {
+  return std::max(grab.lo - x0, x1 - grab.hi) - 2 * kTextGap >= text_w / 3;
+}
+
 }  // namespace tspplayer

@@ -20,5 +20,9 @@ float int_slider_grab_width(float x0, float x1, int lo, int hi, float grab_min);
 /// frame's two sides of the grab when it fits there, else against the frame's edge on that
 /// side (what does not fit is clipped at the grab). Never throws.
 float text_beside_grab(float x0, float x1, GrabSpan grab, float text_w);
+/// False when neither side of the grab has room for a third of text_w (a slider of one value:
+/// its grab fills the frame): the text is then drawn over the grab, centred on the frame, as
+/// Dear ImGui draws it. Never throws.
+bool room_beside_grab(float x0, float x1, GrabSpan grab, float text_w);
 
 }  // namespace tspplayer

@@ -32,4 +32,17 @@ TEST(PlayerSliderText, TheGrabNeverCoversTheValueText) {
   EXPECT_EQ(text_beside_grab(0, 400, {200, 300}, 300), 4);
 }
 
+TEST(PlayerSliderText, AOneValueSliderDrawsItsTextOverTheGrab) {
+  // The sixth walk: a one-step input's scrubber, whose grab fills the frame, hid its text.
+  const GrabSpan one = slider_grab(0, 404, 0, int_slider_grab_width(0, 404, 0, 0, 10));
+  EXPECT_EQ(one.lo, 2);
+  EXPECT_EQ(one.hi, 402);
+  EXPECT_FALSE(room_beside_grab(0, 404, one, 180));
+  // Two or more steps leave room beside the grab: the text goes there.
+  for (int last : {1, 3, 999}) {
+    const float g = int_slider_grab_width(0, 404, 0, last, 10);
+    EXPECT_TRUE(room_beside_grab(0, 404, slider_grab(0, 404, 0, g), 180)) << last;
+  }
+}
+
 }  // namespace
