@@ -13,9 +13,7 @@
 #include "render/cpu_pass.h"
 #include "render/volume_renderer.h"
 #include "support/function_scene.h"
-#include "support/memory_source.h"
-#include "support/paths.h"
-#include "tsp/build/build.h"
+#include "support/function_tsp.h"
 #include "tsp/lod/lod_cut.h"
 #include "tsp/metric/compute_errors.h"
 #include "tsp/report/image_diff.h"
@@ -231,12 +229,7 @@ TEST(CpuCaster, TheDenseRegionHoldsTheSameTexelsWhateverStepCameBefore) {
   auto f = [](int x, int y, int z, int t) {
     return std::min(field(x, y, z, 0) * (x < 24 && t == 1 ? 0.6f : 1.f) + 0.004f * float(t), 1.f);
   };
-  auto src = tsptest::MemorySource::from_function({65, 65, 65}, 2, f);
-  const std::string path = (tsptest::temp_dir() / "cpu_dense_steps.tsp").string();
-  tsp::BuildOptions o;
-  o.brick_size = 16;
-  o.range = tsp::ValueRange{0, 1};
-  tsp::build_tsp_file(src, path, o);
+  const std::string path = tsptest::build_function_tsp("cpu_dense_steps", {65, 65, 65}, f, 16, 2);
   CrossScene& sc = scene();
   auto file = tsp::TspFile::open(path);
   const tsp::MetricResult m =

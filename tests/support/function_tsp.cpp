@@ -7,8 +7,9 @@
 namespace tsptest {
 
 std::string build_function_tsp(const std::string& name, tsp::Dims dims,
-                               const std::function<float(int, int, int, int)>& f, int brick) {
-  auto src = MemorySource::from_function(dims, 1, f);
+                               const std::function<float(int, int, int, int)>& f, int brick,
+                               int steps) {
+  auto src = MemorySource::from_function(dims, steps, f);
   const std::string path = (temp_dir() / (name + ".tsp")).string();
   tsp::BuildOptions o;
   o.brick_size = brick;

@@ -7,11 +7,11 @@
 
 namespace tsptest {
 
-/// Builds the one-step series f(x, y, z, 0) over dims, quantized over [0, 1], with bricks of
-/// `brick`, into a fresh file `name`.tsp in the test's temporary directory; returns its path.
-/// Throws what tsp::build_tsp_file throws.
+/// Builds the series f(x, y, z, t) of `steps` steps over dims, quantized over [0, 1], with
+/// bricks of `brick`, into a fresh file `name`.tsp in the test's temporary directory; returns its
+/// path. Throws what tsp::build_tsp_file throws.
 std::string build_function_tsp(const std::string& name, tsp::Dims dims,
                                const std::function<float(int, int, int, int)>& f,
-                               int brick = 16);
+                               int brick = 16, int steps = 1);
 
 }  // namespace tsptest
