@@ -182,16 +182,20 @@ struct Sampler {
     auto at = [&](glm::ivec3 q) {
       return runs[std::size_t(q.x) + std::size_t(grid.x) * (std::size_t(q.y) + std::size_t(grid.y) * std::size_t(q.z))];
     };
-    if (!(at(c) & kRunSelf))  // on a low face of an untextured brick: the textured one below
-      for (int m = 1; m < 8; ++m) {
-        glm::ivec3 q = c;
-        for (int a = 0; a < 3; ++a)
-          if ((m >> a) & 1) q[a] -= p[a] == float(c[a]) * cell[a] ? 1 : 1 << 20;
-        if (glm::all(glm::greaterThanEqual(q, glm::ivec3(0))) && (at(q) & kRunSelf)) {
+    if (!(at(c) & kRunSelf)) {  // on a low face of an untextured brick: a textured one below
+      // The axes along which p lies on c's low face (one brick further down is possible).
+      const glm::bvec3 face(p.x == float(c.x) * cell.x && c.x > 0, p.y == float(c.y) * cell.y && c.y > 0,
+                            p.z == float(c.z) * cell.z && c.z > 0);
+      for (int m = 1; m < 8; ++m) {  // the bricks below over any of those axes, in turn
+        const glm::bvec3 down((m & 1) != 0, (m & 2) != 0, (m & 4) != 0);
+        if (glm::any(down && glm::not_(face))) continue;
+        const glm::ivec3 q = c - glm::ivec3(down);
+        if (at(q) & kRunSelf) {
           c = q;
           break;
         }
       }
+    }
     BrickView v;
     v.k = run.k;
     v.lo = glm::vec3(c) * cell;
