@@ -61,19 +61,23 @@ std::array<int, 3> BrickTextures::slot_origin(int slot) const {
 
 void BrickTextures::write(const tsp::TextureKey& key, int slot) {
   tsp::BrickSamples samples = texture_samples(bricks_, key);
-  const tsp::BrickLattice s = bricks_.store().tree().octree().lattice(key.brick);
+  put(slot, bricks_.store().tree().octree().lattice(key.brick), samples->data());
+  slots_[key] = slot;
+  stitched_.erase(slot);  // its own samples again
+}
+
+void BrickTextures::put(int slot, const tsp::BrickLattice& s, const std::uint16_t* samples) {
   const auto o = slot_origin(slot);
   gl_.BindTexture(GL_TEXTURE_3D, atlas_);
   gl_.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  const std::uint16_t* texels = samples->data();
+  const std::uint16_t* texels = samples;
   if (channels_ == 2) {
-    interleave_stencil(samples->data(), std::size_t(s.count()), texels_);
+    interleave_stencil(samples, std::size_t(s.count()), texels_);
     texels = texels_.data();
   }
   if (mirror_) host_.write(o, s.samples[0], s.samples[1], s.samples[2], texels);
   gl_.TexSubImage3D(GL_TEXTURE_3D, 0, o[0], o[1], o[2], s.samples[0], s.samples[1], s.samples[2],
                     channels_ == 2 ? GL_RG : GL_RED, GL_UNSIGNED_SHORT, texels);
-  slots_[key] = slot;
 }
 
 void BrickTextures::grow(int min_capacity) {
@@ -100,6 +104,7 @@ void BrickTextures::grow(int min_capacity) {
   check_gl(gl_, "allocating the brick atlas");
   if (mirror_) allocate_host();
   slots_.clear();
+  stitched_.clear();
   free_.clear();
   for (int s = capacity() - 1; s >= int(resident.size()); --s) free_.push_back(s);
   for (std::size_t i = 0; i < resident.size(); ++i) write(resident[i], int(i));
@@ -254,6 +259,7 @@ void BrickTextures::erase(const tsp::TextureKey& key) {
   auto it = slots_.find(key);
   if (it == slots_.end()) return;
   free_.push_back(it->second);
+  stitched_.erase(it->second);
   slots_.erase(it);
   variations_.erase(key);
 }
@@ -261,6 +267,7 @@ void BrickTextures::erase(const tsp::TextureKey& key) {
 void BrickTextures::clear() {
   for (const auto& [key, slot] : slots_) free_.push_back(slot);
   slots_.clear();
+  stitched_.clear();
   variations_.clear();
 }
 

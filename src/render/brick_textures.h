@@ -92,6 +92,14 @@ class BrickTextures {
   /// Where a key placed by the last place_dense reads its texels in RAM (BrickSlot::host; the
   /// offset is not the GL atlas'). Asserts it is placed.
   BrickSlot dense_at(const tsp::TextureKey& key) const;
+  /// Makes the texels that a frame's level-0 keys (resident, at most one per brick) share agree
+  /// in every slot, as the dense region has them: a texel that textured bricks share holds the
+  /// highest-numbered one's sample, so a brick drawn from another step's texture reads its
+  /// neighbours' samples on its upper faces (both back ends). Rewrites (GL and the RAM copy)
+  /// only the slots whose neighbours' steps changed since they were written; returns the bytes
+  /// rewritten. Changes nothing (0) for two keys of one brick or an adaptive file's coarse
+  /// leaves. Throws what the brick store throws.
+  std::int64_t stitch(const std::vector<tsp::TextureKey>& level0);
   /// Largest dense region place_dense makes, in bytes (beyond: the slots alone).
   static constexpr std::int64_t kMaxDenseHostBytes = std::int64_t(1) << 30;
 
@@ -112,6 +120,20 @@ class BrickTextures {
   /// Per leaf brick, the key place_dense put at its place (level −1: none).
   std::vector<tsp::TextureKey> placed_;
   int dense_z_ = 0;  ///< the dense region's first texel slice in host_ (after the slots')
+  /// The steps (t0, t1; −2: not textured) of a brick's 13 higher-numbered neighbours.
+  using StitchSteps = std::array<std::array<int, 2>, 13>;
+  /// What stitch() made of a slot: the neighbours' steps it was stitched for, and whether its
+  /// texels differ from the brick's own samples.
+  struct Stitched {
+    StitchSteps steps{};
+    bool modified = false;
+  };
+  /// Per slot that stitch() saw with a neighbour of another step.
+  std::unordered_map<int, Stitched> stitched_;
+  /// Bytes a slot holding lattice s takes (both channels with a stencil).
+  std::int64_t slot_bytes(const tsp::BrickLattice& s) const;
+  /// Writes a brick's samples (codes, then stencil flags) to slot, in GL and the RAM copy.
+  void put(int slot, const tsp::BrickLattice& s, const std::uint16_t* samples);
   void grow(int min_capacity);
   void allocate_host();
   std::array<int, 3> dense_size() const;

@@ -12,6 +12,7 @@ void to_json(nlohmann::json& j, const FrameReport& r) {
        {"upload_ms", r.upload_ms},
        {"draw_ms", r.draw_ms},
        {"bytes_uploaded", r.bytes_uploaded},
+       {"bytes_stitched", r.bytes_stitched},
        {"textures_resident", r.textures_resident},
        {"texture_bytes", r.texture_bytes},
        {"deferred_textures", r.deferred_textures},

@@ -35,6 +35,9 @@ struct FrameReport {
   double step_multiplier = 1;
   std::array<double, tsp::kDrawClassCount> class_percent{};  ///< NR, UP, RT, NT, clipped by voxels
   std::int64_t bytes_uploaded = 0;
+  /// Slots rewritten so that neighbouring bricks drawn from other steps share their faces
+  /// (BrickTextures::stitch), in bytes; not in bytes_uploaded.
+  std::int64_t bytes_stitched = 0;
   std::int64_t textures_resident = 0;
   std::int64_t texture_bytes = 0;
   std::int64_t polygons = 0;           ///< slice polygons drawn

@@ -28,6 +28,14 @@ tsp::ViewOrder view_order(const tsp::Camera& camera) {
                               : tsp::ViewOrder::orthographic(camera.direction());
 }
 
+// The plan's full-resolution textures that are drawn (uploaded) this frame.
+std::vector<tsp::TextureKey> level0_keys(const tsp::FramePlan& plan) {
+  std::vector<tsp::TextureKey> level0;
+  for (const tsp::PlannedTexture& pt : plan.textures)
+    if (!pt.deferred && pt.key.level == 0) level0.push_back(pt.key);
+  return level0;
+}
+
 }  // namespace
 
 VolumeRenderer::VolumeRenderer(GlContext& ctx, const tsp::BrickStore& bricks,
@@ -286,10 +294,7 @@ void VolumeRenderer::fill_pages(const tsp::FramePlan& plan, tsp::FrameMetric& me
   // of neighbouring bricks as one volume (BrickTextures::place_dense).
   bool dense_host = false;
   if (compositor_->cpu_frame() && dense_host_) {
-    std::vector<tsp::TextureKey> level0;
-    for (const tsp::PlannedTexture& pt : plan.textures)
-      if (!pt.deferred && pt.key.level == 0) level0.push_back(pt.key);
-    dense_host = textures_.place_dense(level0);
+    dense_host = textures_.place_dense(level0_keys(plan));
   }
   pages_.set_runs(dense_host);
   for (const tsp::PlannedNode& n : plan.nodes) {
@@ -431,6 +436,9 @@ void VolumeRenderer::upload(const Frame& f, FrameReport& r) {
   for (const tsp::TextureKey& k : f.plan.evict_before) textures_.erase(k);
   for (const tsp::PlannedTexture& pt : f.plan.textures)
     if (!pt.deferred && pt.upload) textures_.upload(pt.key);
+  // The texels neighbouring bricks share hold one brick's sample in every slot, whichever
+  // steps' textures the two are drawn from (BrickTextures::stitch).
+  r.bytes_stitched = textures_.stitch(level0_keys(f.plan));
   r.dense = f.settings.compositing == Compositing::rays && f.settings.dense && dense_frame(f.plan);
   // Every leaf brick textured at full resolution from one step: the whole volume as one page.
   if (r.dense) dense_.update(dense_keys_);

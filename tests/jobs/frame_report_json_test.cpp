@@ -24,7 +24,7 @@ tspgl::FrameReport sample_report() {
   r.bytes_uploaded = 4096, r.textures_resident = 7, r.texture_bytes = 8192;
   r.polygons = 11, r.boxes = 13, r.fragments = 17, r.redrawn_percent = 40;
   r.backend = "cpu", r.backend_note = "why";
-  r.samples = 19, r.dense = true, r.deferred_textures = 2;
+  r.samples = 19, r.dense = true, r.deferred_textures = 2, r.bytes_stitched = 23;
   return r;
 }
 
@@ -37,6 +37,7 @@ TEST(FrameReportJson, EveryFieldUnderItsOneKey) {
                      {"upload_ms", 3.75},
                      {"draw_ms", 5.0},
                      {"bytes_uploaded", 4096},
+                     {"bytes_stitched", 23},
                      {"textures_resident", 7},
                      {"texture_bytes", 8192},
                      {"deferred_textures", 2},

@@ -259,6 +259,51 @@ TEST(CpuCaster, TheDenseRegionHoldsTheSameTexelsWhateverStepCameBefore) {
   }
 }
 
+TEST(CpuCaster, BricksDrawnFromTwoStepsShareTheirFacesOnBothBackEnds) {
+  // Two steps: only the voxels from x = 26 up change (much), the layer x = 26 included, which
+  // the bricks below store as their upper shared layer (65 samples in 5 bricks of 13 cells). The bricks below stay coherent (one
+  // texture for both steps), so at a step they are drawn from another step's texture than the
+  // brick above. The shared texels must be the brick above's on the GL caster, the CPU caster's
+  // runs and its brick-by-brick walk alike (BrickTextures::stitch): without it the GL caster and
+  // the walk read the lower brick's copy of the layer, the runs the upper brick's.
+  constexpr int kFace = 26;
+  auto f = [](int x, int y, int z, int t) {
+    return field(x, y, z, 0) * (x >= kFace && t == 1 ? 0.55f : 1.f);
+  };
+  const std::string path = tsptest::build_function_tsp("cpu_stitch_steps", {65, 65, 65}, f, 16, 2);
+  CrossScene& sc = scene();
+  auto file = tsp::TspFile::open(path);
+  ASSERT_EQ(file->tree().octree().lattice(2).origin[0], kFace);
+  const tsp::MetricResult m =
+      tsp::compute_errors(tsp::Metric::reference, file->tree(), scene_tf(), file.get(), 0);
+  tsp::WholeTreeMetric nodes(m);
+  RenderSettings s;
+  s.reuse_image = false;
+  s.dense = false;
+  s.tol = {0, 0.1};
+  for (int step : {0, 1}) {
+    auto draw = [&](Backend b, bool runs) {
+      VolumeRenderer r(*sc.ctx, *file, tsp::CachePolicy::on);
+      r.set_transfer_function(scene_tf());
+      r.set_dense_host(runs);
+      s.backend = b;
+      r.render(1 - step, sc.camera(), s, nodes);  // the other step first: slots already held
+      const FrameReport rep = r.render(step, sc.camera(), s, nodes);
+      EXPECT_EQ(rep.backend, b == Backend::cpu ? "cpu" : "gl");
+      return sc.ctx->read_pixels();
+    };
+    const tsp::Image gl = draw(Backend::gl, false), runs = draw(Backend::cpu, true),
+                     bricks = draw(Backend::cpu, false);
+    for (const auto& [what, img] : {std::pair{"runs", &runs}, std::pair{"bricks", &bricks}}) {
+      const tsp::DiffStats d = tsp::diff_images(*img, gl);
+      std::printf("step %d, GL against the CPU caster's %s: mean %.4f p99 %.3f max %.1f\n", step,
+                  what, d.mean, d.p99, d.max);
+      EXPECT_LT(d.mean, 0.02) << what << ", step " << step;
+      EXPECT_LT(d.p99, 0.5) << what << ", step " << step;
+    }
+  }
+}
+
 TEST(CpuCaster, TheSameFrameTwiceIsTheSameBytes) {
   CrossScene& sc = scene();
   for (Backend b : {Backend::cpu, Backend::gl}) {
