@@ -101,8 +101,8 @@ class PlayerApp {
   /// Runs frames until the window closes or the script/screenshot ends it.
   void run();
 
-  /// What is shown and how: changed by commands (apply, command, the set_* below).
-  PlayerState state;
+  /// What is shown and how (read-only: changed by commands, apply, command, the set_* below).
+  const PlayerState& state() const { return state_; }
 
   // ---- what the frames use (player_ui.cpp reads it) ----
   std::unique_ptr<tsp::TspFile> file;
@@ -196,7 +196,7 @@ class PlayerApp {
   const std::vector<tspgl::TunedRung>& tuned_rungs() const { return rungs_.ladder(); }
   /// True when frames are drawn with a tuned rung: playing with a quality target, tuned.
   bool playing_rung() const {
-    return state.playing && state.quality > 0 && !rungs_.ladder().empty();
+    return state_.playing && state_.quality > 0 && !rungs_.ladder().empty();
   }
   /// The rung a playing frame draws with a quality target: the chosen one, or before the first
   /// tuning ends tspgl::kProvisionalRung; null when not playing or without a target.
@@ -374,6 +374,7 @@ class PlayerApp {
   std::string traced_cut_;                  ///< the cut caption last traced
   void draw_annotations(const tsp::Camera& cam);
 
+  PlayerState state_;  ///< see state(); written by the members and CommandApplier only
   PlayerOptions options_;
   /// The player's one clock (seconds since it started): frame times, playback, waits, the
   /// LOD's idle delay, recordings.

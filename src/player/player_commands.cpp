@@ -20,7 +20,7 @@ struct CommandApplier {
   std::string where() const {
     return line > 0 ? app.options_.script + ":" + std::to_string(line) + ": " : "";
   }
-  PlayerState& state() const { return app.state; }
+  PlayerState& state() const { return app.state_; }
 
   void operator()(const cmd::GoToStep& c) const {
     if (c.step >= app.steps())

@@ -58,7 +58,7 @@ const EditorHistogram& histogram_for(PlayerApp& app, const tsp::ValueRange& d, f
   if (cached_file != app.file.get() || cached.over.lo != d.lo || cached.over.hi != d.hi ||
       int(cached.counts.size()) != bins) {
     try {
-      cached = editor_histogram(*app.file, app.state.step, d, bins);
+      cached = editor_histogram(*app.file, app.state().step, d, bins);
     } catch (const tsp::Error& e) {
       cached = {d, std::vector<double>(std::size_t(bins), 0.0), -1};
       app.status = std::string("histogram: ") + e.what();
@@ -327,14 +327,14 @@ void tf_file_row(PlayerApp& app, const tsp::ValueRange& d) {
 void tf_section(PlayerApp& app) {
   // Histogram (log counts) with the opacity curve and its handles drawn over it.
   const Canvas cv{ImGui::GetCursorScreenPos(), ImGui::GetContentRegionAvail().x, app.tf.domain(),
-                  app.state.log_opacity, ImGui::GetWindowDrawList()};
+                  app.state().log_opacity, ImGui::GetWindowDrawList()};
   const tsp::ValueRange d = cv.d;
   draw_histogram(app, cv);
   draw_curve(app, cv);
   int remove = -1;
   bool edited = edit_handles(app, cv, remove);
   domain_row(app, d);
-  if (bool on = app.state.log_opacity; ImGui::Checkbox("log opacity", &on))
+  if (bool on = app.state().log_opacity; ImGui::Checkbox("log opacity", &on))
     app.push(cmd::LogOpacity{on});
   note_item("log opacity");
   ImGui::SameLine();
