@@ -234,8 +234,8 @@ void PlayerApp::set_tf(const tsp::TransferFunction& next, bool resample_points) 
     }
   }
   if (resample_points) {  // the editor's handles over the TF as it now is
-    tf_handles = place_handles(tf);
-    tf_points = tf_handles.placed;
+    tf_handles_ = place_handles(tf);
+    tf_points_ = tf_handles_.placed;
   }
   if (renderer) renderer->set_transfer_function(tf);
 }
@@ -249,7 +249,7 @@ std::string tf_label_of(const std::string& tf_arg) {
 void PlayerApp::apply_tf_points() {
   tf_label = "edited";
   // The TF warped in place by the handles' moves (the detailed curve keeps its shape).
-  set_tf(warp_handles(tf_handles, tf_points), false);
+  set_tf(warp_handles(tf_handles_, tf_points_), false);
 }
 
 // During playback: the bricks the frames of the next kPrefetchSeconds would upload, in playing

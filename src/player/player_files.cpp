@@ -209,7 +209,7 @@ void PlayerApp::switch_field(const std::string& name) {
   tf.assign(next.tf);  // (its version grows past both fields')
   lazy_ = std::make_unique<tsp::LazyErrors>(file->tree(), state_.metric, tf);
   reference_version_ = ~std::uint64_t(0);
-  tf_points.clear();
+  tf_points_.clear();
   set_tf(tf, true);
   applied_probe_version_ = ~std::uint64_t(0);  // the probes go to this field's renderer too
   if (next.renderer) {
@@ -371,7 +371,7 @@ void PlayerApp::write_stats(const std::string& path) const {
   j.update(tspgl::settings_json(state_.settings));  // every knob of the settings table, as render's
   j["tolerance"] = {state_.settings.tol.spatial, state_.settings.tol.temporal};
   nlohmann::json points = nlohmann::json::array();  // the editor's handles: value, opacity
-  for (const tsp::TfPoint& p : tf_points) points.push_back({p.x, p.c.a});
+  for (const tsp::TfPoint& p : tf_points_) points.push_back({p.x, p.c.a});
   j["tf_points"] = points;
   j["tf_domain"] = {tf.domain().lo, tf.domain().hi};
   j["tf"] = tf_label;  // the map in use, as the preset combo names it

@@ -53,7 +53,7 @@ Session PlayerApp::capture_session() const {
   s.field = field();
   s.tf_domain = tf.domain();
   s.tf_entries.assign(tf.entries().begin(), tf.entries().end());
-  s.tf_points = tf_points;
+  s.tf_points = tf_points_;
   s.tf_label = tf_label;
   s.log_opacity = state_.log_opacity;
   const tsp::CameraParams& c = state_.camera;
@@ -120,7 +120,10 @@ void PlayerApp::apply_session(const Session& s, bool command_line) {
     tsp::TransferFunction next(s.tf_domain, int(s.tf_entries.size()));
     next.set_entries(0, s.tf_entries);
     set_tf(next, s.tf_points.empty());
-    if (!s.tf_points.empty()) tf_points = s.tf_points;
+    if (!s.tf_points.empty()) {  // the saved handles, placed over the restored map
+      tf_points_ = s.tf_points;
+      tf_handles_ = {tf, tf_points_};
+    }
     tf_label = s.tf_label;
   }
   state_.log_opacity = s.log_opacity;
