@@ -121,6 +121,29 @@ void value_beside_grab(float x0, float x1, GrabSpan grab, const char* text) {
   dl->PopClipRect();
 }
 
+// Under the scrubber (the last item), each step's readiness: green when its frame reads nothing
+// from the file (bricks in RAM or textures), darker as more of it must still be read.
+void ready_strip(const PlayerApp& app) {
+  const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  const int n = app.steps();
+  const float w = (hi.x - lo.x) / float(n);
+  for (int t = 0; t < n; ++t) {
+    const float r = app.ready[std::size_t(t)];
+    if (r < 0) continue;
+    const ImU32 col = r >= 1.f ? IM_COL32(70, 200, 90, 255)
+                               : IM_COL32(int(60 + 120 * r), int(60 + 100 * r), 60, 255);
+    dl->AddRectFilled(ImVec2(lo.x + w * float(t), hi.y + 1),
+                      ImVec2(lo.x + w * float(t + 1) - (w > 3 ? 1.f : 0.f),
+                             hi.y + 1 + kReadyStripHeight),
+                      col);
+  }
+  ImGui::Dummy(ImVec2(0, kReadyStripHeight));
+  if (ImGui::IsItemHovered() || ImGui::IsMouseHoveringRect(ImVec2(lo.x, hi.y),
+                                                           ImVec2(hi.x, hi.y + kReadyStripHeight)))
+    tooltip("green: the step's bricks are in memory (no file read to show it)");
+}
+
 }  // namespace
 
 void timeline_section(PlayerApp& app) {
@@ -226,26 +249,7 @@ void timeline_section(PlayerApp& app) {
     app.push(cmd::Play{});
     resume_after_scrub = false;
   }
-  // Under the scrubber, each step's readiness: green when its frame reads nothing from the file
-  // (bricks in RAM or textures), darker as more of it must still be read.
-  const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
-  ImDrawList* dl = ImGui::GetWindowDrawList();
-  const int n = app.steps();
-  const float w = (hi.x - lo.x) / float(n);
-  for (int t = 0; t < n; ++t) {
-    const float r = app.ready[std::size_t(t)];
-    if (r < 0) continue;
-    const ImU32 col = r >= 1.f ? IM_COL32(70, 200, 90, 255)
-                               : IM_COL32(int(60 + 120 * r), int(60 + 100 * r), 60, 255);
-    dl->AddRectFilled(ImVec2(lo.x + w * float(t), hi.y + 1),
-                      ImVec2(lo.x + w * float(t + 1) - (w > 3 ? 1.f : 0.f),
-                             hi.y + 1 + kReadyStripHeight),
-                      col);
-  }
-  ImGui::Dummy(ImVec2(0, kReadyStripHeight));
-  if (ImGui::IsItemHovered() || ImGui::IsMouseHoveringRect(ImVec2(lo.x, hi.y),
-                                                           ImVec2(hi.x, hi.y + kReadyStripHeight)))
-    tooltip("green: the step's bricks are in memory (no file read to show it)");
+  ready_strip(app);
 }
 
 std::string fit_label(const char* label, float min_item_w) {
