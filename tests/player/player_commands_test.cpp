@@ -28,9 +28,7 @@ using namespace tsptest::player;
 using tsptest::q;
 
 TEST(Player, FitToDataButtonSendsTheScriptsTfRangeData) {
-  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
-  ASSERT_EQ(std::system("command -v xdotool > /dev/null"), 0)
-      << "xdotool missing (scripts/install-deps.sh installs it)";
+  TSPTEST_REQUIRE_X_EVENTS();
   const fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
   const fs::path rects = dir / "rects.json", clicked = dir / "clicked.json",
                  scripted = dir / "scripted.json", out = dir / "fit.out";
@@ -95,7 +93,7 @@ std::string value_text(const tsp::ValueRange& r, double t) {
 // The handles the player places over tf.json in dir and their map.
 tspplayer::TfHandles start_handles(const fs::path& dir, const tsp::ValueRange& r) {
   return tspplayer::place_handles(tsp::transfer_function_from_arg(
-      (dir / "tf.json").string(), r, tsp::kDefaultTfEntries, {tsp::TfRangeChoice::Mode::file}));
+      (dir / "tf.json").string(), r, tsp::kDefaultTfEntries, {tsp::TfRangeChoice::Mode::file, {}}));
 }
 
 // A script moves, adds and removes the TF editor's points (tf-point, what the handles' drag,
