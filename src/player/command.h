@@ -35,8 +35,13 @@ struct Pause { bool operator==(const Pause&) const = default; };
 struct SetSpeed { double steps_per_s = 5; bool operator==(const SetSpeed&) const = default; };
 /// `loop on|off`: playback wraps at the end.
 struct SetLoop { bool on = true; bool operator==(const SetLoop&) const = default; };
-/// `tf FILE|preset:NAME`: load a transfer function.
-struct LoadTf { std::string arg; bool operator==(const LoadTf&) const = default; };
+/// `tf FILE|preset:NAME`: load a transfer function, placed over the data as play's --tf is (the
+/// TF editor's colour map combo and load button: over the present map's range instead).
+struct LoadTf {
+  std::string arg;                  ///< a TF file or preset:NAME
+  bool over_present_range = false;  ///< placed over the present map's range, not the data's
+  bool operator==(const LoadTf&) const = default;
+};
 /// `tf-range data|histogram|step|visible|LO:HI`: the TF as it is, stretched over that range.
 struct StretchTf { std::string range; bool operator==(const StretchTf&) const = default; };
 /// `tolerance S T`: spatial and temporal error tolerances. `settled` false: a slider still

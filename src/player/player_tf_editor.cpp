@@ -228,15 +228,12 @@ void point_list(PlayerApp& app, const tsp::ValueRange& d, bool log_axis) {
 
 // The colour map combo (names the map in use, applies a chosen preset over the present domain)
 // and the four fits of the colour range, two a row.
-void colour_map_rows(PlayerApp& app, const tsp::ValueRange& d) {
+void colour_map_rows(PlayerApp& app) {
   const std::string preset = fit_label("colour map");
   if (ImGui::BeginCombo(preset.c_str(), app.tf_label.c_str())) {
     for (const std::string& name : tsp::preset_names())
-      if (ImGui::Selectable(name.c_str(), name == app.tf_label)) {
-        const tsp::ValueHistogram histogram = tsp::histogram_of(*app.file);
-        app.set_tf(tsp::preset_transfer_function(name, d, app.tf.size(), &histogram), true);
-        app.tf_label = name;
-      }
+      if (ImGui::Selectable(name.c_str(), name == app.tf_label))
+        app.push(cmd::LoadTf{"preset:" + name, true});  // over the present range
     ImGui::EndCombo();
   }
   note_item(preset.c_str());
@@ -275,27 +272,15 @@ void colour_map_rows(PlayerApp& app, const tsp::ValueRange& d) {
 }
 
 // The TF file row: a path, load and save as.
-void tf_file_row(PlayerApp& app, const tsp::ValueRange& d) {
+void tf_file_row(PlayerApp& app) {
   static char path[512] = "";
   if (path[0] == 0) std::snprintf(path, sizeof path, "%s", app.tf_path.c_str());
   ImGui::SetNextItemWidth(-1);
   ImGui::InputText("##path", path, sizeof path);
   app.tf_path = path;
-  try {
-    const bool load = ImGui::Button("load");
-    note_item("load", true);
-    if (load) {
-      const tsp::ValueHistogram histogram = tsp::histogram_of(*app.file);
-      app.set_tf(tsp::transfer_function_from_arg(app.tf_path, d, app.tf.size(), {}, &histogram),
-                 true);
-      app.tf_label = tf_label_of(app.tf_path);
-      const std::string w = tsp::tf_range_warning(app.tf, app.file->metadata().data_range,
-                                                   "fit to data");
-      app.status = w.empty() ? "loaded " + app.tf_path : "loaded " + app.tf_path + "; " + w;
-    }
-  } catch (const tsp::Error& e) {
-    app.status = e.what();  // shown in the settings panel; the player keeps running
-  }
+  const bool load = ImGui::Button("load");
+  note_item("load", true);
+  if (load) app.push(cmd::LoadTf{app.tf_path, true});  // (errors: the status area)
   ImGui::SameLine();
   if (ImGui::Button("save as")) app.save_tf_as(app.tf_path);
   note_item("save as", true);
@@ -324,8 +309,8 @@ void tf_section(PlayerApp& app) {
         "neighbours follows, keeping its detail. Double-click empty space to add a point, "
         "right-click a point to remove it.");
   point_list(app, d, cv.log_axis);
-  colour_map_rows(app, d);
-  tf_file_row(app, d);
+  colour_map_rows(app);
+  tf_file_row(app);
 }
 
 }  // namespace tspplayer

@@ -27,37 +27,52 @@ namespace fs = std::filesystem;
 using namespace tsptest::player;
 using tsptest::q;
 
-TEST(Player, FitToDataButtonSendsTheScriptsTfRangeData) {
-  TSPTEST_REQUIRE_X_EVENTS();
-  const fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
+// The stats of a window before and after a real click on one of its items, and after script
+// lines that should do what the click did.
+struct Clicked {
+  nlohmann::json before, after, reference;
+};
+
+// Plays tsp at 1280x800 with `options`, in dir as its working folder, under a script that writes
+// stats, waits while xdotool clicks the item labelled `label` (where those stats put it), writes
+// stats again, then runs `reference` (script lines) and writes stats a third time.
+Clicked click_then_script(const fs::path& tsp, const fs::path& dir, const std::string& options,
+                          const std::string& label, const std::string& reference) {
   const fs::path rects = dir / "rects.json", clicked = dir / "clicked.json",
-                 scripted = dir / "scripted.json", out = dir / "fit.out";
-  // The click comes while the script waits; then the script's own tf-range data, for reference.
-  std::ofstream(dir / "fit.txt") << "wait-frames 3\nstats " << rects.string()
-                                 << "\nwait-seconds 15\nstats " << clicked.string()
-                                 << "\ntf-range 0.2:0.8\ntf-range data\nwait-frames 1\nstats "
-                                 << scripted.string() << "\nquit\n";
+                 scripted = dir / "scripted.json", out = dir / "click.out";
+  std::ofstream(dir / "click.txt") << "wait-frames 3\nstats " << rects.string()
+                                   << "\nwait-seconds 15\nstats " << clicked.string() << "\n"
+                                   << reference << "wait-frames 1\nstats " << scripted.string()
+                                   << "\nquit\n";
   const std::string rect =
       "$(python3 -c 'import json,sys; i=[i for i in json.load(open(sys.argv[1]))[\"ui_items\"] "
       "if i[\"label\"]==sys.argv[2]][0]; print(int(i[\"x\"]),int(i[\"y\"]),int(i[\"w\"]),"
-      "int(i[\"h\"]))' " + q(rects) + " " + q("fit to data") + ")";
+      "int(i[\"h\"]))' " + q(rects) + " " + q(label) + ")";
   const std::string cmd =
-      "(" + q(tsptest::tspplay_bin()) + " play " + q(tsp) + " --size 1280x800 " +
-      "--tf-range=0.2:0.8 --script " + q(dir / "fit.txt") + " > " + q(out) + " 2>&1 &\n" +
+      "cd " + q(dir) + " && (" + q(tsptest::tspplay_bin()) + " play " + q(tsp) +
+      " --size 1280x800 " + options + " --script " + q(dir / "click.txt") + " > " + q(out) +
+      " 2>&1 &\n" +
       "p=$!\n"
       "for i in $(seq 300); do [ -s " + q(rects) + " ] && break; sleep 0.1; done\n"
       "win=$(xdotool search --sync --name " + q("tspplay - " + tsp.string()) + " | head -1)\n"
       "read fx fy fw fh <<< " + rect + "\n"
       "xdotool mousemove --window \"$win\" $((fx + fw / 2)) $((fy + fh / 2)) click 1\n"
       "wait $p)\n";
-  ASSERT_EQ(run_bash(dir / "fit.sh", cmd), 0) << tsptest::read_file(out);
-  const nlohmann::json before = read_json(rects), after = read_json(clicked),
-                       reference = read_json(scripted);
-  EXPECT_NEAR(before["tf_domain"][0].get<double>(), 0.2, 1e-9);
-  EXPECT_NEAR(before["tf_domain"][1].get<double>(), 0.8, 1e-9);
-  EXPECT_NE(reference["tf_domain"], before["tf_domain"]);
-  EXPECT_EQ(after["tf_domain"], reference["tf_domain"]) << after["status"];
-  EXPECT_EQ(after["status"], reference["status"]);
+  EXPECT_EQ(run_bash(dir / "click.sh", cmd), 0) << tsptest::read_file(out);
+  return {read_json(rects), read_json(clicked), read_json(scripted)};
+}
+
+TEST(Player, FitToDataButtonSendsTheScriptsTfRangeData) {
+  TSPTEST_REQUIRE_X_EVENTS();
+  const fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
+  // The click comes while the script waits; then the script's own tf-range data, for reference.
+  const Clicked c = click_then_script(tsp, dir, "--tf-range=0.2:0.8", "fit to data",
+                                      "tf-range 0.2:0.8\ntf-range data\n");
+  EXPECT_NEAR(c.before["tf_domain"][0].get<double>(), 0.2, 1e-9);
+  EXPECT_NEAR(c.before["tf_domain"][1].get<double>(), 0.8, 1e-9);
+  EXPECT_NE(c.reference["tf_domain"], c.before["tf_domain"]);
+  EXPECT_EQ(c.after["tf_domain"], c.reference["tf_domain"]) << c.after["status"];
+  EXPECT_EQ(c.after["status"], c.reference["status"]);
 }
 
 // The editor's handles and every entry's opacity in a stats file equal points and tf's.
@@ -177,6 +192,21 @@ TEST(Player, TfPointsRestoredFromASessionMoveTheRestoredMap) {
   const nlohmann::json s1 = read_json(dir / "s1.json");
   expect_map(s1, points, tspplayer::warp_handles(placed, points), "move after restore");
   EXPECT_EQ(s1["status"].get<std::string>().find("handles"), std::string::npos) << s1["status"];
+}
+
+// The TF editor's load button sends the script's tf line (cmd::LoadTf): clicked with the path
+// field's tf.json, the map, its handles, its name and the status are what `tf tf.json` makes.
+TEST(Player, LoadButtonSendsTheScriptsTf) {
+  TSPTEST_REQUIRE_X_EVENTS();
+  const fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
+  write_three_point_tf(tsp, dir);
+  const Clicked c = click_then_script(tsp, dir, "", "load", "tf preset:filled\ntf tf.json\n");
+  EXPECT_EQ(c.before["tf"], "auto");
+  EXPECT_EQ(c.after["tf"], "tf.json");
+  EXPECT_EQ(c.after["status"], "loaded tf.json");
+  for (const char* key : {"tf", "tf_domain", "tf_points", "tf_opacity", "status"})
+    EXPECT_EQ(c.after[key], c.reference[key]) << key;
+  EXPECT_EQ(c.after["tf_points"].size(), 3u);
 }
 
 }  // namespace
