@@ -8,20 +8,11 @@
 #include <vector>
 
 #include "fuzz_input.h"
+#include "tests/support/vtu_text.h"
 #include "tsp/source/open_mesh_source.h"
 
 namespace {
 
-const char kBlock[] =
-    "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">"
-    "<UnstructuredGrid><Piece NumberOfPoints=\"4\" NumberOfCells=\"1\">"
-    "<PointData><DataArray type=\"Float32\" Name=\"f\" format=\"ascii\">0 1 2 3</DataArray>"
-    "</PointData><Points><DataArray type=\"Float32\" NumberOfComponents=\"3\" format=\"ascii\">"
-    "0 0 0 1 0 0 0 1 0 0 0 1</DataArray></Points><Cells>"
-    "<DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">0 1 2 3</DataArray>"
-    "<DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">4</DataArray>"
-    "<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">10</DataArray>"
-    "</Cells></Piece></UnstructuredGrid></VTKFile>";
 const char kStep[] =
     "<VTKFile type=\"vtkMultiBlockDataSet\" version=\"1.0\"><vtkMultiBlockDataSet>"
     "<DataSet name=\"internal\" file=\"block.vtu\"/></vtkMultiBlockDataSet></VTKFile>";
@@ -32,8 +23,8 @@ const char* const kForms[] = {"input.vtm", "input.vtm.series", "input.vtu.series
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size < 1) return 0;
   static const bool fixtures = [] {
-    tspfuzz::write_input("block.vtu", reinterpret_cast<const std::uint8_t*>(kBlock),
-                         sizeof kBlock - 1);
+    tspfuzz::write_input("block.vtu", reinterpret_cast<const std::uint8_t*>(tsptest::kOneTetVtu),
+                         sizeof tsptest::kOneTetVtu - 1);
     tspfuzz::write_input("step.vtm", reinterpret_cast<const std::uint8_t*>(kStep),
                          sizeof kStep - 1);
     ::mkfifo((tspfuzz::scratch_dir() / "fifo.vtu").c_str(), 0600);

@@ -72,13 +72,7 @@ void run_build(const BuildArgs& a) {
   if (!a.in.octree_error.empty()) return run_adaptive_build(a, bo);
   const tsp::VoxelizeOptions vo = voxelize_options(a.in, a.threads);
   // --field A,B,C: several fields, one tree each, in one file.
-  std::vector<std::string> fields;
-  for (std::size_t p = 0; a.field.find(',') != std::string::npos && p <= a.field.size();) {
-    std::size_t c = a.field.find(',', p);
-    if (c == std::string::npos) c = a.field.size();
-    fields.push_back(a.field.substr(p, c - p));
-    p = c + 1;
-  }
+  const std::vector<std::string> fields = tsp::field_names(a.field);
   if (!fields.empty()) {
     // An HDF5 file is opened once for all of them, and every name checked first.
     const tsp::FieldOpener open_field = tsp::open_input_fields(a.input, so, vo, fields);

@@ -107,18 +107,6 @@ bool reuse_cache_entry(const std::string& out, const PlayBuildHooks& hooks) {
   return false;
 }
 
-// "A,B,C" as its names; empty for one name.
-std::vector<std::string> field_list(const std::string& field) {
-  std::vector<std::string> fields;
-  for (std::size_t p = 0; field.find(',') != std::string::npos && p <= field.size();) {
-    std::size_t c = field.find(',', p);
-    if (c == std::string::npos) c = field.size();
-    fields.push_back(field.substr(p, c - p));
-    p = c + 1;
-  }
-  return fields;
-}
-
 std::string prepare_adaptive(const std::string& input, const PlayInputOptions& o,
                              const std::string& cache_dir, const PlayBuildHooks& hooks) {
   if (o.field.find(',') != std::string::npos)
@@ -154,7 +142,7 @@ std::string prepare_play_input(const std::string& input, const PlayInputOptions&
   if (o.adaptive) return prepare_adaptive(input, o, cache_dir, hooks);
   // --field A,B,C: several fields, one tree each (the first shown), as `build` does (an HDF5
   // file opened once for all of them).
-  const std::vector<std::string> fields = field_list(o.field);
+  const std::vector<std::string> fields = tsp::field_names(o.field);
   const tsp::FieldOpener open_field = tsp::open_input_fields(input, o.source, o.voxelize, fields);
   const std::string first_field = fields.empty() ? o.field : fields[0];
   // Keyed by every file the source reads (series members, blocks, grid and solutions). A mesh

@@ -102,8 +102,34 @@ struct Checker {
       if (c.which == w) return;
     fail("dialog '" + c.which + "': expected open, save-tf, record, save-session or close");
   }
+  void operator()(const cmd::MoveTfPoint& c) const {
+    tf_point_number(c.number);
+    tf_point_value(c.value);
+    tf_point_opacity(c.opacity);
+  }
+  void operator()(const cmd::ColourTfPoint& c) const {
+    tf_point_number(c.number);
+    for (float v : {c.colour.r, c.colour.g, c.colour.b, c.colour.a})
+      if (!(v >= 0 && v <= 1)) fail("tf-point: colour components must be in [0, 1]");
+  }
+  void operator()(const cmd::AddTfPoint& c) const {
+    tf_point_value(c.value);
+    if (c.opacity) tf_point_opacity(*c.opacity);
+  }
+  void operator()(const cmd::RemoveTfPoint& c) const { tf_point_number(c.number); }
   template <class Other>
   void operator()(const Other&) const {}
+
+ private:
+  static void tf_point_number(int n) {
+    if (n < 1) fail("tf-point: points are numbered from 1");
+  }
+  static void tf_point_value(double v) {
+    if (!std::isfinite(v)) fail("tf-point: the value must be finite");
+  }
+  static void tf_point_opacity(double a) {
+    if (!(a >= 0 && a <= 1)) fail("tf-point: opacity must be in [0, 1]");
+  }
 };
 
 }  // namespace

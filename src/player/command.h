@@ -10,6 +10,7 @@
 
 #include "tsp/clip/probe.h"
 #include "tsp/metric/metric.h"
+#include "tsp/metric/transfer_function.h"
 
 namespace tspplayer {
 
@@ -34,8 +35,13 @@ struct Pause { bool operator==(const Pause&) const = default; };
 struct SetSpeed { double steps_per_s = 5; bool operator==(const SetSpeed&) const = default; };
 /// `loop on|off`: playback wraps at the end.
 struct SetLoop { bool on = true; bool operator==(const SetLoop&) const = default; };
-/// `tf FILE|preset:NAME`: load a transfer function.
-struct LoadTf { std::string arg; bool operator==(const LoadTf&) const = default; };
+/// `tf FILE|preset:NAME`: load a transfer function, placed over the data as play's --tf is (the
+/// TF editor's colour map combo and load button: over the present map's range instead).
+struct LoadTf {
+  std::string arg;                  ///< a TF file or preset:NAME
+  bool over_present_range = false;  ///< placed over the present map's range, not the data's
+  bool operator==(const LoadTf&) const = default;
+};
 /// `tf-range data|histogram|step|visible|LO:HI`: the TF as it is, stretched over that range.
 struct StretchTf { std::string range; bool operator==(const StretchTf&) const = default; };
 /// `tolerance S T`: spatial and temporal error tolerances. `settled` false: a slider still
@@ -165,6 +171,30 @@ struct RemoveProbe { int index = 0; bool operator==(const RemoveProbe&) const = 
 /// does (File > Open, Save transfer function as, Record movie, Save session), or close the one
 /// open (as Cancel).
 struct ShowDialog { std::string which; bool operator==(const ShowDialog&) const = default; };
+/// `tf-point move N VALUE OPACITY`: the TF editor's point N (1-based, by value) to VALUE (in the
+/// map's range; kept between its neighbours) at OPACITY, the curve warped with it (a handle's
+/// drag, the point list's value and opacity).
+struct MoveTfPoint {
+  int number = 1;                    ///< 1-based, by increasing value
+  double value = 0, opacity = 0;     ///< where it goes; opacity in [0, 1]
+  bool operator==(const MoveTfPoint&) const = default;
+};
+/// `tf-point colour N R G B A`: point N's colour and opacity (the point list's colour picker).
+struct ColourTfPoint {
+  int number = 1;     ///< 1-based, by increasing value
+  tsp::Rgba colour;   ///< each component in [0, 1]
+  bool operator==(const ColourTfPoint&) const = default;
+};
+/// `tf-point add VALUE [OPACITY]`: a point at VALUE (in the map's range) in the map's colour there,
+/// at OPACITY or the map's own (a double-click on the editor's canvas, the list's "add point").
+struct AddTfPoint {
+  double value = 0;               ///< where
+  std::optional<double> opacity;  ///< in [0, 1]; nullopt: the map's opacity at value
+  bool operator==(const AddTfPoint&) const = default;
+};
+/// `tf-point remove N`: point N goes (of three or more), the curve straight between its
+/// neighbours (a right-click on a handle, the list's "x").
+struct RemoveTfPoint { int number = 1; bool operator==(const RemoveTfPoint&) const = default; };
 }  // namespace cmd
 
 /// One player command (see namespace cmd).
@@ -180,7 +210,8 @@ using Command =
                  cmd::StartRecording, cmd::StopRecording, cmd::ResetCamera, cmd::KeepQuality,
                  cmd::Capture, cmd::Quit, cmd::SaveSession, cmd::SetScale,
                  cmd::ExpandSections, cmd::SavePicture, cmd::ShowAnnotations,
-                 cmd::SplatFallback, cmd::EditProbe, cmd::RemoveProbe, cmd::ShowDialog>;
+                 cmd::SplatFallback, cmd::EditProbe, cmd::RemoveProbe, cmd::ShowDialog,
+                 cmd::MoveTfPoint, cmd::ColourTfPoint, cmd::AddTfPoint, cmd::RemoveTfPoint>;
 
 /// True when a script stops after c until frames pass: a screenshot, `wait-frames N` with N > 0
 /// or `wait-seconds S` with S > 0 (a wait of 0 is free: it used to cost a frame, and a script of

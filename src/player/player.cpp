@@ -51,7 +51,7 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
   if (options.step < 0 || options.step >= tree.time().steps())
     throw tsp::UsageError("--step " + std::to_string(options.step) + ": " + options.tsp_path +
                           " has steps 0.." + std::to_string(tree.time().steps() - 1));
-  state.step = options.step;
+  state_.step = options.step;
   if (!(options.frame_delay_ms >= 0 && options.frame_delay_ms <= kMaxFrameDelayMs))
     throw tsp::UsageError("--frame-delay-ms " + std::to_string(options.frame_delay_ms) +
                           ": expected 0.." + std::to_string(int(kMaxFrameDelayMs)));
@@ -60,33 +60,33 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
   if (!options.surface_mesh.empty())
     mesh_surface.emplace(options.surface_mesh, options.surface_field, *file, options.surface_tf, options.step);
   surface_mesh_ = options.surface_mesh;
-  state.settings = options.settings;
+  state_.settings = options.settings;
   for (auto [value, name] : {std::pair{options.ram_budget_mb, "--ram-budget"},
                              std::pair{options.texture_budget_mb, "--texture-budget"}})
     if (!(value > 0) || !(value <= double(tspgl::kMaxBudgetBytes >> 20)))
       throw tsp::UsageError(std::string(name) + " " + std::to_string(value) +
                             ": expected a budget in (0, " +
                             std::to_string(tspgl::kMaxBudgetBytes >> 20) + "] MiB");
-  state.texture_budget_mb = options.texture_budget_mb;
+  state_.texture_budget_mb = options.texture_budget_mb;
   if (!(options.target_fps >= 1 && options.target_fps <= kMaxTargetFps))
     throw tsp::UsageError("--target-fps " + std::to_string(options.target_fps) + ": expected 1 to " +
                           std::to_string(int(kMaxTargetFps)) + " frames per second");
-  state.lod_on = options.lod;
-  state.target_fps = float(options.target_fps);
+  state_.lod_on = options.lod;
+  state_.target_fps = float(options.target_fps);
   if (options.speed != 0 && !(options.speed >= kMinSpeed && options.speed <= kMaxSpeed))
     throw tsp::UsageError("--speed " + std::to_string(options.speed) + ": expected " +
                           std::to_string(kMinSpeed).substr(0, 4) + " to " +
                           std::to_string(int(kMaxSpeed)) + " steps per second");
   speed_chosen_ = options.speed != 0;
-  state.speed = speed_chosen_ ? options.speed : default_speed(steps());
+  state_.speed = speed_chosen_ ? options.speed : default_speed(steps());
   if (!(options.quality >= 0 && options.quality <= tspgl::kMaxQualityDe))
     throw tsp::UsageError("--quality " + std::to_string(options.quality) +
                           ": expected a mean dE in [0, " +
                           std::to_string(int(tspgl::kMaxQualityDe)) + "] (0: off)");
-  state.quality = float(options.quality);  // tuned when playing starts
-  state.keep_quality = options.keep_quality;
-  state.splat_fallback = options.splat_fallback;
-  state.lod_filter = tsp::parse_lod_filter(options.lod_filter, "--lod-filter");
+  state_.quality = float(options.quality);  // tuned when playing starts
+  state_.keep_quality = options.keep_quality;
+  state_.splat_fallback = options.splat_fallback;
+  state_.lod_filter = tsp::parse_lod_filter(options.lod_filter, "--lod-filter");
   if (!options.script.empty()) script_ = load_script(options.script);
   if (!options.screenshot.empty()) {
     script_.push_back({cmd::Screenshot{options.screenshot, false}, 0});
@@ -95,13 +95,13 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
   const tsp::TfRangeChoice range = tsp::parse_tf_range(options.tf_range);
   const tsp::ValueHistogram histogram = tsp::histogram_of(*file);
   tf = tsp::transfer_function_from_arg(
-      options.tf, tsp::tf_domain_of(range, *file, state.step),
+      options.tf, tsp::tf_domain_of(range, *file, state_.step),
       tsp::kDefaultTfEntries, range, &histogram);
   if (std::string w = tsp::tf_range_warning(tf, file->metadata().data_range); !w.empty()) {
     std::fprintf(stderr, "tspplay: warning: %s\n", w.c_str());
     status = tsp::tf_range_warning(tf, file->metadata().data_range, "fit to data");  // (window)
   }
-  lazy_ = std::make_unique<tsp::LazyErrors>(tree, state.metric, tf);
+  lazy_ = std::make_unique<tsp::LazyErrors>(tree, state_.metric, tf);
   set_tf(tf, true);
   tf_label = tf_label_of(options.tf);
   ready.assign(std::size_t(tree.time().steps()), -1.f);
@@ -115,12 +115,12 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
       std::find(options.given.begin(), options.given.end(), "--scale") != options.given.end();
   if (!scale_given && options.physical_proportions)
     options_.scale = tsp::vertical_exaggeration(file->frame());
-  place_camera(state.camera);
-  for (const std::string& text : options.probes) state.probes.push_back(tsp::parse_probe(text));
-  state.probe_op = tsp::parse_probe_op(options.probe_op);
-  state.probe_surface = options.probe_surface;
-  (void)tsp::ClipRegion(state.probes, state.probe_op, file->metadata().origin, file->metadata().spacing);
-  if (!state.probes.empty()) probe_selected = 0;
+  place_camera(state_.camera);
+  for (const std::string& text : options.probes) state_.probes.push_back(tsp::parse_probe(text));
+  state_.probe_op = tsp::parse_probe_op(options.probe_op);
+  state_.probe_surface = options.probe_surface;
+  (void)tsp::ClipRegion(state_.probes, state_.probe_op, file->metadata().origin, file->metadata().spacing);
+  if (!state_.probes.empty()) probe_selected = 0;
   if (range.mode == tsp::TfRangeChoice::Mode::visible) {  // now that view and probes are known
     apply(*this, cmd::StretchTf{"visible"});
   }
@@ -144,9 +144,9 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
   ImGui_ImplOpenGL3_Init("#version 330 core");
   imgui_ = true;
   update_tol_max();
-  tol_readout_due = state.settings.tol.spatial > 0 || state.settings.tol.temporal > 0;
+  tol_readout_due = state_.settings.tol.spatial > 0 || state_.settings.tol.temporal > 0;
   start_s_ = last_frame_s_ = clock_.seconds();
-  initial_camera = state.camera;
+  initial_camera = state_.camera;
   restore_session(true);  // the input's last session, or --session FILE (throws)
 }
 
@@ -180,8 +180,8 @@ void PlayerApp::make_renderer() {
   driver_.reset();
   renderer.reset();
   renderer = std::make_unique<tspgl::VolumeRenderer>(
-      *ctx, *file, state.cache_on ? tsp::CachePolicy::on : tsp::CachePolicy::off,
-      std::int64_t(state.texture_budget_mb * (1 << 20)), std::int64_t(options_.ram_budget_mb * (1 << 20)),
+      *ctx, *file, state_.cache_on ? tsp::CachePolicy::on : tsp::CachePolicy::off,
+      std::int64_t(state_.texture_budget_mb * (1 << 20)), std::int64_t(options_.ram_budget_mb * (1 << 20)),
       compositor_);
   renderer->set_transfer_function(tf);
   prefetcher = std::make_unique<tsp::BrickPrefetcher>(renderer->brick_cache());
@@ -200,7 +200,7 @@ void PlayerApp::set_scale(const std::array<double, 3>& scale) {
     std::printf("trace: axis scale %g,%g,%g\n", scale[0], scale[1], scale[2]);
     std::fflush(stdout);
   }
-  place_camera(state.camera);
+  place_camera(state_.camera);
   place_camera(initial_camera);
 }
 
@@ -209,8 +209,8 @@ int PlayerApp::steps() const {
 }
 
 void PlayerApp::go_to(int t) {
-  state.playing = false;
-  state.step = std::clamp(t, 0, steps() - 1);
+  state_.playing = false;
+  state_.step = std::clamp(t, 0, steps() - 1);
 }
 
 void PlayerApp::set_tf(const tsp::TransferFunction& next, bool resample_points) {
@@ -234,8 +234,8 @@ void PlayerApp::set_tf(const tsp::TransferFunction& next, bool resample_points) 
     }
   }
   if (resample_points) {  // the editor's handles over the TF as it now is
-    tf_handles = place_handles(tf);
-    tf_points = tf_handles.placed;
+    tf_handles_ = place_handles(tf);
+    tf_points_ = tf_handles_.placed;
   }
   if (renderer) renderer->set_transfer_function(tf);
 }
@@ -249,34 +249,34 @@ std::string tf_label_of(const std::string& tf_arg) {
 void PlayerApp::apply_tf_points() {
   tf_label = "edited";
   // The TF warped in place by the handles' moves (the detailed curve keeps its shape).
-  set_tf(warp_handles(tf_handles, tf_points), false);
+  set_tf(warp_handles(tf_handles_, tf_points_), false);
 }
 
 // During playback: the bricks the frames of the next kPrefetchSeconds would upload, in playing
 // order, go to the prefetch thread once per step change (the request replaces the previous one).
 void PlayerApp::request_prefetch(const tsp::Camera& cam, const tspgl::RenderSettings& frame_settings,
                                  tsp::LodStops stops) {
-  if (!state.prefetch_on) return;
+  if (!state_.prefetch_on) return;
   // Holding still or turning: the bricks the cut's next splits will want, at this step, once per
   // cut change (the RAM cache then serves the split's uploads).
-  if (!state.playing) {
+  if (!state_.playing) {
     const tsp::LodController* lod = driver().controller();
     if (!lod || lod_stats.cut_size == prefetched_cut_) return;
     prefetched_cut_ = lod_stats.cut_size;
     std::vector<tsp::BrickKey> keys;
-    for (int b : lod->likely_split_bricks(kPrefetchSplits)) keys.push_back({b, state.step});
+    for (int b : lod->likely_split_bricks(kPrefetchSplits)) keys.push_back({b, state_.step});
     prefetcher->request(std::move(keys));
     return;
   }
-  if (prefetched_for_ == state.step) return;
-  prefetched_for_ = state.step;
+  if (prefetched_for_ == state_.step) return;
+  prefetched_for_ = state_.step;
   std::vector<tsp::BrickKey> keys;
-  const int ahead = std::clamp(int(std::ceil(state.speed * kPrefetchSeconds)), kMinPrefetchSteps,
+  const int ahead = std::clamp(int(std::ceil(state_.speed * kPrefetchSeconds)), kMinPrefetchSteps,
                               kMaxPrefetchSteps);
   for (int k = 1; k <= ahead; ++k) {
-    int t = state.step + k;
+    int t = state_.step + k;
     if (t >= steps()) {
-      if (!state.loop) break;
+      if (!state_.loop) break;
       t %= steps();
     }
     std::vector<tsp::BrickKey> more =
@@ -293,7 +293,7 @@ void PlayerApp::request_save() {
 }
 
 tsp::FrameMetric& PlayerApp::frame_metric() {
-  if (state.metric != tsp::Metric::reference) return *lazy_;
+  if (state_.metric != tsp::Metric::reference) return *lazy_;
   refresh_reference();
   return reference_nodes_;
 }
@@ -309,23 +309,23 @@ void PlayerApp::refresh_reference() {
 }
 
 void PlayerApp::render_volume() {
-  state.camera.width = layout.view.w;
-  state.camera.height = layout.view.h;
-  if (state.camera.width < 1 || state.camera.height < 1 || ctx->width() < 1 || ctx->height() < 1)
+  state_.camera.width = layout.view.w;
+  state_.camera.height = layout.view.h;
+  if (state_.camera.width < 1 || state_.camera.height < 1 || ctx->width() < 1 || ctx->height() < 1)
     return;  // minimised
-  const tsp::Camera cam(file->tree().octree().dims(), state.camera);
-  tspgl::RenderSettings fs = state.settings;
+  const tsp::Camera cam(file->tree().octree().dims(), state_.camera);
+  tspgl::RenderSettings fs = state_.settings;
   // Playing, a step's frame uploads all it needs: shown late when its bricks are late, never
   // with holes of bricks left for later frames (the upload budget keeps interaction smooth).
-  if (state.playing) fs.upload_budget = 0;
+  if (state_.playing) fs.upload_budget = 0;
   // GL's window coordinates start at the bottom: the view's lower-left corner.
   fs.viewport_origin = {layout.view.x, ctx->height() - layout.view.y - layout.view.h};
-  if (state.metric != tsp::Metric::reference) {
+  if (state_.metric != tsp::Metric::reference) {
     // Evaluate this step's nodes here so the HUD can show the recompute cost; render() then
     // only reads memoised results.
     const std::int64_t before = lazy_->evaluations();
     const tsp::Stopwatch t0;
-    lazy_->errors_for_step(state.step);
+    lazy_->errors_for_step(state_.step);
     const double ms = t0.ms();
     if (lazy_->evaluations() > before) {
       metric_ms = ms;
@@ -339,13 +339,13 @@ void PlayerApp::render_volume() {
   tspgl::FrameDriver& d = driver();
   const tspgl::LodSpec spec = lod_spec(now);
   tspgl::FrameRequest request;
-  request.step = state.step;
+  request.step = state_.step;
   request.camera = &cam;
   request.settings = fs;
   request.metric = &frame_metric();
   request.tf = &tf;
   if (mesh_surface && fs.surface)  // (a step's mesh is read only while it is shown)
-    renderer->compositor()->set_surface(mesh_surface->frame(state.step, fs.surface_px));
+    renderer->compositor()->set_surface(mesh_surface->frame(state_.step, fs.surface_px));
   was_within_ = within_;
   tspgl::DrawnFrame drawn;
   // Paused after playing, or settled after a change: full-resolution bands over a picture
@@ -395,7 +395,7 @@ tsp::Image PlayerApp::read_view() {
 
 void PlayerApp::save_pending_shot() {
   tsp::write_png(pending_shot_, pending_with_ui_ ? ctx->read_pixels() : read_view());
-  std::printf("saved %s (step %d)\n", pending_shot_.c_str(), state.step);
+  std::printf("saved %s (step %d)\n", pending_shot_.c_str(), state_.step);
   std::fflush(stdout);
   pending_shot_.clear();
 }
@@ -421,7 +421,7 @@ void PlayerApp::frame() {
   ImGui::NewFrame();
   // The volume's rectangle: beside the docked panels, or the whole window (again below, after
   // keys and script actions that may show or hide the panels).
-  layout = compute_layout(ctx->width(), ctx->height(), state.panels, int(ImGui::GetFrameHeight()));
+  layout = compute_layout(ctx->width(), ctx->height(), state_.panels, int(ImGui::GetFrameHeight()));
   poll_open();
   run_script();
   if (quit_) {
@@ -431,7 +431,7 @@ void PlayerApp::frame() {
   handle_input();
   advance_playback(dt);
   if (options_.trace) trace_changes();
-  layout = compute_layout(ctx->width(), ctx->height(), state.panels, int(ImGui::GetFrameHeight()));
+  layout = compute_layout(ctx->width(), ctx->height(), state_.panels, int(ImGui::GetFrameHeight()));
   if (layout.docked) {  // what the volume does not cover is the panels' background
     const tspgl::GlApi& gl = ctx->gl();
     gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -442,13 +442,13 @@ void PlayerApp::frame() {
   apply_probes();
   render_volume();
   capture_frame();
-  if (state.playing != rate_playing_) {  // playback's rate is measured from its start on
-    rate_playing_ = state.playing;
+  if (state_.playing != rate_playing_) {  // playback's rate is measured from its start on
+    rate_playing_ = state_.playing;
     shown_at_s_.clear();
     last_shown_step_ = -1;
   }
-  if (state.step != last_shown_step_) {  // playback's real rate: distinct steps drawn
-    last_shown_step_ = state.step;
+  if (state_.step != last_shown_step_) {  // playback's real rate: distinct steps drawn
+    last_shown_step_ = state_.step;
     shown_at_s_.push_back(now);
   }
   // (The last two stay: a stall longer than the window reads as a slow rate, not none.)
@@ -462,7 +462,7 @@ void PlayerApp::frame() {
   // Screenshots hold the volume only (read before the UI is drawn).
   // A screenshot waits for the first complete frame (no texture left for later frames).
   // With the LOD cut it also waits for full quality (the idle refinement), unless playing.
-  const bool full = state.playing || full_quality();
+  const bool full = state_.playing || full_quality();
   const bool shot_now = !pending_shot_.empty() && last.complete() && full;
   if (shot_now && !pending_with_ui_) save_pending_shot();
   if (save_requested_) {
@@ -478,15 +478,15 @@ void PlayerApp::frame() {
   }
 
   if (recorder_) record_frame(now);
-  if (switch_started_s_ >= 0 && last.complete() && (state.playing || full_quality())) {
+  if (switch_started_s_ >= 0 && last.complete() && (state_.playing || full_quality())) {
     field_switch_ms = (clock_.seconds() - switch_started_s_) * 1000;  // the new field's first frame
     switch_started_s_ = -1;
   }
-  if (state.camera.width > 0 && state.camera.height > 0) {
-    const tsp::Camera cam(file->tree().octree().dims(), state.camera);
+  if (state_.camera.width > 0 && state_.camera.height > 0) {
+    const tsp::Camera cam(file->tree().octree().dims(), state_.camera);
     draw_cut_overlay(cam);
     draw_annotations(cam);
-    if (state.panels) draw_probe_overlay(cam);
+    if (state_.panels) draw_probe_overlay(cam);
   }
   apply_pending_ui();  // a restored session's open sections
   draw_ui();
@@ -511,10 +511,10 @@ bool PlayerApp::busy() const {
       (script_pos_ < script_.size() && clock_.seconds() >= wait_until_s_) || wait_frames_ > 0;
   // Playing draws a frame when a step is due, not in between: a frame faster than the step
   // period would draw the same step again, and a coarse playing rung is not refined meanwhile.
-  const bool step_due = state.playing && until_next_step() <= 0;
+  const bool step_due = state_.playing && until_next_step() <= 0;
   return quit_ || step_due || settle_frames_ > 0 || input_queue_.pending() || script_running || !pending_shot_.empty() ||
          save_requested_ || tuner_ || open_job_ || recorder_ || !last.complete() ||
-         (!state.playing && state.lod_on && !full_quality()) || switch_started_s_ >= 0;
+         (!state_.playing && state_.lod_on && !full_quality()) || switch_started_s_ >= 0;
 }
 
 void PlayerApp::run() {

@@ -101,8 +101,8 @@ class PlayerApp {
   /// Runs frames until the window closes or the script/screenshot ends it.
   void run();
 
-  /// What is shown and how: changed by commands (apply, command, the set_* below).
-  PlayerState state;
+  /// What is shown and how (read-only: changed by commands, apply, command, the set_* below).
+  const PlayerState& state() const { return state_; }
 
   // ---- what the frames use (player_ui.cpp reads it) ----
   std::unique_ptr<tsp::TspFile> file;
@@ -118,8 +118,8 @@ class PlayerApp {
   std::unique_ptr<tsp::BrickPrefetcher>
       prefetcher;  ///< reads into renderer's brick cache; made after it
   tsp::TransferFunction tf;
-  std::vector<tsp::TfPoint> tf_points;  ///< the editor's control points
-  TfHandles tf_handles;  ///< where tf_points were placed and the TF then (edits warp it)
+  /// The TF editor's control points, by increasing value (changed by the tf-point commands).
+  const std::vector<tsp::TfPoint>& tf_points() const { return tf_points_; }
   /// The map in use as the preset combo names it: a preset's name, a TF file's name, or
   /// "edited" once its points were edited.
   std::string tf_label = "auto";
@@ -162,8 +162,6 @@ class PlayerApp {
 
   /// Applies a transfer function (from a file, preset or the editor) from the next frame on.
   void set_tf(const tsp::TransferFunction& next, bool resample_points);
-  /// Rebuilds the TF from tf_points (an editor change).
-  void apply_tf_points();
   /// Switches the metric (the reference metric is computed in full, blocking).
   void set_metric(tsp::Metric m);
   /// Changes tolerances and drops textures no frame can use any more.
@@ -196,7 +194,7 @@ class PlayerApp {
   const std::vector<tspgl::TunedRung>& tuned_rungs() const { return rungs_.ladder(); }
   /// True when frames are drawn with a tuned rung: playing with a quality target, tuned.
   bool playing_rung() const {
-    return state.playing && state.quality > 0 && !rungs_.ladder().empty();
+    return state_.playing && state_.quality > 0 && !rungs_.ladder().empty();
   }
   /// The rung a playing frame draws with a quality target: the chosen one, or before the first
   /// tuning ends tspgl::kProvisionalRung; null when not playing or without a target.
@@ -374,6 +372,11 @@ class PlayerApp {
   std::string traced_cut_;                  ///< the cut caption last traced
   void draw_annotations(const tsp::Camera& cam);
 
+  PlayerState state_;  ///< see state(); written by the members and CommandApplier only
+  std::vector<tsp::TfPoint> tf_points_;  ///< see tf_points()
+  TfHandles tf_handles_;  ///< where tf_points_ were placed and the TF then (edits warp it)
+  /// Rebuilds the TF from tf_points_ (a tf-point command).
+  void apply_tf_points();
   PlayerOptions options_;
   /// The player's one clock (seconds since it started): frame times, playback, waits, the
   /// LOD's idle delay, recordings.

@@ -7,6 +7,7 @@
 #include "player/player_app.h"
 #include "player/player_ui.h"
 #include "tsp/core/error.h"
+#include "tsp/core/number_text.h"
 #include "tsp/metric/tf_io.h"
 
 namespace tspplayer {
@@ -20,7 +21,7 @@ struct CommandApplier {
   std::string where() const {
     return line > 0 ? app.options_.script + ":" + std::to_string(line) + ": " : "";
   }
-  PlayerState& state() const { return app.state; }
+  PlayerState& state() const { return app.state_; }
 
   void operator()(const cmd::GoToStep& c) const {
     if (c.step >= app.steps())
@@ -40,10 +41,15 @@ struct CommandApplier {
   void operator()(const cmd::SetLoop& c) const { state().loop = c.on; }
   void operator()(const cmd::LoadTf& c) const {
     const tsp::ValueHistogram histogram = tsp::histogram_of(*app.file);
-    app.set_tf(tsp::transfer_function_from_arg(c.arg, app.file->tree().value_range(),
-                                                app.tf.size(), {}, &histogram),
-               true);
+    const tsp::ValueRange over =
+        c.over_present_range ? app.tf.domain() : app.file->tree().value_range();
+    app.set_tf(tsp::transfer_function_from_arg(c.arg, over, app.tf.size(), {}, &histogram), true);
     app.tf_label = tf_label_of(c.arg);
+    if (c.arg.rfind("preset:", 0) != 0) {  // a file: said, and whether it misses the data
+      const std::string w =
+          tsp::tf_range_warning(app.tf, app.file->metadata().data_range, "fit to data");
+      app.status = "loaded " + c.arg + (w.empty() ? "" : "; " + w);
+    }
   }
   void operator()(const cmd::StretchTf& c) const {  // the map as it is, over the chosen range
     const tsp::TfRangeChoice r = tsp::parse_tf_range(c.range);
@@ -166,6 +172,48 @@ struct CommandApplier {
     app.probes_changed();
   }
   void operator()(const cmd::ShowDialog& c) const { show_dialog(c.which); }
+  // The TF editor's points (tf_handles.h): point `number` (1-based) as an index, and a value
+  // inside the map's range, or a UsageError saying what there is.
+  std::size_t tf_point(int number, const char* action) const {
+    const std::size_t n = app.tf_points_.size();
+    if (number < 1 || std::size_t(number) > n)
+      throw tsp::UsageError(where() + "tf-point " + action + " " + std::to_string(number) +
+                            ": the map has points 1.." + std::to_string(n));
+    return std::size_t(number - 1);
+  }
+  void tf_value(double v, const char* action) const {
+    const tsp::ValueRange d = app.tf.domain();
+    if (!(v >= d.lo && v <= d.hi))
+      throw tsp::UsageError(where() + "tf-point " + action + ": value " + tsp::number_text(v) +
+                            " is outside the map's range " + tsp::number_text(d.lo) + ":" +
+                            tsp::number_text(d.hi));
+  }
+  void operator()(const cmd::MoveTfPoint& c) const {
+    const std::size_t i = tf_point(c.number, "move");
+    tf_value(c.value, "move");
+    tsp::TfPoint& p = app.tf_points_[i];
+    p.x = clamp_handle_x(app.tf_points_, int(i), c.value);  // (handles keep their order)
+    p.c.a = float(c.opacity);
+    app.apply_tf_points();  // lazy metric: only the touched nodes recompute next frame
+  }
+  void operator()(const cmd::ColourTfPoint& c) const {
+    app.tf_points_[tf_point(c.number, "colour")].c = c.colour;
+    app.apply_tf_points();
+  }
+  void operator()(const cmd::AddTfPoint& c) const {
+    tf_value(c.value, "add");
+    tsp::Rgba colour = sample_tf(app.tf, c.value);
+    if (c.opacity) colour.a = float(*c.opacity);
+    add_handle(app.tf_handles_, app.tf_points_, app.tf, c.value, colour);
+    app.apply_tf_points();
+  }
+  void operator()(const cmd::RemoveTfPoint& c) const {  // straight between its neighbours
+    const std::size_t i = tf_point(c.number, "remove");
+    if (app.tf_points_.size() < 3)
+      throw tsp::UsageError(where() + "tf-point remove: the map keeps at least 2 points");
+    app.set_tf(remove_handle(app.tf_handles_, app.tf_points_, app.tf, int(i)), false);
+    app.tf_label = "edited";
+  }
   void operator()(const cmd::RemoveProbe& c) const {
     if (c.index < 0 || c.index >= int(state().probes.size())) return;  // (already gone)
     state().probes.erase(state().probes.begin() + c.index);

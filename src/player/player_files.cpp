@@ -140,35 +140,35 @@ void PlayerApp::open_file(const std::string& path) {
   // Nor does the compositor, which outlives the renderer, keep drawing it: the surface control
   // reads the opened input's own boundary below, or says why it cannot and goes off.
   if (compositor_) compositor_->set_surface({});
-  const bool surface_asked = state.settings.surface;
-  state.settings.surface = false;
+  const bool surface_asked = state_.settings.surface;
+  state_.settings.surface = false;
   const tsp::TspTree& tree = file->tree();
   // The TF the player started with, fitted to the new data (a map edited for other data
   // rarely suits this one).
   tsp::TransferFunction fresh = start_tf(*file);
   tf.assign(fresh);  // (its version grows: what keys on it sees the change)
-  lazy_ = std::make_unique<tsp::LazyErrors>(tree, state.metric, tf);
+  lazy_ = std::make_unique<tsp::LazyErrors>(tree, state_.metric, tf);
   reference_version_ = ~std::uint64_t(0);
   set_tf(tf, true);
   tf_label = tf_label_of(options_.tf);
-  state.step = 0;
-  if (!speed_chosen_) state.speed = default_speed(tree.time().steps());
-  state.playing = false;
+  state_.step = 0;
+  if (!speed_chosen_) state_.speed = default_speed(tree.time().steps());
+  state_.playing = false;
   focus.reset();
-  state.settings.tol = {0, 0};
-  state.probes.clear();  // (in the old file's physical coordinates)
+  state_.settings.tol = {0, 0};
+  state_.probes.clear();  // (in the old file's physical coordinates)
   probe_selected = -1;
   probes_changed();
   quality_note.clear();
   history.clear();
   ready.assign(std::size_t(tree.time().steps()), -1.f);
   ready_next_ = 0;
-  state.camera = tsp::CameraParams{};
+  state_.camera = tsp::CameraParams{};
   // The last file's exaggeration rarely suits this one: a flat one gets its own.
   options_.scale = options_.physical_proportions ? tsp::vertical_exaggeration(file->frame())
                                                  : std::array<double, 3>{1, 1, 1};
-  place_camera(state.camera);
-  initial_camera = state.camera;
+  place_camera(state_.camera);
+  initial_camera = state_.camera;
   make_renderer();
   update_tol_max();
   // The input as the user named it (an .h5 built into the cache), not the cache entry.
@@ -207,9 +207,9 @@ void PlayerApp::switch_field(const std::string& name) {
   parked_.park(current, {std::move(file), std::move(renderer), tf});
   file = std::move(next.file);
   tf.assign(next.tf);  // (its version grows past both fields')
-  lazy_ = std::make_unique<tsp::LazyErrors>(file->tree(), state.metric, tf);
+  lazy_ = std::make_unique<tsp::LazyErrors>(file->tree(), state_.metric, tf);
   reference_version_ = ~std::uint64_t(0);
-  tf_points.clear();
+  tf_points_.clear();
   set_tf(tf, true);
   applied_probe_version_ = ~std::uint64_t(0);  // the probes go to this field's renderer too
   if (next.renderer) {
@@ -221,7 +221,7 @@ void PlayerApp::switch_field(const std::string& name) {
     make_renderer();
   }
   driver_.reset();
-  place_camera(state.camera);  // (another grid: its own voxel size and place in the frame)
+  place_camera(state_.camera);  // (another grid: its own voxel size and place in the frame)
   place_camera(initial_camera);
   ready.assign(std::size_t(steps()), -1.f);
   ready_next_ = 0;
@@ -264,16 +264,16 @@ void PlayerApp::stop_recording() {
 // repeated or skipped so that the movie keeps the wall-clock time of what was played.
 tsp::Image PlayerApp::export_view() {
   tsp::Image img = read_view();
-  if (state.annotations) {
+  if (state_.annotations) {
     const auto& times = file->metadata().times;
-    tspgl::annotate_frame(img, tsp::Camera(file->tree().octree().dims(), state.camera),
-                          file->tree().octree().dims(), tf, state.step,
+    tspgl::annotate_frame(img, tsp::Camera(file->tree().octree().dims(), state_.camera),
+                          file->tree().octree().dims(), tf, state_.step,
                           times.empty() ? std::nullopt
                                         : std::optional<std::string>(tsp::format_time(
-                                              times[std::size_t(state.step)],
+                                              times[std::size_t(state_.step)],
                                               file->metadata().time_units)),
                           field(), tsp::exaggeration_text(options_.scale, true),
-                          mesh_surface && state.settings.surface
+                          mesh_surface && state_.settings.surface
                               ? tspgl::SurfaceLegend{&mesh_surface->tf(), mesh_surface->field()}
                               : tspgl::SurfaceLegend{});
   }
@@ -289,7 +289,7 @@ std::string PlayerApp::export_stem() const {
 std::string PlayerApp::export_name() const {
   // NAME_FIELD_step_NNNN.png in the working directory, never over an earlier one.
   char step[32];
-  std::snprintf(step, sizeof step, "_step_%04d", state.step);
+  std::snprintf(step, sizeof step, "_step_%04d", state_.step);
   return tsp::unused_path(export_stem() + step + ".png");
 }
 
@@ -334,30 +334,30 @@ void PlayerApp::write_stats(const std::string& path) const {
   j["file"] = options_.tsp_path;
   j["open_folder"] = open_folder();  // where File > Open starts
   j["session"] = session_json();  // restored (from where), its cache entry, a file ignored
-  j["camera"] = {{"azimuth_deg", state.camera.azimuth_deg},
-                 {"elevation_deg", state.camera.elevation_deg},
-                 {"zoom", state.camera.zoom},
-                 {"pan", state.camera.pan},
-                 {"perspective", state.camera.projection == tsp::Projection::perspective}};
+  j["camera"] = {{"azimuth_deg", state_.camera.azimuth_deg},
+                 {"elevation_deg", state_.camera.elevation_deg},
+                 {"zoom", state_.camera.zoom},
+                 {"pan", state_.camera.pan},
+                 {"perspective", state_.camera.projection == tsp::Projection::perspective}};
   j["scale"] = options_.scale;  // the axis stretch
-  j["panels"] = state.panels;
+  j["panels"] = state_.panels;
   j["surface_mesh"] = surface_mesh_;  // the mesh whose boundary is drawn ("": none)
   j["status"] = status;
   j["field"] = file->fields()[std::size_t(file->field_index())];
   j["fields"] = file->fields();
   j["field_switch_ms"] = field_switch_ms;
   nlohmann::json jp = nlohmann::json::array();
-  for (const tsp::Probe& p : state.probes) jp.push_back(tsp::to_string(p));
+  for (const tsp::Probe& p : state_.probes) jp.push_back(tsp::to_string(p));
   j["probes"] = jp;
-  j["probe_op"] = tsp::to_string(state.probe_op);
+  j["probe_op"] = tsp::to_string(state_.probe_op);
   j["axis_scale"] = options_.scale;  // the stretch per axis, automatic for a flat domain
   j["exaggeration"] = tsp::exaggeration_text(options_.scale);  // as the picture names it
   j["ram_mib"] = double(renderer->brick_cache().stats().resident_bytes) / (1 << 20);
   j["rss_mib"] = double(tsp::resident_bytes()) / (1 << 20);
   j["peak_rss_mib"] = double(tsp::peak_resident_bytes()) / (1 << 20);
-  j["step"] = state.step;
+  j["step"] = state_.step;
   j["steps_ready"] = ready;
-  j["every_step"] = state.every_step;
+  j["every_step"] = state_.every_step;
   j["recording"] = recording();
   j["frames"] = ms.size();
   j["frame_ms"] = ms;
@@ -368,10 +368,10 @@ void PlayerApp::write_stats(const std::string& path) const {
   // Table-5 classes, deferred_textures (left for later frames by the upload budget), …
   j["frame_report"] = last;
   j["picture_fragments"] = picture_fragments_;  // of the frame that drew the picture shown
-  j.update(tspgl::settings_json(state.settings));  // every knob of the settings table, as render's
-  j["tolerance"] = {state.settings.tol.spatial, state.settings.tol.temporal};
+  j.update(tspgl::settings_json(state_.settings));  // every knob of the settings table, as render's
+  j["tolerance"] = {state_.settings.tol.spatial, state_.settings.tol.temporal};
   nlohmann::json points = nlohmann::json::array();  // the editor's handles: value, opacity
-  for (const tsp::TfPoint& p : tf_points) points.push_back({p.x, p.c.a});
+  for (const tsp::TfPoint& p : tf_points_) points.push_back({p.x, p.c.a});
   j["tf_points"] = points;
   j["tf_domain"] = {tf.domain().lo, tf.domain().hi};
   j["tf"] = tf_label;  // the map in use, as the preset combo names it
@@ -400,12 +400,12 @@ void PlayerApp::write_stats(const std::string& path) const {
                  {"from_cache", tuning_from_cache_},  // read from disk: no probing this run
                  {"cache_file", tuning_cache_file_}};
   j["lod"] = lod_stats;  // the last frame's cut, under frames.json's "lod" keys (lod_controller.h)
-  j["lod"].update({{"on", state.lod_on},
-                   {"target_fps", state.target_fps},
+  j["lod"].update({{"on", state_.lod_on},
+                   {"target_fps", state_.target_fps},
                    {"refining", lod_loop_.refining()},
-                   {"splat_fallback", state.splat_fallback},
-                   {"filter", tsp::to_string(state.lod_filter.kind)},
-                   {"filter_k", state.lod_filter.scale},
+                   {"splat_fallback", state_.splat_fallback},
+                   {"filter", tsp::to_string(state_.lod_filter.kind)},
+                   {"filter_k", state_.lod_filter.scale},
                    {"full_quality_after_s", full_quality_after_s},
                    // Full quality: no node left whose level differs from full resolution in
                    // the picture (error 0: transparent, uniform or hidden), at full render size.

@@ -83,23 +83,23 @@ void PlayerApp::install_callbacks() {
 
 void PlayerApp::handle_input() {
   const ImGuiIO& io = ImGui::GetIO();
-  const bool gizmo = !io.WantCaptureMouse && state.camera.width > 0 && state.camera.height > 0 &&
-                     probe_gizmo(tsp::Camera(file->tree().octree().dims(), state.camera));
+  const bool gizmo = !io.WantCaptureMouse && state_.camera.width > 0 && state_.camera.height > 0 &&
+                     probe_gizmo(tsp::Camera(file->tree().octree().dims(), state_.camera));
   // The frame a button goes down carries the cursor's way to the press (from the timeline, say,
   // in one motion with the press): a drag moves the view from the press on, not by that jump.
   const bool pressed_now = io.MouseClicked[0] || io.MouseClicked[1] || io.MouseClicked[2];
   if (!io.WantCaptureMouse && !gizmo) {
     const bool pan = io.MouseDown[1] || io.MouseDown[2] || (io.MouseDown[0] && io.KeyShift);
     if (pan && !pressed_now) {
-      const double scale = 2.0 / (state.camera.zoom * std::max(1, std::min(state.camera.width, state.camera.height)));
-      state.camera.pan[0] -= io.MouseDelta.x * scale;
-      state.camera.pan[1] += io.MouseDelta.y * scale;
+      const double scale = 2.0 / (state_.camera.zoom * std::max(1, std::min(state_.camera.width, state_.camera.height)));
+      state_.camera.pan[0] -= io.MouseDelta.x * scale;
+      state_.camera.pan[1] += io.MouseDelta.y * scale;
     } else if (io.MouseDown[0] && !pan && !pressed_now) {
-      state.camera.azimuth_deg -= io.MouseDelta.x * kOrbitDegPerPixel;
-      state.camera.elevation_deg = std::clamp(state.camera.elevation_deg + io.MouseDelta.y * kOrbitDegPerPixel,
+      state_.camera.azimuth_deg -= io.MouseDelta.x * kOrbitDegPerPixel;
+      state_.camera.elevation_deg = std::clamp(state_.camera.elevation_deg + io.MouseDelta.y * kOrbitDegPerPixel,
                                         -kMaxElevation, kMaxElevation);
     }
-    if (io.MouseWheel != 0) state.camera.zoom *= std::pow(kZoomPerWheelStep, io.MouseWheel);
+    if (io.MouseWheel != 0) state_.camera.zoom *= std::pow(kZoomPerWheelStep, io.MouseWheel);
     if (io.MouseDoubleClicked[0])
       set_focus_at(io.MousePos.x - layout.view.x, io.MousePos.y - layout.view.y);
   }
@@ -148,7 +148,7 @@ void PlayerApp::apply_key(int key) {
     show_help = !show_help;  // (no player state)
     return;
   }
-  if (std::optional<Command> c = key_command(key, state, steps())) command(*c);
+  if (std::optional<Command> c = key_command(key, state_, steps())) command(*c);
 }
 
 // Runs actions until one needs frames to pass: a screenshot (saved after this frame's render),
@@ -176,19 +176,19 @@ void PlayerApp::trace_changes() {
     std::printf("trace: %s\n", s.c_str());
     std::fflush(stdout);
   };
-  if (t.first || state.step != t.step) line("step " + std::to_string(state.step));
+  if (t.first || state_.step != t.step) line("step " + std::to_string(state_.step));
   if (!t.first && tf.version() != t.tf_version)
     line("transfer function edited (" + std::to_string(tf.size()) + " entries over [" +
          std::to_string(tf.domain().lo) + ", " + std::to_string(tf.domain().hi) + "])");
-  const tsp::Tolerances& tol = state.settings.tol;
+  const tsp::Tolerances& tol = state_.settings.tol;
   if (!t.first && (tol.spatial != t.tol.spatial || tol.temporal != t.tol.temporal))
     line("tolerances spatial " + std::to_string(tol.spatial) + ", temporal " +
          std::to_string(tol.temporal));
-  if (!t.first && state.metric != t.metric) line(std::string("metric ") + tsp::to_string(state.metric));
-  if (t.first || state.playing != t.playing) line(state.playing ? "playing" : "paused");
-  if (!t.first && state.lod_on != t.lod_on) line(std::string("lod ") + (state.lod_on ? "on" : "off"));
-  if (!t.first && state.panels != t.panels) line(std::string("panels ") + (state.panels ? "on" : "off"));
-  t = {state.step, tf.version(), state.settings.tol, state.metric, state.playing, state.lod_on, state.panels, false};
+  if (!t.first && state_.metric != t.metric) line(std::string("metric ") + tsp::to_string(state_.metric));
+  if (t.first || state_.playing != t.playing) line(state_.playing ? "playing" : "paused");
+  if (!t.first && state_.lod_on != t.lod_on) line(std::string("lod ") + (state_.lod_on ? "on" : "off"));
+  if (!t.first && state_.panels != t.panels) line(std::string("panels ") + (state_.panels ? "on" : "off"));
+  t = {state_.step, tf.version(), state_.settings.tol, state_.metric, state_.playing, state_.lod_on, state_.panels, false};
 }
 
 // The back end polled the pointer (the position now, after every queued event); the queue's

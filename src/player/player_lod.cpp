@@ -34,20 +34,20 @@ constexpr ImU32 kLevelColours[] = {IM_COL32(80, 220, 80, 200), IM_COL32(240, 220
 }  // namespace
 
 void PlayerApp::set_lod(bool on) {
-  state.lod_on = on;
+  state_.lod_on = on;
   if (driver_) driver_->set_lod({});  // a new controller when it is turned on again
 }
 
 tspgl::LodSpec PlayerApp::lod_spec(double now_s) {
   // (Playing at a quality target: the tuned rung's level, or the provisional rung's.)
-  const tspgl::Rung* r = state.playing && state.quality > 0 ? rung_drawn() : nullptr;
+  const tspgl::Rung* r = state_.playing && state_.quality > 0 ? rung_drawn() : nullptr;
   return lod_loop_.next(
-      state, {tf.version(), probe_version, focus, r ? r->lod_level : 0, !refine_by_cut()}, now_s);
+      state_, {tf.version(), probe_version, focus, r ? r->lod_level : 0, !refine_by_cut()}, now_s);
 }
 
 void PlayerApp::lod_drawn(const std::optional<tsp::LodFrameStats>& stats, double now_s) {
   lod_stats = stats.value_or(tsp::LodFrameStats{});
-  if (!state.lod_on) return;
+  if (!state_.lod_on) return;
   // When the picture got back to full quality after the last change.
   if (full_quality()) {
     if (full_quality_after_s < 0) full_quality_after_s = now_s - lod_loop_.last_change_s();
@@ -58,8 +58,8 @@ void PlayerApp::lod_drawn(const std::optional<tsp::LodFrameStats>& stats, double
 
 bool PlayerApp::full_quality() const {
   // A selection filter's cut is the picture asked for: nothing is left to refine once drawn.
-  if (state.lod_on && state.lod_filter.kind != tsp::LodFilter::error) return true;
-  if (!state.lod_on) return true;
+  if (state_.lod_on && state_.lod_filter.kind != tsp::LodFilter::error) return true;
+  if (!state_.lod_on) return true;
   // Refined in bands (player_refine.cpp): full once the last band is drawn.
   if (refine_on_) return stage_ == "full";
   // (With the mesh's surface the cut itself refines.)
@@ -71,9 +71,9 @@ void PlayerApp::measured_lod(double render_ms, double frame_ms) {
 }
 
 void PlayerApp::set_focus_at(double x, double y) {
-  const tsp::Camera cam(file->tree().octree().dims(), state.camera);
+  const tsp::Camera cam(file->tree().octree().dims(), state_.camera);
   const glm::dmat4 inv = glm::inverse(cam.view_projection());
-  const double nx = 2 * x / std::max(1, state.camera.width) - 1, ny = 1 - 2 * y / std::max(1, state.camera.height);
+  const double nx = 2 * x / std::max(1, state_.camera.width) - 1, ny = 1 - 2 * y / std::max(1, state_.camera.height);
   const glm::dvec4 a = inv * glm::dvec4(nx, ny, -1, 1), b = inv * glm::dvec4(nx, ny, 1, 1);
   const glm::dvec3 p0 = glm::dvec3(a) / a.w, p1 = glm::dvec3(b) / b.w;
   const tsp::Dims d = file->tree().octree().dims();
@@ -164,7 +164,7 @@ void draw_legends(ImDrawList* dl, const WindowRect& v, const tsp::TransferFuncti
 }  // namespace
 
 void PlayerApp::draw_annotations(const tsp::Camera& cam) {
-  if (!state.annotations) return;
+  if (!state_.annotations) return;
   const WindowRect& v = layout.view;
   ImDrawList* dl = view_draw_list(v);
   // Crisp one-pixel lines in exactly the outline colour (as render --annotate draws them).
@@ -178,7 +178,7 @@ void PlayerApp::draw_annotations(const tsp::Camera& cam) {
   for (int c = 0; c < 8; ++c) ok &= corner(vp, box, c, v, p[c]);
   if (ok) {
     // (With the cut shown its boxes outline the volume in their levels' colours instead.)
-    for (int c = 0; c < 8 && !state.show_cut; ++c)
+    for (int c = 0; c < 8 && !state_.show_cut; ++c)
       for (int a = 0; a < 3; ++a)
         if (!(c & (1 << a))) dl->AddLine(p[c], p[c | (1 << a)], IM_COL32(200, 200, 200, 255));
     // Axes triad at the origin corner: x red, y green, z blue, labelled.
@@ -199,10 +199,10 @@ void PlayerApp::draw_annotations(const tsp::Camera& cam) {
   const auto& times = file->metadata().times;
   char label[96];
   if (times.empty())
-    std::snprintf(label, sizeof label, "step %d", state.step);
+    std::snprintf(label, sizeof label, "step %d", state_.step);
   else
-    std::snprintf(label, sizeof label, "step %d   t = %s", state.step,
-                  tsp::format_time(times[std::size_t(state.step)], file->metadata().time_units).c_str());
+    std::snprintf(label, sizeof label, "step %d   t = %s", state_.step,
+                  tsp::format_time(times[std::size_t(state_.step)], file->metadata().time_units).c_str());
   // A stretched axis is named under it ("z × 30"): heights are not to scale. Both on an opaque
   // box (as the export's caption, jobs/annotate.cpp), so that the outline never crosses them.
   const std::string k = tsp::exaggeration_text(options_.scale);
@@ -217,12 +217,12 @@ void PlayerApp::draw_annotations(const tsp::Camera& cam) {
   dl->AddText(at, IM_COL32(235, 235, 235, 255), label);
   if (!k.empty()) dl->AddText(ImVec2(at.x, at.y + line), IM_COL32(80, 120, 255, 255), k.c_str());
   draw_legends(dl, v, tf, field(),
-               mesh_surface && state.settings.surface ? &*mesh_surface : nullptr);
+               mesh_surface && state_.settings.surface ? &*mesh_surface : nullptr);
   dl->PopClipRect();
 }
 
 void PlayerApp::keep_drawn_cut(tsp::LodStops stops) {
-  if (!state.show_cut) return;
+  if (!state_.show_cut) return;
   drawn_stops_.assign(stops.begin(), stops.end());
 }
 
@@ -245,7 +245,7 @@ std::string PlayerApp::cut_overlay_text() const {
 }
 
 void PlayerApp::draw_cut_overlay(const tsp::Camera& cam) {
-  if (!state.show_cut) return;
+  if (!state_.show_cut) return;
   // The cut the last frame drew: the adaptive cut while interacting, the playing rung's level,
   // or, paused at full quality (refined in bands) or with LOD off, every leaf at level 0 (it
   // once drew only the adaptive controller's cut, so paused or playing L showed nothing).

@@ -122,13 +122,13 @@ void menu_bar(PlayerApp& app) {
     ImGui::EndMenu();
   }
   if (ImGui::BeginMenu("View")) {
-    if (ImGui::MenuItem("Panels", "Tab", app.state.panels))
-      app.push(cmd::ShowPanels{!app.state.panels});
-    if (ImGui::MenuItem("Outline, axes, step", nullptr, app.state.annotations))
-      app.push(cmd::ShowAnnotations{!app.state.annotations});
-    if (ImGui::MenuItem("LOD cut", "L", app.state.show_cut))
-      app.push(cmd::ShowCut{!app.state.show_cut});
-    bool persp = app.state.camera.projection == tsp::Projection::perspective;
+    if (ImGui::MenuItem("Panels", "Tab", app.state().panels))
+      app.push(cmd::ShowPanels{!app.state().panels});
+    if (ImGui::MenuItem("Outline, axes, step", nullptr, app.state().annotations))
+      app.push(cmd::ShowAnnotations{!app.state().annotations});
+    if (ImGui::MenuItem("LOD cut", "L", app.state().show_cut))
+      app.push(cmd::ShowCut{!app.state().show_cut});
+    bool persp = app.state().camera.projection == tsp::Projection::perspective;
     if (ImGui::MenuItem("Perspective", "P", &persp))
       app.push(cmd::SetProjection{persp});
     if (ImGui::MenuItem("Reset camera", "R")) app.push(cmd::ResetCamera{});

@@ -26,18 +26,18 @@ double default_speed(int steps) {
 }
 
 void PlayerApp::advance_playback(double dt) {
-  if (!state.playing) {
+  if (!state_.playing) {
     playback_clock_.reset();
     return;
   }
-  for (int advance = playback_clock_.advance(dt, state.speed, state.every_step); advance > 0;
+  for (int advance = playback_clock_.advance(dt, state_.speed, state_.every_step); advance > 0;
        --advance) {
-    if (state.step + 1 < steps()) {
-      ++state.step;
-    } else if (state.loop) {
-      state.step = 0;
+    if (state_.step + 1 < steps()) {
+      ++state_.step;
+    } else if (state_.loop) {
+      state_.step = 0;
     } else {
-      state.playing = false;
+      state_.playing = false;
       playback_clock_.reset();
       break;
     }
@@ -45,8 +45,8 @@ void PlayerApp::advance_playback(double dt) {
 }
 
 double PlayerApp::until_next_step() const {
-  if (!state.playing) return kIdleWaitSeconds;
-  return playback_clock_.until_next(clock_.seconds() - last_frame_s_, state.speed);
+  if (!state_.playing) return kIdleWaitSeconds;
+  return playback_clock_.until_next(clock_.seconds() - last_frame_s_, state_.speed);
 }
 
 double PlayerApp::steps_shown_per_s() const {
@@ -58,7 +58,7 @@ double PlayerApp::steps_shown_per_s() const {
 }
 
 bool PlayerApp::rate_measured() const {
-  return state.playing && shown_at_s_.size() >= 2;
+  return state_.playing && shown_at_s_.size() >= 2;
 }
 
 nlohmann::json PlayerApp::tuning_disk_key(const tsp::CameraParams& view) const {
@@ -78,8 +78,8 @@ nlohmann::json PlayerApp::tuning_disk_key(const tsp::CameraParams& view) const {
           {"mtime", std::to_string(st.st_mtim.tv_sec) + "." + std::to_string(st.st_mtim.tv_nsec)},
           {"field", field()},
           {"tf", tf_text},
-          {"metric", tsp::to_string(state.metric)},
-          {"settings", tspgl::settings_json(state.settings)},
+          {"metric", tsp::to_string(state_.metric)},
+          {"settings", tspgl::settings_json(state_.settings)},
           {"size", {view.width, view.height}},
           {"view", {view.azimuth_deg, view.elevation_deg, view.zoom, view.pan[0], view.pan[1]}},
           {"perspective", view.projection == tsp::Projection::perspective}};
@@ -90,21 +90,21 @@ PlayerApp::TuneKey PlayerApp::tune_key() const {
   k.file = file.get();
   k.field = field();
   k.tf_version = tf.version();
-  k.metric = state.metric;
-  k.settings = state.settings;
+  k.metric = state_.metric;
+  k.settings = state_.settings;
   k.width = std::max(1, layout.view.w);
   k.height = std::max(1, layout.view.h);
   return k;
 }
 
 const tspgl::Rung* PlayerApp::rung_drawn() const {
-  if (!state.playing || state.quality <= 0) return nullptr;
+  if (!state_.playing || state_.quality <= 0) return nullptr;
   if (rungs_.ladder().empty()) return &tspgl::playback_rungs()[tspgl::kProvisionalRung];
   return &rungs_.ladder()[std::size_t(rungs_.choice().index)].rung;
 }
 
 void PlayerApp::apply_quality(double de) {
-  state.quality = float(de);
+  state_.quality = float(de);
   if (de > 0 && !tuner_ && !(tuned_for_ == tune_key() && !rungs_.ladder().empty())) start_tuning();
   advance_tuning();  // (a slice now: a script's next action waits for the rest)
 }
@@ -114,7 +114,7 @@ void PlayerApp::start_tuning() {
   // The view's aspect at no more than kMaxTunePixels.
   const double shrink =
       std::min(1.0, std::sqrt(double(tspgl::kMaxTunePixels) / (double(key.width) * key.height)));
-  tsp::CameraParams view = state.camera;
+  tsp::CameraParams view = state_.camera;
   view.width = std::max(1, int(std::lround(key.width * shrink)));
   view.height = std::max(1, int(std::lround(key.height * shrink)));
   tuner_.reset();
@@ -130,7 +130,7 @@ void PlayerApp::start_tuning() {
   }
   try {
     tuner_ = std::make_unique<tspgl::PlaybackTuner>(*ctx, *file, tf, frame_metric(), view,
-                                                    state.settings);
+                                                    state_.settings);
   } catch (const tsp::Error& e) {
     status = std::string("playback tuning: ") + e.what();
     return;
@@ -141,14 +141,14 @@ void PlayerApp::start_tuning() {
 }
 
 void PlayerApp::advance_tuning() {
-  if (state.quality <= 0) {
+  if (state_.quality <= 0) {
     tuner_.reset();
     return;
   }
   const TuneKey key = tune_key();
   if (tuner_ && !(tuning_for_ == key)) start_tuning();  // out of date: again, for what is shown
   // Tuned when playing (a still window never pays for it) or when the target is set.
-  if (!tuner_ && state.playing && (rungs_.ladder().empty() || !(tuned_for_ == key))) start_tuning();
+  if (!tuner_ && state_.playing && (rungs_.ladder().empty() || !(tuned_for_ == key))) start_tuning();
   if (!tuner_) return;
   try {
     if (!tuner_->advance(kCalibrationSliceMs)) {
@@ -176,7 +176,7 @@ void PlayerApp::advance_tuning() {
 
 void PlayerApp::choose_rung(double now_s) {
   if (!playing_rung()) return;
-  rungs_.choose(state.quality, state.speed, state.keep_quality, lod_loop_.overhead_ms(), now_s);
+  rungs_.choose(state_.quality, state_.speed, state_.keep_quality, lod_loop_.overhead_ms(), now_s);
 }
 
 void PlayerApp::measured_rung(double render_ms) {
@@ -184,17 +184,17 @@ void PlayerApp::measured_rung(double render_ms) {
 }
 
 nlohmann::json PlayerApp::playback_json() const {
-  nlohmann::json j = {{"speed", state.speed},
-                      {"quality", state.quality},
-                      {"keep", state.keep_quality ? "quality" : "rate"},
-                      {"playing", state.playing},
+  nlohmann::json j = {{"speed", state_.speed},
+                      {"quality", state_.quality},
+                      {"keep", state_.keep_quality ? "quality" : "rate"},
+                      {"playing", state_.playing},
                       {"steps_shown_per_s", steps_shown_per_s()},
                       {"tuned", !rungs_.ladder().empty()},
                       {"time_ratio", rungs_.time_ratio()}};
   if (playing_rung()) {
     const tspgl::RungChoice& rung = rungs_.choice();
     const tspgl::TunedRung& t = rungs_.ladder()[std::size_t(rung.index)];
-    const tspgl::RenderSettings s = tspgl::rung_settings(state.settings, t.rung);
+    const tspgl::RenderSettings s = tspgl::rung_settings(state_.settings, t.rung);
     j["rung"] = {{"name", t.rung.name},
                  {"spacing", s.spacing},
                  {"render_scale", s.render_scale},
@@ -202,7 +202,7 @@ nlohmann::json PlayerApp::playback_json() const {
                  {"predicted_de", t.mean_de},
                  {"predicted_max_step_de", t.max_step_de},
                  {"predicted_ms", rung.predicted_ms},
-                 {"period_ms", 1000.0 / std::max(state.speed, 1e-3)},
+                 {"period_ms", 1000.0 / std::max(state_.speed, 1e-3)},
                  {"fits_rate", rung.fits_rate},
                  {"within_quality", rung.within_quality}};
   }

@@ -104,25 +104,25 @@ tsp::Probe PlayerApp::default_probe(tsp::Probe::Kind kind) const {
 }
 
 void PlayerApp::add_probe(const tsp::Probe& p) {
-  if (int(state.probes.size()) >= tsp::ClipRegion::kMaxProbes) {
+  if (int(state_.probes.size()) >= tsp::ClipRegion::kMaxProbes) {
     status = "at most " + std::to_string(tsp::ClipRegion::kMaxProbes) + " probes";
     return;
   }
-  state.probes.push_back(p);
-  probe_selected = int(state.probes.size()) - 1;
+  state_.probes.push_back(p);
+  probe_selected = int(state_.probes.size()) - 1;
   probes_changed();
 }
 
 void PlayerApp::apply_probes() {
   if (probe_version == applied_probe_version_ && tf.version() == applied_probe_tf_) return;
   try {
-    const tsp::ClipRegion clip(state.probes, state.probe_op, file->metadata().origin, file->metadata().spacing);
-    renderer->set_clip(clip, state.probe_surface && !state.probes.empty()
+    const tsp::ClipRegion clip(state_.probes, state_.probe_op, file->metadata().origin, file->metadata().spacing);
+    renderer->set_clip(clip, state_.probe_surface && !state_.probes.empty()
                                  ? std::optional<tsp::TransferFunction>(tf)
                                  : std::nullopt);
   } catch (const tsp::Error& e) {  // (the UI keeps values valid; a script may not)
     status = e.what();
-    state.probes.clear();
+    state_.probes.clear();
     renderer->set_clip(tsp::ClipRegion{}, std::nullopt);
   }
   applied_probe_version_ = probe_version;
@@ -131,9 +131,9 @@ void PlayerApp::apply_probes() {
 
 bool PlayerApp::probe_gizmo(const tsp::Camera& cam) {
   const ImGuiIO& io = ImGui::GetIO();
-  if (probe_selected < 0 || probe_selected >= int(state.probes.size()) || !(io.KeyCtrl || io.KeyAlt))
+  if (probe_selected < 0 || probe_selected >= int(state_.probes.size()) || !(io.KeyCtrl || io.KeyAlt))
     return false;
-  tsp::Probe& p = state.probes[std::size_t(probe_selected)];
+  tsp::Probe& p = state_.probes[std::size_t(probe_selected)];
   const Grid grid = grid_of(*file);
   const auto [lo, hi] = volume_box(*file, grid);
   const glm::dvec3 vc = 0.5 * (lo + hi);
@@ -177,14 +177,14 @@ bool PlayerApp::probe_gizmo(const tsp::Camera& cam) {
 }
 
 void PlayerApp::draw_probe_overlay(const tsp::Camera& cam) {
-  if (state.probes.empty()) return;
+  if (state_.probes.empty()) return;
   const Grid grid = grid_of(*file);
   const WindowRect& v = layout.view;
   ImDrawList* dl = ImGui::GetBackgroundDrawList();
   dl->PushClipRect(ImVec2(float(v.x), float(v.y)), ImVec2(float(v.x + v.w), float(v.y + v.h)), false);
   const auto [lo, hi] = volume_box(*file, grid);
-  for (std::size_t i = 0; i < state.probes.size(); ++i) {
-    const tsp::Probe& p = state.probes[i];
+  for (std::size_t i = 0; i < state_.probes.size(); ++i) {
+    const tsp::Probe& p = state_.probes[i];
     const ImU32 col = int(i) == probe_selected ? kSelectedColour : kProbeColour;
     if (p.kind == tsp::Probe::Kind::sphere) {
       ImVec2 c, e;
@@ -239,13 +239,13 @@ void PlayerApp::draw_probe_overlay(const tsp::Camera& cam) {
 }
 
 void probes_section(PlayerApp& app) {
-  int op = int(app.state.probe_op);
+  int op = int(app.state().probe_op);
   ImGui::SetNextItemWidth(120);
   if (ImGui::Combo("combine", &op, kOpNames, IM_ARRAYSIZE(kOpNames)))
     app.push(cmd::SetProbeOp{tsp::ProbeOp(op)});
   note_item("combine");
   ImGui::SameLine();
-  if (bool on = app.state.probe_surface; ImGui::Checkbox("surface", &on))
+  if (bool on = app.state().probe_surface; ImGui::Checkbox("surface", &on))
     app.push(cmd::ProbeSurface{on});
   note_item("surface");
   if (ImGui::IsItemHovered())
@@ -257,8 +257,8 @@ void probes_section(PlayerApp& app) {
     note_item(add.c_str(), true);
   }
   int remove = -1;
-  for (std::size_t i = 0; i < app.state.probes.size(); ++i) {
-    tsp::Probe p = app.state.probes[i];  // (edits go back as a command)
+  for (std::size_t i = 0; i < app.state().probes.size(); ++i) {
+    tsp::Probe p = app.state().probes[i];  // (edits go back as a command)
     ImGui::PushID(int(i));
     char title[32];
     std::snprintf(title, sizeof title, "%zu: %s", i + 1, kKindNames[int(p.kind)]);
@@ -304,7 +304,7 @@ void probes_section(PlayerApp& app) {
     ImGui::PopID();
   }
   if (remove >= 0) app.push(cmd::RemoveProbe{remove});
-  if (!app.state.probes.empty()) {
+  if (!app.state().probes.empty()) {
     ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
     ImGui::TextWrapped("selected probe: ctrl+drag moves it, ctrl+wheel resizes (a plane: moves it "
                        "along its normal), alt+drag turns a plane or a box");

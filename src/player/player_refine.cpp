@@ -32,11 +32,11 @@ bool refine_by_cut() {
 
 const tspgl::TunedRung* PlayerApp::base_rung() const {
   const std::vector<tspgl::TunedRung>& tuned = rungs_.ladder();
-  if (state.quality <= 0 || tuned.empty() || !(tuned_for_ == tune_key())) return nullptr;
+  if (state_.quality <= 0 || tuned.empty() || !(tuned_for_ == tune_key())) return nullptr;
   const tspgl::TunedRung* best = nullptr;
   for (std::size_t i = 1; i < tuned.size(); ++i) {
     const tspgl::TunedRung& r = tuned[i];
-    if (r.mean_de <= kRefineBaseMargin * state.quality && r.ms < tuned[0].ms &&
+    if (r.mean_de <= kRefineBaseMargin * state_.quality && r.ms < tuned[0].ms &&
         (!best || r.ms < best->ms))
       best = &r;
   }
@@ -45,8 +45,8 @@ const tspgl::TunedRung* PlayerApp::base_rung() const {
 
 bool PlayerApp::refine_draw(double now_s, tspgl::FrameRequest& request, tspgl::DrawnFrame& drawn) {
   (void)now_s;
-  const bool applies = !refine_by_cut() && state.lod_on && state.lod_filter.kind == tsp::LodFilter::error &&
-                       !state.playing && !(mesh_surface && request.settings.surface);
+  const bool applies = !refine_by_cut() && state_.lod_on && state_.lod_filter.kind == tsp::LodFilter::error &&
+                       !state_.playing && !(mesh_surface && request.settings.surface);
   // Another renderer (a field switch, File > Open, a cache change) is a change too: its
   // picture is not the one the bands were drawn over.
   const bool new_renderer = renderer.get() != refine_renderer_;
@@ -60,7 +60,7 @@ bool PlayerApp::refine_draw(double now_s, tspgl::FrameRequest& request, tspgl::D
     return false;
   }
   const tsp::CameraParams& view = request.camera->params();
-  const bool no_target = state.quality <= 0;
+  const bool no_target = state_.quality <= 0;
   if (!refine_on_) {
     // After a pause the last playing frame is on screen: when it was within the target, the
     // bands are drawn over it. Otherwise (or once settled after a change) over the fastest
@@ -128,7 +128,7 @@ bool PlayerApp::refine_draw(double now_s, tspgl::FrameRequest& request, tspgl::D
   request.settings.upload_budget = 0;  // (all resident now)
   const bool first = bands_.bands_drawn() == 0;
   const double budget_ms =
-      std::max(1.0, 1000.0 / std::max(1.f, state.target_fps) - lod_loop_.overhead_ms());
+      std::max(1.0, 1000.0 / std::max(1.f, state_.target_fps) - lod_loop_.overhead_ms());
   part_.rects = bands_.next(whole_ ? 1e300 : budget_ms);
   part_.first = first;
   part_.completes = !bands_.active();
@@ -149,16 +149,16 @@ bool PlayerApp::refine_draw(double now_s, tspgl::FrameRequest& request, tspgl::D
 }
 
 void PlayerApp::cut_drawn(bool rung) {
-  const bool no_target = state.quality <= 0;
-  if (!state.lod_on) {
+  const bool no_target = state_.quality <= 0;
+  if (!state_.lod_on) {
     stage_ = "off";
     within_ = true;
-  } else if (state.playing) {
+  } else if (state_.playing) {
     stage_ = "playing";
     within_ = no_target || (rung && rungs_.choice().within_quality);
   } else {
     stage_ = "interacting";
-    within_ = no_target || state.lod_filter.kind != tsp::LodFilter::error;
+    within_ = no_target || state_.lod_filter.kind != tsp::LodFilter::error;
   }
 }
 
@@ -224,10 +224,10 @@ void PlayerApp::capture_frame() {
   nlohmann::json j = refine_json();
   j["frame"] = capture_count_++;
   j["file"] = name;
-  j["step"] = state.step;
-  j["playing"] = state.playing;
+  j["step"] = state_.step;
+  j["playing"] = state_.playing;
   j["frame_report"] = last;  // as frames.json writes a frame (render/frame_report.h)
-  j["view"] = {state.camera.azimuth_deg, state.camera.elevation_deg, state.camera.zoom};
+  j["view"] = {state_.camera.azimuth_deg, state_.camera.elevation_deg, state_.camera.zoom};
   j["recorded"] = recorder_ != nullptr && within_;
   std::ofstream out(fs::path(capture_dir_) / "frames.jsonl", std::ios::app);
   out << j.dump() << "\n";

@@ -53,10 +53,10 @@ Session PlayerApp::capture_session() const {
   s.field = field();
   s.tf_domain = tf.domain();
   s.tf_entries.assign(tf.entries().begin(), tf.entries().end());
-  s.tf_points = tf_points;
+  s.tf_points = tf_points_;
   s.tf_label = tf_label;
-  s.log_opacity = state.log_opacity;
-  const tsp::CameraParams& c = state.camera;
+  s.log_opacity = state_.log_opacity;
+  const tsp::CameraParams& c = state_.camera;
   s.azimuth_deg = c.azimuth_deg;
   s.elevation_deg = c.elevation_deg;
   s.zoom = c.zoom;
@@ -65,16 +65,16 @@ Session PlayerApp::capture_session() const {
   s.pan = c.pan;
   s.eye = c.eye;
   s.scale = options_.scale;
-  s.step = state.step;
-  s.speed = speed_chosen_ ? state.speed : 0;  // (0: the series' default, whatever its length)
-  s.loop = state.loop;
-  s.every_step = state.every_step;
-  for (const tsp::Probe& p : state.probes) s.probes.push_back(tsp::to_string(p));
-  s.probe_op = tsp::to_string(state.probe_op);
-  s.probe_surface = state.probe_surface;
-  s.surface = state.settings.surface;
-  s.panels = state.panels;
-  s.annotations = state.annotations;
+  s.step = state_.step;
+  s.speed = speed_chosen_ ? state_.speed : 0;  // (0: the series' default, whatever its length)
+  s.loop = state_.loop;
+  s.every_step = state_.every_step;
+  for (const tsp::Probe& p : state_.probes) s.probes.push_back(tsp::to_string(p));
+  s.probe_op = tsp::to_string(state_.probe_op);
+  s.probe_surface = state_.probe_surface;
+  s.surface = state_.settings.surface;
+  s.panels = state_.panels;
+  s.annotations = state_.annotations;
   if (imgui_) {
     s.ui_ini = ImGui::SaveIniSettingsToMemory();
     s.ui_open = open_sections();
@@ -108,7 +108,7 @@ void PlayerApp::apply_session(const Session& s, bool command_line) {
   };
   if (!s.field.empty() && s.field != field() && !given("--field")) switch_field(s.field);
   if (!given("--scale")) set_scale(s.scale);
-  tsp::CameraParams& c = state.camera;
+  tsp::CameraParams& c = state_.camera;
   c.azimuth_deg = s.azimuth_deg;
   c.elevation_deg = s.elevation_deg;
   c.zoom = s.zoom;
@@ -120,29 +120,32 @@ void PlayerApp::apply_session(const Session& s, bool command_line) {
     tsp::TransferFunction next(s.tf_domain, int(s.tf_entries.size()));
     next.set_entries(0, s.tf_entries);
     set_tf(next, s.tf_points.empty());
-    if (!s.tf_points.empty()) tf_points = s.tf_points;
+    if (!s.tf_points.empty()) {  // the saved handles, placed over the restored map
+      tf_points_ = s.tf_points;
+      tf_handles_ = {tf, tf_points_};
+    }
     tf_label = s.tf_label;
   }
-  state.log_opacity = s.log_opacity;
-  if (!given("--step")) state.step = std::clamp(s.step, 0, steps() - 1);
+  state_.log_opacity = s.log_opacity;
+  if (!given("--step")) state_.step = std::clamp(s.step, 0, steps() - 1);
   if (s.speed > 0 && !given("--speed")) {
-    state.speed = std::clamp(s.speed, kMinSpeed, kMaxSpeed);
+    state_.speed = std::clamp(s.speed, kMinSpeed, kMaxSpeed);
     speed_chosen_ = true;
   }
-  state.loop = s.loop;
-  state.every_step = s.every_step;
+  state_.loop = s.loop;
+  state_.every_step = s.every_step;
   if (!given("--probe") && !given("--probe-op") && !given("--probe-surface")) {
-    state.probes.clear();
-    for (const std::string& text : s.probes) state.probes.push_back(tsp::parse_probe(text));
-    state.probe_op = tsp::parse_probe_op(s.probe_op);
-    state.probe_surface = s.probe_surface;
-    probe_selected = state.probes.empty() ? -1 : 0;
+    state_.probes.clear();
+    for (const std::string& text : s.probes) state_.probes.push_back(tsp::parse_probe(text));
+    state_.probe_op = tsp::parse_probe_op(s.probe_op);
+    state_.probe_surface = s.probe_surface;
+    probe_selected = state_.probes.empty() ? -1 : 0;
     probes_changed();
   }
-  if (!given("--surface") && s.surface != state.settings.surface)
+  if (!given("--surface") && s.surface != state_.settings.surface)
     set_setting("surface", s.surface ? "boundary" : "off");  // (says so when no mesh is at hand)
-  state.panels = s.panels;
-  state.annotations = s.annotations;
+  state_.panels = s.panels;
+  state_.annotations = s.annotations;
   if (imgui_ && frames_drawn_ == 0 && !s.ui_ini.empty())  // (places windows not made yet)
     ImGui::LoadIniSettingsFromMemory(s.ui_ini.data(), s.ui_ini.size());
   pending_ui_open_ = s.ui_open;

@@ -28,44 +28,44 @@ float largest_error(const tsp::NodeErrors& e) {
 }  // namespace
 
 void PlayerApp::set_metric(tsp::Metric m) {
-  if (m == state.metric) return;
-  state.metric = m;
+  if (m == state_.metric) return;
+  state_.metric = m;
   if (m != tsp::Metric::reference)
     lazy_ = std::make_unique<tsp::LazyErrors>(file->tree(), m, tf);
   else
     reference_version_ = ~std::uint64_t(0);
-  renderer->drop_unreachable(frame_metric(), state.settings.tol, state.settings.skip_transparent,
-                             state.settings.span_step);
+  renderer->drop_unreachable(frame_metric(), state_.settings.tol, state_.settings.skip_transparent,
+                             state_.settings.span_step);
   update_tol_max();
 }
 
 void PlayerApp::update_tol_max() {
-  tol_max = largest_error(state.metric == tsp::Metric::reference ? reference_.errors
-                                                           : lazy_->errors_for_step(state.step));
+  tol_max = largest_error(state_.metric == tsp::Metric::reference ? reference_.errors
+                                                           : lazy_->errors_for_step(state_.step));
 }
 
 void PlayerApp::set_tolerances(tsp::Tolerances t) {
-  state.settings.tol = {std::max(0.0, t.spatial), std::max(0.0, t.temporal)};
-  renderer->drop_unreachable(frame_metric(), state.settings.tol, state.settings.skip_transparent,
-                             state.settings.span_step);
+  state_.settings.tol = {std::max(0.0, t.spatial), std::max(0.0, t.temporal)};
+  renderer->drop_unreachable(frame_metric(), state_.settings.tol, state_.settings.skip_transparent,
+                             state_.settings.span_step);
   tol_readout_due = true;  // what they buy, measured after the next frame's volume
 }
 
 void PlayerApp::set_setting(const std::string& name, const std::string& text) {
   const tspgl::SettingSpec* spec = tspgl::find_setting(name);
   if (!spec) throw tsp::UsageError("no render setting '" + name + "'");
-  tspgl::RenderSettings next = state.settings;
+  tspgl::RenderSettings next = state_.settings;
   tspgl::set_setting(next, *spec, text, name);
   // The knob just changed wins over one it excludes, and the status line says so.
   if (std::string off = tspgl::settle_sampling(next, name); !off.empty()) status = off;
-  if (next.tol != state.settings.tol || next.span_step != state.settings.span_step ||
-      next.skip_transparent != state.settings.skip_transparent) {
-    state.settings = next;
+  if (next.tol != state_.settings.tol || next.span_step != state_.settings.span_step ||
+      next.skip_transparent != state_.settings.skip_transparent) {
+    state_.settings = next;
     set_tolerances(next.tol);  // what the traversal reaches changed: drop the rest
   } else {
-    state.settings = next;
+    state_.settings = next;
   }
-  if (state.settings.surface && !mesh_surface) offer_surface();
+  if (state_.settings.surface && !mesh_surface) offer_surface();
 }
 
 void PlayerApp::offer_surface() {
@@ -75,7 +75,7 @@ void PlayerApp::offer_surface() {
   std::string why;
   if (!input.empty() && tsp::is_mesh_input(input, options_.input.source.allow_external)) {
     try {
-      mesh_surface.emplace(input, options_.surface_field, *file, options_.surface_tf, state.step);
+      mesh_surface.emplace(input, options_.surface_field, *file, options_.surface_tf, state_.step);
       surface_mesh_ = input;
       status = "surface: the boundary of " + input + ", the mesh this file was built from";
       return;
@@ -86,14 +86,14 @@ void PlayerApp::offer_surface() {
     why = "surface boundary needs the mesh the file was built from: play the mesh itself "
           "(tspplay play MESH), or start with --surface-mesh MESH";
   }
-  state.settings.surface = false;
+  state_.settings.surface = false;
   status = why;
   if (options_.trace) std::printf("trace: surface refused: %s\n", why.c_str());
 }
 
 void PlayerApp::set_cache(bool on, double budget_mb) {
-  state.cache_on = on;
-  state.texture_budget_mb = std::max(1.0, budget_mb);
+  state_.cache_on = on;
+  state_.texture_budget_mb = std::max(1.0, budget_mb);
   make_renderer();
 }
 

@@ -38,7 +38,7 @@ constexpr std::size_t kReadoutFrames = 10;
 // click types any value the table accepts), a checkbox or a combo; a change is a `setting`
 // command, as a script line makes.
 void setting_widget(PlayerApp& app, const tspgl::SettingSpec& spec) {
-  const std::string name(spec.name), now = tspgl::get_setting(app.state.settings, spec);
+  const std::string name(spec.name), now = tspgl::get_setting(app.state().settings, spec);
   std::string label = name;
   for (char& c : label)
     if (c == '-') c = ' ';
@@ -100,12 +100,12 @@ void setting_widgets(PlayerApp& app, tspgl::SettingGroup g) {
 // time and mean dE against tolerance 0 measured when they changed. Always the same lines, so
 // nothing below moves when a readout arrives.
 void tolerance_rows(PlayerApp& app) {
-  float s = float(app.state.settings.tol.spatial), t = float(app.state.settings.tol.temporal);
+  float s = float(app.state().settings.tol.spatial), t = float(app.state().settings.tol.temporal);
   std::string label = fit_label("spatial tol");
   bool changed =
       ImGui::SliderFloat(label.c_str(), &s, 0.f, app.tol_max, "%.4g", ImGuiSliderFlags_Logarithmic);
   note_item(label.c_str());
-  const char* help = kToleranceHelp[int(app.state.metric)];
+  const char* help = kToleranceHelp[int(app.state().metric)];
   if (ImGui::IsItemHovered()) tooltip(help);
   bool done = ImGui::IsItemDeactivatedAfterEdit();
   label = fit_label("temporal tol");
@@ -117,7 +117,7 @@ void tolerance_rows(PlayerApp& app) {
   // Frames follow the slider at once; unreachable textures are dropped when it is released.
   if (changed || done) app.push(cmd::SetTolerance{double(s), double(t), done});
   ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
-  ImGui::TextUnformatted(kToleranceUnits[int(app.state.metric)]);
+  ImGui::TextUnformatted(kToleranceUnits[int(app.state().metric)]);
   if (ImGui::IsItemHovered()) tooltip(help);
   ImGui::PopStyleColor();
   double sum = 0;
@@ -138,30 +138,30 @@ void tolerance_rows(PlayerApp& app) {
 
 void lod_rows(PlayerApp& app) {
   // Level of detail: the cut holds the frame rate while anything changes, full quality when idle.
-  bool lod = app.state.lod_on;
+  bool lod = app.state().lod_on;
   if (ImGui::Checkbox("level of detail", &lod))
     app.push(cmd::SetLod{lod});
   note_item("level of detail");
   // In the row's second half, as the button pairs: a label ending 8 pixels before the next
   // checkbox read as running into it.
   ImGui::SameLine(ImGui::GetCursorStartPos().x + (ImGui::GetContentRegionMax().x - ImGui::GetCursorStartPos().x) / 2);
-  if (bool cut = app.state.show_cut; ImGui::Checkbox("show cut (L)", &cut))
+  if (bool cut = app.state().show_cut; ImGui::Checkbox("show cut (L)", &cut))
     app.push(cmd::ShowCut{cut});
   note_item("show cut (L)");
   const std::string fps_label = fit_label("target fps");
-  if (float fps = app.state.target_fps;
+  if (float fps = app.state().target_fps;
       ImGui::SliderFloat(fps_label.c_str(), &fps, 5.f, 120.f, "%.0f")) {
     app.push(cmd::SetTargetFps{std::clamp(double(fps), 1.0, kMaxTargetFps)});
   }
   note_item(fps_label.c_str());
-  if (bool on = app.state.splat_fallback; ImGui::Checkbox("splats when the coarsest cut is slow", &on))
+  if (bool on = app.state().splat_fallback; ImGui::Checkbox("splats when the coarsest cut is slow", &on))
     app.push(cmd::SplatFallback{on});
   note_item("splats when the coarsest cut is slow");
   // How the cut is chosen: by error against the target, or by LaMar's selection filters.
   static const char* const kFilters[] = {"error (target fps)", "distance from the eye",
                                          "field of view"};
-  int kind = int(app.state.lod_filter.kind);
-  float k = float(app.state.lod_filter.scale);
+  int kind = int(app.state().lod_filter.kind);
+  float k = float(app.state().lod_filter.scale);
   const std::string by = fit_label("cut by");
   const bool picked = ImGui::Combo(by.c_str(), &kind, kFilters, 3);
   note_item(by.c_str());
@@ -187,12 +187,12 @@ void lod_rows(PlayerApp& app) {
 
 void settings_section(PlayerApp& app) {
   const std::string metric_label = fit_label("metric");
-  int m = int(app.state.metric);
+  int m = int(app.state().metric);
   if (ImGui::Combo(metric_label.c_str(), &m, kMetricNames, IM_ARRAYSIZE(kMetricNames)))
     app.push(cmd::SetMetric{tsp::Metric(m)});
   note_item(metric_label.c_str());
   if (ImGui::IsItemHovered())
-    tooltip(app.state.metric == tsp::Metric::reference
+    tooltip(app.state().metric == tsp::Metric::reference
                 ? "reference: every voxel is read; computed in full on each TF change (the "
                   "window waits)"
                 : "live: only the nodes a frame visits are recomputed after a TF edit");
@@ -207,7 +207,7 @@ void settings_section(PlayerApp& app) {
   }
   // While playing, the quality target picks the rung of the tuned ladder (the knobs above made
   // cheaper: spacing, render scale, LOD level) that fits the speed within the target.
-  float quality = app.state.quality;
+  float quality = app.state().quality;
   const std::string q_label = fit_label("playing quality (mean dE)");
   ImGui::SliderFloat(q_label.c_str(), &quality, 0.f, 10.f, quality > 0 ? "%.2f" : "off");
   note_item(q_label.c_str());
@@ -217,35 +217,35 @@ void settings_section(PlayerApp& app) {
   if (ImGui::IsItemDeactivatedAfterEdit()) {
     app.push(cmd::SetQuality{quality});
   }
-  ImGui::BeginDisabled(app.state.quality <= 0);
+  ImGui::BeginDisabled(app.state().quality <= 0);
   ImGui::TextUnformatted("while playing, keep:");
   ImGui::SameLine();
-  if (ImGui::RadioButton("quality", app.state.keep_quality))
+  if (ImGui::RadioButton("quality", app.state().keep_quality))
     app.push(cmd::KeepQuality{true});
   note_item("quality");
   ImGui::SameLine();
-  if (ImGui::RadioButton("rate", !app.state.keep_quality))
+  if (ImGui::RadioButton("rate", !app.state().keep_quality))
     app.push(cmd::KeepQuality{false});
   note_item("rate");
   ImGui::EndDisabled();
   lod_rows(app);
   if (app.expand_sections != 0) ImGui::SetNextItemOpen(app.expand_sections > 0, ImGuiCond_Always);
   if (ImGui::TreeNode("caches and uploads")) {
-    bool cache = app.state.cache_on;
+    bool cache = app.state().cache_on;
     if (ImGui::Checkbox("texture cache", &cache))
       app.push(cmd::SetCache{cache});
     note_item("texture cache");
     ImGui::SameLine();
-    if (bool on = app.state.prefetch_on; ImGui::Checkbox("prefetch", &on))
+    if (bool on = app.state().prefetch_on; ImGui::Checkbox("prefetch", &on))
       app.push(cmd::SetPrefetch{on});
     note_item("prefetch");
     setting_widgets(app, tspgl::SettingGroup::memory);
     static double budget = -1;
-    if (budget < 0) budget = app.state.texture_budget_mb;
+    if (budget < 0) budget = app.state().texture_budget_mb;
     const std::string b_label = fit_label("budget MiB");
     ImGui::InputDouble(b_label.c_str(), &budget, 16, 128, "%.0f");
     note_item(b_label.c_str());
-    if (ImGui::IsItemDeactivatedAfterEdit()) app.push(cmd::SetCache{app.state.cache_on, budget});
+    if (ImGui::IsItemDeactivatedAfterEdit()) app.push(cmd::SetCache{app.state().cache_on, budget});
     ImGui::TreePop();
   }
 }

@@ -58,7 +58,7 @@ const EditorHistogram& histogram_for(PlayerApp& app, const tsp::ValueRange& d, f
   if (cached_file != app.file.get() || cached.over.lo != d.lo || cached.over.hi != d.hi ||
       int(cached.counts.size()) != bins) {
     try {
-      cached = editor_histogram(*app.file, app.state.step, d, bins);
+      cached = editor_histogram(*app.file, app.state().step, d, bins);
     } catch (const tsp::Error& e) {
       cached = {d, std::vector<double>(std::size_t(bins), 0.0), -1};
       app.status = std::string("histogram: ") + e.what();
@@ -131,12 +131,11 @@ void draw_curve(const PlayerApp& app, const Canvas& cv) {
 }
 
 // The handles on the curve: drag to move a point (value, opacity), double-click empty space to
-// add one, right-click a point to remove it (remove: its index). True when a point moved or
-// was added.
-bool edit_handles(PlayerApp& app, const Canvas& cv, int& remove) {
+// add one, right-click a point to remove it. Each edit is a tf-point command (the script's).
+void edit_handles(PlayerApp& app, const Canvas& cv) {
   const auto& [origin, width, d, log_axis, dl] = cv;
   auto y_of = [&](double a) { return cv.y_of(a); };
-  bool edited = false;
+  const std::vector<tsp::TfPoint>& points = app.tf_points();
   ImGui::SetCursorScreenPos(origin);
   ImGui::InvisibleButton("##canvas", ImVec2(width, kHistogramHeight));
   app.trace_tf_canvas(origin.x, origin.y, width, kHistogramHeight);
@@ -146,14 +145,14 @@ bool edit_handles(PlayerApp& app, const Canvas& cv, int& remove) {
   };
   const ImVec2 mouse = ImGui::GetIO().MousePos;
   const double mouse_x = std::clamp(d.lo + double(mouse.x - origin.x) / width * span, d.lo, d.hi);
-  const float mouse_a =
-      float(axis_to_opacity(1.0 - double(mouse.y - origin.y) / kHistogramHeight, log_axis));
+  const double mouse_a = axis_to_opacity(1.0 - double(mouse.y - origin.y) / kHistogramHeight,
+                                         log_axis);
   // The handle nearest a screen point, within reach (−1: none).
   auto handle_at = [&](ImVec2 at) {
     int found = -1;
     float best = kHandleRadius * kHandleRadius * 4;
-    for (std::size_t i = 0; i < app.tf_points.size(); ++i) {
-      const ImVec2 h = screen(app.tf_points[i]);
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const ImVec2 h = screen(points[i]);
       const float dist = (h.x - at.x) * (h.x - at.x) + (h.y - at.y) * (h.y - at.y);
       if (dist < best) {
         best = dist;
@@ -170,94 +169,71 @@ bool edit_handles(PlayerApp& app, const Canvas& cv, int& remove) {
     const auto press = app.left_press();
     dragging = handle_at(ImVec2(press[0], press[1]));
   }
-
-  if (ImGui::IsItemActive() && dragging >= 0 && dragging < int(app.tf_points.size()) &&
-      (ImGui::GetIO().MouseDelta.x != 0 || ImGui::GetIO().MouseDelta.y != 0)) {
-    // Between its neighbours: the handles keep their order, the curve between them warps.
-    app.tf_points[std::size_t(dragging)].x = clamp_handle_x(app.tf_points, dragging, mouse_x);
-    app.tf_points[std::size_t(dragging)].c.a = mouse_a;
-    edited = true;
-  }
+  if (ImGui::IsItemActive() && dragging >= 0 && dragging < int(points.size()) &&
+      (ImGui::GetIO().MouseDelta.x != 0 || ImGui::GetIO().MouseDelta.y != 0))
+    // (Kept between its neighbours: the handles keep their order, the curve between warps.)
+    app.push(cmd::MoveTfPoint{dragging + 1, mouse_x, mouse_a});
   if (ImGui::IsItemDeactivated()) dragging = -1;
-  if (ImGui::IsItemHovered() && ImGui::IsMouseDoubleClicked(0) && hovered < 0) {
-    tsp::Rgba c = sample_tf(app.tf, mouse_x);
-    c.a = mouse_a;
-    add_handle(app.tf_handles, app.tf_points, app.tf, mouse_x, c);
-    edited = true;
-  }
-  if (ImGui::IsItemHovered() && ImGui::IsMouseClicked(1) && hovered >= 0 &&
-      app.tf_points.size() > 2)
-    remove = hovered;
-  for (std::size_t i = 0; i < app.tf_points.size(); ++i) {
-    const tsp::TfPoint& p = app.tf_points[i];
+  if (ImGui::IsItemHovered() && ImGui::IsMouseDoubleClicked(0) && hovered < 0)
+    app.push(cmd::AddTfPoint{mouse_x, mouse_a});
+  if (ImGui::IsItemHovered() && ImGui::IsMouseClicked(1) && hovered >= 0 && points.size() > 2)
+    app.push(cmd::RemoveTfPoint{hovered + 1});
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const tsp::TfPoint& p = points[i];
     const ImVec2 h = screen(p);
     dl->AddCircleFilled(h, kHandleRadius,
                         ImGui::ColorConvertFloat4ToU32(ImVec4(p.c.r, p.c.g, p.c.b, 1)));
     dl->AddCircle(h, kHandleRadius,
                   int(i) == hovered ? IM_COL32(255, 255, 0, 255) : IM_COL32_WHITE);
   }
-  return edited;
 }
 
-// The points as a list (value, colour, opacity; x removes one), under a tree node. True when
-// one was edited or added; remove: the index of one to remove.
-bool point_list(PlayerApp& app, const tsp::ValueRange& d, bool log_axis, int& remove) {
-  bool edited = false;
+// The points as a list (value, colour, opacity; x removes one), under a tree node; each edit a
+// tf-point command.
+void point_list(PlayerApp& app, const tsp::ValueRange& d, bool log_axis) {
+  const std::vector<tsp::TfPoint>& points = app.tf_points();
   if (app.expand_sections != 0) ImGui::SetNextItemOpen(app.expand_sections > 0, ImGuiCond_Always);
   char points_title[48];
-  std::snprintf(points_title, sizeof points_title, "points (%zu)###points", app.tf_points.size());
+  std::snprintf(points_title, sizeof points_title, "points (%zu)###points", points.size());
   const bool list = ImGui::TreeNode(points_title);
-  for (std::size_t i = 0; list && i < app.tf_points.size(); ++i) {
-    tsp::TfPoint& p = app.tf_points[i];
+  for (std::size_t i = 0; list && i < points.size(); ++i) {
+    const tsp::TfPoint& p = points[i];
+    const int number = int(i) + 1;
     ImGui::PushID(int(i));
     float x = float(p.x);
     ImGui::SetNextItemWidth(100);
-    if (ImGui::DragFloat("##x", &x, float(d.hi - d.lo) / 500.f, float(d.lo), float(d.hi), "%.4g")) {
-      p.x = clamp_handle_x(app.tf_points, int(i), std::clamp(double(x), d.lo, d.hi));
-      edited = true;
-    }
+    if (ImGui::DragFloat("##x", &x, float(d.hi - d.lo) / 500.f, float(d.lo), float(d.hi), "%.4g"))
+      app.push(cmd::MoveTfPoint{number, std::clamp(double(x), d.lo, d.hi), p.c.a});
     ImGui::SameLine();
     float c[4] = {p.c.r, p.c.g, p.c.b, p.c.a};
-    if (ImGui::ColorEdit4("##c", c, ImGuiColorEditFlags_AlphaBar | ImGuiColorEditFlags_NoInputs)) {
-      p.c = {c[0], c[1], c[2], c[3]};
-      edited = true;
-    }
+    if (ImGui::ColorEdit4("##c", c, ImGuiColorEditFlags_AlphaBar | ImGuiColorEditFlags_NoInputs))
+      app.push(cmd::ColourTfPoint{number, {c[0], c[1], c[2], c[3]}});
     ImGui::SameLine();
     ImGui::SetNextItemWidth(110);
     // Opacity near zero is edited on a log scale when the axis is (VAPOR users ask for it).
     if (ImGui::SliderFloat("##a", &c[3], log_axis ? float(kLogOpacityFloor) : 0.f, 1.f,
                            log_axis ? "a %.2e" : "a %.3f",
-                           log_axis ? ImGuiSliderFlags_Logarithmic : 0)) {
-      p.c.a = c[3];
-      edited = true;
-    }
+                           log_axis ? ImGuiSliderFlags_Logarithmic : 0))
+      app.push(cmd::MoveTfPoint{number, p.x, std::clamp(double(c[3]), 0.0, 1.0)});
     ImGui::SameLine();
-    if (app.tf_points.size() > 2 && ImGui::SmallButton("x")) remove = int(i);
+    if (points.size() > 2 && ImGui::SmallButton("x")) app.push(cmd::RemoveTfPoint{number});
     ImGui::PopID();
   }
   if (list) {
-    if (ImGui::Button("add point")) {
-      const double mid = (d.lo + d.hi) / 2;
-      add_handle(app.tf_handles, app.tf_points, app.tf, mid, sample_tf(app.tf, mid));
-      edited = true;
-    }
+    if (ImGui::Button("add point")) app.push(cmd::AddTfPoint{(d.lo + d.hi) / 2, std::nullopt});
     note_item("add point", true);
     ImGui::TreePop();
   }
-  return edited;
 }
 
 // The colour map combo (names the map in use, applies a chosen preset over the present domain)
 // and the four fits of the colour range, two a row.
-void colour_map_rows(PlayerApp& app, const tsp::ValueRange& d) {
+void colour_map_rows(PlayerApp& app) {
   const std::string preset = fit_label("colour map");
   if (ImGui::BeginCombo(preset.c_str(), app.tf_label.c_str())) {
     for (const std::string& name : tsp::preset_names())
-      if (ImGui::Selectable(name.c_str(), name == app.tf_label)) {
-        const tsp::ValueHistogram histogram = tsp::histogram_of(*app.file);
-        app.set_tf(tsp::preset_transfer_function(name, d, app.tf.size(), &histogram), true);
-        app.tf_label = name;
-      }
+      if (ImGui::Selectable(name.c_str(), name == app.tf_label))
+        app.push(cmd::LoadTf{"preset:" + name, true});  // over the present range
     ImGui::EndCombo();
   }
   note_item(preset.c_str());
@@ -296,27 +272,15 @@ void colour_map_rows(PlayerApp& app, const tsp::ValueRange& d) {
 }
 
 // The TF file row: a path, load and save as.
-void tf_file_row(PlayerApp& app, const tsp::ValueRange& d) {
+void tf_file_row(PlayerApp& app) {
   static char path[512] = "";
   if (path[0] == 0) std::snprintf(path, sizeof path, "%s", app.tf_path.c_str());
   ImGui::SetNextItemWidth(-1);
   ImGui::InputText("##path", path, sizeof path);
   app.tf_path = path;
-  try {
-    const bool load = ImGui::Button("load");
-    note_item("load", true);
-    if (load) {
-      const tsp::ValueHistogram histogram = tsp::histogram_of(*app.file);
-      app.set_tf(tsp::transfer_function_from_arg(app.tf_path, d, app.tf.size(), {}, &histogram),
-                 true);
-      app.tf_label = tf_label_of(app.tf_path);
-      const std::string w = tsp::tf_range_warning(app.tf, app.file->metadata().data_range,
-                                                   "fit to data");
-      app.status = w.empty() ? "loaded " + app.tf_path : "loaded " + app.tf_path + "; " + w;
-    }
-  } catch (const tsp::Error& e) {
-    app.status = e.what();  // shown in the settings panel; the player keeps running
-  }
+  const bool load = ImGui::Button("load");
+  note_item("load", true);
+  if (load) app.push(cmd::LoadTf{app.tf_path, true});  // (errors: the status area)
   ImGui::SameLine();
   if (ImGui::Button("save as")) app.save_tf_as(app.tf_path);
   note_item("save as", true);
@@ -327,14 +291,13 @@ void tf_file_row(PlayerApp& app, const tsp::ValueRange& d) {
 void tf_section(PlayerApp& app) {
   // Histogram (log counts) with the opacity curve and its handles drawn over it.
   const Canvas cv{ImGui::GetCursorScreenPos(), ImGui::GetContentRegionAvail().x, app.tf.domain(),
-                  app.state.log_opacity, ImGui::GetWindowDrawList()};
+                  app.state().log_opacity, ImGui::GetWindowDrawList()};
   const tsp::ValueRange d = cv.d;
   draw_histogram(app, cv);
   draw_curve(app, cv);
-  int remove = -1;
-  bool edited = edit_handles(app, cv, remove);
+  edit_handles(app, cv);
   domain_row(app, d);
-  if (bool on = app.state.log_opacity; ImGui::Checkbox("log opacity", &on))
+  if (bool on = app.state().log_opacity; ImGui::Checkbox("log opacity", &on))
     app.push(cmd::LogOpacity{on});
   note_item("log opacity");
   ImGui::SameLine();
@@ -345,16 +308,9 @@ void tf_section(PlayerApp& app) {
         "faint opacities most maps need can be placed. Drag a point: the curve between its "
         "neighbours follows, keeping its detail. Double-click empty space to add a point, "
         "right-click a point to remove it.");
-  edited = point_list(app, d, cv.log_axis, remove) || edited;
-  if (remove >= 0) {  // straight between its neighbours
-    if (edited) app.apply_tf_points();
-    app.set_tf(remove_handle(app.tf_handles, app.tf_points, app.tf, remove), false);
-    app.tf_label = "edited";
-    edited = false;
-  }
-  if (edited) app.apply_tf_points();  // lazy metric: only touched nodes recompute next frame
-  colour_map_rows(app, d);
-  tf_file_row(app, d);
+  point_list(app, d, cv.log_axis);
+  colour_map_rows(app);
+  tf_file_row(app);
 }
 
 }  // namespace tspplayer

@@ -18,21 +18,21 @@ constexpr int kReadoutWidth = 320, kReadoutHeight = 200;
 
 void PlayerApp::measure_tolerance() {
   tol_readout_due = false;
-  if (state.camera.width < 1 || state.camera.height < 1) return;
-  tsp::CameraParams view = state.camera;
+  if (state_.camera.width < 1 || state_.camera.height < 1) return;
+  tsp::CameraParams view = state_.camera;
   const double shrink = std::min({1.0, double(kReadoutWidth) / view.width,
                                   double(kReadoutHeight) / view.height});
   view.width = std::max(1, int(std::lround(view.width * shrink)));
   view.height = std::max(1, int(std::lround(view.height * shrink)));
   try {
-    tspgl::ImageProbe probe(*ctx, *file, tf, view, {state.step});
-    tspgl::RenderSettings s = state.settings;
+    tspgl::ImageProbe probe(*ctx, *file, tf, view, {state_.step});
+    tspgl::RenderSettings s = state_.settings;
     s.upload_budget = 0;  // whole pictures
     tspgl::RenderSettings exact = s;
     exact.tol = {0, 0};
     const auto [at, ms] = probe.render_step(s, 0, frame_metric(), 0);
     const auto [zero, exact_ms] = probe.render_step(exact, 0, frame_metric(), 0);
-    tol_readout = {state.settings.tol, ms, exact_ms, tsp::diff_images(at, zero).mean};
+    tol_readout = {state_.settings.tol, ms, exact_ms, tsp::diff_images(at, zero).mean};
   } catch (const tsp::Error& e) {
     status = std::string("tolerance readout: ") + e.what();
   }

@@ -25,7 +25,7 @@ namespace {
 
 // What playback draws and which of rate and quality gives, for the transport line.
 std::string playback_text(const PlayerApp& app) {
-  if (app.state.quality <= 0) return "(LOD cut holds the rate)";
+  if (app.state().quality <= 0) return "(LOD cut holds the rate)";
   if (app.tuning() && app.tuned_rungs().empty()) return "(spacing x2, scale 0.5 while tuning)";
   if (!app.playing_rung()) return "";
   const tspgl::TunedRung& t = app.tuned_rungs()[std::size_t(app.rung_choice().index)];
@@ -90,8 +90,8 @@ namespace {
 std::string shown_rate_text(const PlayerApp& app) {
   const double shown = app.steps_shown_per_s();
   char text[96];
-  if (app.state.every_step && shown < kSlowPlaybackShare * app.state.speed)
-    std::snprintf(text, sizeof text, "playing at %.1f steps/s of %.3g", shown, app.state.speed);
+  if (app.state().every_step && shown < kSlowPlaybackShare * app.state().speed)
+    std::snprintf(text, sizeof text, "playing at %.1f steps/s of %.3g", shown, app.state().speed);
   else
     std::snprintf(text, sizeof text, "%.1f shown/s", shown);
   return text;
@@ -121,6 +121,29 @@ void value_beside_grab(float x0, float x1, GrabSpan grab, const char* text) {
   dl->PopClipRect();
 }
 
+// Under the scrubber (the last item), each step's readiness: green when its frame reads nothing
+// from the file (bricks in RAM or textures), darker as more of it must still be read.
+void ready_strip(const PlayerApp& app) {
+  const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  const int n = app.steps();
+  const float w = (hi.x - lo.x) / float(n);
+  for (int t = 0; t < n; ++t) {
+    const float r = app.ready[std::size_t(t)];
+    if (r < 0) continue;
+    const ImU32 col = r >= 1.f ? IM_COL32(70, 200, 90, 255)
+                               : IM_COL32(int(60 + 120 * r), int(60 + 100 * r), 60, 255);
+    dl->AddRectFilled(ImVec2(lo.x + w * float(t), hi.y + 1),
+                      ImVec2(lo.x + w * float(t + 1) - (w > 3 ? 1.f : 0.f),
+                             hi.y + 1 + kReadyStripHeight),
+                      col);
+  }
+  ImGui::Dummy(ImVec2(0, kReadyStripHeight));
+  if (ImGui::IsItemHovered() || ImGui::IsMouseHoveringRect(ImVec2(lo.x, hi.y),
+                                                           ImVec2(hi.x, hi.y + kReadyStripHeight)))
+    tooltip("green: the step's bricks are in memory (no file read to show it)");
+}
+
 }  // namespace
 
 void timeline_section(PlayerApp& app) {
@@ -129,32 +152,32 @@ void timeline_section(PlayerApp& app) {
   const float play_width =
       std::max(ImGui::CalcTextSize("Pause").x, ImGui::CalcTextSize("Play").x) +
       2 * ImGui::GetStyle().FramePadding.x;
-  const char* play = app.state.playing ? "Pause" : "Play";
+  const char* play = app.state().playing ? "Pause" : "Play";
   if (ImGui::Button(play, ImVec2(play_width, 0)))
-    app.push(app.state.playing ? Command(cmd::Pause{}) : Command(cmd::Play{}));
+    app.push(app.state().playing ? Command(cmd::Pause{}) : Command(cmd::Play{}));
   note_item(play, true);
   for (const char* b : {"|<", "<", ">", ">|"}) {
     ImGui::SameLine();
     if (ImGui::Button(b)) {
       const int to = b[1] == '<' ? 0 : b[1] == '|' ? last
-                     : b[0] == '<' ? std::max(0, app.state.step - 1)
-                                   : std::min(last, app.state.step + 1);
+                     : b[0] == '<' ? std::max(0, app.state().step - 1)
+                                   : std::min(last, app.state().step + 1);
       app.push(cmd::GoToStep{to});
     }
     note_item(b, true);
   }
   ImGui::SameLine();
-  if (bool loop = app.state.loop; ImGui::Checkbox("loop", &loop)) app.push(cmd::SetLoop{loop});
+  if (bool loop = app.state().loop; ImGui::Checkbox("loop", &loop)) app.push(cmd::SetLoop{loop});
   note_item("loop");
   ImGui::SameLine();
-  if (bool skip = !app.state.every_step; ImGui::Checkbox("skip steps", &skip))
+  if (bool skip = !app.state().every_step; ImGui::Checkbox("skip steps", &skip))
     app.push(cmd::EveryStep{!skip});
   note_item("skip steps");
   if (ImGui::IsItemHovered())
     tooltip("real time: skip steps to keep the speed when frames are slower than it (off: every "
             "step in order, playing slower if need be)");
   ImGui::SameLine();
-  float speed = float(app.state.speed);
+  float speed = float(app.state().speed);
   // 140 pixels, less in a narrow window (the slider and its label stay inside the timeline).
   const float room = ImGui::GetContentRegionAvail().x - ImGui::CalcTextSize("steps/s").x -
                      ImGui::GetStyle().ItemInnerSpacing.x;
@@ -189,11 +212,11 @@ void timeline_section(PlayerApp& app) {
     note_item(shown_rate_text(app).c_str());
     // (The rung and why: in the side panel's status area, which never moves the controls.)
   }
-  int step = app.state.step;
+  int step = app.state().step;
   ImGui::SetNextItemWidth(-1);
   // Dragging the scrubber pauses playback; releasing it resumes if it was playing.
   static bool resume_after_scrub = false;
-  const bool was_playing = app.state.playing;
+  const bool was_playing = app.state().playing;
   // The step with its physical time when the file has times ("step 3  t = 0.15").
   const auto& times = app.file->metadata().times;
   char label[96];
@@ -201,7 +224,7 @@ void timeline_section(PlayerApp& app) {
     std::snprintf(label, sizeof label, "step %%d");
   else
     std::snprintf(label, sizeof label, "step %%d  t = %s",
-                  tsp::format_time(times[std::size_t(app.state.step)], app.file->metadata().time_units)
+                  tsp::format_time(times[std::size_t(app.state().step)], app.file->metadata().time_units)
                       .c_str());
   // (Its text beside the grab, where the grab cannot cover it: with few steps the grab is wide.)
   const bool step_hidden = hide_slider_text("##step");
@@ -226,26 +249,7 @@ void timeline_section(PlayerApp& app) {
     app.push(cmd::Play{});
     resume_after_scrub = false;
   }
-  // Under the scrubber, each step's readiness: green when its frame reads nothing from the file
-  // (bricks in RAM or textures), darker as more of it must still be read.
-  const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
-  ImDrawList* dl = ImGui::GetWindowDrawList();
-  const int n = app.steps();
-  const float w = (hi.x - lo.x) / float(n);
-  for (int t = 0; t < n; ++t) {
-    const float r = app.ready[std::size_t(t)];
-    if (r < 0) continue;
-    const ImU32 col = r >= 1.f ? IM_COL32(70, 200, 90, 255)
-                               : IM_COL32(int(60 + 120 * r), int(60 + 100 * r), 60, 255);
-    dl->AddRectFilled(ImVec2(lo.x + w * float(t), hi.y + 1),
-                      ImVec2(lo.x + w * float(t + 1) - (w > 3 ? 1.f : 0.f),
-                             hi.y + 1 + kReadyStripHeight),
-                      col);
-  }
-  ImGui::Dummy(ImVec2(0, kReadyStripHeight));
-  if (ImGui::IsItemHovered() || ImGui::IsMouseHoveringRect(ImVec2(lo.x, hi.y),
-                                                           ImVec2(hi.x, hi.y + kReadyStripHeight)))
-    tooltip("green: the step's bricks are in memory (no file read to show it)");
+  ready_strip(app);
 }
 
 std::string fit_label(const char* label, float min_item_w) {
@@ -289,16 +293,16 @@ void tooltip(const char* text) {
 }
 
 void view_section(PlayerApp& app) {
-  if (bool on = app.state.annotations; ImGui::Checkbox("outline, axes, step, legend", &on))
+  if (bool on = app.state().annotations; ImGui::Checkbox("outline, axes, step, legend", &on))
     app.push(cmd::ShowAnnotations{on});
   note_item("outline, axes, step, legend");
-  int proj = app.state.camera.projection == tsp::Projection::perspective;
+  int proj = app.state().camera.projection == tsp::Projection::perspective;
   ImGui::RadioButton("orthographic", &proj, 0);
   note_item("orthographic");
   ImGui::SameLine();
   ImGui::RadioButton("perspective (P)", &proj, 1);
   note_item("perspective (P)");
-  if (proj != int(app.state.camera.projection == tsp::Projection::perspective))
+  if (proj != int(app.state().camera.projection == tsp::Projection::perspective))
     app.push(cmd::SetProjection{proj == 1});
   // Physical proportions from the file's voxel spacing, stretched per axis (e.g. height).
   axis_scale_field(app);  // (Enter applies a typed value, Escape cancels it)
@@ -328,7 +332,7 @@ void status_area(PlayerApp& app, float height) {
     ImGui::ProgressBar(float(t->pictures_done()) / float(total), ImVec2(-1, 0), text);
     note_item(text, true);
   } else {
-    const std::string rung = app.state.playing ? playback_text(app) : "";
+    const std::string rung = app.state().playing ? playback_text(app) : "";
     if (rung.empty()) {
       ImGui::TextUnformatted(" ");
     } else {
@@ -376,7 +380,7 @@ void field_row(PlayerApp& app) {
 void side_sections(PlayerApp& app) {
   field_row(app);
   if (section(app, "Transfer function", true)) tf_section(app);
-  if (section(app, "Clip", !app.state.probes.empty())) probes_section(app);
+  if (section(app, "Clip", !app.state().probes.empty())) probes_section(app);
   if (section(app, "View", true)) view_section(app);
   if (section(app, "Rendering (expert)", false)) settings_section(app);
   if (section(app, "Statistics", false)) stats_section(app);
@@ -386,7 +390,7 @@ void side_sections(PlayerApp& app) {
 void stats_section(PlayerApp& app) {
   // A temporal tolerance that merged steps says which steps' bricks the picture shows.
   const tspgl::FrameReport& lf = app.last;
-  if (app.state.settings.tol.temporal > 0 && lf.spans_hi > lf.spans_lo) {  // (at 0 only unchanging data merge)
+  if (app.state().settings.tol.temporal > 0 && lf.spans_hi > lf.spans_lo) {  // (at 0 only unchanging data merge)
     char note[128];
     if (lf.shows_mean)
       std::snprintf(note, sizeof note, "temporal tolerance: showing means over steps %d-%d",
@@ -424,7 +428,7 @@ void stats_section(PlayerApp& app) {
   const double fragments = double(app.picture_fragments());
   ImGui::Text("fragments %.2f M (%.2f per pixel)%s, %s, spacing %.2g", fragments / 1e6,
               fragments / pixels, r.redrawn_percent == 0 ? ", image reused" : "",
-              tspgl::to_string(app.state.settings.compositing), app.state.settings.spacing);
+              tspgl::to_string(app.state().settings.compositing), app.state().settings.spacing);
   for (int c = 0; c < tsp::kDrawClassCount; ++c)
     ImGui::Text("%-15s %5.1f %%", kClassNames[c], r.class_percent[std::size_t(c)]);
   ImGui::Text("textures %lld resident, %.1f MiB", static_cast<long long>(r.textures_resident),
@@ -445,7 +449,7 @@ void stats_section(PlayerApp& app) {
 
 void PlayerApp::draw_ui() {
   begin_ui_items();
-  if (state.panels) {
+  if (state_.panels) {
     if (layout.docked) {
       // One side panel of collapsible sections beside the volume, the timeline under it.
       place(layout.side);
@@ -507,7 +511,7 @@ void PlayerApp::draw_ui() {
   // Assertion `blocking_modal != NULL'") when a window appears after a modal begun for the first
   // time in the same frame — File > Open's progress dialog opened in the first frames, before
   // the panels had appeared (issue 28).
-  if (state.panels) menu_and_dialogs(*this);
+  if (state_.panels) menu_and_dialogs(*this);
 }
 
 }  // namespace tspplayer

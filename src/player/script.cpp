@@ -147,6 +147,25 @@ Command scale_command(const LineParser& p) {
   return s;
 }
 
+// tf-point move N VALUE OPACITY | colour N R G B A | add VALUE [OPACITY] | remove N
+Command tf_point_command(const LineParser& p) {
+  const char* usage =
+      "tf-point move N VALUE OPACITY|colour N R G B A|add VALUE [OPACITY]|remove N";
+  const std::string what = p.words.size() > 1 ? p.words[1] : "";
+  const std::size_t n = p.words.size() - 1;
+  if (what == "move" && n == 4)
+    return cmd::MoveTfPoint{p.integer(2, usage, 1), p.number(3, usage), p.number(4, usage)};
+  if (what == "colour" && n == 6)
+    return cmd::ColourTfPoint{p.integer(2, usage, 1),
+                              {float(p.number(3, usage)), float(p.number(4, usage)),
+                               float(p.number(5, usage)), float(p.number(6, usage))}};
+  if (what == "add" && (n == 2 || n == 3))
+    return cmd::AddTfPoint{p.number(2, usage),
+                           n == 3 ? std::optional<double>(p.number(3, usage)) : std::nullopt};
+  if (what == "remove" && n == 2) return cmd::RemoveTfPoint{p.integer(2, usage, 1)};
+  p.fail("'tf-point': expected '" + std::string(usage) + "'");
+}
+
 [[noreturn]] void unknown_action(const LineParser& p) {
   std::string settings;
   for (const tspgl::SettingSpec& spec : tspgl::settings_table())
@@ -157,7 +176,7 @@ Command scale_command(const LineParser& p) {
          settings +
          "quality, stats, lod, target-fps, lod-filter, show-cut, panels, every-step, log-opacity, open, "
          "field, probe, probe-op, probe-surface, probe-clear, probe-move, record, "
-         "reset-camera, playback, capture, save-session, scale, expand, dialog or quit");
+         "reset-camera, playback, capture, save-session, scale, expand, dialog, tf-point or quit");
 }
 
 // The actions of two or more arguments, and those checked as they are parsed.
@@ -213,6 +232,7 @@ Command other_command(const LineParser& p) {
                           {p.number(2, usage), p.number(3, usage), p.number(4, usage)}};
   }
   if (cmd == "scale") return scale_command(p);
+  if (cmd == "tf-point") return tf_point_command(p);
   if (cmd == "dialog") {
     p.expect_args(1, "dialog open|save-tf|record|save-session|close");
     return cmd::ShowDialog{p.words[1]};  // (the word checked by validate())

@@ -1,7 +1,6 @@
 #include "render/render_settings.h"
 
-#include <cmath>
-
+#include "render/settings_table.h"
 #include "tsp/core/error.h"
 #include "tsp/core/number_text.h"
 
@@ -25,28 +24,9 @@ Compositing parse_compositing(const std::string& text, const std::string& option
 }
 
 void validate(const RenderSettings& s) {
-  if (!(s.spacing >= kMinSliceSpacing && s.spacing <= kMaxSliceSpacing))
-    throw tsp::UsageError("--spacing " + number_text(s.spacing) +
-                          ": expected a slice spacing in [" + number_text(kMinSliceSpacing) + ", " +
-                          number_text(kMaxSliceSpacing) + "] voxels");
-  for (auto [name, v] : {std::pair{"--spatial-tol", s.tol.spatial},
-                         std::pair{"--temporal-tol", s.tol.temporal}})
-    if (!(v >= 0) || !std::isfinite(v))
-      throw tsp::UsageError(std::string(name) + " " + number_text(v) +
-                            ": expected a finite tolerance >= 0");
-  if (!(s.sampling_tol >= 0) || !std::isfinite(s.sampling_tol))
-    throw tsp::UsageError("--sampling-tol " + number_text(s.sampling_tol) +
-                          ": expected a finite colour change per step >= 0");
+  for (const SettingSpec& spec : settings_table())  // the table's ranges and messages
+    check_setting(s, spec, "--" + std::string(spec.name));
   if (const std::string why = sampling_conflict(s); !why.empty()) throw tsp::UsageError(why);
-  if (!(s.refine_tol >= 0) || !std::isfinite(s.refine_tol))
-    throw tsp::UsageError("--refine-tol " + number_text(s.refine_tol) +
-                          ": expected a finite TF variation >= 0");
-  if (!(s.render_scale >= kMinRenderScale && s.render_scale <= 1))
-    throw tsp::UsageError("render scale " + number_text(s.render_scale) +
-                          ": expected a share in [" + number_text(kMinRenderScale) + ", 1]");
-  if (s.upload_budget < 0 || s.upload_budget > kMaxBudgetBytes)
-    throw tsp::UsageError("upload budget " + std::to_string(s.upload_budget) +
-                          " bytes: expected 0 (no limit) to " + std::to_string(kMaxBudgetBytes));
 }
 
 SamplingMode resolve_sampling(const RenderSettings& s) {

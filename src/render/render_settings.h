@@ -128,9 +128,9 @@ inline constexpr double kMaxSurfacePx = 4096;
 /// Smallest RenderSettings::render_scale.
 inline constexpr double kMinRenderScale = 0.25;
 
-/// Throws tsp::UsageError naming the setting, its value and the accepted range unless spacing is
-/// in [kMinSliceSpacing, kMaxSliceSpacing], both tolerances are finite and ≥ 0 and the upload
-/// budget is in [0, kMaxBudgetBytes].
+/// Throws tsp::UsageError unless every knob of s lies in its settings-table row's range (the
+/// row's message: "--spacing '100': expected a number in [0.015625, 64] (voxels)", check_setting
+/// in settings_table.h) and its sampling knobs hold together (sampling_conflict).
 void validate(const RenderSettings& s);
 
 /// How a frame's full-resolution rays sample (rays compositing without probes): the knobs'

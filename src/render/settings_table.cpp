@@ -254,6 +254,11 @@ void set_setting(RenderSettings& s, const SettingSpec& spec, const std::string& 
   fail();
 }
 
+void check_setting(const RenderSettings& s, const SettingSpec& spec, const std::string& where) {
+  RenderSettings scratch;  // (the value as text, parsed back as a typed one is: 17 digits)
+  set_setting(scratch, spec, spec.get(s), where);
+}
+
 std::string get_setting(const RenderSettings& s, const SettingSpec& spec) { return spec.get(s); }
 
 std::string default_text(const SettingSpec& spec) { return spec.get(RenderSettings{}); }

@@ -63,6 +63,10 @@ const SettingSpec* find_setting(std::string_view name);
 void set_setting(RenderSettings& s, const SettingSpec& spec, const std::string& text,
                  const std::string& where);
 
+/// Throws the tsp::UsageError set_setting gives for its text ("WHERE 'VALUE': expected ...")
+/// unless s's value of spec lies in the row's range (a finite number in [lo, hi]).
+void check_setting(const RenderSettings& s, const SettingSpec& spec, const std::string& where);
+
 /// The setting's value in s as text (SettingSpec::get). Never throws.
 std::string get_setting(const RenderSettings& s, const SettingSpec& spec);
 

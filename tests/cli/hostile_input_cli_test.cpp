@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "support/paths.h"
+#include "support/vtu_text.h"
 
 namespace {
 
@@ -35,18 +36,6 @@ tsptest::RunResult run(const std::string& args) {
 bool has(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;
 }
-
-// One tetrahedron with point data f, ascii.
-const char kTetVtu[] =
-    "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">"
-    "<UnstructuredGrid><Piece NumberOfPoints=\"4\" NumberOfCells=\"1\">"
-    "<PointData><DataArray type=\"Float32\" Name=\"f\" format=\"ascii\">0 1 2 3</DataArray>"
-    "</PointData><Points><DataArray type=\"Float32\" NumberOfComponents=\"3\" format=\"ascii\">"
-    "0 0 0 1 0 0 0 1 0 0 0 1</DataArray></Points><Cells>"
-    "<DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">0 1 2 3</DataArray>"
-    "<DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">4</DataArray>"
-    "<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">10</DataArray>"
-    "</Cells></Piece></UnstructuredGrid></VTKFile>";
 
 // A .vtu of `copies` hexahedra that all use the same 8 points (the unit cube, or with flat the
 // unit square at z = 0).
@@ -138,7 +127,7 @@ TEST(HostileInputCli, FifoOrDeviceAsAVtmBlockIsRefusedAtOnce) {
 TEST(HostileInputCli, FifoOrDeviceInASeriesIsRefusedAtOnce) {
   const fs::path dir = tsptest::temp_dir();
   write_text(dir / "pipe.vtm", vtm_naming(fifo(dir, "pipe.vtu").string()));
-  write_text(dir / "ok.vtu", kTetVtu);
+  write_text(dir / "ok.vtu", tsptest::kOneTetVtu);
   // A .vtm.series whose second step's block is a FIFO, a .vtu.series naming /dev/zero, and a
   // .vtu.series that is itself a FIFO.
   write_text(dir / "a.vtm.series",

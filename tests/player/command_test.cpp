@@ -75,7 +75,8 @@ TEST(PlayerCommand, EveryActionsBadLineNamesTheLine) {
       "wait-frames", "wait-seconds", "quality", "stats", "lod", "target-fps", "lod-filter",
       "show-cut", "panels", "every-step", "log-opacity", "open", "field", "probe", "probe-op",
       "probe-surface", "probe-clear", "probe-move", "record", "reset-camera", "playback",
-      "capture", "quit", "save-session", "scale", "expand", "spacing", "compositing", "dialog"};
+      "capture", "quit", "save-session", "scale", "expand", "spacing", "compositing", "dialog",
+      "tf-point"};
   for (const char* name : actions) {
     const std::string text = std::string("play\n# two\n") + name + " a b c d e f\n";
     const std::string e = tsptest::error_of<tsp::FormatError>(
@@ -109,13 +110,18 @@ TEST(PlayerCommand, ValidateHoldsEveryCommandToTheScriptsRules) {
                          cmd::SetTargetFps{0.5},      cmd::SetLodFilter{"nearest"},
                          cmd::SetScale{{1, 0, 1}},    cmd::MoveProbe{1, {0, inf, 0}},
                          cmd::MoveProbe{0, {0, 0, 0}}, cmd::SetSetting{"spacing", "x"},
-                         cmd::SetSetting{"no-such", "1"}, cmd::StretchTf{"3:1"}};
+                         cmd::SetSetting{"no-such", "1"}, cmd::StretchTf{"3:1"},
+                         cmd::MoveTfPoint{0, 0.5, 0.5}, cmd::MoveTfPoint{1, inf, 0.5},
+                         cmd::MoveTfPoint{1, 0.5, 1.5}, cmd::ColourTfPoint{1, {2, 0, 0, 1}},
+                         cmd::AddTfPoint{0.5, -0.1}, cmd::RemoveTfPoint{0}};
   for (const Command& c : bad) EXPECT_THROW(validate(c), tsp::UsageError) << c.index();
   const Command good[] = {cmd::GoToStep{0},       cmd::SetSpeed{60},
                           cmd::SetTolerance{0, 0}, cmd::SetView{-720, 89.5},
                           cmd::WaitSeconds{0},    cmd::SetLodFilter{"distance:2"},
                           cmd::SetScale{{1, 1, 30}}, cmd::ResetCamera{},
-                          cmd::EditProbe{0, {}},  cmd::SetTolerance{0.5, 0.1, false}};
+                          cmd::EditProbe{0, {}},  cmd::SetTolerance{0.5, 0.1, false},
+                          cmd::MoveTfPoint{1, -3, 1}, cmd::AddTfPoint{2, std::nullopt},
+                          cmd::RemoveTfPoint{1}};
   for (const Command& c : good) EXPECT_NO_THROW(validate(c)) << c.index();
   EXPECT_TRUE(tspplayer::waits_for_frames(cmd::Screenshot{"a.png", true}));
   EXPECT_TRUE(tspplayer::waits_for_frames(cmd::WaitFrames{1}));

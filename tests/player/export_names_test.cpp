@@ -5,28 +5,32 @@
 
 #include <gtest/gtest.h>
 
+#include <utility>
+
 namespace {
 
 using tspplayer::dataset_name;
 
 TEST(PlayerExportNames, StripsEveryKnownInputExtension) {
-  EXPECT_EQ(dataset_name("datasets/samples/damBreakWithObstacle/damBreakWithObstacle.vtu.series"),
-            "damBreakWithObstacle");
-  EXPECT_EQ(dataset_name("/tmp/walk5/data/hotPlume_32.h5"), "hotPlume_32");
-  EXPECT_EQ(dataset_name("ci_test_file.nc"), "ci_test_file");
-  EXPECT_EQ(dataset_name("shock_64x64x64_32.tsp"), "shock_64x64x64_32");
-  EXPECT_EQ(dataset_name("can.VTM"), "can");
-  EXPECT_EQ(dataset_name("grid.vts"), "grid");
-  EXPECT_EQ(dataset_name("img.vti.series"), "img");
-  EXPECT_EQ(dataset_name("run.pvd"), "run");
-  EXPECT_EQ(dataset_name("a.vtkhdf"), "a");
-  EXPECT_EQ(dataset_name("u_%04d.raw"), "u_%04d");
-  // Other dots are the name's own.
-  EXPECT_EQ(dataset_name("run.2024.h5"), "run.2024");
-  EXPECT_EQ(dataset_name("notes.txt"), "notes.txt");
-  // Nothing left: a name of its own.
-  EXPECT_EQ(dataset_name(".h5"), ".h5");
-  EXPECT_EQ(dataset_name(""), "tspplay");
+  const std::pair<const char*, const char*> named[] = {
+      {"datasets/samples/damBreakWithObstacle/damBreakWithObstacle.vtu.series",
+       "damBreakWithObstacle"},
+      {"/tmp/walk5/data/hotPlume_32.h5", "hotPlume_32"},
+      {"ci_test_file.nc", "ci_test_file"},
+      {"shock_64x64x64_32.tsp", "shock_64x64x64_32"},
+      {"can.VTM", "can"},
+      {"grid.vts", "grid"},
+      {"img.vti.series", "img"},
+      {"run.pvd", "run"},
+      {"a.vtkhdf", "a"},
+      {"u_%04d.raw", "u_%04d"},
+      // Other dots are the name's own.
+      {"run.2024.h5", "run.2024"},
+      {"notes.txt", "notes.txt"},
+      // Nothing left: a name of its own.
+      {".h5", ".h5"},
+      {"", "tspplay"}};
+  for (const auto& [input, name] : named) EXPECT_EQ(dataset_name(input), name) << input;
 }
 
 }  // namespace

@@ -55,9 +55,7 @@ TEST(Player, FlatDomainOpensWithANamedVerticalExaggeration) {
 // (Escape and Enter are held half a second: Dear ImGui 1.86's GLFW back end misses a key pressed
 // and released between two frames, as xdotool key does.)
 TEST(Player, AxisScaleFieldAppliesOnEnterAndEscapeCancelsTheEdit) {
-  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
-  ASSERT_EQ(std::system("command -v xdotool > /dev/null"), 0)
-      << "xdotool missing (scripts/install-deps.sh installs it)";
+  TSPTEST_REQUIRE_X_EVENTS();
   const fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
   const fs::path out = dir / "axes.out", stats = dir / "axes.json";
   const fs::path script = write_script("wait-seconds 30\nstats " + stats.string() + "\nquit\n");

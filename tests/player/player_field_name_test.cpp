@@ -42,9 +42,7 @@ TEST(Player, BuildWithoutFieldRecordsTheFieldItPicked) {
 // play without --field: the window's field (stats) is the picked one, and S (a real X key
 // event) saves NAME_FIELD_step_NNNN.png, not NAME__step_NNNN.png.
 TEST(Player, PlayWithoutFieldNamesThePickedFieldInStatsAndSavedFiles) {
-  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
-  ASSERT_EQ(std::system("command -v xdotool > /dev/null"), 0)
-      << "xdotool missing (scripts/install-deps.sh installs it)";
+  TSPTEST_REQUIRE_X_EVENTS();
   const fs::path dir = tsptest::temp_dir(), out = dir / "play.out";
   const fs::path plume = tsptest::datasets_dir() / "samples" / "hotPlume_32.h5";
   const fs::path script = write_script("wait-frames 2\nstats " + (dir / "s.json").string() +

@@ -191,9 +191,7 @@ namespace {
 // '-': any character left over changes the result. (Each backspace takes two frames: the script
 // waits 45 s, generous for a loaded machine.)
 TEST(Player, SlowFramesLoseNeitherADragsEndNorAKeystroke) {
-  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
-  ASSERT_EQ(std::system("command -v xdotool > /dev/null"), 0)
-      << "xdotool missing (scripts/install-deps.sh installs it)";
+  TSPTEST_REQUIRE_X_EVENTS();
   const fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
   const fs::path rects = dir / "rects.json", done = dir / "done.json", out = dir / "input.out";
   const fs::path script = script_in(dir, "input.txt",

@@ -339,9 +339,7 @@ TEST(Player, TheMeshBoundaryDrawsAsRenderDrawsItAndTheScriptTurnsItOff) {
 // Renders on demand: a window with nothing to change sleeps in its event wait (a generous bound
 // on its CPU share while idle, measured from /proc, not timed), and a key wakes it at once.
 TEST(Player, IdleWindowSleepsAndAKeyWakesIt) {
-  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
-  ASSERT_EQ(std::system("command -v xdotool > /dev/null"), 0)
-      << "xdotool missing (scripts/install-deps.sh installs it)";
+  TSPTEST_REQUIRE_X_EVENTS();
   const fs::path tsp = make_tsp(), dir = tsptest::temp_dir(), out = dir / "idle.out";
   // The script ends without quit: the window stays open, idle.
   const fs::path script = write_script("step 1\nwait-frames 3\nstats " + (dir / "ready.json").string() + "\n");
@@ -463,9 +461,7 @@ TEST(Player, StepsShownWhilePlayingHaveNoHolesUnderAnUploadBudget) {
 // supported" when a calibration left another context current) and the paused picture is
 // `render`'s full-quality one.
 TEST(Player, QualitySliderKeepsTheWindowDrawingAndTabWorking) {
-  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
-  ASSERT_EQ(std::system("command -v xdotool > /dev/null"), 0)
-      << "xdotool missing (scripts/install-deps.sh installs it)";
+  TSPTEST_REQUIRE_X_EVENTS();
   const fs::path tsp = make_tsp(), dir = tsptest::temp_dir(), out = dir / "q.out";
   const fs::path script = write_script(
       "step 1\nquality 2\nstats " + (dir / "q0.json").string() + "\nwait-frames 2\nstats " +

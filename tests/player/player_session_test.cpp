@@ -170,9 +170,7 @@ TEST(Player, SharedSessionOpensWithDashDashSession) {
 // header is closed again in the next window on the same input. The steps wait on the player's
 // --trace lines, not on the clock.
 TEST(Player, OpenSectionsAreRestored) {
-  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
-  ASSERT_EQ(std::system("command -v xdotool > /dev/null"), 0)
-      << "xdotool missing (scripts/install-deps.sh installs it)";
+  TSPTEST_REQUIRE_X_EVENTS();
   const fs::path tsp = make_tsp(), dir = tsptest::temp_dir(), out = dir / "click.out";
   const std::string size = "760x400";  // docked: the side panel at x 390..760
   const std::string cache = " --cache-dir " + q(dir / "cache");
@@ -209,9 +207,7 @@ TEST(Player, OpenSectionsAreRestored) {
 // the next key replaces it (Dear ImGui 1.86 alone misses a press shorter than a frame). Each step
 // waits on the player's --trace lines; Ctrl+Q ends it.
 TEST(Player, CtrlASelectsTheOpenDialogsPath) {
-  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
-  ASSERT_EQ(std::system("command -v xdotool > /dev/null"), 0)
-      << "xdotool missing (scripts/install-deps.sh installs it)";
+  TSPTEST_REQUIRE_X_EVENTS();
   const fs::path tsp = make_tsp(), dir = tsptest::temp_dir(), out = dir / "keys.out";
   const fs::path backstop = write_script("wait-seconds 120\nquit\n");  // (if Ctrl+Q is lost)
   const std::string cmd =
@@ -220,23 +216,12 @@ TEST(Player, CtrlASelectsTheOpenDialogsPath) {
       " 2>&1 &\n" +
       "w=$(xdotool search --sync --name " + q("tspplay - " + tsp.string()) + " | head -1)\n"
       "until_log 'trace: tf canvas'\n"
-      "xdotool key --window \"$w\" ctrl+o\n"
-      "until_log 'trace: open path field active'\n"
-      "xdotool type --window \"$w\" abc\n"
-      "until_log 'abc$'\n"
-      "xdotool key --window \"$w\" ctrl+a\n"
-      "until_log 'trace: select all'\n"
-      "xdotool type --window \"$w\" x\n"
-      "until_log 'trace: open path x$'\n"
-      "quit_player)\n";
+      + select_all_in_open_dialog() + "quit_player)\n";
   ASSERT_EQ(run_bash(dir / "keys.sh", cmd), 0) << tsptest::read_file(out);
   const std::string log = tsptest::read_file(out);
   EXPECT_NE(log.find("trace: open dialog"), std::string::npos) << log;
   // Typed into the field, then replaced whole: without the Ctrl+A the x went after "abc".
-  const std::size_t typed = log.find("abc\n");
-  ASSERT_NE(typed, std::string::npos) << log;
-  EXPECT_NE(log.find("trace: open path x\n", typed), std::string::npos) << log;
-  EXPECT_EQ(log.find("abcx"), std::string::npos) << log;
+  expect_select_all_replaced(log);
 }
 
 }  // namespace

@@ -69,9 +69,7 @@ TEST(Player, ScriptedScrubShowsEachStepAndATfEditChangesThePicture) {
 // Real X key events (xdotool) at two frames a second: five quick taps of → move five steps and
 // a tap of Space starts playback — none is lost between frames (the GLFW key queue).
 TEST(Player, QuickKeyTapsAreNotLostWhenFramesAreSlow) {
-  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
-  ASSERT_EQ(std::system("command -v xdotool > /dev/null"), 0)
-      << "xdotool missing (scripts/install-deps.sh installs it)";
+  TSPTEST_REQUIRE_X_EVENTS();
   fs::path dir = tsptest::temp_dir(), out = dir / "keys.out", tsp = dir / "k.tsp";
   ASSERT_EQ(run_tspplay("generate shock -o " + q(dir / "k.h5") + " --dims 24,20,16 --steps 8")
                 .exit_code, 0);
@@ -123,9 +121,7 @@ TEST(Player, QuickKeyTapsAreNotLostWhenFramesAreSlow) {
 // and first moves fall into one frame), release: the point moves with the mouse. (800 tall: the
 // canvas wholly inside the window below the Settings panel's rows.)
 TEST(Player, DraggingATransferFunctionHandleMovesIt) {
-  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
-  ASSERT_EQ(std::system("command -v xdotool > /dev/null"), 0)
-      << "xdotool missing (scripts/install-deps.sh installs it)";
+  TSPTEST_REQUIRE_X_EVENTS();
   fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
   const tsp::ValueRange r = tsp::TspFile::open(tsp.string())->tree().value_range();
   const fs::path tf = dir / "ramp.json", out = dir / "drag.out", stats = dir / "drag.json";

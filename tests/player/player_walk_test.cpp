@@ -128,9 +128,7 @@ TEST(PlayerWalk, EveryFitIsTracedAsAnEdit) {
 // from the timeline as a drag, and the view flipped to nearly top-down. Now the view turns by
 // the drag alone: the azimuth by at most 80 px × 0.4°, the elevation not at all.
 TEST(PlayerWalk, AnOrbitStartsAtThePressNotWhereTheCursorCameFrom) {
-  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
-  ASSERT_EQ(std::system("command -v xdotool > /dev/null"), 0)
-      << "xdotool missing (scripts/install-deps.sh installs it)";
+  TSPTEST_REQUIRE_X_EVENTS();
   const fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
   const fs::path out = dir / "orbit.out", stats = dir / "orbit.json";
   const fs::path script =

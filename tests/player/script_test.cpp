@@ -85,6 +85,12 @@ TEST(PlayerScript, ParsesEveryAction) {
             (std::vector<Command>{cmd::ResetCamera{}, cmd::KeepQuality{false}, cmd::Capture{"out"},
                                   cmd::Capture{""}, cmd::ExpandSections{true},
                                   cmd::StretchTf{"visible"}}));
+  EXPECT_EQ(commands_of("tf-point move 2 0.25 0.5\ntf-point colour 1 1 0.5 0 0.25\n"
+                        "tf-point add 0.75\ntf-point add 0.5 1\ntf-point remove 3\n"),
+            (std::vector<Command>{cmd::MoveTfPoint{2, 0.25, 0.5},
+                                  cmd::ColourTfPoint{1, {1, 0.5f, 0, 0.25f}},
+                                  cmd::AddTfPoint{0.75, std::nullopt}, cmd::AddTfPoint{0.5, 1.0},
+                                  cmd::RemoveTfPoint{3}}));
 }
 
 TEST(PlayerScript, ErrorsNameTheLineAndWhatWasExpected) {
@@ -131,6 +137,16 @@ TEST(PlayerScript, ErrorsNameTheLineAndWhatWasExpected) {
   EXPECT_NE(error_of("probe-op xor").find("expected intersect, union or subtract"),
             std::string::npos);
   EXPECT_NE(error_of("probe-move 0 1 2 3").find("not an integer >= 1"), std::string::npos);
+  const std::string tf_point_usage =
+      "s.txt:1: 'tf-point': expected 'tf-point move N VALUE OPACITY|colour N R G B A|add VALUE "
+      "[OPACITY]|remove N'";
+  EXPECT_EQ(error_of("tf-point drag 1 2 3"), tf_point_usage);
+  EXPECT_EQ(error_of("tf-point move 1 2"), tf_point_usage);
+  EXPECT_EQ(error_of("tf-point move 1 0.5 2"), "s.txt:1: tf-point: opacity must be in [0, 1]");
+  EXPECT_EQ(error_of("tf-point colour 1 1 1 -1 1"),
+            "s.txt:1: tf-point: colour components must be in [0, 1]");
+  EXPECT_EQ(error_of("tf-point add inf"), "s.txt:1: tf-point: the value must be finite");
+  EXPECT_NE(error_of("tf-point remove 0").find("'0' is not an integer >= 1"), std::string::npos);
 }
 
 TEST(PlayerScript, LoadsAFileAndNamesAMissingOne) {

@@ -3,8 +3,11 @@
 // key per row, and values outside a row's range are refused naming it and the range.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <set>
 #include <sstream>
+#include <vector>
 
 #include "render/render_settings.h"
 #include "render/settings_table.h"
@@ -124,6 +127,60 @@ TEST(SettingsTable, RefusesValuesOutsideTheRowNamingIt) {
             "--upload-budget '': expected a number in [0, 1.04858e+06] (MiB)");
   // A long value is quoted in part.
   EXPECT_LT(error_of("flat", std::string(5000, 'x')).size(), 120u);
+}
+
+// validate() holds a RenderSettings built in code (not parsed) to the same rows: every number row
+// just outside its range, or not finite, is refused with the message set_setting gives for that
+// value's text; the values at the ends pass.
+TEST(SettingsTable, ValidateRefusesWhatTheRowRefusesWithTheRowsMessage) {
+  auto message_of = [](const RenderSettings& s) {
+    try {
+      validate(s);
+    } catch (const tsp::UsageError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  const double kNan = std::numeric_limits<double>::quiet_NaN(),
+               kInf = std::numeric_limits<double>::infinity();
+  int rows = 0;
+  for (const SettingSpec& spec : settings_table()) {
+    if (spec.kind != SettingKind::number) continue;
+    ++rows;
+    const std::string name = "--" + std::string(spec.name);
+    const double below = spec.lo - (spec.lo == 0 ? 1 : spec.lo / 2);
+    std::vector<double> bads{below, std::isinf(spec.hi) ? kNan : spec.hi * 2};
+    if (spec.name != "upload-budget") bads.push_back(-kInf);  // (held as whole bytes)
+    for (double bad : bads) {
+      RenderSettings s;
+      spec.set(s, bad);
+      const std::string text = spec.get(s);  // (a byte count in MiB: its value as stored)
+      RenderSettings scratch;
+      std::string parsed = "accepted";
+      try {
+        set_setting(scratch, spec, text, name);
+      } catch (const tsp::UsageError& e) {
+        parsed = e.what();
+      }
+      EXPECT_NE(parsed, "accepted") << name << " " << text;
+      EXPECT_EQ(message_of(s), parsed) << name << " " << text;
+    }
+    for (double good : {spec.lo, std::isinf(spec.hi) ? 1e300 : spec.hi}) {
+      RenderSettings s;
+      spec.set(s, good);
+      EXPECT_EQ(message_of(s), "accepted") << name << " " << good;
+    }
+  }
+  EXPECT_GE(rows, 8);  // tolerances, spacing, sampling-tol, refine-tol, render-scale, ...
+  RenderSettings s;
+  s.spacing = 100;
+  EXPECT_EQ(message_of(s), "--spacing '100': expected a number in [0.015625, 64] (voxels)");
+  s = {};
+  s.upload_budget = -1;
+  EXPECT_EQ(message_of(s).rfind("--upload-budget '-9.5367431640625e-07': expected a number in [0, ",
+                                0),
+            0u)
+      << message_of(s);
 }
 
 // The sampling knobs' one reading: adaptive before pre-integration before refinement, the

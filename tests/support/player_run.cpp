@@ -104,6 +104,25 @@ std::string log_waits(const fs::path& log) {
          "xdotool keyup ctrl q; return $rc; }\n";
 }
 
+std::string select_all_in_open_dialog() {
+  return "xdotool key --window \"$w\" ctrl+o\n"
+         "until_log 'trace: open path field active'\n"
+         "xdotool type --window \"$w\" abc\n"
+         "until_log 'abc$'\n"
+         "for try in 1 2 3; do sleep 1; xdotool key --delay 40 --window \"$w\" ctrl+a\n"
+         "  seen_within 'trace: select all' 50 && break; done\n"
+         "until_log 'trace: select all'\n"
+         "xdotool type --window \"$w\" x\n"
+         "until_log 'trace: open path x$'\n";
+}
+
+void expect_select_all_replaced(const std::string& log) {
+  const std::size_t typed = log.find("abc\n");
+  ASSERT_NE(typed, std::string::npos) << log;
+  EXPECT_NE(log.find("trace: open path x\n", typed), std::string::npos) << log;
+  EXPECT_EQ(log.find("abcx"), std::string::npos) << log;
+}
+
 nlohmann::json read_json(const fs::path& p) {
   std::ifstream in(p);
   return nlohmann::json::parse(in);

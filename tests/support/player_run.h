@@ -2,11 +2,15 @@
 // bounds they compare with, a small .tsp, scripts for --script and for bash (xdotool), and
 // `tspplay render` of one step to compare a screenshot with.
 #pragma once
+#include <gtest/gtest.h>
+
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
+#include "support/paths.h"
 #include "tsp/report/image.h"
 
 namespace tsptest::player {
@@ -49,4 +53,23 @@ std::string orbit_then_idle_script(const std::filesystem::path& dir,
 /// sends Ctrl+Q to window $w and returns the player's exit status, releasing Ctrl and Q.
 std::string log_waits(const std::filesystem::path& log);
 
+/// Bash lines for after log_waits, with the traced player's window in $w: Ctrl+O opens File >
+/// Open, "abc" is typed into its path field, Ctrl+A selects it all and "x" replaces it, each
+/// step waited on through --trace lines. Ctrl+A is tapped up to three times, 5 s apart: the X
+/// server may drop a synthetic tap on a loaded machine (no key reaches the window at all).
+std::string select_all_in_open_dialog();
+/// Expects the log of select_all_in_open_dialog's keys: "abc" typed, then replaced whole by "x"
+/// (without the select-all the x went after it: "abcx").
+void expect_select_all_replaced(const std::string& log);
+
 }  // namespace tsptest::player
+
+/// The start of a test that drives a window with real X events (xdotool): a display, as
+/// TSPTEST_REQUIRE asks for one, and xdotool, whose absence fails the test
+/// (scripts/install-deps.sh installs it).
+#define TSPTEST_REQUIRE_X_EVENTS()                                                          \
+  do {                                                                                      \
+    TSPTEST_REQUIRE(tsptest::player::window_possible(), "no display (run under xvfb-run)"); \
+    ASSERT_EQ(std::system("command -v xdotool > /dev/null"), 0)                             \
+        << "xdotool missing (scripts/install-deps.sh installs it)";                         \
+  } while (0)

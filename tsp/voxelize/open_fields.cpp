@@ -70,4 +70,16 @@ FieldOpener open_input_fields(const std::string& input, const SourceOptions& opt
   return [shared](const std::string& field) { return shared->open(field); };
 }
 
+std::vector<std::string> field_names(const std::string& field) {
+  std::vector<std::string> names;
+  if (field.find(',') == std::string::npos) return names;
+  for (std::size_t p = 0; p <= field.size();) {
+    std::size_t c = field.find(',', p);
+    if (c == std::string::npos) c = field.size();
+    names.push_back(field.substr(p, c - p));
+    p = c + 1;
+  }
+  return names;
+}
+
 }  // namespace tsp

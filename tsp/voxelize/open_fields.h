@@ -26,4 +26,9 @@ inline constexpr std::size_t kMissingFieldsListed = 20;
 FieldOpener open_input_fields(const std::string& input, const SourceOptions& options,
                               const VoxelizeOptions& voxel, const std::vector<std::string>& fields);
 
+/// The names `--field A,B,C` gives (build and play), split at every comma: {"A", "B", "C"};
+/// empty for a single name (no comma). An empty name ("A,,B", "A,") is kept, for the lookup to
+/// report missing. Never throws but bad_alloc.
+std::vector<std::string> field_names(const std::string& field);
+
 }  // namespace tsp

@@ -94,5 +94,17 @@ TEST(OpenFields, MissingFieldsAreNamedBeforeAnyIsRead) {
   EXPECT_EQ(h5::files_opened() - before, 1);
 }
 
+// --field A,B,C's one split (build and play): every comma splits, one name is no list.
+TEST(OpenFields, FieldNamesSplitAtEveryComma) {
+  using V = std::vector<std::string>;
+  EXPECT_EQ(field_names("U:mag"), V{});
+  EXPECT_EQ(field_names(""), V{});
+  EXPECT_EQ(field_names("a,b,c"), (V{"a", "b", "c"}));
+  EXPECT_EQ(field_names("U:mag,p"), (V{"U:mag", "p"}));
+  EXPECT_EQ(field_names("a,,b"), (V{"a", "", "b"}));  // (looked up, reported missing)
+  EXPECT_EQ(field_names("a,"), (V{"a", ""}));
+  EXPECT_EQ(field_names(","), (V{"", ""}));
+}
+
 }  // namespace
 }  // namespace tsp
