@@ -261,8 +261,8 @@ void PlayerApp::request_prefetch(const tsp::Camera& cam, const tspgl::RenderSett
   // cut change (the RAM cache then serves the split's uploads).
   if (!state_.playing) {
     const tsp::LodController* lod = driver().controller();
-    if (!lod || lod_stats.cut_size == prefetched_cut_) return;
-    prefetched_cut_ = lod_stats.cut_size;
+    if (!lod || lod_loop_.stats().cut_size == prefetched_cut_) return;
+    prefetched_cut_ = lod_loop_.stats().cut_size;
     std::vector<tsp::BrickKey> keys;
     for (int b : lod->likely_split_bricks(kPrefetchSplits)) keys.push_back({b, state_.step});
     prefetcher->request(std::move(keys));

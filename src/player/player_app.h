@@ -149,13 +149,9 @@ class PlayerApp {
   /// Measures tol_readout (frame(), after the volume); errors go to status.
   void measure_tolerance();
   tsp::CameraParams initial_camera;     ///< what R resets the camera to
-  std::optional<std::array<double, 3>> focus;  ///< LOD centre of attention (double-click)
 
   // ---- statistics for the HUD ----
   tspgl::FrameReport last;
-  tsp::LodFrameStats lod_stats;         ///< the last frame's cut
-  /// Seconds from the last change to the first full-quality frame (−1: not there yet).
-  double full_quality_after_s = -1;
   std::deque<FrameSample> history;
   double metric_ms = 0;                 ///< last metric (re)compute
   std::int64_t metric_evaluations = 0;  ///< node evaluations of the last recompute
@@ -366,9 +362,6 @@ class PlayerApp {
   void draw_cut_overlay(const tsp::Camera& cam);
   /// With the cut shown (L): keeps the cut the frame drew (empty stops: every leaf).
   void keep_drawn_cut(tsp::LodStops stops);
-  /// What the cut overlay shows, for its caption: "LOD cut: 8 nodes, full resolution (level 0)".
-  std::string cut_overlay_text() const;
-  std::vector<tsp::LodStop> drawn_stops_;  ///< the cut the last frame drew (empty: the leaves)
   std::string traced_cut_;                  ///< the cut caption last traced
   void draw_annotations(const tsp::Camera& cam);
 
@@ -458,8 +451,8 @@ class PlayerApp {
   std::shared_ptr<tspgl::SliceCompositor> compositor_;
   double switch_started_s_ = -1;  ///< when the last switch began (−1: reported)
   int ready_next_ = 0;  ///< the next step update_ready checks
-  /// What changed last (interaction), and the frame's time outside rendering, for the LOD
-  /// target (lod_loop.h).
+  /// What changed last (interaction), the frame's time outside rendering, the focus, the drawn
+  /// cut and its stats, for the LOD target (lod_loop.h).
   LodLoop lod_loop_;
   // Sessions (player_session.cpp): the input's entry in the cache folder ("": none, or
   // --no-session), where the shown session came from ("": defaults), why an entry was ignored,

@@ -154,7 +154,7 @@ void PlayerApp::open_file(const std::string& path) {
   state_.step = 0;
   if (!speed_chosen_) state_.speed = default_speed(tree.time().steps());
   state_.playing = false;
-  focus.reset();
+  lod_loop_.clear_focus();
   state_.settings.tol = {0, 0};
   state_.probes.clear();  // (in the old file's physical coordinates)
   probe_selected = -1;
@@ -399,14 +399,14 @@ void PlayerApp::write_stats(const std::string& path) const {
                  {"frames_while_tuning", frames_while_tuning_},
                  {"from_cache", tuning_from_cache_},  // read from disk: no probing this run
                  {"cache_file", tuning_cache_file_}};
-  j["lod"] = lod_stats;  // the last frame's cut, under frames.json's "lod" keys (lod_controller.h)
+  j["lod"] = lod_loop_.stats();  // the last frame's cut, under frames.json's "lod" keys
   j["lod"].update({{"on", state_.lod_on},
                    {"target_fps", state_.target_fps},
                    {"refining", lod_loop_.refining()},
                    {"splat_fallback", state_.splat_fallback},
                    {"filter", tsp::to_string(state_.lod_filter.kind)},
                    {"filter_k", state_.lod_filter.scale},
-                   {"full_quality_after_s", full_quality_after_s},
+                   {"full_quality_after_s", lod_loop_.full_quality_after_s()},
                    // Full quality: no node left whose level differs from full resolution in
                    // the picture (error 0: transparent, uniform or hidden), at full render size.
                    {"full_quality", full_quality()},

@@ -42,18 +42,13 @@ tspgl::LodSpec PlayerApp::lod_spec(double now_s) {
   // (Playing at a quality target: the tuned rung's level, or the provisional rung's.)
   const tspgl::Rung* r = state_.playing && state_.quality > 0 ? rung_drawn() : nullptr;
   return lod_loop_.next(
-      state_, {tf.version(), probe_version, focus, r ? r->lod_level : 0, !refine_by_cut()}, now_s);
+      state_, {tf.version(), probe_version, r ? r->lod_level : 0, !refine_by_cut()}, now_s);
 }
 
 void PlayerApp::lod_drawn(const std::optional<tsp::LodFrameStats>& stats, double now_s) {
-  lod_stats = stats.value_or(tsp::LodFrameStats{});
+  lod_loop_.drawn(stats);
   if (!state_.lod_on) return;
-  // When the picture got back to full quality after the last change.
-  if (full_quality()) {
-    if (full_quality_after_s < 0) full_quality_after_s = now_s - lod_loop_.last_change_s();
-  } else {
-    full_quality_after_s = -1;
-  }
+  lod_loop_.note_quality(full_quality(), now_s);
 }
 
 bool PlayerApp::full_quality() const {
@@ -63,7 +58,7 @@ bool PlayerApp::full_quality() const {
   // Refined in bands (player_refine.cpp): full once the last band is drawn.
   if (refine_on_) return stage_ == "full";
   // (With the mesh's surface the cut itself refines.)
-  return lod_loop_.refining() && lod_stats.max_error == 0 && lod_stats.render_scale == 1;
+  return lod_loop_.cut_full_quality();
 }
 
 void PlayerApp::measured_lod(double render_ms, double frame_ms) {
@@ -71,20 +66,8 @@ void PlayerApp::measured_lod(double render_ms, double frame_ms) {
 }
 
 void PlayerApp::set_focus_at(double x, double y) {
-  const tsp::Camera cam(file->tree().octree().dims(), state_.camera);
-  const glm::dmat4 inv = glm::inverse(cam.view_projection());
-  const double nx = 2 * x / std::max(1, state_.camera.width) - 1, ny = 1 - 2 * y / std::max(1, state_.camera.height);
-  const glm::dvec4 a = inv * glm::dvec4(nx, ny, -1, 1), b = inv * glm::dvec4(nx, ny, 1, 1);
-  const glm::dvec3 p0 = glm::dvec3(a) / a.w, p1 = glm::dvec3(b) / b.w;
   const tsp::Dims d = file->tree().octree().dims();
-  const glm::dvec3 centre(0.5 * (d.x - 1), 0.5 * (d.y - 1), 0.5 * (d.z - 1));
-  const auto dir = cam.direction();
-  const glm::dvec3 v(dir[0], dir[1], dir[2]);
-  const double denom = glm::dot(p1 - p0, v);
-  const double s = std::abs(denom) > 1e-12 ? glm::dot(centre - p0, v) / denom : 0.5;
-  const glm::dvec3 f = p0 + (p1 - p0) * std::clamp(s, 0.0, 1.0);
-  focus = std::array<double, 3>{f.x, f.y, f.z};
-  lod_loop_.touch(clock_.seconds());
+  lod_loop_.focus_on(focus_at(tsp::Camera(d, state_.camera), d, x, y), clock_.seconds());
 }
 
 namespace {
@@ -222,26 +205,7 @@ void PlayerApp::draw_annotations(const tsp::Camera& cam) {
 }
 
 void PlayerApp::keep_drawn_cut(tsp::LodStops stops) {
-  if (!state_.show_cut) return;
-  drawn_stops_.assign(stops.begin(), stops.end());
-}
-
-std::string PlayerApp::cut_overlay_text() const {
-  const tsp::Octree& o = file->tree().octree();
-  std::vector<int> per_level(std::size_t(o.max_lod_level()) + 1, 0);
-  int n = 0;
-  for (int id = 0; id < o.size(); ++id)
-    if (drawn_stops_.empty() ? o.node(id).is_leaf()
-                             : drawn_stops_[std::size_t(id)] != tsp::LodStop::none) {
-      ++per_level[std::size_t(o.lod_level(id))];
-      ++n;
-    }
-  std::string text = "LOD cut: " + std::to_string(n) + (n == 1 ? " node" : " nodes");
-  if (drawn_stops_.empty()) return text + ", full resolution (level 0)";
-  text += ", by level";
-  for (std::size_t l = 0; l < per_level.size(); ++l)
-    if (per_level[l] > 0) text += " " + std::to_string(l) + ":" + std::to_string(per_level[l]);
-  return text;
+  if (state_.show_cut) lod_loop_.keep_cut(stops);
 }
 
 void PlayerApp::draw_cut_overlay(const tsp::Camera& cam) {
@@ -254,9 +218,7 @@ void PlayerApp::draw_cut_overlay(const tsp::Camera& cam) {
   const glm::dmat4 vp = cam.view_projection();
   const tsp::Octree& o = file->tree().octree();
   for (int id = 0; id < o.size(); ++id) {
-    if (drawn_stops_.empty() ? !o.node(id).is_leaf()
-                             : drawn_stops_[std::size_t(id)] == tsp::LodStop::none)
-      continue;
+    if (!in_cut(o, lod_loop_.drawn_cut(), id)) continue;
     const tsp::Aabb box = tsp::geometric_box(o.node(id).box, o.dims());
     ImVec2 p[8];
     bool ok = true;
@@ -269,7 +231,7 @@ void PlayerApp::draw_cut_overlay(const tsp::Camera& cam) {
         if (!(c & (1 << a))) dl->AddLine(p[c], p[c | (1 << a)], col);
   }
   // What the boxes are, at the view's bottom left (the caption is at the top).
-  const std::string text = cut_overlay_text();
+  const std::string text = cut_text(o, lod_loop_.drawn_cut());
   const ImVec2 at(float(v.x) + 8, float(v.y + v.h) - ImGui::GetFontSize() - 8);
   dl->AddRectFilled(ImVec2(at.x - 3, at.y - 3),
                     ImVec2(at.x + ImGui::CalcTextSize(text.c_str()).x + 3,

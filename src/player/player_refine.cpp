@@ -165,6 +165,7 @@ void PlayerApp::cut_drawn(bool rung) {
 std::string PlayerApp::lod_line() const {
   char line[320];
   const double ms = last.ms;
+  const tsp::LodFrameStats& lod_stats = lod_loop_.stats();
   if (stage_ == "off") {
     std::snprintf(line, sizeof line, "LOD off: full resolution every frame (last frame %.0f ms)", ms);
   } else if (stage_ == "playing") {
@@ -182,7 +183,7 @@ std::string PlayerApp::lod_line() const {
                   bands_.bands_drawn(), bands_.bands(), base_.c_str(), ms);
   } else if (stage_ == "full") {
     std::snprintf(line, sizeof line, "full quality (last frame %.0f ms, %.2f s after the last change)",
-                  ms, full_quality_after_s);
+                  ms, lod_loop_.full_quality_after_s());
   } else if (lod_stats.splats > 0) {
     std::snprintf(line, sizeof line,
                   "LOD aiming at %.0f ms with %d splats (minimum %.0f px); last frame %.0f ms%s",
