@@ -46,8 +46,9 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
   if (options.width < 1 || options.height < 1)
     throw tsp::UsageError("--size must be positive, found " + std::to_string(options.width) + "x" +
                           std::to_string(options.height));
-  file = tsp::TspFile::open(options.tsp_path, options.field);
-  const tsp::TspTree& tree = file->tree();
+  viewer_ = std::make_unique<ViewerSession>(tsp::TspFile::open(options.tsp_path, options.field),
+                                            tf, state_.metric);
+  const tsp::TspTree& tree = viewer_->file().tree();
   if (options.step < 0 || options.step >= tree.time().steps())
     throw tsp::UsageError("--step " + std::to_string(options.step) + ": " + options.tsp_path +
                           " has steps 0.." + std::to_string(tree.time().steps() - 1));
@@ -58,7 +59,7 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
   frame_delay_ms_ = options.frame_delay_ms;
   tspgl::validate(options.settings);
   if (!options.surface_mesh.empty())
-    mesh_surface.emplace(options.surface_mesh, options.surface_field, *file, options.surface_tf, options.step);
+    mesh_surface.emplace(options.surface_mesh, options.surface_field, viewer_->file(), options.surface_tf, options.step);
   surface_mesh_ = options.surface_mesh;
   state_.settings = options.settings;
   for (auto [value, name] : {std::pair{options.ram_budget_mb, "--ram-budget"},
@@ -93,15 +94,15 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
     script_.push_back({cmd::Quit{}, 0});
   }
   const tsp::TfRangeChoice range = tsp::parse_tf_range(options.tf_range);
-  const tsp::ValueHistogram histogram = tsp::histogram_of(*file);
+  const tsp::ValueHistogram histogram = tsp::histogram_of(viewer_->file());
   tf = tsp::transfer_function_from_arg(
-      options.tf, tsp::tf_domain_of(range, *file, state_.step),
+      options.tf, tsp::tf_domain_of(range, viewer_->file(), state_.step),
       tsp::kDefaultTfEntries, range, &histogram);
-  if (std::string w = tsp::tf_range_warning(tf, file->metadata().data_range); !w.empty()) {
+  if (std::string w = tsp::tf_range_warning(tf, viewer_->file().metadata().data_range); !w.empty()) {
     std::fprintf(stderr, "tspplay: warning: %s\n", w.c_str());
-    status = tsp::tf_range_warning(tf, file->metadata().data_range, "fit to data");  // (window)
+    status = tsp::tf_range_warning(tf, viewer_->file().metadata().data_range, "fit to data");  // (window)
   }
-  lazy_ = std::make_unique<tsp::LazyErrors>(tree, state_.metric, tf);
+  viewer_->set_metric(state_.metric);  // (over the TF just made)
   set_tf(tf, true);
   tf_label = tf_label_of(options.tf);
   ready.assign(std::size_t(tree.time().steps()), -1.f);
@@ -114,12 +115,12 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
   const bool scale_given =
       std::find(options.given.begin(), options.given.end(), "--scale") != options.given.end();
   if (!scale_given && options.physical_proportions)
-    options_.scale = tsp::vertical_exaggeration(file->frame());
+    options_.scale = tsp::vertical_exaggeration(viewer_->file().frame());
   place_camera(state_.camera);
   for (const std::string& text : options.probes) state_.probes.push_back(tsp::parse_probe(text));
   state_.probe_op = tsp::parse_probe_op(options.probe_op);
   state_.probe_surface = options.probe_surface;
-  (void)tsp::ClipRegion(state_.probes, state_.probe_op, file->metadata().origin, file->metadata().spacing);
+  (void)tsp::ClipRegion(state_.probes, state_.probe_op, viewer_->file().metadata().origin, viewer_->file().metadata().spacing);
   if (!state_.probes.empty()) probe_selected = 0;
   if (range.mode == tsp::TfRangeChoice::Mode::visible) {  // now that view and probes are known
     apply(*this, cmd::StretchTf{"visible"});
@@ -167,31 +168,23 @@ PlayerApp::~PlayerApp() {
     ImGui_ImplGlfw_Shutdown();
     ImGui::DestroyContext();
   }
-  prefetcher.reset();  // its thread reads into the renderer's brick cache
-  renderer.reset();    // its GL objects go before the context
+  viewer_.reset();  // the renderer's GL objects go before the context
   parked_.clear();
   compositor_.reset();
 }
 
 void PlayerApp::make_renderer() {
-  prefetcher.reset();
-  // The programs are compiled once per window and shared by every renderer made after.
-  if (renderer) compositor_ = renderer->compositor();
-  driver_.reset();
-  renderer.reset();
-  renderer = std::make_unique<tspgl::VolumeRenderer>(
-      *ctx, *file, state_.cache_on ? tsp::CachePolicy::on : tsp::CachePolicy::off,
+  viewer_->make_renderer(
+      *ctx, state_.cache_on ? tsp::CachePolicy::on : tsp::CachePolicy::off,
       std::int64_t(state_.texture_budget_mb * (1 << 20)), std::int64_t(options_.ram_budget_mb * (1 << 20)),
       compositor_);
-  renderer->set_transfer_function(tf);
-  prefetcher = std::make_unique<tsp::BrickPrefetcher>(renderer->brick_cache());
   prefetched_for_ = -1;
   prefetched_cut_ = -1;
   applied_probe_version_ = ~std::uint64_t(0);  // the new renderer gets the probes
 }
 
 void PlayerApp::place_camera(tsp::CameraParams& c) const {
-  tspgl::place_field(c, *file, options_.scale, options_.physical_proportions);
+  tspgl::place_field(c, viewer_->file(), options_.scale, options_.physical_proportions);
 }
 
 void PlayerApp::set_scale(const std::array<double, 3>& scale) {
@@ -205,7 +198,7 @@ void PlayerApp::set_scale(const std::array<double, 3>& scale) {
 }
 
 int PlayerApp::steps() const {
-  return file->tree().time().steps();
+  return viewer_->steps();
 }
 
 void PlayerApp::go_to(int t) {
@@ -230,14 +223,14 @@ void PlayerApp::set_tf(const tsp::TransferFunction& next, bool resample_points) 
     } else {
       tf.assign(next);  // (its version grows: a copy took next's, and fits after the first
                         // went unseen by the LOD loop, the tuning, the metric and --trace)
-      lazy_->set_transfer_function(tf);
+      viewer_->tf_replaced();
     }
   }
   if (resample_points) {  // the editor's handles over the TF as it now is
     tf_handles_ = place_handles(tf);
     tf_points_ = tf_handles_.placed;
   }
-  if (renderer) renderer->set_transfer_function(tf);
+  if (viewer_->has_renderer()) viewer_->renderer().set_transfer_function(tf);
 }
 
 std::string tf_label_of(const std::string& tf_arg) {
@@ -265,7 +258,7 @@ void PlayerApp::request_prefetch(const tsp::Camera& cam, const tspgl::RenderSett
     prefetched_cut_ = lod_loop_.stats().cut_size;
     std::vector<tsp::BrickKey> keys;
     for (int b : lod->likely_split_bricks(kPrefetchSplits)) keys.push_back({b, state_.step});
-    prefetcher->request(std::move(keys));
+    viewer_->prefetcher().request(std::move(keys));
     return;
   }
   if (prefetched_for_ == state_.step) return;
@@ -280,12 +273,12 @@ void PlayerApp::request_prefetch(const tsp::Camera& cam, const tspgl::RenderSett
       t %= steps();
     }
     std::vector<tsp::BrickKey> more =
-        renderer->bricks_to_upload(t, cam, frame_settings, frame_metric(), stops);
+        viewer_->renderer().bricks_to_upload(t, cam, frame_settings, frame_metric(), stops);
     keys.insert(keys.end(), more.begin(), more.end());
     if (const tsp::LodController* lod = driver().controller())  // and its likely next splits
       for (int b : lod->likely_split_bricks(kPrefetchSplits)) keys.push_back({b, t});
   }
-  prefetcher->request(std::move(keys));
+  viewer_->prefetcher().request(std::move(keys));
 }
 
 void PlayerApp::request_save() {
@@ -293,19 +286,7 @@ void PlayerApp::request_save() {
 }
 
 tsp::FrameMetric& PlayerApp::frame_metric() {
-  if (state_.metric != tsp::Metric::reference) return *lazy_;
-  refresh_reference();
-  return reference_nodes_;
-}
-
-void PlayerApp::refresh_reference() {
-  if (reference_version_ == tf.version()) return;
-  // The reference metric reads every voxel: computed in full, blocking (the UI says so).
-  const tsp::Stopwatch t0;
-  reference_ = tsp::compute_errors(tsp::Metric::reference, file->tree(), tf, file.get(), 0);
-  metric_ms = t0.ms();
-  metric_evaluations = std::int64_t(reference_.transparent.size());
-  reference_version_ = tf.version();
+  return viewer_->frame_metric();
 }
 
 void PlayerApp::render_volume() {
@@ -313,25 +294,14 @@ void PlayerApp::render_volume() {
   state_.camera.height = layout.view.h;
   if (state_.camera.width < 1 || state_.camera.height < 1 || ctx->width() < 1 || ctx->height() < 1)
     return;  // minimised
-  const tsp::Camera cam(file->tree().octree().dims(), state_.camera);
+  const tsp::Camera cam(viewer_->file().tree().octree().dims(), state_.camera);
   tspgl::RenderSettings fs = state_.settings;
   // Playing, a step's frame uploads all it needs: shown late when its bricks are late, never
   // with holes of bricks left for later frames (the upload budget keeps interaction smooth).
   if (state_.playing) fs.upload_budget = 0;
   // GL's window coordinates start at the bottom: the view's lower-left corner.
   fs.viewport_origin = {layout.view.x, ctx->height() - layout.view.y - layout.view.h};
-  if (state_.metric != tsp::Metric::reference) {
-    // Evaluate this step's nodes here so the HUD can show the recompute cost; render() then
-    // only reads memoised results.
-    const std::int64_t before = lazy_->evaluations();
-    const tsp::Stopwatch t0;
-    lazy_->errors_for_step(state_.step);
-    const double ms = t0.ms();
-    if (lazy_->evaluations() > before) {
-      metric_ms = ms;
-      metric_evaluations = lazy_->evaluations() - before;
-    }
-  }
+  viewer_->evaluate_step(state_.step);  // (the HUD shows what it cost)
   const double now = clock_.seconds();
   choose_rung(now);
   const bool rung = playing_rung();  // playing at a quality target: the tuned rung's frame
@@ -345,7 +315,7 @@ void PlayerApp::render_volume() {
   request.metric = &frame_metric();
   request.tf = &tf;
   if (mesh_surface && fs.surface)  // (a step's mesh is read only while it is shown)
-    renderer->compositor()->set_surface(mesh_surface->frame(state_.step, fs.surface_px));
+    viewer_->renderer().compositor()->set_surface(mesh_surface->frame(state_.step, fs.surface_px));
   was_within_ = within_;
   tspgl::DrawnFrame drawn;
   // Paused after playing, or settled after a change: full-resolution bands over a picture
@@ -368,8 +338,7 @@ void PlayerApp::render_volume() {
 }
 
 tspgl::FrameDriver& PlayerApp::driver() {
-  if (!driver_) driver_ = std::make_unique<tspgl::FrameDriver>(*renderer);
-  return *driver_;
+  return viewer_->driver();
 }
 
 // A few steps a frame, round robin: how much of what each step's frame would upload is in RAM
@@ -381,9 +350,9 @@ void PlayerApp::update_ready(const tsp::Camera& cam, const tspgl::RenderSettings
     const int t = ready_next_;
     ready_next_ = (ready_next_ + 1) % n;
     const std::vector<tsp::BrickKey> keys =
-        renderer->bricks_to_upload(t, cam, frame_settings, frame_metric(), stops);
+        viewer_->renderer().bricks_to_upload(t, cam, frame_settings, frame_metric(), stops);
     int in_ram = 0;
-    for (const tsp::BrickKey& key : keys) in_ram += renderer->brick_cache().contains(key.brick, key.step);
+    for (const tsp::BrickKey& key : keys) in_ram += viewer_->renderer().brick_cache().contains(key.brick, key.step);
     ready[std::size_t(t)] = keys.empty() ? 1.f : float(in_ram) / float(keys.size());
   }
 }
@@ -483,7 +452,7 @@ void PlayerApp::frame() {
     switch_started_s_ = -1;
   }
   if (state_.camera.width > 0 && state_.camera.height > 0) {
-    const tsp::Camera cam(file->tree().octree().dims(), state_.camera);
+    const tsp::Camera cam(viewer_->file().tree().octree().dims(), state_.camera);
     draw_cut_overlay(cam);
     draw_annotations(cam);
     if (state_.panels) draw_probe_overlay(cam);
@@ -537,7 +506,7 @@ void PlayerApp::run() {
     ++frames;
   }
   save_session_entry();  // quit or closed: the next window on this input starts here
-  const tsp::BrickCacheStats b = renderer->brick_cache().stats();
+  const tsp::BrickCacheStats b = viewer_->renderer().brick_cache().stats();
   std::printf("played %d frames; bricks: %lld hits, %lld misses, %lld prefetched\n", frames,
               static_cast<long long>(b.hits), static_cast<long long>(b.misses),
               static_cast<long long>(b.prefetched));

@@ -32,6 +32,7 @@
 #include "player/script.h"
 #include "player/session.h"
 #include "player/tf_handles.h"
+#include "player/viewer_session.h"
 #include "render/frame_driver.h"
 #include "render/mesh_surface.h"
 #include "render/tile_refinement.h"
@@ -105,9 +106,15 @@ class PlayerApp {
   const PlayerState& state() const { return state_; }
 
   // ---- what the frames use (player_ui.cpp reads it) ----
-  std::unique_ptr<tsp::TspFile> file;
   std::unique_ptr<tspgl::GlContext> ctx;
-  std::unique_ptr<tspgl::VolumeRenderer> renderer;  ///< draws `file` (the shown field)
+  /// The open file, its metric, renderer, prefetcher and frame driver (viewer_session.h).
+  const ViewerSession& viewer() const { return *viewer_; }
+
+ private:
+  /// See viewer(); File > Open replaces it (declared after ctx: it goes first).
+  std::unique_ptr<ViewerSession> viewer_;
+
+ public:
   /// The boundary of options' surface mesh and its colours (the first file only; File > Open
   /// of another file drops it), drawn when state.settings.surface is on.
   std::optional<tspgl::MeshSurface> mesh_surface;
@@ -115,8 +122,6 @@ class PlayerApp {
   /// Turning the surface on without one: reads the played input's boundary when it is a mesh,
   /// else says what is needed and turns it off again.
   void offer_surface();
-  std::unique_ptr<tsp::BrickPrefetcher>
-      prefetcher;  ///< reads into renderer's brick cache; made after it
   tsp::TransferFunction tf;
   /// The TF editor's control points, by increasing value (changed by the tf-point commands).
   const std::vector<tsp::TfPoint>& tf_points() const { return tf_points_; }
@@ -153,8 +158,6 @@ class PlayerApp {
   // ---- statistics for the HUD ----
   tspgl::FrameReport last;
   std::deque<FrameSample> history;
-  double metric_ms = 0;                 ///< last metric (re)compute
-  std::int64_t metric_evaluations = 0;  ///< node evaluations of the last recompute
 
   /// Applies a transfer function (from a file, preset or the editor) from the next frame on.
   void set_tf(const tsp::TransferFunction& next, bool resample_points);
@@ -281,7 +284,9 @@ class PlayerApp {
   /// the file does not have, tsp::Error when it cannot be opened; nothing changes then.
   void switch_field(const std::string& name);
   /// The shown field's name.
-  const std::string& field() const { return file->fields()[std::size_t(file->field_index())]; }
+  const std::string& field() const {
+    return viewer_->file().fields()[std::size_t(viewer_->file().field_index())];
+  }
   /// Milliseconds from the last field switch to its first complete frame (−1: none yet).
   double field_switch_ms = -1;
 
@@ -344,7 +349,6 @@ class PlayerApp {
   void trace_changes();  // --trace: prints what changed since the last frame
   void apply_key(int key);  // one key press (or repeat) from the queue
 
-  void refresh_reference();
   /// The current metric as frames read it (the reference metric brought up to date first).
   tsp::FrameMetric& frame_metric();
   void request_prefetch(const tsp::Camera& cam, const tspgl::RenderSettings& frame_settings,
@@ -400,10 +404,6 @@ class PlayerApp {
     bool playing = false, lod_on = true, panels = true;
     bool first = true;
   } traced_;
-  std::unique_ptr<tsp::LazyErrors> lazy_;
-  tsp::MetricResult reference_;
-  tsp::WholeTreeMetric reference_nodes_{reference_};  ///< reference_ as a FrameMetric
-  std::uint64_t reference_version_ = ~std::uint64_t(0);
   std::vector<ScriptLine> script_;
   std::size_t script_pos_ = 0;
   int wait_frames_ = 0;
@@ -418,7 +418,6 @@ class PlayerApp {
   int prefetched_for_ = -1;  ///< step whose successors were last requested
   int prefetched_cut_ = -1;  ///< cut size whose likely splits were last requested
   double start_s_ = 0, last_frame_s_ = 0;
-  std::unique_ptr<tspgl::FrameDriver> driver_;  ///< draws renderer's frames; reset with it
   std::unique_ptr<OpenJob> open_job_;
   /// What a tuning was made for: a change of any re-tunes (the camera's direction does not).
   struct TuneKey {

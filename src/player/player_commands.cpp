@@ -40,20 +40,20 @@ struct CommandApplier {
   }
   void operator()(const cmd::SetLoop& c) const { state().loop = c.on; }
   void operator()(const cmd::LoadTf& c) const {
-    const tsp::ValueHistogram histogram = tsp::histogram_of(*app.file);
+    const tsp::ValueHistogram histogram = tsp::histogram_of(app.viewer().file());
     const tsp::ValueRange over =
-        c.over_present_range ? app.tf.domain() : app.file->tree().value_range();
+        c.over_present_range ? app.tf.domain() : app.viewer().file().tree().value_range();
     app.set_tf(tsp::transfer_function_from_arg(c.arg, over, app.tf.size(), {}, &histogram), true);
     app.tf_label = tf_label_of(c.arg);
     if (c.arg.rfind("preset:", 0) != 0) {  // a file: said, and whether it misses the data
       const std::string w =
-          tsp::tf_range_warning(app.tf, app.file->metadata().data_range, "fit to data");
+          tsp::tf_range_warning(app.tf, app.viewer().file().metadata().data_range, "fit to data");
       app.status = "loaded " + c.arg + (w.empty() ? "" : "; " + w);
     }
   }
   void operator()(const cmd::StretchTf& c) const {  // the map as it is, over the chosen range
     const tsp::TfRangeChoice r = tsp::parse_tf_range(c.range);
-    const tsp::TspFile& f = *app.file;
+    const tsp::TspFile& f = app.viewer().file();
     const tsp::ValueRange to =
         r.mode == tsp::TfRangeChoice::Mode::explicit_range ? r.range
         : r.mode == tsp::TfRangeChoice::Mode::visible

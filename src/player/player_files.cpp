@@ -128,12 +128,10 @@ void PlayerApp::open_file(const std::string& path) {
   std::unique_ptr<tsp::TspFile> next = tsp::TspFile::open(path);  // throws: nothing changed
   save_session_entry();  // the session of the input played so far
   if (recorder_) stop_recording();  // a movie has one size and one dataset
-  prefetcher.reset();
-  if (renderer) compositor_ = renderer->compositor();
-  renderer.reset();
+  // The programs outlive the session: every renderer of the window shares them.
+  if (viewer_->has_renderer()) compositor_ = viewer_->renderer().compositor();
+  viewer_.reset();  // the old file, metric, renderer, prefetcher and driver
   parked_.clear();
-  driver_.reset();
-  file = std::move(next);
   options_.tsp_path = path;
   mesh_surface.reset();  // the surface belongs to the file opened first
   surface_mesh_.clear();
@@ -142,13 +140,12 @@ void PlayerApp::open_file(const std::string& path) {
   if (compositor_) compositor_->set_surface({});
   const bool surface_asked = state_.settings.surface;
   state_.settings.surface = false;
-  const tsp::TspTree& tree = file->tree();
   // The TF the player started with, fitted to the new data (a map edited for other data
   // rarely suits this one).
-  tsp::TransferFunction fresh = start_tf(*file);
+  tsp::TransferFunction fresh = start_tf(*next);
   tf.assign(fresh);  // (its version grows: what keys on it sees the change)
-  lazy_ = std::make_unique<tsp::LazyErrors>(tree, state_.metric, tf);
-  reference_version_ = ~std::uint64_t(0);
+  viewer_ = std::make_unique<ViewerSession>(std::move(next), tf, state_.metric);
+  const tsp::TspTree& tree = viewer_->file().tree();
   set_tf(tf, true);
   tf_label = tf_label_of(options_.tf);
   state_.step = 0;
@@ -165,7 +162,7 @@ void PlayerApp::open_file(const std::string& path) {
   ready_next_ = 0;
   state_.camera = tsp::CameraParams{};
   // The last file's exaggeration rarely suits this one: a flat one gets its own.
-  options_.scale = options_.physical_proportions ? tsp::vertical_exaggeration(file->frame())
+  options_.scale = options_.physical_proportions ? tsp::vertical_exaggeration(viewer_->file().frame())
                                                  : std::array<double, 3>{1, 1, 1};
   place_camera(state_.camera);
   initial_camera = state_.camera;
@@ -185,7 +182,7 @@ void PlayerApp::open_file(const std::string& path) {
 
 void PlayerApp::switch_field(const std::string& name) {
   if (name == field()) return;
-  const std::vector<std::string>& names = file->fields();
+  const std::vector<std::string>& names = viewer_->file().fields();
   if (std::find(names.begin(), names.end(), name) == names.end()) {
     std::string list;
     for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
@@ -201,26 +198,20 @@ void PlayerApp::switch_field(const std::string& name) {
     next.tf = start_tf(*next.file);
   }
   switch_started_s_ = clock_.seconds();
-  prefetcher.reset();  // it reads into the renderer's brick cache
   const std::string current = field();
-  if (renderer) compositor_ = renderer->compositor();
-  parked_.park(current, {std::move(file), std::move(renderer), tf});
-  file = std::move(next.file);
+  FieldShelf::Field shown{nullptr, nullptr, tf};
   tf.assign(next.tf);  // (its version grows past both fields')
-  lazy_ = std::make_unique<tsp::LazyErrors>(file->tree(), state_.metric, tf);
-  reference_version_ = ~std::uint64_t(0);
+  std::tie(shown.file, shown.renderer) = viewer_->swap_field(std::move(next.file), compositor_);
+  parked_.park(current, std::move(shown));
   tf_points_.clear();
   set_tf(tf, true);
   applied_probe_version_ = ~std::uint64_t(0);  // the probes go to this field's renderer too
   if (next.renderer) {
-    renderer = std::move(next.renderer);
-    renderer->set_transfer_function(tf);
-    prefetcher = std::make_unique<tsp::BrickPrefetcher>(renderer->brick_cache());
+    viewer_->adopt_renderer(std::move(next.renderer));
     prefetched_for_ = prefetched_cut_ = -1;
   } else {
     make_renderer();
   }
-  driver_.reset();
   place_camera(state_.camera);  // (another grid: its own voxel size and place in the frame)
   place_camera(initial_camera);
   ready.assign(std::size_t(steps()), -1.f);
@@ -265,13 +256,13 @@ void PlayerApp::stop_recording() {
 tsp::Image PlayerApp::export_view() {
   tsp::Image img = read_view();
   if (state_.annotations) {
-    const auto& times = file->metadata().times;
-    tspgl::annotate_frame(img, tsp::Camera(file->tree().octree().dims(), state_.camera),
-                          file->tree().octree().dims(), tf, state_.step,
+    const auto& times = viewer_->file().metadata().times;
+    tspgl::annotate_frame(img, tsp::Camera(viewer_->file().tree().octree().dims(), state_.camera),
+                          viewer_->file().tree().octree().dims(), tf, state_.step,
                           times.empty() ? std::nullopt
                                         : std::optional<std::string>(tsp::format_time(
                                               times[std::size_t(state_.step)],
-                                              file->metadata().time_units)),
+                                              viewer_->file().metadata().time_units)),
                           field(), tsp::exaggeration_text(options_.scale, true),
                           mesh_surface && state_.settings.surface
                               ? tspgl::SurfaceLegend{&mesh_surface->tf(), mesh_surface->field()}
@@ -343,8 +334,8 @@ void PlayerApp::write_stats(const std::string& path) const {
   j["panels"] = state_.panels;
   j["surface_mesh"] = surface_mesh_;  // the mesh whose boundary is drawn ("": none)
   j["status"] = status;
-  j["field"] = file->fields()[std::size_t(file->field_index())];
-  j["fields"] = file->fields();
+  j["field"] = viewer_->file().fields()[std::size_t(viewer_->file().field_index())];
+  j["fields"] = viewer_->file().fields();
   j["field_switch_ms"] = field_switch_ms;
   nlohmann::json jp = nlohmann::json::array();
   for (const tsp::Probe& p : state_.probes) jp.push_back(tsp::to_string(p));
@@ -352,7 +343,7 @@ void PlayerApp::write_stats(const std::string& path) const {
   j["probe_op"] = tsp::to_string(state_.probe_op);
   j["axis_scale"] = options_.scale;  // the stretch per axis, automatic for a flat domain
   j["exaggeration"] = tsp::exaggeration_text(options_.scale);  // as the picture names it
-  j["ram_mib"] = double(renderer->brick_cache().stats().resident_bytes) / (1 << 20);
+  j["ram_mib"] = double(viewer_->renderer().brick_cache().stats().resident_bytes) / (1 << 20);
   j["rss_mib"] = double(tsp::resident_bytes()) / (1 << 20);
   j["peak_rss_mib"] = double(tsp::peak_resident_bytes()) / (1 << 20);
   j["step"] = state_.step;

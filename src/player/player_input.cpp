@@ -84,7 +84,7 @@ void PlayerApp::install_callbacks() {
 void PlayerApp::handle_input() {
   const ImGuiIO& io = ImGui::GetIO();
   const bool gizmo = !io.WantCaptureMouse && state_.camera.width > 0 && state_.camera.height > 0 &&
-                     probe_gizmo(tsp::Camera(file->tree().octree().dims(), state_.camera));
+                     probe_gizmo(tsp::Camera(viewer_->file().tree().octree().dims(), state_.camera));
   // The frame a button goes down carries the cursor's way to the press (from the timeline, say,
   // in one motion with the press): a drag moves the view from the press on, not by that jump.
   const bool pressed_now = io.MouseClicked[0] || io.MouseClicked[1] || io.MouseClicked[2];

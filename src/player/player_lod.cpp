@@ -35,7 +35,7 @@ constexpr ImU32 kLevelColours[] = {IM_COL32(80, 220, 80, 200), IM_COL32(240, 220
 
 void PlayerApp::set_lod(bool on) {
   state_.lod_on = on;
-  if (driver_) driver_->set_lod({});  // a new controller when it is turned on again
+  viewer_->reset_lod();  // a new controller when it is turned on again
 }
 
 tspgl::LodSpec PlayerApp::lod_spec(double now_s) {
@@ -66,7 +66,7 @@ void PlayerApp::measured_lod(double render_ms, double frame_ms) {
 }
 
 void PlayerApp::set_focus_at(double x, double y) {
-  const tsp::Dims d = file->tree().octree().dims();
+  const tsp::Dims d = viewer_->file().tree().octree().dims();
   lod_loop_.focus_on(focus_at(tsp::Camera(d, state_.camera), d, x, y), clock_.seconds());
 }
 
@@ -153,7 +153,7 @@ void PlayerApp::draw_annotations(const tsp::Camera& cam) {
   // Crisp one-pixel lines in exactly the outline colour (as render --annotate draws them).
   dl->Flags &= ~ImDrawListFlags_AntiAliasedLines;
   const glm::dmat4 vp = cam.view_projection();
-  const tsp::Octree& o = file->tree().octree();
+  const tsp::Octree& o = viewer_->file().tree().octree();
   const tsp::Aabb box = tsp::geometric_box(tsp::Box{{0, 0, 0}, {o.dims().x, o.dims().y, o.dims().z}},
                                            o.dims());
   ImVec2 p[8];
@@ -179,13 +179,13 @@ void PlayerApp::draw_annotations(const tsp::Camera& cam) {
     }
   }
   // Step and physical time over the volume, top centre.
-  const auto& times = file->metadata().times;
+  const auto& times = viewer_->file().metadata().times;
   char label[96];
   if (times.empty())
     std::snprintf(label, sizeof label, "step %d", state_.step);
   else
     std::snprintf(label, sizeof label, "step %d   t = %s", state_.step,
-                  tsp::format_time(times[std::size_t(state_.step)], file->metadata().time_units).c_str());
+                  tsp::format_time(times[std::size_t(state_.step)], viewer_->file().metadata().time_units).c_str());
   // A stretched axis is named under it ("z × 30"): heights are not to scale. Both on an opaque
   // box (as the export's caption, jobs/annotate.cpp), so that the outline never crosses them.
   const std::string k = tsp::exaggeration_text(options_.scale);
@@ -216,7 +216,7 @@ void PlayerApp::draw_cut_overlay(const tsp::Camera& cam) {
   const WindowRect& v = layout.view;
   ImDrawList* dl = view_draw_list(v);
   const glm::dmat4 vp = cam.view_projection();
-  const tsp::Octree& o = file->tree().octree();
+  const tsp::Octree& o = viewer_->file().tree().octree();
   for (int id = 0; id < o.size(); ++id) {
     if (!in_cut(o, lod_loop_.drawn_cut(), id)) continue;
     const tsp::Aabb box = tsp::geometric_box(o.node(id).box, o.dims());

@@ -87,7 +87,7 @@ nlohmann::json PlayerApp::tuning_disk_key(const tsp::CameraParams& view) const {
 
 PlayerApp::TuneKey PlayerApp::tune_key() const {
   TuneKey k;
-  k.file = file.get();
+  k.file = &viewer_->file();
   k.field = field();
   k.tf_version = tf.version();
   k.metric = state_.metric;
@@ -129,7 +129,7 @@ void PlayerApp::start_tuning() {
     return;
   }
   try {
-    tuner_ = std::make_unique<tspgl::PlaybackTuner>(*ctx, *file, tf, frame_metric(), view,
+    tuner_ = std::make_unique<tspgl::PlaybackTuner>(*ctx, viewer_->file(), tf, frame_metric(), view,
                                                     state_.settings);
   } catch (const tsp::Error& e) {
     status = std::string("playback tuning: ") + e.what();

@@ -85,8 +85,8 @@ std::pair<glm::dvec3, glm::dvec3> volume_box(const tsp::TspFile& f, const Grid& 
 }  // namespace
 
 tsp::Probe PlayerApp::default_probe(tsp::Probe::Kind kind) const {
-  const Grid grid = grid_of(*file);
-  const auto [lo, hi] = volume_box(*file, grid);
+  const Grid grid = grid_of(viewer_->file());
+  const auto [lo, hi] = volume_box(viewer_->file(), grid);
   const glm::dvec3 c = 0.5 * (lo + hi), ext = hi - lo;
   tsp::Probe p;
   p.kind = kind;
@@ -116,14 +116,14 @@ void PlayerApp::add_probe(const tsp::Probe& p) {
 void PlayerApp::apply_probes() {
   if (probe_version == applied_probe_version_ && tf.version() == applied_probe_tf_) return;
   try {
-    const tsp::ClipRegion clip(state_.probes, state_.probe_op, file->metadata().origin, file->metadata().spacing);
-    renderer->set_clip(clip, state_.probe_surface && !state_.probes.empty()
+    const tsp::ClipRegion clip(state_.probes, state_.probe_op, viewer_->file().metadata().origin, viewer_->file().metadata().spacing);
+    viewer_->renderer().set_clip(clip, state_.probe_surface && !state_.probes.empty()
                                  ? std::optional<tsp::TransferFunction>(tf)
                                  : std::nullopt);
   } catch (const tsp::Error& e) {  // (the UI keeps values valid; a script may not)
     status = e.what();
     state_.probes.clear();
-    renderer->set_clip(tsp::ClipRegion{}, std::nullopt);
+    viewer_->renderer().set_clip(tsp::ClipRegion{}, std::nullopt);
   }
   applied_probe_version_ = probe_version;
   applied_probe_tf_ = tf.version();
@@ -134,8 +134,8 @@ bool PlayerApp::probe_gizmo(const tsp::Camera& cam) {
   if (probe_selected < 0 || probe_selected >= int(state_.probes.size()) || !(io.KeyCtrl || io.KeyAlt))
     return false;
   tsp::Probe& p = state_.probes[std::size_t(probe_selected)];
-  const Grid grid = grid_of(*file);
-  const auto [lo, hi] = volume_box(*file, grid);
+  const Grid grid = grid_of(viewer_->file());
+  const auto [lo, hi] = volume_box(viewer_->file(), grid);
   const glm::dvec3 vc = 0.5 * (lo + hi);
   const bool plane = p.kind == tsp::Probe::Kind::plane;
   // A plane's handle: its point nearest the volume's centre.
@@ -178,11 +178,11 @@ bool PlayerApp::probe_gizmo(const tsp::Camera& cam) {
 
 void PlayerApp::draw_probe_overlay(const tsp::Camera& cam) {
   if (state_.probes.empty()) return;
-  const Grid grid = grid_of(*file);
+  const Grid grid = grid_of(viewer_->file());
   const WindowRect& v = layout.view;
   ImDrawList* dl = ImGui::GetBackgroundDrawList();
   dl->PushClipRect(ImVec2(float(v.x), float(v.y)), ImVec2(float(v.x + v.w), float(v.y + v.h)), false);
-  const auto [lo, hi] = volume_box(*file, grid);
+  const auto [lo, hi] = volume_box(viewer_->file(), grid);
   for (std::size_t i = 0; i < state_.probes.size(); ++i) {
     const tsp::Probe& p = state_.probes[i];
     const ImU32 col = int(i) == probe_selected ? kSelectedColour : kProbeColour;

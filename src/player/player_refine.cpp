@@ -49,10 +49,10 @@ bool PlayerApp::refine_draw(double now_s, tspgl::FrameRequest& request, tspgl::D
                        !state_.playing && !(mesh_surface && request.settings.surface);
   // Another renderer (a field switch, File > Open, a cache change) is a change too: its
   // picture is not the one the bands were drawn over.
-  const bool new_renderer = renderer.get() != refine_renderer_;
+  const bool new_renderer = &viewer_->renderer() != refine_renderer_;
   if (new_renderer) {
     full_driver_.reset();
-    refine_renderer_ = renderer.get();
+    refine_renderer_ = &viewer_->renderer();
   }
   if (!applies || lod_loop_.changed() || new_renderer) {
     refine_on_ = false;
@@ -86,7 +86,7 @@ bool PlayerApp::refine_draw(double now_s, tspgl::FrameRequest& request, tspgl::D
     bands_.start(view.width, view.height);
   }
   ++refine_frames_;
-  if (!full_driver_) full_driver_ = std::make_unique<tspgl::FrameDriver>(*renderer);
+  if (!full_driver_) full_driver_ = std::make_unique<tspgl::FrameDriver>(viewer_->renderer());
   tspgl::FrameDriver& fd = *full_driver_;
   stage_ = "refining";
   if (base_pending_) {  // the fastest rung within the target, whole, under the bands

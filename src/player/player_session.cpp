@@ -85,15 +85,15 @@ Session PlayerApp::capture_session() const {
 }
 
 void PlayerApp::check_session(const Session& s, const std::string& origin) const {
-  const std::vector<std::string>& names = file->fields();
+  const std::vector<std::string>& names = viewer_->file().fields();
   if (!s.field.empty() && std::find(names.begin(), names.end(), s.field) == names.end())
     throw tsp::FormatError(origin + ": the session shows the field '" + s.field + "', which " +
                            options_.tsp_path + " does not hold");
   try {
     std::vector<tsp::Probe> probes;
     for (const std::string& text : s.probes) probes.push_back(tsp::parse_probe(text));
-    (void)tsp::ClipRegion(probes, tsp::parse_probe_op(s.probe_op), file->metadata().origin,
-                          file->metadata().spacing);
+    (void)tsp::ClipRegion(probes, tsp::parse_probe_op(s.probe_op), viewer_->file().metadata().origin,
+                          viewer_->file().metadata().spacing);
     if (!s.tf_entries.empty()) (void)tsp::TransferFunction(s.tf_domain, int(s.tf_entries.size()));
   } catch (const tsp::Error& e) {
     throw tsp::FormatError(origin + ": " + e.what());

@@ -30,23 +30,19 @@ float largest_error(const tsp::NodeErrors& e) {
 void PlayerApp::set_metric(tsp::Metric m) {
   if (m == state_.metric) return;
   state_.metric = m;
-  if (m != tsp::Metric::reference)
-    lazy_ = std::make_unique<tsp::LazyErrors>(file->tree(), m, tf);
-  else
-    reference_version_ = ~std::uint64_t(0);
-  renderer->drop_unreachable(frame_metric(), state_.settings.tol, state_.settings.skip_transparent,
+  viewer_->set_metric(m);
+  viewer_->renderer().drop_unreachable(frame_metric(), state_.settings.tol, state_.settings.skip_transparent,
                              state_.settings.span_step);
   update_tol_max();
 }
 
 void PlayerApp::update_tol_max() {
-  tol_max = largest_error(state_.metric == tsp::Metric::reference ? reference_.errors
-                                                           : lazy_->errors_for_step(state_.step));
+  tol_max = largest_error(viewer_->errors_for_step(state_.step));
 }
 
 void PlayerApp::set_tolerances(tsp::Tolerances t) {
   state_.settings.tol = {std::max(0.0, t.spatial), std::max(0.0, t.temporal)};
-  renderer->drop_unreachable(frame_metric(), state_.settings.tol, state_.settings.skip_transparent,
+  viewer_->renderer().drop_unreachable(frame_metric(), state_.settings.tol, state_.settings.skip_transparent,
                              state_.settings.span_step);
   tol_readout_due = true;  // what they buy, measured after the next frame's volume
 }
@@ -75,7 +71,7 @@ void PlayerApp::offer_surface() {
   std::string why;
   if (!input.empty() && tsp::is_mesh_input(input, options_.input.source.allow_external)) {
     try {
-      mesh_surface.emplace(input, options_.surface_field, *file, options_.surface_tf, state_.step);
+      mesh_surface.emplace(input, options_.surface_field, viewer_->file(), options_.surface_tf, state_.step);
       surface_mesh_ = input;
       status = "surface: the boundary of " + input + ", the mesh this file was built from";
       return;

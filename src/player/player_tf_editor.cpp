@@ -55,15 +55,15 @@ const EditorHistogram& histogram_for(PlayerApp& app, const tsp::ValueRange& d, f
   static EditorHistogram cached;
   static const void* cached_file = nullptr;
   const int bins = std::clamp(int(width / kBinPixels), 8, kMaxBins);
-  if (cached_file != app.file.get() || cached.over.lo != d.lo || cached.over.hi != d.hi ||
+  if (cached_file != &app.viewer().file() || cached.over.lo != d.lo || cached.over.hi != d.hi ||
       int(cached.counts.size()) != bins) {
     try {
-      cached = editor_histogram(*app.file, app.state().step, d, bins);
+      cached = editor_histogram(app.viewer().file(), app.state().step, d, bins);
     } catch (const tsp::Error& e) {
       cached = {d, std::vector<double>(std::size_t(bins), 0.0), -1};
       app.status = std::string("histogram: ") + e.what();
     }
-    cached_file = app.file.get();
+    cached_file = &app.viewer().file();
     app.editor_histogram_step = cached.step;
     app.editor_histogram_bins = int(
         std::count_if(cached.counts.begin(), cached.counts.end(), [](double c) { return c > 0; }));

@@ -25,7 +25,7 @@ void PlayerApp::measure_tolerance() {
   view.width = std::max(1, int(std::lround(view.width * shrink)));
   view.height = std::max(1, int(std::lround(view.height * shrink)));
   try {
-    tspgl::ImageProbe probe(*ctx, *file, tf, view, {state_.step});
+    tspgl::ImageProbe probe(*ctx, viewer_->file(), tf, view, {state_.step});
     tspgl::RenderSettings s = state_.settings;
     s.upload_budget = 0;  // whole pictures
     tspgl::RenderSettings exact = s;

@@ -218,13 +218,13 @@ void timeline_section(PlayerApp& app) {
   static bool resume_after_scrub = false;
   const bool was_playing = app.state().playing;
   // The step with its physical time when the file has times ("step 3  t = 0.15").
-  const auto& times = app.file->metadata().times;
+  const auto& times = app.viewer().file().metadata().times;
   char label[96];
   if (times.empty())
     std::snprintf(label, sizeof label, "step %%d");
   else
     std::snprintf(label, sizeof label, "step %%d  t = %s",
-                  tsp::format_time(times[std::size_t(app.state().step)], app.file->metadata().time_units)
+                  tsp::format_time(times[std::size_t(app.state().step)], app.viewer().file().metadata().time_units)
                       .c_str());
   // (Its text beside the grab, where the grab cannot cover it: with few steps the grab is wide.)
   const bool step_hidden = hide_slider_text("##step");
@@ -361,9 +361,9 @@ bool section(PlayerApp& app, const char* title, bool default_open) {
 
 // The field shown, for a file with several (each keeps its TF and its caches).
 void field_row(PlayerApp& app) {
-  const auto& fields = app.file->fields();
+  const auto& fields = app.viewer().file().fields();
   if (fields.size() <= 1) return;
-  const int current = app.file->field_index();
+  const int current = app.viewer().file().field_index();
   const std::string label = fit_label("field");
   if (ImGui::BeginCombo(label.c_str(), fields[std::size_t(current)].c_str())) {
     for (std::size_t k = 0; k < fields.size(); ++k)
@@ -438,9 +438,9 @@ void stats_section(PlayerApp& app) {
     ImGui::TextColored(ImVec4(1, 0.8f, 0.2f, 1),
                        "%lld textures wait for later frames (flat meanwhile)",
                        static_cast<long long>(r.deferred_textures));
-  ImGui::Text("metric recompute %.2f ms (%lld nodes)", app.metric_ms,
-              static_cast<long long>(app.metric_evaluations));
-  const tsp::BrickCacheStats b = app.renderer->brick_cache().stats();
+  ImGui::Text("metric recompute %.2f ms (%lld nodes)", app.viewer().metric_ms(),
+              static_cast<long long>(app.viewer().metric_evaluations()));
+  const tsp::BrickCacheStats b = app.viewer().renderer().brick_cache().stats();
   ImGui::Text("bricks in RAM %lld (%.1f MiB)\n  %lld hits, %lld misses, %lld prefetched",
               static_cast<long long>(b.resident_count), double(b.resident_bytes) / kBytesPerMiB,
               static_cast<long long>(b.hits), static_cast<long long>(b.misses),
