@@ -8,7 +8,7 @@ namespace tspplayer {
 ViewerSession::ViewerSession(std::unique_ptr<tsp::TspFile> file, const tsp::TransferFunction& tf,
                              tsp::Metric metric)
     : file_(std::move(file)), tf_(tf), metric_(metric) {
-  lazy_ = std::make_unique<tsp::LazyErrors>(file_->tree(), metric_, tf_);
+  set_metric(metric);  // (the reference metric has no lazy evaluation: File > Open threw)
 }
 
 ViewerSession::~ViewerSession() {
@@ -30,7 +30,7 @@ void ViewerSession::set_metric(tsp::Metric m) {
 }
 
 void ViewerSession::tf_replaced() {
-  lazy_->set_transfer_function(tf_);
+  if (lazy_) lazy_->set_transfer_function(tf_);
 }
 
 void ViewerSession::evaluate_step(int step) {
@@ -61,7 +61,8 @@ tsp::FrameMetric& ViewerSession::frame_metric() {
 }
 
 const tsp::NodeErrors& ViewerSession::errors_for_step(int step) {
-  return metric_ == tsp::Metric::reference ? reference_.errors : lazy_->errors_for_step(step);
+  // (The reference metric of a file just opened or swapped in is computed here, not read stale.)
+  return frame_metric().errors_for_step(step);
 }
 
 void ViewerSession::make_renderer(tspgl::GlContext& ctx, tsp::CachePolicy cache,
@@ -95,7 +96,8 @@ ViewerSession::swap_field(std::unique_ptr<tsp::TspFile> next,
   std::pair<std::unique_ptr<tsp::TspFile>, std::unique_ptr<tspgl::VolumeRenderer>> old{
       std::move(file_), std::move(renderer_)};
   file_ = std::move(next);
-  lazy_ = std::make_unique<tsp::LazyErrors>(file_->tree(), metric_, tf_);
+  lazy_.reset();  // (of the other field's tree)
+  set_metric(metric_);
   reference_version_ = ~std::uint64_t(0);
   return old;
 }

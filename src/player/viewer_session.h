@@ -25,9 +25,8 @@ namespace tspplayer {
 class ViewerSession {
  public:
   /// Takes file and evaluates metric over tf (held by reference: it must outlive this object;
-  /// its edits are seen through its version). No renderer until make_renderer(). Throws
-  /// tsp::UsageError for a metric the lazy evaluation cannot serve (none: the reference metric
-  /// is computed by frame_metric()).
+  /// its edits are seen through its version). No renderer until make_renderer(). Never throws
+  /// but bad_alloc.
   ViewerSession(std::unique_ptr<tsp::TspFile> file, const tsp::TransferFunction& tf,
                 tsp::Metric metric);
   /// Stops the prefetcher before the renderer whose cache it fills goes (the GL context must be
@@ -44,8 +43,9 @@ class ViewerSession {
   // ---- the metric ----
   /// The metric frames read.
   tsp::Metric metric() const { return metric_; }
-  /// Switches to metric m (approximate or perceptual: a fresh lazy evaluation; reference:
-  /// computed in full, blocking, at the next frame_metric()). Never throws but bad_alloc.
+  /// Switches to metric m (scalar, approximate or perceptual: a fresh lazy evaluation;
+  /// reference: computed in full, blocking, at the next frame_metric()). Never throws but
+  /// bad_alloc.
   void set_metric(tsp::Metric m);
   /// The TF object was replaced whole (not edited): the lazy metric evaluates every node anew
   /// on demand. Never throws.
@@ -55,7 +55,8 @@ class ViewerSession {
   void evaluate_step(int step);
   /// The metric as frames read it (the reference metric brought up to the TF's version first).
   tsp::FrameMetric& frame_metric();
-  /// The per-node errors of step under the metric (the reference metric: as last computed).
+  /// The per-node errors of step under the metric (the reference metric brought up to date
+  /// first, as frame_metric()).
   const tsp::NodeErrors& errors_for_step(int step);
   /// Milliseconds of the last metric evaluation that evaluated any node (0: none yet).
   double metric_ms() const { return metric_ms_; }

@@ -247,6 +247,28 @@ TEST(Player, OpenSwitchesToAnotherFileAndBuildsARawInputFirst) {
   EXPECT_EQ(read_json(dir / "c.json")["file"], built);
 }
 
+// File > Open with the reference metric chosen: the new file's metric was made lazily, which the
+// reference metric cannot be (tsp::LazyErrors throws), so the open failed after the old renderer
+// was dropped and the next frame crashed (SIGSEGV). Now the opened file plays with its reference
+// errors, as render draws it.
+TEST(Player, OpenWithTheReferenceMetricPlaysTheOpenedFile) {
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
+  const fs::path dir = tsptest::temp_dir(), tsp = make_tsp(), other = dir / "v.tsp";
+  ASSERT_EQ(run_tspplay("generate vortex -o " + q(dir / "v.h5") + " --dims 24,22,20 --steps 3")
+                .exit_code, 0);
+  ASSERT_EQ(run_tspplay("build " + q(dir / "v.h5") + " -o " + q(other)).exit_code, 0);
+  const fs::path script = write_script(
+      "metric reference\nwait-frames 1\nopen " + other.string() + "\nwait-frames 2\nstats " +
+      (dir / "a.json").string() + "\nscreenshot " + (dir / "a.png").string() + "\nquit\n");
+  const auto r = run_tspplay("play " + q(tsp) + " --size " + kSize + " --no-session --script " +
+                             q(script));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err.find("cannot be evaluated lazily"), std::string::npos) << r.err;
+  EXPECT_EQ(read_json(dir / "a.json")["file"], other.string());
+  EXPECT_LT(tsp::diff_images(tsp::read_png((dir / "a.png").string()), render_step(other, 0)).mean,
+            kSameFrameDeltaE);
+}
+
 // File > Open (script `open`) never aborts (issue 28 item 7): a missing path, a device, a FIFO,
 // a bad .vtu and an HDF5 file refused for its external storage are each reported on stderr (and
 // in the trace) while the old file keeps playing; a valid input that needs building is built

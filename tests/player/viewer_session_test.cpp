@@ -69,7 +69,7 @@ TEST(ViewerSession, TheMetricIsTheLibrarysForTheFileAndFollowsTheTf) {
   const std::vector<tsp::Rgba> clear(8, tsp::Rgba{0, 0, 0, 0});
   tf.set_entries(0, clear);  // the low values transparent
   ref = tsp::compute_errors(tsp::Metric::reference, same->tree(), tf, same.get(), 0);
-  EXPECT_NE(v.errors_for_step(0).spatial, ref.errors.spatial);  // (not recomputed yet)
+  EXPECT_EQ(v.errors_for_step(0).spatial, ref.errors.spatial);  // recomputed for the edit
   EXPECT_EQ(v.frame_metric().errors_for_step(0).spatial, ref.errors.spatial);
   // Back to a lazy metric, over the edited TF; a replaced TF is seen whole.
   v.set_metric(tsp::Metric::perceptual);
@@ -79,6 +79,33 @@ TEST(ViewerSession, TheMetricIsTheLibrarysForTheFileAndFollowsTheTf) {
   v.tf_replaced();
   tsp::LazyErrors replaced(same->tree(), tsp::Metric::perceptual, tf);
   EXPECT_EQ(v.frame_metric().errors_for_step(0).spatial, replaced.errors_for_step(0).spatial);
+}
+
+// File > Open and a field switch with the reference metric chosen: the lazy metric cannot
+// serve it (LazyErrors throws), so opening threw after the old renderer was gone and the next
+// frame crashed; the session computes the new file's reference errors instead.
+TEST(ViewerSession, TheReferenceMetricSurvivesAnOpenAndAFieldSwap) {
+  const std::string a = series("ref_a", 0), b = series("ref_b", 1.5f);
+  const tsp::TransferFunction tf = ramp();
+  const std::unique_ptr<tsp::TspFile> fa = tsp::TspFile::open(a), fb = tsp::TspFile::open(b);
+  const tsp::MetricResult ref_a =
+      tsp::compute_errors(tsp::Metric::reference, fa->tree(), tf, fa.get(), 0);
+  const tsp::MetricResult ref_b =
+      tsp::compute_errors(tsp::Metric::reference, fb->tree(), tf, fb.get(), 0);
+  ASSERT_NE(ref_a.errors.spatial, ref_b.errors.spatial);
+  std::unique_ptr<ViewerSession> v;
+  ASSERT_NO_THROW(v = std::make_unique<ViewerSession>(tsp::TspFile::open(a), tf,
+                                                      tsp::Metric::reference));
+  EXPECT_EQ(v->errors_for_step(0).spatial, ref_a.errors.spatial);
+  v->evaluate_step(0);  // nothing lazy to evaluate
+  v->tf_replaced();     // nothing lazy to tell
+  std::shared_ptr<tspgl::SliceCompositor> programs;
+  v->swap_field(tsp::TspFile::open(b), programs);
+  EXPECT_EQ(v->errors_for_step(0).spatial, ref_b.errors.spatial);  // b's, not a's left over
+  EXPECT_EQ(v->frame_metric().errors_for_step(1).temporal, ref_b.errors.temporal);
+  v->set_metric(tsp::Metric::approximate);  // and a lazy metric again afterwards
+  tsp::LazyErrors lazy(fb->tree(), tsp::Metric::approximate, tf);
+  EXPECT_EQ(v->errors_for_step(0).spatial, lazy.errors_for_step(0).spatial);
 }
 
 TEST(ViewerSession, ItsRendererDrawsTheFileAndAFieldSwapHandsTheOldOneBack) {
