@@ -440,7 +440,14 @@ void PlayerApp::frame() {
     gl.Clear(GL_COLOR_BUFFER_BIT);
   }
   apply_probes();
+  hold_shown();  // (playing: the picture on screen, for a Space press while this frame draws)
   render_volume();
+  advance_tuning();
+  if (tol_readout_due && imgui_) measure_tolerance();
+  if (frame_delay_ms_ > 0)
+    std::this_thread::sleep_for(std::chrono::duration<double, std::milli>(frame_delay_ms_));
+  drop_for_space();  // Space went down while this frame drew: the step on screen stays
+  drawn_step_ = state.step;
   capture_frame();
   if (state.playing != rate_playing_) {  // playback's rate is measured from its start on
     rate_playing_ = state.playing;
@@ -454,10 +461,6 @@ void PlayerApp::frame() {
   // (The last two stay: a stall longer than the window reads as a slow rate, not none.)
   while (shown_at_s_.size() > 2 && shown_at_s_.front() < now - kShownWindowSeconds)
     shown_at_s_.pop_front();
-  advance_tuning();
-  if (tol_readout_due && imgui_) measure_tolerance();
-  if (frame_delay_ms_ > 0)
-    std::this_thread::sleep_for(std::chrono::duration<double, std::milli>(frame_delay_ms_));
 
   // Screenshots hold the volume only (read before the UI is drawn).
   // A screenshot waits for the first complete frame (no texture left for later frames).

@@ -525,6 +525,25 @@ class PlayerApp {
   std::vector<Command> pending_commands_;  ///< pushed by the panels this frame
   /// Carries out the pushed commands in order (errors to status). Never throws but bad_alloc.
   void apply_commands();
+
+  // ---- Space pauses on the step on screen (player_pause.cpp) ----
+  /// Before a playing frame draws a new step: holds the picture on screen (the target's copy)
+  /// and what the last frame reported with it.
+  void hold_shown();
+  /// After the frame is drawn, before it is shown: when a Space press for the player came
+  /// meanwhile, the held picture and step are put back (the frame is dropped), so the pause
+  /// the press makes stops on the step that was on screen, with its picture. True when it did.
+  bool drop_for_space();
+  struct Held {
+    int step = -1;  ///< the held picture's step (−1: none)
+    const void* renderer = nullptr;
+    WindowRect view;
+    tspgl::FrameReport report;
+    tsp::LodFrameStats lod;
+    bool within = false;
+    std::int64_t fragments = 0;
+  } held_;
+  int drawn_step_ = -1;  ///< the step the last frame drew (−1: none)
 };
 
 /// Carries out one command on app (line: its script line for messages, 0: a key or a panel).

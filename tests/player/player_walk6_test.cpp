@@ -1,0 +1,105 @@
+// Issue 47's sixth fresh-eye walk: each finding reproduced by a small window (128x96, scripted)
+// that failed before its fix. (Helpers: support/player_run.h.)
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "support/paths.h"
+#include "support/player_run.h"
+#include "tsp/report/image.h"
+#include "tsp/report/image_diff.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using tsptest::q;
+using tsptest::run_tspplay;
+using namespace tsptest::player;
+
+// Each line of a capture folder's frames.jsonl.
+std::vector<nlohmann::json> captured(const fs::path& dir) {
+  std::vector<nlohmann::json> frames;
+  std::ifstream in(dir / "frames.jsonl");
+  for (std::string line; std::getline(in, line);)
+    if (!line.empty()) frames.push_back(nlohmann::json::parse(line));
+  return frames;
+}
+
+// Space pauses on the step on screen when it went down, with its picture (a real X key,
+// xdotool): pressed while a slow frame draws step 2 (step 1 on screen, "trace: step 2" printed
+// as that frame began), the frame of step 2 is dropped and playback stops on step 1. Every frame
+// drawn (script capture) shows steps in order, never step 2 and never a step back; after the
+// pause each frame is at least as close to step 1's full-quality picture as the last playing
+// frame (the bands refine it; a coarser cut is never drawn). It paused on step 2, a step late;
+// the reverted fix (7d17e86) went back to step 1 from step 2's picture through a coarse cut.
+TEST(PlayerWalk6, SpacePausesOnTheStepOnScreenWithItsPicture) {
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
+  ASSERT_EQ(std::system("command -v xdotool > /dev/null"), 0)
+      << "xdotool missing (scripts/install-deps.sh installs it)";
+  const fs::path tsp = make_tsp(), dir = tsptest::temp_dir(), out = dir / "space.out";
+  const fs::path cap = dir / "cap";
+  const fs::path script =
+      write_script("capture " + cap.string() + "\nplay\nwait-seconds 120\nquit\n");
+  const std::string jsonl = q(cap / "frames.jsonl");
+  const std::string cmd =
+      log_waits(out) + "(" + q(tsptest::tspplay_bin()) + " play " + q(tsp) + " --size " + kSize +
+      " --no-session --quality 0 --speed 24 --trace --frame-delay-ms 800 --script " + q(script) +
+      " > " + q(out) + " 2>&1 &\n" + "w=$(xdotool search --sync --name " +
+      q("tspplay - " + tsp.string()) + " | head -1)\n"
+      "until_log 'trace: step 2'\n"
+      "xdotool key --window \"$w\" space\n"
+      "until_log 'trace: paused'\n"
+      // (the refinement done: the last frame captured is at full quality)
+      "for i in $(seq 600); do tail -1 " + jsonl + " | grep -q '\"stage\":\"full\"' && break; "
+      "sleep 0.1; done\n"
+      "quit_player)\n";
+  ASSERT_EQ(run_bash(dir / "space.sh", cmd), 0) << tsptest::read_file(out);
+  const std::string log = tsptest::read_file(out);
+  EXPECT_NE(log.find("trace: frame of step 2 dropped: Space went down while it was drawn; step 1 "
+                     "stays"),
+            std::string::npos)
+      << log;
+  const std::size_t last = log.rfind("trace: step ");
+  EXPECT_EQ(log.substr(last, log.find('\n', last) - last), "trace: step 1") << log;
+
+  const std::vector<nlohmann::json> frames = captured(cap);
+  ASSERT_FALSE(frames.empty());
+  std::size_t paused = 0;  // the first paused frame
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    EXPECT_LE(frames[k]["step"].get<int>(), 1) << frames[k].dump();
+    if (k > 0) {
+      EXPECT_GE(frames[k]["step"].get<int>(), frames[k - 1]["step"].get<int>());
+    }
+    if (!paused && k > 0 && !frames[k]["playing"].get<bool>()) paused = k;
+  }
+  ASSERT_GT(paused, 0u);
+  EXPECT_EQ(frames.back()["stage"], "full") << frames.back().dump();
+  // Against step 1 at full quality: the last playing frame, then never further.
+  const tsp::Image full = render_step(tsp, 1);
+  auto de = [&](std::size_t k) {
+    return tsp::diff_images(tsp::read_png((cap / frames[k]["file"].get<std::string>()).string()),
+                            full).mean;
+  };
+  // The frame that dropped step 2 showed step 1's picture as it was on screen.
+  ASSERT_GE(paused, 2u);
+  EXPECT_EQ(frames[paused - 2]["step"], 1);
+  const auto png = [&](std::size_t k) {
+    return tsp::read_png((cap / frames[k]["file"].get<std::string>()).string());
+  };
+  EXPECT_EQ(tsp::diff_images(png(paused - 2), png(paused - 1)).mean, 0.0);
+  double before = de(paused - 1);
+  for (std::size_t k = paused; k < frames.size(); ++k) {
+    const double now = de(k);
+    EXPECT_LE(now, before + 0.05) << "frame " << k << ": " << frames[k].dump();
+    before = std::min(before, now);
+  }
+  EXPECT_LT(de(frames.size() - 1), kSameFrameDeltaE);
+}
+
+}  // namespace
