@@ -102,4 +102,30 @@ TEST(PlayerWalk6, SpacePausesOnTheStepOnScreenWithItsPicture) {
   EXPECT_LT(de(frames.size() - 1), kSameFrameDeltaE);
 }
 
+// The labels the last frame drew (stats' ui_items) that contain text.
+std::vector<std::string> labels_with(const nlohmann::json& stats, const std::string& text) {
+  std::vector<std::string> found;
+  for (const nlohmann::json& it : stats["ui_items"])
+    if (it["label"].get<std::string>().find(text) != std::string::npos)
+      found.push_back(it["label"]);
+  return found;
+}
+
+// Playing at 1 step/s, every step shown on time (the window sleeps between steps), 2.5 s after
+// play: the rate is counted over the step periods, not to now. It read "playing at 0.7 steps/s
+// of 1" (1 step over the 1.5 s since the one before the last); now about 1, "1.0 shown/s".
+TEST(PlayerWalk6, TheRateAtASlowSpeedReportsNoShortfallBetweenSteps) {
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
+  const fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
+  const std::string a = (dir / "a.json").string();
+  const auto r = run_tspplay("play " + q(tsp) + " --size 740x344 --no-session --quality 0" +
+                             " --speed 1 --script " +
+                             q(write_script("play\nwait-seconds 2.5\nstats " + a + "\nquit\n")));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = read_json(a);
+  EXPECT_TRUE(labels_with(j, "steps/s of").empty()) << labels_with(j, "steps/s of")[0];
+  EXPECT_EQ(labels_with(j, "shown/s").size(), 1u) << j["ui_items"];
+  EXPECT_GT(j["playback"]["steps_shown_per_s"].get<double>(), 0.8) << j["playback"];
+}
+
 }  // namespace
