@@ -67,6 +67,7 @@ void help(PlayerApp& app) {
   const ImGuiIO& io = ImGui::GetIO();
   ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, io.DisplaySize.y * 0.5f),
                           ImGuiCond_Always, ImVec2(0.5f, 0.5f));
+  ImGui::SetNextWindowBgAlpha(1.f);  // (over the picture: the text on an opaque background)
   ImGui::Begin("Controls (F1 or ? to close)", &app.show_help,
                ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse);
   if (ImGui::BeginTable("controls", 2, ImGuiTableFlags_RowBg)) {

@@ -128,4 +128,35 @@ TEST(PlayerWalk6, TheRateAtASlowSpeedReportsNoShortfallBetweenSteps) {
   EXPECT_GT(j["playback"]["steps_shown_per_s"].get<double>(), 0.8) << j["playback"];
 }
 
+// The F1 help overlay is opaque: shown (a real F1, xdotool) over two different pictures (the
+// view turned between two screenshots with the UI), the overlay's body, which covers the middle
+// of the 128x96 window, reads the same in both. On Dear ImGui's 94 % window background the picture showed through.
+TEST(PlayerWalk6, TheHelpOverlayHidesThePictureBehindIt) {
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
+  ASSERT_EQ(std::system("command -v xdotool > /dev/null"), 0)
+      << "xdotool missing (scripts/install-deps.sh installs it)";
+  const fs::path tsp = make_tsp(), dir = tsptest::temp_dir(), out = dir / "help.out";
+  const fs::path a = dir / "a.png", b = dir / "b.png";
+  const fs::path script = write_script("panels off\ntf preset:filled\nwait-seconds 3\nscreenshot-ui " +
+                                       a.string() + "\nview 120 70\nzoom 1.5\nwait-frames 2\n"
+                                       "screenshot-ui " + b.string() + "\nquit\n");
+  const std::string cmd =
+      log_waits(out) + "(" + q(tsptest::tspplay_bin()) + " play " + q(tsp) + " --size " + kSize +
+      " --no-session --trace --script " + q(script) + " > " + q(out) + " 2>&1 &\n" +
+      "w=$(xdotool search --sync --name " + q("tspplay - " + tsp.string()) + " | head -1)\n"
+      "until_log 'trace: step 0'\n"
+      "xdotool key --window \"$w\" F1\n"
+      "wait)\n";
+  ASSERT_EQ(run_bash(dir / "help.sh", cmd), 0) << tsptest::read_file(out);
+  const tsp::Image ia = tsp::read_png(a.string()), ib = tsp::read_png(b.string());
+  // The overlay's body (under its title bar, inside its edges): the same pixels in both.
+  int differ = 0;
+  for (int y = 30; y < 80; ++y)
+    for (int x = 8; x < 100; ++x)
+      for (int c = 0; c < 3; ++c) differ += ia.at(x, y)[c] != ib.at(x, y)[c];
+  EXPECT_EQ(differ, 0) << tsptest::read_file(out);
+  // (Outside it, where the volume shows, the pictures differ: the view turned.)
+  EXPECT_GT(tsp::diff_images(ia, ib).mean, 0.0);
+}
+
 }  // namespace
