@@ -195,8 +195,9 @@ void PlayerApp::place_camera(tsp::CameraParams& c) const {
 }
 
 void PlayerApp::set_scale(const std::array<double, 3>& scale) {
+  const bool changed = scale != options_.scale;  // (one change, one trace line)
   options_.scale = scale;
-  if (options_.trace) {
+  if (options_.trace && changed) {
     std::printf("trace: axis scale %g,%g,%g\n", scale[0], scale[1], scale[2]);
     std::fflush(stdout);
   }

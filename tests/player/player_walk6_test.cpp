@@ -159,4 +159,26 @@ TEST(PlayerWalk6, TheHelpOverlayHidesThePictureBehindIt) {
   EXPECT_GT(tsp::diff_images(ia, ib).mean, 0.0);
 }
 
+// Occurrences of text in s.
+int count(const std::string& s, const std::string& text) {
+  int n = 0;
+  for (std::size_t at = s.find(text); at != std::string::npos; at = s.find(text, at + 1)) ++n;
+  return n;
+}
+
+// One change of the axis scale, one trace line: the walk saw "trace: axis scale 1,1,10" twice
+// for one typed value (the field sent it twice); a scale set again to what it is changes nothing
+// and prints nothing.
+TEST(PlayerWalk6, OneAxisScaleChangeIsTracedOnce) {
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
+  const fs::path tsp = make_tsp();
+  const auto r = run_tspplay("play " + q(tsp) + " --size " + kSize + " --no-session --trace" +
+                             " --script " +
+                             q(write_script("scale 1,1,7\nwait-frames 1\nscale 1,1,7\n"
+                                            "wait-frames 1\nscale 1,1,1\nquit\n")));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(count(r.out, "trace: axis scale 1,1,7\n"), 1) << r.out;
+  EXPECT_EQ(count(r.out, "trace: axis scale 1,1,1\n"), 1) << r.out;
+}
+
 }  // namespace
