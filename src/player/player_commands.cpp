@@ -56,9 +56,25 @@ struct CommandApplier {
                   tsp::ClipRegion(state().probes, state().probe_op, f.metadata().origin,
                                   f.metadata().spacing))
             : tsp::tf_domain_of(r, f, state().step);
+    const std::uint64_t before = app.tf.version();
     app.set_tf(tsp::rescaled(app.tf, to), true);
-    app.status = "transfer function stretched over " + c.range + " [" + std::to_string(to.lo) +
-                 ", " + std::to_string(to.hi) + "]";
+    const std::string range = "[" + std::to_string(to.lo) + ", " + std::to_string(to.hi) + "]";
+    if (app.tf.version() == before) {  // a fit that moves nothing says so (it said nothing)
+      app.status = "colour range already fits " + fit_name(r.mode) + " " + range +
+                   ": nothing changed";
+      app.trace(app.status);
+      return;
+    }
+    app.status = "transfer function stretched over " + c.range + " " + range;
+  }
+  // What a fit fits, as the panel's buttons name it ("fit to bulk": "the bulk").
+  static std::string fit_name(tsp::TfRangeChoice::Mode m) {
+    using Mode = tsp::TfRangeChoice::Mode;
+    return m == Mode::data        ? "the data"
+           : m == Mode::histogram ? "the bulk"
+           : m == Mode::step      ? "the step"
+           : m == Mode::visible   ? "the view"
+                                  : "the range";
   }
   void operator()(const cmd::SetTolerance& c) const {
     if (c.settled)

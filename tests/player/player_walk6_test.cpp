@@ -10,10 +10,13 @@
 
 #include <nlohmann/json.hpp>
 
+#include "player/command.h"
+#include "player/script.h"
 #include "support/paths.h"
 #include "support/player_run.h"
 #include "tsp/report/image.h"
 #include "tsp/report/image_diff.h"
+#include "tsp/metric/tf_io.h"
 
 namespace {
 
@@ -179,6 +182,47 @@ TEST(PlayerWalk6, OneAxisScaleChangeIsTracedOnce) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(count(r.out, "trace: axis scale 1,1,7\n"), 1) << r.out;
   EXPECT_EQ(count(r.out, "trace: axis scale 1,1,1\n"), 1) << r.out;
+}
+
+// A fit of the colour range that moves nothing says so: the second "fit to bulk" in a row left
+// the map as it was and said nothing (no trace, no status), as if the button did not work.
+TEST(PlayerWalk6, AFitThatChangesNothingSaysSo) {
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
+  const fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
+  const std::string a = (dir / "a.json").string();
+  const auto r = run_tspplay("play " + q(tsp) + " --size " + kSize + " --no-session --trace" +
+                             " --script " +
+                             q(write_script("wait-frames 1\ntf-range 0.1:0.2\nwait-frames 1\n"
+                                            "tf-range bulk\nwait-frames 1\ntf-range bulk\n"
+                                            "wait-frames 1\nstats " + a + "\nquit\n")));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(count(r.out, "trace: transfer function edited"), 2) << r.out;
+  EXPECT_EQ(count(r.out, "trace: colour range already fits the bulk ["), 1) << r.out;
+  const std::string status = read_json(a)["status"];
+  EXPECT_EQ(status.rfind("colour range already fits the bulk [", 0), 0u) << status;
+  EXPECT_NE(status.find("]: nothing changed"), std::string::npos) << status;
+}
+
+// The colour range's words are the fit buttons' names: each "fit to WORD" in the panel is a
+// word the script's tf-range (and --tf-range) takes, and the old words stay as aliases. The
+// buttons read "fit to bulk" and "fit to view" while the script took "histogram" and "visible".
+TEST(PlayerWalk6, TheColourRangeWordsAreTheFitButtonsNames) {
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
+  const fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
+  const std::string a = (dir / "a.json").string();
+  const auto r = run_tspplay("play " + q(tsp) + " --size 740x600 --no-session --script " +
+                             q(write_script("wait-frames 2\nstats " + a + "\nquit\n")));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::vector<std::string> fits = labels_with(read_json(a), "fit to ");
+  ASSERT_EQ(fits.size(), 4u) << read_json(a)["ui_items"];
+  for (const std::string& label : fits) {
+    const std::string word = label.substr(std::string("fit to ").size());
+    EXPECT_NO_THROW(tspplayer::validate(tspplayer::cmd::StretchTf{word})) << word;
+    EXPECT_EQ(tspplayer::parse_script("tf-range " + word + "\n", "s.txt").size(), 1u) << word;
+    EXPECT_NO_THROW(tsp::parse_tf_range(word)) << word;
+  }
+  for (const char* old : {"histogram", "visible"})
+    EXPECT_NO_THROW(tspplayer::validate(tspplayer::cmd::StretchTf{old})) << old;
 }
 
 }  // namespace
