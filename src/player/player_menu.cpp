@@ -71,7 +71,7 @@ struct MenuState {
   bool want_session = false;
   std::string traced_list;    // the last "open list X Y ROW" traced
   bool clicked_into = false;  // this click sequence changed the folder (its next clicks are not for the new list)
-  char session_path[kPathChars] = "tspplay_session.json";
+  char session_path[kPathChars] = "";  // (offered as the dialog opens: DATASET.session.json)
   bool want_close = false;  // script `dialog close`: the dialog open closes, as Cancel
 };
 
@@ -360,6 +360,10 @@ void menu_and_dialogs(PlayerApp& app) {
                   "The volume as shown, with its annotations, in real time (.mp4 or .gif); "
                   "File > Stop recording writes it:"))
     app.push(cmd::StartRecording{s.movie_path});
+  if (s.want_session) {  // named after the dataset, beside it or where the last one went
+    copy(s.session_path, sizeof s.session_path, app.session_offer());
+    app.trace(std::string("save session dialog offers ") + s.session_path);
+  }
   if (path_dialog(kSessionPopup, s.want_session, s.session_path, sizeof s.session_path,
                   "The transfer function, view, probes, surface, axis scale, speed and panels, "
                   "for tspplay play --session FILE:"))

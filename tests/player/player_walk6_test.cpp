@@ -225,4 +225,47 @@ TEST(PlayerWalk6, TheColourRangeWordsAreTheFitButtonsNames) {
     EXPECT_NO_THROW(tspplayer::validate(tspplayer::cmd::StretchTf{old})) << old;
 }
 
+// An error leaves the status area when the next action succeeds: File > Open of a missing input
+// said so, and the message stayed there for the rest of the session, through steps, fits and
+// views. Waits and stats are no actions: it stays through them.
+TEST(PlayerWalk6, AnErrorClearsWhenTheNextActionSucceeds) {
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
+  const fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
+  const std::string a = (dir / "a.json").string(), b = (dir / "b.json").string();
+  const std::string missing = (dir / "missing.h5").string();
+  const auto r = run_tspplay("play " + q(tsp) + " --size " + kSize + " --no-session --trace" +
+                             " --script " +
+                             q(write_script("open " + missing + "\nwait-frames 2\nstats " + a +
+                                            "\nstep 1\nwait-frames 1\nstats " + b +
+                                            "\nquit\n")));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string before = read_json(a)["status"];
+  EXPECT_EQ(before.rfind("open " + missing, 0), 0u) << before;
+  EXPECT_EQ(read_json(b)["status"], "") << r.out;
+  EXPECT_EQ(count(r.out, "trace: error cleared: the next action succeeded"), 1) << r.out;
+}
+
+// File > Save session offers a file named after the dataset beside the data (it offered
+// tspplay_session.json in the working directory for every input), then in the folder a session
+// was last saved to.
+TEST(PlayerWalk6, SaveSessionOffersTheDatasetsNameBesideIt) {
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
+  const fs::path tsp = make_tsp(), dir = tsptest::temp_dir(), other = dir / "other";
+  fs::create_directories(other);
+  const std::string name = tsp.stem().string() + ".session.json";
+  const auto r = run_tspplay(
+      "play " + q(tsp) + " --size 740x600 --no-session --trace --script " +
+      q(write_script("dialog save-session\nwait-frames 2\ndialog close\nwait-frames 2\n"
+                     "save-session " + (other / "mine.json").string() + "\n"
+                     "dialog save-session\nwait-frames 2\ndialog close\nwait-frames 2\nquit\n")));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("trace: save session dialog offers " + (tsp.parent_path() / name).string() +
+                       "\n"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("trace: save session dialog offers " + (other / name).string() + "\n"),
+            std::string::npos)
+      << r.out;
+}
+
 }  // namespace
