@@ -44,6 +44,9 @@ class LodLoop {
   /// Counts as a change at now_s (a new focus). Never throws.
   void touch(double now_s) { last_change_s_ = now_s; }
 
+  /// The last frame's step was not shown after all (the player dropped it for a Space press):
+  /// the step on screen is step, so a pause there is no change. Never throws.
+  void take_back_step(int step) { seen_.step = step; }
   /// True when the last next() refines to full quality (idle).
   bool refining() const { return refining_; }
   /// True when the last next() saw a change (or playback).
