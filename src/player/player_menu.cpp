@@ -151,6 +151,26 @@ void menu_bar(PlayerApp& app) {
   ImGui::EndMainMenuBar();
 }
 
+// The dialog's build options field (a raw series' grid, a mesh's resolution, …); true on Enter.
+bool build_options_field(MenuState& s) {
+  // The field as wide as the row leaves beside its whole label.
+  ImGui::SetNextItemWidth(-(ImGui::CalcTextSize("build options").x + ImGui::GetStyle().ItemInnerSpacing.x + 1));
+  // The hint the field has room for (the examples ran past it; all of them in the tooltip).
+  const float field_w = ImGui::CalcItemWidth();
+  const char* hint = "e.g. --resolution 128 | --raw-dims 64,64,64 --raw-type f32";
+  if (ImGui::CalcTextSize(hint).x + 2 * ImGui::GetStyle().FramePadding.x > field_w)
+    hint = "e.g. --resolution 128";
+  ImGui::InputTextWithHint("build options", hint, s.build_options, sizeof s.build_options);
+  note_item("build options");
+  if (!s.build_options[0]) note_hint(hint, field_w);
+  const bool enter = entered();
+  if (ImGui::IsItemHovered())
+    tooltip("As on play's command line: a raw series' grid and type (--raw-dims 64,64,64 "
+            "--raw-type f32), a mesh's resolution or voxel size (--resolution 128), a PLOT3D "
+            "solution's grid (--xyz grid.xyz); tspplay play --help");
+  return enter;
+}
+
 void open_dialog(PlayerApp& app) {
   MenuState& s = state();
   if (s.want_open) {
@@ -241,21 +261,7 @@ void open_dialog(PlayerApp& app) {
   ImGui::InputText("field (inputs with several)", s.field, sizeof s.field);
   note_item("field (inputs with several)");
   enter = entered() || enter;
-  // The field as wide as the row leaves beside its whole label.
-  ImGui::SetNextItemWidth(-(ImGui::CalcTextSize("build options").x + ImGui::GetStyle().ItemInnerSpacing.x + 1));
-  // The hint the field has room for (the examples ran past it; all of them in the tooltip).
-  const float field_w = ImGui::CalcItemWidth();
-  const char* hint = "e.g. --resolution 128 | --raw-dims 64,64,64 --raw-type f32";
-  if (ImGui::CalcTextSize(hint).x + 2 * ImGui::GetStyle().FramePadding.x > field_w)
-    hint = "e.g. --resolution 128";
-  ImGui::InputTextWithHint("build options", hint, s.build_options, sizeof s.build_options);
-  note_item("build options");
-  if (!s.build_options[0]) note_hint(hint, field_w);
-  enter = entered() || enter;
-  if (ImGui::IsItemHovered())
-    tooltip("As on play's command line: a raw series' grid and type (--raw-dims 64,64,64 "
-            "--raw-type f32), a mesh's resolution or voxel size (--resolution 128), a PLOT3D "
-            "solution's grid (--xyz grid.xyz); tspplay play --help");
+  enter = build_options_field(s) || enter;
   std::error_code ec;
   if (enter && fs::is_directory(fs::path(s.open_path), ec)) enter = false;  // its list is shown
   const bool open_clicked = ImGui::Button("Open");
