@@ -29,8 +29,9 @@ const std::vector<SessionOptionSpec>& session_options() {
        &SessionArgs::tf, {},
        {{{true, "preset:auto", ""}, {true, "preset:auto", ""}, {true, "preset:sparse", ""}}}},
       {"--tf-range", "Input/output",
-       "Where the TF sits over the data: auto, data, file, histogram (1st-99th percentile), step "
-       "(the first step's range), visible (what the starting view shows of it) or LO:HI",
+       "Where the TF sits over the data: auto, data, file, bulk (1st-99th percentile; also "
+       "histogram), step (the first step's range), view (what the starting view shows of it; "
+       "also visible) or LO:HI",
        &SessionArgs::tf_range, {},
        {{{true, "", "auto"}, {true, "", "auto"}, {}}}},
       {"--size", "Camera",

@@ -34,15 +34,20 @@ void axis_scale_field(PlayerApp& app) {
                                           ImGuiSliderFlags_Logarithmic);
     const bool typing = ImGui::TempInputIsActive(ImGui::GetItemID());
     std::array<double, 3> next = app.scale();
+    bool pushed = false;  // (Enter applies the typed value once: not as a drag and again here)
     if (changed && typing) {
       typed[std::size_t(a)] = v;
     } else if (changed && !escape) {  // dragged (Escape's revert of a typed value: nothing)
       next[std::size_t(a)] = std::clamp(v, kMinScale, kMaxScale);
       app.push(cmd::SetScale{next});
+      pushed = true;
     }
     if (ImGui::IsItemDeactivated()) {
-      if (typed[std::size_t(a)] && !escape) {
-        next[std::size_t(a)] = std::clamp(*typed[std::size_t(a)], kMinScale, kMaxScale);
+      const std::optional<float> t = typed[std::size_t(a)];
+      // (A value the frame before applied already, as Enter's frame may: not again.)
+      if (t && !escape && !pushed &&
+          double(std::clamp(*t, kMinScale, kMaxScale)) != app.scale()[std::size_t(a)]) {
+        next[std::size_t(a)] = std::clamp(*t, kMinScale, kMaxScale);
         app.push(cmd::SetScale{next});
       }
       typed[std::size_t(a)].reset();

@@ -35,7 +35,7 @@ struct Checker {
     // (Named as the window's control, not as play's --tf-range: the panel's field and the
     // script's tf-range both send this.)
     const std::string expected =
-        "': expected LO:HI with LO < HI (finite), or data, histogram, step or visible";
+        "': expected LO:HI with LO < HI (finite), or data, bulk, step or view";
     tsp::TfRangeChoice r;
     try {
       r = tsp::parse_tf_range(c.range);

@@ -90,4 +90,12 @@ void InputQueue::look_ahead(bool button_changed) {
   }
 }
 
+bool InputQueue::player_key_waiting(int key) const {
+  for (const InputEvent& e : events_) {
+    if (e.kind == InputEvent::Kind::button) return false;
+    if (e.kind == InputEvent::Kind::key && e.code == key && e.down && e.to_player) return true;
+  }
+  return false;
+}
+
 }  // namespace tspplayer

@@ -54,6 +54,9 @@ class InputQueue {
   const InputFrame& take();
   /// True while events wait for later frames (the window keeps drawing until they are taken).
   bool pending() const { return !events_.empty(); }
+  /// True when a press of key for the player waits in the queue where the next take() lists
+  /// it in `pressed` (before any button event). Never throws.
+  bool player_key_waiting(int key) const;
   /// The state after the last take().
   const InputFrame& state() const { return state_; }
 

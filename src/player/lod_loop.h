@@ -78,6 +78,9 @@ class LodLoop {
   /// The cut kept by keep_cut (empty: every leaf).
   const std::vector<tsp::LodStop>& drawn_cut() const { return drawn_stops_; }
 
+  /// The last frame's step was not shown after all (the player dropped it for a Space press):
+  /// the step on screen is step, so a pause there is no change. Never throws.
+  void take_back_step(int step) { seen_.step = step; }
   /// True when the last next() refines to full quality (idle).
   bool refining() const { return refining_; }
   /// True when the last next() saw a change (or playback).

@@ -188,8 +188,9 @@ void PlayerApp::place_camera(tsp::CameraParams& c) const {
 }
 
 void PlayerApp::set_scale(const std::array<double, 3>& scale) {
+  const bool changed = scale != options_.scale;  // (one change, one trace line)
   options_.scale = scale;
-  if (options_.trace) {
+  if (options_.trace && changed) {
     std::printf("trace: axis scale %g,%g,%g\n", scale[0], scale[1], scale[2]);
     std::fflush(stdout);
   }
@@ -409,7 +410,14 @@ void PlayerApp::frame() {
     gl.Clear(GL_COLOR_BUFFER_BIT);
   }
   apply_probes();
+  hold_shown();  // (playing: the picture on screen, for a Space press while this frame draws)
   render_volume();
+  advance_tuning();
+  if (tol_readout_due && imgui_) measure_tolerance();
+  if (frame_delay_ms_ > 0)
+    std::this_thread::sleep_for(std::chrono::duration<double, std::milli>(frame_delay_ms_));
+  drop_for_space();  // Space went down while this frame drew: the step on screen stays
+  drawn_step_ = state_.step;
   capture_frame();
   if (state_.playing != rate_playing_) {  // playback's rate is measured from its start on
     rate_playing_ = state_.playing;
@@ -423,10 +431,6 @@ void PlayerApp::frame() {
   // (The last two stay: a stall longer than the window reads as a slow rate, not none.)
   while (shown_at_s_.size() > 2 && shown_at_s_.front() < now - kShownWindowSeconds)
     shown_at_s_.pop_front();
-  advance_tuning();
-  if (tol_readout_due && imgui_) measure_tolerance();
-  if (frame_delay_ms_ > 0)
-    std::this_thread::sleep_for(std::chrono::duration<double, std::milli>(frame_delay_ms_));
 
   // Screenshots hold the volume only (read before the UI is drawn).
   // A screenshot waits for the first complete frame (no texture left for later frames).

@@ -136,6 +136,9 @@ class PlayerApp {
   /// (−1: not checked yet), for the timeline's marks.
   std::vector<float> ready;
   std::string status;  ///< last message shown in the UI (saved files, errors)
+  /// Shows an error in the status area (and on stderr): it stays until a message replaces it or
+  /// the next action succeeds (cleared_by_action). Never throws but bad_alloc.
+  void set_error(const std::string& what);
   bool show_help = false;               ///< the controls overlay (F1 or ?)
   /// 1: open every section of the panels at the next frame; -1: back to how they start; 0: as
   /// the user left them (script `expand on|off`).
@@ -305,6 +308,9 @@ class PlayerApp {
   Session capture_session() const;
   /// Saves the session to path (File > Save session..., save-session). Errors go to status.
   void save_session_as(const std::string& path);
+  /// The file File > Save session offers: DATASET.session.json (export_names.h) in the folder a
+  /// session was last saved to, or else in the data's folder (open_folder()).
+  std::string session_offer() const;
   /// Where the session was restored from, its cache entry, any file ignored and the panels'
   /// open sections as the windows hold them, for stats.
   nlohmann::json session_json() const;
@@ -520,6 +526,35 @@ class PlayerApp {
   std::vector<Command> pending_commands_;  ///< pushed by the panels this frame
   /// Carries out the pushed commands in order (errors to status). Never throws but bad_alloc.
   void apply_commands();
+
+  // ---- Space pauses on the step on screen (player_pause.cpp) ----
+  /// Before a playing frame draws a new step: holds the picture on screen (the target's copy)
+  /// and what the last frame reported with it.
+  void hold_shown();
+  /// After the frame is drawn, before it is shown: when a Space press for the player came
+  /// meanwhile, the held picture and step are put back (the frame is dropped), so the pause
+  /// the press makes stops on the step that was on screen, with its picture. True when it did.
+  bool drop_for_space();
+  struct Held {
+    int step = -1;  ///< the held picture's step (−1: none)
+    const void* renderer = nullptr;
+    WindowRect view;
+    tspgl::FrameReport report;
+    tsp::LodFrameStats lod;
+    bool within = false;
+    std::int64_t fragments = 0;
+  } held_;
+  int drawn_step_ = -1;  ///< the step the last frame drew (−1: none)
+
+  std::string last_session_folder_;  ///< where save_session_as last wrote ("": nowhere yet)
+
+  // ---- stale errors (player_commands.cpp) ----
+  std::string error_status_;     ///< the last error set_error showed
+  std::uint64_t errors_ = 0;     ///< set_error calls so far
+  /// After command c succeeded (errors_before: errors_ as it began): an error shown before it,
+  /// still in the status area, is cleared when c is an action (not a wait, stats, screenshot,
+  /// capture or quit) that showed no message of its own.
+  void cleared_by_action(const Command& c, std::uint64_t errors_before);
 };
 
 /// Carries out one command on app (line: its script line for messages, 0: a key or a panel).

@@ -62,9 +62,25 @@ struct CommandApplier {
                   tsp::ClipRegion(state().probes, state().probe_op, f.metadata().origin,
                                   f.metadata().spacing))
             : tsp::tf_domain_of(r, f, state().step);
+    const std::uint64_t before = app.tf.version();
     app.set_tf(tsp::rescaled(app.tf, to), true);
-    app.status = "transfer function stretched over " + c.range + " [" + std::to_string(to.lo) +
-                 ", " + std::to_string(to.hi) + "]";
+    const std::string range = "[" + std::to_string(to.lo) + ", " + std::to_string(to.hi) + "]";
+    if (app.tf.version() == before) {  // a fit that moves nothing says so (it said nothing)
+      app.status = "colour range already fits " + fit_name(r.mode) + " " + range +
+                   ": nothing changed";
+      app.trace(app.status);
+      return;
+    }
+    app.status = "transfer function stretched over " + c.range + " " + range;
+  }
+  // What a fit fits, as the panel's buttons name it ("fit to bulk": "the bulk").
+  static std::string fit_name(tsp::TfRangeChoice::Mode m) {
+    using Mode = tsp::TfRangeChoice::Mode;
+    return m == Mode::data        ? "the data"
+           : m == Mode::histogram ? "the bulk"
+           : m == Mode::step      ? "the step"
+           : m == Mode::visible   ? "the view"
+                                  : "the range";
   }
   void operator()(const cmd::SetTolerance& c) const {
     if (c.settled)
@@ -227,13 +243,39 @@ void apply(PlayerApp& app, const Command& c, int line) {
 }
 
 void PlayerApp::command(const Command& c) {
+  const std::uint64_t errors_before = errors_;
   try {
     validate(c);
     apply(*this, c);
   } catch (const tsp::Error& e) {
-    status = e.what();
-    std::fprintf(stderr, "tspplay: %s\n", e.what());
+    set_error(e.what());
+    return;
   }
+  cleared_by_action(c, errors_before);
+}
+
+void PlayerApp::set_error(const std::string& what) {
+  status = error_status_ = what;
+  ++errors_;
+  std::fprintf(stderr, "tspplay: %s\n", what.c_str());
+}
+
+void PlayerApp::cleared_by_action(const Command& c, std::uint64_t errors_before) {
+  if (error_status_.empty() || errors_ != errors_before) return;  // (this one failed: it stays)
+  if (status != error_status_) {  // replaced by another message meanwhile
+    error_status_.clear();
+    return;
+  }
+  const bool passive = std::holds_alternative<cmd::WaitFrames>(c) ||
+                       std::holds_alternative<cmd::WaitSeconds>(c) ||
+                       std::holds_alternative<cmd::WriteStats>(c) ||
+                       std::holds_alternative<cmd::Screenshot>(c) ||
+                       std::holds_alternative<cmd::Capture>(c) ||
+                       std::holds_alternative<cmd::Quit>(c);
+  if (passive) return;
+  status.clear();  // (a stale error stayed for the rest of the session)
+  error_status_.clear();
+  trace("error cleared: the next action succeeded");
 }
 
 void PlayerApp::apply_commands() {

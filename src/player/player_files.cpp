@@ -29,16 +29,13 @@ namespace tspplayer {
 namespace {
 
 // Reports a failure in the UI and on stderr (a scripted run's log shows it too).
-void report(std::string& status, const std::string& what) {
-  status = what;
-  std::fprintf(stderr, "tspplay: %s\n", what.c_str());
-}
+void report(PlayerApp& app, const std::string& what) { app.set_error(what); }
 
 // A File > Open that failed: reported as above and, with --trace, as a trace line; the player
 // keeps the file it plays.
-void open_failed(std::string& status, bool trace, const std::string& input, const std::string& why) {
+void open_failed(PlayerApp& app, bool trace, const std::string& input, const std::string& why) {
   // (A reader's message names its file first already: the path once, so the reason shows.)
-  report(status, why.rfind(input + ": ", 0) == 0 ? "open " + why : "open " + input + ": " + why);
+  report(app, why.rfind(input + ": ", 0) == 0 ? "open " + why : "open " + input + ": " + why);
   if (trace) {
     std::printf("trace: open %s failed: %s\n", input.c_str(), why.c_str());
     std::fflush(stdout);
@@ -56,23 +53,23 @@ void PlayerApp::open_input(const std::string& input, const std::string& field,
                            const std::string& build_options) {
   options_.input_path = input;  // the next File > Open starts beside it
   if (open_job_) {
-    open_failed(status, options_.trace, input, "still opening " + open_job_->input());
+    open_failed(*this, options_.trace, input, "still opening " + open_job_->input());
     return;
   }
   if (tspgl::is_tsp_file(input)) {
     if (!build_options.empty()) {
-      open_failed(status, options_.trace, input,
+      open_failed(*this, options_.trace, input,
                   "a .tsp file is built already: no build options (" + build_options + ")");
       return;
     }
     if (!field.empty()) {
-      open_failed(status, options_.trace, input, "a .tsp file has its field already (" + field + ")");
+      open_failed(*this, options_.trace, input, "a .tsp file has its field already (" + field + ")");
       return;
     }
     try {
       open_file(input);
     } catch (const tsp::Error& e) {
-      open_failed(status, options_.trace, input, e.what());
+      open_failed(*this, options_.trace, input, e.what());
     }
     return;
   }
@@ -89,7 +86,7 @@ void PlayerApp::open_input(const std::string& input, const std::string& field,
     o.field = field;
     open_job_ = std::make_unique<OpenJob>(input, std::move(o), options_.cache_dir);
   } catch (const std::exception& e) {  // bad build options, or no thread could start
-    open_failed(status, options_.trace, input, e.what());
+    open_failed(*this, options_.trace, input, e.what());
     return;
   }
   status = "opening " + input + " ...";
@@ -106,13 +103,13 @@ void PlayerApp::poll_open() {
   try {
     built = job->result();
   } catch (const std::exception& e) {
-    open_failed(status, options_.trace, job->input(), e.what());
+    open_failed(*this, options_.trace, job->input(), e.what());
     return;
   }
   try {
     open_file(built);
   } catch (const tsp::Error& e) {
-    open_failed(status, options_.trace, built, e.what());
+    open_failed(*this, options_.trace, built, e.what());
   }
 }
 
@@ -231,7 +228,7 @@ void PlayerApp::start_recording(const std::string& path) {
                                            clock_.seconds());
     status = "recording " + path;
   } catch (const tsp::Error& e) {
-    report(status, std::string("record: ") + e.what());
+    report(*this, std::string("record: ") + e.what());
   }
 }
 
@@ -247,7 +244,7 @@ void PlayerApp::stop_recording() {
     std::printf("%s\n", status.c_str());
     std::fflush(stdout);
   } catch (const tsp::Error& e) {
-    report(status, std::string("record: ") + e.what());
+    report(*this, std::string("record: ") + e.what());
   }
 }
 
@@ -298,7 +295,7 @@ void PlayerApp::record_frame(double now_s) {
     status += " (stopped: the view changed size)";
   } catch (const tsp::Error& e) {
     recorder_.reset();
-    report(status, std::string("record: ") + e.what());
+    report(*this, std::string("record: ") + e.what());
   }
 }
 
@@ -308,7 +305,7 @@ void PlayerApp::save_tf_as(const std::string& path) {
     tf_path = path;
     status = "saved " + path;
   } catch (const tsp::Error& e) {
-    report(status, e.what());
+    report(*this, e.what());
   }
 }
 

@@ -163,7 +163,9 @@ void PlayerApp::run_script() {
   if (clock_.seconds() < wait_until_s_) return;
   while (script_pos_ < script_.size() && !quit_) {
     const ScriptLine& a = script_[script_pos_++];
+    const std::uint64_t errors_before = errors_;
     apply(*this, a.command, a.line);
+    cleared_by_action(a.command, errors_before);
     if (options_.trace) trace_changes();  // each action's effect on its own line
     if (waits_for_frames(a.command)) break;
     if (open_job_ || tuner_) break;  // the next actions wait for the build or the tuning

@@ -178,7 +178,8 @@ void PlayerApp::draw_annotations(const tsp::Camera& cam) {
       dl->AddText(ImVec2(e.x + 3, e.y - 7), cols[a], names[a]);
     }
   }
-  // Step and physical time over the volume, top centre.
+  // Step and physical time over the volume, top left: where S, movies and render --annotate
+  // put it (jobs/annotate.cpp; it sat top centre in the window, top left in exports).
   const auto& times = viewer_->file().metadata().times;
   char label[96];
   if (times.empty())
@@ -189,7 +190,7 @@ void PlayerApp::draw_annotations(const tsp::Camera& cam) {
   // A stretched axis is named under it ("z × 30"): heights are not to scale. Both on an opaque
   // box (as the export's caption, jobs/annotate.cpp), so that the outline never crosses them.
   const std::string k = tsp::exaggeration_text(options_.scale);
-  const ImVec2 at(float(v.x) + float(v.w) * 0.5f - 40, float(v.y) + 8);
+  const ImVec2 at(float(v.x) + 8, float(v.y) + 8);
   const ImVec2 size1 = ImGui::CalcTextSize(label), size2 = ImGui::CalcTextSize(k.c_str());
   const float line = ImGui::GetFontSize();
   const float pad = 3;

@@ -71,7 +71,7 @@ struct MenuState {
   bool want_session = false;
   std::string traced_list;    // the last "open list X Y ROW" traced
   bool clicked_into = false;  // this click sequence changed the folder (its next clicks are not for the new list)
-  char session_path[kPathChars] = "tspplay_session.json";
+  char session_path[kPathChars] = "";  // (offered as the dialog opens: DATASET.session.json)
   bool want_close = false;  // script `dialog close`: the dialog open closes, as Cancel
 };
 
@@ -149,6 +149,26 @@ void menu_bar(PlayerApp& app) {
   else
     ImGui::TextDisabled("%s", right);
   ImGui::EndMainMenuBar();
+}
+
+// The dialog's build options field (a raw series' grid, a mesh's resolution, …); true on Enter.
+bool build_options_field(MenuState& s) {
+  // The field as wide as the row leaves beside its whole label.
+  ImGui::SetNextItemWidth(-(ImGui::CalcTextSize("build options").x + ImGui::GetStyle().ItemInnerSpacing.x + 1));
+  // The hint the field has room for (the examples ran past it; all of them in the tooltip).
+  const float field_w = ImGui::CalcItemWidth();
+  const char* hint = "e.g. --resolution 128 | --raw-dims 64,64,64 --raw-type f32";
+  if (ImGui::CalcTextSize(hint).x + 2 * ImGui::GetStyle().FramePadding.x > field_w)
+    hint = "e.g. --resolution 128";
+  ImGui::InputTextWithHint("build options", hint, s.build_options, sizeof s.build_options);
+  note_item("build options");
+  if (!s.build_options[0]) note_hint(hint, field_w);
+  const bool enter = entered();
+  if (ImGui::IsItemHovered())
+    tooltip("As on play's command line: a raw series' grid and type (--raw-dims 64,64,64 "
+            "--raw-type f32), a mesh's resolution or voxel size (--resolution 128), a PLOT3D "
+            "solution's grid (--xyz grid.xyz); tspplay play --help");
+  return enter;
 }
 
 void open_dialog(PlayerApp& app) {
@@ -241,15 +261,7 @@ void open_dialog(PlayerApp& app) {
   ImGui::InputText("field (inputs with several)", s.field, sizeof s.field);
   note_item("field (inputs with several)");
   enter = entered() || enter;
-  // The field as wide as the row leaves beside its whole label.
-  ImGui::SetNextItemWidth(-(ImGui::CalcTextSize("build options").x + ImGui::GetStyle().ItemInnerSpacing.x + 1));
-  ImGui::InputTextWithHint("build options", "--raw-dims 64,64,64 --raw-type f32 | --resolution 128 | --xyz grid.xyz",
-                           s.build_options, sizeof s.build_options);
-  note_item("build options");
-  enter = entered() || enter;
-  if (ImGui::IsItemHovered())
-    tooltip("As on play's command line: a raw series' grid and type, a mesh's resolution or "
-            "voxel size, a PLOT3D solution's grid (tspplay play --help)");
+  enter = build_options_field(s) || enter;
   std::error_code ec;
   if (enter && fs::is_directory(fs::path(s.open_path), ec)) enter = false;  // its list is shown
   const bool open_clicked = ImGui::Button("Open");
@@ -354,6 +366,10 @@ void menu_and_dialogs(PlayerApp& app) {
                   "The volume as shown, with its annotations, in real time (.mp4 or .gif); "
                   "File > Stop recording writes it:"))
     app.push(cmd::StartRecording{s.movie_path});
+  if (s.want_session) {  // named after the dataset, beside it or where the last one went
+    copy(s.session_path, sizeof s.session_path, app.session_offer());
+    app.trace(std::string("save session dialog offers ") + s.session_path);
+  }
   if (path_dialog(kSessionPopup, s.want_session, s.session_path, sizeof s.session_path,
                   "The transfer function, view, probes, surface, axis scale, speed and panels, "
                   "for tspplay play --session FILE:"))

@@ -53,8 +53,7 @@ double PlayerApp::steps_shown_per_s() const {
   // Steps after the first over the time since it was shown (0 before a second step was: it
   // once read "playing at 0.0 steps/s" as playback started).
   if (!rate_measured()) return 0.0;
-  const double span = clock_.seconds() - shown_at_s_.front();
-  return span > 0 ? double(shown_at_s_.size() - 1) / span : 0.0;
+  return shown_rate(shown_at_s_, clock_.seconds());  // (over step periods: playback_clock.h)
 }
 
 bool PlayerApp::rate_measured() const {

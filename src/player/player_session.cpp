@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "player/export_names.h"
 #include "player/player_app.h"
 #include "player/session.h"
 #include "tsp/core/error.h"
@@ -220,6 +221,7 @@ void PlayerApp::save_session_as(const std::string& path) {
   try {
     write_session(path, capture_session(), false);
     status = "saved session " + path;
+    last_session_folder_ = std::filesystem::path(path).parent_path().string();
   } catch (const tsp::Error& e) {
     status = e.what();
     std::fprintf(stderr, "tspplay: %s\n", e.what());
@@ -232,6 +234,14 @@ nlohmann::json PlayerApp::session_json() const {
           {"file", session_file_},
           {"ignored", session_note_},
           {"open_sections", open_sections()}};  // as the windows hold them now
+}
+
+std::string PlayerApp::session_offer() const {
+  // (It offered tspplay_session.json in the working directory, whatever was played.)
+  const std::string given = options_.input_path.empty() ? options_.tsp_path : options_.input_path;
+  const std::string folder = last_session_folder_.empty() ? open_folder() : last_session_folder_;
+  const std::string name = dataset_name(given) + ".session.json";
+  return folder.empty() ? name : (std::filesystem::path(folder) / name).string();
 }
 
 }  // namespace tspplayer

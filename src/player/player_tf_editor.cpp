@@ -247,13 +247,13 @@ void colour_map_rows(PlayerApp& app) {
     tooltip("Stretch the map over the data's whole range (tf-range data)");
   ImGui::SameLine();
   if (ImGui::Button("fit to bulk", half)) {  // over the 1st to 99th percentile of the samples
-    app.push(cmd::StretchTf{"histogram"});
+    app.push(cmd::StretchTf{"bulk"});
   }
   note_item("fit to bulk", true);
   if (ImGui::IsItemHovered())
     tooltip(
         "Stretch the map over where the data is: the 1st to 99th percentile of every "
-        "sample (tf-range histogram)");
+        "sample (tf-range bulk)");
   if (ImGui::Button("fit to step", half)) {  // over the range of the step shown
     app.push(cmd::StretchTf{"step"});
   }
@@ -262,13 +262,13 @@ void colour_map_rows(PlayerApp& app) {
     tooltip("Stretch the map over the range of the step shown (tf-range step)");
   ImGui::SameLine();
   if (ImGui::Button("fit to view", half)) {  // over what the view shows of the step
-    app.push(cmd::StretchTf{"visible"});
+    app.push(cmd::StretchTf{"view"});
   }
   note_item("fit to view", true);
   if (ImGui::IsItemHovered())
     tooltip(
         "Stretch the map over the values of the bricks in view and inside the clip probes, "
-        "at the step shown (tf-range visible)");
+        "at the step shown (tf-range view)");
 }
 
 // The TF file row: a path, load and save as.

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdarg>
 #include <cstdio>
 #include <cstring>
 #include <string>
@@ -67,6 +68,7 @@ void help(PlayerApp& app) {
   const ImGuiIO& io = ImGui::GetIO();
   ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, io.DisplaySize.y * 0.5f),
                           ImGuiCond_Always, ImVec2(0.5f, 0.5f));
+  ImGui::SetNextWindowBgAlpha(1.f);  // (over the picture: the text on an opaque background)
   ImGui::Begin("Controls (F1 or ? to close)", &app.show_help,
                ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse);
   if (ImGui::BeginTable("controls", 2, ImGuiTableFlags_RowBg)) {
@@ -386,6 +388,21 @@ void side_sections(PlayerApp& app) {
   if (section(app, "Statistics", false)) stats_section(app);
 }
 
+// One line (or two) of the statistics, noted for the clipped-item check (ui_items.h): none may
+// run past the panel's edge (the sixth walk: "fragments …" was cut off at 1280×800).
+[[gnu::format(printf, 2, 3)]] void stat_line(const ImVec4* colour, const char* fmt, ...) {
+  char text[256];
+  va_list args;
+  va_start(args, fmt);
+  std::vsnprintf(text, sizeof text, fmt, args);
+  va_end(args);
+  if (colour)
+    ImGui::TextColored(*colour, "%s", text);
+  else
+    ImGui::TextUnformatted(text);
+  note_item(text);
+}
+
 }  // namespace
 void stats_section(PlayerApp& app) {
   // A temporal tolerance that merged steps says which steps' bricks the picture shows.
@@ -401,7 +418,8 @@ void stats_section(PlayerApp& app) {
     else
       std::snprintf(note, sizeof note, "temporal tolerance: showing steps %d-%d for steps %d-%d",
                     lf.shown_lo, lf.shown_hi, lf.spans_lo, lf.spans_hi);
-    ImGui::TextColored(ImVec4(1.f, 0.75f, 0.3f, 1.f), "%s", note);
+    const ImVec4 amber(1.f, 0.75f, 0.3f, 1.f);
+    stat_line(&amber, "%s", note);
   }
   std::vector<float> ms;
   double sum = 0;
@@ -410,7 +428,7 @@ void stats_section(PlayerApp& app) {
     sum += f.ms;
   }
   const double mean = ms.empty() ? 0 : sum / double(ms.size());
-  ImGui::Text("frame %.1f ms (mean %.1f), %.1f fps", ms.empty() ? 0.0 : double(ms.back()), mean,
+  stat_line(nullptr, "frame %.1f ms (mean %.1f), %.1f fps", ms.empty() ? 0.0 : double(ms.back()), mean,
               mean > 0 ? 1000.0 / mean : 0.0);
   if (!ms.empty())
     ImGui::PlotLines("##ms", ms.data(), int(ms.size()), 0, "frame ms, last 5 s", 0.f,
@@ -420,28 +438,30 @@ void stats_section(PlayerApp& app) {
   // What the last frame drew and its time (player_refine.cpp): never "holding the target"
   // for a frame that missed it.
   ImGui::TextWrapped("%s", app.lod_line().c_str());
-  ImGui::Text("render %.1f ms: traversal %.1f, slicing %.1f,\n  upload %.1f, draw %.1f", r.ms,
+  note_wrapped(app.lod_line().c_str());
+  stat_line(nullptr, "render %.1f ms: traversal %.1f, slicing %.1f,\n  upload %.1f, draw %.1f", r.ms,
               r.traversal_ms, r.slicing_ms, r.upload_ms, r.draw_ms);
   const double pixels = std::max(1.0, double(app.layout.view.w) * app.layout.view.h);
   // The picture's fragments: those of the frame that last drew it (a frame that reused the whole
   // image draws none, and said 0 for a picture that plainly shows).
   const double fragments = double(app.picture_fragments());
-  ImGui::Text("fragments %.2f M (%.2f per pixel)%s, %s, spacing %.2g", fragments / 1e6,
-              fragments / pixels, r.redrawn_percent == 0 ? ", image reused" : "",
-              tspgl::to_string(app.state().settings.compositing), app.state().settings.spacing);
+  // (Two lines: in one it ran past the panel's edge at 1280x800.)
+  stat_line(nullptr, "fragments %.2f M (%.2f per pixel),\n  %s%s, spacing %.2g",
+            fragments / 1e6, fragments / pixels, r.redrawn_percent == 0 ? "image reused, " : "",
+            tspgl::to_string(app.state().settings.compositing), app.state().settings.spacing);
   for (int c = 0; c < tsp::kDrawClassCount; ++c)
-    ImGui::Text("%-15s %5.1f %%", kClassNames[c], r.class_percent[std::size_t(c)]);
-  ImGui::Text("textures %lld resident, %.1f MiB", static_cast<long long>(r.textures_resident),
+    stat_line(nullptr, "%-15s %5.1f %%", kClassNames[c], r.class_percent[std::size_t(c)]);
+  stat_line(nullptr, "textures %lld resident, %.1f MiB", static_cast<long long>(r.textures_resident),
               double(r.texture_bytes) / kBytesPerMiB);
-  ImGui::Text("uploaded this frame %.2f MiB", double(r.bytes_uploaded) / kBytesPerMiB);
+  stat_line(nullptr, "uploaded this frame %.2f MiB", double(r.bytes_uploaded) / kBytesPerMiB);
+  const ImVec4 waiting(1, 0.8f, 0.2f, 1);
   if (!r.complete())
-    ImGui::TextColored(ImVec4(1, 0.8f, 0.2f, 1),
-                       "%lld textures wait for later frames (flat meanwhile)",
+    stat_line(&waiting, "%lld textures wait for later frames (flat meanwhile)",
                        static_cast<long long>(r.deferred_textures));
-  ImGui::Text("metric recompute %.2f ms (%lld nodes)", app.viewer().metric_ms(),
+  stat_line(nullptr, "metric recompute %.2f ms (%lld nodes)", app.viewer().metric_ms(),
               static_cast<long long>(app.viewer().metric_evaluations()));
   const tsp::BrickCacheStats b = app.viewer().renderer().brick_cache().stats();
-  ImGui::Text("bricks in RAM %lld (%.1f MiB)\n  %lld hits, %lld misses, %lld prefetched",
+  stat_line(nullptr, "bricks in RAM %lld (%.1f MiB)\n  %lld hits, %lld misses, %lld prefetched",
               static_cast<long long>(b.resident_count), double(b.resident_bytes) / kBytesPerMiB,
               static_cast<long long>(b.hits), static_cast<long long>(b.misses),
               static_cast<long long>(b.prefetched));

@@ -76,7 +76,7 @@ constexpr std::pair<const char*, Command (*)()> kBare[] = {
 // The actions with one word taken as it is (a path or a name checked when applied).
 constexpr std::pair<const char*, const char*> kText[] = {
     {"tf", "tf FILE|preset:NAME"},
-    {"tf-range", "tf-range data|histogram|step|visible|LO:HI"},
+    {"tf-range", "tf-range data|bulk|step|view|LO:HI"},
     {"stats", "stats FILE.json"},
     {"screenshot", "screenshot PATH.png"},
     {"screenshot-ui", "screenshot PATH.png"},

@@ -42,6 +42,15 @@ void note_wrapped(const char* text) {
   items().back().text_w = std::min(items().back().text_w, items().back().w);  // (wrapped)
 }
 
+void note_hint(const char* hint, float field_w) {
+  const std::size_t before = items().size();
+  note_item(hint);
+  if (items().size() == before) return;
+  UiItem& it = items().back();  // (the field's frame, not its label beside it)
+  it.w = field_w;
+  it.inner_w = field_w - 2 * ImGui::GetStyle().FramePadding.x;
+}
+
 const std::vector<UiItem>& ui_items() { return items(); }
 
 nlohmann::json ui_items_json() {

@@ -30,6 +30,9 @@ void note_item(const char* label, bool framed = false, float reserved = 0);
 /// Records wrapped text Dear ImGui laid out last (TextWrapped): its width fits by wrapping, its
 /// height must fit its window. Never throws but bad_alloc.
 void note_wrapped(const char* text);
+/// Records the hint a text field shows while empty (InputTextWithHint), laid out last in a
+/// frame field_w wide: the hint must fit inside the frame's padding. Never throws but bad_alloc.
+void note_hint(const char* hint, float field_w);
 /// The last frame's items.
 const std::vector<UiItem>& ui_items();
 /// ui_items() as JSON: [{label, x, y, w, h, text_w, inner_w, clip_right, clip_bottom, scrolls}].

@@ -10,6 +10,8 @@ namespace tspgl {
 RenderTarget::~RenderTarget() {
   if (fbo_) gl_.DeleteFramebuffers(1, &fbo_);
   if (colour_) gl_.DeleteRenderbuffers(1, &colour_);
+  if (held_fbo_) gl_.DeleteFramebuffers(1, &held_fbo_);
+  if (held_colour_) gl_.DeleteRenderbuffers(1, &held_colour_);
 }
 
 void RenderTarget::bind(int width, int height, double scale, bool keep) {
@@ -44,6 +46,39 @@ void RenderTarget::bind(int width, int height, double scale, bool keep) {
   }
   gl_.BindFramebuffer(GL_FRAMEBUFFER, fbo_);
   gl_.Viewport(0, 0, width_, height_);
+}
+
+void RenderTarget::hold() {
+  if (!fbo_) return;
+  if (!held_fbo_ || held_width_ != width_ || held_height_ != height_) {
+    if (!held_fbo_) gl_.GenFramebuffers(1, &held_fbo_);
+    if (!held_colour_) gl_.GenRenderbuffers(1, &held_colour_);
+    gl_.BindRenderbuffer(GL_RENDERBUFFER, held_colour_);
+    gl_.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA16, width_, height_);
+    gl_.BindFramebuffer(GL_FRAMEBUFFER, held_fbo_);
+    gl_.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
+                                held_colour_);
+    if (gl_.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw tsp::GlError("the held copy of the render target (RGBA16) is not supported");
+    held_width_ = width_;
+    held_height_ = height_;
+  }
+  gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, fbo_);
+  gl_.BindFramebuffer(GL_DRAW_FRAMEBUFFER, held_fbo_);
+  gl_.BlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT,
+                      GL_NEAREST);
+  gl_.BindFramebuffer(GL_FRAMEBUFFER, fbo_);
+}
+
+bool RenderTarget::restore_held() {
+  if (!held_fbo_ || held_width_ < 1) return false;
+  bind(held_width_, held_height_);
+  gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, held_fbo_);
+  gl_.BindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo_);
+  gl_.BlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT,
+                      GL_NEAREST);
+  gl_.BindFramebuffer(GL_FRAMEBUFFER, fbo_);
+  return true;
 }
 
 void RenderTarget::resolve(int x, int y, int w, int h) {

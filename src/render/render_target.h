@@ -27,6 +27,13 @@ class RenderTarget {
   /// Copies it into the rectangle of the context's canvas whose lower-left corner is (x, y) and
   /// whose size is w × h (magnified with linear filtering when it differs) and binds the canvas.
   void resolve(int x, int y, int w, int h);
+  /// Copies the picture into a second buffer of its size (replacing what was held), so a later
+  /// restore_held() can bring it back (the player's Space: the picture on screen as it went
+  /// down, when the frame drawing the next step is dropped). Throws tsp::GlError.
+  void hold();
+  /// Makes the held picture the target's again (at the held size) and binds the target; false
+  /// (nothing changed) when nothing is held. Never throws but tsp::GlError.
+  bool restore_held();
   /// The framebuffer (0 before the first bind()).
   GLuint framebuffer() const { return fbo_; }
   /// Its size in pixels (after the scale), as last bound.
@@ -39,6 +46,8 @@ class RenderTarget {
   const GlApi& gl_;
   GLuint fbo_ = 0, colour_ = 0;
   int width_ = 0, height_ = 0;
+  GLuint held_fbo_ = 0, held_colour_ = 0;  // hold()'s copy
+  int held_width_ = 0, held_height_ = 0;   // its size (0: nothing held)
 };
 
 }  // namespace tspgl

@@ -106,6 +106,8 @@ class SliceCompositor {
   std::int64_t end_frame();
   /// The context.
   GlContext& context() { return ctx_; }
+  /// The 16-bit target frames are drawn in (the player holds and restores its picture).
+  RenderTarget& target() { return target_; }
   /// True when this frame's rays (since begin_frame) are cast on the CPU (settings.backend):
   /// textured pages must then carry their texels in RAM (BrickSlot::host).
   bool cpu_frame() const { return cpu_; }

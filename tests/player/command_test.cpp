@@ -137,12 +137,12 @@ TEST(PlayerCommand, ColourRangeErrorsNameTheControlNotTheOption) {
     const std::string e = tsptest::error_of<tsp::UsageError>(
         [&] { tspplayer::validate(cmd::StretchTf{bad}); });
     EXPECT_EQ(e, std::string("colour range '") + bad +
-                     "': expected LO:HI with LO < HI (finite), or data, histogram, step or visible");
+                     "': expected LO:HI with LO < HI (finite), or data, bulk, step or view");
   }
   EXPECT_EQ(tsptest::error_of<tsp::FormatError>(
                 [] { tspplayer::parse_script("tf-range 2:1\n", "r.txt"); }),
             "r.txt:1: colour range '2:1': expected LO:HI with LO < HI (finite), or data, "
-            "histogram, step or visible");
+            "bulk, step or view");
   // A loaded map that misses the data says what in the window stretches it.
   const std::vector<tsp::TfPoint> points = {{5, {1, 1, 1, 1}}, {6, {1, 1, 1, 1}}};
   const tsp::TransferFunction tf = tsp::TransferFunction::from_points({5, 6}, points, 16);

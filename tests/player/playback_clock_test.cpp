@@ -9,6 +9,7 @@
 namespace {
 
 using tspplayer::PlaybackClock;
+using tspplayer::shown_rate;
 
 TEST(PlayerPlaybackClock, OnTimeAStepAPeriod) {
   PlaybackClock c;
@@ -44,6 +45,18 @@ TEST(PlayerPlaybackClock, AStalledFrameCountsAtMostItsCapAndResetStartsAPeriodLa
   EXPECT_DOUBLE_EQ(slow.until_next(0, 0.25), 2);
   slow.reset();
   EXPECT_DOUBLE_EQ(slow.until_next(0, 0.25), 4);
+}
+
+// The rate over step periods: at 1 step/s, 0.9 s after the third step it is 1 (counted over the
+// time since the first it read 2 / 2.9 = 0.7, "playing at 0.7 steps/s of 1"); a step on screen
+// longer than the periods before reads as a slowing rate (3 steps over 4 s); one step: none.
+TEST(PlayerPlaybackClock, TheShownRateCountsStepPeriodsNotTheTimeSinceTheLastStep) {
+  EXPECT_DOUBLE_EQ(shown_rate({10, 11, 12}, 12.9), 1.0);
+  EXPECT_DOUBLE_EQ(shown_rate({10, 11, 12}, 12.0), 1.0);
+  EXPECT_DOUBLE_EQ(shown_rate({10, 11, 12}, 14.0), 0.75);
+  EXPECT_DOUBLE_EQ(shown_rate({10, 10.5}, 10.9), 2.0);
+  EXPECT_DOUBLE_EQ(shown_rate({10}, 11), 0.0);
+  EXPECT_DOUBLE_EQ(shown_rate({}, 11), 0.0);
 }
 
 }  // namespace

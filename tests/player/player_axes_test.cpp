@@ -82,6 +82,8 @@ TEST(Player, AxisScaleFieldAppliesOnEnterAndEscapeCancelsTheEdit) {
   // Nothing applied by the time Escape was pressed; 7 after Enter.
   EXPECT_EQ(read_text(dir / "escaped.count"), "0\n") << log;
   EXPECT_NE(log.find("trace: axis scale 1,1,7\n"), std::string::npos) << log;
+  // One change, one trace line (issue 47 walk 6: Enter printed it twice).
+  EXPECT_EQ(log.find("trace: axis scale 1,1,7\n"), log.rfind("trace: axis scale 1,1,7\n")) << log;
   EXPECT_EQ(log.find("trace: axis scale 1,1,1"), std::string::npos) << log;
   EXPECT_EQ(read_json(stats)["axis_scale"], nlohmann::json({1.0, 1.0, 7.0})) << log;
 }

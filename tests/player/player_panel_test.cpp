@@ -108,9 +108,9 @@ TEST(Player, PanelFitsAt1280x800And1920x1080WithTheTransferFunctionFirst) {
     const fs::path script = script_in(
         dir, s + ".txt",
         "wait-frames 3\nstats " + a.string() + "\ntf-range 0.2:0.8\nwait-frames 3\nstats " +
-            b.string() + "\nexpand on\nwait-frames 3\nstats " + c.string() + "\nopen " +
-            missing.string() + "\nwait-frames 1\nplay\nwait-frames 3\nstats " + d.string() +
-            "\nquit\n");
+            b.string() + "\nexpand on\nwait-frames 3\nstats " + c.string() +
+            "\nplay\nwait-frames 1\nopen " + missing.string() + "\nwait-frames 3\nstats " +
+            d.string() + "\nquit\n");
     const auto r = run_tspplay("play " + q(tsp) + " --size " + s + " --script " + q(script));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const nlohmann::json ja = read_json(a), jb = read_json(b), jc = read_json(c);

@@ -125,7 +125,7 @@ TEST(PlayerScript, ErrorsNameTheLineAndWhatWasExpected) {
   EXPECT_NE(error_of("record m.avi").find("expected a .mp4 or .gif file name, or stop"),
             std::string::npos);
   EXPECT_NE(error_of("open").find("'open' takes a path"), std::string::npos);
-  EXPECT_NE(error_of("tf-range file").find("LO:HI with LO < HI (finite), or data, histogram, step or visible"), std::string::npos);
+  EXPECT_NE(error_of("tf-range file").find("LO:HI with LO < HI (finite), or data, bulk, step or view"), std::string::npos);
   EXPECT_NE(error_of("tf-range 3:1").find("colour range '3:1': expected LO:HI"),
             std::string::npos) << error_of("tf-range 3:1");
   EXPECT_EQ(commands_of("tf-range histogram\ntf-range -1:2\n")[1], Command(cmd::StretchTf{"-1:2"}));

@@ -304,7 +304,7 @@ TfRangeChoice parse_tf_range(const std::string& text) {
     c.mode = TfRangeChoice::Mode::file;
     return c;
   }
-  if (text == "histogram") {
+  if (text == "bulk" || text == "histogram") {  // (the player's "fit to bulk")
     c.mode = TfRangeChoice::Mode::histogram;
     return c;
   }
@@ -312,7 +312,7 @@ TfRangeChoice parse_tf_range(const std::string& text) {
     c.mode = TfRangeChoice::Mode::step;
     return c;
   }
-  if (text == "visible") {
+  if (text == "view" || text == "visible") {  // (the player's "fit to view")
     c.mode = TfRangeChoice::Mode::visible;
     return c;
   }
@@ -331,7 +331,8 @@ TfRangeChoice parse_tf_range(const std::string& text) {
   }
   if (!ok || !std::isfinite(lo) || !std::isfinite(hi) || !(lo < hi))
     throw UsageError("--tf-range '" + text +
-                     "': expected auto, data, file, histogram, step, visible or LO:HI with LO < HI");
+                     "': expected auto, data, file, bulk, step, view or LO:HI with LO < HI (histogram and "
+                     "visible: bulk and view)");
   if (!std::isfinite(hi - lo))
     throw UsageError("--tf-range '" + text + "': HI - LO is beyond the double range; expected a "
                      "range of finite width");

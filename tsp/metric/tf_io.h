@@ -67,8 +67,8 @@ struct TfRangeChoice {
   ValueRange range;  ///< explicit_range only
 };
 
-/// Parses --tf-range "auto", "data", "file", "histogram", "step", "visible" or "LO:HI" (finite,
-/// LO < HI).
+/// Parses --tf-range "auto", "data", "file", "bulk" (or "histogram"), "step", "view" (or
+/// "visible") or "LO:HI" (finite, LO < HI): bulk and view as the player's fit buttons name them.
 /// Throws UsageError.
 TfRangeChoice parse_tf_range(const std::string& text);
 

@@ -195,6 +195,22 @@ TEST(TfIo, HistogramRangeIsTheCentralNinetyEightPercent) {
   EXPECT_NEAR(tf.domain().hi, s.hi, 1e-12);
 }
 
+// The range words are the player's fit buttons' names ("fit to bulk", "fit to view"); the old
+// words stay as aliases, and the error names the new ones.
+TEST(TfIo, BulkAndViewAreTheRangeWordsHistogramAndVisibleTheirAliases) {
+  EXPECT_EQ(parse_tf_range("bulk").mode, TfRangeChoice::Mode::histogram);
+  EXPECT_EQ(parse_tf_range("view").mode, TfRangeChoice::Mode::visible);
+  EXPECT_EQ(parse_tf_range("histogram").mode, TfRangeChoice::Mode::histogram);
+  EXPECT_EQ(parse_tf_range("visible").mode, TfRangeChoice::Mode::visible);
+  try {
+    parse_tf_range("middle");
+    FAIL() << "no error";
+  } catch (const UsageError& e) {
+    EXPECT_STREQ(e.what(), "--tf-range 'middle': expected auto, data, file, bulk, step, view or "
+                           "LO:HI with LO < HI (histogram and visible: bulk and view)");
+  }
+}
+
 TEST(TfIo, TfRangeChoicesAndRescaling) {
   EXPECT_EQ(parse_tf_range("").mode, TfRangeChoice::Mode::automatic);
   EXPECT_EQ(parse_tf_range("data").mode, TfRangeChoice::Mode::data);
