@@ -304,7 +304,7 @@ void tf_section(PlayerApp& app) {
   ImGui::TextDisabled("(?)");
   if (ImGui::IsItemHovered())
     tooltip(
-        "log opacity: the curve's height is the opacity on a log scale (1e-3 to 1), so the "
+        "log opacity: the curve's height is the opacity on a log scale (1e-4 to 1, as the axis), so the "
         "faint opacities most maps need can be placed. Drag a point: the curve between its "
         "neighbours follows, keeping its detail. Double-click empty space to add a point, "
         "right-click a point to remove it.");

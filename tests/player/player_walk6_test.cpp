@@ -105,15 +105,6 @@ TEST(PlayerWalk6, SpacePausesOnTheStepOnScreenWithItsPicture) {
   EXPECT_LT(de(frames.size() - 1), kSameFrameDeltaE);
 }
 
-// The labels the last frame drew (stats' ui_items) that contain text.
-std::vector<std::string> labels_with(const nlohmann::json& stats, const std::string& text) {
-  std::vector<std::string> found;
-  for (const nlohmann::json& it : stats["ui_items"])
-    if (it["label"].get<std::string>().find(text) != std::string::npos)
-      found.push_back(it["label"]);
-  return found;
-}
-
 // The F1 help overlay is opaque: shown (a real F1, xdotool) over two different pictures (the
 // view turned between two screenshots with the UI), the overlay's body, which covers the middle
 // of the 128x96 window, reads the same in both. On Dear ImGui's 94 % window background the picture showed through.

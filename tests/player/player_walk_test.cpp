@@ -68,15 +68,6 @@ TEST(PlayerWalk, OpenSaysOpenedNotPlayingAndPausingLeavesNoPlayingMessage) {
       << read_json(b)["status"];
 }
 
-// The labels the last frame drew (stats' ui_items) that contain text.
-std::vector<std::string> labels_with(const nlohmann::json& stats, const std::string& text) {
-  std::vector<std::string> found;
-  for (const nlohmann::json& it : stats["ui_items"])
-    if (it["label"].get<std::string>().find(text) != std::string::npos)
-      found.push_back(it["label"]);
-  return found;
-}
-
 // As playback starts the timeline shows no rate until one was measured (a second step shown
 // since it started): it read "playing at 0.0 steps/s of 24" (counted over the window's last
 // 2 s, paused frames included). At 2 steps/s and 100 ms frames the second step comes after

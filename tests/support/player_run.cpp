@@ -128,6 +128,14 @@ nlohmann::json read_json(const fs::path& p) {
   return nlohmann::json::parse(in);
 }
 
+std::vector<std::string> labels_with(const nlohmann::json& stats, const std::string& text) {
+  std::vector<std::string> found;
+  for (const nlohmann::json& it : stats["ui_items"])
+    if (it["label"].get<std::string>().find(text) != std::string::npos)
+      found.push_back(it["label"]);
+  return found;
+}
+
 std::string orbit_then_idle_script(const fs::path& dir, const fs::path& shot) {
   std::string text = "tf preset:filled\ntarget-fps 240\nview 30 20\nwait-frames 2\n";
   for (int k = 1; k <= 12; ++k) text += "view " + std::to_string(30 + 5 * k) + " 20\nwait-frames 1\n";

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -40,6 +41,8 @@ tsp::Image render_step(const std::filesystem::path& tsp, int step,
 std::string read_text(const std::filesystem::path& p);
 /// A JSON file (stats, frames.json).
 nlohmann::json read_json(const std::filesystem::path& p);
+/// The labels the last frame drew (a `stats` file's ui_items) that contain text.
+std::vector<std::string> labels_with(const nlohmann::json& stats, const std::string& text);
 /// A script that orbits at a target no software renderer reaches (stats in dir/moving.json),
 /// then stops and waits (dir/idle.json) and takes a screenshot, which waits for full quality.
 std::string orbit_then_idle_script(const std::filesystem::path& dir,
