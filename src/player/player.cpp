@@ -412,7 +412,7 @@ void PlayerApp::frame() {
   apply_probes();
   hold_shown();  // (playing: the picture on screen, for a Space press while this frame draws)
   render_volume();
-  advance_tuning();
+  if (!(state_.playing && !rate_playing_)) advance_tuning();  // (not in playback's first frame)
   if (tol_readout_due && imgui_) measure_tolerance();
   if (frame_delay_ms_ > 0)
     std::this_thread::sleep_for(std::chrono::duration<double, std::milli>(frame_delay_ms_));

@@ -139,6 +139,8 @@ class PlayerApp {
   /// Shows an error in the status area (and on stderr): it stays until a message replaces it or
   /// the next action succeeds (cleared_by_action). Never throws but bad_alloc.
   void set_error(const std::string& what);
+  /// True while the status area shows the last error set_error showed (drawn in red).
+  bool status_is_error() const { return !error_status_.empty() && status == error_status_; }
   bool show_help = false;               ///< the controls overlay (F1 or ?)
   /// 1: open every section of the panels at the next frame; -1: back to how they start; 0: as
   /// the user left them (script `expand on|off`).
@@ -322,6 +324,7 @@ class PlayerApp {
   bool busy() const;
   void start_tuning();    // a new tuning for what is shown (errors to status)
   void advance_tuning();  // one slice of the playback tuning; (re)starts it when out of date
+  void begin_tuning();    // (re)starts the tuning when out of date, no picture yet
   void choose_rung(double now_s);  // the rung the next playing frame draws
   void measured_rung(double render_ms);  // the window's time for the rung it drew
   void advance_playback(double dt);
@@ -445,6 +448,9 @@ class PlayerApp {
   TuneKey tuning_for_, tuned_for_;              ///< what the running / last tuning is for
   RungPicker rungs_;  ///< the last complete tuning's ladder and the rung playing draws
   double tuning_started_s_ = 0;
+  std::int64_t tuning_started_frame_ = 0;  ///< frames_drawn_ when the tuning started
+  /// Frames drawn from the tuning's start to its first picture (−1: none yet).
+  std::int64_t frames_before_first_picture_ = -1;
   double tuning_s_ = -1;                ///< how long the last tuning took (−1: none)
   std::deque<double> shown_at_s_;       ///< when each newly shown step was drawn (last 2 s)
   int last_shown_step_ = -1;

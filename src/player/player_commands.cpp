@@ -1,5 +1,6 @@
 // Carrying out the player's commands (command.h): one function per command, reached through
 // apply() — what script lines, keys and panel widgets all send (docs/player.md).
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
@@ -31,12 +32,15 @@ struct CommandApplier {
   }
   void operator()(const cmd::Play&) const {
     state().playing = true;
-    app.advance_tuning();  // tuned at once if it must be: a script's next action waits for it
+    // The tuning starts (a script's next action waits for it), its pictures from the frame after
+    // this one on: the window shows Pause and a provisional frame first (the seventh walk saw
+    // nothing for 2.7 s after Space while the first full-quality probe was drawn).
+    app.begin_tuning();
   }
   void operator()(const cmd::Pause&) const { state().playing = false; }
   void operator()(const cmd::SetSpeed& c) const {
     state().speed = c.steps_per_s;
-    app.speed_chosen_ = true;  // kept when another file opens
+    app.speed_chosen_ = true;  // this series' (saved in its session); --speed is kept on open
   }
   void operator()(const cmd::SetLoop& c) const { state().loop = c.on; }
   void operator()(const cmd::LoadTf& c) const {
@@ -64,7 +68,11 @@ struct CommandApplier {
             : tsp::tf_domain_of(r, f, state().step);
     const std::uint64_t before = app.tf.version();
     app.set_tf(tsp::rescaled(app.tf, to), true);
-    const std::string range = "[" + std::to_string(to.lo) + ", " + std::to_string(to.hi) + "]";
+    // Six significant digits, a rounding speck (|v| below a millionth of the width) as 0: the
+    // seventh walk read "[-0.000000, 299.999908]", wrapped inside a number.
+    const double speck = 1e-6 * std::abs(to.hi - to.lo);
+    auto text = [speck](double v) { return tsp::number_text(std::abs(v) <= speck ? 0.0 : v, "%.6g"); };
+    const std::string range = "[" + text(to.lo) + ", " + text(to.hi) + "]";
     if (app.tf.version() == before) {  // a fit that moves nothing says so (it said nothing)
       app.status = "colour range already fits " + fit_name(r.mode) + " " + range +
                    ": nothing changed";

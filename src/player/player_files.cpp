@@ -146,7 +146,11 @@ void PlayerApp::open_file(const std::string& path) {
   set_tf(tf, true);
   tf_label = tf_label_of(options_.tf);
   state_.step = 0;
-  if (!speed_chosen_) state_.speed = default_speed(tree.time().steps());
+  // A speed set in the window was this series' (the seventh walk: the plume's 6 steps/s went on
+  // to a 2-step series and into its session); --speed is kept. The new input's session may set
+  // one below.
+  speed_chosen_ = options_.speed != 0;
+  state_.speed = speed_chosen_ ? options_.speed : default_speed(tree.time().steps());
   state_.playing = false;
   lod_loop_.clear_focus();
   state_.settings.tol = {0, 0};
@@ -331,6 +335,7 @@ void PlayerApp::write_stats(const std::string& path) const {
   j["panels"] = state_.panels;
   j["surface_mesh"] = surface_mesh_;  // the mesh whose boundary is drawn ("": none)
   j["status"] = status;
+  j["status_error"] = status_is_error();
   j["field"] = viewer_->file().fields()[std::size_t(viewer_->file().field_index())];
   j["fields"] = viewer_->file().fields();
   j["field_switch_ms"] = field_switch_ms;
@@ -385,6 +390,7 @@ void PlayerApp::write_stats(const std::string& path) const {
                  {"pictures_total", tuner_ ? tuner_->pictures_total() : 0},
                  {"seconds", tuning_s_},
                  {"frames_while_tuning", frames_while_tuning_},
+                 {"frames_before_first_picture", frames_before_first_picture_},
                  {"from_cache", tuning_from_cache_},  // read from disk: no probing this run
                  {"cache_file", tuning_cache_file_}};
   j["lod"] = lod_loop_.stats();  // the last frame's cut, under frames.json's "lod" keys

@@ -136,10 +136,12 @@ void PlayerApp::start_tuning() {
   }
   tuning_for_ = key;
   tuning_started_s_ = clock_.seconds();
+  tuning_started_frame_ = frames_drawn_;
+  frames_before_first_picture_ = -1;
   frames_while_tuning_ = 0;
 }
 
-void PlayerApp::advance_tuning() {
+void PlayerApp::begin_tuning() {
   if (state_.quality <= 0) {
     tuner_.reset();
     return;
@@ -148,7 +150,12 @@ void PlayerApp::advance_tuning() {
   if (tuner_ && !(tuning_for_ == key)) start_tuning();  // out of date: again, for what is shown
   // Tuned when playing (a still window never pays for it) or when the target is set.
   if (!tuner_ && state_.playing && (rungs_.ladder().empty() || !(tuned_for_ == key))) start_tuning();
+}
+
+void PlayerApp::advance_tuning() {
+  begin_tuning();
   if (!tuner_) return;
+  if (frames_before_first_picture_ < 0) frames_before_first_picture_ = frames_drawn_ - tuning_started_frame_;
   try {
     if (!tuner_->advance(kCalibrationSliceMs)) {
       ++frames_while_tuning_;

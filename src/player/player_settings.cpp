@@ -78,9 +78,13 @@ void PlayerApp::offer_surface() {
     } catch (const tsp::Error& e) {
       why = e.what();
     }
-  } else {
+  } else if (viewer_->file().metadata().source.find(", voxelized to ") != std::string::npos) {
     why = "surface boundary needs the mesh the file was built from: play the mesh itself "
           "(tspplay play MESH), or start with --surface-mesh MESH";
+  } else {  // (it spoke of "the mesh the file was built from" for a grid's file too)
+    why = "surface boundary draws a mesh's outer surface, and this input is a grid (" +
+          viewer_->file().metadata().source +
+          "): play a mesh input (tspplay play MESH), or start with --surface-mesh MESH";
   }
   state_.settings.surface = false;
   status = why;

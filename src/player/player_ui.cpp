@@ -345,7 +345,9 @@ void status_area(PlayerApp& app, float height) {
   }
   const std::string shown = fit_lines(app.status, ImGui::GetContentRegionAvail().x,
                                       ImGui::GetContentRegionAvail().y);
-  ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.f, 0.85f, 0.5f, 1.f));
+  // Errors in red, other messages in amber (an error looked like a saved file's message).
+  ImGui::PushStyleColor(ImGuiCol_Text, app.status_is_error() ? ImVec4(1.f, 0.45f, 0.4f, 1.f)
+                                                             : ImVec4(1.f, 0.85f, 0.5f, 1.f));
   ImGui::TextWrapped("%s", shown.c_str());
   note_wrapped(shown.c_str());
   ImGui::PopStyleColor();

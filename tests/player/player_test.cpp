@@ -127,7 +127,10 @@ TEST(Player, DraggingATransferFunctionHandleMovesIt) {
   const fs::path tf = dir / "ramp.json", out = dir / "drag.out", stats = dir / "drag.json";
   std::ofstream(tf) << "{\"range\": [" << r.lo << ", " << r.hi << "], \"points\": [[" << r.lo
                     << ", 0, 0, 1, 0], [" << r.hi << ", 1, 0, 0, 1]]}";
-  fs::path script = write_script("wait-seconds 7\nstats " + stats.string() + "\nquit\n");
+  // (The drag below takes about 4.5 s after the canvas shows; under ctest -j2 it once ended after
+  // a 7 s wait had written the stats, half-way through the drag: 14 s. A real handshake would
+  // need a script line that waits for the drag's end.)
+  fs::path script = write_script("wait-seconds 14\nstats " + stats.string() + "\nquit\n");
   const std::string cmd =
       "(" + q(tsptest::tspplay_bin()) + " play " + q(tsp) + " --size 800x800 --trace " +
       "--frame-delay-ms 500 --tf " + q(tf) + " --script " + q(script) + " > " + q(out) +

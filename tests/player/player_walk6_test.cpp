@@ -175,6 +175,8 @@ TEST(PlayerWalk6, AFitThatChangesNothingSaysSo) {
   const std::string status = read_json(a)["status"];
   EXPECT_EQ(status.rfind("colour range already fits the bulk [", 0), 0u) << status;
   EXPECT_NE(status.find("]: nothing changed"), std::string::npos) << status;
+  EXPECT_FALSE(read_json(a)["status_error"]);  // a message, not an error: amber
+  EXPECT_EQ(status.find("000000"), std::string::npos) << status;  // 6 digits, not "-0.000000"
 }
 
 // The colour range's words are the fit buttons' names: each "fit to WORD" in the panel is a
@@ -215,7 +217,9 @@ TEST(PlayerWalk6, AnErrorClearsWhenTheNextActionSucceeds) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string before = read_json(a)["status"];
   EXPECT_EQ(before.rfind("open " + missing, 0), 0u) << before;
+  EXPECT_TRUE(read_json(a)["status_error"]) << before;  // drawn in red (the seventh walk)
   EXPECT_EQ(read_json(b)["status"], "") << r.out;
+  EXPECT_FALSE(read_json(b)["status_error"]);
   EXPECT_EQ(count(r.out, "trace: error cleared: the next action succeeded"), 1) << r.out;
 }
 
@@ -240,6 +244,46 @@ TEST(PlayerWalk6, SaveSessionOffersTheDatasetsNameBesideIt) {
   EXPECT_NE(r.out.find("trace: save session dialog offers " + (other / name).string() + "\n"),
             std::string::npos)
       << r.out;
+}
+
+// A speed set in the window belongs to its series: File > Open of another input starts at that
+// input's default (the seventh walk: the plume's 6 steps/s went on to the 2-step dam break and
+// into its session); --speed is kept.
+TEST(PlayerWalk7, ASpeedSetInTheWindowStaysWithItsSeries) {
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
+  const fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
+  const std::string a = (dir / "a.json").string(), b = (dir / "b.json").string();
+  const std::string script = "speed 6\nstats " + a + "\nopen " + tsp.string() +
+                             "\nwait-frames 2\nstats " + b + "\nquit\n";
+  auto played = [&](const std::string& extra) {
+    const auto r = run_tspplay("play " + q(tsp) + " --size " + kSize + " --no-session" + extra +
+                               " --script " + q(write_script(script)));
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return std::pair{read_json(a)["playback"]["speed"].get<double>(),
+                     read_json(b)["playback"]["speed"].get<double>()};
+  };
+  const auto window = played("");
+  EXPECT_EQ(window.first, 6.0);
+  EXPECT_EQ(window.second, 1.0);  // make_tsp's 4 steps over the default loop's 4 s (docs/player.md)
+  const auto given = played(" --speed 2");
+  EXPECT_EQ(given.second, 2.0);  // the command line's speed is kept
+}
+
+// Playing shows a frame before the tuning's first probe picture: Space showed nothing for
+// 2.7 s on the demo while the first full-quality probe was drawn in the frame the key arrived
+// (the seventh walk). A fresh cache: the tuning runs.
+TEST(PlayerWalk7, PlayingDrawsAFrameBeforeTheTuningsFirstPicture) {
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
+  const fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
+  const std::string a = (dir / "a.json").string();
+  const auto r = run_tspplay("play " + q(tsp) + " --size " + kSize + " --no-session --cache-dir " +
+                             q(dir / "cache") + " --script " +
+                             q(write_script("play\nstats " + a + "\nquit\n")));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = read_json(a);
+  EXPECT_TRUE(j["playback"]["tuned"].get<bool>()) << j["tuning"];
+  EXPECT_FALSE(j["tuning"]["from_cache"].get<bool>()) << j["tuning"];
+  EXPECT_GE(j["tuning"]["frames_before_first_picture"].get<int>(), 1) << j["tuning"];
 }
 
 }  // namespace
