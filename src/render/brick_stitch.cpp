@@ -8,6 +8,7 @@
 // highest-numbered textured brick's sample; stitching gives every slot the same rule, so the GL
 // caster, slices and the CPU caster's brick-by-brick walk read what the dense region reads.
 #include <algorithm>
+#include <unordered_map>
 #include <vector>
 
 #include "render/brick_textures.h"
@@ -32,6 +33,12 @@ constexpr std::array<std::array<int, 3>, 13> kHigherNeighbours{{{1, 0, 0},
                                                                 {0, 1, 1},
                                                                 {1, 1, 1}}};
 constexpr int kNotTextured = -2;
+
+/// True when keys a and b of neighbouring bricks hold the same step's samples (or the same
+/// span's mean): then the texels they share agree.
+inline bool same_samples(const tsp::TextureKey& a, const tsp::TextureKey& b) {
+  return a.t0 == b.t0 && a.is_mean() == b.is_mean() && (!a.is_mean() || a.t1 == b.t1);
+}
 
 /// Copies the samples (codes, then `planes - 1` more planes such as stencil flags) of lattice
 /// `from` that lie in lattice `to`'s box into `dst` (laid out as `to`). Never throws.
@@ -67,24 +74,24 @@ std::int64_t BrickTextures::slot_bytes(const tsp::BrickLattice& s) const {
 
 std::int64_t BrickTextures::stitch(const std::vector<tsp::TextureKey>& level0) {
   if (!atlas_) return 0;
+  const std::vector<tsp::TextureKey> want = by_brick(level0);
+  if (want.empty()) return 0;
   const tsp::Octree& octree = bricks_.store().tree().octree();
-  const int count = octree.brick_count();
-  std::vector<int> want(std::size_t(count), -1);  // per brick, its key's index in level0
-  for (std::size_t i = 0; i < level0.size(); ++i) {
-    const tsp::TextureKey& k = level0[i];
-    if (k.level != 0 || k.brick < 0 || k.brick >= count || !contains(k)) return 0;
-    if (octree.lattice(k.brick).factor != std::array<int, 3>{1, 1, 1}) return 0;
-    int& w = want[std::size_t(k.brick)];
-    if (w >= 0 && !(level0[std::size_t(w)] == k)) return 0;  // two keys of one brick
-    w = int(i);
-  }
   const auto g = octree.brick_grid();
-  const int planes = channels_;  // codes, and the stencil's flags
+  auto textured = [&](int b) { return want[std::size_t(b)].level == 0; };
+  // Each brick's samples read once in this call (a neighbour serves up to 13 slots; a span's
+  // mean is computed, not cached).
+  std::unordered_map<int, tsp::BrickSamples> read;
+  auto samples_of = [&](int b) -> const tsp::BrickSamples& {
+    auto it = read.find(b);
+    if (it == read.end()) it = read.emplace(b, texture_samples(bricks_, want[std::size_t(b)])).first;
+    return it->second;
+  };
   std::vector<std::uint16_t> buffer;
   std::int64_t bytes = 0;
-  for (int b = 0; b < count; ++b) {
-    if (want[std::size_t(b)] < 0) continue;
-    const tsp::TextureKey& key = level0[std::size_t(want[std::size_t(b)])];
+  for (int b = 0; b < int(want.size()); ++b) {
+    if (!textured(b)) continue;
+    const tsp::TextureKey& key = want[std::size_t(b)];
     const std::array<int, 3> c{b % g[0], b / g[0] % g[1], b / (g[0] * g[1])};
     StitchSteps steps{};
     std::array<int, 13> neighbour{};
@@ -96,33 +103,31 @@ std::int64_t BrickTextures::stitch(const std::vector<tsp::TextureKey>& level0) {
       steps[i] = {detail::kNotTextured, detail::kNotTextured};
       if (n[0] < 0 || n[1] < 0 || n[0] >= g[0] || n[1] >= g[1] || n[2] >= g[2]) continue;
       const int nb = n[0] + g[0] * (n[1] + g[1] * n[2]);
-      if (want[std::size_t(nb)] < 0) continue;
-      const tsp::TextureKey& nk = level0[std::size_t(want[std::size_t(nb)])];
+      if (!textured(nb)) continue;
+      const tsp::TextureKey& nk = want[std::size_t(nb)];
       neighbour[i] = nb;
       steps[i] = {nk.t0, nk.t1};
-      differs |= nk.t0 != key.t0 || nk.is_mean() != key.is_mean() || (key.is_mean() && nk.t1 != key.t1);
+      differs |= !detail::same_samples(nk, key);
     }
     const int slot = slots_.at(key);
     const auto held = stitched_.find(slot);
     const bool was_modified = held != stitched_.end() && held->second.modified;
+    const tsp::BrickLattice own = octree.lattice(b);
     if (!differs) {  // every sharer holds this step: the brick's own samples are right
       if (was_modified) {
-        put(slot, octree.lattice(b), texture_samples(bricks_, key)->data());
-        bytes += slot_bytes(octree.lattice(b));
+        put(slot, own, samples_of(b)->data());
+        bytes += slot_bytes(own);
       }
       stitched_.erase(slot);
       continue;
     }
     if (held != stitched_.end() && held->second.steps == steps) continue;
-    const tsp::BrickLattice own = octree.lattice(b);
-    const tsp::BrickSamples samples = texture_samples(bricks_, key);
+    const tsp::BrickSamples& samples = samples_of(b);
     buffer.assign(samples->begin(), samples->end());
-    for (std::size_t i = 0; i < neighbour.size(); ++i) {  // ascending: the highest one wins
-      if (neighbour[i] < 0) continue;
-      const tsp::TextureKey& nk = level0[std::size_t(want[std::size_t(neighbour[i])])];
-      const tsp::BrickSamples theirs = texture_samples(bricks_, nk);
-      detail::copy_shared(octree.lattice(neighbour[i]), theirs->data(), own, buffer.data(), planes);
-    }
+    for (int nb : neighbour)  // ascending: the highest one wins
+      if (nb >= 0)
+        detail::copy_shared(octree.lattice(nb), samples_of(nb)->data(), own, buffer.data(),
+                            channels_);  // (codes, and the stencil's flags)
     // (Steps whose samples agree on the faces, such as a field's still parts, change nothing.)
     const bool modified = !std::equal(buffer.begin(), buffer.end(), samples->begin());
     if (modified || was_modified) {

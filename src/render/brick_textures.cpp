@@ -186,19 +186,27 @@ void BrickTextures::allocate_host() {
                  channels_);
 }
 
+std::vector<tsp::TextureKey> BrickTextures::by_brick(const std::vector<tsp::TextureKey>& level0) const {
+  const tsp::Octree& octree = bricks_.store().tree().octree();
+  const int count = octree.brick_count();
+  std::vector<tsp::TextureKey> want(static_cast<std::size_t>(count));
+  for (auto& k : want) k.level = -1;
+  for (const tsp::TextureKey& k : level0) {
+    if (k.level != 0 || k.brick < 0 || k.brick >= count || !contains(k)) return {};
+    if (octree.lattice(k.brick).factor != std::array<int, 3>{1, 1, 1}) return {};
+    tsp::TextureKey& w = want[std::size_t(k.brick)];
+    if (w.level == 0 && !(w == k)) return {};  // two keys of one brick
+    w = k;
+  }
+  return want;
+}
+
 bool BrickTextures::place_dense(const std::vector<tsp::TextureKey>& level0) {
   if (!mirror_ || !atlas_ || dense_z_ < 0) return false;
   const tsp::Octree& octree = bricks_.store().tree().octree();
   const int count = octree.brick_count();
-  std::vector<tsp::TextureKey> want(placed_.size());
-  for (auto& k : want) k.level = -1;
-  for (const tsp::TextureKey& k : level0) {
-    if (k.level != 0 || k.brick < 0 || k.brick >= count || !contains(k)) return false;
-    if (octree.lattice(k.brick).factor != std::array<int, 3>{1, 1, 1}) return false;
-    tsp::TextureKey& w = want[std::size_t(k.brick)];
-    if (w.level == 0 && !(w == k)) return false;  // two keys of one brick: the slots alone
-    w = k;
-  }
+  std::vector<tsp::TextureKey> want = by_brick(level0);
+  if (want.empty()) return false;  // the slots alone
   const auto g = octree.brick_grid();
   auto placed = [&](int b) { return want[std::size_t(b)].level == 0; };
   // Brick b's samples (its key's slot) over the box `lo`..`hi` of the volume's samples.

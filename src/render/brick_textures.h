@@ -130,6 +130,9 @@ class BrickTextures {
   };
   /// Per slot that stitch() saw with a neighbour of another step.
   std::unordered_map<int, Stitched> stitched_;
+  /// The frame's level-0 keys (resident, full resolution) by brick (level −1: none); empty for
+  /// two keys of one brick, an adaptive file's coarse leaf or a key not resident.
+  std::vector<tsp::TextureKey> by_brick(const std::vector<tsp::TextureKey>& level0) const;
   /// Bytes a slot holding lattice s takes (both channels with a stencil).
   std::int64_t slot_bytes(const tsp::BrickLattice& s) const;
   /// Writes a brick's samples (codes, then stencil flags) to slot, in GL and the RAM copy.
