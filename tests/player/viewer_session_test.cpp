@@ -40,6 +40,29 @@ tsp::TransferFunction ramp() {
   return tf;
 }
 
+// The tests' view: 64×48 over the 17³ series.
+constexpr int kWidth = 64, kHeight = 48;
+tsp::Camera view() {
+  tsp::CameraParams p;
+  p.width = kWidth;
+  p.height = kHeight;
+  return tsp::Camera({17, 17, 17}, p);
+}
+
+// What the session's frame driver draws of step under its own metric.
+tsp::Image drawn(ViewerSession& v, tspgl::GlContext& ctx, const tsp::Camera& cam,
+                 const tsp::TransferFunction& tf, int step,
+                 const tspgl::RenderSettings& s = {}) {
+  tspgl::FrameRequest request;
+  request.step = step;
+  request.camera = &cam;
+  request.settings = s;
+  request.metric = &v.frame_metric();
+  request.tf = &tf;
+  v.driver().draw(request);
+  return ctx.read_pixels();
+}
+
 TEST(ViewerSession, TheMetricIsTheLibrarysForTheFileAndFollowsTheTf) {
   const std::string path = series("metric", 0);
   tsp::TransferFunction tf = ramp();
@@ -111,13 +134,10 @@ TEST(ViewerSession, TheReferenceMetricSurvivesAnOpenAndAFieldSwap) {
 TEST(ViewerSession, ItsRendererDrawsTheFileAndAFieldSwapHandsTheOldOneBack) {
   const std::string a = series("a", 0), b = series("b", 1.5f);
   const tsp::TransferFunction tf = ramp();
-  const std::unique_ptr<tspgl::GlContext> ctx = tspgl::create_offscreen_context(64, 48);
+  const std::unique_ptr<tspgl::GlContext> ctx = tspgl::create_offscreen_context(kWidth, kHeight);
   std::shared_ptr<tspgl::SliceCompositor> programs;
   tspgl::RenderSettings s;
-  tsp::CameraParams p;
-  p.width = 64;
-  p.height = 48;
-  const tsp::Camera cam({17, 17, 17}, p);
+  const tsp::Camera cam = view();
   // What a renderer of its own draws of a file at full quality.
   const auto own_picture = [&](const std::string& path) {
     const std::unique_ptr<tsp::TspFile> f = tsp::TspFile::open(path);
@@ -129,28 +149,19 @@ TEST(ViewerSession, ItsRendererDrawsTheFileAndAFieldSwapHandsTheOldOneBack) {
     r.render(1, cam, s, nodes);
     return ctx->read_pixels();
   };
-  const auto drawn = [&](ViewerSession& v) {
-    tspgl::FrameRequest request;
-    request.step = 1;
-    request.camera = &cam;
-    request.settings = s;
-    request.metric = &v.frame_metric();
-    request.tf = &tf;
-    v.driver().draw(request);
-    return ctx->read_pixels();
-  };
+  const auto drawn_1 = [&](ViewerSession& v) { return drawn(v, *ctx, cam, tf, 1, s); };
   const tsp::Image picture_a = own_picture(a), picture_b = own_picture(b);
   ASSERT_NE(picture_a.rgba, picture_b.rgba);
 
   ViewerSession v(tsp::TspFile::open(a), tf, tsp::Metric::approximate);
   v.make_renderer(*ctx, tsp::CachePolicy::on, 64 << 20, 64 << 20, programs);
   ASSERT_TRUE(v.has_renderer());
-  EXPECT_EQ(drawn(v).rgba, picture_a.rgba);
+  EXPECT_EQ(drawn_1(v).rgba, picture_a.rgba);
   // A new renderer (a cache change) keeps the window's compiled programs.
   v.make_renderer(*ctx, tsp::CachePolicy::off, 64 << 20, 64 << 20, programs);
   ASSERT_TRUE(programs);
   EXPECT_EQ(v.renderer().compositor(), programs);
-  EXPECT_EQ(drawn(v).rgba, picture_a.rgba);
+  EXPECT_EQ(drawn_1(v).rgba, picture_a.rgba);
   // A field swap: b shown, a's file and renderer handed back; drawing b needs a renderer.
   const tsp::TspFile* file_a = &v.file();
   const tspgl::VolumeRenderer* renderer_a = &v.renderer();
@@ -160,48 +171,37 @@ TEST(ViewerSession, ItsRendererDrawsTheFileAndAFieldSwapHandsTheOldOneBack) {
   EXPECT_FALSE(v.has_renderer());
   v.make_renderer(*ctx, tsp::CachePolicy::on, 64 << 20, 64 << 20, programs);
   EXPECT_EQ(v.renderer().compositor(), programs);
-  EXPECT_EQ(drawn(v).rgba, picture_b.rgba);
+  EXPECT_EQ(drawn_1(v).rgba, picture_b.rgba);
   // Back to a: its own renderer adopted, drawing a again.
   auto [file_b, renderer_b] = v.swap_field(std::move(old_file), programs);
   v.adopt_renderer(std::move(old_renderer));
   EXPECT_EQ(&v.renderer(), renderer_a);
-  EXPECT_EQ(drawn(v).rgba, picture_a.rgba);
+  EXPECT_EQ(drawn_1(v).rgba, picture_a.rgba);
 }
 
 TEST(ViewerSession, OpeningAnotherFileReplacesTheWholeSession) {
   const std::string a = series("open_a", 0), b = series("open_b", 1.5f);
   const tsp::TransferFunction tf = ramp();
-  const std::unique_ptr<tspgl::GlContext> ctx = tspgl::create_offscreen_context(64, 48);
+  const std::unique_ptr<tspgl::GlContext> ctx = tspgl::create_offscreen_context(kWidth, kHeight);
   std::shared_ptr<tspgl::SliceCompositor> programs;
-  tsp::CameraParams p;
-  p.width = 64;
-  p.height = 48;
-  const tsp::Camera cam({17, 17, 17}, p);
-  const auto drawn = [&](ViewerSession& v) {
-    tspgl::FrameRequest request;
-    request.step = 0;
-    request.camera = &cam;
-    request.metric = &v.frame_metric();
-    request.tf = &tf;
-    v.driver().draw(request);
-    return ctx->read_pixels();
-  };
+  const tsp::Camera cam = view();
+  const auto drawn_0 = [&](ViewerSession& v) { return drawn(v, *ctx, cam, tf, 0); };
   // As the player's File > Open: the programs taken from the old renderer, the old session
   // dropped, a new one made over the new file with the same TF object.
   auto v = std::make_unique<ViewerSession>(tsp::TspFile::open(a), tf, tsp::Metric::approximate);
   v->make_renderer(*ctx, tsp::CachePolicy::on, 64 << 20, 64 << 20, programs);
-  const tsp::Image first_a = drawn(*v);
+  const tsp::Image first_a = drawn_0(*v);
   programs = v->renderer().compositor();
   v = std::make_unique<ViewerSession>(tsp::TspFile::open(b), tf, tsp::Metric::approximate);
   EXPECT_FALSE(v->has_renderer());
   v->make_renderer(*ctx, tsp::CachePolicy::on, 64 << 20, 64 << 20, programs);
   EXPECT_EQ(v->renderer().compositor(), programs);
-  const tsp::Image then_b = drawn(*v);
+  const tsp::Image then_b = drawn_0(*v);
   EXPECT_NE(then_b.rgba, first_a.rgba);
   // And back: the same picture of a as the first session drew.
   v = std::make_unique<ViewerSession>(tsp::TspFile::open(a), tf, tsp::Metric::approximate);
   v->make_renderer(*ctx, tsp::CachePolicy::on, 64 << 20, 64 << 20, programs);
-  EXPECT_EQ(drawn(*v).rgba, first_a.rgba);
+  EXPECT_EQ(drawn_0(*v).rgba, first_a.rgba);
 }
 
 }  // namespace
