@@ -1,7 +1,7 @@
 // Refinement's passes of the CPU caster's walk (volume_ray.frag's TSP_REFINE loop), in their
-// own file: the scalar loop, the SIMD look-ahead of the segments ahead and a refined segment's
-// fine samples in one batch. Internal: included by cpu_caster.cpp only, so the walk's clones
-// (cast_tile) inline it.
+// own file: the scalar loop and the SIMD look-ahead of the segments ahead (their middles, the
+// refined ones' fine samples and every segment's lighting in batches). Internal: included by
+// cpu_caster.cpp only, so the walk's clones (cast_tile) inline it.
 #pragma once
 #include "render/cpu_walk.h"
 #include "tsp/frame/refine.h"
@@ -105,126 +105,165 @@ inline void RayWalk::refined(float t, float t_out, ivec3 c, const BrickView& b, 
 }
 
 // Refinement's passes that read the next middle (mode 3) for as many segments ahead as a batch
-// holds, in SIMD: the middles' lookups at once, then the segments' lit colours at once, then
-// the passes replayed in order as refined() would make them — up to the first segment that is
-// refined (left in its state: the fine samples follow in refined()), the ray's opacity, or a
-// middle in the next brick. Returns the passes made (0: none, refined() makes this one).
+// holds, in SIMD (read_ahead: the middles' lookups, the refined segments' fine samples and every
+// segment's lit colour, each at once), then the passes replayed in order as refined() would make
+// them — up to a refined segment with a fine sample in the next brick (left in its state: the
+// fine samples follow in refined()), the ray's opacity, or a middle in the next brick. Returns
+// the passes made (0: none, refined() makes this one).
 inline int RayWalk::refined_batch(float t_out, const BrickView& b, bool closing,
-                           const float* piece_row) {
+                                  const float* piece_row) {
   Ahead& a = batch_ahead_;
-  if (next_ >= ahead_n_ || a.sb[next_] != seg_b_) {  // read the segments ahead
-    const float dt = s_.spacing / r_.cos_theta;
-    Positions reads, mids;
-    int n = 0;
-    // The segments end on the planes of depth (plane · spacing): the first plane past seg_b_
-    // as refined() finds it, then one plane a segment, each end from its plane alone (no
-    // chain of divisions and floors from one segment to the next).
-    const float inv_cos = 1.f / r_.cos_theta;
-    float plane = std::floor((r_.depth_entry + seg_b_ * r_.cos_theta) / s_.spacing + 1e-4f) + 1.f;
-    for (float sb = seg_b_; n < kMaxBatch; ++n, plane += 1.f) {
-      float se = (plane * s_.spacing - r_.depth_entry) * inv_cos;
-      if (closing) se = std::min(se, t_out);
-      if (se - sb < 1e-4f * dt) break;  // the run's end
-      const float mid = 0.5f * (sb + se);
-      if (!closing && mid >= t_out) break;  // the next brick's segment
-      const float ts = closing && se >= t_out
-                           ? se
-                           : 0.5f * (se + (closing ? std::min(se + dt, t_out) : se + dt));
-      if (ts >= t_out) break;  // read in the next brick: refined() does it
-      const vec3 r = texel(ts, vec3(1.f)), m = texel(mid, vec3(1.f));
-      reads.x[n] = r.x;
-      reads.y[n] = r.y;
-      reads.z[n] = r.z;
-      mids.x[n] = m.x;
-      mids.y[n] = m.y;
-      mids.z[n] = m.z;
-      a.sb[n] = sb;
-      a.se[n] = se;
-      sb = se;
-    }
-    ahead_n_ = n;
-    next_ = 0;
-    if (n == 0) return 0;
-    sample_batch(smp_, b, piece_row, reads, n, false, a.read);
-    samples_ += n;
-    for (int j = 0; j < n; ++j) {  // segment j composites the middle read before it
-      const vec4 cur =
-          j == 0 ? cur_ : vec4(a.read.r[j - 1], a.read.g[j - 1], a.read.b[j - 1], a.read.a[j - 1]);
-      vec4 col(vec3(cur), cur.a - 2.f * piece_of(cur));
-      const float k = (a.se[j] - a.sb[j]) / dt;
-      if (k < 1.f) col = cut_sample(col, k);
-      a.lit.r[j] = col.r;
-      a.lit.g[j] = col.g;
-      a.lit.b[j] = col.b;
-      a.lit.a[j] = col.a;
-    }
-    if (s_.shade) shade_batch(smp_, b, mids, n, a.lit);
+  if (next_ >= ahead_n_ || a.sb[next_] != seg_b_) {
+    read_ahead(t_out, b, closing, piece_row);
+    if (ahead_n_ == 0) return 0;
   }
   int made = 0;
   for (; next_ < ahead_n_ && acc_.a < kOpaque; ++made, ++next_) {
     const int j = next_;
     const vec4 e(a.read.r[j], a.read.g[j], a.read.b[j], a.read.a[j]);
-    const float piece = piece_of(cur_);
-    if (piece != piece_prev_ || piece != piece_of(e)) {  // refine this segment
+    if (a.crosses[j]) {  // refined, a fine sample in the next brick: refined() samples it
       seg_b_ = a.sb[j];
       ahead_ = e;
-      if (!fine_batch(t_out, b, closing, a.se[j])) {  // (a fine sample in the next brick)
-        ++next_;  // after its fine samples, segment j + 1 goes on from the batch
-        fine_ = tsp::kRefineSamples;
-        fine_sum_ = vec4(0.f);
-        fine_at_ = vec3(0.f);
-        fine_w_ = 0.f;
-        return made + 1;
-      }
-      continue;
+      ++next_;  // after its fine samples, segment j + 1 goes on from the batch
+      fine_ = tsp::kRefineSamples;
+      fine_sum_ = vec4(0.f);
+      fine_at_ = vec3(0.f);
+      fine_w_ = 0.f;
+      return made + 1;
     }
     const vec4 col(a.lit.r[j], a.lit.g[j], a.lit.b[j], a.lit.a[j]);
     if (col.a > 0.f) blend(col);
-    piece_prev_ = piece;
+    piece_prev_ = piece_of(cur_);
     cur_ = e;
     seg_b_ = a.se[j];
   }
   return made;
 }
 
-// A refined segment [seg_b_, seg_e]'s kRefineSamples fine samples in one SIMD batch, composited
-// and lit as refined()'s fine passes composite them, then the segment closed (cur_ becomes
-// ahead_). False, with nothing done, when a fine sample lies in the next brick of the run.
-inline bool RayWalk::fine_batch(float t_out, const BrickView& b, bool closing, float seg_e) {
-  constexpr int kSamples = tsp::kRefineSamples;
+// The segments ahead of seg_b_ in this brick: their bounds, their middles read (one SIMD batch)
+// and their colours, cut and lit — an unrefined segment's from the middle read before it, lit at
+// its middle; a refined one's from its fine samples (fine_ahead).
+inline void RayWalk::read_ahead(float t_out, const BrickView& b, bool closing,
+                                const float* piece_row) {
+  Ahead& a = batch_ahead_;
   const float dt = s_.spacing / r_.cos_theta;
-  Positions pos;
-  float ts = seg_b_;
-  for (int i = 0; i < kSamples; ++i) {
-    ts = seg_b_ + (seg_e - seg_b_) * (float(i) + 0.5f) / float(kSamples);
-    if (ts >= t_out && !closing) return false;
-    const vec3 u = texel(ts, vec3(1.f));
-    pos.x[i] = u.x;
-    pos.y[i] = u.y;
-    pos.z[i] = u.z;
+  Positions reads, at;
+  int n = 0;
+  // The segments end on the planes of depth (plane · spacing): the first plane past seg_b_
+  // as refined() finds it, then one plane a segment, each end from its plane alone (no
+  // chain of divisions and floors from one segment to the next).
+  const float inv_cos = 1.f / r_.cos_theta;
+  float plane = std::floor((r_.depth_entry + seg_b_ * r_.cos_theta) / s_.spacing + 1e-4f) + 1.f;
+  for (float sb = seg_b_; n < kMaxBatch; ++n, plane += 1.f) {
+    float se = (plane * s_.spacing - r_.depth_entry) * inv_cos;
+    if (closing) se = std::min(se, t_out);
+    if (se - sb < 1e-4f * dt) break;  // the run's end
+    const float mid = 0.5f * (sb + se);
+    if (!closing && mid >= t_out) break;  // the next brick's segment
+    const float ts = closing && se >= t_out
+                         ? se
+                         : 0.5f * (se + (closing ? std::min(se + dt, t_out) : se + dt));
+    if (ts >= t_out) break;  // read in the next brick: refined() does it
+    const vec3 r = texel(ts, vec3(1.f)), m = texel(mid, vec3(1.f));
+    reads.x[n] = r.x;
+    reads.y[n] = r.y;
+    reads.z[n] = r.z;
+    at.x[n] = m.x;
+    at.y[n] = m.y;
+    at.z[n] = m.z;
+    a.sb[n] = sb;
+    a.se[n] = se;
+    sb = se;
   }
-  Colours fine;
-  sample_batch(smp_, b, s_.tf.refine + 4 * s_.tf.entries * kFineRow, pos, kSamples, false,
-                       fine);
-  samples_ += kSamples;
-  const float k = (seg_e - seg_b_) / dt;
-  vec4 sum(0.f);
-  vec3 at_sum(0.f);
-  float w = 0.f;
-  for (int i = 0; i < kSamples; ++i) {
-    vec4 e(fine.r[i], fine.g[i], fine.b[i], fine.a[i]);
-    if (k < 1.f) e = cut_sample(e, k);
-    const vec3 u(pos.x[i], pos.y[i], pos.z[i]);
-    at_sum += (1.f - sum.a) * e.a * u;
-    w += (1.f - sum.a) * e.a;
-    sum += (1.f - sum.a) * e;
+  ahead_n_ = n;
+  next_ = 0;
+  if (n == 0) return;
+  sample_batch(smp_, b, piece_row, reads, n, false, a.read);
+  samples_ += n;
+  for (int j = 0; j < n; ++j) {  // segment j composites the middle read before it
+    const vec4 cur =
+        j == 0 ? cur_ : vec4(a.read.r[j - 1], a.read.g[j - 1], a.read.b[j - 1], a.read.a[j - 1]);
+    vec4 col(vec3(cur), cur.a - 2.f * piece_of(cur));
+    const float k = (a.se[j] - a.sb[j]) / dt;
+    if (k < 1.f) col = cut_sample(col, k);
+    a.lit.r[j] = col.r;
+    a.lit.g[j] = col.g;
+    a.lit.b[j] = col.b;
+    a.lit.a[j] = col.a;
   }
-  const vec3 at = w > 0.f ? at_sum / w : vec3(pos.x[kSamples - 1], pos.y[kSamples - 1], pos.z[kSamples - 1]);
-  if (sum.a > 0.f) blend(smp_.shade(sum, at, b));
-  piece_prev_ = piece_of(cur_);
-  cur_ = ahead_;
-  seg_b_ = seg_e;
-  return true;
+  fine_ahead(t_out, closing, b, at);
+  if (s_.shade) shade_batch(smp_, b, at, n, a.lit);
+}
+
+// The refined segments among those read ahead (the pieces of the middles either side differ, as
+// refined() decides in turn): their kRefineSamples fine samples each, in SIMD batches, composited
+// as refined()'s fine passes composite them into the segment's colour, lit at their
+// opacity-weighted position (its place in `at`). A refined segment with a fine sample in the
+// next brick is marked `crosses` and left to refined().
+inline void RayWalk::fine_ahead(float t_out, bool closing, const BrickView& b, Positions& at) {
+  constexpr int kSamples = tsp::kRefineSamples;
+  static_assert(kSamples <= kMaxBatch, "a refined segment's fine samples fit one batch");
+  Ahead& a = batch_ahead_;
+  const float dt = s_.spacing / r_.cos_theta;
+  const int n = ahead_n_;
+  int refined[kMaxBatch];
+  int m = 0;
+  Positions pos[kSamples];  // the refined segments' fine samples, kMaxBatch a batch
+  float prev = piece_prev_;
+  vec4 cur = cur_;
+  for (int j = 0; j < n; ++j) {
+    const vec4 e(a.read.r[j], a.read.g[j], a.read.b[j], a.read.a[j]);
+    const float piece = piece_of(cur);
+    a.crosses[j] = false;
+    if (piece != prev || piece != piece_of(e)) {
+      const float sb = a.sb[j], se = a.se[j];
+      for (int i = 0; i < kSamples; ++i) {
+        const float ts = sb + (se - sb) * (float(i) + 0.5f) / float(kSamples);
+        a.crosses[j] = a.crosses[j] || (ts >= t_out && !closing);
+        const vec3 u = texel(ts, vec3(1.f));
+        const int at_i = m * kSamples + i;
+        Positions& p = pos[at_i / kMaxBatch];
+        p.x[at_i % kMaxBatch] = u.x;
+        p.y[at_i % kMaxBatch] = u.y;
+        p.z[at_i % kMaxBatch] = u.z;
+      }
+      if (!a.crosses[j]) refined[m++] = j;
+    }
+    prev = piece;
+    cur = e;
+  }
+  if (m == 0) return;
+  Colours fine[kSamples];
+  const float* row = s_.tf.refine + 4 * s_.tf.entries * kFineRow;
+  const int total = m * kSamples;
+  for (int c = 0; c * kMaxBatch < total; ++c)
+    sample_batch(smp_, b, row, pos[c], std::min(kMaxBatch, total - c * kMaxBatch), false,
+                 fine[c]);
+  samples_ += total;
+  for (int r = 0; r < m; ++r) {
+    const int j = refined[r];
+    const float k = (a.se[j] - a.sb[j]) / dt;
+    vec4 sum(0.f);
+    vec3 at_sum(0.f), u(0.f);
+    float w = 0.f;
+    for (int i = 0; i < kSamples; ++i) {
+      const int c = (r * kSamples + i) / kMaxBatch, l = (r * kSamples + i) % kMaxBatch;
+      vec4 e(fine[c].r[l], fine[c].g[l], fine[c].b[l], fine[c].a[l]);
+      if (k < 1.f) e = cut_sample(e, k);
+      u = vec3(pos[c].x[l], pos[c].y[l], pos[c].z[l]);
+      at_sum += (1.f - sum.a) * e.a * u;
+      w += (1.f - sum.a) * e.a;
+      sum += (1.f - sum.a) * e;
+    }
+    const vec3 lit_at = w > 0.f ? at_sum / w : u;
+    a.lit.r[j] = sum.r;
+    a.lit.g[j] = sum.g;
+    a.lit.b[j] = sum.b;
+    a.lit.a[j] = sum.a;
+    at.x[j] = lit_at.x;
+    at.y[j] = lit_at.y;
+    at.z[j] = lit_at.z;
+  }
 }
 
 }  // namespace tspgl::detail

@@ -122,10 +122,13 @@ class RayWalk {
   bool run_open_ = false;
   std::int64_t samples_ = 0;
   // refined_batch's segments ahead in this brick: their bounds, the middles read, their lit
-  // colours; `next_` the first not yet composited (next_ == ahead_n_: none left).
+  // colours (a refined one's from its fine samples) and whether each is refined with a fine
+  // sample in the next brick (left to refined()); `next_` the first not yet composited
+  // (next_ == ahead_n_: none left).
   struct Ahead {
     float sb[kMaxBatch], se[kMaxBatch];
     Colours read, lit;
+    bool crosses[kMaxBatch];
   };
   Ahead batch_ahead_;
   int ahead_n_ = 0, next_ = 0;
@@ -146,7 +149,8 @@ class RayWalk {
                vec4 next_page, ivec3 next_c, float& t_next);
   int refined_batch(float t_out, const BrickView& b, bool closing,
                     const float* piece_row);
-  bool fine_batch(float t_out, const BrickView& b, bool closing, float seg_e);
+  void read_ahead(float t_out, const BrickView& b, bool closing, const float* piece_row);
+  void fine_ahead(float t_out, bool closing, const BrickView& b, Positions& at);
 };
 
 }  // namespace tspgl::detail
