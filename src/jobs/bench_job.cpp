@@ -377,6 +377,7 @@ json run_bench(const BenchOptions& options, const BenchProgress& progress) {
                 {"spacings", g.spacings},
                 {"preintegration", pre},
                 {"sampling_tols", g.sampling_tols},
+                {"render_scales", g.render_scales},
                 {"tolerance_rules", rules}};
   };
   header["baseline_grid"] = grid_json(o.baseline_grid);

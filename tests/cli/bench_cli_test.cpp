@@ -67,7 +67,7 @@ class BenchCli : public ::testing::Test {
   static inline const std::string kArgs =
       "--tf preset:filled --steps 1:2 --size 96x72 --view 40,25 --metrics approximate,scalar "
       "--targets 1,3 --search-iterations 6 --spacings 0.5,2 --baseline-spacings 0.25,1,4 "
-      "--compositings slices,rays --timed-candidates 2";
+      "--compositings slices,rays --timed-candidates 2 --render-scales 1,0.5";
   static inline fs::path* dir_ = nullptr;
   static inline std::string* out_ = nullptr;
 };
@@ -139,6 +139,8 @@ TEST_F(BenchCli, ReportHasEveryKey) {
         "reference", "baseline_grid", "tsp_grid", "table3_knobs", "timed_candidates", "sweep"})
     EXPECT_TRUE(j.contains(k)) << k;
   EXPECT_EQ(j["sweep"], "quick");  // the default; the options given override its grid
+  EXPECT_EQ(j["tsp_grid"]["render_scales"], json({1, 0.5}));  // given: overrides the sweep's
+  EXPECT_EQ(j["baseline_grid"]["render_scales"], json({1, 0.5}));
   EXPECT_EQ(j["search_steps"], json({1, 2}));
   ASSERT_EQ(j["table3"].size(), 5u);
   for (const json& r : j["table3"]) {
@@ -242,6 +244,8 @@ TEST_F(BenchCli, GlRowsReportWhatRenderDraws) {
             0);
   int gl_rows = 0;
   const json report = read_json(dir / "report" / "report.json");
+  // No --render-scales: the quick sweep's, as VTK's image sample distances 1, 2 and 3.3.
+  EXPECT_EQ(report["tsp_grid"]["render_scales"], json({1, 0.5, 0.3}));
   for (const json& r : report["table4"]) {
     ASSERT_TRUE(r["target_met"].get<bool>()) << r.dump();
     bool gl = false;
