@@ -74,6 +74,8 @@ inline constexpr double kShownWindowSeconds = 2;
 inline constexpr int kSettleFrames = 3;
 /// Longest sleep of an idle window before it looks at its state again.
 inline constexpr double kIdleWaitSeconds = 0.5;
+/// How often a window whose script waits for a file (wait-file) looks for it, seconds.
+inline constexpr double kFilePollSeconds = 0.02;
 /// Frames per second of a recorded movie (frames repeat or drop to keep the wall-clock time).
 inline constexpr int kRecordFps = 25;
 
@@ -561,6 +563,21 @@ class PlayerApp {
   /// still in the status area, is cleared when c is an action (not a wait, stats, screenshot,
   /// capture or quit) that showed no message of its own.
   void cleared_by_action(const Command& c, std::uint64_t errors_before);
+
+  // ---- handshakes with a test driving the window (player_handshake.cpp) ----
+  cmd::WaitFile wait_file_;       ///< wait-file: what the script waits for (path "": none)
+  double wait_file_until_s_ = 0;  ///< ... and when it gives up (clock_)
+  int wait_file_line_ = 0;        ///< ... and its script line
+  bool wait_file_seen_ = false;   ///< it came: the events sent before it are being taken
+  /// wait-file and signal as a script line makes them.
+  void start_wait_file(const cmd::WaitFile& c, int line);
+  void write_signal(const cmd::Signal& c, int line);
+  /// True while a wait-file holds the script. Once the file exists: one round trip to the
+  /// window system takes every event sent before it, then frames run until the input queue is
+  /// empty and Dear ImGui has settled. Throws tsp::IoError (naming the line) past the timeout.
+  bool waiting_for_file();
+  /// True while a wait-file waits for a file that is not there yet (the window may sleep).
+  bool file_not_there_yet() const;
 };
 
 /// Carries out one command on app (line: its script line for messages, 0: a key or a panel).

@@ -238,6 +238,8 @@ struct CommandApplier {
     app.set_tf(remove_handle(app.tf_handles_, app.tf_points_, app.tf, int(i)), false);
     app.tf_label = "edited";
   }
+  void operator()(const cmd::WaitFile& c) const { app.start_wait_file(c, line); }
+  void operator()(const cmd::Signal& c) const { app.write_signal(c, line); }
   void operator()(const cmd::RemoveProbe& c) const {
     if (c.index < 0 || c.index >= int(state().probes.size())) return;  // (already gone)
     state().probes.erase(state().probes.begin() + c.index);
@@ -279,7 +281,9 @@ void PlayerApp::cleared_by_action(const Command& c, std::uint64_t errors_before)
                        std::holds_alternative<cmd::WriteStats>(c) ||
                        std::holds_alternative<cmd::Screenshot>(c) ||
                        std::holds_alternative<cmd::Capture>(c) ||
-                       std::holds_alternative<cmd::Quit>(c);
+                       std::holds_alternative<cmd::Quit>(c) ||
+                       std::holds_alternative<cmd::WaitFile>(c) ||
+                       std::holds_alternative<cmd::Signal>(c);
   if (passive) return;
   status.clear();  // (a stale error stayed for the rest of the session)
   error_status_.clear();

@@ -161,6 +161,7 @@ void PlayerApp::run_script() {
     return;
   }
   if (clock_.seconds() < wait_until_s_) return;
+  if (waiting_for_file()) return;  // wait-file: the test's file and the input sent before it
   while (script_pos_ < script_.size() && !quit_) {
     const ScriptLine& a = script_[script_pos_++];
     const std::uint64_t errors_before = errors_;
