@@ -162,6 +162,10 @@ std::string handshakes(const fs::path& dir) {
          "/\"$1\".taken; }\n";
 }
 
+std::string until_ctrl_q(const fs::path& dir) {
+  return "wait-file " + (dir / "ctrl-q-never-came").string() + " 300\n";
+}
+
 std::string taken(const fs::path& dir, const std::string& name) {
   return "wait-file " + (dir / (name + ".sent")).string() + "\nsignal " +
          (dir / (name + ".taken")).string() + "\n";

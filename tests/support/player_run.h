@@ -68,6 +68,9 @@ std::string handshakes(const std::filesystem::path& dir);
 /// Script lines that wait for the test's `handshake NAME` (wait-file dir/NAME.sent) and then
 /// tell it so (signal dir/NAME.taken).
 std::string taken(const std::filesystem::path& dir, const std::string& name);
+/// The script of a test that ends the player with Ctrl+Q (quit_player): nothing to do but wait,
+/// and a run whose Ctrl+Q never came fails (after 300 s, naming the line) rather than quitting.
+std::string until_ctrl_q(const std::filesystem::path& dir);
 /// Expects the log of select_all_in_open_dialog's keys: "abc" typed, then replaced whole by "x"
 /// (without the select-all the x went after it: "abcx").
 void expect_select_all_replaced(const std::string& log);
