@@ -205,6 +205,10 @@ struct WaitFile {
   double timeout_s = kDefaultWaitFileSeconds;   ///< how long before the script fails
   bool operator==(const WaitFile&) const = default;
 };
+/// The probes panel: probe `index` (0-based) becomes the one the gizmo moves (no script line).
+struct SelectProbe { int index = 0; bool operator==(const SelectProbe&) const = default; };
+/// The help overlay's close box and View > Controls (F1 toggles it as well; no script line).
+struct ShowHelp { bool on = true; bool operator==(const ShowHelp&) const = default; };
 /// `signal PATH`: writes PATH (atomically; "frame N") when the script reaches it, for a test
 /// that waits on it before sending input.
 struct Signal { std::string path; bool operator==(const Signal&) const = default; };
@@ -225,7 +229,7 @@ using Command =
                  cmd::ExpandSections, cmd::SavePicture, cmd::ShowAnnotations,
                  cmd::SplatFallback, cmd::EditProbe, cmd::RemoveProbe, cmd::ShowDialog,
                  cmd::MoveTfPoint, cmd::ColourTfPoint, cmd::AddTfPoint, cmd::RemoveTfPoint,
-                 cmd::WaitFile, cmd::Signal>;
+                 cmd::WaitFile, cmd::Signal, cmd::SelectProbe, cmd::ShowHelp>;
 
 /// True when a script stops after c until frames pass: a screenshot, `wait-frames N` with N > 0,
 /// `wait-file` or `wait-seconds S` with S > 0 (a wait of 0 is free: it used to cost a frame, and a script of

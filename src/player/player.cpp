@@ -121,7 +121,7 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
   state_.probe_op = tsp::parse_probe_op(options.probe_op);
   state_.probe_surface = options.probe_surface;
   (void)tsp::ClipRegion(state_.probes, state_.probe_op, viewer_->file().metadata().origin, viewer_->file().metadata().spacing);
-  if (!state_.probes.empty()) probe_selected = 0;
+  if (!state_.probes.empty()) probe_selected_ = 0;
   if (range.mode == tsp::TfRangeChoice::Mode::visible) {  // now that view and probes are known
     apply(*this, cmd::StretchTf{"visible"});
   }

@@ -104,10 +104,9 @@ std::string read_text(const fs::path& p) {
 
 std::string log_waits(const fs::path& log) {
   const std::string file = quote(log);
-  return "seen_within() { for i in $(seq \"$2\"); do grep -q -- \"$1\" " + file +
-         " && return 0; sleep 0.1; done; return 1; }\n"
-         "give_up() { echo \"$1\"; kill $! 2> /dev/null; exit 1; }\n"
-         "until_log() { seen_within \"$1\" 600 || give_up \"never saw $1\"; }\n"
+  return "give_up() { echo \"$1\"; kill $! 2> /dev/null; exit 1; }\n"
+         "until_log() { for i in $(seq 600); do grep -q -- \"$1\" " + file +
+         " && return 0; sleep 0.1; done; give_up \"never saw $1\"; }\n"
          "until_n() { for i in $(seq 600); do [ \"$(grep -c -- \"$1\" " + file +
          ")\" -ge \"$2\" ] && return 0; sleep 0.1; done; give_up \"never saw $1 $2 times\"; }\n"
          "until_file() { for i in $(seq 600); do [ -e \"$1\" ] && return 0; sleep 0.1; done; "

@@ -52,9 +52,9 @@ std::string orbit_then_idle_script(const std::filesystem::path& dir,
 /// Bash functions over a player's output file `log`, for scripts that drive a window with
 /// xdotool and wait on --trace lines, not on the clock: `until_log TEXT` waits for a line with
 /// TEXT, `until_n TEXT N` for N of them, `until_file PATH` for a file (a minute at most each;
-/// when one never comes it says so, ends the player started last with & and exits 1); `seen_within TEXT TENTHS` waits TENTHS
-/// tenths of a second at most and returns 1 (no exit) when TEXT never came; `quit_player`
-/// sends Ctrl+Q to window $w and returns the player's exit status, releasing Ctrl and Q.
+/// when one never comes it says so, ends the player started last with & and exits 1);
+/// `quit_player` sends Ctrl+Q to window $w and returns the player's exit status, releasing Ctrl
+/// and Q.
 std::string log_waits(const std::filesystem::path& log);
 
 /// Bash lines for after log_waits, with the traced player's window in $w: Ctrl+O opens File >
