@@ -573,14 +573,6 @@ class PlayerApp {
   double wait_file_until_s_ = 0;  ///< ... and when it gives up (clock_)
   int wait_file_line_ = 0;        ///< ... and its script line
   bool wait_file_seen_ = false;   ///< it came: the events sent before it are being taken
-
-  // ---- what the panels show but never write (panels send commands) ----
-  std::string status;        ///< see status_line()
-  int probe_selected_ = -1;  ///< see selected_probe()
-  bool show_help_ = false;   ///< see help_shown()
-  EditorHistogram editor_histogram_;               ///< see editor_histogram()
-  const void* editor_histogram_file_ = nullptr;    ///< the file it counted
-  int editor_histogram_bins_ = 0;                  ///< its non-empty bars (stats)
   /// wait-file and signal as a script line makes them.
   void start_wait_file(const cmd::WaitFile& c, int line);
   void write_signal(const cmd::Signal& c, int line);
@@ -590,6 +582,14 @@ class PlayerApp {
   bool waiting_for_file();
   /// True while a wait-file waits for a file that is not there yet (the window may sleep).
   bool file_not_there_yet() const;
+
+  // ---- what the panels show but never write (panels send commands) ----
+  std::string status;        ///< see status_line() (the members that set it keep its name)
+  int probe_selected_ = -1;  ///< see selected_probe()
+  bool show_help_ = false;   ///< see help_shown()
+  EditorHistogram editor_histogram_;               ///< see editor_histogram()
+  const void* editor_histogram_file_ = nullptr;    ///< the file it counted
+  int editor_histogram_bins_ = 0;                  ///< its non-empty bars (stats)
 };
 
 /// Carries out one command on app (line: its script line for messages, 0: a key or a panel).

@@ -348,6 +348,26 @@ TEST(Player, StepOutOfRangeAndMissingFilesAreErrors) {
   EXPECT_EQ(r.exit_code, 2);
 }
 
+// The script's handshakes: `signal` writes its file when the script gets there (after the
+// stats before it), a `wait-file` whose file is there goes on, and one whose file never comes
+// fails the run after its timeout, naming the line — the script does not go on to quit.
+TEST(Player, WaitFileFailsNamingTheLineWhenTheFileNeverComes) {
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
+  const fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
+  const fs::path script = write_script("stats " + (dir / "s.json").string() + "\nsignal " +
+                                       (dir / "ready").string() + "\nwait-file " +
+                                       (dir / "ready").string() + "\nwait-file " +
+                                       (dir / "never").string() + " 0.5\nquit\n");
+  auto r = run_tspplay("play " + q(tsp) + " --size " + kSize + " --script " + q(script));
+  EXPECT_EQ(r.exit_code, 1) << r.out;
+  EXPECT_NE(r.err.find(script.string() + ":4: wait-file " + (dir / "never").string() +
+                       ": not there after 0.5 s"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(read_text(dir / "ready").rfind("frame ", 0), 0u);
+  EXPECT_TRUE(fs::exists(dir / "s.json"));
+}
+
 // A tiny upload budget spreads the uploads over frames; the screenshot waits for the complete one.
 TEST(Player, ScreenshotWaitsForTheCompleteFrameUnderAnUploadBudget) {
   TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
