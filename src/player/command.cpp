@@ -117,6 +117,11 @@ struct Checker {
     if (c.opacity) tf_point_opacity(*c.opacity);
   }
   void operator()(const cmd::RemoveTfPoint& c) const { tf_point_number(c.number); }
+  void operator()(const cmd::WaitFile& c) const {
+    if (c.path.empty()) fail("wait-file needs a path");
+    if (!(c.timeout_s >= 0) || c.timeout_s > kMaxWaitSeconds)
+      fail("wait-file's timeout must be 0 to " + std::to_string(int(kMaxWaitSeconds)) + " seconds");
+  }
   template <class Other>
   void operator()(const Other&) const {}
 
@@ -135,7 +140,8 @@ struct Checker {
 }  // namespace
 
 bool waits_for_frames(const Command& c) {
-  if (std::holds_alternative<cmd::Screenshot>(c)) return true;
+  if (std::holds_alternative<cmd::Screenshot>(c) || std::holds_alternative<cmd::WaitFile>(c))
+    return true;
   if (const auto* w = std::get_if<cmd::WaitFrames>(&c)) return w->frames > 0;
   if (const auto* w = std::get_if<cmd::WaitSeconds>(&c)) return w->seconds > 0;
   return false;

@@ -20,6 +20,8 @@ inline constexpr double kMaxWaitSeconds = 600;
 inline constexpr double kMaxTargetFps = 240;
 /// Playback speeds accepted, steps per second (the panel's slider spans them too).
 inline constexpr double kMinSpeed = 0.25, kMaxSpeed = 60;
+/// How long `wait-file` waits when its line names no timeout, seconds.
+inline constexpr double kDefaultWaitFileSeconds = 120;
 
 struct PlayerState;
 
@@ -195,6 +197,21 @@ struct AddTfPoint {
 /// `tf-point remove N`: point N goes (of three or more), the curve straight between its
 /// neighbours (a right-click on a handle, the list's "x").
 struct RemoveTfPoint { int number = 1; bool operator==(const RemoveTfPoint&) const = default; };
+/// `wait-file PATH [TIMEOUT_S]`: the script waits until PATH exists (the window keeps taking
+/// events), then until every window event sent before PATH was made is taken and settled (a
+/// test's xdotool input); an error after TIMEOUT_S (0 … 600) without it.
+struct WaitFile {
+  std::string path;                             ///< the file a test makes
+  double timeout_s = kDefaultWaitFileSeconds;   ///< how long before the script fails
+  bool operator==(const WaitFile&) const = default;
+};
+/// The probes panel: probe `index` (0-based) becomes the one the gizmo moves (no script line).
+struct SelectProbe { int index = 0; bool operator==(const SelectProbe&) const = default; };
+/// The help overlay's close box and View > Controls (F1 toggles it as well; no script line).
+struct ShowHelp { bool on = true; bool operator==(const ShowHelp&) const = default; };
+/// `signal PATH`: writes PATH (atomically; "frame N") when the script reaches it, for a test
+/// that waits on it before sending input.
+struct Signal { std::string path; bool operator==(const Signal&) const = default; };
 }  // namespace cmd
 
 /// One player command (see namespace cmd).
@@ -211,10 +228,11 @@ using Command =
                  cmd::Capture, cmd::Quit, cmd::SaveSession, cmd::SetScale,
                  cmd::ExpandSections, cmd::SavePicture, cmd::ShowAnnotations,
                  cmd::SplatFallback, cmd::EditProbe, cmd::RemoveProbe, cmd::ShowDialog,
-                 cmd::MoveTfPoint, cmd::ColourTfPoint, cmd::AddTfPoint, cmd::RemoveTfPoint>;
+                 cmd::MoveTfPoint, cmd::ColourTfPoint, cmd::AddTfPoint, cmd::RemoveTfPoint,
+                 cmd::WaitFile, cmd::Signal, cmd::SelectProbe, cmd::ShowHelp>;
 
-/// True when a script stops after c until frames pass: a screenshot, `wait-frames N` with N > 0
-/// or `wait-seconds S` with S > 0 (a wait of 0 is free: it used to cost a frame, and a script of
+/// True when a script stops after c until frames pass: a screenshot, `wait-frames N` with N > 0,
+/// `wait-file` or `wait-seconds S` with S > 0 (a wait of 0 is free: it used to cost a frame, and a script of
 /// a million `wait-frames 0` lines ran for 45 minutes). Never throws.
 bool waits_for_frames(const Command& c);
 

@@ -121,7 +121,7 @@ PlayerApp::PlayerApp(const PlayerOptions& options) : options_(options) {
   state_.probe_op = tsp::parse_probe_op(options.probe_op);
   state_.probe_surface = options.probe_surface;
   (void)tsp::ClipRegion(state_.probes, state_.probe_op, viewer_->file().metadata().origin, viewer_->file().metadata().spacing);
-  if (!state_.probes.empty()) probe_selected = 0;
+  if (!state_.probes.empty()) probe_selected_ = 0;
   if (range.mode == tsp::TfRangeChoice::Mode::visible) {  // now that view and probes are known
     apply(*this, cmd::StretchTf{"visible"});
   }
@@ -481,7 +481,8 @@ bool PlayerApp::busy() const {
   // A script waiting out wait-seconds is not busy: the window sleeps as when idle, waking for
   // the script's clock (run() waits at most until wait_until_s_).
   const bool script_running =
-      (script_pos_ < script_.size() && clock_.seconds() >= wait_until_s_) || wait_frames_ > 0;
+      (script_pos_ < script_.size() && clock_.seconds() >= wait_until_s_ && !file_not_there_yet()) ||
+      wait_frames_ > 0;
   // Playing draws a frame when a step is due, not in between: a frame faster than the step
   // period would draw the same step again, and a coarse playing rung is not refined meanwhile.
   const bool step_due = state_.playing && until_next_step() <= 0;
@@ -500,7 +501,8 @@ void PlayerApp::run() {
       const std::uint64_t before = events_;
       const double to_script = wait_until_s_ - clock_.seconds();
       ctx->wait_events(std::min({to_script > 0 ? to_script : kIdleWaitSeconds, kIdleWaitSeconds,
-                                  until_next_step()}));
+                                  until_next_step(),
+                                  file_not_there_yet() ? kFilePollSeconds : kIdleWaitSeconds}));
       if (events_ == before && !busy()) {
         ++idle_waits_;
         continue;

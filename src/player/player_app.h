@@ -32,6 +32,7 @@
 #include "player/script.h"
 #include "player/session.h"
 #include "player/tf_handles.h"
+#include "player/tf_histogram.h"
 #include "player/viewer_session.h"
 #include "render/frame_driver.h"
 #include "render/mesh_surface.h"
@@ -74,6 +75,8 @@ inline constexpr double kShownWindowSeconds = 2;
 inline constexpr int kSettleFrames = 3;
 /// Longest sleep of an idle window before it looks at its state again.
 inline constexpr double kIdleWaitSeconds = 0.5;
+/// How often a window whose script waits for a file (wait-file) looks for it, seconds.
+inline constexpr double kFilePollSeconds = 0.02;
 /// Frames per second of a recorded movie (frames repeat or drop to keep the wall-clock time).
 inline constexpr int kRecordFps = 25;
 
@@ -128,20 +131,22 @@ class PlayerApp {
   /// The map in use as the preset combo names it: a preset's name, a TF file's name, or
   /// "edited" once its points were edited.
   std::string tf_label = "auto";
-  std::string tf_path = "tf.json";      ///< load/save path in the editor
   std::string quality_note;   ///< what the last quality pick chose
   float tol_max = 1;  ///< upper end of the tolerance sliders (largest error of a step)
   Layout layout;            ///< this frame's layout (the volume's rectangle, docked panels)
   /// Per step: the share of the bricks its frame would read that are in RAM or textures
   /// (−1: not checked yet), for the timeline's marks.
   std::vector<float> ready;
-  std::string status;  ///< last message shown in the UI (saved files, errors)
+  /// The last message shown in the UI (saved files, errors); set by the player's members and
+  /// commands, never by a panel.
+  const std::string& status_line() const { return status; }
   /// Shows an error in the status area (and on stderr): it stays until a message replaces it or
   /// the next action succeeds (cleared_by_action). Never throws but bad_alloc.
   void set_error(const std::string& what);
   /// True while the status area shows the last error set_error showed (drawn in red).
   bool status_is_error() const { return !error_status_.empty() && status == error_status_; }
-  bool show_help = false;               ///< the controls overlay (F1 or ?)
+  /// The controls overlay (F1 or ?) is shown.
+  bool help_shown() const { return show_help_; }
   /// 1: open every section of the panels at the next frame; -1: back to how they start; 0: as
   /// the user left them (script `expand on|off`).
   int expand_sections = 0;
@@ -153,9 +158,11 @@ class PlayerApp {
     double mean_de = 0;           ///< mean ΔE of the picture at them against the one at 0
   } tol_readout;
   bool tol_readout_due = false;  ///< set_tolerances asks for a new readout
-  /// The TF editor's histogram as last drawn: the step it counted (−1: the file's stored
-  /// histogram) and its non-empty bins (`stats`: tf_histogram).
-  int editor_histogram_step = -1, editor_histogram_bins = 0;
+  /// The TF editor's histogram over d in `bins` bars (≥ 1) at the step shown, counted again only
+  /// when the domain, the file or the bars change (a step's count reads bricks; the step it
+  /// counted stays until then); an error empties the bars and goes to status. `stats`
+  /// (tf_histogram) reports the last one. Never throws but bad_alloc.
+  const EditorHistogram& editor_histogram(const tsp::ValueRange& d, int bins);
   /// Measures tol_readout (frame(), after the volume); errors go to status.
   void measure_tolerance();
   tsp::CameraParams initial_camera;     ///< what R resets the camera to
@@ -251,7 +258,8 @@ class PlayerApp {
   void set_focus_at(double x, double y);
 
   // ---- clip probes (player_probes.cpp) ----
-  int probe_selected = -1;         ///< the probe the gizmo moves (−1: none)
+  /// The probe the gizmo moves (−1: none); the probes panel selects with cmd::SelectProbe.
+  int selected_probe() const { return probe_selected_; }
   std::uint64_t probe_version = 0; ///< bumped on every probe change (interaction for the LOD)
   /// Adds a probe (selected); errors (more than ClipRegion::kMaxProbes) go to status.
   void add_probe(const tsp::Probe& p);
@@ -300,8 +308,6 @@ class PlayerApp {
   /// Ctrl+Q (quit).
   /// Never throws.
   bool shortcut(int key, int mods);
-  /// Ctrl+O asked for File > Open's dialog (the menu opens it and clears this).
-  bool open_requested = false;
   /// --trace: prints "trace: WHAT" (dialogs report what their fields hold). Never throws.
   void trace(const std::string& what) const;
 
@@ -561,6 +567,29 @@ class PlayerApp {
   /// still in the status area, is cleared when c is an action (not a wait, stats, screenshot,
   /// capture or quit) that showed no message of its own.
   void cleared_by_action(const Command& c, std::uint64_t errors_before);
+
+  // ---- handshakes with a test driving the window (player_handshake.cpp) ----
+  cmd::WaitFile wait_file_;       ///< wait-file: what the script waits for (path "": none)
+  double wait_file_until_s_ = 0;  ///< ... and when it gives up (clock_)
+  int wait_file_line_ = 0;        ///< ... and its script line
+  bool wait_file_seen_ = false;   ///< it came: the events sent before it are being taken
+  /// wait-file and signal as a script line makes them.
+  void start_wait_file(const cmd::WaitFile& c, int line);
+  void write_signal(const cmd::Signal& c, int line);
+  /// True while a wait-file holds the script. Once the file exists: one round trip to the
+  /// window system takes every event sent before it, then frames run until the input queue is
+  /// empty and Dear ImGui has settled. Throws tsp::IoError (naming the line) past the timeout.
+  bool waiting_for_file();
+  /// True while a wait-file waits for a file that is not there yet (the window may sleep).
+  bool file_not_there_yet() const;
+
+  // ---- what the panels show but never write (panels send commands) ----
+  std::string status;        ///< see status_line() (the members that set it keep its name)
+  int probe_selected_ = -1;  ///< see selected_probe()
+  bool show_help_ = false;   ///< see help_shown()
+  EditorHistogram editor_histogram_;               ///< see editor_histogram()
+  const void* editor_histogram_file_ = nullptr;    ///< the file it counted
+  int editor_histogram_bins_ = 0;                  ///< its non-empty bars (stats)
 };
 
 /// Carries out one command on app (line: its script line for messages, 0: a key or a panel).

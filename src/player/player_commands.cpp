@@ -152,7 +152,7 @@ struct CommandApplier {
   }
   void operator()(const cmd::ClearProbes&) const {
     state().probes.clear();
-    app.probe_selected = -1;
+    app.probe_selected_ = -1;
     app.probes_changed();
   }
   void operator()(const cmd::MoveProbe& c) const {
@@ -192,7 +192,7 @@ struct CommandApplier {
       throw tsp::UsageError("probe " + std::to_string(c.index + 1) + ": there are " +
                             std::to_string(state().probes.size()) + " probes");
     state().probes[std::size_t(c.index)] = c.probe;
-    app.probe_selected = c.index;
+    app.probe_selected_ = c.index;
     app.probes_changed();
   }
   void operator()(const cmd::ShowDialog& c) const { show_dialog(c.which); }
@@ -238,10 +238,16 @@ struct CommandApplier {
     app.set_tf(remove_handle(app.tf_handles_, app.tf_points_, app.tf, int(i)), false);
     app.tf_label = "edited";
   }
+  void operator()(const cmd::SelectProbe& c) const {
+    if (c.index >= 0 && c.index < int(state().probes.size())) app.probe_selected_ = c.index;
+  }
+  void operator()(const cmd::ShowHelp& c) const { app.show_help_ = c.on; }
+  void operator()(const cmd::WaitFile& c) const { app.start_wait_file(c, line); }
+  void operator()(const cmd::Signal& c) const { app.write_signal(c, line); }
   void operator()(const cmd::RemoveProbe& c) const {
     if (c.index < 0 || c.index >= int(state().probes.size())) return;  // (already gone)
     state().probes.erase(state().probes.begin() + c.index);
-    app.probe_selected = state().probes.empty() ? -1 : 0;
+    app.probe_selected_ = state().probes.empty() ? -1 : 0;
     app.probes_changed();
   }
 };
@@ -279,7 +285,9 @@ void PlayerApp::cleared_by_action(const Command& c, std::uint64_t errors_before)
                        std::holds_alternative<cmd::WriteStats>(c) ||
                        std::holds_alternative<cmd::Screenshot>(c) ||
                        std::holds_alternative<cmd::Capture>(c) ||
-                       std::holds_alternative<cmd::Quit>(c);
+                       std::holds_alternative<cmd::Quit>(c) ||
+                       std::holds_alternative<cmd::WaitFile>(c) ||
+                       std::holds_alternative<cmd::Signal>(c);
   if (passive) return;
   status.clear();  // (a stale error stayed for the rest of the session)
   error_status_.clear();

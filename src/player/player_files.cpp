@@ -15,6 +15,7 @@
 #include "jobs/play_input.h"
 #include "player/player_app.h"
 #include "player/ui_items.h"
+#include "player/player_ui.h"
 #include "player/export_names.h"
 #include "render/settings_table.h"
 #include "tsp/core/json_text.h"
@@ -155,7 +156,7 @@ void PlayerApp::open_file(const std::string& path) {
   lod_loop_.clear_focus();
   state_.settings.tol = {0, 0};
   state_.probes.clear();  // (in the old file's physical coordinates)
-  probe_selected = -1;
+  probe_selected_ = -1;
   probes_changed();
   quality_note.clear();
   history.clear();
@@ -306,7 +307,7 @@ void PlayerApp::record_frame(double now_s) {
 void PlayerApp::save_tf_as(const std::string& path) {
   try {
     tsp::save_transfer_function(tf, path);
-    tf_path = path;
+    tf_file_path() = path;  // (the TF editor's file row and File > Save offer it next)
     status = "saved " + path;
   } catch (const tsp::Error& e) {
     report(*this, e.what());
@@ -374,7 +375,7 @@ void PlayerApp::write_stats(const std::string& path) const {
   for (const tsp::Rgba& e : tf.entries()) opacity.push_back(e.a);
   j["tf_opacity"] = opacity;
   j["ui_items"] = ui_items_json();
-  j["tf_histogram"] = {{"step", editor_histogram_step}, {"nonempty_bins", editor_histogram_bins}};
+  j["tf_histogram"] = {{"step", editor_histogram_.step}, {"nonempty_bins", editor_histogram_bins_}};
   j["tolerance_readout"] = {{"spatial", tol_readout.at.spatial},
                             {"temporal", tol_readout.at.temporal},
                             {"ms", tol_readout.ms},

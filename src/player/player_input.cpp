@@ -117,8 +117,8 @@ bool PlayerApp::shortcut(int key, int mods) {
     trace("select all (Ctrl+A)");
     return true;
   }
-  if (key == GLFW_KEY_O) {
-    open_requested = true;
+  if (key == GLFW_KEY_O) {  // as File > Open...
+    push(cmd::ShowDialog{"open"});
     return true;
   }
   if (key == GLFW_KEY_Q) {  // as File > Quit
@@ -145,7 +145,7 @@ void PlayerApp::trace_tf_canvas(float x, float y, float w, float h) {
 
 void PlayerApp::apply_key(int key) {
   if (key == GLFW_KEY_F1 || key == GLFW_KEY_SLASH) {  // '?' on most layouts: the help overlay
-    show_help = !show_help;  // (no player state)
+    show_help_ = !show_help_;  // (no player state)
     return;
   }
   if (std::optional<Command> c = key_command(key, state_, steps())) command(*c);
@@ -161,6 +161,7 @@ void PlayerApp::run_script() {
     return;
   }
   if (clock_.seconds() < wait_until_s_) return;
+  if (waiting_for_file()) return;  // wait-file: the test's file and the input sent before it
   while (script_pos_ < script_.size() && !quit_) {
     const ScriptLine& a = script_[script_pos_++];
     const std::uint64_t errors_before = errors_;

@@ -132,7 +132,8 @@ void menu_bar(PlayerApp& app) {
     if (ImGui::MenuItem("Perspective", "P", &persp))
       app.push(cmd::SetProjection{persp});
     if (ImGui::MenuItem("Reset camera", "R")) app.push(cmd::ResetCamera{});
-    ImGui::MenuItem("Controls", "F1", &app.show_help);
+    if (bool on = app.help_shown(); ImGui::MenuItem("Controls", "F1", &on))
+      app.push(cmd::ShowHelp{on});
     ImGui::EndMenu();
   }
   // On the right: the recording and the frame rate, always in sight.
@@ -344,13 +345,9 @@ void show_dialog(const std::string& which) {
 
 void menu_and_dialogs(PlayerApp& app) {
   MenuState& s = state();
-  if (app.open_requested) {  // Ctrl+O
-    app.open_requested = false;
-    s.want_open = true;
-  }
   menu_bar(app);
   open_dialog(app);
-  if (s.want_tf) copy(s.tf_path, sizeof s.tf_path, app.tf_path);
+  if (s.want_tf) copy(s.tf_path, sizeof s.tf_path, tf_file_path());
   if (path_dialog(kTfPopup, s.want_tf, s.tf_path, sizeof s.tf_path,
                   "Our transfer-function JSON (docs/transfer-functions.md):"))
     app.save_tf_as(s.tf_path);

@@ -109,7 +109,7 @@ void PlayerApp::add_probe(const tsp::Probe& p) {
     return;
   }
   state_.probes.push_back(p);
-  probe_selected = int(state_.probes.size()) - 1;
+  probe_selected_ = int(state_.probes.size()) - 1;
   probes_changed();
 }
 
@@ -131,9 +131,9 @@ void PlayerApp::apply_probes() {
 
 bool PlayerApp::probe_gizmo(const tsp::Camera& cam) {
   const ImGuiIO& io = ImGui::GetIO();
-  if (probe_selected < 0 || probe_selected >= int(state_.probes.size()) || !(io.KeyCtrl || io.KeyAlt))
+  if (probe_selected_ < 0 || probe_selected_ >= int(state_.probes.size()) || !(io.KeyCtrl || io.KeyAlt))
     return false;
-  tsp::Probe& p = state_.probes[std::size_t(probe_selected)];
+  tsp::Probe& p = state_.probes[std::size_t(probe_selected_)];
   const Grid grid = grid_of(viewer_->file());
   const auto [lo, hi] = volume_box(viewer_->file(), grid);
   const glm::dvec3 vc = 0.5 * (lo + hi);
@@ -185,7 +185,7 @@ void PlayerApp::draw_probe_overlay(const tsp::Camera& cam) {
   const auto [lo, hi] = volume_box(viewer_->file(), grid);
   for (std::size_t i = 0; i < state_.probes.size(); ++i) {
     const tsp::Probe& p = state_.probes[i];
-    const ImU32 col = int(i) == probe_selected ? kSelectedColour : kProbeColour;
+    const ImU32 col = int(i) == probe_selected_ ? kSelectedColour : kProbeColour;
     if (p.kind == tsp::Probe::Kind::sphere) {
       ImVec2 c, e;
       const auto [right, up] = view_axes(cam, grid);
@@ -262,7 +262,7 @@ void probes_section(PlayerApp& app) {
     ImGui::PushID(int(i));
     char title[32];
     std::snprintf(title, sizeof title, "%zu: %s", i + 1, kKindNames[int(p.kind)]);
-    if (ImGui::Selectable(title, app.probe_selected == int(i))) app.probe_selected = int(i);
+    if (ImGui::Selectable(title, app.selected_probe() == int(i))) app.push(cmd::SelectProbe{int(i)});
     bool edited = false;
     float c[3] = {float(p.centre[0]), float(p.centre[1]), float(p.centre[2])};
     float r = float(p.radius);

@@ -140,7 +140,7 @@ void PlayerApp::apply_session(const Session& s, bool command_line) {
     for (const std::string& text : s.probes) state_.probes.push_back(tsp::parse_probe(text));
     state_.probe_op = tsp::parse_probe_op(s.probe_op);
     state_.probe_surface = s.probe_surface;
-    probe_selected = state_.probes.empty() ? -1 : 0;
+    probe_selected_ = state_.probes.empty() ? -1 : 0;
     probes_changed();
   }
   if (!given("--surface") && s.surface != state_.settings.surface)

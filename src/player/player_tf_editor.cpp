@@ -52,23 +52,7 @@ void domain_row(PlayerApp& app, const tsp::ValueRange& d) {
 // The histogram under the curve, counted again only when the domain, the file or the bins
 // change (a step's count reads bricks; the step it counted stays until then).
 const EditorHistogram& histogram_for(PlayerApp& app, const tsp::ValueRange& d, float width) {
-  static EditorHistogram cached;
-  static const void* cached_file = nullptr;
-  const int bins = std::clamp(int(width / kBinPixels), 8, kMaxBins);
-  if (cached_file != &app.viewer().file() || cached.over.lo != d.lo || cached.over.hi != d.hi ||
-      int(cached.counts.size()) != bins) {
-    try {
-      cached = editor_histogram(app.viewer().file(), app.state().step, d, bins);
-    } catch (const tsp::Error& e) {
-      cached = {d, std::vector<double>(std::size_t(bins), 0.0), -1};
-      app.status = std::string("histogram: ") + e.what();
-    }
-    cached_file = &app.viewer().file();
-    app.editor_histogram_step = cached.step;
-    app.editor_histogram_bins = int(
-        std::count_if(cached.counts.begin(), cached.counts.end(), [](double c) { return c > 0; }));
-  }
-  return cached;
+  return app.editor_histogram(d, std::clamp(int(width / kBinPixels), 8, kMaxBins));
 }
 
 // The canvas the histogram, the curve and the handles share: its place on screen, the TF's
@@ -274,19 +258,24 @@ void colour_map_rows(PlayerApp& app) {
 // The TF file row: a path, load and save as.
 void tf_file_row(PlayerApp& app) {
   static char path[512] = "";
-  if (path[0] == 0) std::snprintf(path, sizeof path, "%s", app.tf_path.c_str());
+  if (path[0] == 0) std::snprintf(path, sizeof path, "%s", tf_file_path().c_str());
   ImGui::SetNextItemWidth(-1);
   ImGui::InputText("##path", path, sizeof path);
-  app.tf_path = path;
+  tf_file_path() = path;
   const bool load = ImGui::Button("load");
   note_item("load", true);
-  if (load) app.push(cmd::LoadTf{app.tf_path, true});  // (errors: the status area)
+  if (load) app.push(cmd::LoadTf{tf_file_path(), true});  // (errors: the status area)
   ImGui::SameLine();
-  if (ImGui::Button("save as")) app.save_tf_as(app.tf_path);
+  if (ImGui::Button("save as")) app.save_tf_as(tf_file_path());
   note_item("save as", true);
 }
 
 }  // namespace
+
+std::string& tf_file_path() {
+  static std::string path = "tf.json";
+  return path;
+}
 
 void tf_section(PlayerApp& app) {
   // Histogram (log counts) with the opacity curve and its handles drawn over it.

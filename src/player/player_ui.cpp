@@ -64,13 +64,15 @@ void place(const WindowRect& r) {
 
 // The controls overlay (F1 or ?): every key and mouse action, from the one table.
 void help(PlayerApp& app) {
-  if (!app.show_help) return;
+  if (!app.help_shown()) return;
   const ImGuiIO& io = ImGui::GetIO();
   ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, io.DisplaySize.y * 0.5f),
                           ImGuiCond_Always, ImVec2(0.5f, 0.5f));
   ImGui::SetNextWindowBgAlpha(1.f);  // (over the picture: the text on an opaque background)
-  ImGui::Begin("Controls (F1 or ? to close)", &app.show_help,
+  bool open = true;  // (its close box: closed from the next frame on)
+  ImGui::Begin("Controls (F1 or ? to close)", &open,
                ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse);
+  if (!open) app.push(cmd::ShowHelp{false});
   if (ImGui::BeginTable("controls", 2, ImGuiTableFlags_RowBg)) {
     for (const Control& c : kControls) {
       ImGui::TableNextRow();
@@ -343,7 +345,7 @@ void status_area(PlayerApp& app, float height) {
       if (ImGui::IsItemHovered()) tooltip(rung.c_str());
     }
   }
-  const std::string shown = fit_lines(app.status, ImGui::GetContentRegionAvail().x,
+  const std::string shown = fit_lines(app.status_line(), ImGui::GetContentRegionAvail().x,
                                       ImGui::GetContentRegionAvail().y);
   // Errors in red, other messages in amber (an error looked like a saved file's message).
   ImGui::PushStyleColor(ImGuiCol_Text, app.status_is_error() ? ImVec4(1.f, 0.45f, 0.4f, 1.f)
@@ -352,7 +354,7 @@ void status_area(PlayerApp& app, float height) {
   note_wrapped(shown.c_str());
   ImGui::PopStyleColor();
   ImGui::EndChild();
-  if (!app.status.empty() && ImGui::IsItemHovered()) tooltip(app.status.c_str());
+  if (!app.status_line().empty() && ImGui::IsItemHovered()) tooltip(app.status_line().c_str());
 }
 
 // A section's header: open as it starts (default_open), or all open / back to the start after

@@ -22,6 +22,9 @@ void tf_section(PlayerApp& app);
 void probes_section(PlayerApp& app);
 /// The main menu bar and the dialogs it opens: File > Open, save TF as, record (player_menu.cpp).
 void menu_and_dialogs(PlayerApp& app);
+/// The TF editor's file path (its load / save as row; File > Save transfer function as offers
+/// it): the panels' own, not the player's.
+std::string& tf_file_path();
 /// Opens a File menu dialog at the next frame with the panels shown, as its menu item does:
 /// which is open, save-tf, record or save-session; close closes the one open (script `dialog`).
 void show_dialog(const std::string& which);

@@ -83,7 +83,8 @@ constexpr std::pair<const char*, const char*> kText[] = {
     {"lod-filter", "lod-filter error|distance[:K]|fov[:K]"},
     {"field", "field NAME"},
     {"save-session", "save-session PATH"},
-    {"capture", "capture DIR|off"}};
+    {"capture", "capture DIR|off"},
+    {"signal", "signal PATH"}};
 
 Command text_command(const std::string& cmd, const std::string& w) {
   if (cmd == "tf") return cmd::LoadTf{w};
@@ -93,6 +94,7 @@ Command text_command(const std::string& cmd, const std::string& w) {
   if (cmd == "lod-filter") return cmd::SetLodFilter{w};
   if (cmd == "field") return cmd::ShowField{w};
   if (cmd == "save-session") return cmd::SaveSession{w};
+  if (cmd == "signal") return cmd::Signal{w};
   return cmd::Capture{w == "off" ? "" : w};  // capture
 }
 
@@ -176,7 +178,8 @@ Command tf_point_command(const LineParser& p) {
          settings +
          "quality, stats, lod, target-fps, lod-filter, show-cut, panels, every-step, log-opacity, open, "
          "field, probe, probe-op, probe-surface, probe-clear, probe-move, record, "
-         "reset-camera, playback, capture, save-session, scale, expand, dialog, tf-point or quit");
+         "reset-camera, playback, capture, save-session, scale, expand, dialog, tf-point, "
+         "wait-file, signal or quit");
 }
 
 // The actions of two or more arguments, and those checked as they are parsed.
@@ -215,6 +218,14 @@ Command other_command(const LineParser& p) {
     return cmd::WaitFrames{p.integer(1, "wait-frames N", 0)};
   }
   if (cmd == "open") return open_command(p);
+  if (cmd == "wait-file") {  // wait-file PATH [TIMEOUT_S]
+    const char* usage = "wait-file PATH [TIMEOUT_S]";
+    if (p.words.size() != 2 && p.words.size() != 3)
+      p.fail("'wait-file' takes a path and an optional timeout: expected '" + std::string(usage) +
+             "'");
+    return cmd::WaitFile{p.words[1],
+                         p.words.size() == 3 ? p.number(2, usage) : kDefaultWaitFileSeconds};
+  }
   if (cmd == "probe" || cmd == "probe-op") {
     p.expect_args(1, cmd == "probe" ? "probe plane:A,B,C,D|sphere:X,Y,Z,R|box:..."
                                     : "probe-op intersect|union|subtract");

@@ -96,6 +96,18 @@ def write_vtu(path, ug, mode, encode=False, zlib=False, header64=False):
     assert w.Write() == 1, path
 
 
+def cell_arrays(ug):
+    """ug's cells but polyhedra (their ids), and VTKHDF's Connectivity, Offsets and Types of them."""
+    nonpoly = [k for k in range(ug.GetNumberOfCells()) if ug.GetCellType(k) != vtk.VTK_POLYHEDRON]
+    conn, offs, types = [], [0], []
+    for k in nonpoly:
+        ids = ug.GetCell(k).GetPointIds()
+        conn += [ids.GetId(i) for i in range(ids.GetNumberOfIds())]
+        offs.append(len(conn))
+        types.append(ug.GetCellType(k))
+    return nonpoly, conn, offs, types
+
+
 def write_vtkhdf(path, ug, t):
     """A static VTKHDF UnstructuredGrid (version 2.0), one partition."""
     from vtk.util import numpy_support as ns
@@ -104,14 +116,8 @@ def write_vtkhdf(path, ug, t):
         g.attrs["Version"] = np.array([2, 0], dtype=np.int64)
         s = "UnstructuredGrid".encode("ascii")
         g.attrs.create("Type", s, dtype=h5py.string_dtype("ascii", len(s)))
-        nonpoly = [k for k in range(ug.GetNumberOfCells()) if ug.GetCellType(k) != vtk.VTK_POLYHEDRON]
         pts = ns.vtk_to_numpy(ug.GetPoints().GetData()).astype(np.float64)
-        conn, offs, types = [], [0], []
-        for k in nonpoly:
-            ids = ug.GetCell(k).GetPointIds()
-            conn += [ids.GetId(i) for i in range(ids.GetNumberOfIds())]
-            offs.append(len(conn))
-            types.append(ug.GetCellType(k))
+        nonpoly, conn, offs, types = cell_arrays(ug)
         g["NumberOfPoints"] = np.array([len(pts)], dtype=np.int64)
         g["NumberOfCells"] = np.array([len(types)], dtype=np.int64)
         g["NumberOfConnectivityIds"] = np.array([len(conn)], dtype=np.int64)
@@ -183,14 +189,7 @@ def write_vtkhdf_transient(path):
         g.attrs.create("Type", s, dtype=h5py.string_dtype("ascii", len(s)))
         cat = {k: [] for k in ("np", "nc", "nconn", "pts", "conn", "offs", "types", "f", "c")}
         for ug in grids:
-            nonpoly = [k for k in range(ug.GetNumberOfCells())
-                       if ug.GetCellType(k) != vtk.VTK_POLYHEDRON]
-            conn, offs, types = [], [0], []
-            for k in nonpoly:
-                ids = ug.GetCell(k).GetPointIds()
-                conn += [ids.GetId(i) for i in range(ids.GetNumberOfIds())]
-                offs.append(len(conn))
-                types.append(ug.GetCellType(k))
+            nonpoly, conn, offs, types = cell_arrays(ug)
             cat["np"].append(ug.GetNumberOfPoints())
             cat["nc"].append(len(types))
             cat["nconn"].append(len(conn))

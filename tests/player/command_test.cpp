@@ -76,7 +76,7 @@ TEST(PlayerCommand, EveryActionsBadLineNamesTheLine) {
       "show-cut", "panels", "every-step", "log-opacity", "open", "field", "probe", "probe-op",
       "probe-surface", "probe-clear", "probe-move", "record", "reset-camera", "playback",
       "capture", "quit", "save-session", "scale", "expand", "spacing", "compositing", "dialog",
-      "tf-point"};
+      "tf-point", "wait-file", "signal"};
   for (const char* name : actions) {
     const std::string text = std::string("play\n# two\n") + name + " a b c d e f\n";
     const std::string e = tsptest::error_of<tsp::FormatError>(

@@ -52,31 +52,41 @@ TEST(Player, FlatDomainOpensWithANamedVerticalExaggeration) {
 
 // Real X events (xdotool): Ctrl+click the z field, type 7, Escape: nothing applied (before, the
 // view took each keystroke and Escape reverted it). Again with Enter: z × 7 applied.
-// (Escape and Enter are held half a second: Dear ImGui 1.86's GLFW back end misses a key pressed
-// and released between two frames, as xdotool key does.)
+// Each key or click is a handshake: the script goes on once the window has taken it (Escape and
+// Enter are pressed and released in separate frames).
 TEST(Player, AxisScaleFieldAppliesOnEnterAndEscapeCancelsTheEdit) {
   TSPTEST_REQUIRE_X_EVENTS();
   const fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
   const fs::path out = dir / "axes.out", stats = dir / "axes.json";
-  const fs::path script = write_script("wait-seconds 30\nstats " + stats.string() + "\nquit\n");
-  const std::string ctrl_click =
-      "xdotool mousemove --window \"$win\" $cx $cy; sleep 0.5\n"
-      "xdotool keydown ctrl; sleep 0.5; xdotool click 1; sleep 0.5; xdotool keyup ctrl; sleep 0.5\n"
-      "xdotool type --window \"$win\" 7; sleep 0.8\n";
+  // The stages of a Ctrl+click and 7 typed (their handshakes end in N: 1 or 2), then a key held
+  // and released.
+  const char* const stages[] = {"hover", "ctrl", "click", "unctrl", "typed"};
+  std::string lines = "wait-frames 4\nsignal " + (dir / "ready").string() + "\n";
+  for (const char* n : {"1", "2"}) {
+    for (const char* stage : stages) lines += taken(dir, stage + std::string(n));
+    lines += taken(dir, "keydown" + std::string(n)) + taken(dir, "keyup" + std::string(n));
+  }
+  const fs::path script = write_script(lines + "stats " + stats.string() + "\nquit\n");
+  auto ctrl_click = [](const std::string& n) {
+    return "xdotool mousemove --window \"$win\" $cx $cy; handshake hover" + n + "\n"
+           "xdotool keydown ctrl; handshake ctrl" + n + "; xdotool click 1; handshake click" + n +
+           "\nxdotool keyup ctrl; handshake unctrl" + n + "\n"
+           "xdotool type --window \"$win\" 7; handshake typed" + n + "\n";
+  };
+  auto tap = [](const std::string& key, const std::string& n) {
+    return "xdotool keydown --window \"$win\" " + key + "; handshake keydown" + n +
+           "; xdotool keyup --window \"$win\" " + key + "; handshake keyup" + n + "\n";
+  };
   const std::string cmd =
-      "(" + q(tsptest::tspplay_bin()) + " play " + q(tsp) + " --size 800x800 --trace --script " +
-      q(script) + " > " + q(out) + " 2>&1 &\n" +
-      "for i in $(seq 100); do grep -q 'axis scale field' " + q(out) + " && break; sleep 0.1; done\n"
-      "sleep 1.5; read x y w h <<< $(grep 'axis scale field' " + q(out) +
-      " | tail -1 | cut -d' ' -f5-8)\n"
+      log_waits(out) + handshakes(dir) + "(" + q(tsptest::tspplay_bin()) + " play " + q(tsp) +
+      " --size 800x800 --trace --script " + q(script) + " > " + q(out) + " 2>&1 &\n" +
+      "until_file " + q(dir / "ready") + "\n"
+      "read x y w h <<< $(grep 'axis scale field' " + q(out) + " | tail -1 | cut -d' ' -f5-8)\n"
       "win=$(timeout 20 xdotool search --sync --name " + q("tspplay - " + tsp.string()) +
       " | head -1)\n"
-      "cx=$((x + w / 2)); cy=$((y + h / 2))\n" + ctrl_click +
-      "xdotool keydown --window \"$win\" Escape; sleep 0.5; xdotool keyup --window \"$win\" Escape; sleep 1\n"
+      "cx=$((x + w / 2)); cy=$((y + h / 2))\n" + ctrl_click("1") + tap("Escape", "1") +
       "grep -c 'trace: axis scale [0-9]' " + q(out) + " > " + q(dir / "escaped.count") + "\n" +
-      ctrl_click +
-      "xdotool keydown --window \"$win\" Return; sleep 0.5; xdotool keyup --window \"$win\" Return; sleep 1\n"
-      "wait)\n";
+      ctrl_click("2") + tap("Return", "2") + "wait)\n";
   ASSERT_EQ(run_bash(dir / "axes.sh", cmd), 0);
   const std::string log = read_text(out);
   // Nothing applied by the time Escape was pressed; 7 after Enter.

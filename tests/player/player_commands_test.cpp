@@ -34,14 +34,15 @@ struct Clicked {
 };
 
 // Plays tsp at 1280x800 with `options`, in dir as its working folder, under a script that writes
-// stats, waits while xdotool clicks the item labelled `label` (where those stats put it), writes
-// stats again, then runs `reference` (script lines) and writes stats a third time.
+// stats, waits while xdotool clicks the item labelled `label` (where those stats put it: the
+// `click` handshake), writes stats again, then runs `reference` (script lines) and writes stats
+// a third time.
 Clicked click_then_script(const fs::path& tsp, const fs::path& dir, const std::string& options,
                           const std::string& label, const std::string& reference) {
   const fs::path rects = dir / "rects.json", clicked = dir / "clicked.json",
                  scripted = dir / "scripted.json", out = dir / "click.out";
-  std::ofstream(dir / "click.txt") << "wait-frames 3\nstats " << rects.string()
-                                   << "\nwait-seconds 15\nstats " << clicked.string() << "\n"
+  std::ofstream(dir / "click.txt") << "wait-frames 3\nstats " << rects.string() << "\n"
+                                   << taken(dir, "click") << "stats " << clicked.string() << "\n"
                                    << reference << "wait-frames 1\nstats " << scripted.string()
                                    << "\nquit\n";
   const std::string rect =
@@ -49,14 +50,16 @@ Clicked click_then_script(const fs::path& tsp, const fs::path& dir, const std::s
       "if i[\"label\"]==sys.argv[2]][0]; print(int(i[\"x\"]),int(i[\"y\"]),int(i[\"w\"]),"
       "int(i[\"h\"]))' " + q(rects) + " " + q(label) + ")";
   const std::string cmd =
-      "cd " + q(dir) + " && (" + q(tsptest::tspplay_bin()) + " play " + q(tsp) +
+      log_waits(out) + handshakes(dir) + "cd " + q(dir) + " && (" + q(tsptest::tspplay_bin()) +
+      " play " + q(tsp) +
       " --size 1280x800 " + options + " --script " + q(dir / "click.txt") + " > " + q(out) +
       " 2>&1 &\n" +
       "p=$!\n"
-      "for i in $(seq 300); do [ -s " + q(rects) + " ] && break; sleep 0.1; done\n"
+      "until_file " + q(rects) + "\n"
       "win=$(xdotool search --sync --name " + q("tspplay - " + tsp.string()) + " | head -1)\n"
       "read fx fy fw fh <<< " + rect + "\n"
       "xdotool mousemove --window \"$win\" $((fx + fw / 2)) $((fy + fh / 2)) click 1\n"
+      "handshake click\n"
       "wait $p)\n";
   EXPECT_EQ(run_bash(dir / "click.sh", cmd), 0) << tsptest::read_file(out);
   return {read_json(rects), read_json(clicked), read_json(scripted)};

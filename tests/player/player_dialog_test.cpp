@@ -25,7 +25,7 @@ TEST(Player, OpenDialogTakesCtrlAEscapeEnterAndDoubleClicksAsExpected) {
   fs::create_directories(dir / "a" / "b" / "c");
   const fs::path other = dir / "a" / "o.tsp";
   fs::copy_file(tsp, other);
-  const fs::path backstop = write_script("wait-seconds 120\nquit\n");  // (if Ctrl+Q is lost)
+  const fs::path backstop = write_script(until_ctrl_q(dir));
   const std::string cmd =
       log_waits(out) + "(" + q(tsptest::tspplay_bin()) + " play " + q(tsp) + " --size 640x480 --cache-dir " +
       q(dir / "cache") + " --trace --frame-delay-ms 80 --script " + q(backstop) + " > " + q(out) + " 2>&1 &\n" +

@@ -46,7 +46,7 @@ TEST(Player, PlayWithoutFieldNamesThePickedFieldInStatsAndSavedFiles) {
   const fs::path dir = tsptest::temp_dir(), out = dir / "play.out";
   const fs::path plume = tsptest::datasets_dir() / "samples" / "hotPlume_32.h5";
   const fs::path script = write_script("wait-frames 2\nstats " + (dir / "s.json").string() +
-                                       "\nwait-seconds 120\nquit\n");
+                                       "\n" + until_ctrl_q(dir));
   const std::string cmd =
       "cd " + q(dir) + " && (" + q(tsptest::tspplay_bin()) + " play " + q(plume) + " --size " +
       kSize + " --cache-dir " + q(dir / "cache") + " --trace --script " + q(script) + " > " +

@@ -188,15 +188,17 @@ namespace {
 // (it used to be lost: "dragged to 0, got 0.1019"); in the colour range field, ten backspaces
 // typed within a frame or two each delete a character (Dear ImGui used to see one a frame: "18
 // of 70 applied"), so the typed range replaces the old one exactly. The old range starts with
-// '-': any character left over changes the result. (Each backspace takes two frames: the script
-// waits 45 s, generous for a loaded machine.)
+// '-': any character left over changes the result. (Each stage is a handshake: the script goes
+// on once the window has taken the input sent before it.)
 TEST(Player, SlowFramesLoseNeitherADragsEndNorAKeystroke) {
   TSPTEST_REQUIRE_X_EVENTS();
   const fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
   const fs::path rects = dir / "rects.json", done = dir / "done.json", out = dir / "input.out";
   const fs::path script = script_in(dir, "input.txt",
-                                    "wait-frames 3\nstats " + rects.string() +
-                                        "\nwait-seconds 45\nstats " + done.string() + "\nquit\n");
+                                    "wait-frames 3\nstats " + rects.string() + "\n" +
+                                        taken(dir, "drag") + taken(dir, "click") +
+                                        taken(dir, "typed") + "stats " + done.string() +
+                                        "\nquit\n");
   // (Python reads an item's rectangle from the stats: x y w h.)
   auto rect = [&](const std::string& label) {
     return "$(python3 -c 'import json,sys; i=[i for i in json.load(open(sys.argv[1]))[\"ui_items\"] "
@@ -206,10 +208,10 @@ TEST(Player, SlowFramesLoseNeitherADragsEndNorAKeystroke) {
   std::string keys;
   for (int i = 0; i < 10; ++i) keys += " BackSpace";  // "-0.25:0.75"
   const std::string cmd =
-      "(" + q(tsptest::tspplay_bin()) + " play " + q(tsp) + " --size 1280x800 " +
-      "--frame-delay-ms 150 --tf-range=-0.25:0.75 --script " + q(script) + " > " +
-      q(out) + " 2>&1 &\n" + "p=$!\n"
-      "for i in $(seq 300); do [ -s " + q(rects) + " ] && break; sleep 0.1; done\n"
+      log_waits(out) + handshakes(dir) + "(" + q(tsptest::tspplay_bin()) + " play " + q(tsp) +
+      " --size 1280x800 " + "--frame-delay-ms 150 --tf-range=-0.25:0.75 --script " + q(script) +
+      " > " + q(out) + " 2>&1 &\n" + "p=$!\n"
+      "until_file " + q(rects) + "\n"
       "win=$(xdotool search --sync --name " + q("tspplay - " + tsp.string()) + " | head -1)\n"
       "read sx sy sw sh <<< " + rect("steps/s") + "\n"
       "read rx ry rw rh <<< " + rect("range LO:HI") + "\n"
@@ -217,12 +219,13 @@ TEST(Player, SlowFramesLoseNeitherADragsEndNorAKeystroke) {
       "xdotool mousemove --window \"$win\" $x $y mousedown 1 mousemove --window \"$win\" "
       "$((x - 50)) $y mousemove --window \"$win\" $((x - 110)) $y mousemove --window \"$win\" "
       "$((sx - 40)) $y mouseup 1\n"
-      "sleep 2\n"
+      "handshake drag\n"
       "xdotool mousemove --window \"$win\" $((rx + 40)) $((ry + rh / 2)) click 1\n"
-      "sleep 1.5\n"
+      "handshake click\n"
       "xdotool key --window \"$win\" --delay 15 End" + keys + "\n"
       "xdotool type --window \"$win\" --delay 15 0.3:0.7\n"
       "xdotool key --window \"$win\" Return\n"
+      "handshake typed\n"
       "wait $p)\n";
   ASSERT_EQ(run_bash(dir / "input.sh", cmd), 0) << tsptest::read_file(out);
   const nlohmann::json j = read_json(done);

@@ -74,8 +74,8 @@ double frame_de(References& refs, const fs::path& dir, const nlohmann::json& f) 
 // Played, then paused: the frames that follow are bands at full resolution over the last
 // playing frame (the tuned rung, within the target) — never a coarser LOD cut — so each is
 // within the target of the full-quality picture, and the last is that picture. After a change
-// of view the frames drawn once it settles (0.25 s without a change: the script waits 1.5 s) are
-// within the target too.
+// of view the frames drawn once it settles (0.25 s without a change; the script's screenshot
+// waits for full quality) are within the target too.
 TEST(Player, FramesAfterAPauseAndWhileRefiningStayWithinTheQualityTarget) {
   TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
   const fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
@@ -83,7 +83,8 @@ TEST(Player, FramesAfterAPauseAndWhileRefiningStayWithinTheQualityTarget) {
   const std::string script = "quality " + std::to_string(kTarget) + "\nplay\nwait-frames 3\n" +
                              "pause\ncapture " + paused.string() + "\nwait-frames " +
                              std::to_string(kMaxRefineFrames + 4) + "\ncapture " +
-                             moved.string() + "\nview 55 25\nwait-seconds 1.5\ncapture off\nstats " +
+                             moved.string() + "\nview 55 25\nscreenshot " +
+                             (dir / "settled.png").string() + "\ncapture off\nstats " +
                              (dir / "s.json").string() + "\nquit\n";
   auto r = run_tspplay("play " + q(tsp) + " --size " + kSize + " --cache-dir " + q(dir / "cache") +
                        " --script " + q(write_script(script)));
@@ -137,7 +138,8 @@ TEST(Player, TheRecorderWritesOnlyFramesWithinTheQualityTarget) {
                        "\ncapture " + frames.string() + "\nplay\nwait-frames 4\npause\n" +
                        "wait-frames " + std::to_string(kMaxRefineFrames) + "\n";
   for (int k = 1; k <= 4; ++k) script += "view " + std::to_string(30 + 6 * k) + " 20\nwait-frames 1\n";
-  script += "wait-seconds 1.5\nrecord stop\ncapture off\nquit\n";
+  // (The screenshot waits for the view to settle and refine to full quality.)
+  script += "screenshot " + (dir / "settled.png").string() + "\nrecord stop\ncapture off\nquit\n";
   auto r = run_tspplay("play " + q(tsp) + " --size " + kSize + " --cache-dir " + q(dir / "cache") +
                        " --script " + q(write_script(script)));
   ASSERT_EQ(r.exit_code, 0) << r.err;

@@ -174,7 +174,7 @@ TEST(Player, OpenSectionsAreRestored) {
   const fs::path tsp = make_tsp(), dir = tsptest::temp_dir(), out = dir / "click.out";
   const std::string size = "760x400";  // docked: the side panel at x 390..760
   const std::string cache = " --cache-dir " + q(dir / "cache");
-  const fs::path backstop = write_script("wait-seconds 120\nquit\n");  // (if Ctrl+Q is lost)
+  const fs::path backstop = write_script(until_ctrl_q(dir));
   const std::string cmd =
       log_waits(out) + "(" + q(tsptest::tspplay_bin()) + " play " + q(tsp) + " --size " + size +
       cache + " --trace --frame-delay-ms 200 --script " + q(backstop) + " > " + q(out) +
@@ -209,7 +209,7 @@ TEST(Player, OpenSectionsAreRestored) {
 TEST(Player, CtrlASelectsTheOpenDialogsPath) {
   TSPTEST_REQUIRE_X_EVENTS();
   const fs::path tsp = make_tsp(), dir = tsptest::temp_dir(), out = dir / "keys.out";
-  const fs::path backstop = write_script("wait-seconds 120\nquit\n");  // (if Ctrl+Q is lost)
+  const fs::path backstop = write_script(until_ctrl_q(dir));
   const std::string cmd =
       log_waits(out) + "(" + q(tsptest::tspplay_bin()) + " play " + q(tsp) +
       " --size 480x360 --trace --frame-delay-ms 300 --script " + q(backstop) + " > " + q(out) +

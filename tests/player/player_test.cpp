@@ -74,18 +74,22 @@ TEST(Player, QuickKeyTapsAreNotLostWhenFramesAreSlow) {
   ASSERT_EQ(run_tspplay("generate shock -o " + q(dir / "k.h5") + " --dims 24,20,16 --steps 8")
                 .exit_code, 0);
   ASSERT_EQ(run_tspplay("build " + q(dir / "k.h5") + " --field shock -o " + q(tsp)).exit_code, 0);
-  fs::path script = write_script("wait-seconds 6\nquit\n");
+  // (Each step waits on the player's --trace lines; the script quits once the last keys are
+  // taken: the `keys` handshake.)
+  fs::path script = write_script(taken(dir, "keys") + "quit\n");
   const std::string cmd =
-      "cd " + q(dir) + " && (" + q(tsptest::tspplay_bin()) + " play " + q(tsp) + " --size " + kSize +
-      " --trace --frame-delay-ms 500 --script " + q(script) + " > " + q(out) + " 2>&1 &\n" +
+      log_waits(out) + handshakes(dir) + "cd " + q(dir) + " && (" + q(tsptest::tspplay_bin()) +
+      " play " + q(tsp) + " --size " + kSize + " --trace --frame-delay-ms 500 --script " +
+      q(script) + " > " + q(out) + " 2>&1 &\n" +
       "w=$(xdotool search --sync --name " + q("tspplay - " + tsp.string()) + " | head -1)\n"
-      "sleep 1\n"
+      "until_log 'trace: step 0'\n"
       "xdotool key --window \"$w\" --delay 40 Right Right Right Right Right\n"
-      "sleep 1.5\n"
+      "until_log 'trace: step 5'\n"
       "xdotool key --window \"$w\" space\n"
-      "sleep 1\n"
+      "until_log 'trace: playing'\n"
       "xdotool key --window \"$w\" r\n"
       "xdotool key --window \"$w\" s\n"
+      "handshake keys\n"
       "wait)\n";
   ASSERT_EQ(run_bash(dir / "keys.sh", cmd), 0);
   const std::string log = tsptest::read_file(out);
@@ -127,24 +131,26 @@ TEST(Player, DraggingATransferFunctionHandleMovesIt) {
   const fs::path tf = dir / "ramp.json", out = dir / "drag.out", stats = dir / "drag.json";
   std::ofstream(tf) << "{\"range\": [" << r.lo << ", " << r.hi << "], \"points\": [[" << r.lo
                     << ", 0, 0, 1, 0], [" << r.hi << ", 1, 0, 0, 1]]}";
-  // (The drag below takes about 4.5 s after the canvas shows; under ctest -j2 it once ended after
-  // a 7 s wait had written the stats, half-way through the drag: 14 s. A real handshake would
-  // need a script line that waits for the drag's end.)
-  fs::path script = write_script("wait-seconds 14\nstats " + stats.string() + "\nquit\n");
+  // Each stage of the drag is a handshake: the script goes on once the window has taken every
+  // event sent before it (the stats come after the release, however slow the frames).
+  // (The canvas settles once the side panel's scroll bar appears, in the first frames: its last
+  // traced place once the script signals `ready`.)
+  fs::path script = write_script("wait-frames 4\nsignal " + (dir / "ready").string() + "\n" +
+                                 taken(dir, "hover") + taken(dir, "drag") + taken(dir, "release") +
+                                 "stats " + stats.string() + "\nquit\n");
   const std::string cmd =
-      "(" + q(tsptest::tspplay_bin()) + " play " + q(tsp) + " --size 800x800 --trace " +
-      "--frame-delay-ms 500 --tf " + q(tf) + " --script " + q(script) + " > " + q(out) +
-      " 2>&1 &\n" +
-      "for i in $(seq 50); do grep -q 'tf canvas' " + q(out) + " && break; sleep 0.1; done\n"
-      // (the canvas settles once the side panel's scroll bar appears: its last position)
-      "sleep 1.5; read x y w h <<< $(grep 'tf canvas' " + q(out) + " | tail -1 | cut -d' ' -f4-7)\n"
+      log_waits(out) + handshakes(dir) + "(" + q(tsptest::tspplay_bin()) + " play " + q(tsp) +
+      " --size 800x800 --trace " + "--frame-delay-ms 500 --tf " + q(tf) + " --script " +
+      q(script) + " > " + q(out) + " 2>&1 &\n" +
+      "until_file " + q(dir / "ready") + "\n"
+      "read x y w h <<< $(grep 'tf canvas' " + q(out) + " | tail -1 | cut -d' ' -f4-7)\n"
       "win=$(xdotool search --sync --name " + q("tspplay - " + tsp.string()) + " | head -1)\n"
       "hx=$((x + w - 2)); hy=$((y + 1))\n"
-      "xdotool mousemove --window \"$win\" $hx $hy; sleep 1.2\n"
+      "xdotool mousemove --window \"$win\" $hx $hy; handshake hover\n"
       "xdotool mousedown 1\n"
       "for k in 1 2 3 4 5 6 7 8; do xdotool mousemove --window \"$win\" $((hx - 5 * k)) "
       "$((hy + h * k / 16)); sleep 0.02; done\n"
-      "sleep 1.2; xdotool mouseup 1\n"
+      "handshake drag; xdotool mouseup 1; handshake release\n"
       "wait)\n";
   ASSERT_EQ(run_bash(dir / "drag.sh", cmd), 0);
   std::ifstream in(stats);
@@ -340,6 +346,26 @@ TEST(Player, StepOutOfRangeAndMissingFilesAreErrors) {
   EXPECT_NE(r.err.find("none.txt"), std::string::npos) << r.err;
   r = run_tspplay("play " + q(tsp) + " --size 0x10");
   EXPECT_EQ(r.exit_code, 2);
+}
+
+// The script's handshakes: `signal` writes its file when the script gets there (after the
+// stats before it), a `wait-file` whose file is there goes on, and one whose file never comes
+// fails the run after its timeout, naming the line — the script does not go on to quit.
+TEST(Player, WaitFileFailsNamingTheLineWhenTheFileNeverComes) {
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
+  const fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
+  const fs::path script = write_script("stats " + (dir / "s.json").string() + "\nsignal " +
+                                       (dir / "ready").string() + "\nwait-file " +
+                                       (dir / "ready").string() + "\nwait-file " +
+                                       (dir / "never").string() + " 0.5\nquit\n");
+  auto r = run_tspplay("play " + q(tsp) + " --size " + kSize + " --script " + q(script));
+  EXPECT_EQ(r.exit_code, 1) << r.out;
+  EXPECT_NE(r.err.find(script.string() + ":4: wait-file " + (dir / "never").string() +
+                       ": not there after 0.5 s"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(read_text(dir / "ready").rfind("frame ", 0), 0u);
+  EXPECT_TRUE(fs::exists(dir / "s.json"));
 }
 
 // A tiny upload budget spreads the uploads over frames; the screenshot waits for the complete one.

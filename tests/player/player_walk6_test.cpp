@@ -48,7 +48,7 @@ TEST(PlayerWalk6, SpacePausesOnTheStepOnScreenWithItsPicture) {
   const fs::path tsp = make_tsp(), dir = tsptest::temp_dir(), out = dir / "space.out";
   const fs::path cap = dir / "cap";
   const fs::path script =
-      write_script("capture " + cap.string() + "\nplay\nwait-seconds 120\nquit\n");
+      write_script("capture " + cap.string() + "\nplay\n" + until_ctrl_q(dir));
   const std::string jsonl = q(cap / "frames.jsonl");
   const std::string cmd =
       log_waits(out) + "(" + q(tsptest::tspplay_bin()) + " play " + q(tsp) + " --size " + kSize +
@@ -114,15 +114,17 @@ TEST(PlayerWalk6, TheHelpOverlayHidesThePictureBehindIt) {
       << "xdotool missing (scripts/install-deps.sh installs it)";
   const fs::path tsp = make_tsp(), dir = tsptest::temp_dir(), out = dir / "help.out";
   const fs::path a = dir / "a.png", b = dir / "b.png";
-  const fs::path script = write_script("panels off\ntf preset:filled\nwait-seconds 3\nscreenshot-ui " +
-                                       a.string() + "\nview 120 70\nzoom 1.5\nwait-frames 2\n"
+  const fs::path script = write_script("panels off\ntf preset:filled\n" + taken(dir, "f1") +
+                                       "screenshot-ui " + a.string() + "\nview 120 70\nzoom 1.5\nwait-frames 2\n"
                                        "screenshot-ui " + b.string() + "\nquit\n");
   const std::string cmd =
-      log_waits(out) + "(" + q(tsptest::tspplay_bin()) + " play " + q(tsp) + " --size " + kSize +
-      " --no-session --trace --script " + q(script) + " > " + q(out) + " 2>&1 &\n" +
-      "w=$(xdotool search --sync --name " + q("tspplay - " + tsp.string()) + " | head -1)\n"
+      log_waits(out) + handshakes(dir) + "(" + q(tsptest::tspplay_bin()) + " play " + q(tsp) +
+      " --size " + kSize + " --no-session --trace --script " + q(script) + " > " + q(out) +
+      " 2>&1 &\n" + "w=$(xdotool search --sync --name " + q("tspplay - " + tsp.string()) +
+      " | head -1)\n"
       "until_log 'trace: step 0'\n"
       "xdotool key --window \"$w\" F1\n"
+      "handshake f1\n"
       "wait)\n";
   ASSERT_EQ(run_bash(dir / "help.sh", cmd), 0) << tsptest::read_file(out);
   const tsp::Image ia = tsp::read_png(a.string()), ib = tsp::read_png(b.string());

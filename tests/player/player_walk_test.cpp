@@ -122,16 +122,20 @@ TEST(PlayerWalk, AnOrbitStartsAtThePressNotWhereTheCursorCameFrom) {
   TSPTEST_REQUIRE_X_EVENTS();
   const fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
   const fs::path out = dir / "orbit.out", stats = dir / "orbit.json";
+  // (Each stage a handshake: the window has taken it before the next.)
   const fs::path script =
-      write_script("panels off\nwait-seconds 20\nstats " + stats.string() + "\nquit\n");
+      write_script("panels off\nwait-frames 2\n" + taken(dir, "rest") + taken(dir, "press") +
+                   taken(dir, "drag") + taken(dir, "release") + "stats " + stats.string() +
+                   "\nquit\n");
   const std::string cmd =
-      "(" + q(tsptest::tspplay_bin()) + " play " + q(tsp) + " --size 400x400 --no-session --script " +
-      q(script) + " > " + q(out) + " 2>&1 &\n" +
+      log_waits(out) + handshakes(dir) + "(" + q(tsptest::tspplay_bin()) + " play " + q(tsp) +
+      " --size 400x400 --no-session --script " + q(script) + " > " + q(out) + " 2>&1 &\n" +
       "win=$(timeout 20 xdotool search --sync --name " + q("tspplay - " + tsp.string()) +
-      " | head -1)\nsleep 2\n"
-      "xdotool mousemove --window \"$win\" 20 20; sleep 1\n"
+      " | head -1)\n"
+      "xdotool mousemove --window \"$win\" 20 20; handshake rest\n"
       "xdotool mousemove --window \"$win\" 200 300 mousedown 1 mousemove --window \"$win\" 240 300\n"
-      "sleep 0.6; xdotool mousemove --window \"$win\" 280 300; sleep 0.6; xdotool mouseup 1\n"
+      "handshake press; xdotool mousemove --window \"$win\" 280 300; handshake drag\n"
+      "xdotool mouseup 1; handshake release\n"
       "wait)\n";
   ASSERT_EQ(run_bash(dir / "orbit.sh", cmd), 0);
   const nlohmann::json j = read_json(stats);

@@ -195,3 +195,23 @@ TEST(PlayerScript, WaitsOfZeroCostNoFrame) {
 }
 
 }  // namespace
+
+namespace {
+
+// The handshakes with a test driving the window: wait-file with and without its timeout, and
+// signal; a wait-file holds the script (a frame passes), a signal does not.
+TEST(PlayerScript, WaitFileAndSignalAreHandshakes) {
+  EXPECT_EQ(commands_of("wait-file go\nwait-file /tmp/x 5\nsignal ready.txt\n"),
+            (std::vector<Command>{cmd::WaitFile{"go", tspplayer::kDefaultWaitFileSeconds},
+                                  cmd::WaitFile{"/tmp/x", 5}, cmd::Signal{"ready.txt"}}));
+  EXPECT_TRUE(tspplayer::waits_for_frames(cmd::WaitFile{"go", 1}));
+  EXPECT_FALSE(tspplayer::waits_for_frames(cmd::Signal{"go"}));
+  EXPECT_NE(error_of("wait-file").find("'wait-file' takes a path"), std::string::npos);
+  EXPECT_NE(error_of("wait-file a 1 2").find("'wait-file' takes a path"), std::string::npos);
+  EXPECT_NE(error_of("wait-file a soon").find("'soon' is not a number"), std::string::npos);
+  EXPECT_EQ(error_of("\nwait-file a 601"),
+            "s.txt:2: wait-file's timeout must be 0 to 600 seconds");
+  EXPECT_NE(error_of("signal").find("'signal' takes 1 argument(s)"), std::string::npos);
+}
+
+}  // namespace

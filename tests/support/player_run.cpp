@@ -45,7 +45,20 @@ bool window_possible() {
 
 int run_bash(const fs::path& script, const std::string& text) {
   std::ofstream(script) << text;
-  return std::system(("bash " + q(script)).c_str());
+  // A display of its own: no window of a test running beside it takes the focus (keys sent to
+  // a window without it arrive as synthetic events, which GLFW drops after a real press of the
+  // same key) or covers this window where the mouse goes.
+  fs::path own = script;
+  own += ".display.sh";
+  std::ofstream(own)
+      << "d=$(mktemp)\n"
+         "Xvfb -displayfd 3 -screen 0 1280x1024x24 -nolisten tcp 3> \"$d\" 2> /dev/null &\n"
+         "xvfb=$!\n"
+         "for i in $(seq 600); do [ -s \"$d\" ] && break; sleep 0.05; done\n"
+         "[ -s \"$d\" ] || { echo 'no X server of its own (Xvfb)'; kill $xvfb; exit 1; }\n"
+         "DISPLAY=:$(head -1 \"$d\") bash " + q(script) + "\nrc=$?\n"
+         "rm -f \"$d\"; kill $xvfb; wait $xvfb 2> /dev/null; exit $rc\n";
+  return std::system(("bash " + q(own)).c_str());
 }
 
 fs::path make_tsp() {
@@ -91,12 +104,13 @@ std::string read_text(const fs::path& p) {
 
 std::string log_waits(const fs::path& log) {
   const std::string file = quote(log);
-  return "seen_within() { for i in $(seq \"$2\"); do grep -q -- \"$1\" " + file +
-         " && return 0; sleep 0.1; done; return 1; }\n"
-         "give_up() { echo \"$1\"; kill $! 2> /dev/null; exit 1; }\n"
-         "until_log() { seen_within \"$1\" 600 || give_up \"never saw $1\"; }\n"
+  return "give_up() { echo \"$1\"; kill $! 2> /dev/null; exit 1; }\n"
+         "until_log() { for i in $(seq 600); do grep -q -- \"$1\" " + file +
+         " && return 0; sleep 0.1; done; give_up \"never saw $1\"; }\n"
          "until_n() { for i in $(seq 600); do [ \"$(grep -c -- \"$1\" " + file +
          ")\" -ge \"$2\" ] && return 0; sleep 0.1; done; give_up \"never saw $1 $2 times\"; }\n"
+         "until_file() { for i in $(seq 600); do [ -e \"$1\" ] && return 0; sleep 0.1; done; "
+         "give_up \"never saw the file $1\"; }\n"
          // Ctrl+Q to window $w, then the player's exit status. xdotool sends through XTEST to
          // the focused window; once Ctrl+Q has closed it, Q's release fails and Q would stay
          // down on the display, repeating into the next test's window: released here.
@@ -109,8 +123,7 @@ std::string select_all_in_open_dialog() {
          "until_log 'trace: open path field active'\n"
          "xdotool type --window \"$w\" abc\n"
          "until_log 'abc$'\n"
-         "for try in 1 2 3; do sleep 1; xdotool key --delay 40 --window \"$w\" ctrl+a\n"
-         "  seen_within 'trace: select all' 50 && break; done\n"
+         "xdotool key --delay 40 --window \"$w\" ctrl+a\n"
          "until_log 'trace: select all'\n"
          "xdotool type --window \"$w\" x\n"
          "until_log 'trace: open path x$'\n";
@@ -139,8 +152,22 @@ std::vector<std::string> labels_with(const nlohmann::json& stats, const std::str
 std::string orbit_then_idle_script(const fs::path& dir, const fs::path& shot) {
   std::string text = "tf preset:filled\ntarget-fps 240\nview 30 20\nwait-frames 2\n";
   for (int k = 1; k <= 12; ++k) text += "view " + std::to_string(30 + 5 * k) + " 20\nwait-frames 1\n";
-  return text + "stats " + (dir / "moving.json").string() + "\nview 30 20\nwait-seconds 1.5\nstats " +
-         (dir / "idle.json").string() + "\nscreenshot " + shot.string() + "\nquit\n";
+  return text + "stats " + (dir / "moving.json").string() + "\nview 30 20\nscreenshot " +
+         shot.string() + "\nstats " + (dir / "idle.json").string() + "\nquit\n";
+}
+
+std::string handshakes(const fs::path& dir) {
+  return "handshake() { touch " + quote(dir) + "/\"$1\".sent; until_file " + quote(dir) +
+         "/\"$1\".taken; }\n";
+}
+
+std::string until_ctrl_q(const fs::path& dir) {
+  return "wait-file " + (dir / "ctrl-q-never-came").string() + " 300\n";
+}
+
+std::string taken(const fs::path& dir, const std::string& name) {
+  return "wait-file " + (dir / (name + ".sent")).string() + "\nsignal " +
+         (dir / (name + ".taken")).string() + "\n";
 }
 
 }  // namespace tsptest::player

@@ -25,8 +25,9 @@ inline constexpr double kDifferentFrameDeltaE = 1.0;
 
 /// True when a GLFW window can be opened (a display is there).
 bool window_possible();
-/// Writes a bash script (the player in the background, xdotool driving it) and runs it; returns
-/// its exit status.
+/// Writes a bash script (the player in the background, xdotool driving it) and runs it on an X
+/// server of its own (Xvfb: no other test's window takes the focus or covers the player's);
+/// returns its exit status.
 int run_bash(const std::filesystem::path& script, const std::string& text);
 /// A 30×28×26 × 4-step shock built into a .tsp with bricks of 16 (in a fresh temporary folder).
 std::filesystem::path make_tsp();
@@ -50,17 +51,26 @@ std::string orbit_then_idle_script(const std::filesystem::path& dir,
 
 /// Bash functions over a player's output file `log`, for scripts that drive a window with
 /// xdotool and wait on --trace lines, not on the clock: `until_log TEXT` waits for a line with
-/// TEXT, `until_n TEXT N` for N of them (a minute at most each; when one never comes it says so,
-/// ends the player started last with & and exits 1); `seen_within TEXT TENTHS` waits TENTHS
-/// tenths of a second at most and returns 1 (no exit) when TEXT never came; `quit_player`
-/// sends Ctrl+Q to window $w and returns the player's exit status, releasing Ctrl and Q.
+/// TEXT, `until_n TEXT N` for N of them, `until_file PATH` for a file (a minute at most each;
+/// when one never comes it says so, ends the player started last with & and exits 1);
+/// `quit_player` sends Ctrl+Q to window $w and returns the player's exit status, releasing Ctrl
+/// and Q.
 std::string log_waits(const std::filesystem::path& log);
 
 /// Bash lines for after log_waits, with the traced player's window in $w: Ctrl+O opens File >
 /// Open, "abc" is typed into its path field, Ctrl+A selects it all and "x" replaces it, each
-/// step waited on through --trace lines. Ctrl+A is tapped up to three times, 5 s apart: the X
-/// server may drop a synthetic tap on a loaded machine (no key reaches the window at all).
+/// step waited on through --trace lines.
 std::string select_all_in_open_dialog();
+/// A bash function for after log_waits: `handshake NAME` makes dir/NAME.sent once the test's
+/// input before it is sent, and waits for the player's dir/NAME.taken (the script's taken(dir,
+/// NAME) lines: every window event sent before it taken and settled).
+std::string handshakes(const std::filesystem::path& dir);
+/// Script lines that wait for the test's `handshake NAME` (wait-file dir/NAME.sent) and then
+/// tell it so (signal dir/NAME.taken).
+std::string taken(const std::filesystem::path& dir, const std::string& name);
+/// The script of a test that ends the player with Ctrl+Q (quit_player): nothing to do but wait,
+/// and a run whose Ctrl+Q never came fails (after 300 s, naming the line) rather than quitting.
+std::string until_ctrl_q(const std::filesystem::path& dir);
 /// Expects the log of select_all_in_open_dialog's keys: "abc" typed, then replaced whole by "x"
 /// (without the select-all the x went after it: "abcx").
 void expect_select_all_replaced(const std::string& log);
