@@ -163,7 +163,9 @@ inline void RayWalk::read_ahead(float t_out, const BrickView& b, bool closing,
     const float ts = closing && se >= t_out
                          ? se
                          : 0.5f * (se + (closing ? std::min(se + dt, t_out) : se + dt));
-    if (ts >= t_out) break;  // read in the next brick: refined() does it
+    // Read in the next brick: refined() does it. (A closing run's last read, on its far face,
+    // is clamped into its box as refined() clamps it: it stays in the batch.)
+    if (ts >= t_out && !closing) break;
     const vec3 r = texel(ts, vec3(1.f)), m = texel(mid, vec3(1.f));
     reads.x[n] = r.x;
     reads.y[n] = r.y;
