@@ -7,6 +7,7 @@
 #define HWY_TARGET_INCLUDE "render/cpu_batch.cpp"
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
+#include <hwy/contrib/math/math-inl.h>
 
 HWY_BEFORE_NAMESPACE();
 namespace tspgl::detail::HWY_NAMESPACE {
@@ -435,6 +436,33 @@ void ShadeBatch(const Sampler& smp, const BrickView& b, const Positions& pos, in
   }
 }
 
+// cut_sample lane by lane: each colour standing for k of its segment, opacity 1 − (1 − α)^k
+// (as exp(k·log(1 − α))), premultiplied colour scaled with it; transparent lanes unchanged.
+void CutBatch(const float* k, int n, Colours& c) {
+  const D d;
+  const size_t lanes = hn::Lanes(d);
+  const V one = hn::Set(d, 1.f), tiny = hn::Set(d, 1e-30f);
+  for (int start = 0; start < n; start += int(lanes)) {
+    const int m = std::min(int(lanes), n - start);
+    const auto live = hn::FirstN(d, size_t(m));
+    const V a = hn::IfThenElseZero(live, hn::Load(d, c.a + start));
+    const auto lit = hn::Gt(a, hn::Zero(d));
+    if (hn::AllFalse(d, lit)) continue;
+    const V kv = hn::IfThenElse(live, hn::Load(d, k + start), one);
+    const V rest = hn::Max(hn::Sub(one, a), tiny);
+    const V cut = hn::Sub(one, hn::Exp(d, hn::Mul(kv, hn::Log(d, rest))));
+    const V scale = hn::Div(cut, hn::IfThenElse(lit, a, one));
+    auto apply = [&](float* ch) {
+      const V v = hn::Load(d, ch + start);
+      hn::Store(hn::IfThenElse(lit, hn::Mul(v, scale), v), d, ch + start);
+    };
+    apply(c.r);
+    apply(c.g);
+    apply(c.b);
+    hn::Store(hn::IfThenElse(lit, cut, hn::Load(d, c.a + start)), d, c.a + start);
+  }
+}
+
 }  // namespace tspgl::detail::HWY_NAMESPACE
 HWY_AFTER_NAMESPACE();
 
@@ -443,6 +471,7 @@ namespace tspgl::detail {
 
 HWY_EXPORT(SampleBatch);
 HWY_EXPORT(ShadeBatch);
+HWY_EXPORT(CutBatch);
 
 bool batch_ready(const Sampler& smp) {
   if (!smp.tex.data || smp.tex.channels != 1) return false;
@@ -458,6 +487,8 @@ void sample_batch(const Sampler& smp, const BrickView& b, const float* row, cons
 void shade_batch(const Sampler& smp, const BrickView& b, const Positions& p, int n, Colours& c) {
   HWY_DYNAMIC_DISPATCH(ShadeBatch)(smp, b, p, n, c);
 }
+
+void cut_batch(const float* k, int n, Colours& c) { HWY_DYNAMIC_DISPATCH(CutBatch)(k, n, c); }
 
 }  // namespace tspgl::detail
 #endif  // HWY_ONCE

@@ -36,4 +36,9 @@ void sample_batch(const Sampler& smp, const BrickView& b, const float* row, cons
 /// Never throws; thread-safe.
 void shade_batch(const Sampler& smp, const BrickView& b, const Positions& p, int n, Colours& c);
 
+/// cut_sample on the first n colours, each standing for k[i] (≤ 1 or more: a slab of a level
+/// brick) of its segment, in SIMD (the power as exp(k·log(1 − α)): within a few ulps of
+/// std::pow). Never throws; thread-safe.
+void cut_batch(const float* k, int n, Colours& c);
+
 }  // namespace tspgl::detail

@@ -116,13 +116,37 @@ void RayWalk::level_brick(float t, float t_out, float& t_next, float dtm, vec3 s
   if (first >= t_out) first = 0.5f * (t + t_out);
   vec3 tc = texel(first, scale) + phase;
   const vec3 dtc = r_.dir * dtm * scale;
-  for (float tj = first; tj < t_out; tj += dtm) {
-    const float lo_j = tj == first ? t : tj - 0.5f * dtm;
-    const float hi_j = tj + dtm >= t_out ? t_out : tj + 0.5f * dtm;
-    ++samples_;
-    blend(cut_sample(smp_.point(tc, b, row), (hi_j - lo_j) / dt));
-    if (acc_.a >= kOpaque) break;
-    tc += dtc;
+  float tj = first;
+  if (batch_) {  // the slabs in SIMD batches: their lit lookups at once, composited in order
+    Positions pos;
+    Colours col;
+    alignas(64) float k[kMaxBatch];
+    while (tj < t_out && acc_.a < kOpaque) {
+      int n = 0;
+      for (; n < kMaxBatch && tj < t_out; ++n, tj += dtm, tc += dtc) {
+        const float lo_j = tj == first ? t : tj - 0.5f * dtm;
+        const float hi_j = tj + dtm >= t_out ? t_out : tj + 0.5f * dtm;
+        k[n] = (hi_j - lo_j) / dt;
+        pos.x[n] = tc.x;
+        pos.y[n] = tc.y;
+        pos.z[n] = tc.z;
+      }
+      sample_batch(smp_, b, row, pos, n, true, col);
+      cut_batch(k, n, col);
+      for (int j = 0; j < n && acc_.a < kOpaque; ++j) {
+        ++samples_;
+        blend(vec4(col.r[j], col.g[j], col.b[j], col.a[j]));
+      }
+    }
+  } else {
+    for (; tj < t_out; tj += dtm) {
+      const float lo_j = tj == first ? t : tj - 0.5f * dtm;
+      const float hi_j = tj + dtm >= t_out ? t_out : tj + 0.5f * dtm;
+      ++samples_;
+      blend(cut_sample(smp_.point(tc, b, row), (hi_j - lo_j) / dt));
+      if (acc_.a >= kOpaque) break;
+      tc += dtc;
+    }
   }
   if (t_next < t_out) t_next += std::ceil((t_out - t_next) / dtm) * dtm;
 }

@@ -130,5 +130,41 @@ TEST(CpuBatch, EveryTargetMatchesTheScalarSampler) {
   EXPECT_GE(tested, 2);
 }
 
+// cut_batch against cut_sample on every target: opacities from 0 (unchanged) through 1 (stays
+// 1), fractions of a segment (k < 1, a run's cut ends) and a level brick's slabs (k = 2, 4, 8).
+TEST(CpuBatch, CutBatchMatchesCutSampleOnEveryTarget) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> unit(0.f, 1.f);
+  const float ks[] = {0.01f, 0.3f, 0.999f, 1.f, 2.f, 3.5f, 4.f, 8.f};
+  Colours in;
+  alignas(64) float k[kMaxBatch];
+  for (int i = 0; i < kMaxBatch; ++i) {
+    const float a = i == 0 ? 0.f : i == 1 ? 1.f : unit(rng);
+    in.a[i] = a;
+    in.r[i] = unit(rng) * a;
+    in.g[i] = unit(rng) * a;
+    in.b[i] = unit(rng) * a;
+    k[i] = ks[i % 8];
+  }
+  int tested = 0;
+  for (std::int64_t target : hwy::SupportedAndGeneratedTargets()) {
+    hwy::SetSupportedTargetsForTest(target);
+    for (int n : {kMaxBatch, 5}) {  // whole vectors, and a tail
+      Colours c = in;
+      cut_batch(k, n, c);
+      for (int i = 0; i < kMaxBatch; ++i) {
+        const glm::vec4 s(in.r[i], in.g[i], in.b[i], in.a[i]);
+        const glm::vec4 want = i < n ? cut_sample(s, k[i]) : s;  // lanes past n untouched
+        expect_near(want, c.r[i], c.g[i], c.b[i], c.a[i],
+                    std::string(hwy::TargetName(target)) + " lane " + std::to_string(i) +
+                        " k " + std::to_string(k[i]));
+      }
+    }
+    ++tested;
+  }
+  hwy::SetSupportedTargetsForTest(0);
+  EXPECT_GE(tested, 2);
+}
+
 }  // namespace
 }  // namespace tspgl::detail
