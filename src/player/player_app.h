@@ -278,6 +278,21 @@ class PlayerApp {
   OpenJob* open_job() { return open_job_.get(); }
   /// Asks the running File > Open build to stop (no file is left).
   void cancel_open();
+  /// File > Open's outcomes (its dialog stays open on a failure, the error shown in it): how
+  /// many opens ended, and the last one's error ("": it opened).
+  struct OpenOutcome {
+    std::uint64_t ended = 0;  ///< opens that succeeded or failed so far
+    std::string error;        ///< the last one's error ("": it opened)
+  };
+  /// See OpenOutcome.
+  const OpenOutcome& open_outcome() const { return open_outcome_; }
+  /// Records that an open ended (error "": it opened); the window draws a few frames more, so
+  /// the dialog it reopens settles (its path field takes the keys). Never throws but bad_alloc.
+  void open_ended(const std::string& error) {
+    ++open_outcome_.ended;
+    open_outcome_.error = error;
+    settle_frames_ = kSettleFrames;
+  }
   /// Starts recording the volume (with its annotations) to a movie at path. Errors go to status.
   void start_recording(const std::string& path);
   /// Stops recording and writes the movie (waits for ffmpeg). Errors go to status.
@@ -434,6 +449,7 @@ class PlayerApp {
   int prefetched_cut_ = -1;  ///< cut size whose likely splits were last requested
   double start_s_ = 0, last_frame_s_ = 0;
   std::unique_ptr<OpenJob> open_job_;
+  OpenOutcome open_outcome_;  ///< see open_outcome()
   /// What a tuning was made for: a change of any re-tunes (the camera's direction does not).
   struct TuneKey {
     const void* file = nullptr;

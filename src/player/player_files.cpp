@@ -36,7 +36,9 @@ void report(PlayerApp& app, const std::string& what) { app.set_error(what); }
 // keeps the file it plays.
 void open_failed(PlayerApp& app, bool trace, const std::string& input, const std::string& why) {
   // (A reader's message names its file first already: the path once, so the reason shows.)
-  report(app, why.rfind(input + ": ", 0) == 0 ? "open " + why : "open " + input + ": " + why);
+  const std::string what = why.rfind(input + ": ", 0) == 0 ? "open " + why : "open " + input + ": " + why;
+  report(app, what);
+  app.open_ended(what);
   if (trace) {
     std::printf("trace: open %s failed: %s\n", input.c_str(), why.c_str());
     std::fflush(stdout);
@@ -180,6 +182,7 @@ void PlayerApp::open_file(const std::string& path) {
   std::fflush(stdout);
   if (surface_asked) set_setting("surface", "boundary");
   restore_session(false);  // this input's last session, if any
+  open_ended("");
 }
 
 void PlayerApp::switch_field(const std::string& name) {
