@@ -3,6 +3,7 @@
 // (Helpers: support/player_run.h.)
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -62,6 +63,52 @@ TEST(PlayerWalk8, AFailedOpenKeepsTheDialogOpenWithItsErrorAndPath) {
   const std::string log = tsptest::read_file(out);
   EXPECT_EQ(count(log, "trace: open dialog opens " + missing.string() + "\n"), 2) << log;
   EXPECT_EQ(count(log, "trace: open dialog closed"), 1) << log;
+}
+
+// A colour range typed, then a fit to the data, keep every point of the TF editor at its place
+// relative to the range: six points (three added, one moved) stay six, where they were. A moved
+// handle of the auto map stays moved. (Placed again from the stretched table, the points
+// shifted and merged: a fit left 7 points of 9; the auto map's moved handle went back to 0.25.)
+TEST(PlayerWalk8, ARangeChangeAndAFitKeepEveryPointInItsPlace) {
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
+  const fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
+  const std::string edits[] = {
+      "tf preset:cool-to-warm\ntf-point add 0.3 0.5\ntf-point add 0.6 0.2\n"
+      "tf-point add 0.8 0.9\ntf-point move 2 0.1 0.9\n",
+      "tf preset:auto\ntf-point move 3 0.2 0.9\n"};
+  int n = 0;
+  for (const std::string& edit : edits) {
+    const fs::path a = dir / (std::to_string(n) + "a.json"), b = dir / (std::to_string(n) + "b.json");
+    const fs::path c = dir / (std::to_string(n) + "c.json");
+    const fs::path script = dir / (std::to_string(n++) + ".txt");
+    std::ofstream(script) << edit << "tf-range data\nwait-frames 1\nstats " << a.string()
+                          << "\ntf-range 0.3:2.5\nwait-frames 1\nstats " << b.string()
+                          << "\ntf-range data\nwait-frames 1\nstats " << c.string() << "\nquit\n";
+    const auto r = run_tspplay("play " + q(tsp) + " --size " + kSize + " --no-session --script " +
+                               q(script));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const nlohmann::json ja = read_json(a), jb = read_json(b), jc = read_json(c);
+    // Each point's place in its range.
+    auto places = [](const nlohmann::json& j) {
+      std::vector<double> u;
+      const double lo = j["tf_domain"][0], hi = j["tf_domain"][1];
+      for (const auto& p : j["tf_points"]) u.push_back((p[0].get<double>() - lo) / (hi - lo));
+      return u;
+    };
+    const std::vector<double> ua = places(ja), ub = places(jb), uc = places(jc);
+    EXPECT_EQ(jb["tf_domain"][0].get<double>(), 0.3);
+    ASSERT_EQ(ub.size(), ua.size()) << edit;
+    ASSERT_EQ(uc.size(), ua.size()) << edit;
+    for (std::size_t i = 0; i < ua.size(); ++i) {
+      EXPECT_NEAR(ub[i], ua[i], 1e-9) << edit << i;
+      EXPECT_NEAR(uc[i], ua[i], 1e-9) << edit << i;
+    }
+    // The moved handle (0.1 or 0.2 of the range) is still there.
+    const double moved = n == 1 ? 0.1 : 0.2;
+    bool found = false;
+    for (double u : uc) found = found || std::fabs(u - moved / ja["tf_domain"][1].get<double>()) < 1e-6;
+    EXPECT_TRUE(found) << edit << ja["tf_points"] << jc["tf_points"];
+  }
 }
 
 }  // namespace
