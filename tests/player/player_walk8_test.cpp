@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -108,6 +109,39 @@ TEST(PlayerWalk8, ARangeChangeAndAFitKeepEveryPointInItsPlace) {
     bool found = false;
     for (double u : uc) found = found || std::fabs(u - moved / ja["tf_domain"][1].get<double>()) < 1e-6;
     EXPECT_TRUE(found) << edit << ja["tf_points"] << jc["tf_points"];
+  }
+}
+
+// The point list's opacity values are readable: each point's opacity is printed as its own item
+// beside its slider (ImGui centred it on the slider, where the grab covered it), inside the
+// panel, in the format of the axis (log: 1.00e-04). Before, no such item existed.
+TEST(PlayerWalk8, ThePointListPrintsEachOpacityBesideItsSlider) {
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
+  const fs::path tsp = make_tsp(), dir = tsptest::temp_dir();
+  const fs::path lin = dir / "lin.json", log = dir / "log.json";
+  const fs::path script = dir / "points.txt";
+  std::ofstream(script) << "tf preset:cool-to-warm\ntf-point add 0.3 0.25\nexpand on\n"
+                           "wait-frames 3\nstats " << lin.string() << "\nlog-opacity on\n"
+                           "wait-frames 3\nstats " << log.string() << "\nquit\n";
+  const auto r = run_tspplay("play " + q(tsp) + " --size 1280x800 --no-session --script " +
+                             q(script));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const auto& [file, format] : {std::pair{lin, "%.3f"}, std::pair{log, "%.2e"}}) {
+    const nlohmann::json j = read_json(file);
+    ASSERT_EQ(j["tf_points"].size(), 4u);
+    for (const auto& p : j["tf_points"]) {
+      char value[32];
+      std::snprintf(value, sizeof value, format, p[1].get<double>());
+      const std::vector<std::string> found = labels_with(j, value);
+      ASSERT_FALSE(found.empty()) << value << " " << j["ui_items"];
+      bool inside = false;
+      for (const auto& it : j["ui_items"])
+        if (it["label"] == value)
+          inside = inside || (it["text_w"].get<double>() <= it["w"].get<double>() + 0.5 &&
+                              it["x"].get<double>() + it["w"].get<double>() <=
+                                  it["clip_right"].get<double>() + 0.5);
+      EXPECT_TRUE(inside) << value;
+    }
   }
 }
 
