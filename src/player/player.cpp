@@ -448,6 +448,7 @@ void PlayerApp::frame() {
       status = e.what();
     }
     std::printf("%s\n", status.c_str());
+    std::fflush(stdout);  // (a log read while the window runs sees it)
   }
 
   if (recorder_) record_frame(now);

@@ -243,6 +243,10 @@ class PlayerApp {
   const std::array<double, 3>& scale() const { return options_.scale; }
   /// True with --trace (stdout lines that tests read).
   bool tracing() const { return options_.trace; }
+  /// Where S's pictures go and the Record dialog offers its movie: the folder a file was last
+  /// saved to from a dialog (session, TF, movie), else beside the data (open_folder()); the
+  /// working directory when that folder cannot be written. Absolute. Never throws but bad_alloc.
+  std::string export_folder() const;
   /// The dataset and field part of saved files' names (S's pictures, movies): NAME_FIELD, NAME
   /// the input as the user named it without its known extensions (export_names.h).
   std::string export_stem() const;
@@ -359,8 +363,8 @@ class PlayerApp {
   /// The one export look of S and the recorder: read_view() with the annotations (outline,
   /// axes, legend titled with the field, step and time) unless they are turned off.
   tsp::Image export_view();
-  /// S's file name: NAME_FIELD_step_NNNN.png in the working directory (NAME: the input as the
-  /// user named it), with -2, -3, … rather than over an existing file.
+  /// S's file name: NAME_FIELD_step_NNNN.png in export_folder() (NAME: the input as the user
+  /// named it), made absolute, with -2, -3, … rather than over an existing file.
   std::string export_name() const;
   /// Swaps in the .tsp file at path (File > Open): new tree, renderer, metric, TF and camera.
   void open_file(const std::string& path);
@@ -575,6 +579,7 @@ class PlayerApp {
   int drawn_step_ = -1;  ///< the step the last frame drew (−1: none)
 
   std::string last_session_folder_;  ///< where save_session_as last wrote ("": nowhere yet)
+  std::string last_saved_folder_;    ///< where a dialog last saved a file ("": nowhere yet)
 
   // ---- stale errors (player_commands.cpp) ----
   std::string error_status_;     ///< the last error set_error showed

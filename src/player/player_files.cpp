@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <unistd.h>
 
 #include "jobs/annotate.h"
 #include "jobs/play_input.h"
@@ -235,6 +236,7 @@ void PlayerApp::start_recording(const std::string& path) {
     recorder_ = std::make_unique<Recorder>(path, layout.view.w, layout.view.h, kRecordFps,
                                            clock_.seconds());
     status = "recording " + path;
+    last_saved_folder_ = std::filesystem::absolute(path).parent_path().string();
   } catch (const tsp::Error& e) {
     report(*this, std::string("record: ") + e.what());
   }
@@ -282,11 +284,23 @@ std::string PlayerApp::export_stem() const {
   return dataset_name(given) + "_" + field();
 }
 
+std::string PlayerApp::export_folder() const {
+  // (S wrote into the working directory, wherever the data was.)
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path cwd = fs::current_path(ec);
+  fs::path folder = last_saved_folder_.empty() ? fs::path(open_folder()) : fs::path(last_saved_folder_);
+  folder = folder.empty() ? cwd : fs::absolute(folder, ec);
+  if (!fs::is_directory(folder, ec) || ::access(folder.c_str(), W_OK) != 0) folder = cwd;
+  return folder.lexically_normal().string();
+}
+
 std::string PlayerApp::export_name() const {
-  // NAME_FIELD_step_NNNN.png in the working directory, never over an earlier one.
+  // NAME_FIELD_step_NNNN.png beside the data (or where a file was last saved), never over an
+  // earlier one.
   char step[32];
   std::snprintf(step, sizeof step, "_step_%04d", state_.step);
-  return tsp::unused_path(export_stem() + step + ".png");
+  return tsp::unused_path((std::filesystem::path(export_folder()) / (export_stem() + step + ".png")).string());
 }
 
 void PlayerApp::record_frame(double now_s) {
@@ -312,6 +326,7 @@ void PlayerApp::save_tf_as(const std::string& path) {
     tsp::save_transfer_function(tf, path);
     tf_file_path() = path;  // (the TF editor's file row and File > Save offer it next)
     status = "saved " + path;
+    last_saved_folder_ = std::filesystem::absolute(path).parent_path().string();
   } catch (const tsp::Error& e) {
     report(*this, e.what());
   }

@@ -432,7 +432,8 @@ void menu_and_dialogs(PlayerApp& app) {
   if (s.want_record) {
     const bool gif = std::string_view(s.movie_path).ends_with(".gif");
     copy(s.movie_path, sizeof s.movie_path,
-         tsp::unused_path(app.export_stem() + (gif ? ".gif" : ".mp4")));
+         tsp::unused_path((fs::path(app.export_folder()) / (app.export_stem() + (gif ? ".gif" : ".mp4")))
+                              .string()));
   }
   if (path_dialog(app, kRecordPopup, s.want_record, s.movie_path, sizeof s.movie_path,
                   "The volume as shown, with its annotations, in real time (.mp4 or .gif); "

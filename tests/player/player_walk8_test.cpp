@@ -145,4 +145,51 @@ TEST(PlayerWalk8, ThePointListPrintsEachOpacityBesideItsSlider) {
   }
 }
 
+// S saves beside the data (not in the working directory), named by dataset, field and step,
+// never over an existing file (-2, -3, …), and the status line names the full path; after a
+// dialog saved a file elsewhere (save-session), S saves there.
+TEST(PlayerWalk8, SSavesBesideTheDataNeverOverAnEarlierFile) {
+  TSPTEST_REQUIRE_X_EVENTS();
+  const fs::path dir = tsptest::temp_dir(), out = dir / "s.out";
+  fs::create_directories(dir / "data");
+  fs::create_directories(dir / "work");
+  fs::create_directories(dir / "shared");
+  const fs::path tsp = dir / "data" / "s.tsp";
+  fs::copy_file(make_tsp(), tsp);
+  const fs::path earlier = dir / "data" / "s_shock_step_0000.png";
+  std::ofstream(earlier) << "an earlier picture";
+  const fs::path script = write_script("wait-frames 2\nstats " + (dir / "a.json").string() +
+                                       "\nwait-seconds 120\nquit\n");
+  const fs::path shared_session = dir / "shared" / "mine.session.json";
+  const fs::path script2 = write_script("save-session " + shared_session.string() +
+                                        "\nwait-frames 2\nstats " + (dir / "b.json").string() +
+                                        "\nwait-seconds 120\nquit\n");
+  auto run = [&](const fs::path& sc, const fs::path& ready, int presses) {
+    return "(" + q(tsptest::tspplay_bin()) + " play " + q(tsp) + " --size " + kSize +
+           " --no-session --script " + q(sc) + " > " + q(out) + " 2>&1 &\n" +
+           "w=$(xdotool search --sync --name " + q("tspplay - " + tsp.string()) + " | head -1)\n" +
+           "for i in $(seq 600); do [ -f " + q(ready) + " ] && break; sleep 0.1; done\n" +
+           "for k in $(seq " + std::to_string(presses) + "); do xdotool key --window \"$w\" s\n"
+           "  until_n '^saved ' $k; done\n"
+           "quit_player)\n";
+  };
+  const std::string cmd = "cd " + q(dir / "work") + "\n" + log_waits(out) +
+                          run(script, dir / "a.json", 2) + "cp " + q(out) + " " +
+                          q(dir / "first.out") + "\n" + run(script2, dir / "b.json", 1);
+  ASSERT_EQ(run_bash(dir / "s.sh", cmd), 0) << tsptest::read_file(out);
+  const std::string first = tsptest::read_file(dir / "first.out");
+  EXPECT_EQ(tsptest::read_file(earlier), "an earlier picture");
+  const fs::path second = dir / "data" / "s_shock_step_0000-2.png", third = dir / "data" / "s_shock_step_0000-3.png";
+  EXPECT_TRUE(fs::exists(second)) << first;
+  EXPECT_TRUE(fs::exists(third)) << first;
+  EXPECT_NE(first.find("saved " + second.string() + "\n"), std::string::npos) << first;
+  EXPECT_NE(first.find("saved " + third.string() + "\n"), std::string::npos) << first;
+  EXPECT_TRUE(fs::is_empty(dir / "work"));
+  // After a session saved to shared/, S saves there too.
+  const std::string log = tsptest::read_file(out);
+  const fs::path there = dir / "shared" / "s_shock_step_0000.png";
+  EXPECT_TRUE(fs::exists(there)) << log;
+  EXPECT_NE(log.find("saved " + there.string() + "\n"), std::string::npos) << log;
+}
+
 }  // namespace
