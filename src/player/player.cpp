@@ -421,16 +421,12 @@ void PlayerApp::frame() {
   capture_frame();
   if (state_.playing != rate_playing_) {  // playback's rate is measured from its start on
     rate_playing_ = state_.playing;
-    shown_at_s_.clear();
+    rate_readout_.restart();
     last_shown_step_ = -1;
   }
-  if (state_.step != last_shown_step_) {  // playback's real rate: distinct steps drawn
-    last_shown_step_ = state_.step;
-    shown_at_s_.push_back(now);
-  }
-  // (The last two stay: a stall longer than the window reads as a slow rate, not none.)
-  while (shown_at_s_.size() > 2 && shown_at_s_.front() < now - kShownWindowSeconds)
-    shown_at_s_.pop_front();
+  const bool shown = state_.step != last_shown_step_;  // playback's real rate: distinct steps
+  last_shown_step_ = state_.step;
+  rate_readout_.frame(now, shown, state_.speed);
 
   // Screenshots hold the volume only (read before the UI is drawn).
   // A screenshot waits for the first complete frame (no texture left for later frames).

@@ -23,6 +23,7 @@
 #include "player/layout.h"
 #include "player/lod_loop.h"
 #include "player/playback_clock.h"
+#include "player/rate_readout.h"
 #include "player/rung_picker.h"
 #include "player/open_job.h"
 #include "player/recorder.h"
@@ -69,8 +70,6 @@ inline constexpr int kReadyStepsPerFrame = 4;
 /// Milliseconds of each frame the playback tuning may use (the window keeps ≥ 10 frames/s on
 /// top of its own frame time).
 inline constexpr double kCalibrationSliceMs = 15;
-/// Seconds over which the steps shown per second are counted.
-inline constexpr double kShownWindowSeconds = 2;
 /// Frames drawn after the last input event (Dear ImGui's hover and popups settle).
 inline constexpr int kSettleFrames = 3;
 /// Longest sleep of an idle window before it looks at its state again.
@@ -194,6 +193,9 @@ class PlayerApp {
   double steps_shown_per_s() const;
   /// True once playback showed a second step since it started: a rate was measured.
   bool rate_measured() const;
+  /// True while the rate readout says playback is slower than the speed (rate_readout.h: one
+  /// steady answer, with hysteresis).
+  bool rate_slow() const { return rate_readout_.slow(); }
   bool rate_playing_ = false;  ///< playing at the last frame (the rate restarts with playback)
   /// Seconds until playback's next step is due (0: due now); kIdleWaitSeconds when paused.
   double until_next_step() const;
@@ -478,7 +480,7 @@ class PlayerApp {
   /// Frames drawn from the tuning's start to its first picture (−1: none yet).
   std::int64_t frames_before_first_picture_ = -1;
   double tuning_s_ = -1;                ///< how long the last tuning took (−1: none)
-  std::deque<double> shown_at_s_;       ///< when each newly shown step was drawn (last 2 s)
+  RateReadout rate_readout_;            ///< steps shown per second while playing, slow or not
   int last_shown_step_ = -1;
   std::int64_t picture_fragments_ = 0;  ///< see picture_fragments()
   int frames_while_tuning_ = 0;         ///< window frames drawn while it ran

@@ -53,11 +53,11 @@ double PlayerApp::steps_shown_per_s() const {
   // Steps after the first over the time since it was shown (0 before a second step was: it
   // once read "playing at 0.0 steps/s" as playback started).
   if (!rate_measured()) return 0.0;
-  return shown_rate(shown_at_s_, clock_.seconds());  // (over step periods: playback_clock.h)
+  return rate_readout_.rate();  // (over step periods, at the last frame: rate_readout.h)
 }
 
 bool PlayerApp::rate_measured() const {
-  return state_.playing && shown_at_s_.size() >= 2;
+  return state_.playing && rate_readout_.measured();
 }
 
 nlohmann::json PlayerApp::tuning_disk_key(const tsp::CameraParams& view) const {
