@@ -470,6 +470,7 @@ void PlayerApp::frame() {
 
   measured_lod(last.ms - last.upload_ms, t_frame.ms());
   history.push_back({now - start_s_, t_frame.ms()});
+  tuning_.frame_drawn(t_frame.ms(), state_.playing ? 1000 / std::max(state_.speed, 1e-3) : 0);
   while (!history.empty() && history.front().at_s < now - start_s_ - kFrameHistorySeconds)
     history.pop_front();
 }
@@ -484,7 +485,7 @@ bool PlayerApp::busy() const {
   // period would draw the same step again, and a coarse playing rung is not refined meanwhile.
   const bool step_due = state_.playing && until_next_step() <= 0;
   return quit_ || step_due || settle_frames_ > 0 || input_queue_.pending() || script_running || !pending_shot_.empty() ||
-         save_requested_ || tuner_ || open_job_ || recorder_ || !last.complete() ||
+         save_requested_ || (tuning_.tuner() && !tuning_.waiting()) || open_job_ || recorder_ || !last.complete() ||
          (!state_.playing && state_.lod_on && !full_quality()) || switch_started_s_ >= 0;
 }
 

@@ -23,6 +23,7 @@
 #include "player/layout.h"
 #include "player/lod_loop.h"
 #include "player/playback_clock.h"
+#include "player/playback_tuning.h"
 #include "player/rate_readout.h"
 #include "player/rung_picker.h"
 #include "player/open_job.h"
@@ -67,9 +68,6 @@ inline constexpr double kMaxFrameDelayMs = 2000;
 
 /// Steps whose readiness (bricks in RAM or textures) is re-checked per frame, for the timeline.
 inline constexpr int kReadyStepsPerFrame = 4;
-/// Milliseconds of each frame the playback tuning may use (the window keeps ≥ 10 frames/s on
-/// top of its own frame time).
-inline constexpr double kCalibrationSliceMs = 15;
 /// Frames drawn after the last input event (Dear ImGui's hover and popups settle).
 inline constexpr int kSettleFrames = 3;
 /// Longest sleep of an idle window before it looks at its state again.
@@ -200,7 +198,7 @@ class PlayerApp {
   /// Seconds until playback's next step is due (0: due now); kIdleWaitSeconds when paused.
   double until_next_step() const;
   /// The playback tuning in progress, if any (for its progress bar).
-  const tspgl::PlaybackTuner* tuning() const { return tuner_.get(); }
+  const tspgl::PlaybackTuner* tuning() const { return tuning_.tuner(); }
   /// The rung playing draws (meaningful while playing_rung()).
   const tspgl::RungChoice& rung_choice() const { return rungs_.choice(); }
   /// The tuned ladder (empty before the first tuning ends).
@@ -456,34 +454,16 @@ class PlayerApp {
   double start_s_ = 0, last_frame_s_ = 0;
   std::unique_ptr<OpenJob> open_job_;
   OpenOutcome open_outcome_;  ///< see open_outcome()
-  /// What a tuning was made for: a change of any re-tunes (the camera's direction does not).
-  struct TuneKey {
-    const void* file = nullptr;
-    std::string field;
-    std::uint64_t tf_version = 0;
-    tsp::Metric metric = tsp::Metric::approximate;
-    tspgl::RenderSettings settings;
-    int width = 0, height = 0;
-    bool operator==(const TuneKey&) const = default;
-  };
+  /// What a tuning is for now (playback_tuning.h).
   TuneKey tune_key() const;
   /// What a tuning at view depends on, for the tuning cache on disk (jobs/tuning_cache.h).
   nlohmann::json tuning_disk_key(const tsp::CameraParams& view) const;
-  nlohmann::json tuning_cache_key_;  ///< the running or last tuning's disk key
-  std::string tuning_cache_file_;    ///< where it is kept ("": no cache folder)
-  bool tuning_from_cache_ = false;   ///< the last tuning was read from disk
-  std::unique_ptr<tspgl::PlaybackTuner> tuner_;  ///< probing the ladder, while it runs
-  TuneKey tuning_for_, tuned_for_;              ///< what the running / last tuning is for
+  PlaybackTuning tuning_;  ///< the tuning in progress and its stats (playback_tuning.h)
+  int drawn_tuning_step_ = -1;  ///< the step shown at the last tuning frame
   RungPicker rungs_;  ///< the last complete tuning's ladder and the rung playing draws
-  double tuning_started_s_ = 0;
-  std::int64_t tuning_started_frame_ = 0;  ///< frames_drawn_ when the tuning started
-  /// Frames drawn from the tuning's start to its first picture (−1: none yet).
-  std::int64_t frames_before_first_picture_ = -1;
-  double tuning_s_ = -1;                ///< how long the last tuning took (−1: none)
   RateReadout rate_readout_;            ///< steps shown per second while playing, slow or not
   int last_shown_step_ = -1;
   std::int64_t picture_fragments_ = 0;  ///< see picture_fragments()
-  int frames_while_tuning_ = 0;         ///< window frames drawn while it ran
   std::unique_ptr<Recorder> recorder_;
   FieldShelf parked_;  ///< fields switched away from, kept with their renderers
   /// The programs every renderer of this window shares.

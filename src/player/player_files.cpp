@@ -404,14 +404,7 @@ void PlayerApp::write_stats(const std::string& path) const {
   j["playback"] = playback_json();
   j["idle_waits"] = idle_waits_;
   j["cpu_seconds"] = tsp::cpu_seconds();
-  j["tuning"] = {{"running", tuner_ != nullptr},
-                 {"pictures_done", tuner_ ? tuner_->pictures_done() : 0},
-                 {"pictures_total", tuner_ ? tuner_->pictures_total() : 0},
-                 {"seconds", tuning_s_},
-                 {"frames_while_tuning", frames_while_tuning_},
-                 {"frames_before_first_picture", frames_before_first_picture_},
-                 {"from_cache", tuning_from_cache_},  // read from disk: no probing this run
-                 {"cache_file", tuning_cache_file_}};
+  j["tuning"] = tuning_.stats();  // (playback_tuning.h)
   j["lod"] = lod_loop_.stats();  // the last frame's cut, under frames.json's "lod" keys
   j["lod"].update({{"on", state_.lod_on},
                    {"target_fps", state_.target_fps},
