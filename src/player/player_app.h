@@ -282,14 +282,12 @@ class PlayerApp {
   OpenJob* open_job() { return open_job_.get(); }
   /// Asks the running File > Open build to stop (no file is left).
   void cancel_open();
-  /// File > Open's outcomes (its dialog stays open on a failure, the error shown in it): how
-  /// many opens ended, and the last one's error ("": it opened).
+  /// File > Open's outcomes (its dialog stays open on a failure, the error shown in it).
   struct OpenOutcome {
     std::uint64_t ended = 0;  ///< opens that succeeded or failed so far
     std::string error;        ///< the last one's error ("": it opened)
   };
-  /// See OpenOutcome.
-  const OpenOutcome& open_outcome() const { return open_outcome_; }
+  const OpenOutcome& open_outcome() const { return open_outcome_; }  ///< see OpenOutcome
   /// Records that an open ended (error "": it opened); the window draws a few frames more, so
   /// the dialog it reopens settles (its path field takes the keys). Never throws but bad_alloc.
   void open_ended(const std::string& error) {

@@ -207,6 +207,25 @@ void open_outcome(PlayerApp& app, MenuState& s) {
   app.trace("open dialog error: " + s.open_error);
 }
 
+// The failed open, in red as the status area's errors, under the path (none: nothing drawn).
+void open_error_line(const MenuState& s) {
+  if (s.open_error.empty()) return;
+  ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.f, 0.45f, 0.4f, 1.f));
+  ImGui::TextWrapped("%s", s.open_error.c_str());
+  ImGui::PopStyleColor();
+  note_wrapped(s.open_error.c_str());
+}
+
+// Open pressed: the dialog stays open until the open ends (a failure is shown in it, the path
+// kept to fix).
+void start_open(PlayerApp& app, MenuState& s) {
+  app.trace(std::string("open dialog opens ") + s.open_path);
+  app.push(cmd::OpenInput{s.open_path, s.field, s.build_options});
+  s.awaiting = true;
+  s.outcome_seen = app.open_outcome().ended;
+  s.open_error.clear();
+}
+
 // The dialog's build options field (a raw series' grid, a mesh's resolution, …); true on Enter.
 bool build_options_field(MenuState& s) {
   // The field as wide as the row leaves beside its whole label.
@@ -318,12 +337,7 @@ void open_dialog(PlayerApp& app) {
     if (!ec && fs::is_directory(typed, ec) && typed != fs::weakly_canonical(s.listing.dir, ec))
       s.listing.read(typed);
   }
-  if (!s.open_error.empty()) {  // the failed open, in red as the status area's errors
-    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.f, 0.45f, 0.4f, 1.f));
-    ImGui::TextWrapped("%s", s.open_error.c_str());
-    ImGui::PopStyleColor();
-    note_wrapped(s.open_error.c_str());
-  }
+  open_error_line(s);
   ImGui::SetNextItemWidth(200);
   ImGui::InputText("field (inputs with several)", s.field, sizeof s.field);
   note_item("field (inputs with several)");
@@ -333,14 +347,7 @@ void open_dialog(PlayerApp& app) {
   if (enter && fs::is_directory(fs::path(s.open_path), ec)) enter = false;  // its list is shown
   const bool open_clicked = ImGui::Button("Open");
   note_item("Open", true);
-  if ((open_clicked || open_now || enter) && !s.awaiting) {
-    // (It stays open until the open ends: a failure is shown here, the path kept to fix.)
-    app.trace(std::string("open dialog opens ") + s.open_path);
-    app.push(cmd::OpenInput{s.open_path, s.field, s.build_options});
-    s.awaiting = true;
-    s.outcome_seen = app.open_outcome().ended;
-    s.open_error.clear();
-  }
+  if ((open_clicked || open_now || enter) && !s.awaiting) start_open(app, s);
   ImGui::SameLine();
   const bool cancel = ImGui::Button("Cancel");
   note_item("Cancel", true);
