@@ -111,6 +111,13 @@ int PlaybackTuner::pictures_total() const {
   return int(playback_rungs().size() * probe_->steps());
 }
 
+double PlaybackTuner::next_picture_ms() const {
+  if (done()) return 0;
+  if (!current_ms_.empty()) return current_ms_.back();  // this rung's last picture
+  if (!tuned_.empty()) return tuned_.back().ms;          // the last rung's (rungs get cheaper)
+  return last_ms_;
+}
+
 bool PlaybackTuner::advance(double budget_ms) {
   const tsp::Stopwatch clock;
   const std::vector<Rung>& rungs = playback_rungs();
@@ -120,6 +127,7 @@ bool PlaybackTuner::advance(double budget_ms) {
     auto [image, ms] = probe_->render_step(rung_settings(settings_, r), r.lod_level, nodes_, step_);
     ++pictures_done_;
     current_ms_.push_back(ms);
+    last_ms_ = ms;
     if (rungs_done_ == 0) {
       reference_.push_back(std::move(image));  // full quality: the pictures the rest are held to
     } else {
@@ -134,7 +142,8 @@ bool PlaybackTuner::advance(double budget_ms) {
       step_ = 0;
       ++rungs_done_;
     }
-    if (clock.ms() >= budget_ms) break;
+    // (Another only when it is predicted to end within the budget: it ran past it by a picture.)
+    if (clock.ms() + next_picture_ms() > budget_ms) break;
   }
   return done();
 }

@@ -90,9 +90,13 @@ class PlaybackTuner {
   PlaybackTuner(const PlaybackTuner&) = delete;
   PlaybackTuner& operator=(const PlaybackTuner&) = delete;
 
-  /// Renders for about budget_ms (at least one picture); returns done(). Throws tsp::Error on
-  /// brick reads, tsp::GlError.
+  /// Renders for about budget_ms (at least one picture; a further one only when its predicted
+  /// time, next_picture_ms(), fits what is left); returns done(). Throws tsp::Error on brick
+  /// reads, tsp::GlError.
   bool advance(double budget_ms);
+  /// The next picture's predicted time (ms): the last picture of its rung, else the last rung's
+  /// median; −1 before the first picture (unknown). Never throws.
+  double next_picture_ms() const;
   /// True once every rung was probed.
   bool done() const { return rungs_done_ == playback_rungs().size(); }
   /// Pictures rendered so far and in all (for a progress display).
@@ -111,6 +115,7 @@ class PlaybackTuner {
   std::size_t rungs_done_ = 0, step_ = 0;
   TunedRung current_;
   std::vector<double> current_ms_;
+  double last_ms_ = -1;  ///< the last picture's time (−1: none yet)
   int pictures_done_ = 0;
 };
 

@@ -36,13 +36,4 @@ double PlaybackClock::until_next(double since_frame_s, double speed) const {
   return pending >= 1 ? 0.0 : (1 - pending) / std::max(speed, 1e-3);
 }
 
-double shown_rate(const std::deque<double>& shown_at_s, double now_s) {
-  if (shown_at_s.size() < 2) return 0.0;
-  const double n = double(shown_at_s.size());
-  const double periods = shown_at_s.back() - shown_at_s.front();
-  const double to_now = now_s - shown_at_s.front();
-  if (!(periods > 0) || !(to_now > 0)) return 0.0;
-  return std::min((n - 1) / periods, n / to_now);
-}
-
 }  // namespace tspplayer

@@ -3,7 +3,8 @@
 // skipping steps once the clock is more than kMaxStepBacklog steps ahead (one slow frame among
 // fast ones is caught up instead). Window-free: the caller passes each frame's seconds.
 #pragma once
-#include <deque>
+
+#include "player/rate_readout.h"  // (shown_rate, which lived here)
 
 namespace tspplayer {
 
@@ -25,13 +26,5 @@ class PlaybackClock {
  private:
   double accum_ = 0;
 };
-
-/// Steps shown per second, from the times (s) at which each newly shown step was drawn (oldest
-/// first) and the clock now: over the step periods between them (a step still on screen for
-/// less than those periods took is no shortfall: counted over the time since the first, 1 step
-/// a second read 0.7 between steps), or, once the step on screen has stayed longer than them,
-/// over the time to now as if the next came now (a stall reads as a slowing rate). 0 with fewer
-/// than two. Never throws.
-double shown_rate(const std::deque<double>& shown_at_s, double now_s);
 
 }  // namespace tspplayer

@@ -421,16 +421,12 @@ void PlayerApp::frame() {
   capture_frame();
   if (state_.playing != rate_playing_) {  // playback's rate is measured from its start on
     rate_playing_ = state_.playing;
-    shown_at_s_.clear();
+    rate_readout_.restart();
     last_shown_step_ = -1;
   }
-  if (state_.step != last_shown_step_) {  // playback's real rate: distinct steps drawn
-    last_shown_step_ = state_.step;
-    shown_at_s_.push_back(now);
-  }
-  // (The last two stay: a stall longer than the window reads as a slow rate, not none.)
-  while (shown_at_s_.size() > 2 && shown_at_s_.front() < now - kShownWindowSeconds)
-    shown_at_s_.pop_front();
+  const bool shown = state_.step != last_shown_step_;  // playback's real rate: distinct steps
+  last_shown_step_ = state_.step;
+  rate_readout_.frame(now, shown, state_.speed);
 
   // Screenshots hold the volume only (read before the UI is drawn).
   // A screenshot waits for the first complete frame (no texture left for later frames).
@@ -448,6 +444,7 @@ void PlayerApp::frame() {
       status = e.what();
     }
     std::printf("%s\n", status.c_str());
+    std::fflush(stdout);  // (a log read while the window runs sees it)
   }
 
   if (recorder_) record_frame(now);
@@ -473,6 +470,7 @@ void PlayerApp::frame() {
 
   measured_lod(last.ms - last.upload_ms, t_frame.ms());
   history.push_back({now - start_s_, t_frame.ms()});
+  tuning_.frame_drawn(t_frame.ms(), state_.playing ? 1000 / std::max(state_.speed, 1e-3) : 0);
   while (!history.empty() && history.front().at_s < now - start_s_ - kFrameHistorySeconds)
     history.pop_front();
 }
@@ -487,7 +485,7 @@ bool PlayerApp::busy() const {
   // period would draw the same step again, and a coarse playing rung is not refined meanwhile.
   const bool step_due = state_.playing && until_next_step() <= 0;
   return quit_ || step_due || settle_frames_ > 0 || input_queue_.pending() || script_running || !pending_shot_.empty() ||
-         save_requested_ || tuner_ || open_job_ || recorder_ || !last.complete() ||
+         save_requested_ || (tuning_.tuner() && !tuning_.waiting()) || open_job_ || recorder_ || !last.complete() ||
          (!state_.playing && state_.lod_on && !full_quality()) || switch_started_s_ >= 0;
 }
 

@@ -23,6 +23,8 @@
 #include "player/layout.h"
 #include "player/lod_loop.h"
 #include "player/playback_clock.h"
+#include "player/playback_tuning.h"
+#include "player/rate_readout.h"
 #include "player/rung_picker.h"
 #include "player/open_job.h"
 #include "player/recorder.h"
@@ -66,11 +68,6 @@ inline constexpr double kMaxFrameDelayMs = 2000;
 
 /// Steps whose readiness (bricks in RAM or textures) is re-checked per frame, for the timeline.
 inline constexpr int kReadyStepsPerFrame = 4;
-/// Milliseconds of each frame the playback tuning may use (the window keeps ≥ 10 frames/s on
-/// top of its own frame time).
-inline constexpr double kCalibrationSliceMs = 15;
-/// Seconds over which the steps shown per second are counted.
-inline constexpr double kShownWindowSeconds = 2;
 /// Frames drawn after the last input event (Dear ImGui's hover and popups settle).
 inline constexpr int kSettleFrames = 3;
 /// Longest sleep of an idle window before it looks at its state again.
@@ -194,11 +191,14 @@ class PlayerApp {
   double steps_shown_per_s() const;
   /// True once playback showed a second step since it started: a rate was measured.
   bool rate_measured() const;
+  /// True while the rate readout says playback is slower than the speed (rate_readout.h: one
+  /// steady answer, with hysteresis).
+  bool rate_slow() const { return rate_readout_.slow(); }
   bool rate_playing_ = false;  ///< playing at the last frame (the rate restarts with playback)
   /// Seconds until playback's next step is due (0: due now); kIdleWaitSeconds when paused.
   double until_next_step() const;
   /// The playback tuning in progress, if any (for its progress bar).
-  const tspgl::PlaybackTuner* tuning() const { return tuner_.get(); }
+  const tspgl::PlaybackTuner* tuning() const { return tuning_.tuner(); }
   /// The rung playing draws (meaningful while playing_rung()).
   const tspgl::RungChoice& rung_choice() const { return rungs_.choice(); }
   /// The tuned ladder (empty before the first tuning ends).
@@ -243,6 +243,10 @@ class PlayerApp {
   const std::array<double, 3>& scale() const { return options_.scale; }
   /// True with --trace (stdout lines that tests read).
   bool tracing() const { return options_.trace; }
+  /// Where S's pictures go and the Record dialog offers its movie: the folder a file was last
+  /// saved to from a dialog (session, TF, movie), else beside the data (open_folder()); the
+  /// working directory when that folder cannot be written. Absolute. Never throws but bad_alloc.
+  std::string export_folder() const;
   /// The dataset and field part of saved files' names (S's pictures, movies): NAME_FIELD, NAME
   /// the input as the user named it without its known extensions (export_names.h).
   std::string export_stem() const;
@@ -278,6 +282,19 @@ class PlayerApp {
   OpenJob* open_job() { return open_job_.get(); }
   /// Asks the running File > Open build to stop (no file is left).
   void cancel_open();
+  /// File > Open's outcomes (its dialog stays open on a failure, the error shown in it).
+  struct OpenOutcome {
+    std::uint64_t ended = 0;  ///< opens that succeeded or failed so far
+    std::string error;        ///< the last one's error ("": it opened)
+  };
+  const OpenOutcome& open_outcome() const { return open_outcome_; }  ///< see OpenOutcome
+  /// Records that an open ended (error "": it opened); the window draws a few frames more, so
+  /// the dialog it reopens settles (its path field takes the keys). Never throws but bad_alloc.
+  void open_ended(const std::string& error) {
+    ++open_outcome_.ended;
+    open_outcome_.error = error;
+    settle_frames_ = kSettleFrames;
+  }
   /// Starts recording the volume (with its annotations) to a movie at path. Errors go to status.
   void start_recording(const std::string& path);
   /// Stops recording and writes the movie (waits for ffmpeg). Errors go to status.
@@ -344,8 +361,8 @@ class PlayerApp {
   /// The one export look of S and the recorder: read_view() with the annotations (outline,
   /// axes, legend titled with the field, step and time) unless they are turned off.
   tsp::Image export_view();
-  /// S's file name: NAME_FIELD_step_NNNN.png in the working directory (NAME: the input as the
-  /// user named it), with -2, -3, … rather than over an existing file.
+  /// S's file name: NAME_FIELD_step_NNNN.png in export_folder() (NAME: the input as the user
+  /// named it), made absolute, with -2, -3, … rather than over an existing file.
   std::string export_name() const;
   /// Swaps in the .tsp file at path (File > Open): new tree, renderer, metric, TF and camera.
   void open_file(const std::string& path);
@@ -434,34 +451,17 @@ class PlayerApp {
   int prefetched_cut_ = -1;  ///< cut size whose likely splits were last requested
   double start_s_ = 0, last_frame_s_ = 0;
   std::unique_ptr<OpenJob> open_job_;
-  /// What a tuning was made for: a change of any re-tunes (the camera's direction does not).
-  struct TuneKey {
-    const void* file = nullptr;
-    std::string field;
-    std::uint64_t tf_version = 0;
-    tsp::Metric metric = tsp::Metric::approximate;
-    tspgl::RenderSettings settings;
-    int width = 0, height = 0;
-    bool operator==(const TuneKey&) const = default;
-  };
+  OpenOutcome open_outcome_;  ///< see open_outcome()
+  /// What a tuning is for now (playback_tuning.h).
   TuneKey tune_key() const;
   /// What a tuning at view depends on, for the tuning cache on disk (jobs/tuning_cache.h).
   nlohmann::json tuning_disk_key(const tsp::CameraParams& view) const;
-  nlohmann::json tuning_cache_key_;  ///< the running or last tuning's disk key
-  std::string tuning_cache_file_;    ///< where it is kept ("": no cache folder)
-  bool tuning_from_cache_ = false;   ///< the last tuning was read from disk
-  std::unique_ptr<tspgl::PlaybackTuner> tuner_;  ///< probing the ladder, while it runs
-  TuneKey tuning_for_, tuned_for_;              ///< what the running / last tuning is for
+  PlaybackTuning tuning_;  ///< the tuning in progress and its stats (playback_tuning.h)
+  int drawn_tuning_step_ = -1;  ///< the step shown at the last tuning frame
   RungPicker rungs_;  ///< the last complete tuning's ladder and the rung playing draws
-  double tuning_started_s_ = 0;
-  std::int64_t tuning_started_frame_ = 0;  ///< frames_drawn_ when the tuning started
-  /// Frames drawn from the tuning's start to its first picture (−1: none yet).
-  std::int64_t frames_before_first_picture_ = -1;
-  double tuning_s_ = -1;                ///< how long the last tuning took (−1: none)
-  std::deque<double> shown_at_s_;       ///< when each newly shown step was drawn (last 2 s)
+  RateReadout rate_readout_;            ///< steps shown per second while playing, slow or not
   int last_shown_step_ = -1;
   std::int64_t picture_fragments_ = 0;  ///< see picture_fragments()
-  int frames_while_tuning_ = 0;         ///< window frames drawn while it ran
   std::unique_ptr<Recorder> recorder_;
   FieldShelf parked_;  ///< fields switched away from, kept with their renderers
   /// The programs every renderer of this window shares.
@@ -559,6 +559,7 @@ class PlayerApp {
   int drawn_step_ = -1;  ///< the step the last frame drew (−1: none)
 
   std::string last_session_folder_;  ///< where save_session_as last wrote ("": nowhere yet)
+  std::string last_saved_folder_;    ///< where a dialog last saved a file ("": nowhere yet)
 
   // ---- stale errors (player_commands.cpp) ----
   std::string error_status_;     ///< the last error set_error showed

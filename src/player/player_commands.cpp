@@ -67,7 +67,11 @@ struct CommandApplier {
                                   f.metadata().spacing))
             : tsp::tf_domain_of(r, f, state().step);
     const std::uint64_t before = app.tf.version();
-    app.set_tf(tsp::rescaled(app.tf, to), true);
+    const tsp::ValueRange from = app.tf.domain();
+    app.set_tf(tsp::rescaled(app.tf, to), false);
+    // Every point kept, rescaled with the map (placed again from the table, a fit lost some).
+    app.tf_handles_ = rescale_handles(app.tf_points_, from, app.tf);
+    app.tf_points_ = app.tf_handles_.placed;
     // Six significant digits, a rounding speck (|v| below a millionth of the width) as 0: the
     // seventh walk read "[-0.000000, 299.999908]", wrapped inside a number.
     const double speck = 1e-6 * std::abs(to.hi - to.lo);

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <unistd.h>
 
 #include "jobs/annotate.h"
 #include "jobs/play_input.h"
@@ -36,7 +37,9 @@ void report(PlayerApp& app, const std::string& what) { app.set_error(what); }
 // keeps the file it plays.
 void open_failed(PlayerApp& app, bool trace, const std::string& input, const std::string& why) {
   // (A reader's message names its file first already: the path once, so the reason shows.)
-  report(app, why.rfind(input + ": ", 0) == 0 ? "open " + why : "open " + input + ": " + why);
+  const std::string what = why.rfind(input + ": ", 0) == 0 ? "open " + why : "open " + input + ": " + why;
+  report(app, what);
+  app.open_ended(what);
   if (trace) {
     std::printf("trace: open %s failed: %s\n", input.c_str(), why.c_str());
     std::fflush(stdout);
@@ -180,6 +183,7 @@ void PlayerApp::open_file(const std::string& path) {
   std::fflush(stdout);
   if (surface_asked) set_setting("surface", "boundary");
   restore_session(false);  // this input's last session, if any
+  open_ended("");
 }
 
 void PlayerApp::switch_field(const std::string& name) {
@@ -232,6 +236,7 @@ void PlayerApp::start_recording(const std::string& path) {
     recorder_ = std::make_unique<Recorder>(path, layout.view.w, layout.view.h, kRecordFps,
                                            clock_.seconds());
     status = "recording " + path;
+    last_saved_folder_ = std::filesystem::absolute(path).parent_path().string();
   } catch (const tsp::Error& e) {
     report(*this, std::string("record: ") + e.what());
   }
@@ -279,11 +284,23 @@ std::string PlayerApp::export_stem() const {
   return dataset_name(given) + "_" + field();
 }
 
+std::string PlayerApp::export_folder() const {
+  // (S wrote into the working directory, wherever the data was.)
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path cwd = fs::current_path(ec);
+  fs::path folder = last_saved_folder_.empty() ? fs::path(open_folder()) : fs::path(last_saved_folder_);
+  folder = folder.empty() ? cwd : fs::absolute(folder, ec);
+  if (!fs::is_directory(folder, ec) || ::access(folder.c_str(), W_OK) != 0) folder = cwd;
+  return folder.lexically_normal().string();
+}
+
 std::string PlayerApp::export_name() const {
-  // NAME_FIELD_step_NNNN.png in the working directory, never over an earlier one.
+  // NAME_FIELD_step_NNNN.png beside the data (or where a file was last saved), never over an
+  // earlier one.
   char step[32];
   std::snprintf(step, sizeof step, "_step_%04d", state_.step);
-  return tsp::unused_path(export_stem() + step + ".png");
+  return tsp::unused_path((std::filesystem::path(export_folder()) / (export_stem() + step + ".png")).string());
 }
 
 void PlayerApp::record_frame(double now_s) {
@@ -309,6 +326,7 @@ void PlayerApp::save_tf_as(const std::string& path) {
     tsp::save_transfer_function(tf, path);
     tf_file_path() = path;  // (the TF editor's file row and File > Save offer it next)
     status = "saved " + path;
+    last_saved_folder_ = std::filesystem::absolute(path).parent_path().string();
   } catch (const tsp::Error& e) {
     report(*this, e.what());
   }
@@ -386,14 +404,7 @@ void PlayerApp::write_stats(const std::string& path) const {
   j["playback"] = playback_json();
   j["idle_waits"] = idle_waits_;
   j["cpu_seconds"] = tsp::cpu_seconds();
-  j["tuning"] = {{"running", tuner_ != nullptr},
-                 {"pictures_done", tuner_ ? tuner_->pictures_done() : 0},
-                 {"pictures_total", tuner_ ? tuner_->pictures_total() : 0},
-                 {"seconds", tuning_s_},
-                 {"frames_while_tuning", frames_while_tuning_},
-                 {"frames_before_first_picture", frames_before_first_picture_},
-                 {"from_cache", tuning_from_cache_},  // read from disk: no probing this run
-                 {"cache_file", tuning_cache_file_}};
+  j["tuning"] = tuning_.stats();  // (playback_tuning.h)
   j["lod"] = lod_loop_.stats();  // the last frame's cut, under frames.json's "lod" keys
   j["lod"].update({{"on", state_.lod_on},
                    {"target_fps", state_.target_fps},

@@ -155,7 +155,7 @@ void PlayerApp::apply_key(int key) {
 // a wait of more than 0 frames or seconds, or quit.
 void PlayerApp::run_script() {
   // An open waits for its build, a quality target for its playback tuning.
-  if (!pending_shot_.empty() || open_job_ || tuner_) return;
+  if (!pending_shot_.empty() || open_job_ || tuning_.tuner()) return;
   if (wait_frames_ > 0) {
     --wait_frames_;
     return;
@@ -169,7 +169,7 @@ void PlayerApp::run_script() {
     cleared_by_action(a.command, errors_before);
     if (options_.trace) trace_changes();  // each action's effect on its own line
     if (waits_for_frames(a.command)) break;
-    if (open_job_ || tuner_) break;  // the next actions wait for the build or the tuning
+    if (open_job_ || tuning_.tuner()) break;  // the next actions wait for the build or the tuning
   }
 }
 

@@ -73,6 +73,14 @@ struct MenuState {
   bool clicked_into = false;  // this click sequence changed the folder (its next clicks are not for the new list)
   char session_path[kPathChars] = "";  // (offered as the dialog opens: DATASET.session.json)
   bool want_close = false;  // script `dialog close`: the dialog open closes, as Cancel
+  // File > Open stays open until its open ends: closed when it succeeded, or when a build
+  // started (the progress dialog takes over; reopened if the build fails), else the error is
+  // shown in it with the path kept.
+  bool awaiting = false;           // Open pressed: the command is applied after this frame
+  bool reopen_on_failure = false;  // a build it started is running
+  std::uint64_t outcome_seen = 0;  // PlayerApp::open_outcome().ended when Open was pressed
+  std::string open_error;          // the failed open's error, shown in red
+  bool close_open = false;         // the open succeeded (or a build started): the dialog closes
 };
 
 MenuState& state() {
@@ -152,6 +160,72 @@ void menu_bar(PlayerApp& app) {
   ImGui::EndMainMenuBar();
 }
 
+// Every dialog is placed in the middle of the volume's view (docked: left of the side panel,
+// which the 560 px wide Open dialog overlapped by 8 px at 1280x800), as wide as `width` or the
+// view allows.
+void place_dialog(const PlayerApp& app, float width) {
+  const WindowRect& v = app.layout.view;
+  // (Kept in the middle as it grows: an error line under File > Open's path.)
+  const float w = std::min(width, std::max(240.f, float(v.w) - 16.f));
+  ImGui::SetNextWindowPos(ImVec2(v.x + v.w * 0.5f, v.y + v.h * 0.5f), ImGuiCond_Always,
+                          ImVec2(0.5f, 0.5f));
+  ImGui::SetNextWindowSize(ImVec2(w, 0), ImGuiCond_Always);  // (its height fits what it holds)
+}
+
+// File > Open's outcome, before the dialog is drawn: an open pressed last frame closes the
+// dialog when it succeeded or started a build, else leaves its error in it; a build's failure
+// opens the dialog again with the path and the error.
+void open_outcome(PlayerApp& app, MenuState& s) {
+  const PlayerApp::OpenOutcome& o = app.open_outcome();
+  const bool ended = o.ended != s.outcome_seen;
+  if (s.reopen_on_failure && ended) {
+    s.reopen_on_failure = false;
+    s.outcome_seen = o.ended;
+    if (!o.error.empty()) {
+      s.open_error = o.error;
+      ImGui::OpenPopup(kOpenPopup);
+      s.focus_path = true;
+      app.trace("open dialog error: " + s.open_error);
+    }
+    return;
+  }
+  if (!s.awaiting) return;
+  s.awaiting = false;
+  s.outcome_seen = o.ended;
+  std::string error = ended ? o.error : "";
+  if (!ended && app.open_job()) {  // a build runs: its progress dialog takes over
+    s.reopen_on_failure = true;
+  } else if (!ended && app.status_is_error()) {  // refused before it began
+    error = app.status_line();
+  }
+  if (error.empty()) {
+    s.close_open = true;
+    return;
+  }
+  s.open_error = error;
+  s.focus_path = true;
+  app.trace("open dialog error: " + s.open_error);
+}
+
+// The failed open, in red as the status area's errors, under the path (none: nothing drawn).
+void open_error_line(const MenuState& s) {
+  if (s.open_error.empty()) return;
+  ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.f, 0.45f, 0.4f, 1.f));
+  ImGui::TextWrapped("%s", s.open_error.c_str());
+  ImGui::PopStyleColor();
+  note_wrapped(s.open_error.c_str());
+}
+
+// Open pressed: the dialog stays open until the open ends (a failure is shown in it, the path
+// kept to fix).
+void start_open(PlayerApp& app, MenuState& s) {
+  app.trace(std::string("open dialog opens ") + s.open_path);
+  app.push(cmd::OpenInput{s.open_path, s.field, s.build_options});
+  s.awaiting = true;
+  s.outcome_seen = app.open_outcome().ended;
+  s.open_error.clear();
+}
+
 // The dialog's build options field (a raw series' grid, a mesh's resolution, …); true on Enter.
 bool build_options_field(MenuState& s) {
   // The field as wide as the row leaves beside its whole label.
@@ -184,17 +258,22 @@ void open_dialog(PlayerApp& app) {
     ImGui::OpenPopup(kOpenPopup);
     s.focus_path = true;
     s.traced_list.clear();
+    s.open_error.clear();
     app.trace("open dialog");
   }
-  ImGui::SetNextWindowSize(ImVec2(560, 0), ImGuiCond_Appearing);
+  open_outcome(app, s);
+  place_dialog(app, 560);
   if (!ImGui::BeginPopupModal(kOpenPopup, nullptr)) return;
+  note_window(kOpenPopup);
   const char* intro = "A .tsp file, or any input build reads (HDF5, NetCDF, VTK, raw patterns): "
                       "it is built into the cache folder first.";
   ImGui::TextWrapped("%s", intro);
   note_wrapped(intro);
   ImGui::TextDisabled("%s", s.listing.dir.string().c_str());
   bool open_now = false;
-  ImGui::BeginChild("##files", ImVec2(0, kBrowserHeight), true);
+  // (The list gives up height in a short window: the buttons under it stay in sight.)
+  const float list_h = std::clamp(float(app.layout.view.h) - 320.f, 60.f, kBrowserHeight);
+  ImGui::BeginChild("##files", ImVec2(0, list_h), true);
   {  // where the list's rows are, for tests that click them (--trace; once per change)
     char where[96];
     std::snprintf(where, sizeof where, "open list %.0f %.0f %.0f", ImGui::GetCursorScreenPos().x,
@@ -258,6 +337,7 @@ void open_dialog(PlayerApp& app) {
     if (!ec && fs::is_directory(typed, ec) && typed != fs::weakly_canonical(s.listing.dir, ec))
       s.listing.read(typed);
   }
+  open_error_line(s);
   ImGui::SetNextItemWidth(200);
   ImGui::InputText("field (inputs with several)", s.field, sizeof s.field);
   note_item("field (inputs with several)");
@@ -267,29 +347,31 @@ void open_dialog(PlayerApp& app) {
   if (enter && fs::is_directory(fs::path(s.open_path), ec)) enter = false;  // its list is shown
   const bool open_clicked = ImGui::Button("Open");
   note_item("Open", true);
-  if (open_clicked || open_now || enter) {
-    app.trace(std::string("open dialog opens ") + s.open_path);
-    app.push(cmd::OpenInput{s.open_path, s.field, s.build_options});
-    ImGui::CloseCurrentPopup();
-  }
+  if ((open_clicked || open_now || enter) && !s.awaiting) start_open(app, s);
   ImGui::SameLine();
   const bool cancel = ImGui::Button("Cancel");
   note_item("Cancel", true);
   if (cancel || escape_closes() || take_close()) {
     app.trace("open dialog closed");
+    s.awaiting = false;
+    ImGui::CloseCurrentPopup();
+  } else if (s.close_open) {
     ImGui::CloseCurrentPopup();
   }
+  s.close_open = false;
   ImGui::EndPopup();
 }
 
 // A one-path dialog (save TF as, record): returns true when OK was pressed.
-bool path_dialog(const char* title, bool& want, char* path, std::size_t size, const char* what) {
+bool path_dialog(const PlayerApp& app, const char* title, bool& want, char* path, std::size_t size,
+                 const char* what) {
   if (want) {
     want = false;
     ImGui::OpenPopup(title);
   }
-  ImGui::SetNextWindowSize(ImVec2(480, 0), ImGuiCond_Appearing);
+  place_dialog(app, 480);
   if (!ImGui::BeginPopupModal(title, nullptr)) return false;
+  note_window(title);
   ImGui::TextWrapped("%s", what);  // (wrapped: the record dialog's used to run off its right edge)
   note_wrapped(what);
   ImGui::SetNextItemWidth(-1);
@@ -316,7 +398,7 @@ bool path_dialog(const char* title, bool& want, char* path, std::size_t size, co
 void progress_dialog(PlayerApp& app) {
   OpenJob* job = app.open_job();
   if (job && !ImGui::IsPopupOpen(kProgressPopup)) ImGui::OpenPopup(kProgressPopup);
-  ImGui::SetNextWindowSize(ImVec2(480, 0), ImGuiCond_Appearing);
+  place_dialog(app, 480);
   if (!ImGui::BeginPopupModal(kProgressPopup, nullptr)) return;
   if (!job) {
     ImGui::CloseCurrentPopup();
@@ -348,7 +430,7 @@ void menu_and_dialogs(PlayerApp& app) {
   menu_bar(app);
   open_dialog(app);
   if (s.want_tf) copy(s.tf_path, sizeof s.tf_path, tf_file_path());
-  if (path_dialog(kTfPopup, s.want_tf, s.tf_path, sizeof s.tf_path,
+  if (path_dialog(app, kTfPopup, s.want_tf, s.tf_path, sizeof s.tf_path,
                   "Our transfer-function JSON (docs/transfer-functions.md):"))
     app.save_tf_as(s.tf_path);
   // A new recording never replaces an earlier movie unless its name is typed: the dialog offers
@@ -357,9 +439,10 @@ void menu_and_dialogs(PlayerApp& app) {
   if (s.want_record) {
     const bool gif = std::string_view(s.movie_path).ends_with(".gif");
     copy(s.movie_path, sizeof s.movie_path,
-         tsp::unused_path(app.export_stem() + (gif ? ".gif" : ".mp4")));
+         tsp::unused_path((fs::path(app.export_folder()) / (app.export_stem() + (gif ? ".gif" : ".mp4")))
+                              .string()));
   }
-  if (path_dialog(kRecordPopup, s.want_record, s.movie_path, sizeof s.movie_path,
+  if (path_dialog(app, kRecordPopup, s.want_record, s.movie_path, sizeof s.movie_path,
                   "The volume as shown, with its annotations, in real time (.mp4 or .gif); "
                   "File > Stop recording writes it:"))
     app.push(cmd::StartRecording{s.movie_path});
@@ -367,7 +450,7 @@ void menu_and_dialogs(PlayerApp& app) {
     copy(s.session_path, sizeof s.session_path, app.session_offer());
     app.trace(std::string("save session dialog offers ") + s.session_path);
   }
-  if (path_dialog(kSessionPopup, s.want_session, s.session_path, sizeof s.session_path,
+  if (path_dialog(app, kSessionPopup, s.want_session, s.session_path, sizeof s.session_path,
                   "The transfer function, view, probes, surface, axis scale, speed and panels, "
                   "for tspplay play --session FILE:"))
     app.push(cmd::SaveSession{s.session_path});

@@ -53,11 +53,11 @@ double PlayerApp::steps_shown_per_s() const {
   // Steps after the first over the time since it was shown (0 before a second step was: it
   // once read "playing at 0.0 steps/s" as playback started).
   if (!rate_measured()) return 0.0;
-  return shown_rate(shown_at_s_, clock_.seconds());  // (over step periods: playback_clock.h)
+  return rate_readout_.rate();  // (over step periods, at the last frame: rate_readout.h)
 }
 
 bool PlayerApp::rate_measured() const {
-  return state_.playing && shown_at_s_.size() >= 2;
+  return state_.playing && rate_readout_.measured();
 }
 
 nlohmann::json PlayerApp::tuning_disk_key(const tsp::CameraParams& view) const {
@@ -84,7 +84,7 @@ nlohmann::json PlayerApp::tuning_disk_key(const tsp::CameraParams& view) const {
           {"perspective", view.projection == tsp::Projection::perspective}};
 }
 
-PlayerApp::TuneKey PlayerApp::tune_key() const {
+TuneKey PlayerApp::tune_key() const {
   TuneKey k;
   k.file = &viewer_->file();
   k.field = field();
@@ -104,7 +104,8 @@ const tspgl::Rung* PlayerApp::rung_drawn() const {
 
 void PlayerApp::apply_quality(double de) {
   state_.quality = float(de);
-  if (de > 0 && !tuner_ && !(tuned_for_ == tune_key() && !rungs_.ladder().empty())) start_tuning();
+  if (de > 0 && !tuning_.tuner() && !(tuning_.tuned_for() == tune_key() && !rungs_.ladder().empty()))
+    start_tuning();
   advance_tuning();  // (a slice now: a script's next action waits for the rest)
 }
 
@@ -116,68 +117,55 @@ void PlayerApp::start_tuning() {
   tsp::CameraParams view = state_.camera;
   view.width = std::max(1, int(std::lround(key.width * shrink)));
   view.height = std::max(1, int(std::lround(key.height * shrink)));
-  tuner_.reset();
-  // A tuning of the same data, map and view kept on disk from an earlier run: played at once.
-  tuning_cache_key_ = tuning_disk_key(view);
-  tuning_cache_file_ = tspgl::tuning_cache_path(tuning_cache_key_, options_.cache_dir);
-  if (auto cached = tspgl::read_tuning(tuning_cache_file_, tuning_cache_key_)) {
-    rungs_.set_ladder(std::move(*cached));
-    tuned_for_ = key;
-    tuning_s_ = 0;
-    tuning_from_cache_ = true;
-    return;
-  }
+  nlohmann::json disk_key = tuning_disk_key(view);  // (the view's, whatever pixels it probes)
+  std::string file = tspgl::tuning_cache_path(disk_key, options_.cache_dir);
   try {
-    tuner_ = std::make_unique<tspgl::PlaybackTuner>(*ctx, viewer_->file(), tf, frame_metric(), view,
-                                                    state_.settings);
+    auto cached = tuning_.start(
+        key, std::move(disk_key), std::move(file),
+        [this, view](double pixel_share) {  // (fewer pixels when playing needs: playback_tuning.h)
+          tsp::CameraParams v = view;
+          v.width = std::max(1, int(std::lround(view.width * std::sqrt(pixel_share))));
+          v.height = std::max(1, int(std::lround(view.height * std::sqrt(pixel_share))));
+          return std::make_unique<tspgl::PlaybackTuner>(*ctx, viewer_->file(), tf, frame_metric(),
+                                                        v, state_.settings);
+        },
+        clock_.seconds(), frames_drawn_);
+    if (cached) rungs_.set_ladder(std::move(*cached));  // kept on disk: played at once
   } catch (const tsp::Error& e) {
     status = std::string("playback tuning: ") + e.what();
-    return;
   }
-  tuning_for_ = key;
-  tuning_started_s_ = clock_.seconds();
-  tuning_started_frame_ = frames_drawn_;
-  frames_before_first_picture_ = -1;
-  frames_while_tuning_ = 0;
 }
 
 void PlayerApp::begin_tuning() {
   if (state_.quality <= 0) {
-    tuner_.reset();
+    tuning_.stop();
     return;
   }
   const TuneKey key = tune_key();
-  if (tuner_ && !(tuning_for_ == key)) start_tuning();  // out of date: again, for what is shown
+  // Out of date: again, for what is shown.
+  if (tuning_.tuner() && !(tuning_.running_for() == key)) start_tuning();
   // Tuned when playing (a still window never pays for it) or when the target is set.
-  if (!tuner_ && state_.playing && (rungs_.ladder().empty() || !(tuned_for_ == key))) start_tuning();
+  if (!tuning_.tuner() && state_.playing &&
+      (rungs_.ladder().empty() || !(tuning_.tuned_for() == key)))
+    start_tuning();
 }
 
 void PlayerApp::advance_tuning() {
   begin_tuning();
-  if (!tuner_) return;
-  if (frames_before_first_picture_ < 0) frames_before_first_picture_ = frames_drawn_ - tuning_started_frame_;
+  if (!tuning_.tuner()) return;
+  // Playing, the pictures that end before the next step is due (playback_tuning.h).
+  const bool step_frame = state_.step != drawn_tuning_step_;
+  drawn_tuning_step_ = state_.step;
+  std::string note;
   try {
-    if (!tuner_->advance(kCalibrationSliceMs)) {
-      ++frames_while_tuning_;
-      return;
-    }
+    auto ladder = tuning_.advance(state_.playing, 1000 * until_next_step(), step_frame,
+                                  1000 / std::max(state_.speed, 1e-3), clock_.seconds(),
+                                  frames_drawn_, note);
+    if (ladder) rungs_.set_ladder(std::move(*ladder));
   } catch (const tsp::Error& e) {
-    tuner_.reset();
     status = std::string("playback tuning: ") + e.what();
-    return;
   }
-  rungs_.set_ladder(tuner_->tuned());
-  tuned_for_ = tuning_for_;
-  tuner_.reset();
-  tuning_s_ = clock_.seconds() - tuning_started_s_;
-  tuning_from_cache_ = false;
-  if (!tuning_cache_file_.empty()) {
-    try {
-      tspgl::write_tuning(tuning_cache_file_, tuning_cache_key_, rungs_.ladder());
-    } catch (const tsp::Error& e) {  // playing goes on; the next run tunes again
-      status = std::string("playback tuning not kept: ") + e.what();
-    }
-  }
+  if (!note.empty()) status = note;
 }
 
 void PlayerApp::choose_rung(double now_s) {

@@ -32,7 +32,7 @@ bool refine_by_cut() {
 
 const tspgl::TunedRung* PlayerApp::base_rung() const {
   const std::vector<tspgl::TunedRung>& tuned = rungs_.ladder();
-  if (state_.quality <= 0 || tuned.empty() || !(tuned_for_ == tune_key())) return nullptr;
+  if (state_.quality <= 0 || tuned.empty() || !(tuning_.tuned_for() == tune_key())) return nullptr;
   const tspgl::TunedRung* best = nullptr;
   for (std::size_t i = 1; i < tuned.size(); ++i) {
     const tspgl::TunedRung& r = tuned[i];

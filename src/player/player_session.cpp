@@ -222,6 +222,7 @@ void PlayerApp::save_session_as(const std::string& path) {
     write_session(path, capture_session(), false);
     status = "saved session " + path;
     last_session_folder_ = std::filesystem::path(path).parent_path().string();
+    last_saved_folder_ = std::filesystem::absolute(path).parent_path().string();
   } catch (const tsp::Error& e) {
     status = e.what();
     std::fprintf(stderr, "tspplay: %s\n", e.what());

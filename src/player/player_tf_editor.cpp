@@ -2,6 +2,7 @@
 // handle per control point (drag, add, remove), the point list, presets and load/save
 // (docs/player.md "Transfer function").
 #include <imgui.h>
+#include <imgui_internal.h>
 
 #include <algorithm>
 #include <cmath>
@@ -172,6 +173,9 @@ void edit_handles(PlayerApp& app, const Canvas& cv) {
   }
 }
 
+/// Width of the point list's opacity sliders (their value printed beside them).
+constexpr float kOpacitySliderWidth = 76;
+
 // The points as a list (value, colour, opacity; x removes one), under a tree node; each edit a
 // tf-point command.
 void point_list(PlayerApp& app, const tsp::ValueRange& d, bool log_axis) {
@@ -193,13 +197,27 @@ void point_list(PlayerApp& app, const tsp::ValueRange& d, bool log_axis) {
     if (ImGui::ColorEdit4("##c", c, ImGuiColorEditFlags_AlphaBar | ImGuiColorEditFlags_NoInputs))
       app.push(cmd::ColourTfPoint{number, {c[0], c[1], c[2], c[3]}});
     ImGui::SameLine();
-    ImGui::SetNextItemWidth(110);
-    // Opacity near zero is edited on a log scale when the axis is (VAPOR users ask for it).
-    if (ImGui::SliderFloat("##a", &c[3], log_axis ? float(kLogOpacityFloor) : 0.f, 1.f,
-                           log_axis ? "a %.2e" : "a %.3f",
-                           log_axis ? ImGuiSliderFlags_Logarithmic : 0))
-      app.push(cmd::MoveTfPoint{number, p.x, std::clamp(double(c[3]), 0.0, 1.0)});
-    ImGui::SameLine();
+    ImGui::SetNextItemWidth(kOpacitySliderWidth);
+    // Opacity near zero is edited on a log scale when the axis is (VAPOR users ask for it). The
+    // value is printed beside the slider: centred on it, its grab covered it (the eighth walk);
+    // Ctrl+click still types one, in the slider.
+    const char* format = log_axis ? "%.2e" : "%.3f";
+    const bool typing = ImGui::TempInputIsActive(ImGui::GetID("##a"));
+    if (!typing) ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0, 0, 0, 0));
+    const bool moved = ImGui::SliderFloat("##a", &c[3], log_axis ? float(kLogOpacityFloor) : 0.f,
+                                          1.f, format, log_axis ? ImGuiSliderFlags_Logarithmic : 0);
+    if (!typing) ImGui::PopStyleColor();
+    if (moved) app.push(cmd::MoveTfPoint{number, p.x, std::clamp(double(c[3]), 0.0, 1.0)});
+    if (ImGui::IsItemHovered()) tooltip("opacity (Ctrl+click to type one)");
+    char value[32];
+    std::snprintf(value, sizeof value, format, c[3]);
+    const float value_x = ImGui::GetItemRectMax().x + ImGui::GetStyle().ItemInnerSpacing.x;
+    ImGui::SameLine(0, ImGui::GetStyle().ItemInnerSpacing.x);
+    ImGui::TextUnformatted(value);
+    note_item(value);
+    // (The remove button in one column, however wide the value.)
+    ImGui::SameLine(value_x - ImGui::GetWindowPos().x + ImGui::GetScrollX() +
+                    ImGui::CalcTextSize("0.00e-00").x + ImGui::GetStyle().ItemSpacing.x);
     if (points.size() > 2 && ImGui::SmallButton("x")) app.push(cmd::RemoveTfPoint{number});
     ImGui::PopID();
   }

@@ -46,8 +46,6 @@ constexpr int kStatusLines = 5;
 constexpr float kTooltipWidth = 420.f;
 constexpr float kReadyStripHeight = 5.f;  // the timeline's readiness marks, pixels
 constexpr double kBytesPerMiB = 1 << 20;
-// Playback showing fewer steps a second than this share of the speed says it plays slower.
-constexpr double kSlowPlaybackShare = 0.9;
 // In tspgl::Compositing order.
 constexpr const char* kClassNames[] = {"not rendered", "untextured", "reused texture",
                                        "new texture", "clipped"};
@@ -94,7 +92,7 @@ namespace {
 std::string shown_rate_text(const PlayerApp& app) {
   const double shown = app.steps_shown_per_s();
   char text[96];
-  if (app.state().every_step && shown < kSlowPlaybackShare * app.state().speed)
+  if (app.state().every_step && app.rate_slow())  // (with hysteresis: one steady answer)
     std::snprintf(text, sizeof text, "playing at %.1f steps/s of %.3g", shown, app.state().speed);
   else
     std::snprintf(text, sizeof text, "%.1f shown/s", shown);

@@ -67,6 +67,17 @@ tsp::Rgba sample_tf(const tsp::TransferFunction& tf, double v) {
   return j + 1 < n ? mix(tf.entry(j), tf.entry(j + 1), f - j) : tf.entry(j);
 }
 
+TfHandles rescale_handles(std::span<const tsp::TfPoint> points, tsp::ValueRange from,
+                          const tsp::TransferFunction& tf) {
+  const tsp::ValueRange to = tf.domain();
+  TfHandles h{tf, {points.begin(), points.end()}};
+  for (tsp::TfPoint& p : h.placed) {
+    const double u = (p.x - from.lo) / (from.hi - from.lo);
+    p.x = u <= 0 ? to.lo : u >= 1 ? to.hi : to.lo + u * (to.hi - to.lo);  // (ends exact)
+  }
+  return h;
+}
+
 TfHandles place_handles(const tsp::TransferFunction& tf) {
   TfHandles h{tf, knots(tf)};
   if (int(h.placed.size()) <= kMaxKnotHandles) return h;

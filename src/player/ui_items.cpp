@@ -51,6 +51,21 @@ void note_hint(const char* hint, float field_w) {
   it.inner_w = field_w - 2 * ImGui::GetStyle().FramePadding.x;
 }
 
+void note_window(const char* title) {
+  const ImVec2 pos = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+  UiItem it;
+  it.label = std::string("dialog: ") + title;
+  it.x = pos.x;
+  it.y = pos.y;
+  it.w = size.x;
+  it.h = size.y;
+  it.inner_w = size.x;
+  it.clip_right = ImGui::GetIO().DisplaySize.x;
+  it.clip_bottom = ImGui::GetIO().DisplaySize.y;
+  it.scrolls = false;
+  items().push_back(std::move(it));
+}
+
 const std::vector<UiItem>& ui_items() { return items(); }
 
 nlohmann::json ui_items_json() {

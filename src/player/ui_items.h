@@ -33,6 +33,10 @@ void note_wrapped(const char* text);
 /// Records the hint a text field shows while empty (InputTextWithHint), laid out last in a
 /// frame field_w wide: the hint must fit inside the frame's padding. Never throws but bad_alloc.
 void note_hint(const char* hint, float field_w);
+/// Records the window Dear ImGui is drawing (a dialog) as the item "dialog: TITLE", its
+/// rectangle against the whole window's (clip_right, clip_bottom: the display's size; it does
+/// not scroll), so a test can check where a dialog lies. Never throws but bad_alloc.
+void note_window(const char* title);
 /// The last frame's items.
 const std::vector<UiItem>& ui_items();
 /// ui_items() as JSON: [{label, x, y, w, h, text_w, inner_w, clip_right, clip_bottom, scrolls}].

@@ -44,7 +44,9 @@ TEST(Player, BuildWithoutFieldRecordsTheFieldItPicked) {
 TEST(Player, PlayWithoutFieldNamesThePickedFieldInStatsAndSavedFiles) {
   TSPTEST_REQUIRE_X_EVENTS();
   const fs::path dir = tsptest::temp_dir(), out = dir / "play.out";
-  const fs::path plume = tsptest::datasets_dir() / "samples" / "hotPlume_32.h5";
+  // (A copy: S saves beside the data, not in the source tree.)
+  const fs::path plume = dir / "hotPlume_32.h5";
+  fs::copy_file(tsptest::datasets_dir() / "samples" / "hotPlume_32.h5", plume);
   const fs::path script = write_script("wait-frames 2\nstats " + (dir / "s.json").string() +
                                        "\n" + until_ctrl_q(dir));
   const std::string cmd =

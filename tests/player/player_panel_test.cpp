@@ -89,6 +89,26 @@ void expect_dialogs_fit(const fs::path& tsp, const fs::path& dir, const std::str
       EXPECT_LE(it["y"].get<double>() + it["h"].get<double>(), h) << where << ": " << name;
     }
   }
+  // Each dialog lies in the volume's view, clear of the side panel (File > Open's 560 px
+  // overlapped the panel by 8 px at 1280x800).
+  const std::pair<const char*, const char*> titles[] = {{"open", "Open"},
+                                                         {"save-tf", "Save transfer function as"},
+                                                         {"record", "Record movie"},
+                                                         {"save-session", "Save session"}};
+  for (const auto& [which, title] : titles) {
+    const std::string where = size + " dialog " + which;
+    const nlohmann::json j = read_json(dir / (size + "_dialog_" + which + ".json"));
+    const auto items = items_by_label(j);
+    ASSERT_TRUE(items.count(std::string("dialog: ") + title)) << where;
+    const nlohmann::json& d = items.at(std::string("dialog: ") + title);
+    const nlohmann::json& v = j["view"];
+    EXPECT_GE(d["x"].get<double>(), v[0].get<double>()) << where;
+    EXPECT_LE(d["x"].get<double>() + d["w"].get<double>(), v[0].get<double>() + v[2].get<double>())
+        << where;
+    EXPECT_GE(d["y"].get<double>(), v[1].get<double>()) << where;
+    EXPECT_LE(d["y"].get<double>() + d["h"].get<double>(), v[1].get<double>() + v[3].get<double>())
+        << where;
+  }
   // The open dialog's kinds combo shows its choice whole (its extensions list ran off it).
   const auto open = items_by_label(read_json(dir / (size + "_dialog_open.json")));
   EXPECT_TRUE(open.count("Inputs play reads")) << size;

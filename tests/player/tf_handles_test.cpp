@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "tsp/metric/histogram_tf.h"
+#include "tsp/metric/tf_io.h"
 
 namespace {
 
@@ -97,6 +98,26 @@ TEST(PlayerTfHandles, AddingBendsTowardsTheNewPointAndRemovingStraightens) {
   const double mid = 0.5 * (lo + hi);
   EXPECT_NEAR(sample_tf(removed, mid).a,
               0.5 * (points[std::size_t(i - 1)].c.a + points[std::size_t(i)].c.a), 0.01);
+}
+
+// A colour range typed or fitted keeps every handle, each at its place relative to the domain
+// with its colour, whatever the table's knots do (placed again from the stretched table, a moved
+// handle went back to its even place and a fit left 7 points of 9).
+TEST(PlayerTfHandles, ARangeChangeKeepsEveryHandleInItsPlace) {
+  const tsp::TransferFunction tf = auto_map();
+  std::vector<tsp::TfPoint> points = place_handles(tf).placed;
+  points[2].x = 0.2;  // a moved handle (its even place is 0.25)
+  const tsp::TransferFunction wide = tsp::rescaled(tf, {0.3, 2.5});
+  const TfHandles h = rescale_handles(points, tf.domain(), wide);
+  ASSERT_EQ(h.placed.size(), points.size());
+  EXPECT_EQ(h.base.domain().lo, 0.3);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    EXPECT_NEAR((h.placed[i].x - 0.3) / 2.2, points[i].x, 1e-12) << i;
+    EXPECT_EQ(h.placed[i].c.a, points[i].c.a) << i;
+  }
+  // And back: where they were.
+  const TfHandles back = rescale_handles(h.placed, wide.domain(), tsp::rescaled(wide, {0, 1}));
+  for (std::size_t i = 0; i < points.size(); ++i) EXPECT_NEAR(back.placed[i].x, points[i].x, 1e-12);
 }
 
 }  // namespace
