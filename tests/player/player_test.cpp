@@ -98,8 +98,8 @@ TEST(Player, QuickKeyTapsAreNotLostWhenFramesAreSlow) {
   EXPECT_NE(log.find("trace: playing"), std::string::npos) << log;
   EXPECT_LT(log.find("trace: step 5\n"), log.find("trace: playing")) << log;
   EXPECT_NE(log.find("trace: camera reset"), std::string::npos) << log;  // R
-  // S saves the view with the export's annotations, named by dataset, field and step, in the
-  // working directory (issue 47 item 9).
+  // S saves the view with the export's annotations, named by dataset, field and step, beside
+  // the data (here the working directory too; issue 47 item 9), the status naming the full path.
   int saved = 0;
   for (const auto& e : fs::directory_iterator(dir)) {
     const std::string name = e.path().filename().string();
@@ -113,7 +113,7 @@ TEST(Player, QuickKeyTapsAreNotLostWhenFramesAreSlow) {
     EXPECT_GT(outline, 20) << name;
   }
   EXPECT_EQ(saved, 1) << log;
-  EXPECT_NE(log.find("saved k_shock_step_"), std::string::npos) << log;
+  EXPECT_NE(log.find("saved " + (dir / "k_shock_step_").string()), std::string::npos) << log;
   // play --help lists the controls from the same table as the F1 overlay.
   const auto help = run_tspplay("play --help");
   for (const char* k : {"space", "reset the camera", "F1 or ?", "TF editor: drag a handle"})
