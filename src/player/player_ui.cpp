@@ -93,9 +93,10 @@ std::string shown_rate_text(const PlayerApp& app) {
   const double shown = app.steps_shown_per_s();
   char text[96];
   if (app.state().every_step && app.rate_slow())  // (with hysteresis: one steady answer)
-    std::snprintf(text, sizeof text, "playing at %.1f steps/s of %.3g", shown, app.state().speed);
+    std::snprintf(text, sizeof text, "playing at %s steps/s of %.3g", rate_text(shown).c_str(),
+                  app.state().speed);
   else
-    std::snprintf(text, sizeof text, "%.1f shown/s", shown);
+    std::snprintf(text, sizeof text, "%s shown/s", rate_text(shown).c_str());
   return text;
 }
 // Hides the value text Dear ImGui centres on the next slider's frame (unless it is being typed

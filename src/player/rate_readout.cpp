@@ -1,6 +1,7 @@
 #include "player/rate_readout.h"
 
 #include <algorithm>
+#include <cstdio>
 
 namespace tspplayer {
 
@@ -32,6 +33,13 @@ double shown_rate(const std::deque<double>& shown_at_s, double now_s) {
   const double to_now = now_s - shown_at_s.front();
   if (!(periods > 0) || !(to_now > 0)) return 0.0;
   return std::min((n - 1) / periods, n / to_now);
+}
+
+std::string rate_text(double steps_per_s) {
+  char text[32];
+  // (Below 0.995 "%.1f" rounds: 0.25 to 0.3, 0.04 to 0.0.)
+  std::snprintf(text, sizeof text, steps_per_s >= 0.995 ? "%.1f" : "%.2g", steps_per_s);
+  return text;
 }
 
 }  // namespace tspplayer

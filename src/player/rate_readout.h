@@ -6,6 +6,7 @@
 // between "1.0 shown/s" and "playing at 0.7 of 1"). Window-free: the caller passes the times.
 #pragma once
 #include <deque>
+#include <string>
 
 namespace tspplayer {
 
@@ -38,6 +39,11 @@ class RateReadout {
   double rate_ = 0;
   bool slow_ = false;
 };
+
+/// A rate in steps per second as the readout prints it: one decimal from 1 on ("9.0", "1.0"), two
+/// significant digits below ("0.25", "0.8": a speed of 0.25 read "0.3"). Never throws but
+/// bad_alloc.
+std::string rate_text(double steps_per_s);
 
 /// Steps shown per second, from the times (s) at which each newly shown step was drawn (oldest
 /// first) and the clock now: over the step periods between them (a step still on screen for

@@ -107,4 +107,18 @@ TEST(PlayerRateReadout, ARealSlowdownTurnsItOnceAndRestartForgets) {
   EXPECT_EQ(r.rate(), 0);
 }
 
+// The printed rate: one decimal from 1 step/s on, two significant digits below (the eighth walk:
+// playing at 0.25 steps/s read "0.3 shown/s").
+TEST(PlayerRateReadout, RatesBelowOneKeepTwoSignificantDigits) {
+  EXPECT_EQ(rate_text(24), "24.0");
+  EXPECT_EQ(rate_text(9), "9.0");
+  EXPECT_EQ(rate_text(1), "1.0");
+  EXPECT_EQ(rate_text(0.999), "1.0");
+  EXPECT_EQ(rate_text(0.8), "0.8");
+  EXPECT_EQ(rate_text(0.25), "0.25");
+  EXPECT_EQ(rate_text(0.5), "0.5");
+  EXPECT_EQ(rate_text(0.04), "0.04");
+  EXPECT_EQ(rate_text(0), "0");
+}
+
 }  // namespace
