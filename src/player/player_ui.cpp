@@ -33,8 +33,9 @@ std::string playback_text(const PlayerApp& app) {
   char text[160];
   if (!app.rung_choice().within_quality)
     std::snprintf(text, sizeof text, "%s, dE %.2f: keeping rate, quality gives", t.rung.name, t.mean_de);
-  else if (!app.rung_choice().fits_rate)
-    std::snprintf(text, sizeof text, "%s, dE %.2f: keeping quality, steps late", t.rung.name, t.mean_de);
+  else if (!app.rung_choice().fits_rate)  // late, or skipped with "skip steps" ticked
+    std::snprintf(text, sizeof text, "%s, dE %.2f: keeping quality, %s", t.rung.name, t.mean_de,
+                  app.state().every_step ? "steps late" : "skipping steps");
   else
     std::snprintf(text, sizeof text, "%s, dE %.2f", t.rung.name, t.mean_de);
   return text;

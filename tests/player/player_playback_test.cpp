@@ -427,6 +427,14 @@ TEST(Player, PlayingAtAQualityTargetDrawsTheTunedRungWithinTheTarget) {
   ASSERT_TRUE(sq.contains("rung")) << sq;
   EXPECT_FALSE(sq["rung"]["fits_rate"].get<bool>()) << sq;
   EXPECT_TRUE(sq["rung"]["within_quality"].get<bool>()) << sq;
+  // The transport line says what gives: steps late, or skipped with "skip steps" ticked (the
+  // eighth walk: it said "steps late" while steps were skipped).
+  EXPECT_EQ(labels_with(read_json(dir / "slow_q.json"), "keeping quality, steps late").size(), 1u);
+  run("quality 2\nplayback quality\nevery-step off", "slow_skip", "--frame-delay-ms 100");
+  const nlohmann::json skip = read_json(dir / "slow_skip.json");
+  ASSERT_FALSE(skip["playback"]["rung"]["fits_rate"].get<bool>()) << skip["playback"];
+  EXPECT_EQ(labels_with(skip, "keeping quality, skipping steps").size(), 1u) << skip["ui_items"];
+  EXPECT_TRUE(labels_with(skip, "steps late").empty()) << skip["ui_items"];
   run("quality 0.01\nplayback rate", "slow_r", "--frame-delay-ms 100");
   const nlohmann::json sr = read_json(dir / "slow_r.json")["playback"];
   ASSERT_TRUE(sr.contains("rung")) << sr;
