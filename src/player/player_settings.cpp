@@ -54,6 +54,8 @@ void PlayerApp::set_setting(const std::string& name, const std::string& text) {
   tspgl::set_setting(next, *spec, text, name);
   // The knob just changed wins over one it excludes, and the status line says so.
   if (std::string off = tspgl::settle_sampling(next, name); !off.empty()) status = off;
+  // (The line that said what the boundary drew stayed after it was turned off: the eighth walk.)
+  if (state_.settings.surface && !next.surface) status = "surface off";
   if (next.tol != state_.settings.tol || next.span_step != state_.settings.span_step ||
       next.skip_transparent != state_.settings.skip_transparent) {
     state_.settings = next;

@@ -69,4 +69,23 @@ TEST(PlayerSettings, OpeningAnotherInputTakesTheOldMeshsSurfaceAway) {
       << jb["status"];
 }
 
+// Turning the boundary off says so: the status line that named the boundary drawn stayed on
+// screen after it was gone (the eighth walk).
+TEST(PlayerSettings, TurningTheSurfaceOffSaysSo) {
+  TSPTEST_REQUIRE(window_possible(), "no display (run under xvfb-run)");
+  const fs::path dir = tsptest::temp_dir();
+  const std::string mesh = (tsptest::test_data_dir() / "vtu" / "binary_%d.vtu").string();
+  const std::string a = (dir / "a.json").string(), b = (dir / "b.json").string();
+  const auto r = run_tspplay(
+      "play " + q(mesh) + " --field f --resolution 32 --size " + kSize + " --script " +
+      q(write_script("wait-frames 2\nsurface boundary\nwait-frames 2\nstats " + a +
+                     "\nsurface off\nwait-frames 2\nstats " + b + "\nquit\n")));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json ja = read_json(a), jb = read_json(b);
+  EXPECT_NE(ja["status"].get<std::string>().find("surface: the boundary of"), std::string::npos)
+      << ja["status"];
+  EXPECT_EQ(jb["surface"], "off");
+  EXPECT_EQ(jb["status"], "surface off");
+}
+
 }  // namespace
