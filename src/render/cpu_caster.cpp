@@ -117,6 +117,13 @@ void RayWalk::level_brick(float t, float t_out, float& t_next, float dtm, vec3 s
   vec3 tc = texel(first, scale) + phase;
   const vec3 dtc = r_.dir * dtm * scale;
   float tj = first;
+  // The share of a segment slab tj stands for: from the brick's entry (the first) or half a step
+  // before, to its exit (the last) or half a step after.
+  auto share = [&](float tj) {
+    const float lo_j = tj == first ? t : tj - 0.5f * dtm;
+    const float hi_j = tj + dtm >= t_out ? t_out : tj + 0.5f * dtm;
+    return (hi_j - lo_j) / dt;
+  };
   if (batch_) {  // the slabs in SIMD batches: their lit lookups at once, composited in order
     Positions pos;
     Colours col;
@@ -124,9 +131,7 @@ void RayWalk::level_brick(float t, float t_out, float& t_next, float dtm, vec3 s
     while (tj < t_out && acc_.a < kOpaque) {
       int n = 0;
       for (; n < kMaxBatch && tj < t_out; ++n, tj += dtm, tc += dtc) {
-        const float lo_j = tj == first ? t : tj - 0.5f * dtm;
-        const float hi_j = tj + dtm >= t_out ? t_out : tj + 0.5f * dtm;
-        k[n] = (hi_j - lo_j) / dt;
+        k[n] = share(tj);
         pos.x[n] = tc.x;
         pos.y[n] = tc.y;
         pos.z[n] = tc.z;
@@ -140,10 +145,8 @@ void RayWalk::level_brick(float t, float t_out, float& t_next, float dtm, vec3 s
     }
   } else {
     for (; tj < t_out; tj += dtm) {
-      const float lo_j = tj == first ? t : tj - 0.5f * dtm;
-      const float hi_j = tj + dtm >= t_out ? t_out : tj + 0.5f * dtm;
       ++samples_;
-      blend(cut_sample(smp_.point(tc, b, row), (hi_j - lo_j) / dt));
+      blend(cut_sample(smp_.point(tc, b, row), share(tj)));
       if (acc_.a >= kOpaque) break;
       tc += dtc;
     }

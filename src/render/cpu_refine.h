@@ -83,10 +83,7 @@ inline void RayWalk::refined(float t, float t_out, ivec3 c, const BrickView& b, 
       ahead_ = e;
       const float piece = piece_of(cur_);
       if (piece != piece_prev_ || piece != piece_of(e)) {
-        fine_ = kSamples;
-        fine_sum_ = vec4(0.f);
-        fine_at_ = vec3(0.f);
-        fine_w_ = 0.f;
+        start_fine();
       } else {
         col = vec4(vec3(cur_), cur_.a - 2.f * piece);
         if (k < 1.f) col = cut_sample(col, k);
@@ -125,10 +122,7 @@ inline int RayWalk::refined_batch(float t_out, const BrickView& b, bool closing,
       seg_b_ = a.sb[j];
       ahead_ = e;
       ++next_;  // after its fine samples, segment j + 1 goes on from the batch
-      fine_ = tsp::kRefineSamples;
-      fine_sum_ = vec4(0.f);
-      fine_at_ = vec3(0.f);
-      fine_w_ = 0.f;
+      start_fine();
       return made + 1;
     }
     const vec4 col(a.lit.r[j], a.lit.g[j], a.lit.b[j], a.lit.a[j]);

@@ -9,6 +9,7 @@
 
 #include "render/cpu_batch.h"
 #include "render/cpu_sample.h"
+#include "tsp/frame/refine.h"
 
 namespace tspgl::detail {
 
@@ -134,6 +135,13 @@ class RayWalk {
   int ahead_n_ = 0, next_ = 0;
 
   void blend(vec4 c) { acc_ += (1.f - acc_.a) * c; }
+  /// The scalar passes' fine samples of the segment at seg_b_ begin (refined()'s mode 2).
+  void start_fine() {
+    fine_ = tsp::kRefineSamples;
+    fine_sum_ = vec4(0.f);
+    fine_at_ = vec3(0.f);
+    fine_w_ = 0.f;
+  }
   vec3 texel(float t, vec3 scale) const { return (r_.entry + r_.dir * t) * scale; }
   void neighbours(ivec3 c, vec4 page, bool level0, BrickView& b) const;
   // The walk's parts, as volume_ray.frag's (docs/rendering.md, "The caster in parts").
